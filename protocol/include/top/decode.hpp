@@ -1,0 +1,75 @@
+// Decoding a frame into named, typed fields with units, and encoding fields
+// back into data.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "top/catalog.hpp"
+#include "top/frame.hpp"
+
+namespace top {
+
+struct FieldValue {
+  const FieldSpec* spec = nullptr;
+  std::uint32_t offset = 0;   // first byte of the field in the frame
+  std::uint32_t length = 0;   // bytes of the field
+  bool valid = false;         // the bytes fit the kind
+  bool none = false;          // the "no value" placeholder ("NNNNN")
+  std::int64_t integer = 0;   // raw integer (numeric and enum kinds)
+  double value = 0;           // integer * scale, or the parsed number
+  std::string text;           // text, nmea source, raw bytes
+  std::string_view enum_name; // enum kinds, when the value is known
+
+  std::string_view name() const noexcept { return spec ? spec->name : ""; }
+  std::string_view unit() const noexcept { return spec ? spec->unit : ""; }
+};
+
+// The value as a person reads it: "-50.00 deg", "follow (06)", "192.168.1.2".
+std::string format_value(const FieldValue& f);
+
+struct DecodeOptions {
+  Dialect dialect = Dialect::unknown;  // unknown: detect from the frame
+  Model model = Model::unknown;         // unknown: no model checks
+  Role role = Role::any;               // any: from the addresses
+};
+
+struct Decoded {
+  Dialect dialect = Dialect::unknown;  // the dialect decoded with
+  Role role = Role::any;               // request or response as decided
+  const CommandSpec* command = nullptr;
+  const FormSpec* form = nullptr;
+  std::vector<FieldValue> fields;
+  std::vector<Finding> findings;       // catalog-level findings
+
+  // "yaw -50.00 deg, speed 5.0 deg/s"
+  std::string summary() const;
+};
+
+// The role a frame plays, judged from its addresses: a frame from U/P is a
+// request, one to U/P a response.
+Role role_from_addresses(const Frame& f) noexcept;
+
+// Decodes the data of a structurally parsed frame. Never fails: unknown
+// identifiers, wrong lengths and bad digits become findings.
+Decoded decode(const Frame& frame, const DecodeOptions& opts = {});
+
+// Encodes field values (in scaled units, or enum values, or text) into the
+// data of a form. Values are matched to fields by position; missing trailing
+// values are an error. Returns false and leaves `out` unspecified when a
+// value does not fit its field.
+struct EncodeValue {
+  double number = 0;
+  std::string_view text;   // used by text, number, nmea, enum_char, none
+  bool use_text = false;
+};
+bool encode_fields(const FormSpec& form, std::span<const EncodeValue> values,
+                   std::string& out);
+
+// An example data string for a form, every field mid-range (for tests,
+// fuzz seeds and the simulator's defaults).
+std::string example_data(const FormSpec& form);
+
+}  // namespace top

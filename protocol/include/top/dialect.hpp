@@ -1,0 +1,39 @@
+// Dialect detection from ports, addresses, headers and identifiers.
+#pragma once
+
+#include <cstdint>
+
+#include "top/catalog.hpp"
+#include "top/frame.hpp"
+
+namespace top {
+
+// The dialect a well-known port implies: 5000, 9002, 12580 -> skydroid;
+// 9003, 9004 -> topotek; others unknown.
+Dialect dialect_from_port(std::uint16_t port) noexcept;
+
+// True for the ports the documents and field reports use for TOP traffic.
+bool is_top_port(std::uint16_t port) noexcept;
+
+// The dialect one frame points to, unknown when it says nothing: a P
+// address, an extended header or an identifier only Topotek defines point
+// to topotek; an identifier only SkyDroid defines points to skydroid.
+Dialect dialect_from_frame(const Frame& f) noexcept;
+
+// Accumulates evidence for one conversation. An override wins; otherwise
+// the frames' evidence, then the port's, decide.
+class DialectDetector {
+ public:
+  void force(Dialect d) noexcept { forced_ = d; }
+  void observe_port(std::uint16_t port) noexcept;
+  void observe(const Frame& f) noexcept;
+  Dialect current() const noexcept;
+
+ private:
+  Dialect forced_ = Dialect::unknown;
+  Dialect port_ = Dialect::unknown;
+  std::uint32_t votes_skydroid_ = 0;
+  std::uint32_t votes_topotek_ = 0;
+};
+
+}  // namespace top

@@ -1,0 +1,130 @@
+// Frames of the TOP protocol: model, parser, checksum and builder.
+//
+//   #tp  U G  6  w  GAY  EF0732  88
+//   hdr  src dst len ctl ident data checksum
+//
+// Nothing here allocates beyond the frame's own bytes, prints or throws.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "top/findings.hpp"
+
+namespace top {
+
+// The header family.
+enum class Header : std::uint8_t {
+  fixed,     // #TP  one hex length char, documented length 2
+  variable,  // #tp  one hex length char, 0-F
+  ext8,      // #tP  one raw length byte, 0-255 (Topotek)
+  ext16,     // #Tp  two raw big-endian length bytes in place of len+control
+  tmp_quirk  // #PDP16TMP... the malformed Topotek TMP form (no 'tp', no ctl)
+};
+
+std::string_view to_string(Header h) noexcept;  // "#TP", "#tp", ...
+
+// Hard limits of the format.
+inline constexpr std::size_t max_data_hex = 0x0F;
+inline constexpr std::size_t max_data_ext8 = 0xFF;
+inline constexpr std::size_t max_data_ext16 = 0xFFFF;
+// Bytes before the data of a #TP/#tp/#tP frame: # t p S D L C I I I.
+inline constexpr std::size_t prefix_size = 10;
+// Largest frame of any header: "#Tp" SD LL III data(65535) CC.
+inline constexpr std::size_t max_frame_size = 3 + 2 + 2 + 3 + max_data_ext16 + 2;
+
+// True for the address characters the documents define (U M D E P G).
+bool is_address(char c) noexcept;
+// True for a client-side address: U (UART/UDP client) or P (network client).
+bool is_client_address(char c) noexcept;
+
+// A parsed frame. `raw` holds exactly the frame's bytes (no terminator).
+struct Frame {
+  Header header = Header::variable;
+  char src = 0;
+  char dst = 0;
+  char control = 0;           // 'r', 'w', or 0 for #Tp and the TMP form
+  char ident[3] = {0, 0, 0};
+  std::uint32_t declared_length = 0;  // what the length field says
+  std::uint32_t data_offset = 0;      // where the data starts in raw
+  std::uint32_t data_length = 0;      // the data length actually used
+  std::uint8_t checksum = 0;          // value of the checksum digits
+  std::uint8_t expected_checksum = 0; // sum of the bytes before them
+  bool checksum_present = false;      // two hex digits were there
+  bool checksum_ok = false;           // present and equal (any case)
+  std::uint8_t terminator = 0;        // CR/LF bytes that followed the frame
+  std::string raw;
+  std::vector<Finding> findings;
+
+  std::string_view ident_view() const noexcept { return {ident, 3}; }
+  std::string_view data() const noexcept {
+    return std::string_view(raw).substr(data_offset, data_length);
+  }
+  std::string_view header_text() const noexcept {
+    return std::string_view(raw).substr(0, header == Header::tmp_quirk ? 2 : 3);
+  }
+  std::string_view checksum_text() const noexcept;
+  // True when no finding is an error.
+  bool ok() const noexcept;
+  // Highest severity among the findings (info when there are none).
+  Severity worst() const noexcept;
+  bool has(FindingCode c) const noexcept;
+};
+
+// The TOP checksum: sum of the bytes, modulo 256.
+std::uint8_t checksum(std::string_view bytes) noexcept;
+// Two uppercase hex digits.
+void put_hex2(std::uint8_t v, char out[2]) noexcept;
+
+enum class ParseStatus : std::uint8_t {
+  frame,      // a frame (possibly with findings) of `consumed` bytes
+  need_more,  // the verdict depends on bytes not given yet
+  invalid     // no frame starts at byte 0; `error` says why and where
+};
+
+struct ParseOptions {
+  // Largest data length accepted from the length field.
+  std::size_t max_data_length = max_data_ext16;
+  // Try other data lengths when the declared one fails the checksum.
+  bool recover_lying_length = true;
+};
+
+struct ParseResult {
+  ParseStatus status = ParseStatus::need_more;
+  std::size_t consumed = 0;  // frame bytes (status == frame)
+  Frame frame;               // status == frame
+  Finding error;             // status == invalid: code and offset of the fault
+};
+
+// Parses the frame that starts at bytes[0] (which should be '#').
+// `at_end` says no more bytes will follow these, so a partial frame is
+// reported as truncated rather than need_more. The result depends only on
+// the bytes, never on how they were split.
+ParseResult parse_frame(std::string_view bytes, bool at_end,
+                        const ParseOptions& opts = {});
+
+// Parses a buffer that should hold exactly one frame: a missing frame gives
+// invalid, anything after the frame but CR/LF gives a trailing-bytes finding.
+ParseResult parse_exact(std::string_view bytes, const ParseOptions& opts = {});
+
+// How a frame is built.
+struct BuildSpec {
+  Header header = Header::variable;
+  char src = 'U';
+  char dst = 'G';
+  char control = 'w';
+  std::string_view ident;
+  std::string_view data;
+  bool lowercase_checksum = false;
+};
+
+// Builds a frame with the header's length encoding and the checksum. The
+// caller picks the header; see choose_header() in catalog.hpp for the
+// dialect rules. A #TP/#tp frame with more than 15 data bytes is built as #tP
+// (or #Tp past 255).
+std::string build_frame(const BuildSpec& spec);
+
+}  // namespace top

@@ -1,0 +1,77 @@
+// Stream decoder: turns byte chunks of any size into frames.
+//
+// Feed chunks with feed(), pull items with next() until it returns false,
+// call finish() at the end of the stream and pull again. The items are the
+// same however the stream was split. Memory is bounded by max_frame_size
+// plus a small look-ahead, whatever the input.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <string>
+#include <string_view>
+
+#include "top/frame.hpp"
+
+namespace top {
+
+enum class ItemKind : std::uint8_t {
+  frame,   // a frame; item.frame holds it
+  garbage  // bytes that belong to no frame; item.finding says why
+};
+
+struct StreamItem {
+  ItemKind kind = ItemKind::frame;
+  std::uint64_t offset = 0;   // first byte of the frame or garbage
+  std::uint64_t length = 0;   // bytes covered (frame without terminator)
+  Frame frame;                // kind == frame
+  Finding finding;            // kind == garbage: code, offset 0, message
+  std::string preview;        // kind == garbage: the first bytes (<= 32)
+};
+
+struct StreamOptions {
+  ParseOptions parse;
+};
+
+class StreamDecoder {
+ public:
+  explicit StreamDecoder(StreamOptions opts = {});
+
+  // Appends bytes; never fails.
+  void feed(std::string_view chunk);
+  // Declares the end of the stream: a pending partial frame becomes a
+  // truncated item.
+  void finish();
+  // Forgets everything, offsets restart at 0.
+  void reset();
+  // Moves the next complete item into `out`; false when none is ready.
+  bool next(StreamItem& out);
+
+  // Bytes fed so far.
+  std::uint64_t fed() const noexcept { return base_ + buf_.size() - pos_; }
+  // Bytes held waiting for more input (bounded).
+  std::size_t buffered() const noexcept { return buf_.size() - pos_; }
+
+ private:
+  bool step(StreamItem& out);
+  bool emit_garbage(std::size_t n, StreamItem& out, const Finding* why);
+  void compact();
+
+  StreamOptions opts_;
+  std::string buf_;           // unconsumed bytes live in [pos_, size)
+  std::size_t pos_ = 0;
+  std::uint64_t base_ = 0;    // stream offset of buf_[pos_]
+  bool at_end_ = false;
+  // A frame held until we know whether CR/LF follows it.
+  bool has_pending_ = false;
+  StreamItem pending_;
+  // Pending garbage run (merged until a frame starts).
+  std::uint64_t garbage_start_ = 0;
+  std::uint64_t garbage_len_ = 0;
+  std::string garbage_preview_;
+  Finding garbage_reason_;
+  bool garbage_has_reason_ = false;
+  std::deque<StreamItem> ready_;
+};
+
+}  // namespace top

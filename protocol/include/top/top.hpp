@@ -1,0 +1,9 @@
+// Umbrella header of libtop, the TOP protocol library.
+#pragma once
+
+#include "top/catalog.hpp"
+#include "top/decode.hpp"
+#include "top/dialect.hpp"
+#include "top/findings.hpp"
+#include "top/frame.hpp"
+#include "top/stream.hpp"

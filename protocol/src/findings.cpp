@@ -1,0 +1,58 @@
+#include "top/findings.hpp"
+
+#include <array>
+
+namespace top {
+
+namespace {
+
+struct Row {
+  std::string_view code;
+  Severity severity;
+  std::string_view when;
+};
+
+constexpr std::array<Row, finding_code_count> kRows = {{
+#define TOP_X(e, s, sev, when) {s, Severity::sev, when},
+    TOP_FINDINGS(TOP_X)
+#undef TOP_X
+}};
+
+}  // namespace
+
+std::string_view to_string(Severity s) noexcept {
+  switch (s) {
+    case Severity::info: return "info";
+    case Severity::warning: return "warning";
+    case Severity::error: return "error";
+  }
+  return "?";
+}
+
+std::string_view to_string(FindingCode c) noexcept {
+  auto i = static_cast<std::size_t>(c);
+  return i < kRows.size() ? kRows[i].code : "?";
+}
+
+Severity default_severity(FindingCode c) noexcept {
+  auto i = static_cast<std::size_t>(c);
+  return i < kRows.size() ? kRows[i].severity : Severity::error;
+}
+
+std::string_view description(FindingCode c) noexcept {
+  auto i = static_cast<std::size_t>(c);
+  return i < kRows.size() ? kRows[i].when : "";
+}
+
+std::optional<FindingCode> finding_code_from_string(std::string_view s) noexcept {
+  for (std::size_t i = 0; i < kRows.size(); ++i)
+    if (kRows[i].code == s) return static_cast<FindingCode>(i);
+  return std::nullopt;
+}
+
+Finding make_finding(FindingCode code, std::uint32_t offset,
+                     std::string message, std::string_view quirk) {
+  return Finding{code, default_severity(code), offset, std::move(message), quirk};
+}
+
+}  // namespace top
