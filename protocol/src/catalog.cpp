@@ -156,7 +156,7 @@ Header choose_header(Dialect dialect, char address_class,
   if (data_length > max_data_ext8) return Header::ext16;
   if (data_length > max_data_hex) return Header::ext8;
   if (dialect == Dialect::skydroid) {
-    // 2.2.2: "G 类命令帧头都为#TP (包括变长命令)".
+    // SkyDroid 2.2.2: every G-class command uses #TP, variable ones too.
     if (address_class == 'G' || data_length == 2) return Header::fixed;
     return Header::variable;
   }

@@ -37,35 +37,40 @@ class StreamDecoder {
  public:
   explicit StreamDecoder(StreamOptions opts = {});
 
-  // Appends bytes; never fails.
+  // Appends bytes; never fails. Drain next() after each feed: items of the
+  // chunk queue up until pulled.
   void feed(std::string_view chunk);
   // Declares the end of the stream: a pending partial frame becomes a
-  // truncated item.
+  // truncated garbage item, a held frame is released.
   void finish();
-  // Forgets everything, offsets restart at 0.
+  // Releases a complete frame held to see whether CR/LF follows it (for live
+  // links that go quiet); a later CR/LF is then reported as garbage.
+  void flush();
+  // Forgets everything; offsets restart at 0.
   void reset();
-  // Moves the next complete item into `out`; false when none is ready.
+  // Moves the next item into `out`; false when none is ready.
   bool next(StreamItem& out);
 
   // Bytes fed so far.
-  std::uint64_t fed() const noexcept { return base_ + buf_.size() - pos_; }
-  // Bytes held waiting for more input (bounded).
+  std::uint64_t fed() const noexcept { return base_ + buf_.size(); }
+  // Bytes held waiting for more input (bounded by max_frame_size plus the
+  // look-ahead, however the input is split).
   std::size_t buffered() const noexcept { return buf_.size() - pos_; }
 
  private:
-  bool step(StreamItem& out);
-  bool emit_garbage(std::size_t n, StreamItem& out, const Finding* why);
+  void pump();
+  void release_pending();
+  void add_garbage(std::size_t at, std::size_t len, const Finding* why);
+  void flush_garbage();
   void compact();
 
   StreamOptions opts_;
-  std::string buf_;           // unconsumed bytes live in [pos_, size)
+  std::string buf_;          // unconsumed bytes live in [pos_, size)
   std::size_t pos_ = 0;
-  std::uint64_t base_ = 0;    // stream offset of buf_[pos_]
+  std::uint64_t base_ = 0;   // stream offset of buf_[0]
   bool at_end_ = false;
-  // A frame held until we know whether CR/LF follows it.
-  bool has_pending_ = false;
+  bool has_pending_ = false; // a frame held until we know what follows it
   StreamItem pending_;
-  // Pending garbage run (merged until a frame starts).
   std::uint64_t garbage_start_ = 0;
   std::uint64_t garbage_len_ = 0;
   std::string garbage_preview_;

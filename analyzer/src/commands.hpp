@@ -1,0 +1,16 @@
+// topdump subcommands. Each add_* registers its options on the app and
+// returns the function that runs it once parsed, returning the exit status:
+// 0 no error finding, 1 an error finding, 2 unreadable input or bad usage.
+#pragma once
+
+#include <functional>
+
+#include <CLI/CLI.hpp>
+
+namespace topdump {
+
+using Run = std::function<int()>;
+
+Run add_frame_command(CLI::App& app);
+
+}  // namespace topdump

@@ -1,0 +1,76 @@
+#include "escape.hpp"
+
+#include <cstdio>
+
+namespace topdump {
+
+namespace {
+int hexv(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+}  // namespace
+
+std::optional<std::string> unescape(std::string_view arg, std::string& error) {
+  std::string out;
+  out.reserve(arg.size());
+  for (std::size_t i = 0; i < arg.size(); ++i) {
+    char c = arg[i];
+    if (c != '\\') {
+      out += c;
+      continue;
+    }
+    if (i + 1 >= arg.size()) {
+      error = "lone backslash at position " + std::to_string(i);
+      return std::nullopt;
+    }
+    char e = arg[++i];
+    switch (e) {
+      case 'r': out += '\r'; break;
+      case 'n': out += '\n'; break;
+      case 't': out += '\t'; break;
+      case '0': out += '\0'; break;
+      case '\\': out += '\\'; break;
+      case 'x': {
+        int hi = i + 1 < arg.size() ? hexv(arg[i + 1]) : -1;
+        int lo = i + 2 < arg.size() ? hexv(arg[i + 2]) : -1;
+        if (hi < 0 || lo < 0) {
+          error = "\\x at position " + std::to_string(i - 1) + " needs two hex digits";
+          return std::nullopt;
+        }
+        out += static_cast<char>(hi * 16 + lo);
+        i += 2;
+        break;
+      }
+      default:
+        error = std::string("unknown escape \\") + e + " at position " + std::to_string(i - 1);
+        return std::nullopt;
+    }
+  }
+  return out;
+}
+
+std::string escape(std::string_view bytes) {
+  std::string out;
+  out.reserve(bytes.size());
+  for (unsigned char c : bytes) {
+    if (c == '\\') {
+      out += "\\\\";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (c == '\n') {
+      out += "\\n";
+    } else if (c >= 0x20 && c < 0x7F) {
+      out += static_cast<char>(c);
+    } else {
+      char b[5];
+      std::snprintf(b, sizeof b, "\\x%02X", c);
+      out += b;
+    }
+  }
+  return out;
+}
+
+}  // namespace topdump

@@ -1,0 +1,559 @@
+#include "top/decode.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include "chars.hpp"
+#include "top/dialect.hpp"
+
+namespace top {
+
+using detail::hex_value;
+using detail::is_lower_hex;
+
+Role role_from_addresses(const Frame& f) noexcept {
+  bool from_client = is_client_address(f.src);
+  bool to_client = is_client_address(f.dst);
+  if (from_client && !to_client) return Role::request;
+  if (to_client && !from_client) return Role::response;
+  return Role::any;
+}
+
+namespace {
+
+bool role_fits(Role form, Role frame) noexcept {
+  return form == Role::any || frame == Role::any || form == frame;
+}
+
+int decimals_of(double scale) noexcept {
+  if (scale <= 0) return 0;
+  int d = 0;
+  double s = scale;
+  while (d < 9 && std::fabs(s - std::round(s)) > 1e-9) {
+    s *= 10;
+    ++d;
+  }
+  return d;
+}
+
+std::string fmt_number(double v, int decimals) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.*f", decimals, v);
+  return b;
+}
+
+const EnumValue* find_enum(std::span<const EnumValue> e, std::int64_t v) noexcept {
+  for (const EnumValue& x : e)
+    if (x.value == v) return &x;
+  return nullptr;
+}
+
+bool all_printable(std::string_view s) noexcept {
+  for (unsigned char c : s)
+    if (c < 0x20 || c >= 0x7F) return false;
+  return true;
+}
+
+// Parses "[-+]digits[.digits]"; false on anything else.
+bool parse_number(std::string_view s, double& out) noexcept {
+  if (s.empty()) return false;
+  std::size_t i = 0;
+  bool neg = false;
+  if (s[0] == '-' || s[0] == '+') {
+    neg = s[0] == '-';
+    i = 1;
+  }
+  double v = 0, frac = 0.1;
+  bool digits = false, point = false;
+  for (; i < s.size(); ++i) {
+    char c = s[i];
+    if (c >= '0' && c <= '9') {
+      digits = true;
+      if (point) {
+        v += (c - '0') * frac;
+        frac /= 10;
+      } else {
+        v = v * 10 + (c - '0');
+      }
+    } else if (c == '.' && !point) {
+      point = true;
+    } else {
+      return false;
+    }
+  }
+  if (!digits) return false;
+  out = neg ? -v : v;
+  return true;
+}
+
+struct Ctx {
+  const Frame& frame;
+  Decoded& out;
+  bool lowercase_reported = false;
+  void add(FindingCode code, std::uint32_t offset, std::string msg) {
+    out.findings.push_back(make_finding(code, offset, std::move(msg)));
+  }
+};
+
+void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes,
+                  std::uint32_t offset, FieldValue& fv) {
+  fv.spec = &spec;
+  fv.offset = offset;
+  fv.length = static_cast<std::uint32_t>(bytes.size());
+  if (!spec.none.empty() && bytes == spec.none) {
+    fv.none = true;
+    fv.valid = true;
+    fv.text = std::string(bytes);
+    return;
+  }
+  auto bad = [&](std::string why) {
+    fv.valid = false;
+    fv.text = std::string(bytes);
+    ctx.add(FindingCode::bad_field, offset,
+            std::string(spec.name) + ": " + why);
+  };
+  switch (spec.kind) {
+    case FieldKind::hex_u:
+    case FieldKind::hex_s:
+    case FieldKind::enum_hex: {
+      if (bytes.empty() || bytes.size() > 15) return bad("no hex digits");
+      std::uint64_t v = 0;
+      bool lower = false;
+      for (char c : bytes) {
+        int h = hex_value(c);
+        if (h < 0) return bad("'" + std::string(bytes) + "' is not hex");
+        lower |= is_lower_hex(c);
+        v = v * 16 + static_cast<unsigned>(h);
+      }
+      if (lower && !ctx.lowercase_reported) {
+        ctx.lowercase_reported = true;
+        ctx.add(FindingCode::lowercase_hex, offset,
+                std::string(spec.name) + ": hex digits '" + std::string(bytes) +
+                    "' in lowercase");
+      }
+      std::int64_t iv = static_cast<std::int64_t>(v);
+      if (spec.kind == FieldKind::hex_s) {
+        unsigned bits = static_cast<unsigned>(bytes.size()) * 4;
+        if (bits < 64 && (v >> (bits - 1)) & 1u)
+          iv = static_cast<std::int64_t>(v) - (static_cast<std::int64_t>(1) << bits);
+      }
+      fv.integer = iv;
+      fv.value = static_cast<double>(iv) * spec.scale;
+      fv.valid = true;
+      break;
+    }
+    case FieldKind::dec_u: {
+      std::int64_t v = 0;
+      if (bytes.empty()) return bad("no digits");
+      for (char c : bytes) {
+        if (c < '0' || c > '9') return bad("'" + std::string(bytes) + "' is not decimal");
+        v = v * 10 + (c - '0');
+      }
+      fv.integer = v;
+      fv.value = static_cast<double>(v) * spec.scale;
+      fv.valid = true;
+      break;
+    }
+    case FieldKind::enum_char: {
+      if (bytes.empty()) return bad("empty");
+      fv.integer = static_cast<unsigned char>(bytes[0]);
+      fv.value = static_cast<double>(fv.integer);
+      fv.text = std::string(bytes);
+      fv.valid = true;
+      break;
+    }
+    case FieldKind::text: {
+      if (!all_printable(bytes)) return bad("non-printable bytes in text");
+      fv.text = std::string(bytes);
+      fv.valid = true;
+      return;
+    }
+    case FieldKind::number: {
+      double v = 0;
+      std::string_view t = bytes;
+      while (!t.empty() && t.front() == ' ') t.remove_prefix(1);
+      if (!parse_number(t, v)) return bad("'" + std::string(bytes) + "' is not a number");
+      fv.value = v * spec.scale;
+      fv.integer = static_cast<std::int64_t>(v);
+      fv.text = std::string(bytes);
+      fv.valid = true;
+      break;
+    }
+    case FieldKind::le_i16:
+    case FieldKind::le_u16:
+    case FieldKind::le_i32: {
+      std::size_t w = spec.kind == FieldKind::le_i32 ? 4 : 2;
+      if (bytes.size() != w) return bad("needs " + std::to_string(w) + " bytes");
+      std::uint32_t u = 0;
+      for (std::size_t i = 0; i < w; ++i)
+        u |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i])) << (8 * i);
+      std::int64_t iv = 0;
+      if (spec.kind == FieldKind::le_i16)
+        iv = static_cast<std::int16_t>(static_cast<std::uint16_t>(u));
+      else if (spec.kind == FieldKind::le_u16)
+        iv = static_cast<std::uint16_t>(u);
+      else
+        iv = static_cast<std::int32_t>(u);
+      fv.integer = iv;
+      fv.value = static_cast<double>(iv) * spec.scale;
+      fv.valid = true;
+      break;
+    }
+    case FieldKind::nmea: {
+      // "E" + dddmm.mmmm or "N" + ddmm.mmmm (as in $GPGGA).
+      if (bytes.size() < 2) return bad("too short for a hemisphere and a coordinate");
+      char hemi = bytes[0];
+      if (hemi != 'E' && hemi != 'W' && hemi != 'N' && hemi != 'S')
+        return bad(std::string("hemisphere '") + hemi + "' is not N S E W");
+      double raw = 0;
+      if (!parse_number(bytes.substr(1), raw) || raw < 0)
+        return bad("'" + std::string(bytes.substr(1)) + "' is not dddmm.mmmm");
+      double deg = std::floor(raw / 100.0);
+      double minutes = raw - deg * 100.0;
+      double v = deg + minutes / 60.0;
+      if (hemi == 'W' || hemi == 'S') v = -v;
+      fv.value = v;
+      fv.text = std::string(bytes);
+      fv.valid = true;
+      break;
+    }
+    case FieldKind::raw: {
+      fv.text = std::string(bytes);
+      fv.valid = true;
+      return;
+    }
+  }
+  if (!spec.enums.empty()) {
+    if (const EnumValue* e = find_enum(spec.enums, fv.integer)) {
+      fv.enum_name = e->name;
+    } else if (spec.kind == FieldKind::enum_hex || spec.kind == FieldKind::enum_char) {
+      ctx.add(FindingCode::value_out_of_range, offset,
+              std::string(spec.name) + ": '" + std::string(bytes) +
+                  "' is not a documented value");
+      return;
+    }
+  }
+  if (spec.min <= spec.max && fv.enum_name.empty() &&
+      (fv.value < spec.min - 1e-9 || fv.value > spec.max + 1e-9)) {
+    int d = decimals_of(spec.scale);
+    ctx.add(FindingCode::value_out_of_range, offset,
+            std::string(spec.name) + " " + fmt_number(fv.value, d) +
+                (spec.unit.empty() ? "" : " ") + std::string(spec.unit) +
+                " outside [" + fmt_number(spec.min, d) + ", " +
+                fmt_number(spec.max, d) + "]");
+  }
+}
+
+}  // namespace
+
+Decoded decode(const Frame& frame, const DecodeOptions& opts) {
+  Decoded out;
+  Ctx ctx{frame, out};
+  out.role = opts.role != Role::any ? opts.role : role_from_addresses(frame);
+  Dialect d = opts.dialect;
+  if (d == Dialect::unknown && opts.model != Model::unknown) d = dialect_of(opts.model);
+  if (d == Dialect::unknown) d = dialect_from_frame(frame);
+  const std::string_view ident = frame.ident_view();
+  const auto ident_at = static_cast<std::uint32_t>(
+      frame.header == Header::tmp_quirk ? 6 : frame.data_offset - 3);
+  const CommandSpec* cmd =
+      d == Dialect::unknown ? find_any(ident) : find_command(d, ident);
+  if (cmd && d == Dialect::unknown) d = cmd->dialect;
+  out.dialect = d;
+  out.command = cmd;
+
+  if (frame.header == Header::fixed && frame.declared_length != 2) {
+    bool g_class = cmd && cmd->address == 'G' && d == Dialect::skydroid;
+    Finding f = make_finding(
+        FindingCode::tp_length, 5,
+        "#TP frame with length " + std::to_string(frame.declared_length) +
+            " (the fixed header implies 2)" +
+            (g_class ? "; SkyDroid puts every G-class command under #TP" : ""));
+    if (g_class) f.severity = Severity::info;
+    out.findings.push_back(std::move(f));
+  }
+  if (d == Dialect::skydroid &&
+      (frame.header == Header::ext8 || frame.header == Header::ext16))
+    ctx.add(FindingCode::ext_header_skydroid, 0,
+            std::string(to_string(frame.header)) +
+                " is a Topotek extended header; SkyDroid defines only #TP/#tp");
+
+  if (!cmd) {
+    ctx.add(FindingCode::unknown_ident, ident_at,
+            "identifier " + std::string(ident) + " is not in the " +
+                std::string(d == Dialect::unknown ? "TOP" : to_string(d)) +
+                " catalog");
+    return out;
+  }
+  if (opts.model != Model::unknown && !cmd->supports(opts.model))
+    ctx.add(FindingCode::unsupported_on_model, ident_at,
+            std::string(ident) + " (" + std::string(cmd->section) +
+                ") is not listed for " + std::string(to_string(opts.model)));
+  if (ident == "ERE")
+    ctx.add(FindingCode::error_reply, ident_at,
+            std::string("the device rejected a command as invalid (") +
+                frame.src + " to " + frame.dst + ")");
+
+  const std::size_t len = frame.data_length;
+  const FormSpec* form = nullptr;
+  bool swapped = false, control_known = false;
+  for (const FormSpec& f : cmd->forms) {
+    if (frame.control != 0 && f.control != frame.control) continue;
+    control_known = true;
+    if (len < f.min_length || len > f.max_length) continue;
+    if (role_fits(f.role, out.role)) {
+      form = &f;
+      break;
+    }
+    if (!swapped && !form) swapped = true;
+  }
+  if (!form && swapped) {
+    for (const FormSpec& f : cmd->forms) {
+      if (frame.control != 0 && f.control != frame.control) continue;
+      if (len < f.min_length || len > f.max_length) continue;
+      form = &f;
+      break;
+    }
+    if (form)
+      ctx.add(FindingCode::unswapped_addresses, 3,
+              std::string("laid out as a ") +
+                  (form->role == Role::response ? "response" : "request") +
+                  " but addressed " + frame.src + " to " + frame.dst);
+  }
+  if (!control_known) {
+    ctx.add(FindingCode::unsupported_control, 6,
+            std::string(ident) + " has no '" + std::string(1, frame.control) +
+                "' form in " + std::string(cmd->section));
+    return out;
+  }
+  if (!form) {
+    std::string allowed;
+    for (const FormSpec& f : cmd->forms) {
+      if (frame.control != 0 && f.control != frame.control) continue;
+      if (!allowed.empty()) allowed += ", ";
+      allowed += f.min_length == f.max_length
+                     ? std::to_string(f.min_length)
+                     : std::to_string(f.min_length) + "-" + std::to_string(f.max_length);
+    }
+    ctx.add(FindingCode::data_length, frame.data_offset,
+            std::to_string(len) + " data byte(s); " + std::string(ident) + " '" +
+                std::string(1, frame.control ? frame.control : '?') + "' takes " + allowed);
+    return out;
+  }
+  out.form = form;
+  if (form->role != Role::any && out.role == Role::any) out.role = form->role;
+
+  std::string_view data = frame.data();
+  std::size_t pos = 0;
+  out.fields.reserve(form->fields.size());
+  for (const FieldSpec& fs : form->fields) {
+    if (pos >= data.size() && fs.width != 0) break;
+    std::size_t w = fs.width == 0 ? data.size() - pos : fs.width;
+    if (pos + w > data.size()) {
+      ctx.add(FindingCode::data_length, static_cast<std::uint32_t>(frame.data_offset + pos),
+              std::string(fs.name) + " needs " + std::to_string(w) + " byte(s), " +
+                  std::to_string(data.size() - pos) + " left");
+      break;
+    }
+    FieldValue fv;
+    decode_field(ctx, fs, data.substr(pos, w),
+                 static_cast<std::uint32_t>(frame.data_offset + pos), fv);
+    out.fields.push_back(std::move(fv));
+    pos += w;
+  }
+  return out;
+}
+
+std::string format_value(const FieldValue& f) {
+  if (!f.spec) return {};
+  const FieldSpec& s = *f.spec;
+  if (f.none) return "none (" + f.text + ")";
+  if (!f.valid) return "'" + f.text + "' (invalid)";
+  auto with_unit = [&](std::string v) {
+    if (!s.unit.empty()) {
+      v += ' ';
+      v += s.unit;
+    }
+    return v;
+  };
+  switch (s.kind) {
+    case FieldKind::enum_hex:
+    case FieldKind::enum_char: {
+      std::string code = s.kind == FieldKind::enum_char
+                             ? f.text
+                             : [&] {
+                                 char b[24];
+                                 std::snprintf(b, sizeof b, "%0*llX",
+                                               static_cast<int>(f.length),
+                                               static_cast<unsigned long long>(f.integer));
+                                 return std::string(b);
+                               }();
+      if (!f.enum_name.empty()) return std::string(f.enum_name) + " (" + code + ")";
+      return code + " (undocumented)";
+    }
+    case FieldKind::text:
+    case FieldKind::raw: return f.text;
+    case FieldKind::nmea: return with_unit(fmt_number(f.value, 7)) + " (" + f.text + ")";
+    case FieldKind::number: return with_unit(f.text);
+    default: {
+      std::string v = with_unit(fmt_number(f.value, decimals_of(s.scale)));
+      if (!f.enum_name.empty()) v += " (" + std::string(f.enum_name) + ")";
+      return v;
+    }
+  }
+}
+
+std::string Decoded::summary() const {
+  std::string s;
+  for (const FieldValue& f : fields) {
+    if (!s.empty()) s += ", ";
+    s += f.name();
+    s += ' ';
+    s += format_value(f);
+  }
+  return s;
+}
+
+namespace {
+
+bool put_hex(std::int64_t v, std::size_t width, bool is_signed, std::string& out) {
+  if (width == 0 || width > 15) return false;
+  unsigned bits = static_cast<unsigned>(width) * 4;
+  std::int64_t lo = is_signed ? -(static_cast<std::int64_t>(1) << (bits - 1)) : 0;
+  std::int64_t hi = is_signed ? (static_cast<std::int64_t>(1) << (bits - 1)) - 1
+                              : (static_cast<std::int64_t>(1) << bits) - 1;
+  if (v < lo || v > hi) return false;
+  std::uint64_t u = static_cast<std::uint64_t>(v) & ((static_cast<std::uint64_t>(1) << bits) - 1);
+  char b[24];
+  std::snprintf(b, sizeof b, "%0*llX", static_cast<int>(width),
+                static_cast<unsigned long long>(u));
+  out += b;
+  return true;
+}
+
+}  // namespace
+
+bool encode_fields(const FormSpec& form, std::span<const EncodeValue> values,
+                   std::string& out) {
+  out.clear();
+  if (values.size() < form.fields.size()) return false;
+  for (std::size_t i = 0; i < form.fields.size(); ++i) {
+    const FieldSpec& s = form.fields[i];
+    const EncodeValue& v = values[i];
+    std::size_t w = s.width;
+    if (v.use_text && !(s.kind == FieldKind::le_i16 || s.kind == FieldKind::le_u16 ||
+                        s.kind == FieldKind::le_i32)) {
+      if (w != 0 && v.text.size() != w) return false;
+      out.append(v.text);
+      continue;
+    }
+    std::int64_t iv = static_cast<std::int64_t>(
+        std::llround(s.scale != 0 ? v.number / s.scale : v.number));
+    switch (s.kind) {
+      case FieldKind::hex_u:
+      case FieldKind::enum_hex:
+        if (!put_hex(iv, w, false, out)) return false;
+        break;
+      case FieldKind::hex_s:
+        if (!put_hex(iv, w, true, out)) return false;
+        break;
+      case FieldKind::dec_u: {
+        if (iv < 0 || w == 0 || w > 18) return false;
+        char b[32];
+        int n = std::snprintf(b, sizeof b, "%0*lld", static_cast<int>(w),
+                              static_cast<long long>(iv));
+        if (n != static_cast<int>(w)) return false;
+        out += b;
+        break;
+      }
+      case FieldKind::enum_char: {
+        if (w != 1 && w != 0) return false;
+        out += static_cast<char>(static_cast<int>(v.number));
+        break;
+      }
+      case FieldKind::number: {
+        std::string t = fmt_number(v.number, decimals_of(s.scale));
+        if (w != 0) {
+          if (t.size() > w) return false;
+          bool neg = !t.empty() && t[0] == '-';
+          std::string digits = neg ? t.substr(1) : t;
+          std::string pad(w - t.size(), '0');
+          t = (neg ? "-" : "") + pad + digits;
+        }
+        out += t;
+        break;
+      }
+      case FieldKind::le_i16:
+      case FieldKind::le_u16:
+      case FieldKind::le_i32: {
+        std::size_t n = s.kind == FieldKind::le_i32 ? 4 : 2;
+        std::int64_t lo = s.kind == FieldKind::le_i16 ? -32768
+                          : s.kind == FieldKind::le_u16 ? 0
+                                                        : INT32_MIN;
+        std::int64_t hi = s.kind == FieldKind::le_i16 ? 32767
+                          : s.kind == FieldKind::le_u16 ? 65535
+                                                        : INT32_MAX;
+        if (iv < lo || iv > hi) return false;
+        auto u = static_cast<std::uint32_t>(iv);
+        for (std::size_t k = 0; k < n; ++k) out += static_cast<char>((u >> (8 * k)) & 0xFF);
+        break;
+      }
+      case FieldKind::text:
+      case FieldKind::nmea:
+      case FieldKind::raw:
+        return false;  // these take text
+    }
+  }
+  return true;
+}
+
+std::string example_data(const FormSpec& form) {
+  std::string out;
+  for (const FieldSpec& s : form.fields) {
+    std::size_t w = s.width;
+    EncodeValue v;
+    if (!s.enums.empty() && (s.kind == FieldKind::enum_hex || s.kind == FieldKind::enum_char)) {
+      v.number = static_cast<double>(s.enums.back().value);
+    } else if (s.min <= s.max) {
+      double mid = (s.min + s.max) / 2;
+      v.number = s.scale != 0 ? std::round(mid / s.scale) * s.scale : mid;
+    }
+    std::string part;
+    EncodeValue one[1] = {v};
+    FormSpec single;
+    FieldSpec copy = s;
+    single.fields = std::span<const FieldSpec>(&copy, 1);
+    switch (s.kind) {
+      case FieldKind::text: {
+        std::string t = w == 0 ? std::string("192.168.144.108") : std::string(w, 'A');
+        out += t;
+        continue;
+      }
+      case FieldKind::nmea: {
+        std::string t = "E12030.1234";
+        if (w != 0) {
+          t.resize(w, '0');
+        }
+        out += t;
+        continue;
+      }
+      case FieldKind::raw: out += std::string(w, '0'); continue;
+      default: break;
+    }
+    if (w == 0 && s.kind != FieldKind::number) {
+      // Variable-width numeric: use two digits.
+      copy.width = 2;
+    }
+    if (!encode_fields(single, one, part)) {
+      // Fall back to zero, which every numeric field can hold.
+      one[0].number = 0;
+      if (!encode_fields(single, one, part)) part = std::string(w ? w : 2, '0');
+    }
+    out += part;
+  }
+  if (out.size() < form.min_length) out.resize(form.min_length, '0');
+  return out;
+}
+
+}  // namespace top

@@ -1,0 +1,53 @@
+#include "top/dialect.hpp"
+
+namespace top {
+
+Dialect dialect_from_port(std::uint16_t port) noexcept {
+  switch (port) {
+    case 5000:
+    case 9002:
+    case 12580: return Dialect::skydroid;
+    case 9003:
+    case 9004: return Dialect::topotek;
+    default: return Dialect::unknown;
+  }
+}
+
+bool is_top_port(std::uint16_t port) noexcept {
+  return dialect_from_port(port) != Dialect::unknown;
+}
+
+Dialect dialect_from_frame(const Frame& f) noexcept {
+  if (f.src == 'P' || f.dst == 'P') return Dialect::topotek;
+  if (f.header == Header::ext8 || f.header == Header::ext16 ||
+      f.header == Header::tmp_quirk)
+    return Dialect::topotek;
+  std::string_view id = f.ident_view();
+  const bool sky = find_command(Dialect::skydroid, id) != nullptr;
+  const bool topo = find_command(Dialect::topotek, id) != nullptr;
+  if (sky && !topo) return Dialect::skydroid;
+  if (topo && !sky) return Dialect::topotek;
+  return Dialect::unknown;
+}
+
+void DialectDetector::observe_port(std::uint16_t port) noexcept {
+  Dialect d = dialect_from_port(port);
+  if (d != Dialect::unknown) port_ = d;
+}
+
+void DialectDetector::observe(const Frame& f) noexcept {
+  switch (dialect_from_frame(f)) {
+    case Dialect::skydroid: ++votes_skydroid_; break;
+    case Dialect::topotek: ++votes_topotek_; break;
+    case Dialect::unknown: break;
+  }
+}
+
+Dialect DialectDetector::current() const noexcept {
+  if (forced_ != Dialect::unknown) return forced_;
+  if (votes_skydroid_ > votes_topotek_) return Dialect::skydroid;
+  if (votes_topotek_ > votes_skydroid_) return Dialect::topotek;
+  return port_;
+}
+
+}  // namespace top

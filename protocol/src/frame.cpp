@@ -1,0 +1,481 @@
+#include "top/frame.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstdio>
+
+#include "chars.hpp"
+
+namespace top {
+
+using detail::hex_value;
+using detail::is_hex;
+using detail::is_lower_hex;
+
+std::string_view to_string(Header h) noexcept {
+  switch (h) {
+    case Header::fixed: return "#TP";
+    case Header::variable: return "#tp";
+    case Header::ext8: return "#tP";
+    case Header::ext16: return "#Tp";
+    case Header::tmp_quirk: return "#P";
+  }
+  return "?";
+}
+
+bool is_address(char c) noexcept {
+  return c == 'U' || c == 'M' || c == 'D' || c == 'E' || c == 'P' || c == 'G';
+}
+
+bool is_client_address(char c) noexcept { return c == 'U' || c == 'P'; }
+
+std::string_view Frame::checksum_text() const noexcept {
+  if (!checksum_present) return {};
+  std::size_t at = data_offset + data_length;
+  return std::string_view(raw).substr(at, 2);
+}
+
+bool Frame::ok() const noexcept { return worst() != Severity::error; }
+
+Severity Frame::worst() const noexcept {
+  Severity w = Severity::info;
+  for (const Finding& f : findings)
+    if (f.severity > w) w = f.severity;
+  return w;
+}
+
+bool Frame::has(FindingCode c) const noexcept {
+  for (const Finding& f : findings)
+    if (f.code == c) return true;
+  return false;
+}
+
+std::uint8_t checksum(std::string_view bytes) noexcept {
+  unsigned sum = 0;
+  for (unsigned char c : bytes) sum += c;
+  return static_cast<std::uint8_t>(sum & 0xFF);
+}
+
+void put_hex2(std::uint8_t v, char out[2]) noexcept {
+  static constexpr char kDigits[] = "0123456789ABCDEF";
+  out[0] = kDigits[v >> 4];
+  out[1] = kDigits[v & 0x0F];
+}
+
+namespace {
+
+std::string hex2(std::uint8_t v) {
+  char b[2];
+  put_hex2(v, b);
+  return std::string(b, 2);
+}
+
+std::string printable(char c) {
+  auto u = static_cast<unsigned char>(c);
+  if (u >= 0x20 && u < 0x7F) return std::string("'") + c + "'";
+  char b[8];
+  std::snprintf(b, sizeof b, "0x%02X", u);
+  return b;
+}
+
+bool is_ident_char(char c) noexcept {
+  return (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
+}
+
+bool is_boundary(char c) noexcept { return c == '#' || c == '\r' || c == '\n'; }
+
+ParseResult invalid(FindingCode code, std::size_t offset, std::string msg) {
+  ParseResult r;
+  r.status = ParseStatus::invalid;
+  r.error = make_finding(code, static_cast<std::uint32_t>(offset), std::move(msg));
+  return r;
+}
+
+ParseResult need_more() { return ParseResult{}; }
+
+ParseResult truncated(std::size_t have, std::size_t want) {
+  return invalid(FindingCode::truncated, have,
+                 "input ends after " + std::to_string(have) +
+                     " bytes of a frame that needs " + std::to_string(want));
+}
+
+// Header variants whose checksum a sender may have used by mistake.
+constexpr std::array<std::array<char, 2>, 4> kHeaderVariants = {
+    {{'T', 'P'}, {'t', 'p'}, {'t', 'P'}, {'T', 'p'}}};
+
+// State shared by the steps of one parse.
+struct Layout {
+  Header header = Header::variable;
+  char control = 0;
+  std::size_t ident_at = 7;
+  std::size_t data_at = prefix_size;
+  std::size_t declared = 0;
+  bool hex_length = true;  // length is hex digits (alternatives make sense)
+  bool two_digit = false;
+};
+
+// Checks the checksum digits at `p`; fills frame fields. Returns true when
+// the two digits are hex and equal to the sum of bytes [0, p).
+bool checksum_at(std::string_view b, std::size_t p, unsigned prefix_sum,
+                 std::uint8_t& value) noexcept {
+  if (p + 2 > b.size()) return false;
+  int hi = hex_value(b[p]), lo = hex_value(b[p + 1]);
+  if (hi < 0 || lo < 0) return false;
+  value = static_cast<std::uint8_t>(hi * 16 + lo);
+  return value == static_cast<std::uint8_t>(prefix_sum & 0xFF);
+}
+
+}  // namespace
+
+ParseResult parse_frame(std::string_view b, bool at_end,
+                        const ParseOptions& opts) {
+  const std::size_t n = b.size();
+  auto short_of = [&](std::size_t want) { return n < want; };
+  if (n == 0) return at_end ? truncated(0, 1) : need_more();
+  if (b[0] != '#')
+    return invalid(FindingCode::bad_header, 0,
+                   "frame must start with '#', got " + printable(b[0]));
+
+  Layout lay;
+  // --- header -----------------------------------------------------------
+  if (short_of(2)) return at_end ? truncated(n, 12) : need_more();
+  if (b[1] == 'P') {
+    // Topotek 12.2 documents "#PDP16TMP<22 chars><RR>": no 'tp', no control.
+    static constexpr std::string_view kTmp = "#PDP??TMP";
+    for (std::size_t i = 1; i < kTmp.size(); ++i) {
+      if (i >= n) return at_end ? truncated(n, 33) : need_more();
+      bool okc = kTmp[i] == '?' ? is_hex(b[i]) : b[i] == kTmp[i];
+      if (!okc)
+        return invalid(FindingCode::bad_header, 1,
+                       "'#' followed by " + printable(b[1]) +
+                           ", not a TOP header (#TP #tp #tP #Tp)");
+    }
+    lay.header = Header::tmp_quirk;
+    lay.ident_at = 6;
+    lay.data_at = 9;
+    lay.declared = static_cast<std::size_t>(hex_value(b[4]) * 16 + hex_value(b[5]));
+    lay.hex_length = false;
+  } else {
+    if (b[1] != 'T' && b[1] != 't')
+      return invalid(FindingCode::bad_header, 1,
+                     "'#' followed by " + printable(b[1]) +
+                         ", not a TOP header (#TP #tp #tP #Tp)");
+    if (short_of(3)) return at_end ? truncated(n, 12) : need_more();
+    if (b[2] != 'P' && b[2] != 'p')
+      return invalid(FindingCode::bad_header, 2,
+                     std::string("\"#") + b[1] + "\" followed by " +
+                         printable(b[2]) + ", not a TOP header");
+    if (b[1] == 'T')
+      lay.header = b[2] == 'P' ? Header::fixed : Header::ext16;
+    else
+      lay.header = b[2] == 'p' ? Header::variable : Header::ext8;
+  }
+
+  Frame f;
+  f.header = lay.header;
+  std::vector<Finding> notes;
+
+  if (lay.header != Header::tmp_quirk) {
+    // --- addresses --------------------------------------------------------
+    for (std::size_t i = 3; i < 5; ++i) {
+      if (short_of(i + 1)) return at_end ? truncated(n, 12) : need_more();
+      if (!is_address(b[i]))
+        return invalid(FindingCode::bad_address, i,
+                       std::string(i == 3 ? "source" : "destination") +
+                           " address " + printable(b[i]) +
+                           " is not one of U M D E P G");
+    }
+    // --- length and control ----------------------------------------------
+    if (short_of(6)) return at_end ? truncated(n, 12) : need_more();
+    switch (lay.header) {
+      case Header::fixed:
+      case Header::variable: {
+        if (!is_hex(b[5]))
+          return invalid(FindingCode::bad_length_char, 5,
+                         "length char " + printable(b[5]) +
+                             " is not a hex digit");
+        if (is_lower_hex(b[5]))
+          notes.push_back(make_finding(FindingCode::lowercase_hex, 5,
+                                       "length char written in lowercase"));
+        if (short_of(7)) return at_end ? truncated(n, 12) : need_more();
+        if (b[6] == 'r' || b[6] == 'w') {
+          lay.control = b[6];
+          lay.declared = static_cast<std::size_t>(hex_value(b[5]));
+        } else if (is_hex(b[6])) {
+          // Two-digit length ("#tpDP16wTMP..."): the TMP firmware quirk.
+          if (short_of(8)) return at_end ? truncated(n, 13) : need_more();
+          if (b[7] != 'r' && b[7] != 'w')
+            return invalid(FindingCode::bad_control, 6,
+                           "control char " + printable(b[6]) +
+                               " is not r or w");
+          lay.control = b[7];
+          lay.declared =
+              static_cast<std::size_t>(hex_value(b[5]) * 16 + hex_value(b[6]));
+          lay.two_digit = true;
+          lay.hex_length = false;
+          lay.ident_at = 8;
+          lay.data_at = 11;
+        } else {
+          return invalid(FindingCode::bad_control, 6,
+                         "control char " + printable(b[6]) + " is not r or w");
+        }
+        break;
+      }
+      case Header::ext8: {
+        lay.declared = static_cast<unsigned char>(b[5]);
+        lay.hex_length = false;
+        if (short_of(7)) return at_end ? truncated(n, 12) : need_more();
+        if (b[6] != 'r' && b[6] != 'w')
+          return invalid(FindingCode::bad_control, 6,
+                         "control char " + printable(b[6]) + " is not r or w");
+        lay.control = b[6];
+        break;
+      }
+      case Header::ext16: {
+        if (short_of(7)) return at_end ? truncated(n, 12) : need_more();
+        lay.declared = static_cast<std::size_t>(
+            static_cast<unsigned char>(b[5]) << 8 | static_cast<unsigned char>(b[6]));
+        lay.hex_length = false;
+        lay.control = 0;
+        lay.ident_at = 7;
+        lay.data_at = 10;
+        break;
+      }
+      case Header::tmp_quirk: break;
+    }
+  }
+
+  // --- identifier -----------------------------------------------------------
+  for (std::size_t i = lay.ident_at; i < lay.ident_at + 3; ++i) {
+    if (short_of(i + 1)) return at_end ? truncated(n, lay.data_at + 2) : need_more();
+    if (!is_ident_char(b[i]))
+      return invalid(FindingCode::bad_ident, i,
+                     "identifier char " + printable(b[i]) +
+                         " is not an uppercase letter or digit");
+  }
+  if (lay.declared > opts.max_data_length)
+    return invalid(FindingCode::frame_too_long, 5,
+                   "declared data length " + std::to_string(lay.declared) +
+                       " exceeds the limit of " +
+                       std::to_string(opts.max_data_length));
+
+  f.src = lay.header == Header::tmp_quirk ? b[2] : b[3];
+  f.dst = lay.header == Header::tmp_quirk ? b[3] : b[4];
+  f.control = lay.control;
+  f.ident[0] = b[lay.ident_at];
+  f.ident[1] = b[lay.ident_at + 1];
+  f.ident[2] = b[lay.ident_at + 2];
+  f.declared_length = static_cast<std::uint32_t>(lay.declared);
+  f.data_offset = static_cast<std::uint32_t>(lay.data_at);
+
+  if (lay.header == Header::tmp_quirk || (lay.two_digit && f.ident_view() == "TMP")) {
+    notes.push_back(make_finding(
+        FindingCode::tmp_quirk, lay.header == Header::tmp_quirk ? 1 : 5,
+        lay.header == Header::tmp_quirk
+            ? "the malformed TMP form documented in Topotek 12.2 (#PDP16TMP: "
+              "no 'tp', two-digit length, no control char)"
+            : "TMP frame with a two-digit length (Topotek 12.2: 22 data chars "
+              "do not fit one hex digit)",
+        "topotek-tmp-length"));
+  } else if (lay.two_digit) {
+    notes.push_back(make_finding(FindingCode::two_digit_length, 5,
+                                 "length written as two hex digits (0x" +
+                                     std::string(b.substr(5, 2)) + ")"));
+  }
+
+  // --- data and checksum -------------------------------------------------------
+  const std::size_t L = lay.declared;
+  const std::size_t declared_cs = lay.data_at + L;
+  const std::size_t declared_end = declared_cs + 2;
+  // Look-ahead needed to judge other data lengths: every one-digit length
+  // plus its checksum and the byte after it.
+  const std::size_t lookahead = lay.data_at + max_data_hex + 3;
+
+  if (!at_end && n < declared_end) return need_more();
+
+  // Sum of bytes [0, p).
+  auto sum_to = [&](std::size_t p) {
+    unsigned s = 0;
+    for (std::size_t i = 0; i < p; ++i) s += static_cast<unsigned char>(b[i]);
+    return s;
+  };
+
+  auto finish = [&](std::size_t data_len, bool present, std::uint8_t value,
+                    unsigned prefix) -> ParseResult {
+    ParseResult r;
+    r.status = ParseStatus::frame;
+    f.data_length = static_cast<std::uint32_t>(data_len);
+    std::size_t end = lay.data_at + data_len + (present ? 2 : 0);
+    f.raw.assign(b.data(), end);
+    f.expected_checksum = static_cast<std::uint8_t>(prefix & 0xFF);
+    f.checksum_present = present;
+    f.checksum = value;
+    f.checksum_ok = present && value == f.expected_checksum;
+    f.findings = std::move(notes);
+    r.consumed = end;
+    r.frame = std::move(f);
+    return r;
+  };
+
+  unsigned prefix_declared = 0;
+  if (n >= declared_end) {
+    prefix_declared = sum_to(declared_cs);
+    std::uint8_t v = 0;
+    if (checksum_at(b, declared_cs, prefix_declared, v)) {
+      if (is_lower_hex(b[declared_cs]) || is_lower_hex(b[declared_cs + 1]))
+        notes.push_back(make_finding(
+            FindingCode::checksum_case, static_cast<std::uint32_t>(declared_cs),
+            "checksum " + std::string(b.substr(declared_cs, 2)) +
+                " is right but lowercase; strict receivers expect " + hex2(v)));
+      return finish(L, true, v, prefix_declared);
+    }
+  }
+
+  // The declared boundary does not validate.
+  if (lay.hex_length && opts.recover_lying_length) {
+    if (!at_end && n < lookahead) return need_more();
+    std::size_t found = SIZE_MAX;
+    int count = 0;
+    std::uint8_t found_value = 0;
+    unsigned found_prefix = 0;
+    unsigned s = sum_to(lay.data_at);
+    for (std::size_t dl = 0; dl <= max_data_hex; ++dl) {
+      std::size_t p = lay.data_at + dl;
+      if (dl > 0) s += static_cast<unsigned char>(b[p - 1]);
+      if (p + 2 > n) break;
+      if (dl == L) continue;
+      std::uint8_t v = 0;
+      if (!checksum_at(b, p, s, v)) continue;
+      bool bounded = (p + 2 == n && at_end) || (p + 2 < n && is_boundary(b[p + 2]));
+      if (!bounded) continue;
+      ++count;
+      found = dl;
+      found_value = v;
+      found_prefix = s;
+    }
+    if (count == 1) {
+      notes.push_back(make_finding(
+          FindingCode::length_mismatch, 5,
+          "declared length " + std::to_string(L) + " but the checksum validates with " +
+              std::to_string(found) + " data bytes; decoded with " +
+              std::to_string(found)));
+      return finish(found, true, found_value, found_prefix);
+    }
+  }
+
+  if (n < declared_end) {
+    // Only reachable at the end of input.
+    if (n == declared_cs) {
+      unsigned p = sum_to(declared_cs);
+      notes.push_back(make_finding(FindingCode::no_checksum,
+                                   static_cast<std::uint32_t>(declared_cs),
+                                   "frame ends where its checksum should be (expected " +
+                                       hex2(static_cast<std::uint8_t>(p)) + ")"));
+      return finish(L, false, 0, p);
+    }
+    return truncated(n, declared_end);
+  }
+
+  // No checksum at all: the data is followed directly by a boundary.
+  if (is_boundary(b[declared_cs])) {
+    notes.push_back(make_finding(
+        FindingCode::no_checksum, static_cast<std::uint32_t>(declared_cs),
+        "frame ends where its checksum should be (expected " +
+            hex2(static_cast<std::uint8_t>(prefix_declared)) + ")"));
+    return finish(L, false, 0, prefix_declared);
+  }
+
+  // A wrong checksum: say whether it is the sum under another header case.
+  std::uint8_t expected = static_cast<std::uint8_t>(prefix_declared & 0xFF);
+  std::string got(b.substr(declared_cs, 2));
+  int hi = hex_value(b[declared_cs]), lo = hex_value(b[declared_cs + 1]);
+  bool present = hi >= 0 && lo >= 0;
+  std::uint8_t value = present ? static_cast<std::uint8_t>(hi * 16 + lo) : 0;
+  if (present && lay.header != Header::tmp_quirk) {
+    unsigned base = prefix_declared - static_cast<unsigned char>(b[1]) -
+                    static_cast<unsigned char>(b[2]);
+    for (const auto& v : kHeaderVariants) {
+      if (v[0] == b[1] && v[1] == b[2]) continue;
+      unsigned alt = base + static_cast<unsigned char>(v[0]) + static_cast<unsigned char>(v[1]);
+      if (static_cast<std::uint8_t>(alt & 0xFF) == value) {
+        notes.push_back(make_finding(
+            FindingCode::checksum_header_case, static_cast<std::uint32_t>(declared_cs),
+            "checksum " + got + " is the sum with header #" + std::string(v.data(), 2) +
+                ", not #" + std::string(b.substr(1, 2)) + " (expected " + hex2(expected) + ")",
+            "skydroid-doc-header-case"));
+        return finish(L, true, value, prefix_declared);
+      }
+    }
+  }
+  notes.push_back(make_finding(
+      FindingCode::bad_checksum, static_cast<std::uint32_t>(declared_cs),
+      present ? "checksum " + got + ", expected " + hex2(expected)
+              : "checksum field '" + got + "' is not two hex digits, expected " +
+                    hex2(expected)));
+  return finish(L, present, value, prefix_declared);
+}
+
+ParseResult parse_exact(std::string_view bytes, const ParseOptions& opts) {
+  ParseResult r = parse_frame(bytes, true, opts);
+  if (r.status != ParseStatus::frame) return r;
+  std::size_t i = r.consumed;
+  std::size_t crlf = 0;
+  while (i < bytes.size() && (bytes[i] == '\r' || bytes[i] == '\n')) {
+    ++i;
+    ++crlf;
+  }
+  if (crlf > 0) {
+    r.frame.terminator = static_cast<std::uint8_t>(std::min<std::size_t>(crlf, 255));
+    r.frame.findings.push_back(make_finding(
+        FindingCode::crlf, static_cast<std::uint32_t>(r.consumed),
+        "frame followed by " + std::to_string(crlf) + " CR/LF byte(s)"));
+  }
+  if (i < bytes.size())
+    r.frame.findings.push_back(make_finding(
+        FindingCode::trailing_bytes, static_cast<std::uint32_t>(i),
+        std::to_string(bytes.size() - i) + " byte(s) after the frame"));
+  r.consumed = bytes.size();
+  return r;
+}
+
+std::string build_frame(const BuildSpec& spec) {
+  Header h = spec.header;
+  std::size_t len = spec.data.size();
+  if ((h == Header::fixed || h == Header::variable) && len > max_data_hex)
+    h = Header::ext8;
+  if (h == Header::ext8 && len > max_data_ext8) h = Header::ext16;
+  if (h == Header::tmp_quirk) h = Header::variable;
+  std::string out;
+  out.reserve(prefix_size + len + 2);
+  out += to_string(h);
+  out += spec.src;
+  out += spec.dst;
+  switch (h) {
+    case Header::fixed:
+    case Header::variable:
+      out += "0123456789ABCDEF"[len & 0x0F];
+      out += spec.control;
+      break;
+    case Header::ext8:
+      out += static_cast<char>(len & 0xFF);
+      out += spec.control;
+      break;
+    case Header::ext16:
+      out += static_cast<char>((len >> 8) & 0xFF);
+      out += static_cast<char>(len & 0xFF);
+      break;
+    case Header::tmp_quirk: break;
+  }
+  out.append(spec.ident.substr(0, 3));
+  out.append(spec.data);
+  char cs[2];
+  put_hex2(checksum(out), cs);
+  if (spec.lowercase_checksum)
+    for (char& c : cs)
+      if (c >= 'A' && c <= 'F') c = static_cast<char>(c - 'A' + 'a');
+  out.append(cs, 2);
+  return out;
+}
+
+}  // namespace top

@@ -1,0 +1,182 @@
+#include "top/stream.hpp"
+
+#include <algorithm>
+
+namespace top {
+
+namespace {
+// A garbage run is reported at the latest when it reaches this size, so a
+// stream of noise is neither held nor counted forever.
+constexpr std::uint64_t kMaxGarbageRun = 64 * 1024;
+constexpr std::size_t kPreview = 32;
+}  // namespace
+
+StreamDecoder::StreamDecoder(StreamOptions opts) : opts_(opts) {}
+
+void StreamDecoder::reset() {
+  buf_.clear();
+  pos_ = 0;
+  base_ = 0;
+  at_end_ = false;
+  has_pending_ = false;
+  garbage_len_ = 0;
+  garbage_preview_.clear();
+  garbage_has_reason_ = false;
+  ready_.clear();
+}
+
+void StreamDecoder::feed(std::string_view chunk) {
+  if (at_end_) return;  // nothing follows the end of a stream
+  compact();
+  buf_.append(chunk.data(), chunk.size());
+}
+
+void StreamDecoder::finish() { at_end_ = true; }
+
+void StreamDecoder::flush() {
+  pump();
+  release_pending();
+}
+
+bool StreamDecoder::next(StreamItem& out) {
+  if (ready_.empty()) pump();
+  if (ready_.empty()) return false;
+  out = std::move(ready_.front());
+  ready_.pop_front();
+  return true;
+}
+
+void StreamDecoder::compact() {
+  if (pos_ == 0) return;
+  if (pos_ == buf_.size()) {
+    base_ += pos_;
+    buf_.clear();
+    pos_ = 0;
+  } else if (pos_ >= 4096 && pos_ * 2 >= buf_.size()) {
+    buf_.erase(0, pos_);
+    base_ += pos_;
+    pos_ = 0;
+  }
+}
+
+void StreamDecoder::release_pending() {
+  if (!has_pending_) return;
+  Frame& f = pending_.frame;
+  if (f.terminator > 0)
+    f.findings.push_back(make_finding(
+        FindingCode::crlf, static_cast<std::uint32_t>(f.raw.size()),
+        "frame followed by " + std::to_string(f.terminator) + " CR/LF byte(s)"));
+  ready_.push_back(std::move(pending_));
+  has_pending_ = false;
+}
+
+void StreamDecoder::add_garbage(std::size_t at, std::size_t len, const Finding* why) {
+  release_pending();
+  std::uint64_t off = base_ + at;
+  if (garbage_len_ == 0) {
+    garbage_start_ = off;
+    garbage_preview_.clear();
+    garbage_has_reason_ = false;
+  }
+  if (why && !garbage_has_reason_) {
+    garbage_reason_ = *why;
+    garbage_reason_.offset += static_cast<std::uint32_t>(off - garbage_start_);
+    garbage_has_reason_ = true;
+  }
+  if (garbage_preview_.size() < kPreview)
+    garbage_preview_.append(buf_, at, std::min(len, kPreview - garbage_preview_.size()));
+  garbage_len_ += len;
+  if (garbage_len_ >= kMaxGarbageRun) flush_garbage();
+}
+
+void StreamDecoder::flush_garbage() {
+  if (garbage_len_ == 0) return;
+  StreamItem it;
+  it.kind = ItemKind::garbage;
+  it.offset = garbage_start_;
+  it.length = garbage_len_;
+  it.preview = std::move(garbage_preview_);
+  std::string what = std::to_string(garbage_len_) + " byte(s) outside any frame";
+  if (garbage_has_reason_) {
+    it.finding = std::move(garbage_reason_);
+    it.finding.message = what + ": " + it.finding.message;
+  } else {
+    it.finding = make_finding(FindingCode::garbage, 0, what);
+  }
+  ready_.push_back(std::move(it));
+  garbage_len_ = 0;
+  garbage_preview_.clear();
+  garbage_has_reason_ = false;
+}
+
+void StreamDecoder::pump() {
+  const std::string_view all(buf_);
+  while (pos_ < buf_.size()) {
+    char c = buf_[pos_];
+    if (has_pending_ && (c == '\r' || c == '\n')) {
+      if (pending_.frame.terminator < 255) ++pending_.frame.terminator;
+      ++pos_;
+      continue;
+    }
+    release_pending();
+    if (c != '#') {
+      std::size_t next = buf_.find('#', pos_);
+      std::size_t end = next == std::string::npos ? buf_.size() : next;
+      add_garbage(pos_, end - pos_, nullptr);
+      pos_ = end;
+      continue;
+    }
+    ParseResult r = parse_frame(all.substr(pos_), at_end_, opts_.parse);
+    if (r.status == ParseStatus::need_more) break;
+    if (r.status == ParseStatus::invalid) {
+      std::size_t next = buf_.find('#', pos_ + 1);
+      std::size_t end = next == std::string::npos ? buf_.size() : next;
+      add_garbage(pos_, end - pos_, &r.error);
+      pos_ = end;
+      continue;
+    }
+    // A frame that does not validate yields to a validated frame starting
+    // inside it: trust a validated length over an unvalidated one.
+    if (!r.frame.checksum_ok) {
+      bool wait = false, yielded = false;
+      for (std::size_t q = pos_ + 1; q < pos_ + r.consumed; ++q) {
+        if (buf_[q] != '#') continue;
+        ParseResult inner = parse_frame(all.substr(q), at_end_, opts_.parse);
+        if (inner.status == ParseStatus::need_more) {
+          wait = true;
+          break;
+        }
+        if (inner.status == ParseStatus::frame && inner.frame.checksum_ok) {
+          Finding why = make_finding(
+              r.frame.has(FindingCode::no_checksum) ? FindingCode::no_checksum
+                                                    : FindingCode::bad_checksum,
+              0,
+              "abandoned a frame that fails its checksum for a valid frame at +" +
+                  std::to_string(q - pos_));
+          add_garbage(pos_, q - pos_, &why);
+          pos_ = q;
+          yielded = true;
+          break;
+        }
+      }
+      if (wait) break;
+      if (yielded) continue;
+    }
+    release_pending();
+    flush_garbage();
+    pending_ = StreamItem{};
+    pending_.kind = ItemKind::frame;
+    pending_.offset = base_ + pos_;
+    pending_.length = r.consumed;
+    pending_.frame = std::move(r.frame);
+    has_pending_ = true;
+    pos_ += r.consumed;
+  }
+  if (at_end_ && pos_ >= buf_.size()) {
+    release_pending();
+    flush_garbage();
+  }
+  compact();
+}
+
+}  // namespace top

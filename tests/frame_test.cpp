@@ -1,0 +1,252 @@
+#include "top/frame.hpp"
+
+#include <gtest/gtest.h>
+
+#include "test_util.hpp"
+
+using namespace top;
+using toptest::ExactBuffer;
+using toptest::has_code;
+
+TEST(Checksum, AppendixExample) {
+  // Both documents' appendix: "#TPUD2wAWB01" sums to 0x44.
+  EXPECT_EQ(checksum("#TPUD2wAWB01"), 0x44);
+  char b[2];
+  put_hex2(0x44, b);
+  EXPECT_EQ(std::string(b, 2), "44");
+}
+
+TEST(Parse, ValidFixedFrame) {
+  ExactBuffer buf("#TPUD2wAWB0144");
+  ParseResult r = parse_frame(buf.view(), true);
+  ASSERT_EQ(r.status, ParseStatus::frame);
+  const Frame& f = r.frame;
+  EXPECT_EQ(r.consumed, 14u);
+  EXPECT_EQ(f.header, Header::fixed);
+  EXPECT_EQ(f.src, 'U');
+  EXPECT_EQ(f.dst, 'D');
+  EXPECT_EQ(f.control, 'w');
+  EXPECT_EQ(f.ident_view(), "AWB");
+  EXPECT_EQ(f.data(), "01");
+  EXPECT_EQ(f.declared_length, 2u);
+  EXPECT_TRUE(f.checksum_ok);
+  EXPECT_EQ(f.checksum, 0x44);
+  EXPECT_EQ(f.checksum_text(), "44");
+  EXPECT_TRUE(f.findings.empty());
+  EXPECT_TRUE(f.ok());
+}
+
+TEST(Parse, NeedMoreUntilComplete) {
+  std::string s = "#tpUG6wGAYEF073288";
+  for (std::size_t i = 1; i < s.size(); ++i) {
+    ParseResult r = parse_frame(std::string_view(s).substr(0, i), false);
+    EXPECT_EQ(r.status, ParseStatus::need_more) << "prefix " << i;
+  }
+  EXPECT_EQ(parse_frame(s, false).status, ParseStatus::frame);
+}
+
+TEST(Parse, BadChecksumCarriesExpected) {
+  ParseResult r = parse_exact("#TPUD2wCAP0100");
+  ASSERT_EQ(r.status, ParseStatus::frame);
+  EXPECT_FALSE(r.frame.checksum_ok);
+  EXPECT_EQ(r.frame.expected_checksum, 0x3E);
+  ASSERT_EQ(r.frame.findings.size(), 1u);
+  const Finding& f = r.frame.findings[0];
+  EXPECT_EQ(f.code, FindingCode::bad_checksum);
+  EXPECT_EQ(f.severity, Severity::error);
+  EXPECT_EQ(f.offset, 12u);
+  EXPECT_NE(f.message.find("expected 3E"), std::string::npos) << f.message;
+}
+
+TEST(Parse, ChecksumMatchingAnotherHeaderCase) {
+  // SkyDroid 3.3.1 and 3.3.5 examples: checksums computed with "#tp".
+  for (const char* s : {"#TPUG6wGAYEF073288", "#TPUG8wGOT02800168D5"}) {
+    ParseResult r = parse_exact(s);
+    ASSERT_EQ(r.status, ParseStatus::frame) << s;
+    EXPECT_TRUE(has_code(r.frame.findings, FindingCode::checksum_header_case)) << s;
+    EXPECT_FALSE(has_code(r.frame.findings, FindingCode::bad_checksum)) << s;
+    EXPECT_FALSE(r.frame.ok());
+  }
+}
+
+TEST(Parse, LowercaseChecksumDigits) {
+  ParseResult r = parse_exact("#tpUM2rZOM00a3");
+  ASSERT_EQ(r.status, ParseStatus::frame);
+  EXPECT_TRUE(r.frame.checksum_ok);
+  EXPECT_TRUE(has_code(r.frame.findings, FindingCode::checksum_case));
+  EXPECT_TRUE(r.frame.ok());
+}
+
+TEST(Parse, LyingLengthRecovered) {
+  // DESIGN.md: a C12 answered #tpDU3rVER0105025A (length 3, six data chars).
+  ParseResult r = parse_exact("#tpDU3rVER0105025A");
+  ASSERT_EQ(r.status, ParseStatus::frame);
+  EXPECT_TRUE(r.frame.checksum_ok);
+  EXPECT_EQ(r.frame.data(), "010502");
+  EXPECT_EQ(r.frame.declared_length, 3u);
+  ASSERT_TRUE(has_code(r.frame.findings, FindingCode::length_mismatch));
+  const auto& m = r.frame.findings[0].message;
+  EXPECT_NE(m.find("declared length 3"), std::string::npos) << m;
+  EXPECT_NE(m.find("6 data bytes"), std::string::npos) << m;
+}
+
+TEST(Parse, LyingLengthLongerThanData) {
+  // Declared 8, six data chars, then the end of the datagram.
+  ParseResult r = parse_exact("#tpDU8rVERV1.0.0" + std::string("7A"));
+  ASSERT_EQ(r.status, ParseStatus::frame);
+  EXPECT_TRUE(r.frame.checksum_ok);
+  EXPECT_EQ(r.frame.data(), "V1.0.0");
+  EXPECT_TRUE(has_code(r.frame.findings, FindingCode::length_mismatch));
+}
+
+TEST(Parse, NoChecksum) {
+  ParseResult r = parse_exact("#TPUD2wCAP01");
+  ASSERT_EQ(r.status, ParseStatus::frame);
+  EXPECT_FALSE(r.frame.checksum_present);
+  EXPECT_TRUE(has_code(r.frame.findings, FindingCode::no_checksum));
+  EXPECT_EQ(r.frame.expected_checksum, 0x3E);
+}
+
+struct Invalid {
+  const char* bytes;
+  FindingCode code;
+  std::uint32_t offset;
+};
+
+class ParseInvalid : public ::testing::TestWithParam<Invalid> {};
+
+TEST_P(ParseInvalid, NamesCodeAndOffset) {
+  const Invalid& c = GetParam();
+  ExactBuffer buf(c.bytes);
+  ParseResult r = parse_frame(buf.view(), true);
+  ASSERT_EQ(r.status, ParseStatus::invalid) << c.bytes;
+  EXPECT_EQ(r.error.code, c.code) << c.bytes << ": " << r.error.message;
+  EXPECT_EQ(r.error.offset, c.offset) << c.bytes;
+  EXPECT_FALSE(r.error.message.empty());
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, ParseInvalid,
+    ::testing::Values(Invalid{"#XPUD2wCAP013E", FindingCode::bad_header, 1},
+                      Invalid{"#TXUD2wCAP013E", FindingCode::bad_header, 2},
+                      Invalid{"TPUD2wCAP013E", FindingCode::bad_header, 0},
+                      Invalid{"#TPXD2wCAP013E", FindingCode::bad_address, 3},
+                      Invalid{"#TPUx2wCAP013E", FindingCode::bad_address, 4},
+                      Invalid{"#TPUDZwCAP013E", FindingCode::bad_length_char, 5},
+                      Invalid{"#TPUD2xCAP013E", FindingCode::bad_control, 6},
+                      Invalid{"#TPUD2wCaP013E", FindingCode::bad_ident, 8},
+                      Invalid{"#TPUD2wCAP0", FindingCode::truncated, 11},
+                      Invalid{"#TP", FindingCode::truncated, 3}));
+
+TEST(Parse, FrameTooLong) {
+  ParseOptions o;
+  o.max_data_length = 100;
+  std::string s = "#tPUD";
+  s += static_cast<char>(200);
+  s += "wABC";
+  ParseResult r = parse_frame(s, false, o);
+  ASSERT_EQ(r.status, ParseStatus::invalid);
+  EXPECT_EQ(r.error.code, FindingCode::frame_too_long);
+}
+
+TEST(Parse, TrailingBytesAndCrlf) {
+  ParseResult r = parse_exact("#TPUD2wCAP013E\r\nxyz");
+  ASSERT_EQ(r.status, ParseStatus::frame);
+  EXPECT_TRUE(has_code(r.frame.findings, FindingCode::crlf));
+  EXPECT_TRUE(has_code(r.frame.findings, FindingCode::trailing_bytes));
+  EXPECT_EQ(r.frame.terminator, 2);
+  ParseResult r2 = parse_exact("#TPUD2wCAP013E\r\n");
+  EXPECT_FALSE(has_code(r2.frame.findings, FindingCode::trailing_bytes));
+  EXPECT_TRUE(r2.frame.ok());
+}
+
+TEST(Parse, LowercaseLengthChar) {
+  std::string s = build_frame({.header = Header::variable, .src = 'U', .dst = 'D',
+                               .control = 'w', .ident = "IPV", .data = "192.168.1.100"});
+  s[5] = 'd';
+  s.replace(s.size() - 2, 2, [&] {
+    char b[2];
+    put_hex2(checksum(std::string_view(s).substr(0, s.size() - 2)), b);
+    return std::string(b, 2);
+  }());
+  ParseResult r = parse_exact(s);
+  ASSERT_EQ(r.status, ParseStatus::frame);
+  EXPECT_TRUE(r.frame.checksum_ok);
+  EXPECT_TRUE(has_code(r.frame.findings, FindingCode::lowercase_hex));
+}
+
+TEST(Parse, TmpQuirkDocumentedForm) {
+  std::string body = "#PDP16TMP" + std::string("0A0" "64" "01F4") + "140" "20" "FF38" + "0123";
+  ASSERT_EQ(body.size(), 9u + 22u);
+  char cs[2];
+  put_hex2(checksum(body), cs);
+  ParseResult r = parse_exact(body + std::string(cs, 2));
+  ASSERT_EQ(r.status, ParseStatus::frame);
+  EXPECT_EQ(r.frame.header, Header::tmp_quirk);
+  EXPECT_EQ(r.frame.ident_view(), "TMP");
+  EXPECT_EQ(r.frame.src, 'D');
+  EXPECT_EQ(r.frame.dst, 'P');
+  EXPECT_EQ(r.frame.data_length, 22u);
+  EXPECT_TRUE(r.frame.checksum_ok);
+  ASSERT_TRUE(has_code(r.frame.findings, FindingCode::tmp_quirk));
+  EXPECT_FALSE(r.frame.findings[0].quirk.empty());
+  EXPECT_TRUE(r.frame.ok());
+}
+
+TEST(Parse, TmpQuirkTwoDigitLength) {
+  std::string body = "#tpDP16wTMP" + std::string(22, '0');
+  char cs[2];
+  put_hex2(checksum(body), cs);
+  ParseResult r = parse_exact(body + std::string(cs, 2));
+  ASSERT_EQ(r.status, ParseStatus::frame);
+  EXPECT_EQ(r.frame.control, 'w');
+  EXPECT_EQ(r.frame.declared_length, 0x16u);
+  EXPECT_EQ(r.frame.data_offset, 11u);
+  EXPECT_TRUE(has_code(r.frame.findings, FindingCode::tmp_quirk));
+}
+
+TEST(Parse, TwoDigitLengthOnAnotherIdent) {
+  std::string body = "#tpUD10wIPV" + std::string(16, '1');
+  char cs[2];
+  put_hex2(checksum(body), cs);
+  ParseResult r = parse_exact(body + std::string(cs, 2));
+  ASSERT_EQ(r.status, ParseStatus::frame);
+  EXPECT_TRUE(has_code(r.frame.findings, FindingCode::two_digit_length));
+}
+
+TEST(Build, HeadersAndLengths) {
+  EXPECT_EQ(build_frame({.header = Header::fixed, .src = 'U', .dst = 'D', .control = 'w',
+                         .ident = "AWB", .data = "01"}),
+            "#TPUD2wAWB0144");
+  EXPECT_EQ(build_frame({.header = Header::variable, .src = 'U', .dst = 'G', .control = 'w',
+                         .ident = "GAY", .data = "EF0732"}),
+            "#tpUG6wGAYEF073288");
+  std::string d(40, 'x');
+  std::string e8 = build_frame({.header = Header::variable, .src = 'P', .dst = 'D',
+                                .control = 'w', .ident = "ABC", .data = d});
+  EXPECT_EQ(e8.substr(0, 3), "#tP");
+  EXPECT_EQ(static_cast<unsigned char>(e8[5]), 40u);
+  ParseResult r = parse_exact(e8);
+  ASSERT_EQ(r.status, ParseStatus::frame);
+  EXPECT_EQ(r.frame.header, Header::ext8);
+  EXPECT_EQ(r.frame.data(), d);
+  EXPECT_TRUE(r.frame.checksum_ok);
+
+  std::string big(300, '#');
+  std::string e16 = build_frame({.header = Header::ext8, .src = 'P', .dst = 'D',
+                                 .control = 'w', .ident = "ABC", .data = big});
+  EXPECT_EQ(e16.substr(0, 3), "#Tp");
+  ParseResult r16 = parse_exact(e16);
+  ASSERT_EQ(r16.status, ParseStatus::frame);
+  EXPECT_EQ(r16.frame.header, Header::ext16);
+  EXPECT_EQ(r16.frame.control, 0);
+  EXPECT_EQ(r16.frame.data(), big);
+  EXPECT_TRUE(r16.frame.checksum_ok);
+}
+
+TEST(Build, LowercaseChecksumOption) {
+  std::string s = build_frame({.header = Header::variable, .src = 'U', .dst = 'M',
+                               .control = 'r', .ident = "ZOM", .data = "00",
+                               .lowercase_checksum = true});
+  EXPECT_EQ(s, "#tpUM2rZOM00a3");
+}

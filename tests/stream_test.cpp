@@ -1,0 +1,162 @@
+#include "top/stream.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "test_util.hpp"
+
+using namespace top;
+using toptest::decode_all;
+using toptest::decode_chunked;
+using toptest::describe;
+
+namespace {
+std::vector<std::string> frames_of(const std::vector<StreamItem>& items) {
+  std::vector<std::string> v;
+  for (const auto& it : items)
+    if (it.kind == ItemKind::frame) v.push_back(it.frame.raw);
+  return v;
+}
+}  // namespace
+
+TEST(Stream, ResyncKeepsTheFollowingFrame) {
+  auto items = decode_all("#T#TPUD2wCAP013E");
+  ASSERT_EQ(items.size(), 2u) << describe(items);
+  EXPECT_EQ(items[0].kind, ItemKind::garbage);
+  EXPECT_EQ(items[0].offset, 0u);
+  EXPECT_EQ(items[0].length, 2u);
+  EXPECT_EQ(items[0].finding.code, FindingCode::bad_header);
+  EXPECT_EQ(items[0].finding.offset, 2u);
+  ASSERT_EQ(items[1].kind, ItemKind::frame);
+  EXPECT_EQ(items[1].offset, 2u);
+  EXPECT_EQ(items[1].frame.raw, "#TPUD2wCAP013E");
+  EXPECT_TRUE(items[1].frame.ok());
+}
+
+TEST(Stream, BackToBackWithAndWithoutCrlf) {
+  auto items = decode_all("#TPUD2wCAP013E#TPUD2rREC003E\r\n#tpUM2rZOM00A3\n");
+  ASSERT_EQ(frames_of(items),
+            (std::vector<std::string>{"#TPUD2wCAP013E", "#TPUD2rREC003E", "#tpUM2rZOM00A3"}))
+      << describe(items);
+  EXPECT_EQ(items[0].frame.terminator, 0);
+  EXPECT_EQ(items[1].frame.terminator, 2);
+  EXPECT_TRUE(toptest::has_code(items[1].frame.findings, FindingCode::crlf));
+  EXPECT_EQ(items[2].frame.terminator, 1);
+  EXPECT_EQ(items[2].offset, 30u);
+}
+
+TEST(Stream, LeadingGarbageIsReported) {
+  auto items = decode_all("hello#TPUD2wCAP013E");
+  ASSERT_EQ(items.size(), 2u);
+  EXPECT_EQ(items[0].kind, ItemKind::garbage);
+  EXPECT_EQ(items[0].finding.code, FindingCode::garbage);
+  EXPECT_EQ(items[0].preview, "hello");
+  EXPECT_EQ(items[1].offset, 5u);
+}
+
+namespace {
+std::string gps_frame_with_hash() {
+  // Topotek 5.8.5: 14 raw little-endian bytes; the heading 0x2323 holds '#'.
+  std::string data;
+  auto le = [&](std::uint32_t v, int n) {
+    for (int i = 0; i < n; ++i) data += static_cast<char>((v >> (8 * i)) & 0xFF);
+  };
+  le(0x2323, 2);
+  le(static_cast<std::uint32_t>(1203456789), 4);
+  le(static_cast<std::uint32_t>(301234567), 4);
+  le(static_cast<std::uint32_t>(123456), 4);
+  return build_frame({.header = Header::variable, .src = 'U', .dst = 'D', .control = 'w',
+                      .ident = "GPS", .data = data});
+}
+}  // namespace
+
+TEST(Stream, BinaryDataWithHashInsideAValidatedFrame) {
+  std::string gps = gps_frame_with_hash();
+  ASSERT_NE(gps.find('#', 1), std::string::npos);
+  std::string stream = gps + "#TPUD2wCAP013E" + gps;
+  auto items = decode_all(stream);
+  EXPECT_EQ(frames_of(items), (std::vector<std::string>{gps, "#TPUD2wCAP013E", gps}))
+      << describe(items);
+  for (const auto& it : items) EXPECT_TRUE(it.frame.ok());
+}
+
+TEST(Stream, CorruptFrameYieldsToValidFrameInside) {
+  // A frame whose declared length swallows the start of the next one.
+  auto items = decode_all("#TPUD9wCAP#TPUD2wCAP013E");
+  ASSERT_EQ(frames_of(items), (std::vector<std::string>{"#TPUD2wCAP013E"})) << describe(items);
+  EXPECT_EQ(items[0].kind, ItemKind::garbage);
+}
+
+TEST(Stream, LyingLengthInAStream) {
+  auto items = decode_all("#tpDU3rVER0105025A#TPUD2wCAP013E");
+  ASSERT_EQ(frames_of(items), (std::vector<std::string>{"#tpDU3rVER0105025A", "#TPUD2wCAP013E"}))
+      << describe(items);
+  EXPECT_TRUE(toptest::has_code(items[0].frame.findings, FindingCode::length_mismatch));
+}
+
+TEST(Stream, TruncatedAtTheEnd) {
+  auto items = decode_all("#TPUD2wCAP013E#TPUD2wC");
+  ASSERT_EQ(items.size(), 2u) << describe(items);
+  EXPECT_EQ(items[1].kind, ItemKind::garbage);
+  EXPECT_EQ(items[1].finding.code, FindingCode::truncated);
+  EXPECT_EQ(items[1].offset, 14u);
+}
+
+TEST(Stream, SameItemsHoweverSplit) {
+  std::string gps = gps_frame_with_hash();
+  std::string stream = std::string("xx#T#TPUD2wCAP013E\r\n") + gps + "#tpDU3rVER0105025A" +
+                       "#TPUG6wGAYEF073288#TPUD2wCAP0100\n#PDP" + "#tpUM2rZOM00A3#TPUD";
+  const std::string whole = describe(decode_all(stream));
+  for (std::size_t a = 1; a < stream.size(); ++a) {
+    ASSERT_EQ(describe(decode_chunked(stream, {a})), whole) << "chunks of " << a;
+  }
+  std::mt19937 rng(7);
+  for (int round = 0; round < 200; ++round) {
+    std::vector<std::size_t> sizes;
+    for (int i = 0; i < 8; ++i) sizes.push_back(1 + rng() % 9);
+    ASSERT_EQ(describe(decode_chunked(stream, sizes)), whole) << "round " << round;
+  }
+}
+
+TEST(Stream, MemoryStaysBounded) {
+  StreamDecoder d;
+  std::mt19937 rng(1);
+  std::string chunk(4096, '\0');
+  StreamItem it;
+  std::size_t max_buffered = 0;
+  std::uint64_t covered = 0;
+  for (int i = 0; i < 2000; ++i) {
+    for (char& c : chunk) {
+      unsigned r = rng() % 16;
+      c = r == 0 ? '#' : r == 1 ? 'T' : r == 2 ? 'p' : static_cast<char>(rng() & 0xFF);
+    }
+    d.feed(chunk);
+    while (d.next(it)) covered += it.length + (it.kind == ItemKind::frame ? it.frame.terminator : 0);
+    max_buffered = std::max(max_buffered, d.buffered());
+  }
+  d.finish();
+  while (d.next(it)) covered += it.length + (it.kind == ItemKind::frame ? it.frame.terminator : 0);
+  EXPECT_LE(max_buffered, max_frame_size + 4096 + 64);
+  EXPECT_EQ(d.buffered(), 0u);
+  // Nothing is lost: every byte is in a frame, a terminator or garbage.
+  EXPECT_EQ(covered, 2000u * 4096u);
+}
+
+TEST(Stream, ByteAccountingWithFrames) {
+  std::string stream = "ab#TPUD2wCAP013E\r\n#T#tpUM2rZOM00A3zz";
+  auto items = decode_all(stream);
+  std::uint64_t covered = 0;
+  for (const auto& it : items) covered += it.length + (it.kind == ItemKind::frame ? it.frame.terminator : 0);
+  EXPECT_EQ(covered, stream.size()) << describe(items);
+}
+
+TEST(Stream, FlushReleasesAHeldFrame) {
+  StreamDecoder d;
+  d.feed("#TPUD2wCAP013E");
+  StreamItem it;
+  EXPECT_FALSE(d.next(it));  // held: CR/LF might follow
+  d.flush();
+  ASSERT_TRUE(d.next(it));
+  EXPECT_EQ(it.frame.raw, "#TPUD2wCAP013E");
+}

@@ -1,0 +1,78 @@
+// Helpers shared by the tests.
+#pragma once
+
+#include <cstring>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "top/top.hpp"
+
+namespace toptest {
+
+// Every item of a byte stream fed in one piece.
+inline std::vector<top::StreamItem> decode_all(std::string_view bytes) {
+  top::StreamDecoder d;
+  d.feed(bytes);
+  d.finish();
+  std::vector<top::StreamItem> out;
+  top::StreamItem it;
+  while (d.next(it)) out.push_back(std::move(it));
+  return out;
+}
+
+// Every item of a byte stream fed in chunks of the given sizes (cycled).
+inline std::vector<top::StreamItem> decode_chunked(std::string_view bytes,
+                                                   const std::vector<std::size_t>& sizes) {
+  top::StreamDecoder d;
+  std::vector<top::StreamItem> out;
+  top::StreamItem it;
+  std::size_t i = 0, k = 0;
+  while (i < bytes.size()) {
+    std::size_t n = std::min(sizes[k++ % sizes.size()], bytes.size() - i);
+    d.feed(bytes.substr(i, n));
+    i += n;
+    while (d.next(it)) out.push_back(std::move(it));
+  }
+  d.finish();
+  while (d.next(it)) out.push_back(std::move(it));
+  return out;
+}
+
+// A copy of the bytes in a heap block of exactly their size, so ASan flags
+// any read past the end.
+struct ExactBuffer {
+  explicit ExactBuffer(std::string_view s) : size(s.size()), data(new char[s.size() ? s.size() : 1]) {
+    if (!s.empty()) std::memcpy(data.get(), s.data(), s.size());
+  }
+  std::string_view view() const { return {data.get(), size}; }
+  std::size_t size;
+  std::unique_ptr<char[]> data;
+};
+
+// A compact, comparable description of an item sequence.
+inline std::string describe(const std::vector<top::StreamItem>& items) {
+  std::string s;
+  for (const auto& it : items) {
+    s += "@" + std::to_string(it.offset) + "+" + std::to_string(it.length) + " ";
+    if (it.kind == top::ItemKind::garbage) {
+      s += "garbage:" + std::string(top::to_string(it.finding.code)) + "@" +
+           std::to_string(it.finding.offset);
+    } else {
+      s += it.frame.raw + " [";
+      for (const auto& f : it.frame.findings) s += std::string(top::to_string(f.code)) + " ";
+      s += "] t" + std::to_string(it.frame.terminator);
+    }
+    s += "\n";
+  }
+  return s;
+}
+
+inline bool has_code(const std::vector<top::Finding>& v, top::FindingCode c) {
+  for (const auto& f : v)
+    if (f.code == c) return true;
+  return false;
+}
+
+}  // namespace toptest

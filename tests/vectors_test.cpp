@@ -1,0 +1,172 @@
+// Data-driven vectors: every complete example frame of both documents
+// (tests/vectors/skydroid.json, topotek.json) and our own cases (extra.json),
+// one test name per vector.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "test_util.hpp"
+
+using namespace top;
+using json = nlohmann::json;
+
+namespace {
+
+struct Vector {
+  std::string file;
+  json v;
+};
+
+// JSON strings are UTF-8; each code point <= 0xFF stands for one byte.
+std::string bytes_of(const std::string& utf8) {
+  std::string out;
+  for (std::size_t i = 0; i < utf8.size();) {
+    auto c = static_cast<unsigned char>(utf8[i]);
+    if (c < 0x80) {
+      out += static_cast<char>(c);
+      ++i;
+    } else if ((c & 0xE0) == 0xC0 && i + 1 < utf8.size()) {
+      unsigned cp = ((c & 0x1Fu) << 6) | (static_cast<unsigned char>(utf8[i + 1]) & 0x3Fu);
+      out += static_cast<char>(cp & 0xFF);
+      i += 2;
+    } else {
+      out += '?';
+      ++i;
+    }
+  }
+  return out;
+}
+
+std::vector<Vector> load() {
+  std::vector<Vector> all;
+  std::filesystem::path dir = std::filesystem::path(TOPKIT_SOURCE_DIR) / "tests" / "vectors";
+  std::vector<std::filesystem::path> files;
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    if (e.path().extension() == ".json") files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  for (const auto& p : files) {
+    std::ifstream in(p);
+    json doc = json::parse(in);
+    for (const auto& v : doc.at("vectors")) all.push_back({p.filename().string(), v});
+  }
+  return all;
+}
+
+const std::vector<Vector>& vectors() {
+  static const std::vector<Vector> v = load();
+  return v;
+}
+
+struct Result {
+  std::set<std::string> codes;
+  bool valid = true;
+  std::vector<std::string> idents;
+  std::vector<Decoded> decoded;
+  std::vector<Frame> frames;
+  std::string describe;
+};
+
+Result run(const std::vector<StreamItem>& items, const json& v) {
+  Result r;
+  DecodeOptions o;
+  o.dialect = dialect_from_string(v.value("dialect", "auto")).value_or(Dialect::unknown);
+  o.model = model_from_string(v.value("model", "auto")).value_or(Model::unknown);
+  for (const auto& it : items) {
+    if (it.kind == ItemKind::garbage) {
+      r.codes.insert(std::string(to_string(it.finding.code)));
+      if (it.finding.severity == Severity::error) r.valid = false;
+      continue;
+    }
+    for (const auto& f : it.frame.findings) {
+      r.codes.insert(std::string(to_string(f.code)));
+      if (f.severity == Severity::error) r.valid = false;
+    }
+    Decoded d = decode(it.frame, o);
+    for (const auto& f : d.findings) {
+      r.codes.insert(std::string(to_string(f.code)));
+      if (f.severity == Severity::error) r.valid = false;
+    }
+    r.idents.emplace_back(it.frame.ident_view());
+    r.decoded.push_back(std::move(d));
+    r.frames.push_back(it.frame);
+  }
+  r.describe = toptest::describe(items);
+  return r;
+}
+
+}  // namespace
+
+class VectorTest : public ::testing::TestWithParam<std::size_t> {};
+
+TEST_P(VectorTest, Verdict) {
+  const Vector& vec = vectors()[GetParam()];
+  const json& v = vec.v;
+  const std::string bytes = bytes_of(v.at("bytes").get<std::string>());
+  SCOPED_TRACE(vec.file + ": " + v.value("section", "") + " " + v.value("note", ""));
+
+  Result whole = run(toptest::decode_all(bytes), v);
+  std::set<std::string> expected;
+  for (const auto& c : v.at("findings")) expected.insert(c.get<std::string>());
+  EXPECT_EQ(whole.codes, expected) << whole.describe;
+  EXPECT_EQ(whole.valid, v.at("valid").get<bool>()) << whole.describe;
+  if (v.contains("ident")) {
+    ASSERT_EQ(whole.idents.size(), 1u) << whole.describe;
+    EXPECT_EQ(whole.idents[0], v.at("ident").get<std::string>());
+  }
+  if (v.contains("fields") && !whole.decoded.empty()) {
+    const Decoded& d = whole.decoded[0];
+    for (const auto& [name, want] : v.at("fields").items()) {
+      const FieldValue* fv = nullptr;
+      for (const auto& f : d.fields)
+        if (f.name() == name) fv = &f;
+      ASSERT_NE(fv, nullptr) << "no field " << name;
+      if (want.is_number()) {
+        EXPECT_NEAR(fv->value, want.get<double>(), 1e-6) << name;
+      } else {
+        std::string w = want.get<std::string>();
+        EXPECT_TRUE(fv->enum_name == w || fv->text == w)
+            << name << ": want " << w << ", got " << format_value(*fv);
+      }
+    }
+  }
+  // The same verdict from an exact-size buffer and split at every byte.
+  if (whole.frames.size() == 1 && whole.valid) {
+    toptest::ExactBuffer buf(bytes);
+    Result exact = run(toptest::decode_all(buf.view()), v);
+    EXPECT_EQ(exact.describe, whole.describe);
+    for (std::size_t cut = 1; cut < bytes.size(); ++cut) {
+      top::StreamDecoder d;
+      toptest::ExactBuffer a(std::string_view(bytes).substr(0, cut));
+      toptest::ExactBuffer b(std::string_view(bytes).substr(cut));
+      d.feed(a.view());
+      d.feed(b.view());
+      d.finish();
+      std::vector<StreamItem> items;
+      StreamItem it;
+      while (d.next(it)) items.push_back(std::move(it));
+      ASSERT_EQ(toptest::describe(items), whole.describe) << "split at " << cut;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Docs, VectorTest, ::testing::Range<std::size_t>(0, vectors().size()),
+                         [](const ::testing::TestParamInfo<std::size_t>& i) {
+                           return vectors()[i.param].v.at("name").get<std::string>();
+                         });
+
+TEST(Vectors, NamesAreUniqueAndFilesPresent) {
+  std::set<std::string> names;
+  std::set<std::string> files;
+  for (const auto& v : vectors()) {
+    EXPECT_TRUE(names.insert(v.v.at("name").get<std::string>()).second) << v.v.at("name");
+    files.insert(v.file);
+  }
+  EXPECT_TRUE(files.count("skydroid.json"));
+  EXPECT_TRUE(files.count("topotek.json"));
+  EXPECT_TRUE(files.count("extra.json"));
+  EXPECT_GT(vectors().size(), 150u);
+}
