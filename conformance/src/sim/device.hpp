@@ -1,0 +1,131 @@
+// topsim's device model: a stateful gimbal camera for one model, built on
+// the catalog. Pure: bytes and a time in, frames out. No I/O, no clock of
+// its own (the caller passes `now_us`), so tests and fuzzers drive it
+// deterministically.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "top/top.hpp"
+
+namespace topsim {
+
+// The link a request arrived on. Topotek answers only when the request's
+// source byte names that link: P for the network, U for the UART.
+enum class Link : std::uint8_t { network, uart };
+
+struct DeviceOptions {
+  bool swap_addresses = true;   // false: the no-swap fault (client first)
+  bool tmp_quirk = false;       // answer TMP in the malformed #tpDU16wTMP form
+  // A speed command holds for this long unless refreshed (field notes:
+  // motors stop when rate commands are not refreshed).
+  std::uint32_t speed_hold_ms = 1000;
+  // Push rate of Topotek GIC/GAC streams, which GIA/GAA only switch on.
+  std::uint32_t topotek_stream_hz = 10;
+};
+
+// One gimbal axis: an angle moving toward a target at a speed, or turning
+// at a commanded rate until the rate expires.
+struct Axis {
+  double angle = 0;          // deg
+  double min = -90, max = 90;
+  bool has_target = false;
+  double target = 0;         // deg
+  double target_speed = 0;   // deg/s
+  double rate = 0;           // deg/s
+  std::uint64_t rate_until = 0;
+};
+
+// An attitude stream switched on by GAA (SkyDroid, rate in Hz) or GIA/GAA
+// (Topotek, on/off).
+struct Stream {
+  std::string ident;          // GAC or GIC
+  std::uint32_t period_us = 0;  // 0: off
+  std::uint64_t next_us = 0;
+  char dst = 'U';             // client address the pushes go to
+};
+
+class Device {
+ public:
+  explicit Device(top::Model model, DeviceOptions opts = {});
+
+  top::Model model() const noexcept { return model_; }
+  top::Dialect dialect() const noexcept { return dialect_; }
+  const DeviceOptions& options() const noexcept { return opts_; }
+
+  // Handles one parsed request received on `link` at `now_us` and appends
+  // the frames the device sends back (none for silence).
+  void handle(const top::Frame& request, Link link, std::uint64_t now_us,
+              std::vector<std::string>& out);
+
+  // When the next stream frame is due (max() when no stream runs).
+  std::uint64_t next_timer() const noexcept;
+  // Appends the stream frames due at `now_us`.
+  void poll(std::uint64_t now_us, std::vector<std::string>& out);
+
+  // State, for tests and the console.
+  const Axis& yaw() const noexcept { return axes_[0]; }
+  const Axis& pitch() const noexcept { return axes_[1]; }
+  const Axis& roll() const noexcept { return axes_[2]; }
+  void advance(std::uint64_t now_us) noexcept;
+  bool recording() const noexcept { return recording_; }
+  std::uint32_t file_index() const noexcept { return file_index_; }
+  // The stored data of a setting (written value or default), "" if none.
+  std::string setting(std::string_view ident) const;
+  const std::vector<Stream>& streams() const noexcept { return streams_; }
+  std::uint64_t requests() const noexcept { return requests_; }
+
+ private:
+  bool accepts(const top::Frame& f, Link link) const noexcept;
+  std::string make(top::Header h, const top::Frame& req, char control,
+                   std::string_view ident, std::string_view data) const;
+  void reply_error(const top::Frame& req, std::vector<std::string>& out) const;
+  bool handle_special(const top::Frame& req, const top::Decoded& dec,
+                      std::uint64_t now_us, std::vector<std::string>& out);
+  void start_stream(std::string_view ident, std::uint32_t hz, char dst,
+                    std::uint64_t now_us);
+  std::string attitude_data() const;
+  std::string read_data(const top::CommandSpec& cmd,
+                        const top::FormSpec& form) const;
+
+  top::Model model_;
+  top::Dialect dialect_;
+  DeviceOptions opts_;
+  Axis axes_[3];
+  std::uint64_t now_us_ = 0;
+  bool recording_ = false;
+  std::uint32_t file_index_ = 0;
+  double zoom_ = 1.0;
+  std::map<std::string, std::string, std::less<>> settings_;
+  std::vector<Stream> streams_;
+  std::uint64_t requests_ = 0;
+};
+
+// Frames from the bytes of one connection (stream) or one datagram each.
+class Session {
+ public:
+  Session(Device& device, Link link, bool datagram);
+  // Decodes `bytes`, lets the device handle every frame, appends replies.
+  // `received` (optional) gets the request frames.
+  void feed(std::string_view bytes, std::uint64_t now_us,
+            std::vector<std::string>& out,
+            std::vector<top::Frame>* received = nullptr);
+
+ private:
+  Device& device_;
+  Link link_;
+  bool datagram_;
+  top::StreamDecoder decoder_;
+};
+
+// The request handler as a function (the fuzz entry point): one datagram's
+// bytes in, the frames the device answers out. Never throws on any input.
+std::vector<std::string> handle_datagram(Device& device, std::string_view bytes,
+                                         Link link, std::uint64_t now_us);
+
+}  // namespace topsim

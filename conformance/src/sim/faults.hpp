@@ -1,0 +1,70 @@
+// Seeded fault injection for topsim: what a faulty device or link does to
+// the frames the device model produces. Pure; no I/O.
+//
+//   drop=P  delay=MS  duplicate=P  bad-checksum=P  header-case=P  no-swap
+//   lying-length=P  tmp-quirk  split  garbage=P  hang-on=IDENT
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <random>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "top/frame.hpp"
+
+namespace topsim {
+
+struct FaultConfig {
+  double drop = 0;          // probability a frame is not sent
+  std::uint32_t delay_ms = 0;  // every frame is sent this much later
+  double duplicate = 0;     // probability a frame is sent twice
+  double bad_checksum = 0;  // probability the checksum is corrupted
+  double header_case = 0;   // probability the header case flips after the
+                            // checksum was computed (the SkyDroid errata)
+  bool no_swap = false;     // replies keep the client's address first
+  double lying_length = 0;  // probability the length char lies (checksum
+                            // valid over the bytes sent, as a C12 did)
+  bool tmp_quirk = false;   // TMP answered in the malformed Topotek form
+  bool split = false;       // frames cut in two writes (streams only)
+  double garbage = 0;       // probability junk bytes precede a frame
+  std::string hang_on;      // after this identifier, the device goes silent
+
+  bool any() const noexcept;
+};
+
+// Parses "drop=0.1,delay=20,no-swap". Names and values are checked: an
+// unknown name, a probability outside [0,1] or a missing value is an error
+// naming the item.
+std::optional<FaultConfig> parse_faults(std::string_view spec, std::string& error);
+// The list of fault names, for --help and tests.
+const std::vector<std::string_view>& fault_names();
+
+// One write: bytes to send `delay_us` after the frame was produced.
+struct Emission {
+  std::string bytes;
+  std::uint64_t delay_us = 0;
+};
+
+class FaultInjector {
+ public:
+  FaultInjector(FaultConfig cfg, std::uint64_t seed);
+
+  const FaultConfig& config() const noexcept { return cfg_; }
+  // Sees every request frame; returns false once the device has hung (the
+  // request must then get no answer and streams stop).
+  bool on_request(const top::Frame& request);
+  bool hung() const noexcept { return hung_; }
+  // Turns one frame of the device into the writes that go on the link.
+  // `stream_link`: a TCP connection or serial line (split applies).
+  void apply(const std::string& frame, bool stream_link, std::vector<Emission>& out);
+
+ private:
+  bool chance(double p);
+  FaultConfig cfg_;
+  std::mt19937_64 rng_;
+  bool hung_ = false;
+};
+
+}  // namespace topsim

@@ -1,0 +1,325 @@
+#include "sim/server.hpp"
+
+#include <fcntl.h>
+#include <pty.h>
+#include <termios.h>
+#include <unistd.h>
+
+#include <asio.hpp>
+#include <chrono>
+#include <cstring>
+#include <deque>
+#include <functional>
+#include <map>
+#include <optional>
+#include <stdexcept>
+
+#include "common/pcap_writer.hpp"
+
+namespace topsim {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// A byte stream with a write queue (TCP socket, pty master, serial port).
+template <class S>
+class Line : public std::enable_shared_from_this<Line<S>> {
+ public:
+  explicit Line(S s) : s_(std::move(s)) {}
+  S& stream() { return s_; }
+  void write(std::string bytes) {
+    const bool idle = q_.empty();
+    q_.push_back(std::move(bytes));
+    if (q_.size() > 4096) q_.pop_front();  // a client that never reads: bounded
+    if (idle) pump();
+  }
+  bool open = true;
+
+ private:
+  void pump() {
+    auto self = this->shared_from_this();
+    asio::async_write(s_, asio::buffer(q_.front()), [self](std::error_code ec, std::size_t) {
+      if (ec) { self->open = false; self->q_.clear(); return; }
+      self->q_.pop_front();
+      if (!self->q_.empty()) self->pump();
+    });
+  }
+  S s_;
+  std::deque<std::string> q_;
+};
+
+}  // namespace
+
+std::uint16_t default_port(top::Model m) noexcept {
+  return top::dialect_of(m) == top::Dialect::topotek ? 9003 : 5000;
+}
+
+struct Server::Impl {
+  ServerConfig cfg;
+  asio::io_context io;
+  Device device;
+  FaultInjector faults;
+  Clock::time_point start = Clock::now();
+  ServerStats stats;
+  std::unique_ptr<topkit::PcapWriter> pcap;
+  asio::steady_timer stream_timer{io};
+
+  std::optional<asio::ip::udp::socket> udp;
+  std::optional<asio::ip::tcp::acceptor> acceptor;
+  std::uint16_t bound_port = 0;
+  std::string pty_path;
+  int pty_slave = -1;
+  asio::ip::udp::endpoint udp_from;
+  std::string udp_buf = std::string(65536, '\0');
+
+  // Where the device's frames go, and how to record them.
+  struct Peer {
+    std::function<void(std::string)> send;
+    topkit::Endpoint remote, local;
+    bool stream_link = false;
+  };
+  Peer stream_peer;   // the last peer that sent a request (receives pushes)
+  bool have_stream_peer = false;
+
+  explicit Impl(ServerConfig c)
+      : cfg(std::move(c)),
+        device(cfg.model,
+               [&] {
+                 DeviceOptions o = cfg.device_options;
+                 o.swap_addresses = !cfg.faults.no_swap;
+                 o.tmp_quirk = o.tmp_quirk || cfg.faults.tmp_quirk;
+                 return o;
+               }()),
+        faults(cfg.faults, cfg.seed) {}
+
+  std::uint64_t now_us() const {
+    return static_cast<std::uint64_t>(
+        std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - start).count());
+  }
+
+  void emit(const Peer& peer, const std::vector<std::string>& frames) {
+    std::vector<Emission> em;
+    for (const auto& f : frames) faults.apply(f, peer.stream_link, em);
+    for (auto& e : em) {
+      stats.frames_out.fetch_add(1, std::memory_order_relaxed);
+      if (e.delay_us == 0) {
+        if (pcap) pcap->write(peer.local, peer.remote, e.bytes);
+        peer.send(std::move(e.bytes));
+        continue;
+      }
+      auto t = std::make_shared<asio::steady_timer>(io, std::chrono::microseconds(e.delay_us));
+      t->async_wait([this, t, peer, bytes = std::move(e.bytes)](std::error_code ec) mutable {
+        if (ec) return;
+        if (pcap) pcap->write(peer.local, peer.remote, bytes);
+        peer.send(std::move(bytes));
+      });
+    }
+  }
+
+  void on_bytes(top::StreamDecoder& dec, std::string_view bytes, bool datagram, const Peer& peer,
+                Link link) {
+    stats.bytes_in.fetch_add(bytes.size(), std::memory_order_relaxed);
+    if (pcap) pcap->write(peer.remote, peer.local, bytes);
+    dec.feed(bytes);
+    if (datagram) dec.finish(); else dec.flush();
+    std::vector<std::string> out;
+    top::StreamItem item;
+    const std::uint64_t now = now_us();
+    while (dec.next(item)) {
+      if (item.kind != top::ItemKind::frame) continue;
+      stats.frames_in.fetch_add(1, std::memory_order_relaxed);
+      if (!faults.on_request(item.frame)) continue;
+      device.handle(item.frame, link, now, out);
+    }
+    if (datagram) dec.reset();
+    stream_peer = peer;
+    have_stream_peer = true;
+    if (!out.empty()) emit(peer, out);
+    arm_stream_timer();
+  }
+
+  void arm_stream_timer() {
+    const std::uint64_t next = device.next_timer();
+    if (next == std::numeric_limits<std::uint64_t>::max()) return;
+    stream_timer.expires_at(start + std::chrono::microseconds(next));
+    stream_timer.async_wait([this](std::error_code ec) {
+      if (ec) return;
+      std::vector<std::string> out;
+      device.poll(now_us(), out);
+      if (have_stream_peer && !faults.hung() && !out.empty()) emit(stream_peer, out);
+      arm_stream_timer();
+    });
+  }
+
+  // UDP ----------------------------------------------------------------
+  top::StreamDecoder udp_decoder;
+  void udp_receive() {
+    udp->async_receive_from(asio::buffer(udp_buf), udp_from, [this](std::error_code ec, std::size_t n) {
+      if (ec == asio::error::operation_aborted) return;
+      if (!ec) {
+        asio::ip::udp::endpoint to = udp_from;
+        if (cfg.reply_port) to.port(cfg.reply_port);
+        Peer p;
+        p.remote = {to.address().is_v4() ? to.address().to_v4().to_uint() : 0x7F000001u, to.port()};
+        p.local = {udp->local_endpoint().address().to_v4().to_uint(), bound_port};
+        p.send = [this, to](std::string b) {
+          std::error_code e;
+          udp->send_to(asio::buffer(b), to, 0, e);
+        };
+        on_bytes(udp_decoder, std::string_view(udp_buf.data(), n), true, p, Link::network);
+      }
+      udp_receive();
+    });
+  }
+
+  // TCP ----------------------------------------------------------------
+  using TcpLine = Line<asio::ip::tcp::socket>;
+  struct Conn {
+    std::shared_ptr<TcpLine> line;
+    top::StreamDecoder dec;
+    std::string buf = std::string(4096, '\0');
+  };
+  void tcp_accept() {
+    acceptor->async_accept([this](std::error_code ec, asio::ip::tcp::socket s) {
+      if (ec == asio::error::operation_aborted) return;
+      if (!ec) {
+        auto c = std::make_shared<Conn>();
+        c->line = std::make_shared<TcpLine>(std::move(s));
+        tcp_read(c);
+      }
+      tcp_accept();
+    });
+  }
+  void tcp_read(std::shared_ptr<Conn> c) {
+    c->line->stream().async_read_some(asio::buffer(c->buf), [this, c](std::error_code ec, std::size_t n) {
+      if (ec) return;  // closed: the connection's state goes with it
+      auto& sock = c->line->stream();
+      std::error_code e1, e2;
+      auto re = sock.remote_endpoint(e1);
+      auto le = sock.local_endpoint(e2);
+      Peer p;
+      p.remote = {e1 ? 0x7F000001u : re.address().to_v4().to_uint(), e1 ? std::uint16_t{0} : re.port()};
+      p.local = {e2 ? 0x7F000001u : le.address().to_v4().to_uint(), bound_port};
+      std::weak_ptr<TcpLine> w = c->line;
+      p.send = [w](std::string b) { if (auto l = w.lock(); l && l->open) l->write(std::move(b)); };
+      p.stream_link = true;
+      on_bytes(c->dec, std::string_view(c->buf.data(), n), false, p, Link::network);
+      tcp_read(c);
+    });
+  }
+
+  // pty / serial ---------------------------------------------------------
+  using PtyLine = Line<asio::posix::stream_descriptor>;
+  using SerialLine = Line<asio::serial_port>;
+  std::shared_ptr<PtyLine> pty_line;
+  std::shared_ptr<SerialLine> serial_line;
+  top::StreamDecoder line_decoder;
+  std::string line_buf = std::string(4096, '\0');
+
+  Peer line_peer() {
+    Peer p;
+    // Serial and pty traffic is recorded as UDP 127.0.0.1:9000 <-> :9001.
+    p.remote = {0x7F000001u, 9001};
+    p.local = {0x7F000001u, 9000};
+    p.stream_link = true;
+    if (pty_line) p.send = [l = pty_line](std::string b) { l->write(std::move(b)); };
+    else p.send = [l = serial_line](std::string b) { l->write(std::move(b)); };
+    return p;
+  }
+  template <class L>
+  void line_read(std::shared_ptr<L> l) {
+    l->stream().async_read_some(asio::buffer(line_buf), [this, l](std::error_code ec, std::size_t n) {
+      if (ec == asio::error::operation_aborted) return;
+      if (ec) {
+        // A pty master reads EIO while no client has the slave open; wait.
+        auto t = std::make_shared<asio::steady_timer>(io, std::chrono::milliseconds(20));
+        t->async_wait([this, l, t](std::error_code e) { if (!e) line_read(l); });
+        return;
+      }
+      on_bytes(line_decoder, std::string_view(line_buf.data(), n), false, line_peer(), Link::uart);
+      line_read(l);
+    });
+  }
+};
+
+Server::Server(ServerConfig cfg) : impl_(std::make_unique<Impl>(std::move(cfg))) {
+  Impl& m = *impl_;
+  if (!m.cfg.record.empty())
+    m.pcap = std::make_unique<topkit::PcapWriter>(m.cfg.record, m.cfg.kind == TransportKind::tcp);
+  std::error_code ec;
+  switch (m.cfg.kind) {
+    case TransportKind::udp: {
+      auto addr = asio::ip::make_address(m.cfg.host, ec);
+      if (ec) throw std::runtime_error("udp: bad host '" + m.cfg.host + "': " + ec.message());
+      m.udp.emplace(m.io);
+      asio::ip::udp::endpoint ep(addr, m.cfg.port);
+      m.udp->open(ep.protocol(), ec);
+      if (!ec) m.udp->bind(ep, ec);
+      if (ec) throw std::runtime_error("udp " + m.cfg.host + ":" + std::to_string(m.cfg.port) + ": " + ec.message());
+      m.bound_port = m.udp->local_endpoint().port();
+      m.udp_receive();
+      break;
+    }
+    case TransportKind::tcp: {
+      auto addr = asio::ip::make_address(m.cfg.host, ec);
+      if (ec) throw std::runtime_error("tcp: bad host '" + m.cfg.host + "': " + ec.message());
+      asio::ip::tcp::endpoint ep(addr, m.cfg.port);
+      m.acceptor.emplace(m.io);
+      m.acceptor->open(ep.protocol(), ec);
+      if (!ec) m.acceptor->set_option(asio::socket_base::reuse_address(true), ec);
+      if (!ec) m.acceptor->bind(ep, ec);
+      if (!ec) m.acceptor->listen(asio::socket_base::max_listen_connections, ec);
+      if (ec) throw std::runtime_error("tcp " + m.cfg.host + ":" + std::to_string(m.cfg.port) + ": " + ec.message());
+      m.bound_port = m.acceptor->local_endpoint().port();
+      m.tcp_accept();
+      break;
+    }
+    case TransportKind::pty: {
+      int master = -1, slave = -1;
+      char name[256] = {0};
+      if (openpty(&master, &slave, name, nullptr, nullptr) != 0)
+        throw std::runtime_error(std::string("openpty: ") + std::strerror(errno));
+      termios t{};
+      if (tcgetattr(slave, &t) == 0) {
+        cfmakeraw(&t);
+        tcsetattr(slave, TCSANOW, &t);
+      }
+      m.pty_slave = slave;  // kept open so the master never sees EIO/HUP
+      m.pty_path = name;
+      ::fcntl(master, F_SETFL, ::fcntl(master, F_GETFL) | O_NONBLOCK);
+      m.pty_line = std::make_shared<Impl::PtyLine>(asio::posix::stream_descriptor(m.io, master));
+      m.line_read(m.pty_line);
+      break;
+    }
+    case TransportKind::serial: {
+      asio::serial_port sp(m.io);
+      sp.open(m.cfg.device, ec);
+      if (ec) throw std::runtime_error("serial " + m.cfg.device + ": " + ec.message());
+      sp.set_option(asio::serial_port::baud_rate(m.cfg.baud), ec);
+      sp.set_option(asio::serial_port::character_size(8), ec);
+      sp.set_option(asio::serial_port::parity(asio::serial_port::parity::none), ec);
+      sp.set_option(asio::serial_port::stop_bits(asio::serial_port::stop_bits::one), ec);
+      m.serial_line = std::make_shared<Impl::SerialLine>(std::move(sp));
+      m.line_read(m.serial_line);
+      break;
+    }
+  }
+}
+
+Server::~Server() {
+  if (impl_ && impl_->pty_slave >= 0) ::close(impl_->pty_slave);
+}
+
+std::uint16_t Server::port() const noexcept { return impl_->bound_port; }
+std::string Server::pty_path() const { return impl_->pty_path; }
+const ServerStats& Server::stats() const noexcept { return impl_->stats; }
+
+void Server::run() {
+  auto guard = asio::make_work_guard(impl_->io);
+  impl_->io.run();
+  if (impl_->pcap) impl_->pcap->flush();
+}
+
+void Server::stop() { impl_->io.stop(); }
+
+}  // namespace topsim

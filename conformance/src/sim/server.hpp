@@ -1,0 +1,62 @@
+// topsim's transports: the device model served over UDP, TCP, a
+// pseudo-terminal or a serial port with Asio, with fault injection and an
+// optional pcap recording.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "sim/device.hpp"
+#include "sim/faults.hpp"
+
+namespace topsim {
+
+enum class TransportKind : std::uint8_t { udp, tcp, pty, serial };
+
+struct ServerConfig {
+  top::Model model = top::Model::c12;
+  TransportKind kind = TransportKind::udp;
+  std::string host = "127.0.0.1";
+  std::uint16_t port = 0;        // 0: ephemeral (tests); the CLI fills the model's port
+  std::uint16_t reply_port = 0;  // UDP: 0 replies to the source port; Topotek: 9004
+  std::string device;            // serial device path
+  unsigned baud = 115200;
+  FaultConfig faults;
+  std::uint64_t seed = 1;
+  std::string record;            // pcap path, empty for none
+  DeviceOptions device_options;
+};
+
+// The default UDP/TCP port of a model: SkyDroid 5000, Topotek 9003.
+std::uint16_t default_port(top::Model m) noexcept;
+
+struct ServerStats {
+  std::atomic<std::uint64_t> bytes_in{0};
+  std::atomic<std::uint64_t> frames_in{0};
+  std::atomic<std::uint64_t> frames_out{0};
+};
+
+class Server {
+ public:
+  // Opens the socket, pseudo-terminal or serial port; throws
+  // std::runtime_error with a message naming what failed.
+  explicit Server(ServerConfig cfg);
+  ~Server();
+  Server(const Server&) = delete;
+  Server& operator=(const Server&) = delete;
+
+  std::uint16_t port() const noexcept;      // bound UDP/TCP port
+  std::string pty_path() const;             // slave path for --pty
+  // Serves until stop() (callable from any thread).
+  void run();
+  void stop();
+  const ServerStats& stats() const noexcept;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace topsim

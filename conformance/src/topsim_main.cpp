@@ -1,0 +1,137 @@
+// topsim: a stateful TOP gimbal camera on UDP, TCP, a pseudo-terminal or a
+// serial port, with seeded fault injection and pcap recording.
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include <csignal>
+#include <cstdio>
+#include <thread>
+
+#include "sim/server.hpp"
+
+namespace {
+
+topsim::Server* g_server = nullptr;
+extern "C" void on_signal(int) {
+  if (g_server) g_server->stop();
+}
+
+bool split_host_port(const std::string& s, std::string& host, std::uint16_t& port) {
+  const auto colon = s.rfind(':');
+  if (colon == std::string::npos) { host = s; return true; }
+  host = s.substr(0, colon);
+  try {
+    const unsigned long p = std::stoul(s.substr(colon + 1));
+    if (p > 65535) return false;
+    port = static_cast<std::uint16_t>(p);
+  } catch (...) {
+    return false;
+  }
+  return !host.empty();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"topsim: a TOP gimbal camera simulator (SkyDroid C10/C10Pro/C12/C13/C20, Topotek SIP)"};
+  std::string model_name = "c12";
+  std::string udp, tcp, serial, faults, record;
+  bool pty = false, verbose = false;
+  std::uint64_t seed = 1;
+  int reply_port = -1;
+  unsigned baud = 115200;
+  app.add_option("--model", model_name, "c10|c10pro|c12|c13|c20|sip")->capture_default_str();
+  app.add_option("--udp", udp, "serve UDP on HOST:PORT (default 127.0.0.1 and the model's port)")
+      ->expected(0, 1);
+  app.add_option("--tcp", tcp, "serve TCP on HOST:PORT (default 127.0.0.1 and the model's port)")
+      ->expected(0, 1);
+  app.add_flag("--pty", pty, "serve on a new pseudo-terminal and print its path");
+  app.add_option("--serial", serial, "serve on a serial device");
+  app.add_option("--baud", baud, "serial baud rate")->capture_default_str();
+  app.add_option("--fault", faults,
+                 "faults: drop=P,delay=MS,duplicate=P,bad-checksum=P,header-case=P,no-swap,"
+                 "lying-length=P,tmp-quirk,split,garbage=P,hang-on=IDENT");
+  app.add_option("--seed", seed, "seed of the fault injection")->capture_default_str();
+  app.add_option("--record", record, "write every frame received and sent to FILE.pcap");
+  app.add_option("--reply-port", reply_port,
+                 "UDP: send replies to this client port (0: the request's source port; "
+                 "default 9004 for sip as the Topotek document says, 0 otherwise)");
+  app.add_flag("-v,--verbose", verbose, "log every datagram");
+  CLI11_PARSE(app, argc, argv);
+
+  auto model = top::model_from_string(model_name);
+  if (!model || *model == top::Model::unknown) {
+    spdlog::error("--model {}: not one of c10 c10pro c12 c13 c20 sip", model_name);
+    return 2;
+  }
+  const int chosen = static_cast<int>(app.count("--udp") > 0) + static_cast<int>(app.count("--tcp") > 0) +
+                     static_cast<int>(pty) + static_cast<int>(!serial.empty());
+  if (chosen > 1) {
+    spdlog::error("choose one of --udp, --tcp, --pty, --serial");
+    return 2;
+  }
+  topsim::ServerConfig cfg;
+  cfg.model = *model;
+  cfg.seed = seed;
+  cfg.record = record;
+  cfg.baud = baud;
+  cfg.port = topsim::default_port(*model);
+  if (pty) {
+    cfg.kind = topsim::TransportKind::pty;
+  } else if (!serial.empty()) {
+    cfg.kind = topsim::TransportKind::serial;
+    cfg.device = serial;
+  } else {
+    cfg.kind = app.count("--tcp") ? topsim::TransportKind::tcp : topsim::TransportKind::udp;
+    const std::string& spec = cfg.kind == topsim::TransportKind::tcp ? tcp : udp;
+    if (!spec.empty() && !split_host_port(spec, cfg.host, cfg.port)) {
+      spdlog::error("{}: expected HOST:PORT", spec);
+      return 2;
+    }
+  }
+  cfg.reply_port = reply_port >= 0 ? static_cast<std::uint16_t>(reply_port)
+                   : top::dialect_of(*model) == top::Dialect::topotek ? std::uint16_t{9004}
+                                                                      : std::uint16_t{0};
+  std::string err;
+  if (!faults.empty()) {
+    auto f = topsim::parse_faults(faults, err);
+    if (!f) {
+      spdlog::error("--fault: {}", err);
+      return 2;
+    }
+    cfg.faults = *f;
+  }
+  if (verbose) spdlog::set_level(spdlog::level::debug);
+  try {
+    topsim::Server server(cfg);
+    g_server = &server;
+    std::signal(SIGINT, on_signal);
+    std::signal(SIGTERM, on_signal);
+    switch (cfg.kind) {
+      case topsim::TransportKind::pty:
+        std::printf("%s\n", server.pty_path().c_str());
+        std::fflush(stdout);
+        spdlog::info("topsim {} on pseudo-terminal {}", model_name, server.pty_path());
+        break;
+      case topsim::TransportKind::serial:
+        spdlog::info("topsim {} on serial {} at {} baud", model_name, cfg.device, cfg.baud);
+        break;
+      default:
+        std::printf("%s %s:%u\n", cfg.kind == topsim::TransportKind::tcp ? "tcp" : "udp",
+                    cfg.host.c_str(), static_cast<unsigned>(server.port()));
+        std::fflush(stdout);
+        spdlog::info("topsim {} listening on {} {}:{}{}", model_name,
+                     cfg.kind == topsim::TransportKind::tcp ? "tcp" : "udp", cfg.host, server.port(),
+                     cfg.reply_port ? " (replies to port " + std::to_string(cfg.reply_port) + ")" : "");
+    }
+    if (cfg.faults.any()) spdlog::info("faults: {} (seed {})", faults, seed);
+    server.run();
+    g_server = nullptr;
+    spdlog::info("topsim: {} frames in, {} frames out", server.stats().frames_in.load(),
+                 server.stats().frames_out.load());
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  }
+  return 0;
+}
