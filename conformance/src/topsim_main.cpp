@@ -1,6 +1,7 @@
 // topsim: a stateful TOP gimbal camera on UDP, TCP, a pseudo-terminal or a
 // serial port, with seeded fault injection and pcap recording.
 #include <CLI/CLI.hpp>
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <csignal>
@@ -33,6 +34,8 @@ bool split_host_port(const std::string& s, std::string& host, std::uint16_t& por
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Logs go to stderr; stdout carries results (topsim: the address it serves).
+  spdlog::set_default_logger(spdlog::stderr_color_mt("topsim"));
   CLI::App app{"topsim: a TOP gimbal camera simulator (SkyDroid C10/C10Pro/C12/C13/C20, Topotek SIP)"};
   std::string model_name = "c12";
   std::string udp, tcp, serial, faults, record;

@@ -348,7 +348,9 @@ void Device::handle(const Frame& req, Link link, std::uint64_t now_us,
   if (dialect_ == Dialect::topotek && topotek_builtin(id) &&
       handle_special(req, dec, now_us, out))
     return;
-  if (!dec.command || catalog_rejects(dec) || !dec.form) {
+  // A request laid out as a response form (a 1-char VER read) is invalid too.
+  if (!dec.command || catalog_rejects(dec) || !dec.form ||
+      dec.form->role == top::Role::response) {
     reply_error(req, out);
     return;
   }

@@ -184,6 +184,8 @@ struct Server::Impl {
       if (ec == asio::error::operation_aborted) return;
       if (!ec) {
         auto c = std::make_shared<Conn>();
+        std::error_code nd;
+        s.set_option(asio::ip::tcp::no_delay(true), nd);
         c->line = std::make_shared<TcpLine>(std::move(s));
         tcp_read(c);
       }

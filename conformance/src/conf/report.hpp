@@ -1,0 +1,20 @@
+// topconf's outputs: console table and summary, JSON with transcripts,
+// JUnit XML and a self-contained HTML report.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <ostream>
+#include <string>
+
+#include "conf/runner.hpp"
+
+namespace topconf {
+
+void write_console(std::ostream& os, const RunResult& r, bool color);
+nlohmann::json to_json(const RunResult& r);
+void write_junit(std::ostream& os, const RunResult& r);
+void write_html(std::ostream& os, const RunResult& r);
+// Printable form of frame bytes: non-printables as \xHH.
+std::string printable(std::string_view bytes);
+
+}  // namespace topconf

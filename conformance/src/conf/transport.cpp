@@ -1,0 +1,337 @@
+#include "conf/transport.hpp"
+
+#include <poll.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <asio.hpp>
+#include <chrono>
+
+namespace topconf {
+
+// ---------------------------------------------------------------------------
+// In-process simulator
+
+SimTransport::SimTransport(top::Model model, topsim::FaultConfig faults, std::uint64_t seed,
+                           topsim::Link link)
+    : link_(link),
+      device_(model,
+              [&] {
+                topsim::DeviceOptions o;
+                o.swap_addresses = !faults.no_swap;
+                o.tmp_quirk = faults.tmp_quirk;
+                return o;
+              }()),
+      faults_(faults, seed) {}
+
+char SimTransport::client_address() const {
+  return device_.dialect() == top::Dialect::topotek && link_ == topsim::Link::network ? 'P' : 'U';
+}
+
+std::string SimTransport::describe() const {
+  return std::string("in-process topsim ") + std::string(top::to_string(device_.model()));
+}
+
+void SimTransport::schedule(const std::vector<std::string>& frames) {
+  std::vector<topsim::Emission> em;
+  for (const auto& f : frames) faults_.apply(f, link_ == topsim::Link::uart, em);
+  for (auto& e : em) {
+    Pending p{now_ + e.delay_us, seq_++, std::move(e.bytes)};
+    auto it = std::upper_bound(queue_.begin(), queue_.end(), p, [](const Pending& a, const Pending& b) {
+      return a.at != b.at ? a.at < b.at : a.seq < b.seq;
+    });
+    queue_.insert(it, std::move(p));
+  }
+  // A device that never drains would grow without bound; a real link
+  // drops what its buffers cannot hold.
+  while (queue_.size() > 100000) queue_.pop_back();
+}
+
+void SimTransport::send(std::string_view bytes) {
+  if (datagram()) decoder_.reset();
+  decoder_.feed(bytes);
+  if (datagram()) decoder_.finish(); else decoder_.flush();
+  std::vector<std::string> replies;
+  top::StreamItem item;
+  while (decoder_.next(item)) {
+    if (item.kind != top::ItemKind::frame) continue;
+    if (!faults_.on_request(item.frame)) continue;
+    device_.handle(item.frame, link_, now_, replies);
+  }
+  schedule(replies);
+}
+
+bool SimTransport::receive(std::uint64_t deadline_us, std::string& out) {
+  for (;;) {
+    const std::uint64_t t_queue = queue_.empty() ? UINT64_MAX : queue_.front().at;
+    const std::uint64_t t_dev = faults_.hung() ? UINT64_MAX : device_.next_timer();
+    const std::uint64_t t = std::min(t_queue, t_dev);
+    if (t > deadline_us) {
+      now_ = std::max(now_, deadline_us);
+      return false;
+    }
+    now_ = std::max(now_, t);
+    if (t_queue <= t_dev) {
+      out = std::move(queue_.front().bytes);
+      queue_.pop_front();
+      return true;
+    }
+    std::vector<std::string> frames;
+    device_.poll(now_, frames);
+    schedule(frames);
+  }
+}
+
+// ---------------------------------------------------------------------------
+// Asio transports: sockets and a serial port, waited on with poll(2) so a
+// deadline always ends a wait.
+
+namespace {
+
+using SteadyClock = std::chrono::steady_clock;
+
+std::uint64_t steady_us() {
+  return static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::microseconds>(
+                                        SteadyClock::now().time_since_epoch())
+                                        .count());
+}
+
+bool wait_readable(int fd, std::uint64_t deadline_us) {
+  for (;;) {
+    const std::uint64_t now = steady_us();
+    if (now >= deadline_us) {
+      pollfd p{fd, POLLIN, 0};
+      return ::poll(&p, 1, 0) > 0;
+    }
+    const std::uint64_t left = deadline_us - now;
+    timespec ts{static_cast<time_t>(left / 1000000), static_cast<long>((left % 1000000) * 1000)};
+    pollfd p{fd, POLLIN, 0};
+    const int r = ::ppoll(&p, 1, &ts, nullptr);
+    if (r > 0) return true;
+    if (r == 0) return false;
+    if (errno != EINTR) throw TransportError(std::string("poll: ") + std::strerror(errno));
+  }
+}
+
+bool split_host_port(const std::string& s, std::string& host, std::uint16_t& port) {
+  const auto colon = s.rfind(':');
+  if (colon == std::string::npos || colon == 0) return false;
+  host = s.substr(0, colon);
+  try {
+    std::size_t used = 0;
+    const unsigned long p = std::stoul(s.substr(colon + 1), &used);
+    if (used != s.size() - colon - 1 || p == 0 || p > 65535) return false;
+    port = static_cast<std::uint16_t>(p);
+  } catch (...) {
+    return false;
+  }
+  return true;
+}
+
+char client_for(top::Model m, bool network) {
+  return top::dialect_of(m) == top::Dialect::topotek && network ? 'P' : 'U';
+}
+
+class UdpTransport : public Transport {
+ public:
+  UdpTransport(const std::string& host, std::uint16_t port, top::Model model, int local_port)
+      : sock_(io_), model_(model) {
+    std::error_code ec;
+    auto addr = asio::ip::make_address(host, ec);
+    if (ec) throw TransportError("udp://" + host + ": not an IP address");
+    peer_ = asio::ip::udp::endpoint(addr, port);
+    sock_.open(peer_.protocol(), ec);
+    if (!ec) sock_.bind(asio::ip::udp::endpoint(addr.is_loopback() ? addr : asio::ip::address_v4::any(),
+                                                static_cast<std::uint16_t>(std::max(local_port, 0))), ec);
+    if (!ec) sock_.connect(peer_, ec);
+    if (ec) throw TransportError("udp://" + host + ":" + std::to_string(port) + ": " + ec.message());
+    if (local_port > 0) {
+      // The device answers to a fixed port (Topotek 9004), not to our
+      // source port: do not filter on the peer's port.
+      sock_.close();
+      sock_.open(peer_.protocol(), ec);
+      sock_.set_option(asio::socket_base::reuse_address(true), ec);
+      sock_.bind(asio::ip::udp::endpoint(asio::ip::address_v4::any(), static_cast<std::uint16_t>(local_port)), ec);
+      if (ec) throw TransportError("udp bind port " + std::to_string(local_port) + ": " + ec.message());
+      connected_ = false;
+    }
+    sock_.non_blocking(true, ec);
+  }
+  std::uint64_t now_us() override { return steady_us(); }
+  bool datagram() const override { return true; }
+  char client_address() const override { return client_for(model_, true); }
+  void send(std::string_view b) override {
+    std::error_code ec;
+    if (connected_) sock_.send(asio::buffer(b.data(), b.size()), 0, ec);
+    else sock_.send_to(asio::buffer(b.data(), b.size()), peer_, 0, ec);
+    if (ec && ec != asio::error::connection_refused)
+      throw TransportError("udp send: " + ec.message());
+  }
+  bool receive(std::uint64_t deadline_us, std::string& out) override {
+    char buf[65536];
+    for (;;) {
+      if (!wait_readable(sock_.native_handle(), deadline_us)) return false;
+      std::error_code ec;
+      asio::ip::udp::endpoint from;
+      const std::size_t n = sock_.receive_from(asio::buffer(buf), from, 0, ec);
+      if (ec == asio::error::would_block || ec == asio::error::try_again) continue;
+      // ICMP port unreachable: nobody listens yet; keep waiting until the deadline.
+      if (ec == asio::error::connection_refused) {
+        refused_ = true;
+        if (steady_us() >= deadline_us) return false;
+        continue;
+      }
+      if (ec) throw TransportError("udp receive: " + ec.message());
+      out.assign(buf, n);
+      return true;
+    }
+  }
+  topkit::Endpoint local() const override {
+    std::error_code ec;
+    auto e = sock_.local_endpoint(ec);
+    return {0x7F000001u, ec ? std::uint16_t{0} : e.port()};
+  }
+  topkit::Endpoint remote() const override {
+    return {peer_.address().is_v4() ? peer_.address().to_v4().to_uint() : 0x7F000001u, peer_.port()};
+  }
+  std::string describe() const override {
+    return "udp://" + peer_.address().to_string() + ":" + std::to_string(peer_.port());
+  }
+
+ private:
+  asio::io_context io_;
+  asio::ip::udp::socket sock_;
+  asio::ip::udp::endpoint peer_;
+  top::Model model_;
+  bool connected_ = true;
+  bool refused_ = false;
+};
+
+class TcpTransport : public Transport {
+ public:
+  TcpTransport(const std::string& host, std::uint16_t port, top::Model model)
+      : sock_(io_), model_(model) {
+    std::error_code ec;
+    auto addr = asio::ip::make_address(host, ec);
+    if (ec) throw TransportError("tcp://" + host + ": not an IP address");
+    peer_ = asio::ip::tcp::endpoint(addr, port);
+    sock_.connect(peer_, ec);
+    if (ec) throw TransportError("tcp://" + host + ":" + std::to_string(port) + ": " + ec.message());
+    sock_.set_option(asio::ip::tcp::no_delay(true), ec);
+  }
+  std::uint64_t now_us() override { return steady_us(); }
+  bool datagram() const override { return false; }
+  char client_address() const override { return client_for(model_, true); }
+  void send(std::string_view b) override {
+    std::error_code ec;
+    asio::write(sock_, asio::buffer(b.data(), b.size()), ec);
+    if (ec) throw TransportError("tcp send: " + ec.message());
+  }
+  bool receive(std::uint64_t deadline_us, std::string& out) override {
+    if (!wait_readable(sock_.native_handle(), deadline_us)) return false;
+    char buf[4096];
+    std::error_code ec;
+    const std::size_t n = sock_.read_some(asio::buffer(buf), ec);
+    if (ec) throw TransportError("tcp receive: " + (ec == asio::error::eof ? std::string("connection closed by the device") : ec.message()));
+    out.assign(buf, n);
+    return true;
+  }
+  topkit::Endpoint local() const override {
+    std::error_code ec;
+    auto e = sock_.local_endpoint(ec);
+    return {0x7F000001u, ec ? std::uint16_t{0} : e.port()};
+  }
+  topkit::Endpoint remote() const override {
+    return {peer_.address().is_v4() ? peer_.address().to_v4().to_uint() : 0x7F000001u, peer_.port()};
+  }
+  bool tcp() const override { return true; }
+  std::string describe() const override {
+    return "tcp://" + peer_.address().to_string() + ":" + std::to_string(peer_.port());
+  }
+
+ private:
+  asio::io_context io_;
+  asio::ip::tcp::socket sock_;
+  asio::ip::tcp::endpoint peer_;
+  top::Model model_;
+};
+
+class SerialTransport : public Transport {
+ public:
+  SerialTransport(const std::string& dev, unsigned baud, top::Model model)
+      : port_(io_), dev_(dev), model_(model) {
+    std::error_code ec;
+    port_.open(dev, ec);
+    if (ec) throw TransportError("serial:" + dev + ": " + ec.message());
+    port_.set_option(asio::serial_port::baud_rate(baud), ec);
+    if (ec) throw TransportError("serial:" + dev + ": baud " + std::to_string(baud) + ": " + ec.message());
+    port_.set_option(asio::serial_port::character_size(8), ec);
+    port_.set_option(asio::serial_port::parity(asio::serial_port::parity::none), ec);
+    port_.set_option(asio::serial_port::stop_bits(asio::serial_port::stop_bits::one), ec);
+    port_.set_option(asio::serial_port::flow_control(asio::serial_port::flow_control::none), ec);
+  }
+  std::uint64_t now_us() override { return steady_us(); }
+  bool datagram() const override { return false; }
+  char client_address() const override { return client_for(model_, false); }
+  void send(std::string_view b) override {
+    std::error_code ec;
+    asio::write(port_, asio::buffer(b.data(), b.size()), ec);
+    if (ec) throw TransportError("serial write: " + ec.message());
+  }
+  bool receive(std::uint64_t deadline_us, std::string& out) override {
+    if (!wait_readable(port_.native_handle(), deadline_us)) return false;
+    char buf[4096];
+    const ssize_t n = ::read(port_.native_handle(), buf, sizeof buf);
+    if (n < 0) {
+      if (errno == EAGAIN || errno == EINTR) return false;
+      throw TransportError("serial read: " + std::string(std::strerror(errno)));
+    }
+    if (n == 0) return false;
+    out.assign(buf, static_cast<std::size_t>(n));
+    return true;
+  }
+  topkit::Endpoint local() const override { return {0x7F000001u, 9001}; }
+  topkit::Endpoint remote() const override { return {0x7F000001u, 9000}; }
+  std::string describe() const override { return "serial:" + dev_; }
+
+ private:
+  asio::io_context io_;
+  asio::serial_port port_;
+  std::string dev_;
+  top::Model model_;
+};
+
+}  // namespace
+
+std::unique_ptr<Transport> open_transport(const std::string& target, top::Model model,
+                                          int local_port) {
+  std::string host;
+  std::uint16_t port = 0;
+  if (target.rfind("udp://", 0) == 0) {
+    if (!split_host_port(target.substr(6), host, port))
+      throw TransportError(target + ": expected udp://HOST:PORT");
+    return std::make_unique<UdpTransport>(host, port, model, local_port);
+  }
+  if (target.rfind("tcp://", 0) == 0) {
+    if (!split_host_port(target.substr(6), host, port))
+      throw TransportError(target + ": expected tcp://HOST:PORT");
+    return std::make_unique<TcpTransport>(host, port, model);
+  }
+  if (target.rfind("serial:", 0) == 0) {
+    std::string dev = target.substr(7);
+    unsigned baud = 115200;
+    if (auto at = dev.rfind('@'); at != std::string::npos) {
+      try {
+        baud = static_cast<unsigned>(std::stoul(dev.substr(at + 1)));
+      } catch (...) {
+        throw TransportError(target + ": bad baud rate");
+      }
+      dev = dev.substr(0, at);
+    }
+    if (dev.empty()) throw TransportError(target + ": expected serial:DEVICE[@BAUD]");
+    return std::make_unique<SerialTransport>(dev, baud, model);
+  }
+  throw TransportError(target + ": expected udp://HOST:PORT, tcp://HOST:PORT or serial:DEVICE[@BAUD]");
+}
+
+}  // namespace topconf
