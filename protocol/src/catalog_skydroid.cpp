@@ -698,7 +698,7 @@ constexpr CommandSpec kTable[] = {
     {.ident = "IMG", .dialect = Dialect::skydroid, .address = 'D',
      .title = "thermal palette", .section = "SkyDroid 4.8",
      .models = c12, .forms = kImgForms,
-     .note = "the section title reads "camouflage" for "pseudo-colour palette"; "
+     .note = "the section title reads 'camouflage' for 'pseudo-colour palette'; "
              "02 is not listed"},
     {.ident = "IPV", .dialect = Dialect::skydroid, .address = 'D',
      .title = "camera IP address", .section = "SkyDroid 4.9.1",
@@ -753,7 +753,7 @@ constexpr CommandSpec kTable[] = {
     {.ident = "TDI", .dialect = Dialect::skydroid, .address = 'D',
      .title = "thermal detail enhancement", .section = "SkyDroid 4.16",
      .models = c13, .forms = kTdiForms,
-     .note = "4.16.1 gives only the table (its column labelled "time") without "
+     .note = "4.16.1 gives only the table (its column labelled 'time') without "
              "control or identifier lines; layout taken from the read"},
     {.ident = "TIB", .dialect = Dialect::skydroid, .address = 'D',
      .title = "thermal brightness", .section = "SkyDroid 4.17",
