@@ -160,3 +160,20 @@ TEST(Stream, FlushReleasesAHeldFrame) {
   ASSERT_TRUE(d.next(it));
   EXPECT_EQ(it.frame.raw, "#TPUD2wCAP013E");
 }
+
+TEST(Stream, LargeChunkIsDecodedLazily) {
+  std::string big;
+  for (int i = 0; i < 100000; ++i) big += "#TPUD2wCAP013E";
+  StreamDecoder d;
+  d.feed(big);
+  StreamItem it;
+  std::size_t n = 0;
+  ASSERT_TRUE(d.next(it));
+  ++n;
+  // Only a bounded number of items were decoded ahead.
+  EXPECT_GT(d.buffered(), big.size() / 2);
+  while (d.next(it)) ++n;
+  d.finish();
+  while (d.next(it)) ++n;
+  EXPECT_EQ(n, 100000u);
+}

@@ -9,6 +9,9 @@ namespace {
 // stream of noise is neither held nor counted forever.
 constexpr std::uint64_t kMaxGarbageRun = 64 * 1024;
 constexpr std::size_t kPreview = 32;
+// Items decoded ahead of next(): a large chunk is decoded lazily, so the
+// queue stays small whatever the chunk size.
+constexpr std::size_t kMaxReady = 64;
 }  // namespace
 
 StreamDecoder::StreamDecoder(StreamOptions opts) : opts_(opts) {}
@@ -111,7 +114,7 @@ void StreamDecoder::flush_garbage() {
 
 void StreamDecoder::pump() {
   const std::string_view all(buf_);
-  while (pos_ < buf_.size()) {
+  while (pos_ < buf_.size() && ready_.size() < kMaxReady) {
     char c = buf_[pos_];
     if (has_pending_ && (c == '\r' || c == '\n')) {
       if (pending_.frame.terminator < 255) ++pending_.frame.terminator;
