@@ -177,3 +177,18 @@ TEST(Stream, LargeChunkIsDecodedLazily) {
   while (d.next(it)) ++n;
   EXPECT_EQ(n, 100000u);
 }
+
+TEST(Stream, HostileNestedHeadersStayLinear) {
+  // A long #Tp frame with a bad checksum whose data is full of '#Tp' headers
+  // that each declare 65535 bytes: only a bounded number are tried.
+  std::string unit = std::string("#TpUD\xff\xff") + "GPS";
+  std::string data;
+  while (data.size() + unit.size() < 60000) data += unit;
+  std::string frame = std::string("#TpUD") + static_cast<char>(data.size() >> 8) +
+                      static_cast<char>(data.size() & 0xFF) + "GPS" + data + "00";
+  auto items = decode_all(frame + frame);
+  ASSERT_FALSE(items.empty());
+  std::uint64_t covered = 0;
+  for (const auto& it : items) covered += it.length;
+  EXPECT_EQ(covered, 2 * frame.size());
+}

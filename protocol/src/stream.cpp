@@ -12,6 +12,9 @@ constexpr std::size_t kPreview = 32;
 // Items decoded ahead of next(): a large chunk is decoded lazily, so the
 // queue stays small whatever the chunk size.
 constexpr std::size_t kMaxReady = 64;
+// '#' bytes inside a frame that fails its checksum that are tried as the
+// start of a valid frame; a cap keeps hostile binary data linear.
+constexpr int kMaxInnerCandidates = 16;
 }  // namespace
 
 StreamDecoder::StreamDecoder(StreamOptions opts) : opts_(opts) {}
@@ -142,8 +145,10 @@ void StreamDecoder::pump() {
     // inside it: trust a validated length over an unvalidated one.
     if (!r.frame.checksum_ok) {
       bool wait = false, yielded = false;
-      for (std::size_t q = pos_ + 1; q < pos_ + r.consumed; ++q) {
+      int tried = 0;
+      for (std::size_t q = pos_ + 1; q < pos_ + r.consumed && tried < kMaxInnerCandidates; ++q) {
         if (buf_[q] != '#') continue;
+        ++tried;
         ParseResult inner = parse_frame(all.substr(q), at_end_, opts_.parse);
         if (inner.status == ParseStatus::need_more) {
           wait = true;
