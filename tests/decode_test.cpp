@@ -165,3 +165,20 @@ TEST(Decode, ExampleDataDecodesCleanForEveryForm) {
         EXPECT_LE(data.size(), f.max_length) << c.ident;
       }
 }
+
+TEST(Decode, SkydroidNoCardIsNotZeroMegabytes) {
+  std::string s = build_frame({.header = Header::variable, .src = 'D', .dst = 'U',
+                               .control = 'r', .ident = "SDC", .data = "0000000000"});
+  Decoded d = dec(s, Dialect::skydroid);
+  ASSERT_EQ(d.fields.size(), 2u);
+  EXPECT_TRUE(d.fields[0].none);
+  EXPECT_TRUE(d.fields[1].none);
+  EXPECT_EQ(d.summary(), "none (all zero: no memory card)");
+  // A full card (no MB free) is not "no card".
+  std::string full = build_frame({.header = Header::variable, .src = 'D', .dst = 'U',
+                                  .control = 'r', .ident = "SDC", .data = "000001D1C0"});
+  Decoded f = dec(full, Dialect::skydroid);
+  EXPECT_FALSE(f.fields[0].none);
+  EXPECT_EQ(f.fields[0].integer, 0);
+  EXPECT_EQ(f.fields[1].integer, 0x1D1C0);
+}

@@ -258,7 +258,7 @@ constexpr FormSpec kSdcForms[] = {
      .fields = kSdcQueryFields},
     {.control = 'r', .role = Role::response, .min_length = 10,
      .max_length = 10, .fields = kSdcFields,
-     .note = "all zero: no memory card"},
+     .note = "all zero: no memory card", .none = "0000000000"},
 };
 
 // 4.5.1 AWB, one char per lens
