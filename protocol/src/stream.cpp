@@ -7,7 +7,7 @@ namespace top {
 namespace {
 // A garbage run is reported at the latest when it reaches this size, so a
 // stream of noise is neither held nor counted forever.
-constexpr std::uint64_t kMaxGarbageRun = 64 * 1024;
+constexpr std::uint64_t kMaxGarbageRun = std::uint64_t{64} * 1024;
 constexpr std::size_t kPreview = 32;
 // Items decoded ahead of next(): a large chunk is decoded lazily, so the
 // queue stays small whatever the chunk size.
