@@ -1,5 +1,6 @@
 #include "conf/generate.hpp"
 
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -86,7 +87,21 @@ bool same_layout(const top::FormSpec& a, const top::FormSpec& b) {
 }
 
 json send(const top::CommandSpec& c, char control, const std::string& data) {
-  return json{{"command", std::string(c.ident)}, {"control", std::string(1, control)}, {"data", data}};
+  json j{{"command", std::string(c.ident)}, {"control", std::string(1, control)}};
+  bool printable = true;
+  for (unsigned char ch : data) printable = printable && ch >= 0x20 && ch < 0x7F;
+  if (printable) {
+    j["data"] = data;
+  } else {
+    std::string hex;
+    char b[3];
+    for (unsigned char ch : data) {
+      std::snprintf(b, sizeof b, "%02X", static_cast<unsigned>(ch));
+      hex += b;
+    }
+    j["data_hex"] = hex;
+  }
+  return j;
 }
 
 json echo_alts() {
@@ -144,7 +159,7 @@ json generate_matrix(top::Model model) {
 
   std::vector<std::string> classes_done;
   for (const top::CommandSpec& c : top::commands(d)) {
-    if (!c.supports(model) || c.ident == "ERE" || c.ident == "GAC" || c.ident == "GIC") continue;
+    if (!c.supports(model) || c.ident == "ERE") continue;
     const std::string id = std::string(c.ident);
     const std::string base = dn + "/" + section_number(c.section) + "/" + id;
     const bool appendix = c.section.find("appendix") != std::string_view::npos;
@@ -168,7 +183,23 @@ json generate_matrix(top::Model model) {
       if (id == "GAA" || id == "GIA") wdata = "00";
       if (!clean_request(d, model, c, 'w', wdata)) w = nullptr;
     }
-    if (w) {
+    // A write with its own reply layout (Topotek REC/CAP: state and file
+    // index) is answered in that layout; any other write is echoed.
+    const top::FormSpec* wr = nullptr;
+    for (const auto& f : c.forms)
+      if (f.control == 'w' && f.role == top::Role::response) wr = &f;
+    if (w && wr) {
+      json reply = {{"control", "w"}};
+      json f = reply_checks(*wr);
+      if (!f.empty()) reply["fields"] = f;
+      cases.push_back({{"id", base + "/write"}, {"section", std::string(c.section)},
+                       {"title", std::string(c.title) + ": a write is answered in its reply layout"},
+                       {"level", level}, {"tags", tags({"positive", "write"})},
+                       {"steps", json::array({{{"send", send(c, 'w', wdata)},
+                                               {"expect", json::array({json{{"reply", reply}},
+                                                                       json{{"reply", reply}, {"addresses", "any"}, {"tolerated", true},
+                                                                            {"note", "reply keeps the client's address first"}}})}}})}});
+    } else if (w) {
       cases.push_back({{"id", base + "/write"}, {"section", std::string(c.section)},
                        {"title", std::string(c.title) + ": a write is echoed with the addresses swapped"},
                        {"level", level}, {"tags", tags({"positive", "write"})},

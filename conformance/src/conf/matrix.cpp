@@ -99,7 +99,7 @@ std::optional<SendSpec> parse_send(const Ctx& c, const json& o, const std::strin
     }
     return s;
   }
-  only_keys(c, o, where, {"command", "control", "data", "src", "dst", "header"});
+  only_keys(c, o, where, {"command", "control", "data", "data_hex", "src", "dst", "header"});
   if (!get_string(c, o, w, "command", s.command, true)) return std::nullopt;
   if (s.command.size() != 3) {
     c.err(w + "command", "must be a three-character identifier");
@@ -114,6 +114,17 @@ std::optional<SendSpec> parse_send(const Ctx& c, const json& o, const std::strin
   s.control = ctl[0];
   get_string(c, o, w, "data", s.data, false);
   std::string a;
+  if (get_string(c, o, w, "data_hex", a, false)) {
+    // Binary data (Topotek GPS/UAV structs) is written as hex.
+    if (o.contains("data")) c.err(w + "data_hex", "give data or data_hex, not both");
+    if (!is_hex(a)) {
+      c.err(w + "data_hex", "must be an even number of hex digits");
+      return std::nullopt;
+    }
+    s.data.clear();
+    for (std::size_t i = 0; i < a.size(); i += 2)
+      s.data.push_back(static_cast<char>(std::stoi(a.substr(i, 2), nullptr, 16)));
+  }
   if (get_string(c, o, w, "src", a, false)) {
     if (a.size() != 1) { c.err(w + "src", "must be one address character"); return std::nullopt; }
     s.src = a[0];

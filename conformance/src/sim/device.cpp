@@ -33,7 +33,7 @@ std::string hex_u(std::uint64_t v, int width) {
 // completed): the sim answers them from its own state.
 bool topotek_builtin(std::string_view ident) noexcept {
   return ident == "REC" || ident == "CAP" || ident == "GIA" || ident == "GIC" ||
-         ident == "GAA" || ident == "VER";
+         ident == "GAA";
 }
 
 const top::FieldValue* field(const top::Decoded& d, std::string_view name) {
@@ -84,7 +84,7 @@ Device::Device(top::Model model, DeviceOptions opts)
   axes_[2].min = -45;
   axes_[2].max = 45;
   // Read-only values a real device reports.
-  settings_["VER"] = dialect_ == Dialect::topotek ? "SIP0001V113TK" : "V1.1.5";
+  settings_["VER"] = dialect_ == Dialect::topotek ? "SIP0001V113TK0" : "V1.1.5";
   settings_["SDC"] = "0EA601D4C0";  // 60000 MB free of 120000 MB
   settings_["IPV"] = "192.168.144.108";
   settings_["GTW"] = "192.168.144.1";
@@ -251,10 +251,6 @@ bool Device::handle_special(const Frame& req, const top::Decoded& dec,
     out.push_back(make(top::Header::variable, req, 'r', id, attitude_data()));
     return true;
   }
-  if (topotek && id == "VER" && !write) {
-    out.push_back(make(top::Header::variable, req, 'r', id, settings_["VER"]));
-    return true;
-  }
   if (topotek) return false;
 
   // SkyDroid state behind the catalog entries.
@@ -345,7 +341,9 @@ void Device::handle(const Frame& req, Link link, std::uint64_t now_us,
   const top::Decoded dec = top::decode(req, dopts);
   const std::string_view id = req.ident_view();
 
-  if (dialect_ == Dialect::topotek && topotek_builtin(id) &&
+  // Topotek commands the simulator implements that a catalog without them
+  // would reject (kept so the sim does not depend on catalog completeness).
+  if (dialect_ == Dialect::topotek && !dec.command && topotek_builtin(id) &&
       handle_special(req, dec, now_us, out))
     return;
   // A request laid out as a response form (a 1-char VER read) is invalid too.
@@ -360,6 +358,14 @@ void Device::handle(const Frame& req, Link link, std::uint64_t now_us,
   if (req.control == 'w') {
     // Settings (image, network, ...) are stored, never applied to the host.
     settings_[std::string(id)] = std::string(req.data());
+    // A write with a reply layout of its own (Topotek 5.8.7 LON/LAT target
+    // output, 5.9 LRF result) is answered in that layout; others are echoed.
+    for (const auto& f : cmd.forms) {
+      if (f.control != 'w' || f.role != top::Role::response || &f == dec.form) continue;
+      const std::string data = top::example_data(f);
+      out.push_back(make(top::choose_header(dialect_, cmd.address, data.size()), req, 'w', id, data));
+      return;
+    }
     out.push_back(make(req.header, req, 'w', id, req.data()));
     return;
   }
