@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
   std::string target, model_name, matrix_path, json_out, junit_out, html_out, pcap_out, sim_faults;
   std::vector<std::string> case_ids, tags, levels;
   std::uint64_t seed = 0, sim_seed = 1;
-  std::uint32_t retries = 0, timeout_ms = 0;
+  std::uint32_t retries = 0, timeout_ms = 0, settle_ms = 0;
   int bind_port = -1;
   bool no_color = false, quiet = false;
   run->add_option("--target", target, "udp://HOST:PORT, tcp://HOST:PORT or serial:DEVICE[@BAUD]");
@@ -72,6 +72,7 @@ int main(int argc, char** argv) {
   auto* seed_opt = run->add_option("--seed", seed, "shuffle the case order with this seed");
   auto* retries_opt = run->add_option("--retries", retries, "retries of a failing case (default: the matrix's)");
   auto* timeout_opt = run->add_option("--timeout-ms", timeout_ms, "reply timeout per step (default: the matrix's)");
+  auto* settle_opt = run->add_option("--settle-ms", settle_ms, "watch this long for duplicate replies (default: the matrix's)");
   run->add_option("--json", json_out, "write results with timestamped transcripts as JSON");
   run->add_option("--junit", junit_out, "write JUnit XML");
   run->add_option("--html", html_out, "write a self-contained HTML report");
@@ -216,6 +217,7 @@ int main(int argc, char** argv) {
   if (seed_opt->count()) opts.seed = seed;
   if (retries_opt->count()) opts.retries = retries;
   if (timeout_opt->count()) opts.timeout_ms = timeout_ms;
+  if (settle_opt->count()) opts.settle_ms = settle_ms;
   opts.pcap = pcap.get();
   const auto result = topconf::run_matrix(matrix, *transport, opts);
   if (pcap) pcap->flush();

@@ -60,25 +60,39 @@ class Wire {
       // flooding peer cannot keep us here.
       if (now() >= deadline && ++late > 64) return false;
       std::string chunk;
-      if (!t_.receive(deadline, chunk)) return false;
+      if (!t_.receive(deadline, chunk)) {
+        // A quiet stream with bytes held (a frame failing its checksum waits
+        // for look-ahead): the link went quiet, so decide now.
+        if (!t_.datagram() && dec_.buffered() > 0) {
+          dec_.finish();
+          collect();
+          dec_.reset();
+          if (!frames_.empty()) continue;
+        }
+        return false;
+      }
       ++chunks_;
       log('<', chunk);
       if (o_.pcap) o_.pcap->write(t_.remote(), t_.local(), chunk);
       dec_.feed(chunk);
       if (t_.datagram()) dec_.finish(); else dec_.flush();
-      top::StreamItem item;
-      const std::uint64_t at = now();
-      while (dec_.next(item)) {
-        if (item.kind == top::ItemKind::garbage) {
-          garbage_ = true;
-          note("garbage: " + std::to_string(item.length) + " byte(s) that belong to no frame");
-          continue;
-        }
-        if (frames_.size() >= o_.max_frames_per_step) frames_.pop_front();
-        frames_.push_back(Received{std::move(item.frame), at, garbage_});
-        garbage_ = false;
-      }
+      collect();
       if (t_.datagram()) dec_.reset();
+    }
+  }
+
+  void collect() {
+    top::StreamItem item;
+    const std::uint64_t at = now();
+    while (dec_.next(item)) {
+      if (item.kind == top::ItemKind::garbage) {
+        garbage_ = true;
+        note("garbage: " + std::to_string(item.length) + " byte(s) that belong to no frame");
+        continue;
+      }
+      if (frames_.size() >= o_.max_frames_per_step) frames_.pop_front();
+      frames_.push_back(Received{std::move(item.frame), at, garbage_});
+      garbage_ = false;
     }
   }
 
@@ -348,7 +362,7 @@ struct Runner {
         if (k == ExpectKind::silence || k == ExpectKind::stream) break;
         if (matched[i]) { decided = true; break; }
       }
-      if (decided) settle_deadline = w.now() + std::uint64_t{m.settle_ms} * 1000;
+      if (decided) settle_deadline = w.now() + std::uint64_t{o.settle_ms ? *o.settle_ms : m.settle_ms} * 1000;
     }
     // The verdict: the first alternative, in order, that holds.
     for (std::size_t i = 0; i < s.expect.size(); ++i) {
@@ -475,7 +489,9 @@ struct Runner {
     std::string bytes, err;
     if (!resolve_send(*m.probe, m.dialect, t.client_address(), bytes, err)) return true;
     auto pr = top::parse_exact(bytes);
-    const std::string ident = pr.status == top::ParseStatus::frame ? std::string(pr.frame.ident_view()) : "";
+    const bool parsed = pr.status == top::ParseStatus::frame;
+    const std::string ident = parsed ? std::string(pr.frame.ident_view()) : "";
+    const char control = parsed ? pr.frame.control : 0;
     for (int i = 0; i < tries; ++i) {
       w.drain();
       w.send(bytes);
@@ -485,7 +501,7 @@ struct Runner {
       // Attitude pushes do not count: a hung device may still stream.
       while (w.next(deadline, r)) {
         const std::string_view id = r.frame.ident_view();
-        if (id == ident || id == "ERE") {
+        if ((id == ident && r.frame.control == control) || id == "ERE") {
           w.drain();
           return true;
         }
@@ -623,7 +639,7 @@ RunResult run_matrix(const Matrix& m, Transport& t, const RunOptions& o) {
       // Liveness between cases.
       bool alive = true;
       try {
-        alive = run.probe(2);
+        alive = run.probe(5);
       } catch (const TransportError& e) {
         alive = false;
       }

@@ -26,7 +26,7 @@ struct Exchange {
 };
 
 struct CaseResult {
-  const Case* spec = nullptr;
+  const Case* spec = nullptr;  // points into the Matrix: keep it alive
   Verdict verdict = Verdict::error;
   bool flaky = false;        // passed after a failed attempt
   int attempts = 0;
@@ -45,6 +45,7 @@ struct RunOptions {
   std::optional<std::uint64_t> seed;  // shuffle the case order
   std::optional<std::uint32_t> retries;     // overrides the matrix
   std::optional<std::uint32_t> timeout_ms;  // overrides the matrix
+  std::optional<std::uint32_t> settle_ms;   // overrides the matrix
   topkit::PcapWriter* pcap = nullptr;
   std::function<void(const CaseResult&)> on_case;
   std::size_t max_transcript = 400;   // exchanges kept per case

@@ -36,7 +36,13 @@ void SimTransport::schedule(const std::vector<std::string>& frames) {
   std::vector<topsim::Emission> em;
   for (const auto& f : frames) faults_.apply(f, link_ == topsim::Link::uart, em);
   for (auto& e : em) {
-    Pending p{now_ + e.delay_us, seq_++, std::move(e.bytes)};
+    std::uint64_t at = now_ + e.delay_us;
+    if (!datagram()) {
+      // One write at a time on a line: a split frame is not interleaved.
+      at = std::max(at, line_busy_until_);
+      line_busy_until_ = at;
+    }
+    Pending p{at, seq_++, std::move(e.bytes)};
     auto it = std::upper_bound(queue_.begin(), queue_.end(), p, [](const Pending& a, const Pending& b) {
       return a.at != b.at ? a.at < b.at : a.seq < b.seq;
     });
@@ -51,26 +57,42 @@ void SimTransport::send(std::string_view bytes) {
   if (datagram()) decoder_.reset();
   decoder_.feed(bytes);
   if (datagram()) decoder_.finish(); else decoder_.flush();
+  last_rx_ = now_;
   std::vector<std::string> replies;
+  handle_items(replies);
+  schedule(replies);
+}
+
+void SimTransport::handle_items(std::vector<std::string>& replies) {
   top::StreamItem item;
   while (decoder_.next(item)) {
     if (item.kind != top::ItemKind::frame) continue;
     if (!faults_.on_request(item.frame)) continue;
     device_.handle(item.frame, link_, now_, replies);
   }
-  schedule(replies);
 }
 
 bool SimTransport::receive(std::uint64_t deadline_us, std::string& out) {
   for (;;) {
     const std::uint64_t t_queue = queue_.empty() ? UINT64_MAX : queue_.front().at;
     const std::uint64_t t_dev = faults_.hung() ? UINT64_MAX : device_.next_timer();
-    const std::uint64_t t = std::min(t_queue, t_dev);
+    // The device decides on held bytes once the line has been quiet 20 ms.
+    const std::uint64_t t_quiet =
+        !datagram() && decoder_.buffered() > 0 ? last_rx_ + 20000 : UINT64_MAX;
+    const std::uint64_t t = std::min({t_queue, t_dev, t_quiet});
     if (t > deadline_us) {
       now_ = std::max(now_, deadline_us);
       return false;
     }
     now_ = std::max(now_, t);
+    if (t == t_quiet && t < t_queue) {
+      decoder_.finish();
+      std::vector<std::string> replies;
+      handle_items(replies);
+      decoder_.reset();
+      schedule(replies);
+      continue;
+    }
     if (t_queue <= t_dev) {
       out = std::move(queue_.front().bytes);
       queue_.pop_front();

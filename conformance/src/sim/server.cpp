@@ -97,11 +97,20 @@ struct Server::Impl {
         std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - start).count());
   }
 
+  std::uint64_t line_busy_until = 0;  // stream links: one write at a time
+
   void emit(const Peer& peer, const std::vector<std::string>& frames) {
     std::vector<Emission> em;
     for (const auto& f : frames) faults.apply(f, peer.stream_link, em);
+    const std::uint64_t now = now_us();
     for (auto& e : em) {
       stats.frames_out.fetch_add(1, std::memory_order_relaxed);
+      if (peer.stream_link) {
+        // A split frame's second half must not be overtaken by the next frame.
+        const std::uint64_t at = std::max(now + e.delay_us, line_busy_until);
+        line_busy_until = at;
+        e.delay_us = at - now;
+      }
       if (e.delay_us == 0) {
         if (pcap) pcap->write(peer.local, peer.remote, e.bytes);
         peer.send(std::move(e.bytes));
@@ -116,8 +125,9 @@ struct Server::Impl {
     }
   }
 
+  // `keep` holds the decoder's owner (a TCP connection) alive for timers.
   void on_bytes(top::StreamDecoder& dec, std::string_view bytes, bool datagram, const Peer& peer,
-                Link link) {
+                Link link, std::shared_ptr<void> keep = nullptr) {
     stats.bytes_in.fetch_add(bytes.size(), std::memory_order_relaxed);
     if (pcap) pcap->write(peer.remote, peer.local, bytes);
     dec.feed(bytes);
@@ -132,10 +142,32 @@ struct Server::Impl {
       device.handle(item.frame, link, now, out);
     }
     if (datagram) dec.reset();
+    else if (dec.buffered() > 0) arm_quiet(dec, peer, link, std::move(keep));
     stream_peer = peer;
     have_stream_peer = true;
     if (!out.empty()) emit(peer, out);
     arm_stream_timer();
+  }
+
+  // Bytes held on a stream (a frame failing its checksum waits for
+  // look-ahead): once the line is quiet for 20 ms, decide on them.
+  void arm_quiet(top::StreamDecoder& dec, const Peer& peer, Link link, std::shared_ptr<void> keep) {
+    const std::uint64_t fed = dec.fed();
+    auto t = std::make_shared<asio::steady_timer>(io, std::chrono::milliseconds(20));
+    t->async_wait([this, t, &dec, fed, peer, link, keep](std::error_code ec) {
+      if (ec || dec.fed() != fed || dec.buffered() == 0) return;
+      dec.finish();
+      std::vector<std::string> out;
+      top::StreamItem item;
+      while (dec.next(item)) {
+        if (item.kind != top::ItemKind::frame) continue;
+        stats.frames_in.fetch_add(1, std::memory_order_relaxed);
+        if (!faults.on_request(item.frame)) continue;
+        device.handle(item.frame, link, now_us(), out);
+      }
+      dec.reset();
+      if (!out.empty()) emit(peer, out);
+    });
   }
 
   void arm_stream_timer() {
@@ -205,7 +237,7 @@ struct Server::Impl {
       std::weak_ptr<TcpLine> w = c->line;
       p.send = [w](std::string b) { if (auto l = w.lock(); l && l->open) l->write(std::move(b)); };
       p.stream_link = true;
-      on_bytes(c->dec, std::string_view(c->buf.data(), n), false, p, Link::network);
+      on_bytes(c->dec, std::string_view(c->buf.data(), n), false, p, Link::network, c);
       tcp_read(c);
     });
   }

@@ -1,0 +1,95 @@
+// topsim's fault injection: parsing and what each fault does to a frame.
+#include <gtest/gtest.h>
+
+#include "sim/faults.hpp"
+
+namespace {
+
+using topsim::FaultInjector;
+
+std::optional<topsim::FaultConfig> parse(std::string_view s) {
+  std::string err;
+  return topsim::parse_faults(s, err);
+}
+
+std::vector<topsim::Emission> apply_fault(std::string_view spec, const std::string& f, bool stream = false) {
+  FaultInjector fi(*parse(spec), 7);
+  std::vector<topsim::Emission> out;
+  fi.apply(f, stream, out);
+  return out;
+}
+
+const std::string kGay = "#TPGU6wGAYEF073248";
+
+TEST(Faults, ParsesEveryNameAndRejectsBadOnes) {
+  auto c = parse("drop=0.1,delay=20,duplicate=0.5,bad-checksum=1,header-case=0.2,no-swap,"
+                 "lying-length=0.3,tmp-quirk,split,garbage=0.4,hang-on=GAY");
+  ASSERT_TRUE(c.has_value());
+  EXPECT_DOUBLE_EQ(c->drop, 0.1);
+  EXPECT_EQ(c->delay_ms, 20u);
+  EXPECT_TRUE(c->no_swap && c->tmp_quirk && c->split);
+  EXPECT_EQ(c->hang_on, "GAY");
+  std::string err;
+  EXPECT_FALSE(topsim::parse_faults("drop=2", err).has_value());
+  EXPECT_NE(err.find("drop=2"), std::string::npos);
+  EXPECT_FALSE(topsim::parse_faults("bogus", err).has_value());
+  EXPECT_FALSE(topsim::parse_faults("delay=x", err).has_value());
+  EXPECT_FALSE(topsim::parse_faults("no-swap=1", err).has_value());
+  EXPECT_FALSE(topsim::parse_faults("hang-on=GA", err).has_value());
+  EXPECT_EQ(topsim::fault_names().size(), 11u);
+}
+
+TEST(Faults, EachFaultChangesTheFrameAsNamed) {
+  EXPECT_TRUE(apply_fault("drop=1", kGay).empty());
+  auto d = apply_fault("delay=25", kGay);
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d[0].delay_us, 25000u);
+  EXPECT_EQ(apply_fault("duplicate=1", kGay).size(), 2u);
+  auto bad = top::parse_exact(apply_fault("bad-checksum=1", kGay)[0].bytes);
+  EXPECT_TRUE(bad.frame.has(top::FindingCode::bad_checksum));
+  auto hc = top::parse_exact(apply_fault("header-case=1", kGay)[0].bytes);
+  EXPECT_TRUE(hc.frame.has(top::FindingCode::checksum_header_case));
+  auto ll = top::parse_exact(apply_fault("lying-length=1", kGay)[0].bytes);
+  EXPECT_TRUE(ll.frame.has(top::FindingCode::length_mismatch)) << ll.frame.raw;
+  EXPECT_EQ(ll.frame.data(), "EF0732");
+  auto g = apply_fault("garbage=1", kGay);
+  EXPECT_NE(g[0].bytes, kGay);
+  EXPECT_EQ(g[0].bytes.substr(g[0].bytes.size() - kGay.size()), kGay);
+  auto sp = apply_fault("split", kGay, true);
+  ASSERT_EQ(sp.size(), 2u);
+  EXPECT_EQ(sp[0].bytes + sp[1].bytes, kGay);
+  EXPECT_EQ(apply_fault("split", kGay, false).size(), 1u);  // datagrams stay whole
+}
+
+TEST(Faults, HangOnSilencesEverythingAfterTheCommand) {
+  FaultInjector fi(*parse("hang-on=REC"), 1);
+  auto rec = top::parse_exact("#TPUD2wREC0155");
+  auto ver = top::parse_exact("#TPUD2rVER0051");
+  EXPECT_TRUE(fi.on_request(ver.frame));
+  EXPECT_FALSE(fi.on_request(rec.frame));
+  EXPECT_FALSE(fi.on_request(ver.frame));
+  std::vector<topsim::Emission> out;
+  fi.apply(kGay, false, out);
+  EXPECT_TRUE(out.empty());
+}
+
+TEST(Faults, SeededProbabilitiesRepeat) {
+  auto run = [](std::uint64_t seed) {
+    FaultInjector fi(*parse("drop=0.5"), seed);
+    std::string pattern;
+    for (int i = 0; i < 64; ++i) {
+      std::vector<topsim::Emission> out;
+      fi.apply(kGay, false, out);
+      pattern += out.empty() ? '0' : '1';
+    }
+    return pattern;
+  };
+  EXPECT_EQ(run(3), run(3));
+  EXPECT_NE(run(3), run(4));
+  const std::string p = run(3);
+  const auto ones = std::count(p.begin(), p.end(), '1');
+  EXPECT_GT(ones, 16);
+  EXPECT_LT(ones, 48);
+}
+
+}  // namespace

@@ -1,0 +1,132 @@
+// topconf's matrix loader: validation messages and the default matrices.
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "conf/generate.hpp"
+#include "conf/matrix.hpp"
+#include "test_matrix_util.hpp"
+
+namespace {
+
+using topconf::load_matrix;
+
+const char* kMinimal = R"({
+  "format": "topconf-matrix-1", "model": "c12",
+  "cases": [{"id": "a", "section": "SkyDroid 3.3.1", "level": "must",
+             "steps": [{"send": {"command": "GAY", "data": "EF0732"}, "expect": [{"echo": true}]}]}]})";
+
+std::vector<std::string> errors_of(const std::string& text) {
+  return load_matrix(text, "m.json").errors;
+}
+
+std::string replace(std::string s, std::string_view from, std::string_view to) {
+  const auto p = s.find(from);
+  EXPECT_NE(p, std::string::npos) << from;
+  return s.replace(p, from.size(), to);
+}
+
+TEST(Matrix, LoadsAMinimalMatrix) {
+  auto r = load_matrix(kMinimal, "m.json");
+  ASSERT_TRUE(r.matrix) << (r.errors.empty() ? "" : r.errors[0]);
+  ASSERT_EQ(r.matrix->cases.size(), 1u);
+  const auto& c = r.matrix->cases[0];
+  EXPECT_EQ(c.steps.at(0).expect.at(0).kind, topconf::ExpectKind::echo);
+  std::string bytes, err;
+  ASSERT_TRUE(topconf::resolve_send(*c.steps[0].send, top::Dialect::skydroid, 'U', bytes, err));
+  EXPECT_EQ(bytes, "#TPUG6wGAYEF073248");  // #TP for G class, checksum added
+}
+
+TEST(Matrix, ErrorsNameFileCaseAndKey) {
+  auto e = errors_of(replace(kMinimal, R"("level": "must")", R"("level": "shall")"));
+  ASSERT_EQ(e.size(), 1u);
+  EXPECT_EQ(e[0], "m.json: case a: level: must be must, should or may");
+  e = errors_of(replace(kMinimal, R"({"echo": true})", R"({"silence_ms": -3})"));
+  ASSERT_FALSE(e.empty());
+  EXPECT_EQ(e[0].rfind("m.json: case a: steps[0].expect[0].silence_ms:", 0), 0u) << e[0];
+  e = errors_of(replace(kMinimal, R"("data": "EF0732")", R"("data": "EF0732", "colour": 1)"));
+  ASSERT_FALSE(e.empty());
+  EXPECT_EQ(e[0], "m.json: case a: steps[0].send.colour: unknown key");
+  e = errors_of(replace(kMinimal, R"("model": "c12")", R"("model": "c99")"));
+  ASSERT_FALSE(e.empty());
+  EXPECT_EQ(e[0], "m.json: model: must be one of c10 c10pro c12 c13 c20 sip");
+  e = errors_of(replace(kMinimal, R"({"echo": true})", R"({"echo": true, "silence_ms": 5})"));
+  ASSERT_FALSE(e.empty());
+  EXPECT_NE(e[0].find("needs exactly one of"), std::string::npos);
+  e = errors_of(replace(kMinimal, R"({"echo": true})",
+                        R"({"reply": {"fields": {"x": {"pattern": "("}}}})"));
+  ASSERT_FALSE(e.empty());
+  EXPECT_NE(e[0].find("steps[0].expect[0].reply.fields.x.pattern: not a valid regular expression"),
+            std::string::npos) << e[0];
+  e = errors_of("{\"format\": ");
+  ASSERT_EQ(e.size(), 1u);
+  EXPECT_EQ(e[0].rfind("m.json: (json): not valid JSON at byte", 0), 0u);
+  // Duplicate ids.
+  std::string two = kMinimal;
+  auto at = two.find("[{\"id\"");
+  auto end = two.rfind("]}");
+  const std::string one = two.substr(at + 1, end - at - 1);
+  two.insert(end, "," + one);
+  e = errors_of(two);
+  ASSERT_FALSE(e.empty());
+  EXPECT_EQ(e[0], "m.json: case a: id: duplicate case id");
+}
+
+TEST(Matrix, ChecksumIsAddedOnlyWhenAbsent) {
+  topconf::SendSpec s;
+  s.raw = true;
+  s.text = "#TPUG2wGAA0A";
+  std::string b, err;
+  topconf::resolve_send(s, top::Dialect::skydroid, 'U', b, err);
+  EXPECT_EQ(b, "#TPUG2wGAA0A46");
+  s.text = "#TPUG2wGAA0A00";  // a deliberately wrong checksum is kept
+  topconf::resolve_send(s, top::Dialect::skydroid, 'U', b, err);
+  EXPECT_EQ(b, "#TPUG2wGAA0A00");
+  s.text = "#TP{client}G2rGIC00";
+  topconf::resolve_send(s, top::Dialect::topotek, 'P', b, err);
+  EXPECT_EQ(b.substr(0, 12), "#TPPG2rGIC00");
+}
+
+class DefaultMatrix : public ::testing::TestWithParam<top::Model> {};
+
+TEST_P(DefaultMatrix, LoadsAndCoversEveryCommandOfTheModel) {
+  const top::Model m = GetParam();
+  topconf::Matrix mx = default_matrix(m);
+  EXPECT_EQ(mx.model, m);
+  std::set<std::string> sent;
+  std::set<std::string> kinds;
+  for (const auto& c : mx.cases) {
+    for (const auto& t : c.tags) kinds.insert(t);
+    for (const auto& s : c.steps)
+      if (s.send && !s.send->raw) sent.insert(s.send->command);
+  }
+  for (const auto& cmd : top::commands(top::dialect_of(m))) {
+    if (!cmd.supports(m) || cmd.ident == "ERE") continue;
+    EXPECT_TRUE(sent.count(std::string(cmd.ident))) << cmd.ident << " has no case in " << mx.file
+        << " (regenerate: conformance/matrices/regenerate.sh)";
+  }
+  for (const char* k : {"positive", "negative", "state", "bad-checksum", "unknown-ident", "wrong-length"})
+    EXPECT_TRUE(kinds.count(k)) << k;
+  if (m != top::Model::c13) {
+    EXPECT_TRUE(kinds.count("stream"));
+  }
+}
+
+TEST_P(DefaultMatrix, GeneratorRoundTripsThroughTheLoader) {
+  const std::string text = topconf::generate_matrix(GetParam()).dump();
+  auto r = load_matrix(text, "generated");
+  EXPECT_TRUE(r.matrix) << (r.errors.empty() ? "" : r.errors[0]);
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, DefaultMatrix,
+                         ::testing::Values(top::Model::c10, top::Model::c10pro, top::Model::c12,
+                                           top::Model::c13, top::Model::c20, top::Model::sip),
+                         [](const auto& i) { return std::string(top::to_string(i.param)); });
+
+TEST(Matrix, SchemaFileIsValidJson) {
+  const std::string s = read_text(std::string(TOPKIT_SOURCE_DIR) + "/conformance/matrix.schema.json");
+  auto j = nlohmann::json::parse(s);
+  EXPECT_EQ(j.at("properties").at("format").at("const"), "topconf-matrix-1");
+}
+
+}  // namespace

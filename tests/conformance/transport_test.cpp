@@ -1,0 +1,214 @@
+// topsim and topconf over real transports on loopback: UDP and TCP on
+// ephemeral 127.0.0.1 ports, a real pseudo-terminal, pcap recordings read
+// back with libpcap, and the two binaries end to end.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <pcap/pcap.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <thread>
+
+#include "conf/runner.hpp"
+#include "sim/server.hpp"
+#include "test_matrix_util.hpp"
+
+namespace {
+
+using topconf::Verdict;
+
+struct RunningServer {
+  explicit RunningServer(topsim::ServerConfig cfg) : server(std::move(cfg)) {
+    thread = std::thread([this] { server.run(); });
+  }
+  ~RunningServer() {
+    server.stop();
+    thread.join();
+  }
+  topsim::Server server;
+  std::thread thread;
+};
+
+topconf::RunResult run_over(top::Model m, topsim::TransportKind kind, const std::string& record = {}) {
+  topsim::ServerConfig cfg;
+  cfg.model = m;
+  cfg.kind = kind;
+  cfg.record = record;
+  RunningServer s(cfg);
+  std::string target;
+  switch (kind) {
+    case topsim::TransportKind::udp: target = "udp://127.0.0.1:" + std::to_string(s.server.port()); break;
+    case topsim::TransportKind::tcp: target = "tcp://127.0.0.1:" + std::to_string(s.server.port()); break;
+    default: target = "serial:" + s.server.pty_path(); break;
+  }
+  auto t = topconf::open_transport(target, m, 0);
+  topconf::RunOptions o;
+  o.settle_ms = 3;  // loopback: duplicates would arrive within a millisecond
+  return topconf::run_matrix(default_matrix(m), *t, o);
+}
+
+struct Param {
+  top::Model model;
+  topsim::TransportKind kind;
+};
+
+class OverTransport : public ::testing::TestWithParam<Param> {};
+
+TEST_P(OverTransport, DefaultMatrixPasses) {
+  auto r = run_over(GetParam().model, GetParam().kind);
+  ASSERT_FALSE(r.unreachable) << r.unreachable_reason;
+  for (const auto& c : r.cases)
+    EXPECT_TRUE(c.verdict == Verdict::pass && !c.flaky) << c.spec->id << ": " << to_string(c.verdict) << " " << c.reason;
+  EXPECT_EQ(r.exit_code(), 0);
+}
+
+std::vector<Param> params() {
+  std::vector<Param> p;
+  for (auto m : {top::Model::c10, top::Model::c10pro, top::Model::c12, top::Model::c13, top::Model::c20,
+                 top::Model::sip})
+    for (auto k : {topsim::TransportKind::udp, topsim::TransportKind::tcp, topsim::TransportKind::pty})
+      p.push_back({m, k});
+  return p;
+}
+
+INSTANTIATE_TEST_SUITE_P(All, OverTransport, ::testing::ValuesIn(params()), [](const auto& i) {
+  const char* k = i.param.kind == topsim::TransportKind::udp   ? "udp"
+                  : i.param.kind == topsim::TransportKind::tcp ? "tcp"
+                                                               : "pty";
+  return std::string(top::to_string(i.param.model)) + "_" + k;
+});
+
+// Reads a pcap back: frames per UDP/TCP payload.
+std::vector<std::string> payloads(const std::string& path, int& linktype) {
+  char err[PCAP_ERRBUF_SIZE];
+  pcap_t* p = pcap_open_offline(path.c_str(), err);
+  EXPECT_NE(p, nullptr) << err;
+  std::vector<std::string> out;
+  if (!p) return out;
+  linktype = pcap_datalink(p);
+  pcap_pkthdr* h = nullptr;
+  const u_char* data = nullptr;
+  while (pcap_next_ex(p, &h, &data) == 1) {
+    const std::size_t ihl = (data[14] & 0x0F) * 4u;
+    const bool tcp = data[14 + 9] == 6;
+    const std::size_t l4 = tcp ? ((data[14 + ihl + 12] >> 4) * 4u) : 8u;
+    const std::size_t off = 14 + ihl + l4;
+    out.emplace_back(reinterpret_cast<const char*>(data) + off, h->caplen - off);
+  }
+  pcap_close(p);
+  return out;
+}
+
+TEST(Record, TopsimRecordsWhatItReceivesAndSends) {
+  const std::string path = std::string(TOPKIT_BINARY_DIR) + "/topsim_record_test.pcap";
+  auto r = run_over(top::Model::c12, topsim::TransportKind::udp, path);
+  EXPECT_EQ(r.exit_code(), 0);
+  int lt = 0;
+  auto pl = payloads(path, lt);
+  EXPECT_EQ(lt, DLT_EN10MB);
+  ASSERT_GT(pl.size(), 100u);
+  std::size_t frames = 0;
+  for (const auto& p : pl) frames += top::parse_exact(p).status == top::ParseStatus::frame ? 1 : 0;
+  EXPECT_GT(frames, pl.size() / 2);
+  std::remove(path.c_str());
+}
+
+TEST(Record, TopconfWritesThePcapOfTheRun) {
+  const std::string path = std::string(TOPKIT_BINARY_DIR) + "/topconf_record_test.pcap";
+  {
+    topkit::PcapWriter w(path, true);
+    topconf::SimTransport t(top::Model::c12);
+    topconf::RunOptions o;
+    o.pcap = &w;
+    o.cases = {"skydroid/3.3.1/GAY/write"};
+    topconf::run_matrix(default_matrix(top::Model::c12), t, o);
+  }
+  int lt = 0;
+  auto pl = payloads(path, lt);
+  ASSERT_GE(pl.size(), 2u);
+  bool request = false, echo = false;
+  for (const auto& p : pl) {
+    auto f = top::parse_exact(p);
+    if (f.status != top::ParseStatus::frame || f.frame.ident_view() != "GAY") continue;
+    request = request || f.frame.src == 'U';
+    echo = echo || f.frame.src == 'G';
+  }
+  EXPECT_TRUE(request);
+  EXPECT_TRUE(echo);
+  std::remove(path.c_str());
+}
+
+// ---- the binaries
+
+std::string bin(const char* name) { return std::string(TOPKIT_BINARY_DIR) + "/conformance/" + name; }
+
+// Starts topsim and returns its pid and the first line it prints.
+pid_t start_topsim(const std::vector<std::string>& args, std::string& line) {
+  int fds[2];
+  if (pipe(fds) != 0) return -1;
+  const pid_t pid = fork();
+  if (pid == 0) {
+    dup2(fds[1], 1);
+    close(fds[0]);
+    std::vector<char*> argv;
+    std::string exe = bin("topsim");
+    argv.push_back(exe.data());
+    std::vector<std::string> copy = args;
+    for (auto& a : copy) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(exe.c_str(), argv.data());
+    _exit(127);
+  }
+  close(fds[1]);
+  char c;
+  line.clear();
+  while (read(fds[0], &c, 1) == 1 && c != '\n') line.push_back(c);
+  close(fds[0]);
+  return pid;
+}
+
+int run_cmd(const std::string& cmd) {
+  const int rc = std::system((cmd + " >/dev/null 2>&1").c_str());
+  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+
+TEST(Binaries, TopconfAgainstTopsimOverUdpAndExitCodes) {
+  std::string line;
+  const pid_t pid = start_topsim({"--model", "c12", "--udp", "127.0.0.1:0"}, line);
+  ASSERT_GT(pid, 0);
+  ASSERT_EQ(line.rfind("udp 127.0.0.1:", 0), 0u) << line;
+  const std::string target = "udp://" + line.substr(4);
+  const std::string json = std::string(TOPKIT_BINARY_DIR) + "/topconf_e2e.json";
+  EXPECT_EQ(run_cmd(bin("topconf") + " run --model c12 --target " + target + " --settle-ms 3 --json " + json), 0);
+  auto j = nlohmann::json::parse(read_text(json));
+  EXPECT_EQ(j["exit_code"], 0);
+  EXPECT_GT(j["cases"].size(), 50u);
+  std::remove(json.c_str());
+  kill(pid, SIGTERM);
+  int st = 0;
+  waitpid(pid, &st, 0);
+  EXPECT_TRUE(WIFEXITED(st));
+  // Nobody listens there now: unreachable.
+  EXPECT_EQ(run_cmd(bin("topconf") + " run --model c12 --target " + target), 2);
+  EXPECT_EQ(run_cmd(bin("topconf") + " run --model c12 --target bogus://x"), 2);
+  EXPECT_EQ(run_cmd(bin("topconf") + " run --model c99"), 2);
+  EXPECT_EQ(run_cmd(bin("topconf") + " run"), 2);
+  EXPECT_EQ(run_cmd(bin("topsim") + " --fault nonsense"), 2);
+  // In process with a fault: the run fails.
+  EXPECT_EQ(run_cmd(bin("topconf") + " run --model c12 --sim-fault bad-checksum=1"), 1);
+  EXPECT_EQ(run_cmd(bin("topconf") + " run --model sip"), 0);
+}
+
+TEST(Binaries, TopsimPtyPrintsItsPath) {
+  std::string line;
+  const pid_t pid = start_topsim({"--model", "c20", "--pty"}, line);
+  ASSERT_GT(pid, 0);
+  EXPECT_EQ(line.rfind("/dev/pts/", 0), 0u) << line;
+  EXPECT_EQ(run_cmd(bin("topconf") + " run --model c20 --settle-ms 3 --target serial:" + line + "@115200"), 0);
+  kill(pid, SIGTERM);
+  waitpid(pid, nullptr, 0);
+}
+
+}  // namespace
