@@ -146,13 +146,13 @@ json generate_matrix(top::Model model) {
   m["probe"] = sky ? json{{"command", "AWB"}, {"control", "r"}, {"data", "00"}}
                    : json{{"command", "VER"}, {"control", "r"}, {"data", "00"}, {"dst", "G"}};
   json cases = json::array();
-  const auto negative_silence = json{{"silence_ms", 100}};
+  const auto negative_silence = json{{"silence_ms", 60}};
   auto error_alts = [&]() {
     if (!sky) return json::array({negative_silence});
     return json::array({json{{"error", true}},
                         json{{"error", true}, {"addresses", "any"}, {"tolerated", true},
                              {"note", "ERE without swapped addresses"}},
-                        json{{"silence_ms", 100}, {"tolerated", true},
+                        json{{"silence_ms", 60}, {"tolerated", true},
                              {"note", "the device ignores the invalid command instead of ERE"}}});
   };
   const std::string ere_section = sky ? "SkyDroid 2.3.2" : "Topotek 2";

@@ -1,0 +1,11 @@
+#!/usr/bin/env bash
+# Regenerates the default matrices from the catalog (run after the catalog
+# changes, e.g. after `git merge main`), then review the diff:
+#   conformance/matrices/regenerate.sh [BUILD_DIR]
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+topconf=${1:-build/default}/conformance/topconf
+for m in c10 c10pro c12 c13 c20 sip; do
+  "$topconf" generate --model "$m" -o "conformance/matrices/$m.json"
+  "$topconf" validate "conformance/matrices/$m.json"
+done
