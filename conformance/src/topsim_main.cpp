@@ -4,18 +4,12 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
-#include <csignal>
 #include <cstdio>
 #include <thread>
 
 #include "sim/server.hpp"
 
 namespace {
-
-topsim::Server* g_server = nullptr;
-extern "C" void on_signal(int) {
-  if (g_server) g_server->stop();
-}
 
 bool split_host_port(const std::string& s, std::string& host, std::uint16_t& port) {
   const auto colon = s.rfind(':');
@@ -91,6 +85,9 @@ int main(int argc, char** argv) {
       spdlog::error("{}: expected HOST:PORT", spec);
       return 2;
     }
+    // SkyDroid 2.1.1: the C10 also answers on UDP 9002.
+    if (cfg.kind == topsim::TransportKind::udp && spec.empty() && *model == top::Model::c10)
+      cfg.extra_udp_ports.push_back(9002);
   }
   cfg.reply_port = reply_port >= 0 ? static_cast<std::uint16_t>(reply_port)
                    : top::dialect_of(*model) == top::Dialect::topotek ? std::uint16_t{9004}
@@ -107,9 +104,7 @@ int main(int argc, char** argv) {
   if (verbose) spdlog::set_level(spdlog::level::debug);
   try {
     topsim::Server server(cfg);
-    g_server = &server;
-    std::signal(SIGINT, on_signal);
-    std::signal(SIGTERM, on_signal);
+    server.stop_on_signals();
     switch (cfg.kind) {
       case topsim::TransportKind::pty:
         std::printf("%s\n", server.pty_path().c_str());
@@ -122,6 +117,8 @@ int main(int argc, char** argv) {
       default:
         std::printf("%s %s:%u\n", cfg.kind == topsim::TransportKind::tcp ? "tcp" : "udp",
                     cfg.host.c_str(), static_cast<unsigned>(server.port()));
+        for (std::size_t i = 1; i < server.udp_ports().size(); ++i)
+          std::printf("udp %s:%u\n", cfg.host.c_str(), static_cast<unsigned>(server.udp_ports()[i]));
         std::fflush(stdout);
         spdlog::info("topsim {} listening on {} {}:{}{}", model_name,
                      cfg.kind == topsim::TransportKind::tcp ? "tcp" : "udp", cfg.host, server.port(),
@@ -129,7 +126,6 @@ int main(int argc, char** argv) {
     }
     if (cfg.faults.any()) spdlog::info("faults: {} (seed {})", faults, seed);
     server.run();
-    g_server = nullptr;
     spdlog::info("topsim: {} frames in, {} frames out", server.stats().frames_in.load(),
                  server.stats().frames_out.load());
   } catch (const std::exception& e) {

@@ -140,6 +140,41 @@ TEST(Record, TopconfWritesThePcapOfTheRun) {
   std::remove(path.c_str());
 }
 
+TEST(Server, ServesExtraUdpPortsLikeTheC10) {
+  topsim::ServerConfig cfg;
+  cfg.model = top::Model::c10;
+  cfg.extra_udp_ports = {0};  // the CLI puts 9002 here for the C10
+  RunningServer s(cfg);
+  const auto ports = s.server.udp_ports();
+  ASSERT_EQ(ports.size(), 2u);
+  for (auto p : ports) {
+    auto t = topconf::open_transport("udp://127.0.0.1:" + std::to_string(p), top::Model::c10, 0);
+    t->send("#TPUD2rAWB003E");
+    std::string got;
+    ASSERT_TRUE(t->receive(t->now_us() + 2000000, got)) << p;
+    EXPECT_EQ(got.substr(0, 10), "#TPDU2rAWB");
+  }
+}
+
+// A frame that fails its checksum makes the stream decoder wait for
+// look-ahead; on a quiet line the device must still answer the next
+// command at once rather than when more bytes arrive.
+TEST(Server, AnswersAfterABadFrameOnAQuietLine) {
+  topsim::ServerConfig cfg;
+  cfg.model = top::Model::c12;
+  cfg.kind = topsim::TransportKind::pty;
+  RunningServer s(cfg);
+  auto t = topconf::open_transport("serial:" + s.server.pty_path(), top::Model::c12, 0);
+  t->send("#tpUM0wZMC3B");  // checksum 3B, the sum is 3A
+  std::string got;
+  EXPECT_FALSE(t->receive(t->now_us() + 60000, got)) << got;
+  t->send("#TPUD2rAWB003E");
+  std::string all;
+  const std::uint64_t deadline = t->now_us() + 300000;
+  while (all.find("AWB") == std::string::npos && t->receive(deadline, got)) all += got;
+  EXPECT_NE(all.find("#TPDU2rAWB"), std::string::npos) << all;
+}
+
 // ---- the binaries
 
 std::string bin(const char* name) { return std::string(TOPKIT_BINARY_DIR) + "/conformance/" + name; }

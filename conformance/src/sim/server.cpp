@@ -64,13 +64,19 @@ struct Server::Impl {
   std::unique_ptr<topkit::PcapWriter> pcap;
   asio::steady_timer stream_timer{io};
 
-  std::optional<asio::ip::udp::socket> udp;
+  struct UdpPort {
+    explicit UdpPort(asio::io_context& io) : sock(io) {}
+    asio::ip::udp::socket sock;
+    asio::ip::udp::endpoint from;
+    std::string buf = std::string(65536, '\0');
+    top::StreamDecoder dec;
+    std::uint16_t port = 0;
+  };
+  std::vector<std::unique_ptr<UdpPort>> udp;  // the model's port, then extra ones (C10: 9002)
   std::optional<asio::ip::tcp::acceptor> acceptor;
   std::uint16_t bound_port = 0;
   std::string pty_path;
   int pty_slave = -1;
-  asio::ip::udp::endpoint udp_from;
-  std::string udp_buf = std::string(65536, '\0');
 
   // Where the device's frames go, and how to record them.
   struct Peer {
@@ -184,23 +190,24 @@ struct Server::Impl {
   }
 
   // UDP ----------------------------------------------------------------
-  top::StreamDecoder udp_decoder;
-  void udp_receive() {
-    udp->async_receive_from(asio::buffer(udp_buf), udp_from, [this](std::error_code ec, std::size_t n) {
+  void udp_receive(UdpPort& u) {
+    u.sock.async_receive_from(asio::buffer(u.buf), u.from, [this, &u](std::error_code ec, std::size_t n) {
       if (ec == asio::error::operation_aborted) return;
       if (!ec) {
-        asio::ip::udp::endpoint to = udp_from;
+        asio::ip::udp::endpoint to = u.from;
         if (cfg.reply_port) to.port(cfg.reply_port);
         Peer p;
         p.remote = {to.address().is_v4() ? to.address().to_v4().to_uint() : 0x7F000001u, to.port()};
-        p.local = {udp->local_endpoint().address().to_v4().to_uint(), bound_port};
-        p.send = [this, to](std::string b) {
-          std::error_code e;
-          udp->send_to(asio::buffer(b), to, 0, e);
+        std::error_code e;
+        const auto local = u.sock.local_endpoint(e);
+        p.local = {e || !local.address().is_v4() ? 0x7F000001u : local.address().to_v4().to_uint(), u.port};
+        p.send = [&u, to](std::string b) {
+          std::error_code se;
+          u.sock.send_to(asio::buffer(b), to, 0, se);
         };
-        on_bytes(udp_decoder, std::string_view(udp_buf.data(), n), true, p, Link::network);
+        on_bytes(u.dec, std::string_view(u.buf.data(), n), true, p, Link::network);
       }
-      udp_receive();
+      udp_receive(u);
     });
   }
 
@@ -285,13 +292,19 @@ Server::Server(ServerConfig cfg) : impl_(std::make_unique<Impl>(std::move(cfg)))
     case TransportKind::udp: {
       auto addr = asio::ip::make_address(m.cfg.host, ec);
       if (ec) throw std::runtime_error("udp: bad host '" + m.cfg.host + "': " + ec.message());
-      m.udp.emplace(m.io);
-      asio::ip::udp::endpoint ep(addr, m.cfg.port);
-      m.udp->open(ep.protocol(), ec);
-      if (!ec) m.udp->bind(ep, ec);
-      if (ec) throw std::runtime_error("udp " + m.cfg.host + ":" + std::to_string(m.cfg.port) + ": " + ec.message());
-      m.bound_port = m.udp->local_endpoint().port();
-      m.udp_receive();
+      std::vector<std::uint16_t> ports = {m.cfg.port};
+      ports.insert(ports.end(), m.cfg.extra_udp_ports.begin(), m.cfg.extra_udp_ports.end());
+      for (const std::uint16_t port : ports) {
+        auto u = std::make_unique<Impl::UdpPort>(m.io);
+        asio::ip::udp::endpoint ep(addr, port);
+        u->sock.open(ep.protocol(), ec);
+        if (!ec) u->sock.bind(ep, ec);
+        if (ec) throw std::runtime_error("udp " + m.cfg.host + ":" + std::to_string(port) + ": " + ec.message());
+        u->port = u->sock.local_endpoint().port();
+        m.udp.push_back(std::move(u));
+      }
+      m.bound_port = m.udp.front()->port;
+      for (auto& u : m.udp) m.udp_receive(*u);
       break;
     }
     case TransportKind::tcp: {
@@ -345,6 +358,19 @@ Server::~Server() {
 }
 
 std::uint16_t Server::port() const noexcept { return impl_->bound_port; }
+
+std::vector<std::uint16_t> Server::udp_ports() const {
+  std::vector<std::uint16_t> out;
+  for (const auto& u : impl_->udp) out.push_back(u->port);
+  return out;
+}
+
+void Server::stop_on_signals() {
+  auto sig = std::make_shared<asio::signal_set>(impl_->io, SIGINT, SIGTERM);
+  sig->async_wait([this, sig](std::error_code ec, int) {
+    if (!ec) impl_->io.stop();
+  });
+}
 std::string Server::pty_path() const { return impl_->pty_path; }
 const ServerStats& Server::stats() const noexcept { return impl_->stats; }
 

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "sim/device.hpp"
 #include "sim/faults.hpp"
@@ -21,6 +22,7 @@ struct ServerConfig {
   std::string host = "127.0.0.1";
   std::uint16_t port = 0;        // 0: ephemeral (tests); the CLI fills the model's port
   std::uint16_t reply_port = 0;  // UDP: 0 replies to the source port; Topotek: 9004
+  std::vector<std::uint16_t> extra_udp_ports;  // also served (C10: UDP 9002)
   std::string device;            // serial device path
   unsigned baud = 115200;
   FaultConfig faults;
@@ -48,6 +50,9 @@ class Server {
   Server& operator=(const Server&) = delete;
 
   std::uint16_t port() const noexcept;      // bound UDP/TCP port
+  std::vector<std::uint16_t> udp_ports() const;  // every bound UDP port
+  // Stops run() on SIGINT/SIGTERM (asio::signal_set; for the CLI).
+  void stop_on_signals();
   std::string pty_path() const;             // slave path for --pty
   // Serves until stop() (callable from any thread).
   void run();
