@@ -6,6 +6,8 @@
 #include <pcap/pcap.h>
 #include <signal.h>
 #include <sys/wait.h>
+#include <poll.h>
+#include <pty.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -173,6 +175,38 @@ TEST(Server, AnswersAfterABadFrameOnAQuietLine) {
   const std::uint64_t deadline = t->now_us() + 300000;
   while (all.find("AWB") == std::string::npos && t->receive(deadline, got)) all += got;
   EXPECT_NE(all.find("#TPDU2rAWB"), std::string::npos) << all;
+}
+
+// topsim --serial on a real tty: the slave of a pseudo-terminal we own,
+// driven from its master side.
+TEST(Server, ServesASerialDevice) {
+  int master = -1, slave = -1;
+  char name[256] = {0};
+  ASSERT_EQ(openpty(&master, &slave, name, nullptr, nullptr), 0);
+  topsim::ServerConfig cfg;
+  cfg.model = top::Model::sip;
+  cfg.kind = topsim::TransportKind::serial;
+  cfg.device = name;
+  {
+    RunningServer s(cfg);
+    termios t{};
+    tcgetattr(master, &t);
+    cfmakeraw(&t);
+    tcsetattr(master, TCSANOW, &t);
+    const std::string req = "#TPUG2rGIC003A";  // UART: source U is answered
+    ASSERT_EQ(write(master, req.data(), req.size()), static_cast<ssize_t>(req.size()));
+    std::string all;
+    for (int i = 0; i < 20 && all.find("GIC") == std::string::npos; ++i) {
+      pollfd p{master, POLLIN, 0};
+      if (poll(&p, 1, 100) <= 0) continue;
+      char buf[256];
+      const ssize_t n = read(master, buf, sizeof buf);
+      if (n > 0) all.append(buf, static_cast<std::size_t>(n));
+    }
+    EXPECT_EQ(all.rfind("#tpGUCrGIC", 0), 0u) << all;
+  }
+  close(slave);
+  close(master);
 }
 
 // ---- the binaries
