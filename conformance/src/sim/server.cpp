@@ -28,9 +28,11 @@ class Line : public std::enable_shared_from_this<Line<S>> {
   explicit Line(S s) : s_(std::move(s)) {}
   S& stream() { return s_; }
   void write(std::string bytes) {
+    // A client that never reads: bounded; new writes are dropped (the
+    // front one may be in flight).
+    if (q_.size() >= 4096) return;
     const bool idle = q_.empty();
     q_.push_back(std::move(bytes));
-    if (q_.size() > 4096) q_.pop_front();  // a client that never reads: bounded
     if (idle) pump();
   }
   bool open = true;
