@@ -7,7 +7,7 @@
 namespace topconf {
 namespace {
 
-using json = nlohmann::json;
+using json = nlohmann::ordered_json;
 using top::Dialect;
 using top::FieldKind;
 
@@ -127,6 +127,13 @@ json reply_checks(const top::FormSpec& resp) {
   return fields;
 }
 
+json models_of(const top::CommandSpec& c) {
+  json models = json::array();
+  for (top::Model m : top::all_models())
+    if (c.models & top::model_bit(m)) models.push_back(std::string(top::to_string(m)));
+  return models;
+}
+
 }  // namespace
 
 json generate_matrix(top::Model model) {
@@ -166,6 +173,7 @@ json generate_matrix(top::Model model) {
     const bool destructive = id == "RST" || id == "RTF";
     const std::string level = appendix || destructive ? "may" : "must";
     const std::string cls(1, c.address);
+    const json models = models_of(c);
     auto tags = [&](std::initializer_list<const char*> extra) {
       json t = json::array({std::string("class-") + cls, id});
       for (auto e : extra) t.push_back(e);
@@ -194,7 +202,7 @@ json generate_matrix(top::Model model) {
       if (!f.empty()) reply["fields"] = f;
       cases.push_back({{"id", base + "/write"}, {"section", std::string(c.section)},
                        {"title", std::string(c.title) + ": a write is answered in its reply layout"},
-                       {"level", level}, {"tags", tags({"positive", "write"})},
+                       {"level", level}, {"models", models}, {"tags", tags({"positive", "write"})},
                        {"steps", json::array({{{"send", send(c, 'w', wdata)},
                                                {"expect", json::array({json{{"reply", reply}},
                                                                        json{{"reply", reply}, {"addresses", "any"}, {"tolerated", true},
@@ -202,7 +210,7 @@ json generate_matrix(top::Model model) {
     } else if (w) {
       cases.push_back({{"id", base + "/write"}, {"section", std::string(c.section)},
                        {"title", std::string(c.title) + ": a write is echoed with the addresses swapped"},
-                       {"level", level}, {"tags", tags({"positive", "write"})},
+                       {"level", level}, {"models", models}, {"tags", tags({"positive", "write"})},
                        {"steps", json::array({{{"send", send(c, 'w', wdata)}, {"expect", echo_alts()}}})}});
     }
     std::string rdata;
@@ -219,7 +227,7 @@ json generate_matrix(top::Model model) {
       if (appendix) reply.erase("control");
       cases.push_back({{"id", base + "/read"}, {"section", std::string(c.section)},
                        {"title", std::string(c.title) + ": a read is answered with data"},
-                       {"level", level}, {"tags", tags({"positive", "read"})},
+                       {"level", level}, {"models", models}, {"tags", tags({"positive", "read"})},
                        {"steps", json::array({{{"send", send(c, 'r', rdata)},
                                                {"expect", json::array({json{{"reply", reply}},
                                                                        json{{"reply", reply}, {"addresses", "any"}, {"tolerated", true},
@@ -230,7 +238,7 @@ json generate_matrix(top::Model model) {
       if (!clean_request(d, model, c, 'w', alt)) alt = wdata;
       cases.push_back({{"id", base + "/state"}, {"section", std::string(c.section)},
                        {"title", std::string(c.title) + ": a written value reads back"},
-                       {"level", level == "must" ? "should" : level}, {"tags", tags({"state"})},
+                       {"level", level == "must" ? "should" : level}, {"models", models}, {"tags", tags({"state"})},
                        {"steps", json::array({{{"send", send(c, 'w', alt)},
                                                {"expect", json::array({json{{"readback", {{"send", send(c, 'r', rdata)}}}}})}}})}});
     }
@@ -241,7 +249,7 @@ json generate_matrix(top::Model model) {
       const std::string bad = (w ? wdata : rdata).substr(0, any->min_length - 1);
       cases.push_back({{"id", base + "/wrong-length"}, {"section", ere_section},
                        {"title", std::string(c.title) + ": a frame with a wrong data length is rejected"},
-                       {"level", "should"}, {"tags", tags({"negative", "wrong-length"})},
+                       {"level", "should"}, {"models", models}, {"tags", tags({"negative", "wrong-length"})},
                        {"steps", json::array({{{"send", send(c, ctl, bad)}, {"expect", error_alts()}}})}});
     }
     if (any && std::find(classes_done.begin(), classes_done.end(), cls) == classes_done.end()) {
@@ -290,7 +298,7 @@ json generate_matrix(top::Model model) {
     cases.push_back({{"id", dn + "/" + section_number(gaa->section) + "/" + std::string(gaa->ident) + "/stream"},
                      {"section", std::string(gaa->section)},
                      {"title", push + " is pushed at the rate " + std::string(gaa->ident) + " asked for"},
-                     {"level", "must"}, {"tags", json::array({"stream", "class-G", std::string(gaa->ident)})},
+                     {"level", "must"}, {"models", models_of(*gaa)}, {"tags", json::array({"stream", "class-G", std::string(gaa->ident)})},
                      {"steps", json::array({
                                    {{"send", send(*gaa, 'w', on)}, {"expect", echo_alts()}},
                                    {{"expect", json::array({json{{"stream", {{"ident", push}, {"rate_hz", hz}, {"tolerance", 0.25}, {"duration_ms", 450}}}}})}},

@@ -9,6 +9,6 @@
 
 namespace topconf {
 
-nlohmann::json generate_matrix(top::Model model);
+nlohmann::ordered_json generate_matrix(top::Model model);
 
 }  // namespace topconf
