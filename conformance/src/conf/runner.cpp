@@ -551,8 +551,11 @@ int RunResult::exit_code() const noexcept {
   return 0;
 }
 
-RunResult run_matrix(const Matrix& m, Transport& t, const RunOptions& o) {
+RunResult run_matrix(const Matrix& matrix, Transport& t, const RunOptions& o) {
   RunResult res;
+  // The result keeps its own copy, so it outlives the caller's matrix.
+  res.matrix = std::make_shared<const Matrix>(matrix);
+  const Matrix& m = *res.matrix;
   res.target = t.describe();
   res.matrix_file = m.file;
   res.model = m.model;

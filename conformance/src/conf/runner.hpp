@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -26,7 +27,7 @@ struct Exchange {
 };
 
 struct CaseResult {
-  const Case* spec = nullptr;  // points into the Matrix: keep it alive
+  const Case* spec = nullptr;  // points into RunResult::matrix
   Verdict verdict = Verdict::error;
   bool flaky = false;        // passed after a failed attempt
   int attempts = 0;
@@ -53,6 +54,7 @@ struct RunOptions {
 };
 
 struct RunResult {
+  std::shared_ptr<const Matrix> matrix;  // the run's own copy: specs point here
   std::string target;
   std::string matrix_file;
   top::Model model = top::Model::unknown;
