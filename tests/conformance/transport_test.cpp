@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <fstream>
 #include <thread>
 
 #include "conf/runner.hpp"
@@ -268,6 +269,31 @@ TEST(Binaries, TopconfAgainstTopsimOverUdpAndExitCodes) {
   // In process with a fault: the run fails.
   EXPECT_EQ(run_cmd(bin("topconf") + " run --model c12 --sim-fault bad-checksum=1"), 1);
   EXPECT_EQ(run_cmd(bin("topconf") + " run --model sip"), 0);
+}
+
+TEST(Binaries, TopconfWritesEveryReportAndRejectsABadMatrix) {
+  const std::string dir = std::string(TOPKIT_BINARY_DIR) + "/topconf_cli_test";
+  ASSERT_EQ(run_cmd("mkdir -p " + dir), 0);
+  EXPECT_EQ(run_cmd(bin("topconf") + " run --model c20 --seed 3 --json " + dir + "/r.json --junit " + dir +
+                    "/r.xml --html " + dir + "/r.html --pcap " + dir + "/r.pcap"),
+            0);
+  EXPECT_NE(read_text(dir + "/r.xml").find("<testsuite name=\"topconf.c20\""), std::string::npos);
+  EXPECT_NE(read_text(dir + "/r.html").find("<h1>topconf report: c20</h1>"), std::string::npos);
+  EXPECT_EQ(nlohmann::json::parse(read_text(dir + "/r.json"))["seed"], 3);
+  int lt = 0;
+  EXPECT_GT(payloads(dir + "/r.pcap", lt).size(), 100u);
+  // A matrix with a typo: the error names the file, the case and the key.
+  std::string bad = read_text(matrix_path("c20"));
+  bad.replace(bad.find("\"level\": \"must\""), 15, "\"level\": \"mus\"");
+  {
+    std::ofstream(dir + "/bad.json") << bad;
+  }
+  EXPECT_EQ(run_cmd(bin("topconf") + " run --model c20 --matrix " + dir + "/bad.json"), 2);
+  const int rc = std::system((bin("topconf") + " validate " + dir + "/bad.json 2>" + dir + "/err.txt").c_str());
+  EXPECT_EQ(WEXITSTATUS(rc), 1);
+  EXPECT_NE(read_text(dir + "/err.txt").find("bad.json: case skydroid/3.1/PTZ/write: level: must be must, should or may"),
+            std::string::npos) << read_text(dir + "/err.txt");
+  run_cmd("rm -rf " + dir);
 }
 
 TEST(Binaries, TopsimPtyPrintsItsPath) {
