@@ -3,9 +3,9 @@
 // plain UDP echo server on the same loopback, same client, same window).
 //
 //   topsim_load [--model c12] [--requests 200000] [--window 32] [--target HOST:PORT]
-#include <CLI/CLI.hpp>
 #include <poll.h>
 
+#include <CLI/CLI.hpp>
 #include <asio.hpp>
 #include <atomic>
 #include <chrono>
@@ -71,15 +71,16 @@ int main(int argc, char** argv) {
   app.add_option("--model", model)->capture_default_str();
   app.add_option("--requests", requests)->capture_default_str();
   app.add_option("--window", window, "requests in flight")->capture_default_str();
-  app.add_option("--target", target, "HOST:PORT of a running topsim (default: start one in process)");
+  app.add_option("--target", target,
+                 "HOST:PORT of a running topsim (default: start one in process)");
   app.add_flag("--json", json, "one JSON object on stdout");
   CLI11_PARSE(app, argc, argv);
   auto m = top::model_from_string(model);
   if (!m || *m == top::Model::unknown) return 2;
   const bool topotek = top::dialect_of(*m) == top::Dialect::topotek;
   // A read with data: decode, state lookup, build, checksum on every request.
-  const std::string req = top::build_frame({top::Header::fixed, topotek ? 'P' : 'U', topotek ? 'G' : 'D', 'r',
-                                            "VER", "00"});
+  const std::string req = top::build_frame(
+      {top::Header::fixed, topotek ? 'P' : 'U', topotek ? 'G' : 'D', 'r', "VER", "00"});
 
   // The floor: a UDP echo server with the same socket and thread layout.
   asio::io_context echo_io;
@@ -127,17 +128,20 @@ int main(int argc, char** argv) {
   const double floor_rps = static_cast<double>(floor.received) / floor.seconds;
   const std::uint64_t lost = sim.lost;
   if (json) {
-    std::printf("{\"model\":\"%s\",\"requests\":%llu,\"responses\":%llu,\"lost\":%llu,\"seconds\":%.3f,"
-                "\"requests_per_s\":%.0f,\"floor_echo_per_s\":%.0f,\"ratio_to_floor\":%.3f}\n",
-                model.c_str(), static_cast<unsigned long long>(sim.sent),
-                static_cast<unsigned long long>(sim.received), static_cast<unsigned long long>(lost), sim.seconds,
-                sim_rps, floor_rps, sim_rps / floor_rps);
+    std::printf(
+        "{\"model\":\"%s\",\"requests\":%llu,\"responses\":%llu,\"lost\":%llu,\"seconds\":%.3f,"
+        "\"requests_per_s\":%.0f,\"floor_echo_per_s\":%.0f,\"ratio_to_floor\":%.3f}\n",
+        model.c_str(), static_cast<unsigned long long>(sim.sent),
+        static_cast<unsigned long long>(sim.received), static_cast<unsigned long long>(lost),
+        sim.seconds, sim_rps, floor_rps, sim_rps / floor_rps);
   } else {
-    std::printf("topsim %s over UDP loopback: %llu requests, %llu responses, %llu lost, %.3f s\n", model.c_str(),
-                static_cast<unsigned long long>(sim.sent), static_cast<unsigned long long>(sim.received),
+    std::printf("topsim %s over UDP loopback: %llu requests, %llu responses, %llu lost, %.3f s\n",
+                model.c_str(), static_cast<unsigned long long>(sim.sent),
+                static_cast<unsigned long long>(sim.received),
                 static_cast<unsigned long long>(lost), sim.seconds);
-    std::printf("  topsim     %10.0f requests/s\n  echo floor %10.0f requests/s\n  ratio      %10.3f\n", sim_rps,
-                floor_rps, sim_rps / floor_rps);
+    std::printf(
+        "  topsim     %10.0f requests/s\n  echo floor %10.0f requests/s\n  ratio      %10.3f\n",
+        sim_rps, floor_rps, sim_rps / floor_rps);
   }
   return lost == 0 && sim_rps >= 10000 ? 0 : 1;
 }

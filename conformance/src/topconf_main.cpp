@@ -1,10 +1,10 @@
 // topconf: runs a conformance matrix against a TOP device (or an in-process
 // topsim) and reports per case; generates and validates matrices.
-#include <CLI/CLI.hpp>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
@@ -56,7 +56,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
 
   // run
-  auto* run = app.add_subcommand("run", "run a matrix against a target (default: an in-process topsim)");
+  auto* run =
+      app.add_subcommand("run", "run a matrix against a target (default: an in-process topsim)");
   std::string target, model_name, matrix_path, json_out, junit_out, html_out, pcap_out, sim_faults;
   std::vector<std::string> case_ids, tags, levels;
   std::uint64_t seed = 0, sim_seed = 1;
@@ -65,26 +66,33 @@ int main(int argc, char** argv) {
   bool no_color = false, quiet = false;
   run->add_option("--target", target, "udp://HOST:PORT, tcp://HOST:PORT or serial:DEVICE[@BAUD]");
   run->add_option("--model", model_name, "c10|c10pro|c12|c13|c20|sip")->required();
-  run->add_option("--matrix", matrix_path, "matrix JSON (default: conformance/matrices/<model>.json)");
+  run->add_option("--matrix", matrix_path,
+                  "matrix JSON (default: conformance/matrices/<model>.json)");
   run->add_option("--case", case_ids, "run only these case ids (globs with * and ?)");
   run->add_option("--tag", tags, "run only cases with one of these tags");
   run->add_option("--level", levels, "run only cases of these levels (must, should, may)");
   auto* seed_opt = run->add_option("--seed", seed, "shuffle the case order with this seed");
-  auto* retries_opt = run->add_option("--retries", retries, "retries of a failing case (default: the matrix's)");
-  auto* timeout_opt = run->add_option("--timeout-ms", timeout_ms, "reply timeout per step (default: the matrix's)");
-  auto* settle_opt = run->add_option("--settle-ms", settle_ms, "watch this long for duplicate replies (default: the matrix's)");
+  auto* retries_opt =
+      run->add_option("--retries", retries, "retries of a failing case (default: the matrix's)");
+  auto* timeout_opt =
+      run->add_option("--timeout-ms", timeout_ms, "reply timeout per step (default: the matrix's)");
+  auto* settle_opt = run->add_option(
+      "--settle-ms", settle_ms, "watch this long for duplicate replies (default: the matrix's)");
   run->add_option("--json", json_out, "write results with timestamped transcripts as JSON");
   run->add_option("--junit", junit_out, "write JUnit XML");
   run->add_option("--html", html_out, "write a self-contained HTML report");
   run->add_option("--pcap", pcap_out, "write every frame of the run to a pcap");
-  run->add_option("--sim-fault", sim_faults, "in-process topsim only: inject these faults (as topsim --fault)");
+  run->add_option("--sim-fault", sim_faults,
+                  "in-process topsim only: inject these faults (as topsim --fault)");
   run->add_option("--sim-seed", sim_seed, "in-process topsim only: fault seed");
-  run->add_option("--bind", bind_port, "UDP: local port to receive on (default: 9004 for sip, ephemeral otherwise)");
+  run->add_option("--bind", bind_port,
+                  "UDP: local port to receive on (default: 9004 for sip, ephemeral otherwise)");
   run->add_flag("--no-color", no_color, "no ANSI colours in the table");
   run->add_flag("-q,--quiet", quiet, "print the summary only");
 
   // generate
-  auto* gen = app.add_subcommand("generate", "write a model's default matrix generated from the catalog");
+  auto* gen =
+      app.add_subcommand("generate", "write a model's default matrix generated from the catalog");
   std::string gen_model, gen_out;
   gen->add_option("--model", gen_model, "c10|c10pro|c12|c13|c20|sip")->required();
   gen->add_option("-o,--output", gen_out, "output file (default: stdout)");
@@ -127,8 +135,10 @@ int main(int argc, char** argv) {
       }
       auto r = topconf::load_matrix(text, f);
       for (const auto& e : r.errors) std::cerr << e << "\n";
-      if (!r.errors.empty()) rc = std::max(rc, 1);
-      else std::cout << f << ": ok, " << r.matrix->cases.size() << " case(s)\n";
+      if (!r.errors.empty())
+        rc = std::max(rc, 1);
+      else
+        std::cout << f << ": ok, " << r.matrix->cases.size() << " case(s)\n";
     }
     return rc;
   }
@@ -167,7 +177,8 @@ int main(int argc, char** argv) {
   }
   topconf::Matrix& matrix = *loaded.matrix;
   if (matrix.model != *model)
-    spdlog::warn("{} is written for {}; running it as {}", file, top::to_string(matrix.model), model_name);
+    spdlog::warn("{} is written for {}; running it as {}", file, top::to_string(matrix.model),
+                 model_name);
   matrix.model = *model;
   matrix.dialect = top::dialect_of(*model);
 
@@ -192,7 +203,8 @@ int main(int argc, char** argv) {
         return 2;
       }
       int local = bind_port;
-      if (local < 0 && top::dialect_of(*model) == top::Dialect::topotek && target.rfind("udp://", 0) == 0)
+      if (local < 0 && top::dialect_of(*model) == top::Dialect::topotek &&
+          target.rfind("udp://", 0) == 0)
         local = 9004;
       transport = topconf::open_transport(target, *model, local);
     }
@@ -234,9 +246,12 @@ int main(int argc, char** argv) {
   }
   bool ok = true;
   if (!json_out.empty())
-    ok &= write_output(json_out, [&](std::ostream& o) { o << topconf::to_json(result).dump(2) << "\n"; });
-  if (!junit_out.empty()) ok &= write_output(junit_out, [&](std::ostream& o) { topconf::write_junit(o, result); });
-  if (!html_out.empty()) ok &= write_output(html_out, [&](std::ostream& o) { topconf::write_html(o, result); });
+    ok &= write_output(json_out,
+                       [&](std::ostream& o) { o << topconf::to_json(result).dump(2) << "\n"; });
+  if (!junit_out.empty())
+    ok &= write_output(junit_out, [&](std::ostream& o) { topconf::write_junit(o, result); });
+  if (!html_out.empty())
+    ok &= write_output(html_out, [&](std::ostream& o) { topconf::write_html(o, result); });
   if (!ok) return 2;
   return result.exit_code();
 }

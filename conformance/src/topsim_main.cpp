@@ -1,9 +1,9 @@
 // topsim: a stateful TOP gimbal camera on UDP, TCP, a pseudo-terminal or a
 // serial port, with seeded fault injection and pcap recording.
-#include <CLI/CLI.hpp>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <thread>
 
@@ -13,7 +13,10 @@ namespace {
 
 bool split_host_port(const std::string& s, std::string& host, std::uint16_t& port) {
   const auto colon = s.rfind(':');
-  if (colon == std::string::npos) { host = s; return true; }
+  if (colon == std::string::npos) {
+    host = s;
+    return true;
+  }
   host = s.substr(0, colon);
   try {
     const unsigned long p = std::stoul(s.substr(colon + 1));
@@ -30,7 +33,8 @@ bool split_host_port(const std::string& s, std::string& host, std::uint16_t& por
 int main(int argc, char** argv) {
   // Logs go to stderr; stdout carries results (topsim: the address it serves).
   spdlog::set_default_logger(spdlog::stderr_color_mt("topsim"));
-  CLI::App app{"topsim: a TOP gimbal camera simulator (SkyDroid C10/C10Pro/C12/C13/C20, Topotek SIP)"};
+  CLI::App app{
+      "topsim: a TOP gimbal camera simulator (SkyDroid C10/C10Pro/C12/C13/C20, Topotek SIP)"};
   std::string model_name = "c12";
   std::string udp, tcp, serial, faults, record;
   bool pty = false, verbose = false;
@@ -61,8 +65,9 @@ int main(int argc, char** argv) {
     spdlog::error("--model {}: not one of c10 c10pro c12 c13 c20 sip", model_name);
     return 2;
   }
-  const int chosen = static_cast<int>(app.count("--udp") > 0) + static_cast<int>(app.count("--tcp") > 0) +
-                     static_cast<int>(pty) + static_cast<int>(!serial.empty());
+  const int chosen = static_cast<int>(app.count("--udp") > 0) +
+                     static_cast<int>(app.count("--tcp") > 0) + static_cast<int>(pty) +
+                     static_cast<int>(!serial.empty());
   if (chosen > 1) {
     spdlog::error("choose one of --udp, --tcp, --pty, --serial");
     return 2;
@@ -118,11 +123,13 @@ int main(int argc, char** argv) {
         std::printf("%s %s:%u\n", cfg.kind == topsim::TransportKind::tcp ? "tcp" : "udp",
                     cfg.host.c_str(), static_cast<unsigned>(server.port()));
         for (std::size_t i = 1; i < server.udp_ports().size(); ++i)
-          std::printf("udp %s:%u\n", cfg.host.c_str(), static_cast<unsigned>(server.udp_ports()[i]));
+          std::printf("udp %s:%u\n", cfg.host.c_str(),
+                      static_cast<unsigned>(server.udp_ports()[i]));
         std::fflush(stdout);
-        spdlog::info("topsim {} listening on {} {}:{}{}", model_name,
-                     cfg.kind == topsim::TransportKind::tcp ? "tcp" : "udp", cfg.host, server.port(),
-                     cfg.reply_port ? " (replies to port " + std::to_string(cfg.reply_port) + ")" : "");
+        spdlog::info(
+            "topsim {} listening on {} {}:{}{}", model_name,
+            cfg.kind == topsim::TransportKind::tcp ? "tcp" : "udp", cfg.host, server.port(),
+            cfg.reply_port ? " (replies to port " + std::to_string(cfg.reply_port) + ")" : "");
     }
     if (cfg.faults.any()) spdlog::info("faults: {} (seed {})", faults, seed);
     server.run();

@@ -1,7 +1,7 @@
 // topsim's device model: answers, state and streams, on an injected clock.
-#include <gtest/gtest.h>
-
 #include "sim/device.hpp"
+
+#include <gtest/gtest.h>
 
 namespace {
 

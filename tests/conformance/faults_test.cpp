@@ -1,7 +1,7 @@
 // topsim's fault injection: parsing and what each fault does to a frame.
-#include <gtest/gtest.h>
-
 #include "sim/faults.hpp"
+
+#include <gtest/gtest.h>
 
 namespace {
 
@@ -12,7 +12,8 @@ std::optional<topsim::FaultConfig> parse(std::string_view s) {
   return topsim::parse_faults(s, err);
 }
 
-std::vector<topsim::Emission> apply_fault(std::string_view spec, const std::string& f, bool stream = false) {
+std::vector<topsim::Emission> apply_fault(std::string_view spec, const std::string& f,
+                                          bool stream = false) {
   FaultInjector fi(*parse(spec), 7);
   std::vector<topsim::Emission> out;
   fi.apply(f, stream, out);
@@ -22,8 +23,9 @@ std::vector<topsim::Emission> apply_fault(std::string_view spec, const std::stri
 const std::string kGay = "#TPGU6wGAYEF073248";
 
 TEST(Faults, ParsesEveryNameAndRejectsBadOnes) {
-  auto c = parse("drop=0.1,delay=20,duplicate=0.5,bad-checksum=1,header-case=0.2,no-swap,"
-                 "lying-length=0.3,tmp-quirk,split,garbage=0.4,hang-on=GAY");
+  auto c = parse(
+      "drop=0.1,delay=20,duplicate=0.5,bad-checksum=1,header-case=0.2,no-swap,"
+      "lying-length=0.3,tmp-quirk,split,garbage=0.4,hang-on=GAY");
   ASSERT_TRUE(c.has_value());
   EXPECT_DOUBLE_EQ(c->drop, 0.1);
   EXPECT_EQ(c->delay_ms, 20u);

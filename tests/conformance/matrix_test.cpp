@@ -1,10 +1,11 @@
 // topconf's matrix loader: validation messages and the default matrices.
+#include "conf/matrix.hpp"
+
 #include <gtest/gtest.h>
 
 #include <set>
 
 #include "conf/generate.hpp"
-#include "conf/matrix.hpp"
 #include "test_matrix_util.hpp"
 
 namespace {
@@ -53,11 +54,12 @@ TEST(Matrix, ErrorsNameFileCaseAndKey) {
   e = errors_of(replace(kMinimal, R"({"echo": true})", R"({"echo": true, "silence_ms": 5})"));
   ASSERT_FALSE(e.empty());
   EXPECT_NE(e[0].find("needs exactly one of"), std::string::npos);
-  e = errors_of(replace(kMinimal, R"({"echo": true})",
-                        R"({"reply": {"fields": {"x": {"pattern": "("}}}})"));
+  e = errors_of(
+      replace(kMinimal, R"({"echo": true})", R"({"reply": {"fields": {"x": {"pattern": "("}}}})"));
   ASSERT_FALSE(e.empty());
   EXPECT_NE(e[0].find("steps[0].expect[0].reply.fields.x.pattern: not a valid regular expression"),
-            std::string::npos) << e[0];
+            std::string::npos)
+      << e[0];
   e = errors_of("{\"format\": ");
   ASSERT_EQ(e.size(), 1u);
   EXPECT_EQ(e[0].rfind("m.json: (json): not valid JSON at byte", 0), 0u);
@@ -102,10 +104,12 @@ TEST_P(DefaultMatrix, LoadsAndCoversEveryCommandOfTheModel) {
   }
   for (const auto& cmd : top::commands(top::dialect_of(m))) {
     if (!cmd.supports(m) || cmd.ident == "ERE") continue;
-    EXPECT_TRUE(sent.count(std::string(cmd.ident))) << cmd.ident << " has no case in " << mx.file
+    EXPECT_TRUE(sent.count(std::string(cmd.ident)))
+        << cmd.ident << " has no case in " << mx.file
         << " (regenerate: conformance/matrices/regenerate.sh)";
   }
-  for (const char* k : {"positive", "negative", "state", "bad-checksum", "unknown-ident", "wrong-length"})
+  for (const char* k :
+       {"positive", "negative", "state", "bad-checksum", "unknown-ident", "wrong-length"})
     EXPECT_TRUE(kinds.count(k)) << k;
   if (m != top::Model::c13) {
     EXPECT_TRUE(kinds.count("stream"));
@@ -124,7 +128,8 @@ INSTANTIATE_TEST_SUITE_P(Models, DefaultMatrix,
                          [](const auto& i) { return std::string(top::to_string(i.param)); });
 
 TEST(Matrix, SchemaFileIsValidJson) {
-  const std::string s = read_text(std::string(TOPKIT_SOURCE_DIR) + "/conformance/matrix.schema.json");
+  const std::string s =
+      read_text(std::string(TOPKIT_SOURCE_DIR) + "/conformance/matrix.schema.json");
   auto j = nlohmann::json::parse(s);
   EXPECT_EQ(j.at("properties").at("format").at("const"), "topconf-matrix-1");
 }

@@ -1,6 +1,8 @@
 // topconf's runner against an in-process topsim (virtual clock): the
 // default matrices pass, every fault breaks what it must with the right
 // class, and a silent or flooding device cannot hang it.
+#include "conf/runner.hpp"
+
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -8,7 +10,6 @@
 #include <sstream>
 
 #include "conf/report.hpp"
-#include "conf/runner.hpp"
 #include "test_matrix_util.hpp"
 
 namespace {
@@ -139,7 +140,8 @@ TEST(Faults, BadChecksumAndHeaderCaseFailEveryAnswer) {
 TEST(Faults, DuplicateRepliesAreNonStrictAndBreakTheStreamRate) {
   RunResult r = run(top::Model::c12, "duplicate=1");
   EXPECT_EQ(find_case(r, "skydroid/3.3.1/GAY/write").verdict, Verdict::non_strict);
-  EXPECT_NE(find_case(r, "skydroid/3.3.1/GAY/write").reason.find("more than once"), std::string::npos);
+  EXPECT_NE(find_case(r, "skydroid/3.3.1/GAY/write").reason.find("more than once"),
+            std::string::npos);
   EXPECT_EQ(find_case(r, "skydroid/4.11/VER/read").verdict, Verdict::non_strict);
   EXPECT_EQ(find_case(r, "skydroid/3.3.2.1/GAA/stream").verdict, Verdict::fail);
   EXPECT_EQ(r.exit_code(), 1);
@@ -152,7 +154,8 @@ TEST(Faults, NoSwapMatchesOnlyTheToleratedAlternatives) {
   EXPECT_EQ(find_case(r, "skydroid/frame/unknown-ident").verdict, Verdict::non_strict);
   EXPECT_EQ(find_case(r, "skydroid/4.9.1/IPV/state").verdict, Verdict::non_strict);
   EXPECT_EQ(find_case(r, "skydroid/2.3.2/ERE/example").verdict, Verdict::fail);
-  EXPECT_EQ(r.count(Verdict::pass) + r.count(Verdict::non_strict) + r.count(Verdict::fail), r.cases.size());
+  EXPECT_EQ(r.count(Verdict::pass) + r.count(Verdict::non_strict) + r.count(Verdict::fail),
+            r.cases.size());
 }
 
 TEST(Faults, LyingLengthIsRecoveredAsNonStrict) {
@@ -178,7 +181,8 @@ TEST(Faults, TmpQuirkAffectsOnlyTmp) {
 TEST(Faults, SplitFramesAreReassembled) {
   RunResult r = run(top::Model::c12, "split", 0, topsim::Link::uart);
   EXPECT_EQ(r.exit_code(), 0);
-  for (const auto& c : r.cases) EXPECT_EQ(c.verdict, Verdict::pass) << c.spec->id << ": " << c.reason;
+  for (const auto& c : r.cases)
+    EXPECT_EQ(c.verdict, Verdict::pass) << c.spec->id << ": " << c.reason;
 }
 
 TEST(Faults, GarbageBeforeFramesIsNonStrict) {
@@ -197,7 +201,8 @@ TEST(Faults, HangOnFailsThatCaseAndErrorsTheRest) {
       seen = true;
     } else if (seen) {
       EXPECT_EQ(c.verdict, Verdict::error) << c.spec->id;
-      EXPECT_NE(c.reason.find("stopped answering after case skydroid/3.3.1/GAY/write"), std::string::npos);
+      EXPECT_NE(c.reason.find("stopped answering after case skydroid/3.3.1/GAY/write"),
+                std::string::npos);
     } else {
       EXPECT_EQ(c.verdict, Verdict::pass) << c.spec->id;
     }
@@ -221,7 +226,8 @@ TEST(Runner, FiltersAndSeededOrder) {
   EXPECT_EQ(topconf::run_matrix(mx, t, o).cases.size(), 1u);
   o.tags.clear();
   o.levels = {topconf::Level::may};
-  for (const auto& c : topconf::run_matrix(mx, t, o).cases) EXPECT_EQ(c.spec->level, topconf::Level::may);
+  for (const auto& c : topconf::run_matrix(mx, t, o).cases)
+    EXPECT_EQ(c.spec->level, topconf::Level::may);
   o.levels.clear();
   auto order = [&](std::uint64_t seed) {
     topconf::RunOptions so;
@@ -278,12 +284,15 @@ TEST(Runner, ClassesNotApplicableInconclusiveFailAndMay) {
   topconf::write_junit(junit, r);
   topconf::write_html(html, r);
   topconf::write_console(console, r, false);
-  EXPECT_NE(junit.str().find("<testcase classname=\"SkyDroid 4.4\" name=\"fields\""), std::string::npos);
+  EXPECT_NE(junit.str().find("<testcase classname=\"SkyDroid 4.4\" name=\"fields\""),
+            std::string::npos);
   EXPECT_NE(junit.str().find("<failure message=\"fail: "), std::string::npos);
   EXPECT_NE(junit.str().find("<skipped message=\"n/a: "), std::string::npos);
   EXPECT_NE(html.str().find("<details><summary>transcript"), std::string::npos);
   EXPECT_EQ(html.str().find("<script"), std::string::npos);  // self-contained, static
-  EXPECT_NE(console.str().find("1 pass, 0 non-strict, 2 fail, 1 n/a, 1 inconclusive"), std::string::npos) << console.str();
+  EXPECT_NE(console.str().find("1 pass, 0 non-strict, 2 fail, 1 n/a, 1 inconclusive"),
+            std::string::npos)
+      << console.str();
 }
 
 // ---- a silent device and a flooding device
@@ -293,14 +302,16 @@ class FakeTransport : public topconf::Transport {
   explicit FakeTransport(bool flood) : flood_(flood) {}
   std::uint64_t now_us() override {
     return static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::microseconds>(
-        std::chrono::steady_clock::now().time_since_epoch()).count());
+                                          std::chrono::steady_clock::now().time_since_epoch())
+                                          .count());
   }
   bool datagram() const override { return false; }
   char client_address() const override { return 'U'; }
   void send(std::string_view) override { ++sent; }
   bool receive(std::uint64_t deadline, std::string& out) override {
     if (!flood_) {
-      while (now_us() < deadline) {}
+      while (now_us() < deadline) {
+      }
       return false;
     }
     ++chunks;

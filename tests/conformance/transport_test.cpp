@@ -2,16 +2,16 @@
 // ephemeral 127.0.0.1 ports, a real pseudo-terminal, pcap recordings read
 // back with libpcap, and the two binaries end to end.
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 #include <pcap/pcap.h>
-#include <signal.h>
-#include <sys/wait.h>
 #include <poll.h>
 #include <pty.h>
+#include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdio>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <thread>
 
 #include "conf/runner.hpp"
@@ -34,7 +34,8 @@ struct RunningServer {
   std::thread thread;
 };
 
-topconf::RunResult run_over(top::Model m, topsim::TransportKind kind, const std::string& record = {}) {
+topconf::RunResult run_over(top::Model m, topsim::TransportKind kind,
+                            const std::string& record = {}) {
   topsim::ServerConfig cfg;
   cfg.model = m;
   cfg.kind = kind;
@@ -42,9 +43,15 @@ topconf::RunResult run_over(top::Model m, topsim::TransportKind kind, const std:
   RunningServer s(cfg);
   std::string target;
   switch (kind) {
-    case topsim::TransportKind::udp: target = "udp://127.0.0.1:" + std::to_string(s.server.port()); break;
-    case topsim::TransportKind::tcp: target = "tcp://127.0.0.1:" + std::to_string(s.server.port()); break;
-    default: target = "serial:" + s.server.pty_path(); break;
+    case topsim::TransportKind::udp:
+      target = "udp://127.0.0.1:" + std::to_string(s.server.port());
+      break;
+    case topsim::TransportKind::tcp:
+      target = "tcp://127.0.0.1:" + std::to_string(s.server.port());
+      break;
+    default:
+      target = "serial:" + s.server.pty_path();
+      break;
   }
   auto t = topconf::open_transport(target, m, 0);
   topconf::RunOptions o;
@@ -63,15 +70,17 @@ TEST_P(OverTransport, DefaultMatrixPasses) {
   auto r = run_over(GetParam().model, GetParam().kind);
   ASSERT_FALSE(r.unreachable) << r.unreachable_reason;
   for (const auto& c : r.cases)
-    EXPECT_TRUE(c.verdict == Verdict::pass && !c.flaky) << c.spec->id << ": " << to_string(c.verdict) << " " << c.reason;
+    EXPECT_TRUE(c.verdict == Verdict::pass && !c.flaky)
+        << c.spec->id << ": " << to_string(c.verdict) << " " << c.reason;
   EXPECT_EQ(r.exit_code(), 0);
 }
 
 std::vector<Param> params() {
   std::vector<Param> p;
-  for (auto m : {top::Model::c10, top::Model::c10pro, top::Model::c12, top::Model::c13, top::Model::c20,
-                 top::Model::sip})
-    for (auto k : {topsim::TransportKind::udp, topsim::TransportKind::tcp, topsim::TransportKind::pty})
+  for (auto m : {top::Model::c10, top::Model::c10pro, top::Model::c12, top::Model::c13,
+                 top::Model::c20, top::Model::sip})
+    for (auto k :
+         {topsim::TransportKind::udp, topsim::TransportKind::tcp, topsim::TransportKind::pty})
       p.push_back({m, k});
   return p;
 }
@@ -212,7 +221,9 @@ TEST(Server, ServesASerialDevice) {
 
 // ---- the binaries
 
-std::string bin(const char* name) { return std::string(TOPKIT_BINARY_DIR) + "/conformance/" + name; }
+std::string bin(const char* name) {
+  return std::string(TOPKIT_BINARY_DIR) + "/conformance/" + name;
+}
 
 // Starts topsim and returns its pid and the first line it prints.
 pid_t start_topsim(const std::vector<std::string>& args, std::string& line) {
@@ -251,7 +262,9 @@ TEST(Binaries, TopconfAgainstTopsimOverUdpAndExitCodes) {
   ASSERT_EQ(line.rfind("udp 127.0.0.1:", 0), 0u) << line;
   const std::string target = "udp://" + line.substr(4);
   const std::string json = std::string(TOPKIT_BINARY_DIR) + "/topconf_e2e.json";
-  EXPECT_EQ(run_cmd(bin("topconf") + " run --model c12 --target " + target + " --settle-ms 3 --json " + json), 0);
+  EXPECT_EQ(run_cmd(bin("topconf") + " run --model c12 --target " + target +
+                    " --settle-ms 3 --json " + json),
+            0);
   auto j = nlohmann::json::parse(read_text(json));
   EXPECT_EQ(j["exit_code"], 0);
   EXPECT_GT(j["cases"].size(), 50u);
@@ -274,9 +287,10 @@ TEST(Binaries, TopconfAgainstTopsimOverUdpAndExitCodes) {
 TEST(Binaries, TopconfWritesEveryReportAndRejectsABadMatrix) {
   const std::string dir = std::string(TOPKIT_BINARY_DIR) + "/topconf_cli_test";
   ASSERT_EQ(run_cmd("mkdir -p " + dir), 0);
-  EXPECT_EQ(run_cmd(bin("topconf") + " run --model c20 --seed 3 --json " + dir + "/r.json --junit " + dir +
-                    "/r.xml --html " + dir + "/r.html --pcap " + dir + "/r.pcap"),
-            0);
+  EXPECT_EQ(
+      run_cmd(bin("topconf") + " run --model c20 --seed 3 --json " + dir + "/r.json --junit " +
+              dir + "/r.xml --html " + dir + "/r.html --pcap " + dir + "/r.pcap"),
+      0);
   EXPECT_NE(read_text(dir + "/r.xml").find("<testsuite name=\"topconf.c20\""), std::string::npos);
   EXPECT_NE(read_text(dir + "/r.html").find("<h1>topconf report: c20</h1>"), std::string::npos);
   EXPECT_EQ(nlohmann::json::parse(read_text(dir + "/r.json"))["seed"], 3);
@@ -285,14 +299,15 @@ TEST(Binaries, TopconfWritesEveryReportAndRejectsABadMatrix) {
   // A matrix with a typo: the error names the file, the case and the key.
   std::string bad = read_text(matrix_path("c20"));
   bad.replace(bad.find("\"level\": \"must\""), 15, "\"level\": \"mus\"");
-  {
-    std::ofstream(dir + "/bad.json") << bad;
-  }
+  { std::ofstream(dir + "/bad.json") << bad; }
   EXPECT_EQ(run_cmd(bin("topconf") + " run --model c20 --matrix " + dir + "/bad.json"), 2);
-  const int rc = std::system((bin("topconf") + " validate " + dir + "/bad.json 2>" + dir + "/err.txt").c_str());
+  const int rc = std::system(
+      (bin("topconf") + " validate " + dir + "/bad.json 2>" + dir + "/err.txt").c_str());
   EXPECT_EQ(WEXITSTATUS(rc), 1);
-  EXPECT_NE(read_text(dir + "/err.txt").find("bad.json: case skydroid/3.1/PTZ/write: level: must be must, should or may"),
-            std::string::npos) << read_text(dir + "/err.txt");
+  EXPECT_NE(read_text(dir + "/err.txt")
+                .find("bad.json: case skydroid/3.1/PTZ/write: level: must be must, should or may"),
+            std::string::npos)
+      << read_text(dir + "/err.txt");
   run_cmd("rm -rf " + dir);
 }
 
@@ -301,7 +316,9 @@ TEST(Binaries, TopsimPtyPrintsItsPath) {
   const pid_t pid = start_topsim({"--model", "c20", "--pty"}, line);
   ASSERT_GT(pid, 0);
   EXPECT_EQ(line.rfind("/dev/pts/", 0), 0u) << line;
-  EXPECT_EQ(run_cmd(bin("topconf") + " run --model c20 --settle-ms 3 --target serial:" + line + "@115200"), 0);
+  EXPECT_EQ(run_cmd(bin("topconf") + " run --model c20 --settle-ms 3 --target serial:" + line +
+                    "@115200"),
+            0);
   kill(pid, SIGTERM);
   waitpid(pid, nullptr, 0);
 }

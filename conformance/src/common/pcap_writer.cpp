@@ -21,7 +21,8 @@ void put32(std::vector<unsigned char>& b, std::size_t at, std::uint32_t v) {
 
 std::uint16_t ip_checksum(const unsigned char* p, std::size_t n) {
   std::uint32_t sum = 0;
-  for (std::size_t i = 0; i + 1 < n; i += 2) sum += static_cast<std::uint32_t>(p[i] << 8 | p[i + 1]);
+  for (std::size_t i = 0; i + 1 < n; i += 2)
+    sum += static_cast<std::uint32_t>(p[i] << 8 | p[i + 1]);
   while (sum >> 16) sum = (sum & 0xFFFF) + (sum >> 16);
   return static_cast<std::uint16_t>(~sum & 0xFFFF);
 }
@@ -62,9 +63,17 @@ void PcapWriter::packet(const Endpoint& from, const Endpoint& to, std::string_vi
   const std::size_t l4 = tcp_ ? 20 : 8;
   std::vector<unsigned char> b(14 + 20 + l4 + payload.size(), 0);
   // Ethernet: locally administered MACs derived from the ports.
-  const unsigned char dst_mac[6] = {0x02, 0, 0, 0, static_cast<unsigned char>(to.port >> 8),
+  const unsigned char dst_mac[6] = {0x02,
+                                    0,
+                                    0,
+                                    0,
+                                    static_cast<unsigned char>(to.port >> 8),
                                     static_cast<unsigned char>(to.port & 0xFF)};
-  const unsigned char src_mac[6] = {0x02, 0, 0, 0, static_cast<unsigned char>(from.port >> 8),
+  const unsigned char src_mac[6] = {0x02,
+                                    0,
+                                    0,
+                                    0,
+                                    static_cast<unsigned char>(from.port >> 8),
                                     static_cast<unsigned char>(from.port & 0xFF)};
   std::memcpy(&b[0], dst_mac, 6);
   std::memcpy(&b[6], src_mac, 6);

@@ -82,7 +82,8 @@ std::string alternate_data(const top::FormSpec& form) {
 bool same_layout(const top::FormSpec& a, const top::FormSpec& b) {
   if (a.fields.size() != b.fields.size()) return false;
   for (std::size_t i = 0; i < a.fields.size(); ++i)
-    if (a.fields[i].kind != b.fields[i].kind || a.fields[i].width != b.fields[i].width) return false;
+    if (a.fields[i].kind != b.fields[i].kind || a.fields[i].width != b.fields[i].width)
+      return false;
   return a.min_length == b.min_length && a.max_length == b.max_length;
 }
 
@@ -106,7 +107,9 @@ json send(const top::CommandSpec& c, char control, const std::string& data) {
 
 json echo_alts() {
   return json::array({json{{"echo", true}},
-                      json{{"echo", true}, {"addresses", "any"}, {"tolerated", true},
+                      json{{"echo", true},
+                           {"addresses", "any"},
+                           {"tolerated", true},
                            {"note", "reply keeps the client's address first (some simulators)"}}});
 }
 
@@ -140,8 +143,9 @@ json generate_matrix(top::Model model) {
   const Dialect d = top::dialect_of(model);
   const bool sky = d == Dialect::skydroid;
   const std::string dn(top::to_string(d));
-  const std::string doc = sky ? "SkyDroid TOP protocol V1.1.5 (seeds/000_3e8dc32e1138ca8b.txt)"
-                              : "Topotek SIP Udp&uart-Protocol V1.1.3 (seeds/001_3ee7043eb5910c28.txt)";
+  const std::string doc =
+      sky ? "SkyDroid TOP protocol V1.1.5 (seeds/000_3e8dc32e1138ca8b.txt)"
+          : "Topotek SIP Udp&uart-Protocol V1.1.3 (seeds/001_3ee7043eb5910c28.txt)";
   json m;
   m["$schema"] = "../matrix.schema.json";
   m["format"] = "topconf-matrix-1";
@@ -149,7 +153,8 @@ json generate_matrix(top::Model model) {
                " (generated from the TOPKit catalog by `topconf generate`; edit freely)";
   m["model"] = std::string(top::to_string(model));
   m["document"] = doc;
-  m["defaults"] = {{"timeout_ms", 300}, {"retries", 1}, {"settle_ms", 15}, {"probe_timeout_ms", 500}};
+  m["defaults"] = {
+      {"timeout_ms", 300}, {"retries", 1}, {"settle_ms", 15}, {"probe_timeout_ms", 500}};
   m["probe"] = sky ? json{{"command", "AWB"}, {"control", "r"}, {"data", "00"}}
                    : json{{"command", "VER"}, {"control", "r"}, {"data", "00"}, {"dst", "G"}};
   json cases = json::array();
@@ -157,9 +162,12 @@ json generate_matrix(top::Model model) {
   auto error_alts = [&]() {
     if (!sky) return json::array({negative_silence});
     return json::array({json{{"error", true}},
-                        json{{"error", true}, {"addresses", "any"}, {"tolerated", true},
+                        json{{"error", true},
+                             {"addresses", "any"},
+                             {"tolerated", true},
                              {"note", "ERE without swapped addresses"}},
-                        json{{"silence_ms", 60}, {"tolerated", true},
+                        json{{"silence_ms", 60},
+                             {"tolerated", true},
                              {"note", "the device ignores the invalid command instead of ERE"}}});
   };
   const std::string ere_section = sky ? "SkyDroid 2.3.2" : "Topotek 2";
@@ -200,18 +208,31 @@ json generate_matrix(top::Model model) {
       json reply = {{"control", "w"}};
       json f = reply_checks(*wr);
       if (!f.empty()) reply["fields"] = f;
-      cases.push_back({{"id", base + "/write"}, {"section", std::string(c.section)},
-                       {"title", std::string(c.title) + ": a write is answered in its reply layout"},
-                       {"level", level}, {"models", models}, {"tags", tags({"positive", "write"})},
-                       {"steps", json::array({{{"send", send(c, 'w', wdata)},
-                                               {"expect", json::array({json{{"reply", reply}},
-                                                                       json{{"reply", reply}, {"addresses", "any"}, {"tolerated", true},
-                                                                            {"note", "reply keeps the client's address first"}}})}}})}});
+      cases.push_back(
+          {{"id", base + "/write"},
+           {"section", std::string(c.section)},
+           {"title", std::string(c.title) + ": a write is answered in its reply layout"},
+           {"level", level},
+           {"models", models},
+           {"tags", tags({"positive", "write"})},
+           {"steps",
+            json::array(
+                {{{"send", send(c, 'w', wdata)},
+                  {"expect",
+                   json::array({json{{"reply", reply}},
+                                json{{"reply", reply},
+                                     {"addresses", "any"},
+                                     {"tolerated", true},
+                                     {"note", "reply keeps the client's address first"}}})}}})}});
     } else if (w) {
-      cases.push_back({{"id", base + "/write"}, {"section", std::string(c.section)},
-                       {"title", std::string(c.title) + ": a write is echoed with the addresses swapped"},
-                       {"level", level}, {"models", models}, {"tags", tags({"positive", "write"})},
-                       {"steps", json::array({{{"send", send(c, 'w', wdata)}, {"expect", echo_alts()}}})}});
+      cases.push_back(
+          {{"id", base + "/write"},
+           {"section", std::string(c.section)},
+           {"title", std::string(c.title) + ": a write is echoed with the addresses swapped"},
+           {"level", level},
+           {"models", models},
+           {"tags", tags({"positive", "write"})},
+           {"steps", json::array({{{"send", send(c, 'w', wdata)}, {"expect", echo_alts()}}})}});
     }
     std::string rdata;
     if (rq) {
@@ -225,32 +246,51 @@ json generate_matrix(top::Model model) {
         if (!f.empty()) reply["fields"] = f;
       }
       if (appendix) reply.erase("control");
-      cases.push_back({{"id", base + "/read"}, {"section", std::string(c.section)},
-                       {"title", std::string(c.title) + ": a read is answered with data"},
-                       {"level", level}, {"models", models}, {"tags", tags({"positive", "read"})},
-                       {"steps", json::array({{{"send", send(c, 'r', rdata)},
-                                               {"expect", json::array({json{{"reply", reply}},
-                                                                       json{{"reply", reply}, {"addresses", "any"}, {"tolerated", true},
-                                                                            {"note", "reply keeps the client's address first"}}})}}})}});
+      cases.push_back(
+          {{"id", base + "/read"},
+           {"section", std::string(c.section)},
+           {"title", std::string(c.title) + ": a read is answered with data"},
+           {"level", level},
+           {"models", models},
+           {"tags", tags({"positive", "read"})},
+           {"steps",
+            json::array(
+                {{{"send", send(c, 'r', rdata)},
+                  {"expect",
+                   json::array({json{{"reply", reply}},
+                                json{{"reply", reply},
+                                     {"addresses", "any"},
+                                     {"tolerated", true},
+                                     {"note", "reply keeps the client's address first"}}})}}})}});
     }
     if (w && rq && rs && rs->role == top::Role::response && same_layout(*w, *rs) && !destructive) {
       std::string alt = alternate_data(*w);
       if (!clean_request(d, model, c, 'w', alt)) alt = wdata;
-      cases.push_back({{"id", base + "/state"}, {"section", std::string(c.section)},
-                       {"title", std::string(c.title) + ": a written value reads back"},
-                       {"level", level == "must" ? "should" : level}, {"models", models}, {"tags", tags({"state"})},
-                       {"steps", json::array({{{"send", send(c, 'w', alt)},
-                                               {"expect", json::array({json{{"readback", {{"send", send(c, 'r', rdata)}}}}})}}})}});
+      cases.push_back(
+          {{"id", base + "/state"},
+           {"section", std::string(c.section)},
+           {"title", std::string(c.title) + ": a written value reads back"},
+           {"level", level == "must" ? "should" : level},
+           {"models", models},
+           {"tags", tags({"state"})},
+           {"steps",
+            json::array({{{"send", send(c, 'w', alt)},
+                          {"expect", json::array({json{
+                                         {"readback", {{"send", send(c, 'r', rdata)}}}}})}}})}});
     }
     // Negative: wrong length (per command) and a bad checksum (per class).
     const top::FormSpec* any = w ? w : rq;
     const char ctl = w ? 'w' : 'r';
     if (any && any->min_length > 0 && any->max_length < 15) {
       const std::string bad = (w ? wdata : rdata).substr(0, any->min_length - 1);
-      cases.push_back({{"id", base + "/wrong-length"}, {"section", ere_section},
-                       {"title", std::string(c.title) + ": a frame with a wrong data length is rejected"},
-                       {"level", "should"}, {"models", models}, {"tags", tags({"negative", "wrong-length"})},
-                       {"steps", json::array({{{"send", send(c, ctl, bad)}, {"expect", error_alts()}}})}});
+      cases.push_back(
+          {{"id", base + "/wrong-length"},
+           {"section", ere_section},
+           {"title", std::string(c.title) + ": a frame with a wrong data length is rejected"},
+           {"level", "should"},
+           {"models", models},
+           {"tags", tags({"negative", "wrong-length"})},
+           {"steps", json::array({{{"send", send(c, ctl, bad)}, {"expect", error_alts()}}})}});
     }
     if (any && std::find(classes_done.begin(), classes_done.end(), cls) == classes_done.end()) {
       classes_done.push_back(cls);
@@ -264,30 +304,42 @@ json generate_matrix(top::Model model) {
       b.header = top::choose_header(d, c.address, data.size());
       std::string f = top::build_frame(b);
       // Corrupt the checksum: add one to its value.
-      const std::uint8_t bad_cs = static_cast<std::uint8_t>(top::checksum(f.substr(0, f.size() - 2)) + 1);
+      const std::uint8_t bad_cs =
+          static_cast<std::uint8_t>(top::checksum(f.substr(0, f.size() - 2)) + 1);
       char cs[2];
       top::put_hex2(bad_cs, cs);
       f.replace(f.size() - 2, 2, cs, 2);
       if (!sky) f.replace(3, 1, "{client}");
-      cases.push_back({{"id", dn + "/frame/bad-checksum/class-" + cls}, {"section", sky ? "SkyDroid 2.3" : "Topotek 2"},
+      cases.push_back({{"id", dn + "/frame/bad-checksum/class-" + cls},
+                       {"section", sky ? "SkyDroid 2.3" : "Topotek 2"},
                        {"title", "a " + id + " frame with a wrong checksum gets no answer"},
-                       {"level", "should"}, {"tags", json::array({"negative", "bad-checksum", "class-" + cls})},
-                       {"steps", json::array({{{"send", {{"raw", f}}}, {"expect", json::array({negative_silence})}}})}});
+                       {"level", "should"},
+                       {"tags", json::array({"negative", "bad-checksum", "class-" + cls})},
+                       {"steps", json::array({{{"send", {{"raw", f}}},
+                                               {"expect", json::array({negative_silence})}}})}});
     }
   }
   // Unknown identifier.
-  cases.push_back({{"id", dn + "/frame/unknown-ident"}, {"section", ere_section},
-                   {"title", "an unknown identifier is rejected (ERE on SkyDroid, silence on Topotek)"},
-                   {"level", "should"}, {"tags", json::array({"negative", "unknown-ident"})},
-                   {"steps", json::array({{{"send", {{"command", "ZZZ"}, {"control", "r"}, {"data", "00"}, {"dst", "D"}}},
-                                           {"expect", error_alts()}}})}});
+  cases.push_back(
+      {{"id", dn + "/frame/unknown-ident"},
+       {"section", ere_section},
+       {"title", "an unknown identifier is rejected (ERE on SkyDroid, silence on Topotek)"},
+       {"level", "should"},
+       {"tags", json::array({"negative", "unknown-ident"})},
+       {"steps",
+        json::array(
+            {{{"send", {{"command", "ZZZ"}, {"control", "r"}, {"data", "00"}, {"dst", "D"}}},
+              {"expect", error_alts()}}})}});
   if (sky) {
     // The document's own ERE example, as an exact frame.
-    cases.push_back({{"id", "skydroid/2.3.2/ERE/example"}, {"section", "SkyDroid 2.3.2"},
-                     {"title", "the invalid-command reply is exactly #TPMU2wERE!!30"},
-                     {"level", "should"}, {"tags", json::array({"negative", "exact-frame"})},
-                     {"steps", json::array({{{"send", {{"raw", "#TPUM2rZZZ00"}}},
-                                             {"expect", json::array({json{{"frame", "#TPMU2wERE!!30"}}})}}})}});
+    cases.push_back(
+        {{"id", "skydroid/2.3.2/ERE/example"},
+         {"section", "SkyDroid 2.3.2"},
+         {"title", "the invalid-command reply is exactly #TPMU2wERE!!30"},
+         {"level", "should"},
+         {"tags", json::array({"negative", "exact-frame"})},
+         {"steps", json::array({{{"send", {{"raw", "#TPUM2rZZZ00"}}},
+                                 {"expect", json::array({json{{"frame", "#TPMU2wERE!!30"}}})}}})}});
   }
   // Streaming: GAA (SkyDroid, rate in Hz) and GIA (Topotek, on/off).
   const top::CommandSpec* gaa = top::find_command(d, sky ? "GAA" : "GIA");
@@ -295,15 +347,23 @@ json generate_matrix(top::Model model) {
     const std::string on = sky ? "0A" : "01";
     const double hz = 10;
     const std::string push = sky ? "GAC" : "GIC";
-    cases.push_back({{"id", dn + "/" + section_number(gaa->section) + "/" + std::string(gaa->ident) + "/stream"},
-                     {"section", std::string(gaa->section)},
-                     {"title", push + " is pushed at the rate " + std::string(gaa->ident) + " asked for"},
-                     {"level", "must"}, {"models", models_of(*gaa)}, {"tags", json::array({"stream", "class-G", std::string(gaa->ident)})},
-                     {"steps", json::array({
-                                   {{"send", send(*gaa, 'w', on)}, {"expect", echo_alts()}},
-                                   {{"expect", json::array({json{{"stream", {{"ident", push}, {"rate_hz", hz}, {"tolerance", 0.25}, {"duration_ms", 450}}}}})}},
-                                   {{"send", send(*gaa, 'w', "00")}, {"expect", echo_alts()}},
-                               })}});
+    cases.push_back(
+        {{"id",
+          dn + "/" + section_number(gaa->section) + "/" + std::string(gaa->ident) + "/stream"},
+         {"section", std::string(gaa->section)},
+         {"title", push + " is pushed at the rate " + std::string(gaa->ident) + " asked for"},
+         {"level", "must"},
+         {"models", models_of(*gaa)},
+         {"tags", json::array({"stream", "class-G", std::string(gaa->ident)})},
+         {"steps", json::array({
+                       {{"send", send(*gaa, 'w', on)}, {"expect", echo_alts()}},
+                       {{"expect", json::array({json{{"stream",
+                                                      {{"ident", push},
+                                                       {"rate_hz", hz},
+                                                       {"tolerance", 0.25},
+                                                       {"duration_ms", 450}}}}})}},
+                       {{"send", send(*gaa, 'w', "00")}, {"expect", echo_alts()}},
+                   })}});
   }
   m["cases"] = cases;
   return m;

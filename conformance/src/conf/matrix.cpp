@@ -1,7 +1,6 @@
 #include "conf/matrix.hpp"
 
 #include <nlohmann/json.hpp>
-
 #include <regex>
 #include <set>
 
@@ -126,16 +125,25 @@ std::optional<SendSpec> parse_send(const Ctx& c, const json& o, const std::strin
       s.data.push_back(static_cast<char>(std::stoi(a.substr(i, 2), nullptr, 16)));
   }
   if (get_string(c, o, w, "src", a, false)) {
-    if (a.size() != 1) { c.err(w + "src", "must be one address character"); return std::nullopt; }
+    if (a.size() != 1) {
+      c.err(w + "src", "must be one address character");
+      return std::nullopt;
+    }
     s.src = a[0];
   }
   if (get_string(c, o, w, "dst", a, false)) {
-    if (a.size() != 1) { c.err(w + "dst", "must be one address character"); return std::nullopt; }
+    if (a.size() != 1) {
+      c.err(w + "dst", "must be one address character");
+      return std::nullopt;
+    }
     s.dst = a[0];
   }
   if (get_string(c, o, w, "header", a, false)) {
     s.header = header_from(a);
-    if (!s.header) { c.err(w + "header", "must be one of #TP #tp #tP #Tp"); return std::nullopt; }
+    if (!s.header) {
+      c.err(w + "header", "must be one of #TP #tp #tP #Tp");
+      return std::nullopt;
+    }
   }
   return s;
 }
@@ -158,12 +166,15 @@ std::optional<Expectation> parse_expect(const Ctx& c, const json& o, const std::
             {"frame", "echo", "reply", "error", "silence_ms", "stream", "readback", "tolerated",
              "addresses", "note"});
   if (auto it = o.find("tolerated"); it != o.end()) {
-    if (!it->is_boolean()) c.err(w + "tolerated", "must be true or false");
-    else e.tolerated = it->get<bool>();
+    if (!it->is_boolean())
+      c.err(w + "tolerated", "must be true or false");
+    else
+      e.tolerated = it->get<bool>();
   }
   std::string addr;
   if (get_string(c, o, w, "addresses", addr, false)) {
-    if (addr != "swapped" && addr != "any") c.err(w + "addresses", "must be \"swapped\" or \"any\"");
+    if (addr != "swapped" && addr != "any")
+      c.err(w + "addresses", "must be \"swapped\" or \"any\"");
     e.any_addresses = addr == "any";
   }
   get_string(c, o, w, "note", e.note, false);
@@ -171,7 +182,10 @@ std::optional<Expectation> parse_expect(const Ctx& c, const json& o, const std::
     e.kind = ExpectKind::frame;
     std::string f;
     if (!get_string(c, o, w, "frame", f, true)) return std::nullopt;
-    if (f.empty() || f[0] != '#') { c.err(w + "frame", "a frame starts with '#'"); return std::nullopt; }
+    if (f.empty() || f[0] != '#') {
+      c.err(w + "frame", "a frame starts with '#'");
+      return std::nullopt;
+    }
     e.frame.raw = true;
     e.frame.text = f;
   } else if (o.contains("echo") || o.contains("error")) {
@@ -191,55 +205,79 @@ std::optional<Expectation> parse_expect(const Ctx& c, const json& o, const std::
     e.kind = ExpectKind::reply;
     const json& r = o["reply"];
     const std::string rw = w + "reply.";
-    if (!r.is_object()) { c.err(w + "reply", "must be an object"); return std::nullopt; }
+    if (!r.is_object()) {
+      c.err(w + "reply", "must be an object");
+      return std::nullopt;
+    }
     only_keys(c, r, w + "reply", {"ident", "control", "fields", "data_pattern", "data"});
     get_string(c, r, rw, "ident", e.ident, false);
     if (!e.ident.empty() && e.ident.size() != 3) c.err(rw + "ident", "must be three characters");
     std::string ctl;
     if (get_string(c, r, rw, "control", ctl, false)) {
-      if (ctl != "r" && ctl != "w") c.err(rw + "control", "must be \"r\" or \"w\"");
-      else e.control = ctl[0];
+      if (ctl != "r" && ctl != "w")
+        c.err(rw + "control", "must be \"r\" or \"w\"");
+      else
+        e.control = ctl[0];
     }
     std::string d;
     if (get_string(c, r, rw, "data", d, false)) e.data = d;
     if (get_string(c, r, rw, "data_pattern", e.data_pattern, false)) {
-      try { std::regex re(e.data_pattern); } catch (const std::regex_error&) {
+      try {
+        std::regex re(e.data_pattern);
+      } catch (const std::regex_error&) {
         c.err(rw + "data_pattern", "not a valid regular expression");
       }
     }
     if (auto it = r.find("fields"); it != r.end()) {
-      if (!it->is_object()) { c.err(rw + "fields", "must be an object of field checks"); return std::nullopt; }
+      if (!it->is_object()) {
+        c.err(rw + "fields", "must be an object of field checks");
+        return std::nullopt;
+      }
       for (auto f = it->begin(); f != it->end(); ++f) {
         const std::string fw = rw + "fields." + f.key();
         FieldCheck fc;
         fc.name = f.key();
-        if (!f->is_object()) { c.err(fw, "must be an object (min, max, enum, pattern, equals)"); continue; }
+        if (!f->is_object()) {
+          c.err(fw, "must be an object (min, max, enum, pattern, equals)");
+          continue;
+        }
         only_keys(c, *f, fw, {"min", "max", "enum", "pattern", "equals"});
         for (const char* k : {"min", "max"}) {
           if (auto v = f->find(k); v != f->end()) {
-            if (!v->is_number()) c.err(fw + "." + k, "must be a number");
-            else (std::string_view(k) == "min" ? fc.min : fc.max) = v->get<double>();
+            if (!v->is_number())
+              c.err(fw + "." + k, "must be a number");
+            else
+              (std::string_view(k) == "min" ? fc.min : fc.max) = v->get<double>();
           }
         }
         if (auto v = f->find("enum"); v != f->end()) {
-          if (!v->is_array() || v->empty()) c.err(fw + ".enum", "must be a non-empty array of names");
-          else for (const auto& n : *v) {
-            if (!n.is_string()) c.err(fw + ".enum", "must hold strings");
-            else fc.enums.push_back(n.get<std::string>());
-          }
+          if (!v->is_array() || v->empty())
+            c.err(fw + ".enum", "must be a non-empty array of names");
+          else
+            for (const auto& n : *v) {
+              if (!n.is_string())
+                c.err(fw + ".enum", "must hold strings");
+              else
+                fc.enums.push_back(n.get<std::string>());
+            }
         }
         if (auto v = f->find("pattern"); v != f->end()) {
-          if (!v->is_string()) c.err(fw + ".pattern", "must be a string");
+          if (!v->is_string())
+            c.err(fw + ".pattern", "must be a string");
           else {
             fc.pattern = v->get<std::string>();
-            try { std::regex re(fc.pattern); } catch (const std::regex_error&) {
+            try {
+              std::regex re(fc.pattern);
+            } catch (const std::regex_error&) {
               c.err(fw + ".pattern", "not a valid regular expression");
             }
           }
         }
         if (auto v = f->find("equals"); v != f->end()) {
-          if (!v->is_string()) c.err(fw + ".equals", "must be a string");
-          else fc.equals = v->get<std::string>();
+          if (!v->is_string())
+            c.err(fw + ".equals", "must be a string");
+          else
+            fc.equals = v->get<std::string>();
         }
         e.fields.push_back(std::move(fc));
       }
@@ -248,11 +286,15 @@ std::optional<Expectation> parse_expect(const Ctx& c, const json& o, const std::
     e.kind = ExpectKind::stream;
     const json& s = o["stream"];
     const std::string sw = w + "stream.";
-    if (!s.is_object()) { c.err(w + "stream", "must be an object"); return std::nullopt; }
+    if (!s.is_object()) {
+      c.err(w + "stream", "must be an object");
+      return std::nullopt;
+    }
     only_keys(c, s, w + "stream", {"ident", "rate_hz", "tolerance", "duration_ms"});
     if (!get_string(c, s, sw, "ident", e.ident, true)) return std::nullopt;
     auto rate = s.find("rate_hz");
-    if (rate == s.end() || !rate->is_number() || rate->get<double>() <= 0 || rate->get<double>() > 1000) {
+    if (rate == s.end() || !rate->is_number() || rate->get<double>() <= 0 ||
+        rate->get<double>() > 1000) {
       c.err(sw + "rate_hz", "must be a number above 0, at most 1000");
       return std::nullopt;
     }
@@ -271,9 +313,15 @@ std::optional<Expectation> parse_expect(const Ctx& c, const json& o, const std::
   } else {
     e.kind = ExpectKind::readback;
     const json& r = o["readback"];
-    if (!r.is_object()) { c.err(w + "readback", "must be an object"); return std::nullopt; }
+    if (!r.is_object()) {
+      c.err(w + "readback", "must be an object");
+      return std::nullopt;
+    }
     only_keys(c, r, w + "readback", {"send", "data"});
-    if (!r.contains("send")) { c.err(w + "readback.send", "missing"); return std::nullopt; }
+    if (!r.contains("send")) {
+      c.err(w + "readback.send", "missing");
+      return std::nullopt;
+    }
     auto s = parse_send(c, r["send"], w + "readback.send");
     if (!s) return std::nullopt;
     e.read = *s;
@@ -284,7 +332,10 @@ std::optional<Expectation> parse_expect(const Ctx& c, const json& o, const std::
 }
 
 std::optional<Step> parse_step(const Ctx& c, const json& o, const std::string& where) {
-  if (!o.is_object()) { c.err(where, "must be an object"); return std::nullopt; }
+  if (!o.is_object()) {
+    c.err(where, "must be an object");
+    return std::nullopt;
+  }
   only_keys(c, o, where, {"send", "expect", "timeout_ms"});
   Step s;
   const std::string w = where + ".";
@@ -306,13 +357,15 @@ std::optional<Step> parse_step(const Ctx& c, const json& o, const std::string& w
   for (const auto& e : s.expect) has_readback = has_readback || e.kind == ExpectKind::readback;
   if (has_readback && !s.send) c.err(w + "expect", "a readback needs the step to send a write");
   const bool needs_send = std::any_of(s.expect.begin(), s.expect.end(), [](const Expectation& e) {
-    return e.kind == ExpectKind::echo || e.kind == ExpectKind::error || e.kind == ExpectKind::readback;
+    return e.kind == ExpectKind::echo || e.kind == ExpectKind::error ||
+           e.kind == ExpectKind::readback;
   });
   if (needs_send && !s.send) c.err(w + "expect", "echo, error and readback need the step to send");
   return s;
 }
 
-void parse_steps(const Ctx& c, const json& o, const char* key, std::vector<Step>& out, bool required) {
+void parse_steps(const Ctx& c, const json& o, const char* key, std::vector<Step>& out,
+                 bool required) {
   auto it = o.find(key);
   if (it == o.end()) {
     if (required) c.err(key, "missing (a non-empty array of steps)");
@@ -332,9 +385,12 @@ void parse_steps(const Ctx& c, const json& o, const char* key, std::vector<Step>
 
 std::string_view to_string(Level l) noexcept {
   switch (l) {
-    case Level::must: return "must";
-    case Level::should: return "should";
-    case Level::may: return "may";
+    case Level::must:
+      return "must";
+    case Level::should:
+      return "should";
+    case Level::may:
+      return "may";
   }
   return "?";
 }
@@ -348,13 +404,20 @@ std::optional<Level> level_from_string(std::string_view s) noexcept {
 
 std::string_view to_string(ExpectKind k) noexcept {
   switch (k) {
-    case ExpectKind::frame: return "frame";
-    case ExpectKind::echo: return "echo";
-    case ExpectKind::reply: return "reply";
-    case ExpectKind::error: return "error";
-    case ExpectKind::silence: return "silence";
-    case ExpectKind::stream: return "stream";
-    case ExpectKind::readback: return "readback";
+    case ExpectKind::frame:
+      return "frame";
+    case ExpectKind::echo:
+      return "echo";
+    case ExpectKind::reply:
+      return "reply";
+    case ExpectKind::error:
+      return "error";
+    case ExpectKind::silence:
+      return "silence";
+    case ExpectKind::stream:
+      return "stream";
+    case ExpectKind::readback:
+      return "readback";
   }
   return "?";
 }
@@ -373,14 +436,16 @@ LoadResult load_matrix(std::string_view text, std::string_view file) {
   try {
     doc = json::parse(text.begin(), text.end());
   } catch (const json::parse_error& e) {
-    c.err("(json)", std::string("not valid JSON at byte ") + std::to_string(e.byte) + ": " + e.what());
+    c.err("(json)",
+          std::string("not valid JSON at byte ") + std::to_string(e.byte) + ": " + e.what());
     return res;
   }
   if (!doc.is_object()) {
     c.err("(root)", "must be an object");
     return res;
   }
-  only_keys(c, doc, "", {"$schema", "format", "title", "model", "document", "defaults", "probe", "cases"});
+  only_keys(c, doc, "",
+            {"$schema", "format", "title", "model", "document", "defaults", "probe", "cases"});
   Matrix m;
   m.file = std::string(file);
   std::string fmt;
@@ -390,11 +455,16 @@ LoadResult load_matrix(std::string_view text, std::string_view file) {
   std::string model;
   if (get_string(c, doc, "", "model", model, true)) {
     auto mm = top::model_from_string(model);
-    if (!mm || *mm == top::Model::unknown) c.err("model", "must be one of c10 c10pro c12 c13 c20 sip");
-    else { m.model = *mm; m.dialect = top::dialect_of(*mm); }
+    if (!mm || *mm == top::Model::unknown)
+      c.err("model", "must be one of c10 c10pro c12 c13 c20 sip");
+    else {
+      m.model = *mm;
+      m.dialect = top::dialect_of(*mm);
+    }
   }
   if (auto d = doc.find("defaults"); d != doc.end()) {
-    if (!d->is_object()) c.err("defaults", "must be an object");
+    if (!d->is_object())
+      c.err("defaults", "must be an object");
     else {
       only_keys(c, *d, "defaults", {"timeout_ms", "retries", "settle_ms", "probe_timeout_ms"});
       get_uint(c, *d, "defaults.", "timeout_ms", m.timeout_ms, 60000);
@@ -414,37 +484,51 @@ LoadResult load_matrix(std::string_view text, std::string_view file) {
     const json& o = (*cases)[i];
     Ctx cc = c;
     cc.case_id = "#" + std::to_string(i);
-    if (!o.is_object()) { cc.err("(case)", "must be an object"); continue; }
+    if (!o.is_object()) {
+      cc.err("(case)", "must be an object");
+      continue;
+    }
     Case k;
     if (get_string(cc, o, "", "id", k.id, true)) {
       cc.case_id = k.id;
       if (k.id.empty()) cc.err("id", "must not be empty");
       if (!ids.insert(k.id).second) cc.err("id", "duplicate case id");
     }
-    only_keys(cc, o, "", {"id", "section", "title", "level", "models", "tags", "preconditions",
-                          "steps", "timeout_ms", "retries", "note"});
+    only_keys(cc, o, "",
+              {"id", "section", "title", "level", "models", "tags", "preconditions", "steps",
+               "timeout_ms", "retries", "note"});
     get_string(cc, o, "", "section", k.section, true);
     get_string(cc, o, "", "title", k.title, false);
     std::string lv;
     if (get_string(cc, o, "", "level", lv, true)) {
       auto l = level_from_string(lv);
-      if (!l) cc.err("level", "must be must, should or may");
-      else k.level = *l;
+      if (!l)
+        cc.err("level", "must be must, should or may");
+      else
+        k.level = *l;
     }
     if (auto ms = o.find("models"); ms != o.end()) {
-      if (!ms->is_array()) cc.err("models", "must be an array of model names");
-      else for (const auto& n : *ms) {
-        auto mm = n.is_string() ? top::model_from_string(n.get<std::string>()) : std::nullopt;
-        if (!mm || *mm == top::Model::unknown) cc.err("models", "unknown model " + n.dump());
-        else k.models.push_back(*mm);
-      }
+      if (!ms->is_array())
+        cc.err("models", "must be an array of model names");
+      else
+        for (const auto& n : *ms) {
+          auto mm = n.is_string() ? top::model_from_string(n.get<std::string>()) : std::nullopt;
+          if (!mm || *mm == top::Model::unknown)
+            cc.err("models", "unknown model " + n.dump());
+          else
+            k.models.push_back(*mm);
+        }
     }
     if (auto ts = o.find("tags"); ts != o.end()) {
-      if (!ts->is_array()) cc.err("tags", "must be an array of strings");
-      else for (const auto& n : *ts) {
-        if (!n.is_string()) cc.err("tags", "must hold strings");
-        else k.tags.push_back(n.get<std::string>());
-      }
+      if (!ts->is_array())
+        cc.err("tags", "must be an array of strings");
+      else
+        for (const auto& n : *ts) {
+          if (!n.is_string())
+            cc.err("tags", "must hold strings");
+          else
+            k.tags.push_back(n.get<std::string>());
+        }
     }
     std::uint32_t r = 0;
     if (get_uint(cc, o, "", "retries", r, 10)) k.retries = static_cast<std::int32_t>(r);
@@ -493,8 +577,8 @@ bool resolve_send(const SendSpec& s, top::Dialect dialect, char client, std::str
   b.control = s.control;
   b.ident = s.command;
   b.data = s.data;
-  b.header = s.header ? *s.header
-                      : top::choose_header(dialect, cmd ? cmd->address : b.dst, s.data.size());
+  b.header =
+      s.header ? *s.header : top::choose_header(dialect, cmd ? cmd->address : b.dst, s.data.size());
   if (s.data.size() > top::max_data_ext16) {
     error = "data too long";
     return false;

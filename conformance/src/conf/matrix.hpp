@@ -22,25 +22,25 @@ std::optional<Level> level_from_string(std::string_view s) noexcept;
 // What a step sends: a template resolved against the transport (the client
 // address U or P), with the checksum added when absent.
 struct SendSpec {
-  bool raw = false;          // a raw frame or hex bytes, sent as written
-  std::string text;          // raw: the frame text (may hold "{client}")
-  bool hex = false;          // raw bytes given as hex
+  bool raw = false;  // a raw frame or hex bytes, sent as written
+  std::string text;  // raw: the frame text (may hold "{client}")
+  bool hex = false;  // raw bytes given as hex
   // structured command
-  std::string command;       // "GAY"
+  std::string command;  // "GAY"
   char control = 'w';
   std::string data;
-  char src = 0;              // 0: the client address of the transport
-  char dst = 0;              // 0: the command's address class
+  char src = 0;                       // 0: the client address of the transport
+  char dst = 0;                       // 0: the command's address class
   std::optional<top::Header> header;  // default: top::choose_header
 };
 
 // A check on one decoded field of a reply.
 struct FieldCheck {
   std::string name;
-  std::optional<double> min, max;      // range in scaled units
-  std::vector<std::string> enums;      // allowed enum names
-  std::string pattern;                 // ECMAScript regex over the field text
-  std::optional<std::string> equals;   // the formatted raw text of the field
+  std::optional<double> min, max;     // range in scaled units
+  std::vector<std::string> enums;     // allowed enum names
+  std::string pattern;                // ECMAScript regex over the field text
+  std::optional<std::string> equals;  // the formatted raw text of the field
 };
 
 enum class ExpectKind : std::uint8_t { frame, echo, reply, error, silence, stream, readback };
@@ -48,21 +48,21 @@ std::string_view to_string(ExpectKind k) noexcept;
 
 struct Expectation {
   ExpectKind kind = ExpectKind::echo;
-  bool tolerated = false;    // matching only this gives non-strict
+  bool tolerated = false;      // matching only this gives non-strict
   bool any_addresses = false;  // "addresses": "any": no swap check
   std::string note;
-  SendSpec frame;            // frame: the exact frame expected
+  SendSpec frame;  // frame: the exact frame expected
   // reply
-  std::string ident;         // default: the request's identifier
-  char control = 0;          // 0: any
+  std::string ident;  // default: the request's identifier
+  char control = 0;   // 0: any
   std::vector<FieldCheck> fields;
-  std::string data_pattern;  // regex over the whole data
+  std::string data_pattern;         // regex over the whole data
   std::optional<std::string> data;  // exact data
   // silence
   std::uint32_t silence_ms = 0;
   // stream
   double rate_hz = 0;
-  double tolerance = 0.25;   // fraction of rate_hz
+  double tolerance = 0.25;  // fraction of rate_hz
   std::uint32_t duration_ms = 0;
   // readback: the read sent after the write's reply; the reply data must
   // equal `data` when given, else the data the step wrote.
@@ -70,22 +70,22 @@ struct Expectation {
 };
 
 struct Step {
-  std::optional<SendSpec> send;        // none: only wait and watch
-  std::vector<Expectation> expect;     // ordered alternatives
-  std::uint32_t timeout_ms = 0;        // 0: the case's
+  std::optional<SendSpec> send;     // none: only wait and watch
+  std::vector<Expectation> expect;  // ordered alternatives
+  std::uint32_t timeout_ms = 0;     // 0: the case's
 };
 
 struct Case {
   std::string id;
-  std::string section;       // "SkyDroid 3.3.1"
+  std::string section;  // "SkyDroid 3.3.1"
   std::string title;
   Level level = Level::must;
-  std::vector<top::Model> models;      // empty: every model of the matrix
+  std::vector<top::Model> models;  // empty: every model of the matrix
   std::vector<std::string> tags;
-  std::vector<Step> preconditions;     // not met: inconclusive
+  std::vector<Step> preconditions;  // not met: inconclusive
   std::vector<Step> steps;
-  std::uint32_t timeout_ms = 0;        // 0: the matrix default
-  std::int32_t retries = -1;           // -1: the matrix default
+  std::uint32_t timeout_ms = 0;  // 0: the matrix default
+  std::int32_t retries = -1;     // -1: the matrix default
   bool applies_to(top::Model m) const noexcept;
 };
 
@@ -94,17 +94,17 @@ struct Matrix {
   std::string title;
   top::Model model = top::Model::unknown;
   top::Dialect dialect = top::Dialect::unknown;
-  std::uint32_t timeout_ms = 300;      // default per-step reply timeout
-  std::uint32_t retries = 1;           // default retries of a failing case
-  std::uint32_t settle_ms = 15;        // watch for duplicates after a match
+  std::uint32_t timeout_ms = 300;  // default per-step reply timeout
+  std::uint32_t retries = 1;       // default retries of a failing case
+  std::uint32_t settle_ms = 15;    // watch for duplicates after a match
   std::uint32_t probe_timeout_ms = 500;
-  std::optional<SendSpec> probe;       // liveness probe; any answer is life
+  std::optional<SendSpec> probe;  // liveness probe; any answer is life
   std::vector<Case> cases;
 };
 
 struct LoadResult {
-  std::optional<Matrix> matrix;        // set when errors is empty
-  std::vector<std::string> errors;     // "FILE: case ID: key: message"
+  std::optional<Matrix> matrix;     // set when errors is empty
+  std::vector<std::string> errors;  // "FILE: case ID: key: message"
 };
 
 // Parses and validates a matrix. `file` names it in errors. Never throws.
@@ -112,7 +112,7 @@ LoadResult load_matrix(std::string_view text, std::string_view file);
 
 // Resolves a send template into bytes for a dialect and client address.
 // Returns false with `error` when the template cannot make a frame.
-bool resolve_send(const SendSpec& s, top::Dialect dialect, char client,
-                  std::string& bytes, std::string& error);
+bool resolve_send(const SendSpec& s, top::Dialect dialect, char client, std::string& bytes,
+                  std::string& error);
 
 }  // namespace topconf

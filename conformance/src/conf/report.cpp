@@ -10,15 +10,26 @@ std::string xml_escape(std::string_view s) {
   std::string o;
   for (char c : s) {
     switch (c) {
-      case '&': o += "&amp;"; break;
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '"': o += "&quot;"; break;
-      case '\'': o += "&#39;"; break;
+      case '&':
+        o += "&amp;";
+        break;
+      case '<':
+        o += "&lt;";
+        break;
+      case '>':
+        o += "&gt;";
+        break;
+      case '"':
+        o += "&quot;";
+        break;
+      case '\'':
+        o += "&#39;";
+        break;
       default:
         if (static_cast<unsigned char>(c) < 0x20 && c != '\n' && c != '\t') {
           char b[8];
-          std::snprintf(b, sizeof b, "\\x%02X", static_cast<unsigned>(static_cast<unsigned char>(c)));
+          std::snprintf(b, sizeof b, "\\x%02X",
+                        static_cast<unsigned>(static_cast<unsigned char>(c)));
           o += b;
         } else {
           o += c;
@@ -36,12 +47,18 @@ std::string ms(std::uint64_t us) {
 
 const char* color_of(Verdict v) {
   switch (v) {
-    case Verdict::pass: return "\x1b[32m";
-    case Verdict::non_strict: return "\x1b[33m";
-    case Verdict::fail: return "\x1b[31m";
-    case Verdict::error: return "\x1b[35m";
-    case Verdict::inconclusive: return "\x1b[36m";
-    default: return "\x1b[2m";
+    case Verdict::pass:
+      return "\x1b[32m";
+    case Verdict::non_strict:
+      return "\x1b[33m";
+    case Verdict::fail:
+      return "\x1b[31m";
+    case Verdict::error:
+      return "\x1b[35m";
+    case Verdict::inconclusive:
+      return "\x1b[36m";
+    default:
+      return "\x1b[2m";
   }
 }
 
@@ -68,8 +85,11 @@ void write_console(std::ostream& os, const RunResult& r, bool color) {
   }
   std::size_t w = 10;
   for (const auto& c : r.cases) w = std::max(w, c.spec->id.size());
-  os << std::left << std::setw(static_cast<int>(w)) << "case" << "  " << std::setw(6) << "level"
-     << "  " << std::setw(12) << "result" << "  " << std::right << std::setw(8) << "ms" << "  reason\n";
+  os << std::left << std::setw(static_cast<int>(w)) << "case"
+     << "  " << std::setw(6) << "level"
+     << "  " << std::setw(12) << "result"
+     << "  " << std::right << std::setw(8) << "ms"
+     << "  reason\n";
   for (const auto& c : r.cases) {
     std::string v(to_string(c.verdict));
     if (c.flaky) v += "*";
@@ -80,10 +100,12 @@ void write_console(std::ostream& os, const RunResult& r, bool color) {
     if (color) os << "\x1b[0m";
     os << "  " << std::right << std::setw(8) << ms(c.duration_us) << "  " << c.reason << "\n";
   }
-  os << "\n" << r.cases.size() << " case(s) against " << r.target << " (" << top::to_string(r.model)
-     << "): " << r.count(Verdict::pass) << " pass, " << r.count(Verdict::non_strict) << " non-strict, "
-     << r.count(Verdict::fail) << " fail, " << r.count(Verdict::not_applicable) << " n/a, "
-     << r.count(Verdict::inconclusive) << " inconclusive, " << r.count(Verdict::error) << " error";
+  os << "\n"
+     << r.cases.size() << " case(s) against " << r.target << " (" << top::to_string(r.model)
+     << "): " << r.count(Verdict::pass) << " pass, " << r.count(Verdict::non_strict)
+     << " non-strict, " << r.count(Verdict::fail) << " fail, " << r.count(Verdict::not_applicable)
+     << " n/a, " << r.count(Verdict::inconclusive) << " inconclusive, " << r.count(Verdict::error)
+     << " error";
   std::size_t flaky = 0;
   for (const auto& c : r.cases) flaky += c.flaky ? 1 : 0;
   if (flaky) os << " (" << flaky << " flaky, marked *)";
@@ -128,7 +150,9 @@ nlohmann::json to_json(const RunResult& r) {
     nlohmann::json tr = nlohmann::json::array();
     for (const auto& e : c.transcript)
       tr.push_back({{"t_ms", static_cast<double>(e.t_us) / 1000.0},
-                    {"dir", e.dir == '>' ? "sent" : e.dir == '<' ? "received" : "note"},
+                    {"dir", e.dir == '>'   ? "sent"
+                            : e.dir == '<' ? "received"
+                                           : "note"},
                     {"bytes", printable(e.bytes)}});
     k["transcript"] = tr;
     if (c.dropped_exchanges) k["transcript_dropped"] = c.dropped_exchanges;
@@ -138,27 +162,37 @@ nlohmann::json to_json(const RunResult& r) {
 }
 
 void write_junit(std::ostream& os, const RunResult& r) {
-  std::size_t failures = r.count(Verdict::fail) + r.count(Verdict::non_strict) + r.count(Verdict::inconclusive);
+  std::size_t failures =
+      r.count(Verdict::fail) + r.count(Verdict::non_strict) + r.count(Verdict::inconclusive);
   os << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   os << "<testsuites>\n<testsuite name=\"topconf." << xml_escape(top::to_string(r.model))
      << "\" tests=\"" << r.cases.size() << "\" failures=\"" << failures << "\" errors=\""
-     << (r.count(Verdict::error) + (r.unreachable ? 1 : 0)) << "\" skipped=\"" << r.count(Verdict::not_applicable)
-     << "\" time=\"" << r.seconds << "\" timestamp=\"" << xml_escape(r.started_at) << "\">\n";
+     << (r.count(Verdict::error) + (r.unreachable ? 1 : 0)) << "\" skipped=\""
+     << r.count(Verdict::not_applicable) << "\" time=\"" << r.seconds << "\" timestamp=\""
+     << xml_escape(r.started_at) << "\">\n";
   if (r.unreachable)
     os << "  <testcase classname=\"topconf\" name=\"liveness\"><error message=\""
        << xml_escape(r.unreachable_reason) << "\"/></testcase>\n";
   for (const auto& c : r.cases) {
-    os << "  <testcase classname=\"" << xml_escape(c.spec->section) << "\" name=\"" << xml_escape(c.spec->id)
-       << "\" time=\"" << static_cast<double>(c.duration_us) / 1e6 << "\">";
+    os << "  <testcase classname=\"" << xml_escape(c.spec->section) << "\" name=\""
+       << xml_escape(c.spec->id) << "\" time=\"" << static_cast<double>(c.duration_us) / 1e6
+       << "\">";
     const std::string msg = xml_escape(std::string(to_string(c.verdict)) + ": " + c.reason);
     switch (c.verdict) {
-      case Verdict::pass: break;
-      case Verdict::not_applicable: os << "<skipped message=\"" << msg << "\"/>"; break;
-      case Verdict::error: os << "<error message=\"" << msg << "\"/>"; break;
+      case Verdict::pass:
+        break;
+      case Verdict::not_applicable:
+        os << "<skipped message=\"" << msg << "\"/>";
+        break;
+      case Verdict::error:
+        os << "<error message=\"" << msg << "\"/>";
+        break;
       default:
         // may-level cases are reported but do not fail the suite.
-        if (c.spec->level == Level::may) os << "<skipped message=\"" << msg << "\"/>";
-        else os << "<failure message=\"" << msg << "\" type=\"" << to_string(c.verdict) << "\"/>";
+        if (c.spec->level == Level::may)
+          os << "<skipped message=\"" << msg << "\"/>";
+        else
+          os << "<failure message=\"" << msg << "\" type=\"" << to_string(c.verdict) << "\"/>";
     }
     os << "<system-out>";
     for (const auto& e : c.transcript)
@@ -172,36 +206,48 @@ void write_html(std::ostream& os, const RunResult& r) {
   os << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>topconf "
      << xml_escape(top::to_string(r.model)) << " report</title>\n<style>\n"
      << "body{font-family:system-ui,sans-serif;margin:2em;color:#222}"
-     << "table{border-collapse:collapse;width:100%}td,th{border:1px solid #ccc;padding:4px 8px;text-align:left;vertical-align:top}"
-     << "th{background:#f3f3f3}.pass{background:#e6f6e6}.non-strict{background:#fff5d6}.fail{background:#fbe3e3}"
+     << "table{border-collapse:collapse;width:100%}td,th{border:1px solid #ccc;padding:4px "
+        "8px;text-align:left;vertical-align:top}"
+     << "th{background:#f3f3f3}.pass{background:#e6f6e6}.non-strict{background:#fff5d6}.fail{"
+        "background:#fbe3e3}"
      << ".error{background:#f3e0f7}.inconclusive{background:#e0f2f7}.na{color:#888}"
      << "pre{margin:0;font-size:12px;white-space:pre-wrap}details summary{cursor:pointer}"
-     << ".sum span{display:inline-block;margin-right:1em;padding:2px 8px;border-radius:4px}\n</style></head><body>\n";
+     << ".sum span{display:inline-block;margin-right:1em;padding:2px "
+        "8px;border-radius:4px}\n</style></head><body>\n";
   os << "<h1>topconf report: " << xml_escape(top::to_string(r.model)) << "</h1>\n";
-  os << "<p>Target <b>" << xml_escape(r.target) << "</b>, matrix <code>" << xml_escape(r.matrix_file)
-     << "</code>, started " << xml_escape(r.started_at) << ", " << r.seconds << " s";
+  os << "<p>Target <b>" << xml_escape(r.target) << "</b>, matrix <code>"
+     << xml_escape(r.matrix_file) << "</code>, started " << xml_escape(r.started_at) << ", "
+     << r.seconds << " s";
   if (r.seeded) os << ", seed " << r.seed;
   os << ".</p>\n";
-  if (r.unreachable) os << "<p class=\"fail\"><b>Target unreachable:</b> " << xml_escape(r.unreachable_reason) << "</p>\n";
+  if (r.unreachable)
+    os << "<p class=\"fail\"><b>Target unreachable:</b> " << xml_escape(r.unreachable_reason)
+       << "</p>\n";
   os << "<p class=\"sum\">";
   for (Verdict v : {Verdict::pass, Verdict::non_strict, Verdict::fail, Verdict::not_applicable,
                     Verdict::inconclusive, Verdict::error}) {
     const std::string cls = v == Verdict::not_applicable ? "na" : std::string(to_string(v));
     os << "<span class=\"" << cls << "\">" << to_string(v) << ": " << r.count(v) << "</span>";
   }
-  os << "</p>\n<p><b>" << (r.exit_code() == 0 ? "PASS" : "FAIL")
-     << "</b>: exit status " << r.exit_code() << " (0 when every must and should case passes or is not applicable).</p>\n";
-  os << "<table><tr><th>case</th><th>section</th><th>level</th><th>result</th><th>ms</th><th>reason and transcript</th></tr>\n";
+  os << "</p>\n<p><b>" << (r.exit_code() == 0 ? "PASS" : "FAIL") << "</b>: exit status "
+     << r.exit_code() << " (0 when every must and should case passes or is not applicable).</p>\n";
+  os << "<table><tr><th>case</th><th>section</th><th>level</th><th>result</th><th>ms</"
+        "th><th>reason and transcript</th></tr>\n";
   for (const auto& c : r.cases) {
-    const std::string cls = c.verdict == Verdict::not_applicable ? "na" : std::string(to_string(c.verdict));
+    const std::string cls =
+        c.verdict == Verdict::not_applicable ? "na" : std::string(to_string(c.verdict));
     os << "<tr class=\"" << cls << "\"><td><code>" << xml_escape(c.spec->id) << "</code><br>"
        << xml_escape(c.spec->title) << "</td><td>" << xml_escape(c.spec->section) << "</td><td>"
-       << to_string(c.spec->level) << "</td><td>" << to_string(c.verdict) << (c.flaky ? " (flaky)" : "")
-       << "</td><td>" << ms(c.duration_us) << "</td><td>" << xml_escape(c.reason);
+       << to_string(c.spec->level) << "</td><td>" << to_string(c.verdict)
+       << (c.flaky ? " (flaky)" : "") << "</td><td>" << ms(c.duration_us) << "</td><td>"
+       << xml_escape(c.reason);
     if (!c.transcript.empty()) {
       os << "<details><summary>transcript (" << c.transcript.size() << ")</summary><pre>";
       for (const auto& e : c.transcript)
-        os << xml_escape(ms(e.t_us) + " ms " + (e.dir == '>' ? "sent     " : e.dir == '<' ? "received " : "note     ") +
+        os << xml_escape(ms(e.t_us) + " ms " +
+                         (e.dir == '>'   ? "sent     "
+                          : e.dir == '<' ? "received "
+                                         : "note     ") +
                          printable(e.bytes))
            << "\n";
       if (c.dropped_exchanges) os << "... " << c.dropped_exchanges << " more not kept\n";

@@ -14,7 +14,8 @@ namespace {
 std::string iso_now() {
   const auto now = std::chrono::system_clock::now();
   const std::time_t t = std::chrono::system_clock::to_time_t(now);
-  const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() % 1000;
+  const auto ms =
+      std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() % 1000;
   std::tm tm{};
   gmtime_r(&t, &tm);
   char buf[40];
@@ -75,7 +76,10 @@ class Wire {
       log('<', chunk);
       if (o_.pcap) o_.pcap->write(t_.remote(), t_.local(), chunk);
       dec_.feed(chunk);
-      if (t_.datagram()) dec_.finish(); else dec_.flush();
+      if (t_.datagram())
+        dec_.finish();
+      else
+        dec_.flush();
       collect();
       if (t_.datagram()) dec_.reset();
     }
@@ -143,8 +147,8 @@ bool is_push(std::string_view ident) { return ident == "GAC" || ident == "GIC"; 
 std::string frame_deviation(const Received& r) {
   if (r.after_garbage) return "garbage preceded the frame";
   for (const auto& f : r.frame.findings) {
-    if (f.severity == top::Severity::error || f.severity == top::Severity::warning || !f.quirk.empty() ||
-        f.code == top::FindingCode::tmp_quirk)
+    if (f.severity == top::Severity::error || f.severity == top::Severity::warning ||
+        !f.quirk.empty() || f.code == top::FindingCode::tmp_quirk)
       return std::string(top::to_string(f.code)) + ": " + f.message;
   }
   return {};
@@ -173,7 +177,8 @@ struct Runner {
                const Received& r, std::string& why) const {
     const top::Frame& f = r.frame;
     if (!f.ok()) {
-      why = "a frame arrived with errors: " + (f.findings.empty() ? std::string("?") : f.findings[0].message);
+      why = "a frame arrived with errors: " +
+            (f.findings.empty() ? std::string("?") : f.findings[0].message);
       return false;
     }
     switch (e.kind) {
@@ -195,7 +200,8 @@ struct Runner {
         return true;
       case ExpectKind::error:
         if (f.ident_view() != "ERE") {
-          if (req && f.ident_view() == req->ident_view()) why = "answered " + f.raw + " instead of ERE";
+          if (req && f.ident_view() == req->ident_view())
+            why = "answered " + f.raw + " instead of ERE";
           return false;
         }
         if (!addresses_ok(e, req, f)) {
@@ -204,13 +210,16 @@ struct Runner {
         }
         return true;
       case ExpectKind::reply: {
-        const std::string ident = !e.ident.empty() ? e.ident : req ? std::string(req->ident_view()) : "";
+        const std::string ident = !e.ident.empty() ? e.ident
+                                  : req            ? std::string(req->ident_view())
+                                                   : "";
         if (f.ident_view() != ident) {
           if (f.ident_view() == "ERE") why = "the device answered ERE";
           return false;
         }
         if (e.control && f.control != e.control) {
-          why = "reply " + f.raw + " has control '" + std::string(1, f.control ? f.control : '?') + "'";
+          why = "reply " + f.raw + " has control '" + std::string(1, f.control ? f.control : '?') +
+                "'";
           return false;
         }
         if (!addresses_ok(e, req, f)) {
@@ -235,7 +244,8 @@ struct Runner {
           for (const auto& fd : dec.findings) {
             if (fd.severity != top::Severity::warning) continue;
             if (fd.code == top::FindingCode::unswapped_addresses) continue;
-            why = "reply " + f.raw + ": " + std::string(top::to_string(fd.code)) + ": " + fd.message;
+            why =
+                "reply " + f.raw + ": " + std::string(top::to_string(fd.code)) + ": " + fd.message;
             return false;
           }
         }
@@ -252,8 +262,8 @@ struct Runner {
             why = "field " + fc.name + " = " + top::format_value(*fv) + " is out of range";
             return false;
           }
-          if (!fc.enums.empty() &&
-              std::find(fc.enums.begin(), fc.enums.end(), std::string(fv->enum_name)) == fc.enums.end()) {
+          if (!fc.enums.empty() && std::find(fc.enums.begin(), fc.enums.end(),
+                                             std::string(fv->enum_name)) == fc.enums.end()) {
             why = "field " + fc.name + " = " + top::format_value(*fv) + " is not an allowed value";
             return false;
           }
@@ -268,7 +278,8 @@ struct Runner {
         }
         return true;
       }
-      default: return false;
+      default:
+        return false;
     }
   }
 
@@ -304,9 +315,12 @@ struct Runner {
     bool has_frame_alt = false;
     std::uint32_t silence_ms = 0, stream_ms = 0;
     for (const auto& e : s.expect) {
-      if (e.kind == ExpectKind::silence) { silence_ms = std::max(silence_ms, e.silence_ms); }
-      else if (e.kind == ExpectKind::stream) { stream_ms = std::max(stream_ms, e.duration_ms); }
-      else if (e.kind != ExpectKind::readback) has_frame_alt = true;
+      if (e.kind == ExpectKind::silence) {
+        silence_ms = std::max(silence_ms, e.silence_ms);
+      } else if (e.kind == ExpectKind::stream) {
+        stream_ms = std::max(stream_ms, e.duration_ms);
+      } else if (e.kind != ExpectKind::readback)
+        has_frame_alt = true;
     }
     if (s.send) w.send(sent);
     const std::uint64_t start = w.now();
@@ -320,7 +334,7 @@ struct Runner {
     std::string stream_ident;
     for (const auto& e : s.expect)
       if (e.kind == ExpectKind::stream) stream_ident = e.ident;
-    std::uint64_t first_answer = 0;   // time of the first non-push frame
+    std::uint64_t first_answer = 0;  // time of the first non-push frame
     bool answered = false;
     std::string near_miss;
     std::size_t frames = 0;
@@ -331,11 +345,13 @@ struct Runner {
       const std::uint64_t dl = settle_deadline ? std::min(settle_deadline, deadline) : deadline;
       if (!w.next(dl, r)) break;
       if (++frames > o.max_frames_per_step) {
-        w.note("more than " + std::to_string(o.max_frames_per_step) + " frames in one step: flooding");
+        w.note("more than " + std::to_string(o.max_frames_per_step) +
+               " frames in one step: flooding");
         break;
       }
       const std::string_view id = r.frame.ident_view();
-      if (!stream_ident.empty() && id == stream_ident && r.frame.ok() && r.t_us <= start + stream_ms * 1000)
+      if (!stream_ident.empty() && id == stream_ident && r.frame.ok() &&
+          r.t_us <= start + stream_ms * 1000)
         push_times.push_back(r.t_us);
       const bool push = is_push(id) && !(rq && rq->ident_view() == id);
       if (!push && !answered) {
@@ -352,17 +368,23 @@ struct Runner {
         const auto k = s.expect[i].kind;
         if (matched[i] || k == ExpectKind::silence || k == ExpectKind::stream) continue;
         std::string why;
-        if (matches(s.expect[i], rq, exact[i], r, why)) matched[i] = r;
-        else if (!why.empty() && near_miss.empty()) near_miss = why;
+        if (matches(s.expect[i], rq, exact[i], r, why))
+          matched[i] = r;
+        else if (!why.empty() && near_miss.empty())
+          near_miss = why;
       }
       // Stop early when the first alternative that can still decide did.
       bool decided = false;
       for (std::size_t i = 0; i < s.expect.size(); ++i) {
         const auto k = s.expect[i].kind;
         if (k == ExpectKind::silence || k == ExpectKind::stream) break;
-        if (matched[i]) { decided = true; break; }
+        if (matched[i]) {
+          decided = true;
+          break;
+        }
       }
-      if (decided) settle_deadline = w.now() + std::uint64_t{o.settle_ms ? *o.settle_ms : m.settle_ms} * 1000;
+      if (decided)
+        settle_deadline = w.now() + std::uint64_t{o.settle_ms ? *o.settle_ms : m.settle_ms} * 1000;
     }
     // The verdict: the first alternative, in order, that holds.
     for (std::size_t i = 0; i < s.expect.size(); ++i) {
@@ -372,16 +394,20 @@ struct Runner {
       switch (e.kind) {
         case ExpectKind::silence:
           ok = !answered || first_answer > start + std::uint64_t{e.silence_ms} * 1000;
-          if (!ok && near_miss.empty()) near_miss = "expected silence for " + std::to_string(e.silence_ms) + " ms";
+          if (!ok && near_miss.empty())
+            near_miss = "expected silence for " + std::to_string(e.silence_ms) + " ms";
           break;
         case ExpectKind::stream: {
           const std::size_t n = push_times.size();
           double rate = 0;
-          if (n >= 2) rate = static_cast<double>(n - 1) * 1e6 / static_cast<double>(push_times.back() - push_times.front());
+          if (n >= 2)
+            rate = static_cast<double>(n - 1) * 1e6 /
+                   static_cast<double>(push_times.back() - push_times.front());
           ok = n >= 2 && std::fabs(rate - e.rate_hz) <= e.tolerance * e.rate_hz;
           if (!ok) {
             char buf[160];
-            std::snprintf(buf, sizeof buf, "%s stream: %zu frame(s) in %u ms, %.2f Hz; expected %.2f Hz +-%.0f%%",
+            std::snprintf(buf, sizeof buf,
+                          "%s stream: %zu frame(s) in %u ms, %.2f Hz; expected %.2f Hz +-%.0f%%",
                           e.ident.c_str(), n, e.duration_ms, rate, e.rate_hz, e.tolerance * 100);
             if (near_miss.empty() || n > 0) near_miss = buf;
           }
@@ -408,8 +434,8 @@ struct Runner {
     }
     res.outcome = Outcome::fail;
     res.reason = !near_miss.empty() ? near_miss
-                 : answered        ? "no alternative matched what the device sent"
-                                   : "no answer within " + std::to_string(window) + " ms";
+                 : answered         ? "no alternative matched what the device sent"
+                                    : "no answer within " + std::to_string(window) + " ms";
     return res;
   }
 
@@ -423,7 +449,10 @@ struct Runner {
     std::uint64_t deadline = w.now() + std::uint64_t{timeout} * 1000;
     bool got = false;
     while (w.next(deadline, r)) {
-      if (rq && r.frame.ident_view() == rq->ident_view()) { got = true; break; }
+      if (rq && r.frame.ident_view() == rq->ident_view()) {
+        got = true;
+        break;
+      }
       if (r.frame.ident_view() == "ERE") break;
     }
     if (!got) {
@@ -442,8 +471,12 @@ struct Runner {
     const std::string want = e.data ? *e.data : rq ? std::string(rq->data()) : "";
     deadline = w.now() + std::uint64_t{timeout_for(c, s)} * 1000;
     while (w.next(deadline, r)) {
-      if (rp.status != top::ParseStatus::frame || r.frame.ident_view() != rp.frame.ident_view()) continue;
-      if (!r.frame.ok()) { res.reason = "read-back reply has errors: " + r.frame.raw; return res; }
+      if (rp.status != top::ParseStatus::frame || r.frame.ident_view() != rp.frame.ident_view())
+        continue;
+      if (!r.frame.ok()) {
+        res.reason = "read-back reply has errors: " + r.frame.raw;
+        return res;
+      }
       if (r.frame.data() != want) {
         res.reason = "read back " + std::string(r.frame.data()) + ", wrote " + want;
         return res;
@@ -451,8 +484,10 @@ struct Runner {
       const std::string dev = frame_deviation(r);
       const bool swapped = r.frame.src == rp.frame.dst && r.frame.dst == rp.frame.src;
       res.outcome = dev.empty() && swapped && !e.tolerated ? Outcome::strict : Outcome::tolerated;
-      res.reason = !dev.empty() ? dev : !swapped ? "read-back reply does not swap the addresses"
-                                      : e.tolerated ? "only a tolerated alternative matched (readback)" : "";
+      res.reason = !dev.empty()  ? dev
+                   : !swapped    ? "read-back reply does not swap the addresses"
+                   : e.tolerated ? "only a tolerated alternative matched (readback)"
+                                 : "";
       return res;
     }
     res.reason = "no answer to the read-back within " + std::to_string(timeout) + " ms";
@@ -463,7 +498,11 @@ struct Runner {
   void attempt(const Case& c, Verdict& v, std::string& reason) {
     for (std::size_t i = 0; i < c.preconditions.size(); ++i) {
       StepResult sr = run_step(c, c.preconditions[i]);
-      if (sr.outcome == Outcome::error) { v = Verdict::error; reason = sr.reason; return; }
+      if (sr.outcome == Outcome::error) {
+        v = Verdict::error;
+        reason = sr.reason;
+        return;
+      }
       if (sr.outcome == Outcome::fail) {
         v = Verdict::inconclusive;
         reason = "precondition " + std::to_string(i + 1) + " not met: " + sr.reason;
@@ -475,8 +514,16 @@ struct Runner {
     for (std::size_t i = 0; i < c.steps.size(); ++i) {
       StepResult sr = run_step(c, c.steps[i]);
       const std::string where = c.steps.size() > 1 ? "step " + std::to_string(i + 1) + ": " : "";
-      if (sr.outcome == Outcome::error) { v = Verdict::error; reason = where + sr.reason; return; }
-      if (sr.outcome == Outcome::fail) { v = Verdict::fail; reason = where + sr.reason; return; }
+      if (sr.outcome == Outcome::error) {
+        v = Verdict::error;
+        reason = where + sr.reason;
+        return;
+      }
+      if (sr.outcome == Outcome::fail) {
+        v = Verdict::fail;
+        reason = where + sr.reason;
+        return;
+      }
       if (sr.outcome == Outcome::tolerated && v == Verdict::pass) {
         v = Verdict::non_strict;
         reason = where + sr.reason;
@@ -515,12 +562,18 @@ struct Runner {
 
 std::string_view to_string(Verdict v) noexcept {
   switch (v) {
-    case Verdict::pass: return "pass";
-    case Verdict::non_strict: return "non-strict";
-    case Verdict::fail: return "fail";
-    case Verdict::not_applicable: return "n/a";
-    case Verdict::inconclusive: return "inconclusive";
-    case Verdict::error: return "error";
+    case Verdict::pass:
+      return "pass";
+    case Verdict::non_strict:
+      return "non-strict";
+    case Verdict::fail:
+      return "fail";
+    case Verdict::not_applicable:
+      return "n/a";
+    case Verdict::inconclusive:
+      return "inconclusive";
+    case Verdict::error:
+      return "error";
   }
   return "?";
 }
@@ -528,18 +581,25 @@ std::string_view to_string(Verdict v) noexcept {
 bool glob_match(std::string_view p, std::string_view s) noexcept {
   std::size_t pi = 0, si = 0, star = std::string_view::npos, mark = 0;
   while (si < s.size()) {
-    if (pi < p.size() && (p[pi] == '?' || p[pi] == s[si])) { ++pi; ++si; }
-    else if (pi < p.size() && p[pi] == '*') { star = pi++; mark = si; }
-    else if (star != std::string_view::npos) { pi = star + 1; si = ++mark; }
-    else return false;
+    if (pi < p.size() && (p[pi] == '?' || p[pi] == s[si])) {
+      ++pi;
+      ++si;
+    } else if (pi < p.size() && p[pi] == '*') {
+      star = pi++;
+      mark = si;
+    } else if (star != std::string_view::npos) {
+      pi = star + 1;
+      si = ++mark;
+    } else
+      return false;
   }
   while (pi < p.size() && p[pi] == '*') ++pi;
   return pi == p.size();
 }
 
 std::size_t RunResult::count(Verdict v) const noexcept {
-  return static_cast<std::size_t>(std::count_if(cases.begin(), cases.end(),
-                                                [v](const CaseResult& c) { return c.verdict == v; }));
+  return static_cast<std::size_t>(std::count_if(
+      cases.begin(), cases.end(), [v](const CaseResult& c) { return c.verdict == v; }));
 }
 
 int RunResult::exit_code() const noexcept {
@@ -617,7 +677,9 @@ RunResult run_matrix(const Matrix& matrix, Transport& t, const RunOptions& o) {
       cr.verdict = Verdict::error;
       cr.reason = dead;
     } else {
-      const std::uint32_t retries = o.retries ? *o.retries : c->retries >= 0 ? static_cast<std::uint32_t>(c->retries) : m.retries;
+      const std::uint32_t retries = o.retries         ? *o.retries
+                                    : c->retries >= 0 ? static_cast<std::uint32_t>(c->retries)
+                                                      : m.retries;
       bool failed_once = false;
       for (std::uint32_t a = 0; a <= retries; ++a) {
         ++cr.attempts;

@@ -22,34 +22,34 @@ std::string_view to_string(Verdict v) noexcept;
 // the start of the run, on the transport's clock).
 struct Exchange {
   std::uint64_t t_us = 0;
-  char dir = '>';            // '>' sent, '<' received, '!' runner note
+  char dir = '>';  // '>' sent, '<' received, '!' runner note
   std::string bytes;
 };
 
 struct CaseResult {
   const Case* spec = nullptr;  // points into RunResult::matrix
   Verdict verdict = Verdict::error;
-  bool flaky = false;        // passed after a failed attempt
+  bool flaky = false;  // passed after a failed attempt
   int attempts = 0;
-  std::string reason;        // why it is not a plain pass
+  std::string reason;  // why it is not a plain pass
   std::vector<Exchange> transcript;
   std::uint64_t dropped_exchanges = 0;  // beyond the transcript cap
   std::uint64_t start_us = 0;
   std::uint64_t duration_us = 0;
-  std::string started_at;    // ISO 8601 wall clock
+  std::string started_at;  // ISO 8601 wall clock
 };
 
 struct RunOptions {
-  std::vector<std::string> cases;   // ids or globs (*, ?); empty: all
-  std::vector<std::string> tags;    // any of these; empty: all
-  std::vector<Level> levels;        // empty: all
-  std::optional<std::uint64_t> seed;  // shuffle the case order
+  std::vector<std::string> cases;           // ids or globs (*, ?); empty: all
+  std::vector<std::string> tags;            // any of these; empty: all
+  std::vector<Level> levels;                // empty: all
+  std::optional<std::uint64_t> seed;        // shuffle the case order
   std::optional<std::uint32_t> retries;     // overrides the matrix
   std::optional<std::uint32_t> timeout_ms;  // overrides the matrix
   std::optional<std::uint32_t> settle_ms;   // overrides the matrix
   topkit::PcapWriter* pcap = nullptr;
   std::function<void(const CaseResult&)> on_case;
-  std::size_t max_transcript = 400;   // exchanges kept per case
+  std::size_t max_transcript = 400;        // exchanges kept per case
   std::size_t max_frames_per_step = 4096;  // a flooding device is cut here
 };
 
@@ -62,7 +62,7 @@ struct RunResult {
   bool unreachable = false;
   std::string unreachable_reason;
   std::string started_at;
-  double seconds = 0;            // wall time of the run
+  double seconds = 0;  // wall time of the run
   std::uint64_t seed = 0;
   bool seeded = false;
   std::size_t count(Verdict v) const noexcept;

@@ -43,9 +43,10 @@ void SimTransport::schedule(const std::vector<std::string>& frames) {
       line_busy_until_ = at;
     }
     Pending p{at, seq_++, std::move(e.bytes)};
-    auto it = std::upper_bound(queue_.begin(), queue_.end(), p, [](const Pending& a, const Pending& b) {
-      return a.at != b.at ? a.at < b.at : a.seq < b.seq;
-    });
+    auto it =
+        std::upper_bound(queue_.begin(), queue_.end(), p, [](const Pending& a, const Pending& b) {
+          return a.at != b.at ? a.at < b.at : a.seq < b.seq;
+        });
     queue_.insert(it, std::move(p));
   }
   // A device that never drains would grow without bound; a real link
@@ -56,7 +57,10 @@ void SimTransport::schedule(const std::vector<std::string>& frames) {
 void SimTransport::send(std::string_view bytes) {
   if (datagram()) decoder_.reset();
   decoder_.feed(bytes);
-  if (datagram()) decoder_.finish(); else decoder_.flush();
+  if (datagram())
+    decoder_.finish();
+  else
+    decoder_.flush();
   last_rx_ = now_;
   std::vector<std::string> replies;
   handle_items(replies);
@@ -113,9 +117,9 @@ namespace {
 using SteadyClock = std::chrono::steady_clock;
 
 std::uint64_t steady_us() {
-  return static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::microseconds>(
-                                        SteadyClock::now().time_since_epoch())
-                                        .count());
+  return static_cast<std::uint64_t>(
+      std::chrono::duration_cast<std::chrono::microseconds>(SteadyClock::now().time_since_epoch())
+          .count());
 }
 
 bool wait_readable(int fd, std::uint64_t deadline_us) {
@@ -163,18 +167,24 @@ class UdpTransport : public Transport {
     if (ec) throw TransportError("udp://" + host + ": not an IP address");
     peer_ = asio::ip::udp::endpoint(addr, port);
     sock_.open(peer_.protocol(), ec);
-    if (!ec) sock_.bind(asio::ip::udp::endpoint(addr.is_loopback() ? addr : asio::ip::address_v4::any(),
-                                                static_cast<std::uint16_t>(std::max(local_port, 0))), ec);
+    if (!ec)
+      sock_.bind(asio::ip::udp::endpoint(addr.is_loopback() ? addr : asio::ip::address_v4::any(),
+                                         static_cast<std::uint16_t>(std::max(local_port, 0))),
+                 ec);
     if (!ec) sock_.connect(peer_, ec);
-    if (ec) throw TransportError("udp://" + host + ":" + std::to_string(port) + ": " + ec.message());
+    if (ec)
+      throw TransportError("udp://" + host + ":" + std::to_string(port) + ": " + ec.message());
     if (local_port > 0) {
       // The device answers to a fixed port (Topotek 9004), not to our
       // source port: do not filter on the peer's port.
       sock_.close();
       sock_.open(peer_.protocol(), ec);
       sock_.set_option(asio::socket_base::reuse_address(true), ec);
-      sock_.bind(asio::ip::udp::endpoint(asio::ip::address_v4::any(), static_cast<std::uint16_t>(local_port)), ec);
-      if (ec) throw TransportError("udp bind port " + std::to_string(local_port) + ": " + ec.message());
+      sock_.bind(asio::ip::udp::endpoint(asio::ip::address_v4::any(),
+                                         static_cast<std::uint16_t>(local_port)),
+                 ec);
+      if (ec)
+        throw TransportError("udp bind port " + std::to_string(local_port) + ": " + ec.message());
       connected_ = false;
     }
     sock_.non_blocking(true, ec);
@@ -184,8 +194,10 @@ class UdpTransport : public Transport {
   char client_address() const override { return client_for(model_, true); }
   void send(std::string_view b) override {
     std::error_code ec;
-    if (connected_) sock_.send(asio::buffer(b.data(), b.size()), 0, ec);
-    else sock_.send_to(asio::buffer(b.data(), b.size()), peer_, 0, ec);
+    if (connected_)
+      sock_.send(asio::buffer(b.data(), b.size()), 0, ec);
+    else
+      sock_.send_to(asio::buffer(b.data(), b.size()), peer_, 0, ec);
     if (ec && ec != asio::error::connection_refused)
       throw TransportError("udp send: " + ec.message());
   }
@@ -214,7 +226,8 @@ class UdpTransport : public Transport {
     return {0x7F000001u, ec ? std::uint16_t{0} : e.port()};
   }
   topkit::Endpoint remote() const override {
-    return {peer_.address().is_v4() ? peer_.address().to_v4().to_uint() : 0x7F000001u, peer_.port()};
+    return {peer_.address().is_v4() ? peer_.address().to_v4().to_uint() : 0x7F000001u,
+            peer_.port()};
   }
   std::string describe() const override {
     return "udp://" + peer_.address().to_string() + ":" + std::to_string(peer_.port());
@@ -238,7 +251,8 @@ class TcpTransport : public Transport {
     if (ec) throw TransportError("tcp://" + host + ": not an IP address");
     peer_ = asio::ip::tcp::endpoint(addr, port);
     sock_.connect(peer_, ec);
-    if (ec) throw TransportError("tcp://" + host + ":" + std::to_string(port) + ": " + ec.message());
+    if (ec)
+      throw TransportError("tcp://" + host + ":" + std::to_string(port) + ": " + ec.message());
     sock_.set_option(asio::ip::tcp::no_delay(true), ec);
   }
   std::uint64_t now_us() override { return steady_us(); }
@@ -254,7 +268,10 @@ class TcpTransport : public Transport {
     char buf[4096];
     std::error_code ec;
     const std::size_t n = sock_.read_some(asio::buffer(buf), ec);
-    if (ec) throw TransportError("tcp receive: " + (ec == asio::error::eof ? std::string("connection closed by the device") : ec.message()));
+    if (ec)
+      throw TransportError("tcp receive: " + (ec == asio::error::eof
+                                                  ? std::string("connection closed by the device")
+                                                  : ec.message()));
     out.assign(buf, n);
     return true;
   }
@@ -264,7 +281,8 @@ class TcpTransport : public Transport {
     return {0x7F000001u, ec ? std::uint16_t{0} : e.port()};
   }
   topkit::Endpoint remote() const override {
-    return {peer_.address().is_v4() ? peer_.address().to_v4().to_uint() : 0x7F000001u, peer_.port()};
+    return {peer_.address().is_v4() ? peer_.address().to_v4().to_uint() : 0x7F000001u,
+            peer_.port()};
   }
   bool tcp() const override { return true; }
   std::string describe() const override {
@@ -286,7 +304,9 @@ class SerialTransport : public Transport {
     port_.open(dev, ec);
     if (ec) throw TransportError("serial:" + dev + ": " + ec.message());
     port_.set_option(asio::serial_port::baud_rate(baud), ec);
-    if (ec) throw TransportError("serial:" + dev + ": baud " + std::to_string(baud) + ": " + ec.message());
+    if (ec)
+      throw TransportError("serial:" + dev + ": baud " + std::to_string(baud) + ": " +
+                           ec.message());
     port_.set_option(asio::serial_port::character_size(8), ec);
     port_.set_option(asio::serial_port::parity(asio::serial_port::parity::none), ec);
     port_.set_option(asio::serial_port::stop_bits(asio::serial_port::stop_bits::one), ec);
@@ -353,7 +373,8 @@ std::unique_ptr<Transport> open_transport(const std::string& target, top::Model 
     if (dev.empty()) throw TransportError(target + ": expected serial:DEVICE[@BAUD]");
     return std::make_unique<SerialTransport>(dev, baud, model);
   }
-  throw TransportError(target + ": expected udp://HOST:PORT, tcp://HOST:PORT or serial:DEVICE[@BAUD]");
+  throw TransportError(target +
+                       ": expected udp://HOST:PORT, tcp://HOST:PORT or serial:DEVICE[@BAUD]");
 }
 
 }  // namespace topconf

@@ -65,8 +65,12 @@ class SimTransport : public Transport {
   top::StreamDecoder decoder_;
   std::uint64_t now_ = 1000000;
   std::uint64_t seq_ = 0;
-  struct Pending { std::uint64_t at; std::uint64_t seq; std::string bytes; };
-  std::deque<Pending> queue_;  // kept sorted by (at, seq)
+  struct Pending {
+    std::uint64_t at;
+    std::uint64_t seq;
+    std::string bytes;
+  };
+  std::deque<Pending> queue_;          // kept sorted by (at, seq)
   std::uint64_t line_busy_until_ = 0;  // stream links write one thing at a time
   std::uint64_t last_rx_ = 0;          // for the quiet flush of decoder_
   void handle_items(std::vector<std::string>& replies);

@@ -32,8 +32,7 @@ std::string hex_u(std::uint64_t v, int width) {
 // while the catalog does not list them yet (catalog_topotek.cpp is being
 // completed): the sim answers them from its own state.
 bool topotek_builtin(std::string_view ident) noexcept {
-  return ident == "REC" || ident == "CAP" || ident == "GIA" || ident == "GIC" ||
-         ident == "GAA";
+  return ident == "REC" || ident == "CAP" || ident == "GIA" || ident == "GIC" || ident == "GAA";
 }
 
 const top::FieldValue* field(const top::Decoded& d, std::string_view name) {
@@ -67,7 +66,8 @@ bool catalog_rejects(const top::Decoded& dec) {
       case FindingCode::bad_field:
       case FindingCode::value_out_of_range:
         return true;
-      default: break;
+      default:
+        break;
     }
   }
   return false;
@@ -122,12 +122,11 @@ void Device::advance(std::uint64_t now_us) noexcept {
 bool Device::accepts(const Frame& f, Link link) const noexcept {
   if (dialect_ != Dialect::topotek) return true;
   // Topotek answers to the interface the source byte names.
-  return (link == Link::network && f.src == 'P') ||
-         (link == Link::uart && f.src == 'U');
+  return (link == Link::network && f.src == 'P') || (link == Link::uart && f.src == 'U');
 }
 
-std::string Device::make(top::Header h, const Frame& req, char control,
-                         std::string_view ident, std::string_view data) const {
+std::string Device::make(top::Header h, const Frame& req, char control, std::string_view ident,
+                         std::string_view data) const {
   top::BuildSpec spec;
   spec.header = h;
   spec.src = opts_.swap_addresses ? req.dst : req.src;
@@ -140,8 +139,7 @@ std::string Device::make(top::Header h, const Frame& req, char control,
 
 void Device::reply_error(const Frame& req, std::vector<std::string>& out) const {
   // SkyDroid 2.3.2: #TP<dst><src>2wERE!!<cs>, addresses swapped.
-  if (dialect_ == Dialect::skydroid)
-    out.push_back(make(top::Header::fixed, req, 'w', "ERE", "!!"));
+  if (dialect_ == Dialect::skydroid) out.push_back(make(top::Header::fixed, req, 'w', "ERE", "!!"));
 }
 
 std::string Device::attitude_data() const {
@@ -188,8 +186,7 @@ void Device::poll(std::uint64_t now_us, std::vector<std::string>& out) {
   }
 }
 
-std::string Device::read_data(const top::CommandSpec& cmd,
-                              const top::FormSpec& form) const {
+std::string Device::read_data(const top::CommandSpec& cmd, const top::FormSpec& form) const {
   const std::string_view ident = cmd.ident;
   if (ident == "REC") return recording_ ? "01" : "00";
   if (ident == "GAC" || ident == "GIC") return attitude_data();
@@ -201,8 +198,8 @@ std::string Device::read_data(const top::CommandSpec& cmd,
   return top::example_data(form);
 }
 
-bool Device::handle_special(const Frame& req, const top::Decoded& dec,
-                            std::uint64_t now_us, std::vector<std::string>& out) {
+bool Device::handle_special(const Frame& req, const top::Decoded& dec, std::uint64_t now_us,
+                            std::vector<std::string>& out) {
   const std::string_view id = req.ident_view();
   const std::string_view data = req.data();
   const bool write = req.control == 'w';
@@ -241,8 +238,7 @@ bool Device::handle_special(const Frame& req, const top::Decoded& dec,
   if (topotek && (id == "GIA" || id == "GAA") && write) {
     const int v = data_byte(data);
     if (v != 0 && v != 1) return false;
-    start_stream(id == "GIA" ? "GIC" : "GAC",
-                 v ? opts_.topotek_stream_hz : 0, req.src, now_us);
+    start_stream(id == "GIA" ? "GIC" : "GAC", v ? opts_.topotek_stream_hz : 0, req.src, now_us);
     echo();
     return true;
   }
@@ -347,8 +343,7 @@ void Device::handle(const Frame& req, Link link, std::uint64_t now_us,
       handle_special(req, dec, now_us, out))
     return;
   // A request laid out as a response form (a 1-char VER read) is invalid too.
-  if (!dec.command || catalog_rejects(dec) || !dec.form ||
-      dec.form->role == top::Role::response) {
+  if (!dec.command || catalog_rejects(dec) || !dec.form || dec.form->role == top::Role::response) {
     reply_error(req, out);
     return;
   }
@@ -363,7 +358,8 @@ void Device::handle(const Frame& req, Link link, std::uint64_t now_us,
     for (const auto& f : cmd.forms) {
       if (f.control != 'w' || f.role != top::Role::response || &f == dec.form) continue;
       const std::string data = top::example_data(f);
-      out.push_back(make(top::choose_header(dialect_, cmd.address, data.size()), req, 'w', id, data));
+      out.push_back(
+          make(top::choose_header(dialect_, cmd.address, data.size()), req, 'w', id, data));
       return;
     }
     out.push_back(make(req.header, req, 'w', id, req.data()));
@@ -373,7 +369,10 @@ void Device::handle(const Frame& req, Link link, std::uint64_t now_us,
   // has a single 'r' form for both roles).
   const top::FormSpec* resp = nullptr;
   for (const auto& f : cmd.forms)
-    if (f.control == 'r' && f.role == top::Role::response) { resp = &f; break; }
+    if (f.control == 'r' && f.role == top::Role::response) {
+      resp = &f;
+      break;
+    }
   if (!resp) resp = dec.form;
   std::string data = read_data(cmd, *resp);
   if (opts_.tmp_quirk && id == "TMP") {
@@ -390,17 +389,19 @@ void Device::handle(const Frame& req, Link link, std::uint64_t now_us,
     out.push_back(std::move(f));
     return;
   }
-  out.push_back(make(top::choose_header(dialect_, cmd.address, data.size()), req,
-                     'r', id, data));
+  out.push_back(make(top::choose_header(dialect_, cmd.address, data.size()), req, 'r', id, data));
 }
 
 Session::Session(Device& device, Link link, bool datagram)
     : device_(device), link_(link), datagram_(datagram) {}
 
-void Session::feed(std::string_view bytes, std::uint64_t now_us,
-                   std::vector<std::string>& out, std::vector<Frame>* received) {
+void Session::feed(std::string_view bytes, std::uint64_t now_us, std::vector<std::string>& out,
+                   std::vector<Frame>* received) {
   decoder_.feed(bytes);
-  if (datagram_) decoder_.finish(); else decoder_.flush();
+  if (datagram_)
+    decoder_.finish();
+  else
+    decoder_.flush();
   top::StreamItem item;
   while (decoder_.next(item)) {
     if (item.kind != top::ItemKind::frame) continue;
@@ -410,8 +411,8 @@ void Session::feed(std::string_view bytes, std::uint64_t now_us,
   if (datagram_) decoder_.reset();
 }
 
-std::vector<std::string> handle_datagram(Device& device, std::string_view bytes,
-                                         Link link, std::uint64_t now_us) {
+std::vector<std::string> handle_datagram(Device& device, std::string_view bytes, Link link,
+                                         std::uint64_t now_us) {
   std::vector<std::string> out;
   Session s(device, link, true);
   s.feed(bytes, now_us, out);

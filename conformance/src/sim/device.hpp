@@ -20,8 +20,8 @@ namespace topsim {
 enum class Link : std::uint8_t { network, uart };
 
 struct DeviceOptions {
-  bool swap_addresses = true;   // false: the no-swap fault (client first)
-  bool tmp_quirk = false;       // answer TMP in the malformed #tpDU16wTMP form
+  bool swap_addresses = true;  // false: the no-swap fault (client first)
+  bool tmp_quirk = false;      // answer TMP in the malformed #tpDU16wTMP form
   // A speed command holds for this long unless refreshed (field notes:
   // motors stop when rate commands are not refreshed).
   std::uint32_t speed_hold_ms = 1000;
@@ -32,22 +32,22 @@ struct DeviceOptions {
 // One gimbal axis: an angle moving toward a target at a speed, or turning
 // at a commanded rate until the rate expires.
 struct Axis {
-  double angle = 0;          // deg
+  double angle = 0;  // deg
   double min = -90, max = 90;
   bool has_target = false;
-  double target = 0;         // deg
-  double target_speed = 0;   // deg/s
-  double rate = 0;           // deg/s
+  double target = 0;        // deg
+  double target_speed = 0;  // deg/s
+  double rate = 0;          // deg/s
   std::uint64_t rate_until = 0;
 };
 
 // An attitude stream switched on by GAA (SkyDroid, rate in Hz) or GIA/GAA
 // (Topotek, on/off).
 struct Stream {
-  std::string ident;          // GAC or GIC
+  std::string ident;            // GAC or GIC
   std::uint32_t period_us = 0;  // 0: off
   std::uint64_t next_us = 0;
-  char dst = 'U';             // client address the pushes go to
+  char dst = 'U';  // client address the pushes go to
 };
 
 class Device {
@@ -82,16 +82,14 @@ class Device {
 
  private:
   bool accepts(const top::Frame& f, Link link) const noexcept;
-  std::string make(top::Header h, const top::Frame& req, char control,
-                   std::string_view ident, std::string_view data) const;
+  std::string make(top::Header h, const top::Frame& req, char control, std::string_view ident,
+                   std::string_view data) const;
   void reply_error(const top::Frame& req, std::vector<std::string>& out) const;
-  bool handle_special(const top::Frame& req, const top::Decoded& dec,
-                      std::uint64_t now_us, std::vector<std::string>& out);
-  void start_stream(std::string_view ident, std::uint32_t hz, char dst,
-                    std::uint64_t now_us);
+  bool handle_special(const top::Frame& req, const top::Decoded& dec, std::uint64_t now_us,
+                      std::vector<std::string>& out);
+  void start_stream(std::string_view ident, std::uint32_t hz, char dst, std::uint64_t now_us);
   std::string attitude_data() const;
-  std::string read_data(const top::CommandSpec& cmd,
-                        const top::FormSpec& form) const;
+  std::string read_data(const top::CommandSpec& cmd, const top::FormSpec& form) const;
 
   top::Model model_;
   top::Dialect dialect_;
@@ -112,8 +110,7 @@ class Session {
   Session(Device& device, Link link, bool datagram);
   // Decodes `bytes`, lets the device handle every frame, appends replies.
   // `received` (optional) gets the request frames.
-  void feed(std::string_view bytes, std::uint64_t now_us,
-            std::vector<std::string>& out,
+  void feed(std::string_view bytes, std::uint64_t now_us, std::vector<std::string>& out,
             std::vector<top::Frame>* received = nullptr);
 
  private:
@@ -125,7 +122,7 @@ class Session {
 
 // The request handler as a function (the fuzz entry point): one datagram's
 // bytes in, the frames the device answers out. Never throws on any input.
-std::vector<std::string> handle_datagram(Device& device, std::string_view bytes,
-                                         Link link, std::uint64_t now_us);
+std::vector<std::string> handle_datagram(Device& device, std::string_view bytes, Link link,
+                                         std::uint64_t now_us);
 
 }  // namespace topsim

@@ -14,22 +14,19 @@ bool parse_prob(std::string_view v, double& out) {
   return end == s.c_str() + s.size() && out >= 0 && out <= 1;
 }
 
-bool is_hex_upper(char c) noexcept {
-  return (c >= '0' && c <= '9') || (c >= 'A' && c <= 'F');
-}
+bool is_hex_upper(char c) noexcept { return (c >= '0' && c <= '9') || (c >= 'A' && c <= 'F'); }
 
 }  // namespace
 
 bool FaultConfig::any() const noexcept {
-  return drop > 0 || delay_ms > 0 || duplicate > 0 || bad_checksum > 0 ||
-         header_case > 0 || no_swap || lying_length > 0 || tmp_quirk || split ||
-         garbage > 0 || !hang_on.empty();
+  return drop > 0 || delay_ms > 0 || duplicate > 0 || bad_checksum > 0 || header_case > 0 ||
+         no_swap || lying_length > 0 || tmp_quirk || split || garbage > 0 || !hang_on.empty();
 }
 
 const std::vector<std::string_view>& fault_names() {
   static const std::vector<std::string_view> names = {
-      "drop", "delay", "duplicate", "bad-checksum", "header-case", "no-swap",
-      "lying-length", "tmp-quirk", "split", "garbage", "hang-on"};
+      "drop",         "delay",     "duplicate", "bad-checksum", "header-case", "no-swap",
+      "lying-length", "tmp-quirk", "split",     "garbage",      "hang-on"};
   return names;
 }
 
@@ -57,7 +54,10 @@ std::optional<FaultConfig> parse_faults(std::string_view spec, std::string& erro
                                             : nullptr;
     if (prob) {
       // A bare name means always.
-      if (!has_value) { *prob = 1; continue; }
+      if (!has_value) {
+        *prob = 1;
+        continue;
+      }
       if (!parse_prob(value, *prob)) return bad("P must be a number from 0 to 1");
     } else if (name == "delay") {
       unsigned ms = 0;
@@ -72,8 +72,9 @@ std::optional<FaultConfig> parse_faults(std::string_view spec, std::string& erro
       if (value.size() != 3) return bad("hang-on needs a three-character identifier");
       cfg.hang_on = std::string(value);
     } else {
-      return bad("unknown fault (known: drop delay duplicate bad-checksum "
-                 "header-case no-swap lying-length tmp-quirk split garbage hang-on)");
+      return bad(
+          "unknown fault (known: drop delay duplicate bad-checksum "
+          "header-case no-swap lying-length tmp-quirk split garbage hang-on)");
     }
   }
   return cfg;
@@ -97,8 +98,7 @@ bool FaultInjector::on_request(const top::Frame& request) {
   return true;
 }
 
-void FaultInjector::apply(const std::string& frame, bool stream_link,
-                          std::vector<Emission>& out) {
+void FaultInjector::apply(const std::string& frame, bool stream_link, std::vector<Emission>& out) {
   if (hung_ || chance(cfg_.drop)) return;
   std::string f = frame;
   const bool plain = f.size() >= top::prefix_size + 2 && f[0] == '#' &&
@@ -120,8 +120,10 @@ void FaultInjector::apply(const std::string& frame, bool stream_link,
   }
   if (plain && chance(cfg_.header_case)) {
     // Flip the header's case after the checksum was computed.
-    if (f[1] == 'T' && f[2] == 'P') f[1] = 't', f[2] = 'p';
-    else if (f[1] == 't' && f[2] == 'p') f[1] = 'T', f[2] = 'P';
+    if (f[1] == 'T' && f[2] == 'P')
+      f[1] = 't', f[2] = 'p';
+    else if (f[1] == 't' && f[2] == 'p')
+      f[1] = 'T', f[2] = 'P';
   }
   if (chance(cfg_.bad_checksum) && f.size() >= 2 && is_hex_upper(f[f.size() - 1])) {
     char& c = f[f.size() - 1];

@@ -17,19 +17,19 @@
 namespace topsim {
 
 struct FaultConfig {
-  double drop = 0;          // probability a frame is not sent
+  double drop = 0;             // probability a frame is not sent
   std::uint32_t delay_ms = 0;  // every frame is sent this much later
-  double duplicate = 0;     // probability a frame is sent twice
-  double bad_checksum = 0;  // probability the checksum is corrupted
-  double header_case = 0;   // probability the header case flips after the
-                            // checksum was computed (the SkyDroid errata)
-  bool no_swap = false;     // replies keep the client's address first
-  double lying_length = 0;  // probability the length char lies (checksum
-                            // valid over the bytes sent, as a C12 did)
-  bool tmp_quirk = false;   // TMP answered in the malformed Topotek form
-  bool split = false;       // frames cut in two writes (streams only)
-  double garbage = 0;       // probability junk bytes precede a frame
-  std::string hang_on;      // after this identifier, the device goes silent
+  double duplicate = 0;        // probability a frame is sent twice
+  double bad_checksum = 0;     // probability the checksum is corrupted
+  double header_case = 0;      // probability the header case flips after the
+                               // checksum was computed (the SkyDroid errata)
+  bool no_swap = false;        // replies keep the client's address first
+  double lying_length = 0;     // probability the length char lies (checksum
+                               // valid over the bytes sent, as a C12 did)
+  bool tmp_quirk = false;      // TMP answered in the malformed Topotek form
+  bool split = false;          // frames cut in two writes (streams only)
+  double garbage = 0;          // probability junk bytes precede a frame
+  std::string hang_on;         // after this identifier, the device goes silent
 
   bool any() const noexcept;
 };

@@ -41,7 +41,11 @@ class Line : public std::enable_shared_from_this<Line<S>> {
   void pump() {
     auto self = this->shared_from_this();
     asio::async_write(s_, asio::buffer(q_.front()), [self](std::error_code ec, std::size_t) {
-      if (ec) { self->open = false; self->q_.clear(); return; }
+      if (ec) {
+        self->open = false;
+        self->q_.clear();
+        return;
+      }
       self->q_.pop_front();
       if (!self->q_.empty()) self->pump();
     });
@@ -86,7 +90,7 @@ struct Server::Impl {
     topkit::Endpoint remote, local;
     bool stream_link = false;
   };
-  Peer stream_peer;   // the last peer that sent a request (receives pushes)
+  Peer stream_peer;  // the last peer that sent a request (receives pushes)
   bool have_stream_peer = false;
 
   explicit Impl(ServerConfig c)
@@ -139,7 +143,10 @@ struct Server::Impl {
     stats.bytes_in.fetch_add(bytes.size(), std::memory_order_relaxed);
     if (pcap) pcap->write(peer.remote, peer.local, bytes);
     dec.feed(bytes);
-    if (datagram) dec.finish(); else dec.flush();
+    if (datagram)
+      dec.finish();
+    else
+      dec.flush();
     std::vector<std::string> out;
     top::StreamItem item;
     const std::uint64_t now = now_us();
@@ -149,8 +156,10 @@ struct Server::Impl {
       if (!faults.on_request(item.frame)) continue;
       device.handle(item.frame, link, now, out);
     }
-    if (datagram) dec.reset();
-    else if (dec.buffered() > 0) arm_quiet(dec, peer, link, std::move(keep));
+    if (datagram)
+      dec.reset();
+    else if (dec.buffered() > 0)
+      arm_quiet(dec, peer, link, std::move(keep));
     stream_peer = peer;
     have_stream_peer = true;
     if (!out.empty()) emit(peer, out);
@@ -193,24 +202,28 @@ struct Server::Impl {
 
   // UDP ----------------------------------------------------------------
   void udp_receive(UdpPort& u) {
-    u.sock.async_receive_from(asio::buffer(u.buf), u.from, [this, &u](std::error_code ec, std::size_t n) {
-      if (ec == asio::error::operation_aborted) return;
-      if (!ec) {
-        asio::ip::udp::endpoint to = u.from;
-        if (cfg.reply_port) to.port(cfg.reply_port);
-        Peer p;
-        p.remote = {to.address().is_v4() ? to.address().to_v4().to_uint() : 0x7F000001u, to.port()};
-        std::error_code e;
-        const auto local = u.sock.local_endpoint(e);
-        p.local = {e || !local.address().is_v4() ? 0x7F000001u : local.address().to_v4().to_uint(), u.port};
-        p.send = [&u, to](std::string b) {
-          std::error_code se;
-          u.sock.send_to(asio::buffer(b), to, 0, se);
-        };
-        on_bytes(u.dec, std::string_view(u.buf.data(), n), true, p, Link::network);
-      }
-      udp_receive(u);
-    });
+    u.sock.async_receive_from(
+        asio::buffer(u.buf), u.from, [this, &u](std::error_code ec, std::size_t n) {
+          if (ec == asio::error::operation_aborted) return;
+          if (!ec) {
+            asio::ip::udp::endpoint to = u.from;
+            if (cfg.reply_port) to.port(cfg.reply_port);
+            Peer p;
+            p.remote = {to.address().is_v4() ? to.address().to_v4().to_uint() : 0x7F000001u,
+                        to.port()};
+            std::error_code e;
+            const auto local = u.sock.local_endpoint(e);
+            p.local = {
+                e || !local.address().is_v4() ? 0x7F000001u : local.address().to_v4().to_uint(),
+                u.port};
+            p.send = [&u, to](std::string b) {
+              std::error_code se;
+              u.sock.send_to(asio::buffer(b), to, 0, se);
+            };
+            on_bytes(u.dec, std::string_view(u.buf.data(), n), true, p, Link::network);
+          }
+          udp_receive(u);
+        });
   }
 
   // TCP ----------------------------------------------------------------
@@ -234,21 +247,25 @@ struct Server::Impl {
     });
   }
   void tcp_read(std::shared_ptr<Conn> c) {
-    c->line->stream().async_read_some(asio::buffer(c->buf), [this, c](std::error_code ec, std::size_t n) {
-      if (ec) return;  // closed: the connection's state goes with it
-      auto& sock = c->line->stream();
-      std::error_code e1, e2;
-      auto re = sock.remote_endpoint(e1);
-      auto le = sock.local_endpoint(e2);
-      Peer p;
-      p.remote = {e1 ? 0x7F000001u : re.address().to_v4().to_uint(), e1 ? std::uint16_t{0} : re.port()};
-      p.local = {e2 ? 0x7F000001u : le.address().to_v4().to_uint(), bound_port};
-      std::weak_ptr<TcpLine> w = c->line;
-      p.send = [w](std::string b) { if (auto l = w.lock(); l && l->open) l->write(std::move(b)); };
-      p.stream_link = true;
-      on_bytes(c->dec, std::string_view(c->buf.data(), n), false, p, Link::network, c);
-      tcp_read(c);
-    });
+    c->line->stream().async_read_some(
+        asio::buffer(c->buf), [this, c](std::error_code ec, std::size_t n) {
+          if (ec) return;  // closed: the connection's state goes with it
+          auto& sock = c->line->stream();
+          std::error_code e1, e2;
+          auto re = sock.remote_endpoint(e1);
+          auto le = sock.local_endpoint(e2);
+          Peer p;
+          p.remote = {e1 ? 0x7F000001u : re.address().to_v4().to_uint(),
+                      e1 ? std::uint16_t{0} : re.port()};
+          p.local = {e2 ? 0x7F000001u : le.address().to_v4().to_uint(), bound_port};
+          std::weak_ptr<TcpLine> w = c->line;
+          p.send = [w](std::string b) {
+            if (auto l = w.lock(); l && l->open) l->write(std::move(b));
+          };
+          p.stream_link = true;
+          on_bytes(c->dec, std::string_view(c->buf.data(), n), false, p, Link::network, c);
+          tcp_read(c);
+        });
   }
 
   // pty / serial ---------------------------------------------------------
@@ -265,18 +282,23 @@ struct Server::Impl {
     p.remote = {0x7F000001u, 9001};
     p.local = {0x7F000001u, 9000};
     p.stream_link = true;
-    if (pty_line) p.send = [l = pty_line](std::string b) { l->write(std::move(b)); };
-    else p.send = [l = serial_line](std::string b) { l->write(std::move(b)); };
+    if (pty_line)
+      p.send = [l = pty_line](std::string b) { l->write(std::move(b)); };
+    else
+      p.send = [l = serial_line](std::string b) { l->write(std::move(b)); };
     return p;
   }
   template <class L>
   void line_read(std::shared_ptr<L> l) {
-    l->stream().async_read_some(asio::buffer(line_buf), [this, l](std::error_code ec, std::size_t n) {
+    l->stream().async_read_some(asio::buffer(line_buf), [this, l](std::error_code ec,
+                                                                  std::size_t n) {
       if (ec == asio::error::operation_aborted) return;
       if (ec) {
         // A pty master reads EIO while no client has the slave open; wait.
         auto t = std::make_shared<asio::steady_timer>(io, std::chrono::milliseconds(20));
-        t->async_wait([this, l, t](std::error_code e) { if (!e) line_read(l); });
+        t->async_wait([this, l, t](std::error_code e) {
+          if (!e) line_read(l);
+        });
         return;
       }
       on_bytes(line_decoder, std::string_view(line_buf.data(), n), false, line_peer(), Link::uart);
@@ -301,7 +323,9 @@ Server::Server(ServerConfig cfg) : impl_(std::make_unique<Impl>(std::move(cfg)))
         asio::ip::udp::endpoint ep(addr, port);
         u->sock.open(ep.protocol(), ec);
         if (!ec) u->sock.bind(ep, ec);
-        if (ec) throw std::runtime_error("udp " + m.cfg.host + ":" + std::to_string(port) + ": " + ec.message());
+        if (ec)
+          throw std::runtime_error("udp " + m.cfg.host + ":" + std::to_string(port) + ": " +
+                                   ec.message());
         u->port = u->sock.local_endpoint().port();
         m.udp.push_back(std::move(u));
       }
@@ -318,7 +342,9 @@ Server::Server(ServerConfig cfg) : impl_(std::make_unique<Impl>(std::move(cfg)))
       if (!ec) m.acceptor->set_option(asio::socket_base::reuse_address(true), ec);
       if (!ec) m.acceptor->bind(ep, ec);
       if (!ec) m.acceptor->listen(asio::socket_base::max_listen_connections, ec);
-      if (ec) throw std::runtime_error("tcp " + m.cfg.host + ":" + std::to_string(m.cfg.port) + ": " + ec.message());
+      if (ec)
+        throw std::runtime_error("tcp " + m.cfg.host + ":" + std::to_string(m.cfg.port) + ": " +
+                                 ec.message());
       m.bound_port = m.acceptor->local_endpoint().port();
       m.tcp_accept();
       break;

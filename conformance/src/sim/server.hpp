@@ -23,11 +23,11 @@ struct ServerConfig {
   std::uint16_t port = 0;        // 0: ephemeral (tests); the CLI fills the model's port
   std::uint16_t reply_port = 0;  // UDP: 0 replies to the source port; Topotek: 9004
   std::vector<std::uint16_t> extra_udp_ports;  // also served (C10: UDP 9002)
-  std::string device;            // serial device path
+  std::string device;                          // serial device path
   unsigned baud = 115200;
   FaultConfig faults;
   std::uint64_t seed = 1;
-  std::string record;            // pcap path, empty for none
+  std::string record;  // pcap path, empty for none
   DeviceOptions device_options;
 };
 
@@ -49,11 +49,11 @@ class Server {
   Server(const Server&) = delete;
   Server& operator=(const Server&) = delete;
 
-  std::uint16_t port() const noexcept;      // bound UDP/TCP port
+  std::uint16_t port() const noexcept;           // bound UDP/TCP port
   std::vector<std::uint16_t> udp_ports() const;  // every bound UDP port
   // Stops run() on SIGINT/SIGTERM (asio::signal_set; for the CLI).
   void stop_on_signals();
-  std::string pty_path() const;             // slave path for --pty
+  std::string pty_path() const;  // slave path for --pty
   // Serves until stop() (callable from any thread).
   void run();
   void stop();
