@@ -104,9 +104,14 @@ class Wire {
   void drain() {
     Received r;
     const std::uint64_t d = now();
-    std::size_t n = 0;
-    while (n < o_.max_frames_per_step && next(d, r)) ++n;
+    std::size_t n = 0, late = 0;
+    while (n < o_.max_frames_per_step && next(d, r)) {
+      ++n;
+      const std::string_view id = r.frame.ident_view();
+      if (id != "GAC" && id != "GIC") ++late;  // attitude pushes are expected
+    }
     frames_.clear();
+    if (late > 0) note("discarded " + std::to_string(late) + " late frame(s) before the next exchange");
   }
 
   std::uint64_t chunks() const noexcept { return chunks_; }
