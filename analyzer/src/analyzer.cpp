@@ -91,6 +91,7 @@ void Latency::add(std::int64_t us) {
   std::size_t b = std::min<std::size_t>(bucket(us), 4000);
   if (buckets_.size() <= b) buckets_.resize(b + 1, 0);
   ++buckets_[b];
+  if (count_ < kExact) exact_.push_back(us);
   if (count_ == 0 || us < min_) min_ = us;
   if (count_ == 0 || us > max_) max_ = us;
   ++count_;
@@ -99,6 +100,11 @@ std::int64_t Latency::quantile(double q) const {
   if (count_ == 0) return 0;
   auto rank = static_cast<std::uint64_t>(std::ceil(q * static_cast<double>(count_)));
   if (rank == 0) rank = 1;
+  if (count_ <= kExact) {
+    std::vector<std::int64_t> v = exact_;
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(rank - 1), v.end());
+    return v[rank - 1];
+  }
   std::uint64_t seen = 0;
   for (std::size_t b = 0; b < buckets_.size(); ++b) {
     seen += buckets_[b];
@@ -185,6 +191,7 @@ struct Pending {
   Position pos;
   char ident[3];
   char control;
+  char src, dst;
   std::string data;
   int dir;
 };
@@ -334,7 +341,8 @@ struct Analyzer::Impl {
 
   // --- items out of a decoder ---------------------------------------------
 
-  Position map_position(Direction& D, std::uint64_t off, std::uint64_t& stream_off) {
+  Position map_position(Direction& D, std::uint64_t off, std::uint64_t len,
+                        std::uint64_t& stream_off, std::int64_t& ts) {
     while (D.segs.size() > 1 && D.segs[1].stream_off <= off) D.segs.pop_front();
     Position p;
     stream_off = D.base + off;
@@ -342,6 +350,12 @@ struct Analyzer::Impl {
       const Seg& s = D.segs.front();
       p.record = s.record;
       p.offset = s.rec_off + (off >= s.stream_off ? off - s.stream_off : 0);
+      // the time of the chunk that holds the item's last byte
+      std::uint64_t last = off + (len ? len - 1 : 0);
+      for (const Seg& x : D.segs) {
+        if (x.stream_off > last) break;
+        if (x.ts != kNoTime) ts = x.ts;
+      }
     }
     if (p.record != D.last_record) {
       D.last_record = p.record;
@@ -356,8 +370,9 @@ struct Analyzer::Impl {
     top::StreamItem it;
     while (D.dec.next(it)) {
       std::uint64_t so = 0;
-      Position pos = map_position(D, it.offset, so);
-      item(c, d, it, pos, ts, so);
+      std::int64_t t = ts;
+      Position pos = map_position(D, it.offset, it.length, so, t);
+      item(c, d, it, pos, t, so);
     }
   }
 
@@ -386,10 +401,11 @@ struct Analyzer::Impl {
     frame(c, d, it.frame, pos, ts, stream_off);
   }
 
-  const DecodedEntry& lookup(top::Frame& f, top::Dialect dialect) {
+  const DecodedEntry& lookup(top::Frame& f, top::Dialect dialect, top::Role role) {
     key.assign(f.raw);
     key.push_back(static_cast<char>(f.terminator));
     key.push_back(static_cast<char>(dialect));
+    key.push_back(static_cast<char>(role));
     auto it = cache.find(key);
     if (it != cache.end()) return *it->second;
     if (cache.size() >= kDecodeCacheSize) cache.clear();
@@ -397,7 +413,17 @@ struct Analyzer::Impl {
     top::DecodeOptions o;
     o.dialect = dialect;
     o.model = A.opts_.model;
+    o.role = role;
     e->decoded = top::decode(f, o);
+    if (role == top::Role::response && top::role_from_addresses(f) == top::Role::request) {
+      bool has = false;
+      for (const auto& x : e->decoded.findings) has |= x.code == top::FindingCode::unswapped_addresses;
+      if (!has)
+        e->decoded.findings.push_back(top::make_finding(
+            top::FindingCode::unswapped_addresses, 3,
+            std::string("a response addressed ") + f.src + " to " + f.dst +
+                " (the request's order; some simulators)"));
+    }
     e->frame = std::move(f);
     e->worst = topdump::worst(e->frame, e->decoded);
     for (const auto& x : e->frame.findings) e->codes.push_back(x.code);
@@ -415,7 +441,17 @@ struct Analyzer::Impl {
     }
     top::Dialect dialect = c.det.current();
     if (dialect == top::Dialect::unknown) dialect = top::dialect_from_frame(f);
-    const DecodedEntry& e = lookup(f, dialect);
+    top::Role role = top::Role::any;
+    if (!c.pending.empty() && top::is_client_address(f.src) && !top::is_client_address(f.dst)) {
+      // Addressed like a request, but it travels back to a client that asked
+      // the same: a response that kept the request's address order.
+      for (const Pending& p : c.pending)
+        if (p.dir != d && same_ident(p.ident, f.ident_view()) && p.src == f.src && p.dst == f.dst) {
+          role = top::Role::response;
+          break;
+        }
+    }
+    const DecodedEntry& e = lookup(f, dialect, role);
     const top::Frame& fr = e.frame;
 
     FrameEvent ev;
@@ -535,6 +571,8 @@ struct Analyzer::Impl {
     p.pos = ev.pos;
     std::memcpy(p.ident, f.ident, 3);
     p.control = f.control;
+    p.src = f.src;
+    p.dst = f.dst;
     p.data.assign(f.data());
     p.dir = d;
     c.pending.push_back(std::move(p));
@@ -546,9 +584,15 @@ struct Analyzer::Impl {
     ++c.st.responses;
     std::string_view id = f.ident_view();
     bool ere = id == "ERE";
-    auto m = std::find_if(c.pending.begin(), c.pending.end(), [&](const Pending& p) {
-      return p.dir != d && (ere || same_ident(p.ident, id));
-    });
+    // the oldest pending request it answers, preferring one whose data it echoes
+    auto m = ere ? c.pending.end()
+                 : std::find_if(c.pending.begin(), c.pending.end(), [&](const Pending& p) {
+                     return p.dir != d && same_ident(p.ident, id) && p.data == f.data();
+                   });
+    if (m == c.pending.end())
+      m = std::find_if(c.pending.begin(), c.pending.end(), [&](const Pending& p) {
+        return p.dir != d && (ere ? p.dst == f.src : same_ident(p.ident, id));
+      });
     if (m != c.pending.end()) {
       ++A.stats_.paired;
       ++c.st.paired;
@@ -600,6 +644,10 @@ struct Analyzer::Impl {
                std::uint64_t offset, std::int64_t ts) {
     Direction& D = c.dir[d];
     if (bytes.empty()) return;
+    // The other direction spoke before this: release its held frame so the
+    // frames come out in capture order (a CR/LF it sends later is garbage).
+    c.dir[1 - d].dec.flush();
+    drain_stream(c, 1 - d, ts);
     D.segs.push_back(Seg{D.dec.fed(), record, offset, ts});
     if (D.segs.size() > 4096) D.segs.pop_front();
     D.dec.feed(bytes);
@@ -776,6 +824,14 @@ void Analyzer::segment(std::int64_t ts, const Endpoint& src, const Endpoint& dst
                          0});
   auto [it, fresh] = D.ooo.try_emplace(seq, Held{std::string(payload), record, offset, ts});
   if (!fresh) {
+    bool same = std::string_view(it->second.bytes).substr(0, payload.size()) ==
+                payload.substr(0, it->second.bytes.size());
+    ACode code = same ? ACode::tcp_retransmission : ACode::tcp_overlap_differs;
+    impl_->note_event(ts, Position{record, 0, offset}, c.transport, &c, &D.from, &D.to,
+                      Note{code, default_severity(code),
+                           std::to_string(payload.size()) + " held bytes seen again" +
+                               (same ? " (retransmission)" : " with different content; the longer copy is kept"),
+                           0});
     if (it->second.bytes.size() < payload.size()) {
       D.held -= it->second.bytes.size();
       it->second = Held{std::string(payload), record, offset, ts};

@@ -119,7 +119,8 @@ class Sink {
   virtual void note(const NoteEvent&) {}
 };
 
-// Latency histogram: exact min/max/count, quantiles within 1%.
+// Latency: exact min/max/count; exact nearest-rank quantiles up to 4096
+// samples, then from a log histogram (within 1%), so memory stays bounded.
 class Latency {
  public:
   void add(std::int64_t us);
@@ -130,7 +131,9 @@ class Latency {
  private:
   static std::size_t bucket(std::int64_t us);
   static std::int64_t bucket_value(std::size_t b);
+  static constexpr std::size_t kExact = 4096;  // exact quantiles up to this many samples
   std::vector<std::uint32_t> buckets_;
+  std::vector<std::int64_t> exact_;
   std::uint64_t count_ = 0;
   std::int64_t min_ = 0, max_ = 0;
 };

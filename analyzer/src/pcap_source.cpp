@@ -1,5 +1,8 @@
 // libpcap sources: files (pcap and pcapng) and live interfaces.
 #include <pcap/pcap.h>
+#include <poll.h>
+
+#include <cerrno>
 
 #include <chrono>
 #include <cstdio>
@@ -392,7 +395,21 @@ bool capture_live(const std::string& iface, const std::string& bpf, Analyzer& a,
   }
   Dissector dis(a, o);
   LiveCtx ctx{&a, &dis, dlt};
+  // Non-blocking reads behind our own poll: pcap_dispatch in immediate mode
+  // may block forever on a quiet interface, and SIGINT must end the loop.
+  int fd = pcap_get_selectable_fd(p);
+  if (fd < 0 || pcap_setnonblock(p, 1, errbuf) != 0) {
+    error = iface + ": cannot poll the capture: " + errbuf;
+    pcap_close(p);
+    return false;
+  }
   while (!stop.load()) {
+    pollfd pfd{fd, POLLIN, 0};
+    if (poll(&pfd, 1, 100) < 0 && errno != EINTR) {
+      error = iface + ": poll: " + std::strerror(errno);
+      pcap_close(p);
+      return false;
+    }
     int n = pcap_dispatch(p, -1, on_packet, reinterpret_cast<u_char*>(&ctx));
     if (n == PCAP_ERROR) {
       error = iface + ": " + pcap_geterr(p);

@@ -75,6 +75,16 @@ Format detect_format(std::string_view head) {
       return Format::pcap;
   }
   std::string_view l = first_line(head);
+  // a line log may open with "# " comment lines
+  for (std::string_view rest = head; l.size() > 1 && l[0] == '#' && l[1] == ' ';) {
+    auto nl = rest.find('\n');
+    if (nl == std::string_view::npos) break;
+    rest.remove_prefix(nl + 1);
+    std::string_view next = first_line(rest);
+    std::string_view t, d, r;
+    if (split_line_log(next, t, d, r) && parse_time(t)) return Format::lines;
+    l = next;
+  }
   if (is_socat_header(l)) return Format::socat;
   if (l.find("start_time") != std::string_view::npos && l.find(',') != std::string_view::npos)
     return Format::saleae;
@@ -285,7 +295,20 @@ void saleae_log(const std::string& path, LineReader& r, Analyzer& a) {
                   path + ": line 1: the header lacks start_time or data", 1, 0);
     return;
   }
-  std::vector<std::string> names;  // first two distinct analyzer names
+  // first pass: the first two analyzer names are the two directions
+  std::vector<std::string> names;
+  {
+    std::ifstream scan(path, std::ios::binary);
+    std::string l;
+    std::getline(scan, l);
+    while (names.size() < 2 && std::getline(scan, l)) {
+      if (!l.empty() && l.back() == '\r') l.pop_back();
+      auto cols = csv_split(l);
+      if (c_name < 0 || static_cast<int>(cols.size()) <= c_name) break;
+      const std::string& n = cols[static_cast<std::size_t>(c_name)];
+      if (std::find(names.begin(), names.end(), n) == names.end()) names.push_back(n);
+    }
+  }
   while (r.get()) {
     if (r.line.empty()) continue;
     auto cols = csv_split(r.line);
@@ -313,8 +336,6 @@ void saleae_log(const std::string& path, LineReader& r, Analyzer& a) {
     std::int64_t ts = (endp && *endp == 0 && !ts_text.empty())
                           ? static_cast<std::int64_t>(secs * 1e6 + (secs >= 0 ? 0.5 : -0.5))
                           : kNoTime;
-    if (std::find(names.begin(), names.end(), name) == names.end() && names.size() < 2)
-      names.push_back(name);
     std::string other;
     if (names.size() == 2) other = names[0] == name ? names[1] : names[0];
     else other = "line";
