@@ -131,7 +131,7 @@ TEST(Pcap, SnapLengthCutIsAFindingAndTheRestIsDecoded) {
   TempDir tmp;
   std::string p = eth(udp4(A, B, 40000, 5000, frame("#tpUG6wGAYEC7832")));
   {
-    PcapWriter w(tmp.file("x.pcap"), 1, 50);
+    PcapWriter w(tmp.file("x.pcap"), 1);
     w.write(T, p, 50);
     w.write(T + 1, eth(udp4(A, B, 40000, 5000, frame("#TPUG2wPTZ05"))));
   }
