@@ -1,6 +1,7 @@
 #include "analyzer.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -267,8 +268,11 @@ struct Analyzer::Impl {
   std::unordered_map<ConvKey, std::unique_ptr<Conversation>, ConvKeyHash> convs;
   std::uint64_t next_conv = 1;
   std::uint64_t clock = 0;
-  std::unordered_map<std::string, std::unique_ptr<DecodedEntry>> cache;
-  std::string key;
+  DecodedEntry current;
+  std::unordered_map<std::uint32_t, std::uint64_t> idents;
+  std::array<std::uint64_t, top::finding_code_count> codes{};
+  std::array<std::uint64_t, acode_count> acodes{};
+  std::unordered_map<std::uint32_t, Latency> latency;
   std::uint64_t limit_notes = 0;
 
   explicit Impl(Analyzer& a) : A(a) {}
@@ -323,7 +327,7 @@ struct Analyzer::Impl {
 
   void note_event(std::int64_t ts, Position pos, Transport t, const Conversation* c,
                   const std::string* from, const std::string* to, Note n, bool emit = true) {
-    ++A.stats_.per_code[std::string(to_string(n.code))];
+    ++acodes[static_cast<std::size_t>(n.code)];
     if (n.severity > A.worst_) A.worst_ = n.severity;
     if (!emit) return;
     if (A.filter_.severity_set && n.severity < A.filter_.min_severity) return;
@@ -381,7 +385,7 @@ struct Analyzer::Impl {
     Direction& D = c.dir[d];
     if (it.kind == top::ItemKind::garbage) {
       ++A.stats_.garbage;
-      ++A.stats_.per_code[std::string(top::to_string(it.finding.code))];
+      ++codes[static_cast<std::size_t>(it.finding.code)];
       if (it.finding.severity > A.worst_) A.worst_ = it.finding.severity;
       if (A.filter_.active() && (!A.filter_.idents.empty() || !A.filter_.addrs.empty() ||
                                  !A.filter_.selects_time(ts) ||
@@ -401,35 +405,56 @@ struct Analyzer::Impl {
     frame(c, d, it.frame, pos, ts, stream_off);
   }
 
+  // Decoding is cheaper than any cache keyed by the frame bytes (frames of a
+  // real capture are mostly distinct: angles, attitudes), so each frame is
+  // decoded into one reused entry.
   const DecodedEntry& lookup(top::Frame& f, top::Dialect dialect, top::Role role) {
-    key.assign(f.raw);
-    key.push_back(static_cast<char>(f.terminator));
-    key.push_back(static_cast<char>(dialect));
-    key.push_back(static_cast<char>(role));
-    auto it = cache.find(key);
-    if (it != cache.end()) return *it->second;
-    if (cache.size() >= kDecodeCacheSize) cache.clear();
-    auto e = std::make_unique<DecodedEntry>();
+    DecodedEntry& e = current;
     top::DecodeOptions o;
     o.dialect = dialect;
     o.model = A.opts_.model;
     o.role = role;
-    e->decoded = top::decode(f, o);
+    e.decoded = top::decode(f, o);
     if (role == top::Role::response && top::role_from_addresses(f) == top::Role::request) {
       bool has = false;
-      for (const auto& x : e->decoded.findings) has |= x.code == top::FindingCode::unswapped_addresses;
+      for (const auto& x : e.decoded.findings) has |= x.code == top::FindingCode::unswapped_addresses;
       if (!has)
-        e->decoded.findings.push_back(top::make_finding(
+        e.decoded.findings.push_back(top::make_finding(
             top::FindingCode::unswapped_addresses, 3,
             std::string("a response addressed ") + f.src + " to " + f.dst +
                 " (the request's order; some simulators)"));
     }
-    e->frame = std::move(f);
-    e->worst = topdump::worst(e->frame, e->decoded);
-    for (const auto& x : e->frame.findings) e->codes.push_back(x.code);
-    for (const auto& x : e->decoded.findings) e->codes.push_back(x.code);
-    e->bad_checksum = e->frame.has(top::FindingCode::bad_checksum);
-    return *cache.emplace(key, std::move(e)).first->second;
+    e.frame = std::move(f);
+    e.worst = topdump::worst(e.frame, e.decoded);
+    e.codes.clear();
+    for (const auto& x : e.frame.findings) e.codes.push_back(x.code);
+    for (const auto& x : e.decoded.findings) e.codes.push_back(x.code);
+    e.bad_checksum = e.frame.has(top::FindingCode::bad_checksum);
+    return e;
+  }
+
+  static std::uint32_t pack(std::string_view id) {
+    std::uint32_t k = 0;
+    for (std::size_t i = 0; i < 3 && i < id.size(); ++i)
+      k |= static_cast<std::uint32_t>(static_cast<unsigned char>(id[i])) << (8 * i);
+    return k;
+  }
+  static std::string unpack(std::uint32_t k) {
+    char b[3] = {static_cast<char>(k & 0xFF), static_cast<char>((k >> 8) & 0xFF),
+                 static_cast<char>((k >> 16) & 0xFF)};
+    return escape(std::string_view(b, 3));
+  }
+
+  void materialize(Stats& s) const {
+    s.per_ident.clear();
+    for (const auto& [k, v] : idents) s.per_ident[unpack(k)] += v;
+    s.per_code.clear();
+    for (std::size_t i = 0; i < codes.size(); ++i)
+      if (codes[i]) s.per_code[std::string(top::to_string(static_cast<top::FindingCode>(i)))] += codes[i];
+    for (std::size_t i = 0; i < acodes.size(); ++i)
+      if (acodes[i]) s.per_code[std::string(to_string(static_cast<ACode>(i)))] += acodes[i];
+    s.latency.clear();
+    for (const auto& [k, v] : latency) s.latency[unpack(k)] = v;
   }
 
   void frame(Conversation& c, int d, top::Frame& f, Position pos, std::int64_t ts,
@@ -473,15 +498,15 @@ struct Analyzer::Impl {
       response(c, d, ev, dialect);
 
     if (ev.worst() > A.worst_) A.worst_ = ev.worst();
-    for (const Note& n : ev.notes) ++A.stats_.per_code[std::string(to_string(n.code))];
+    for (const Note& n : ev.notes) ++acodes[static_cast<std::size_t>(n.code)];
     if (A.filter_.active() && !A.filter_.selects(ev)) return;
     if (A.opts_.stats) {
       Stats& s = A.stats_;
       ++s.frames;
       if (e.bad_checksum) ++s.bad_checksum;
       if (e.worst == top::Severity::error) ++s.error_frames;
-      ++s.per_ident[escape(fr.ident_view())];
-      for (top::FindingCode code : e.codes) ++s.per_code[std::string(top::to_string(code))];
+      ++idents[pack(fr.ident_view())];
+      for (top::FindingCode code : e.codes) ++codes[static_cast<std::size_t>(code)];
       if (ts != kNoTime) {
         if (s.first == kNoTime || ts < s.first) s.first = ts;
         if (s.last == kNoTime || ts > s.last) s.last = ts;
@@ -599,7 +624,7 @@ struct Analyzer::Impl {
       ev.reply_to = m->n;
       if (ev.ts != kNoTime && m->ts != kNoTime) {
         ev.latency_us = ev.ts - m->ts;
-        A.stats_.latency[std::string(m->ident, 3)].add(ev.latency_us);
+        latency[pack(std::string_view(m->ident, 3))].add(ev.latency_us);
       }
       bool exempt = dialect == top::Dialect::topotek && (id == "REC" || id == "CAP");
       if (!ere && !exempt && m->control == 'w' && f.control == 'w' && m->data != f.data())
@@ -772,6 +797,11 @@ std::uint64_t NoteEvent::conv_id() const noexcept { return conv ? conv->id : 0; 
 Analyzer::Analyzer(AnalyzerOptions opts, Sink& sink)
     : impl_(std::make_unique<Impl>(*this)), opts_(opts), sink_(sink) {}
 Analyzer::~Analyzer() = default;
+
+const Stats& Analyzer::stats() const {
+  impl_->materialize(stats_);
+  return stats_;
+}
 
 void Analyzer::record(bool top_traffic) {
   ++stats_.records;

@@ -26,7 +26,6 @@ inline constexpr std::size_t kMaxConversations = 4096;
 inline constexpr std::size_t kMaxPending = 256;        // per conversation
 inline constexpr std::size_t kMaxTcpHeld = 1u << 20;   // out-of-order bytes per direction
 inline constexpr std::size_t kMaxTcpSegments = 1024;   // out-of-order segments per direction
-inline constexpr std::size_t kDecodeCacheSize = 16384; // distinct frames kept decoded
 inline constexpr std::size_t kMaxStatsConversations = 4096;
 
 inline constexpr std::int64_t kNoTime = INT64_MIN;
@@ -61,15 +60,13 @@ struct Note {
   std::uint64_t frame = 0;   // the frame it is about (0: none)
 };
 
-// A frame decoded once for a (bytes, dialect) key and reused: decoding,
-// findings and the JSON body depend only on those.
+// A decoded frame with its findings summarised.
 struct DecodedEntry {
   top::Frame frame;
   top::Decoded decoded;
   top::Severity worst = top::Severity::info;
   bool bad_checksum = false;
   std::vector<top::FindingCode> codes;
-  mutable std::string json_body;  // frame_json(...).dump() without the braces; lazily filled
 };
 
 struct FrameEvent {
@@ -178,7 +175,6 @@ struct AnalyzerOptions {
   std::int64_t repeat_window_us = 100'000;
   std::size_t max_conversations = kMaxConversations;
   std::size_t max_tcp_held = kMaxTcpHeld;
-  bool keep_json = false;                        // fill DecodedEntry::json_body
   bool stats = true;                             // count frames in stats
 };
 
@@ -224,7 +220,9 @@ class Analyzer {
   // End of input: flushes decoders, expires pending requests, checks streams.
   void finish();
 
-  const Stats& stats() const noexcept { return stats_; }
+  // The statistics so far (per-identifier, per-code and latency tables are
+  // folded in from fast counters on each call).
+  const Stats& stats() const;
   // The worst severity of any finding seen (for the exit status).
   top::Severity worst() const noexcept { return worst_; }
   std::uint64_t frames_seen() const noexcept { return frame_no_; }
@@ -235,7 +233,7 @@ class Analyzer {
   AnalyzerOptions opts_;
   Sink& sink_;
   Filter filter_;
-  Stats stats_;
+  mutable Stats stats_;
   top::Severity worst_ = top::Severity::info;
   std::uint64_t frame_no_ = 0;
   friend struct Impl;

@@ -33,19 +33,36 @@ json time_json(std::int64_t ts) {
   return static_cast<double>(ts) / 1e6;
 }
 
-void put_str(std::string& o, std::string_view s) {
-  o += '"';
+template <std::size_t N>
+void app(std::string& o, const char (&lit)[N]) {
+  o.append(lit, N - 1);
+}
+
+bool plain(std::string_view s) {
   for (char ch : s) {
     auto c = static_cast<unsigned char>(ch);
-    if (c == '"' || c == '\\') {
-      o += '\\';
-      o += ch;
-    } else if (c < 0x20) {
-      char b[8];
-      std::snprintf(b, sizeof b, "\\u%04x", c);
-      o += b;
-    } else {
-      o += ch;
+    if (c < 0x20 || c >= 0x7F || c == '"' || c == '\\') return false;
+  }
+  return true;
+}
+
+void put_str(std::string& o, std::string_view s) {
+  o += '"';
+  if (plain(s)) {
+    o += s;
+  } else {
+    for (char ch : s) {
+      auto c = static_cast<unsigned char>(ch);
+      if (c == '"' || c == '\\') {
+        o += '\\';
+        o += ch;
+      } else if (c < 0x20) {
+        char b[8];
+        std::snprintf(b, sizeof b, "\\u%04x", c);
+        o += b;
+      } else {
+        o += ch;
+      }
     }
   }
   o += '"';
@@ -65,24 +82,241 @@ void put_d(std::string& o, double v) {
 
 void put_time(std::string& o, std::int64_t ts) {
   if (ts == kNoTime) {
-    o += "null";
+    app(o, "null");
     return;
   }
   std::int64_t sec = ts / 1000000, frac = ts % 1000000;
   put_u(o, static_cast<std::uint64_t>(sec));
-  o += '.';
-  char b[8];
-  std::snprintf(b, sizeof b, "%06lld", static_cast<long long>(frac));
-  o += b;
+  char b[7];
+  b[0] = '.';
+  for (int i = 6; i >= 1; --i) {
+    b[i] = static_cast<char>('0' + frac % 10);
+    frac /= 10;
+  }
+  o.append(b, 7);
 }
 
-const std::string& body(const DecodedEntry& e) {
-  if (e.json_body.empty()) {
-    std::string s = frame_json(e.frame, e.decoded).dump();
-    e.json_body = s.substr(1, s.size() - 2);
-  }
-  return e.json_body;
+void put_i(std::string& o, std::int64_t v) {
+  char b[24];
+  auto r = std::to_chars(b, b + sizeof b, v);
+  o.append(b, r.ptr);
 }
+
+// A double as nlohmann writes it: shortest round-trip digits, ".0" on
+// integral values, null for NaN and infinities.
+void put_double(std::string& o, double v) {
+  if (!std::isfinite(v)) {
+    app(o, "null");
+    return;
+  }
+  char b[40];
+  auto r = std::to_chars(b, b + sizeof b, v);
+  std::string_view s(b, static_cast<std::size_t>(r.ptr - b));
+  o += s;
+  if (s.find_first_of(".e") == std::string_view::npos) app(o, ".0");
+}
+
+// put_str(escape(bytes)) without the temporary when nothing needs escaping.
+void put_esc(std::string& o, std::string_view bytes) {
+  if (plain(bytes)) {
+    o += '"';
+    o += bytes;
+    o += '"';
+  } else {
+    put_str(o, escape(bytes));
+  }
+}
+
+template <std::size_t N>
+void put_key(std::string& o, const char (&k)[N]) {
+  o += '"';
+  o.append(k, N - 1);
+  app(o, "\":");
+}
+
+std::string_view role_text(top::Role r) {
+  switch (r) {
+    case top::Role::request: return "request";
+    case top::Role::response: return "response";
+    case top::Role::any: break;
+  }
+  return "any";
+}
+
+void put_finding(std::string& o, const top::Finding& x) {
+  app(o, "{\"code\":\"");
+  o += top::to_string(x.code);
+  app(o, "\",\"severity\":\"");
+  o += top::to_string(x.severity);
+  app(o, "\",\"offset\":");
+  put_u(o, x.offset);
+  app(o, ",\"message\":");
+  put_esc(o, x.message);
+  if (!x.quirk.empty()) {
+    app(o, ",\"quirk\":");
+    put_str(o, x.quirk);
+  }
+  o += '}';
+}
+
+void put_field(std::string& o, const top::FieldValue& v, const top::Frame& f) {
+  const top::FieldSpec& s = *v.spec;
+  app(o, "{\"kind\":\"");
+  o += top::to_string(s.kind);
+  o += '"';
+  if (v.none) {
+    app(o, ",\"value\":null,\"none\":true");
+  } else if (!v.valid) {
+    app(o, ",\"value\":null,\"valid\":false");
+  } else {
+    switch (s.kind) {
+      case top::FieldKind::text:
+      case top::FieldKind::raw:
+        app(o, ",\"value\":");
+        put_esc(o, v.text);
+        break;
+      case top::FieldKind::enum_hex:
+      case top::FieldKind::enum_char:
+        app(o, ",\"value\":");
+        put_i(o, v.integer);
+        if (!v.enum_name.empty()) {
+          app(o, ",\"name\":");
+          put_str(o, v.enum_name);
+        }
+        break;
+      default:
+        app(o, ",\"value\":");
+        if (s.scale == 1.0 && s.kind != top::FieldKind::number && s.kind != top::FieldKind::nmea)
+          put_i(o, v.integer);
+        else
+          put_double(o, v.value);
+        if (!v.enum_name.empty()) {
+          app(o, ",\"name\":");
+          put_str(o, v.enum_name);
+        }
+        break;
+    }
+  }
+  if (!s.unit.empty()) {
+    app(o, ",\"unit\":");
+    put_str(o, s.unit);
+  }
+  app(o, ",\"text\":");
+  put_esc(o, format_value(v));
+  app(o, ",\"raw\":");
+  put_esc(o, std::string_view(f.raw).substr(v.offset, v.length));
+  app(o, ",\"offset\":");
+  put_u(o, v.offset);
+  o += '}';
+}
+
+}  // namespace
+
+// The keys of frame_json() in its order, written directly.
+void write_frame_body(std::string& o, const top::Frame& f, const top::Decoded& d) {
+  put_key(o, "header");
+  put_str(o, f.header_text());
+  o += ',';
+  put_key(o, "src");
+  put_esc(o, std::string_view(&f.src, 1));
+  o += ',';
+  put_key(o, "dst");
+  put_esc(o, std::string_view(&f.dst, 1));
+  o += ',';
+  put_key(o, "length");
+  put_u(o, f.data_length);
+  o += ',';
+  put_key(o, "declared_length");
+  put_u(o, f.declared_length);
+  o += ',';
+  put_key(o, "control");
+  if (f.control) put_esc(o, std::string_view(&f.control, 1));
+  else app(o, "null");
+  o += ',';
+  put_key(o, "ident");
+  put_esc(o, f.ident_view());
+  o += ',';
+  put_key(o, "data");
+  put_esc(o, f.data());
+  o += ',';
+  put_key(o, "checksum");
+  if (f.checksum_present) put_esc(o, f.checksum_text());
+  else app(o, "null");
+  o += ',';
+  put_key(o, "checksum_ok");
+  o += f.checksum_ok ? "true" : "false";
+  o += ',';
+  put_key(o, "expected_checksum");
+  char hx[2];
+  top::put_hex2(f.expected_checksum, hx);
+  put_str(o, std::string_view(hx, 2));
+  o += ',';
+  put_key(o, "raw");
+  put_esc(o, f.raw);
+  o += ',';
+  put_key(o, "dialect");
+  put_str(o, top::to_string(d.dialect));
+  o += ',';
+  put_key(o, "role");
+  put_str(o, role_text(d.role));
+  o += ',';
+  put_key(o, "command");
+  if (d.command) {
+    app(o, "{\"ident\":");
+    put_str(o, d.command->ident);
+    app(o, ",\"title\":");
+    put_str(o, d.command->title);
+    app(o, ",\"section\":");
+    put_str(o, d.command->section);
+    app(o, ",\"address_class\":");
+    put_str(o, std::string_view(&d.command->address, 1));
+    o += '}';
+  } else {
+    app(o, "null");
+  }
+  o += ',';
+  put_key(o, "fields");
+  o += '{';
+  bool first = true;
+  for (const auto& v : d.fields) {
+    if (!first) o += ',';
+    first = false;
+    put_str(o, v.name());
+    o += ':';
+    put_field(o, v, f);
+  }
+  app(o, "},");
+  put_key(o, "findings");
+  o += '[';
+  first = true;
+  std::string quirks;
+  top::Severity w = top::Severity::info;
+  auto each = [&](const top::Finding& x) {
+    if (!first) o += ',';
+    first = false;
+    put_finding(o, x);
+    if (!x.quirk.empty()) {
+      if (!quirks.empty()) quirks += ',';
+      put_str(quirks, x.quirk);
+    }
+    if (x.severity > w) w = x.severity;
+  };
+  if (f.findings.size() + d.findings.size() <= 1) {
+    for (const auto& x : f.findings) each(x);
+    for (const auto& x : d.findings) each(x);
+  } else {
+    for (const top::Finding* x : all_findings(f, d)) each(*x);
+  }
+  app(o, "],");
+  put_key(o, "quirks");
+  o += '[';
+  o += quirks;
+  app(o, "],");
+  put_key(o, "ok");
+  o += w != top::Severity::error ? "true" : "false";
+}
+
+namespace {
 
 std::string severity_tag(const top::Finding& f) {
   return std::string(top::to_string(f.severity)) + " " + std::string(top::to_string(f.code)) +
@@ -126,48 +360,48 @@ json frame_event_json(const FrameEvent& e) {
 }
 
 void write_frame_json(std::string& o, const FrameEvent& e) {
-  o += "{\"type\":\"frame\",\"n\":";
+  app(o, "{\"type\":\"frame\",\"n\":");
   put_u(o, e.n);
-  o += ",\"time\":";
+  app(o, ",\"time\":");
   put_time(o, e.ts);
-  o += ",\"transport\":\"";
+  app(o, ",\"transport\":\"");
   o += to_string(e.transport);
-  o += "\",\"from\":";
+  app(o, "\",\"from\":");
   put_str(o, *e.from);
-  o += ",\"to\":";
+  app(o, ",\"to\":");
   put_str(o, *e.to);
-  o += ",\"conversation\":";
+  app(o, ",\"conversation\":");
   put_u(o, e.conv ? e.conv_id() : 0);
-  o += ",\"record\":";
+  app(o, ",\"record\":");
   put_u(o, e.pos.record);
-  o += ",\"index\":";
+  app(o, ",\"index\":");
   put_u(o, e.pos.index);
-  o += ",\"offset\":";
+  app(o, ",\"offset\":");
   put_u(o, e.pos.offset);
-  o += ",\"stream_offset\":";
+  app(o, ",\"stream_offset\":");
   put_u(o, e.stream_offset);
   o += ',';
-  o += body(*e.entry);
-  o += ",\"reply_to\":";
+  write_frame_body(o, e.entry->frame, e.entry->decoded);
+  app(o, ",\"reply_to\":");
   if (e.reply_to) put_u(o, e.reply_to);
-  else o += "null";
-  o += ",\"latency_ms\":";
+  else app(o, "null");
+  app(o, ",\"latency_ms\":");
   if (e.latency_us >= 0) put_d(o, static_cast<double>(e.latency_us) / 1000.0);
-  else o += "null";
-  o += ",\"session\":[";
+  else app(o, "null");
+  app(o, ",\"session\":[");
   bool first = true;
   for (const Note& n : e.notes) {
     if (!first) o += ',';
     first = false;
-    o += "{\"code\":\"";
+    app(o, "{\"code\":\"");
     o += to_string(n.code);
-    o += "\",\"severity\":\"";
+    app(o, "\",\"severity\":\"");
     o += top::to_string(n.severity);
-    o += "\",\"message\":";
+    app(o, "\",\"message\":");
     put_str(o, n.message);
     o += '}';
   }
-  o += "]}\n";
+  app(o, "]}\n");
 }
 
 json garbage_event_json(const GarbageEvent& e) {
@@ -465,9 +699,9 @@ std::string stats_text(const Stats& s, top::Severity worst) {
                 std::string(top::to_string(worst)).c_str());
   o += b;
   if (s.first != kNoTime) o += "time " + format_time(s.first) + " .. " + format_time(s.last) + "\n";
-  o += "per identifier:\n";
+  app(o, "per identifier:\n");
   for (const auto& [k, v] : s.per_ident) o += "  " + k + " " + std::to_string(v) + "\n";
-  o += "per finding:\n";
+  app(o, "per finding:\n");
   for (const auto& [k, v] : s.per_code) o += "  " + k + " " + std::to_string(v) + "\n";
   std::snprintf(b, sizeof b,
                 "pairing: requests %llu, responses %llu, paired %llu, unanswered %llu, unsolicited %llu\n",
@@ -476,7 +710,7 @@ std::string stats_text(const Stats& s, top::Severity worst) {
                 static_cast<unsigned long long>(s.unsolicited));
   o += b;
   if (!s.latency.empty()) {
-    o += "latency (ms): ident count min median p95 max\n";
+    app(o, "latency (ms): ident count min median p95 max\n");
     for (const auto& [k, l] : s.latency) {
       std::snprintf(b, sizeof b, "  %s %llu %.3f %.3f %.3f %.3f\n", k.c_str(),
                     static_cast<unsigned long long>(l.count()), static_cast<double>(l.min()) / 1000.0,
@@ -485,7 +719,7 @@ std::string stats_text(const Stats& s, top::Severity worst) {
       o += b;
     }
   }
-  o += "conversations:\n";
+  app(o, "conversations:\n");
   for (const ConvStats& c : s.conversations) {
     std::snprintf(b, sizeof b, "  %llu %s %s <> %s %s: frames %llu, requests %llu, responses %llu, paired %llu\n",
                   static_cast<unsigned long long>(c.id), std::string(to_string(c.transport)).c_str(),

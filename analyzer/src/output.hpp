@@ -15,7 +15,7 @@ namespace topdump {
 // Buffered stdout (or any FILE*); flushes every event when `live`.
 class Out {
  public:
-  explicit Out(std::FILE* f, bool live = false) : f_(f), live_(live) {}
+  explicit Out(std::FILE* f, bool live = false) : f_(f), live_(live) { buf_.reserve(1 << 17); }
   ~Out() { flush(); }
   std::string& buf() { return buf_; }
   void done() {
@@ -33,6 +33,8 @@ class Out {
 json frame_event_json(const FrameEvent& e);
 json garbage_event_json(const GarbageEvent& e);
 json note_event_json(const NoteEvent& e);
+// The keys of frame_json(), written without nlohmann (no braces).
+void write_frame_body(std::string& out, const top::Frame& f, const top::Decoded& d);
 // The fast writer of a frame event: appends one line (with '\n').
 void write_frame_json(std::string& out, const FrameEvent& e);
 

@@ -311,23 +311,36 @@ bool read_file(const std::string& path, Format format, Analyzer& a, const Source
     total = static_cast<std::uint64_t>(in.tellg());
   }
   FILE* fp = pcap_file(p);
+  // pcap: records follow a 24-byte header, each with a 16-byte header, so the
+  // file offset of a record is known without asking the stream (an lseek per
+  // record). pcapng: only known after a failure (ftell).
+  bool ng = false;
+  {
+    std::ifstream in(path, std::ios::binary);
+    char m[4] = {0, 0, 0, 0};
+    in.read(m, 4);
+    ng = std::memcmp(m, "\x0a\x0d\x0d\x0a", 4) == 0;
+  }
+  std::uint64_t at = 24;
   Dissector dis(a, o);
   std::uint64_t record = 0;
   for (;;) {
     pcap_pkthdr* h = nullptr;
     const u_char* data = nullptr;
-    long before = fp ? std::ftell(fp) : -1;
     int rc = pcap_next_ex(p, &h, &data);
     if (rc == PCAP_ERROR_BREAK) break;
     if (rc == PCAP_ERROR) {
+      std::string where = ng ? "near file offset " + std::to_string(fp ? std::ftell(fp) : 0)
+                             : "at file offset " + std::to_string(at);
       a.source_note(kNoTime, ACode::truncated_file,
-                    path + ": record " + std::to_string(record + 1) + " at file offset " +
-                        std::to_string(before) + ": " + pcap_geterr(p),
-                    record + 1, before < 0 ? 0 : static_cast<std::uint64_t>(before));
+                    path + ": record " + std::to_string(record + 1) + " " + where + ": " +
+                        pcap_geterr(p),
+                    record + 1, ng ? 0 : at);
       break;
     }
     if (rc != 1) continue;
     ++record;
+    at += 16 + h->caplen;
     std::int64_t ts = static_cast<std::int64_t>(h->ts.tv_sec) * 1000000 + h->ts.tv_usec;
     bool top = dis.packet(dlt, ts, data, h->caplen, h->len, record);
     a.record(top);
