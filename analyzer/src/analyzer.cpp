@@ -247,17 +247,15 @@ bool endpoint_less(const Endpoint& x, const Endpoint& y) {
 
 struct ConvKeyHash {
   std::size_t operator()(const ConvKey& k) const noexcept {
-    std::size_t h = static_cast<std::size_t>(k.t) * 1000003u;
-    auto mix = [&](const Endpoint& e) {
-      std::uint64_t v = 1469598103934665603ull;
-      for (std::uint8_t c : e.addr) v = (v ^ c) * 1099511628211ull;
-      v = (v ^ e.port) * 1099511628211ull;
-      v = (v ^ e.family) * 1099511628211ull;
-      h ^= std::hash<std::string>{}(e.name) + v + (h << 6) + (h >> 2);
+    auto one = [](const Endpoint& e) -> std::uint64_t {
+      if (e.family == 0) return std::hash<std::string>{}(e.name);
+      std::uint64_t a, b;
+      std::memcpy(&a, e.addr.data(), 8);
+      std::memcpy(&b, e.addr.data() + 8, 8);
+      return (a * 0x9E3779B97F4A7C15ull) ^ (b * 0xC2B2AE3D27D4EB4Full) ^ (std::uint64_t{e.port} << 1);
     };
-    mix(k.a);
-    mix(k.b);
-    return h;
+    std::uint64_t h = one(k.a) * 31 + one(k.b) + static_cast<std::uint64_t>(k.t);
+    return static_cast<std::size_t>(h ^ (h >> 29));
   }
 };
 
