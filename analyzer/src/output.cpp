@@ -127,13 +127,6 @@ void put_esc(std::string& o, std::string_view bytes) {
   }
 }
 
-template <std::size_t N>
-void put_key(std::string& o, const char (&k)[N]) {
-  o += '"';
-  o.append(k, N - 1);
-  app(o, "\":");
-}
-
 std::string_view role_text(top::Role r) {
   switch (r) {
     case top::Role::request: return "request";
@@ -214,53 +207,39 @@ void put_field(std::string& o, const top::FieldValue& v, const top::Frame& f) {
 
 // The keys of frame_json() in its order, written directly.
 void write_frame_body(std::string& o, const top::Frame& f, const top::Decoded& d) {
-  put_key(o, "header");
+  app(o, "\"header\":");
   put_str(o, f.header_text());
-  o += ',';
-  put_key(o, "src");
+  app(o, ",\"src\":");
   put_esc(o, std::string_view(&f.src, 1));
-  o += ',';
-  put_key(o, "dst");
+  app(o, ",\"dst\":");
   put_esc(o, std::string_view(&f.dst, 1));
-  o += ',';
-  put_key(o, "length");
+  app(o, ",\"length\":");
   put_u(o, f.data_length);
-  o += ',';
-  put_key(o, "declared_length");
+  app(o, ",\"declared_length\":");
   put_u(o, f.declared_length);
-  o += ',';
-  put_key(o, "control");
+  app(o, ",\"control\":");
   if (f.control) put_esc(o, std::string_view(&f.control, 1));
   else app(o, "null");
-  o += ',';
-  put_key(o, "ident");
+  app(o, ",\"ident\":");
   put_esc(o, f.ident_view());
-  o += ',';
-  put_key(o, "data");
+  app(o, ",\"data\":");
   put_esc(o, f.data());
-  o += ',';
-  put_key(o, "checksum");
+  app(o, ",\"checksum\":");
   if (f.checksum_present) put_esc(o, f.checksum_text());
   else app(o, "null");
-  o += ',';
-  put_key(o, "checksum_ok");
+  app(o, ",\"checksum_ok\":");
   o += f.checksum_ok ? "true" : "false";
-  o += ',';
-  put_key(o, "expected_checksum");
+  app(o, ",\"expected_checksum\":");
   char hx[2];
   top::put_hex2(f.expected_checksum, hx);
   put_str(o, std::string_view(hx, 2));
-  o += ',';
-  put_key(o, "raw");
+  app(o, ",\"raw\":");
   put_esc(o, f.raw);
-  o += ',';
-  put_key(o, "dialect");
+  app(o, ",\"dialect\":");
   put_str(o, top::to_string(d.dialect));
-  o += ',';
-  put_key(o, "role");
+  app(o, ",\"role\":");
   put_str(o, role_text(d.role));
-  o += ',';
-  put_key(o, "command");
+  app(o, ",\"command\":");
   if (d.command) {
     app(o, "{\"ident\":");
     put_str(o, d.command->ident);
@@ -274,8 +253,7 @@ void write_frame_body(std::string& o, const top::Frame& f, const top::Decoded& d
   } else {
     app(o, "null");
   }
-  o += ',';
-  put_key(o, "fields");
+  app(o, ",\"fields\":");
   o += '{';
   bool first = true;
   for (const auto& v : d.fields) {
@@ -285,8 +263,7 @@ void write_frame_body(std::string& o, const top::Frame& f, const top::Decoded& d
     o += ':';
     put_field(o, v, f);
   }
-  app(o, "},");
-  put_key(o, "findings");
+  app(o, "},\"findings\":");
   o += '[';
   first = true;
   std::string quirks;
@@ -307,12 +284,10 @@ void write_frame_body(std::string& o, const top::Frame& f, const top::Decoded& d
   } else {
     for (const top::Finding* x : all_findings(f, d)) each(*x);
   }
-  app(o, "],");
-  put_key(o, "quirks");
+  app(o, "],\"quirks\":");
   o += '[';
   o += quirks;
-  app(o, "],");
-  put_key(o, "ok");
+  app(o, "],\"ok\":");
   o += w != top::Severity::error ? "true" : "false";
 }
 
