@@ -5,7 +5,7 @@
 # Generates FRAMES-frame and 4xFRAMES-frame captures in a temporary
 # directory, then for each: the floor `tcpdump -r FILE -w /dev/null`,
 # `topdump stats FILE` and `topdump read --json FILE > /dev/null`, each the
-# best of 3 wall-clock runs, pinned to one core when taskset exists; peak RSS
+# best of 3 wall-clock runs (date +%s.%N around /usr/bin/time), pinned to one core when taskset exists; peak RSS
 # from /usr/bin/time -v.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -25,8 +25,11 @@ trap 'rm -rf "$tmp"' EXIT
 measure() {
   local best="" rss=0 t
   for _ in 1 2 3; do
+    local t0 t1
+    t0=$(date +%s.%N)
     /usr/bin/time -v -o "$tmp/time" $pin "$@" >/dev/null 2>"$tmp/err" || true
-    t=$(awk -F': ' '/Elapsed \(wall clock\)/ {n=split($2,a,":"); s=0; for(i=1;i<=n;i++) s=s*60+a[i]; print s}' "$tmp/time")
+    t1=$(date +%s.%N)
+    t=$(awk -v a="$t0" -v b="$t1" 'BEGIN{printf "%.4f", b-a}')
     rss=$(awk -F': ' '/Maximum resident set size/ {print $2}' "$tmp/time")
     if [ -z "$best" ] || awk "BEGIN{exit !($t < $best)}"; then best=$t; fi
   done
@@ -42,7 +45,7 @@ for mult in 1 4; do
   read -r floor _ < <(measure tcpdump -r "$f" -w /dev/null)
   read -r st st_rss < <(measure "$topdump" stats "$f")
   read -r js js_rss < <(measure "$topdump" read --json "$f")
-  got=$("$topdump" stats --json "$f" 2>/dev/null | awk -F': ' '/^  "frames"/ {gsub(",","",$2); print $2}')
+  got=$({ "$topdump" stats --json "$f" 2>/dev/null || true; } | awk -F': ' '/^  "frames"/ {gsub(",","",$2); print $2}')
   awk -v c="${mult}x" -v n="$got" -v fl="$floor" -v st="$st" -v js="$js" -v r1="$st_rss" -v r2="$js_rss" 'BEGIN{
     printf "%-8s %10d %10.3f %10.3f %10.3f %8.2f %8.2f %12.0f %8.1fMB %8.1fMB\n",
       c, n, fl, st, js, st/fl, js/fl, n/js, r1/1024, r2/1024 }'
