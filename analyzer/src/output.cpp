@@ -20,6 +20,47 @@ void Out::flush() {
 
 namespace {
 
+// An append-only writer over a std::string with inline appends (the
+// library's std::string::append is an out-of-line call; this path runs a
+// hundred appends per frame).
+class W {
+ public:
+  explicit W(std::string& s) : s_(s), base_(s.size()) {
+    s_.resize(base_ + 2048);
+    p_ = s_.data() + base_;
+    end_ = s_.data() + s_.size();
+  }
+  ~W() { s_.resize(static_cast<std::size_t>(p_ - s_.data())); }
+  W(const W&) = delete;
+  W& operator=(const W&) = delete;
+  void append(const char* d, std::size_t n) {
+    if (static_cast<std::size_t>(end_ - p_) < n) grow(n);
+    std::memcpy(p_, d, n);
+    p_ += n;
+  }
+  W& operator+=(char c) {
+    if (p_ == end_) grow(1);
+    *p_++ = c;
+    return *this;
+  }
+  W& operator+=(std::string_view v) {
+    append(v.data(), v.size());
+    return *this;
+  }
+
+ private:
+  void grow(std::size_t n) {
+    auto used = static_cast<std::size_t>(p_ - s_.data());
+    s_.resize(std::max(s_.size() * 2, used + n + 2048));
+    p_ = s_.data() + used;
+    end_ = s_.data() + s_.size();
+  }
+  std::string& s_;
+  std::size_t base_;
+  char* p_;
+  char* end_;
+};
+
 json note_json(const Note& n) {
   json j;
   j["code"] = to_string(n.code);
@@ -33,8 +74,8 @@ json time_json(std::int64_t ts) {
   return static_cast<double>(ts) / 1e6;
 }
 
-template <std::size_t N>
-void app(std::string& o, const char (&lit)[N]) {
+template <class O, std::size_t N>
+void app(O& o, const char (&lit)[N]) {
   o.append(lit, N - 1);
 }
 
@@ -46,7 +87,8 @@ bool plain(std::string_view s) {
   return true;
 }
 
-void put_str(std::string& o, std::string_view s) {
+template <class O>
+void put_str(O& o, std::string_view s) {
   o += '"';
   if (plain(s)) {
     o += s;
@@ -68,19 +110,22 @@ void put_str(std::string& o, std::string_view s) {
   o += '"';
 }
 
-void put_u(std::string& o, std::uint64_t v) {
+template <class O>
+void put_u(O& o, std::uint64_t v) {
   char b[24];
   auto r = std::to_chars(b, b + sizeof b, v);
-  o.append(b, r.ptr);
+  o.append(b, static_cast<std::size_t>(r.ptr - b));
 }
 
-void put_d(std::string& o, double v) {
+template <class O>
+void put_d(O& o, double v) {
   char b[40];
   auto r = std::to_chars(b, b + sizeof b, v);
-  o.append(b, r.ptr);
+  o.append(b, static_cast<std::size_t>(r.ptr - b));
 }
 
-void put_time(std::string& o, std::int64_t ts) {
+template <class O>
+void put_time(O& o, std::int64_t ts) {
   if (ts == kNoTime) {
     app(o, "null");
     return;
@@ -96,15 +141,17 @@ void put_time(std::string& o, std::int64_t ts) {
   o.append(b, 7);
 }
 
-void put_i(std::string& o, std::int64_t v) {
+template <class O>
+void put_i(O& o, std::int64_t v) {
   char b[24];
   auto r = std::to_chars(b, b + sizeof b, v);
-  o.append(b, r.ptr);
+  o.append(b, static_cast<std::size_t>(r.ptr - b));
 }
 
 // A double as nlohmann writes it: shortest round-trip digits, ".0" on
 // integral values, null for NaN and infinities.
-void put_double(std::string& o, double v) {
+template <class O>
+void put_double(O& o, double v) {
   if (!std::isfinite(v)) {
     app(o, "null");
     return;
@@ -117,13 +164,14 @@ void put_double(std::string& o, double v) {
 }
 
 // put_str(escape(bytes)) without the temporary when nothing needs escaping.
-void put_esc(std::string& o, std::string_view bytes) {
+template <class O>
+void put_esc(O& o, std::string_view bytes) {
   if (plain(bytes)) {
     o += '"';
     o += bytes;
     o += '"';
   } else {
-    put_str(o, escape(bytes));
+    put_str(o, std::string_view(escape(bytes)));
   }
 }
 
@@ -136,7 +184,8 @@ std::string_view role_text(top::Role r) {
   return "any";
 }
 
-void put_finding(std::string& o, const top::Finding& x) {
+template <class O>
+void put_finding(O& o, const top::Finding& x) {
   app(o, "{\"code\":\"");
   o += top::to_string(x.code);
   app(o, "\",\"severity\":\"");
@@ -152,7 +201,8 @@ void put_finding(std::string& o, const top::Finding& x) {
   o += '}';
 }
 
-void put_field(std::string& o, const top::FieldValue& v, const top::Frame& f) {
+template <class O>
+void put_field(O& o, const top::FieldValue& v, const top::Frame& f) {
   const top::FieldSpec& s = *v.spec;
   app(o, "{\"kind\":\"");
   o += top::to_string(s.kind);
@@ -206,7 +256,8 @@ void put_field(std::string& o, const top::FieldValue& v, const top::Frame& f) {
 }  // namespace
 
 // The keys of frame_json() in its order, written directly.
-void write_frame_body(std::string& o, const top::Frame& f, const top::Decoded& d) {
+template <class O>
+void frame_body(O& o, const top::Frame& f, const top::Decoded& d) {
   app(o, "\"header\":");
   put_str(o, f.header_text());
   app(o, ",\"src\":");
@@ -228,7 +279,7 @@ void write_frame_body(std::string& o, const top::Frame& f, const top::Decoded& d
   if (f.checksum_present) put_esc(o, f.checksum_text());
   else app(o, "null");
   app(o, ",\"checksum_ok\":");
-  o += f.checksum_ok ? "true" : "false";
+  o += std::string_view(f.checksum_ok ? "true" : "false");
   app(o, ",\"expected_checksum\":");
   char hx[2];
   top::put_hex2(f.expected_checksum, hx);
@@ -334,7 +385,8 @@ json frame_event_json(const FrameEvent& e) {
   return j;
 }
 
-void write_frame_json(std::string& o, const FrameEvent& e) {
+void write_frame_json(std::string& out, const FrameEvent& e) {
+  W o(out);
   app(o, "{\"type\":\"frame\",\"n\":");
   put_u(o, e.n);
   app(o, ",\"time\":");
@@ -356,7 +408,7 @@ void write_frame_json(std::string& o, const FrameEvent& e) {
   app(o, ",\"stream_offset\":");
   put_u(o, e.stream_offset);
   o += ',';
-  write_frame_body(o, e.entry->frame, e.entry->decoded);
+  frame_body(o, e.entry->frame, e.entry->decoded);
   app(o, ",\"reply_to\":");
   if (e.reply_to) put_u(o, e.reply_to);
   else app(o, "null");
