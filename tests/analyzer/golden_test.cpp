@@ -13,6 +13,7 @@ namespace {
 struct Case {
   std::string name, args;
 };
+void PrintTo(const Case& c, std::ostream* os) { *os << c.name << ": topdump " << c.args; }
 
 std::vector<Case> cases() {
   std::vector<Case> v;
