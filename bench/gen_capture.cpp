@@ -23,7 +23,8 @@ struct Gen {
   PcapWriter w;
   std::uint64_t frames = 0, target;
   std::int64_t t = 1714564800LL * 1000000;
-  explicit Gen(const char* path, std::uint64_t n, std::uint64_t seed) : rng(seed), w(path, 1), target(n) {}
+  explicit Gen(const char* path, std::uint64_t n, std::uint64_t seed)
+      : rng(seed), w(path, 1), target(n) {}
 
   unsigned pick(unsigned n) { return static_cast<unsigned>(rng() % n); }
   std::string hex4(int v) {
@@ -57,7 +58,8 @@ struct Gen {
       std::string id = topotek ? "GIC" : "GAC";
       std::string hdr = topotek ? "#tp" : "#TP";
       std::string body = hdr + "G" + a + "Cr" + id + hex4(static_cast<int>(pick(36000)) - 18000) +
-                         hex4(static_cast<int>(pick(18000)) - 9000) + hex4(static_cast<int>(pick(200)) - 100);
+                         hex4(static_cast<int>(pick(18000)) - 9000) +
+                         hex4(static_cast<int>(pick(200)) - 100);
       std::string p = make(body);
       if (pick(100) < 5) p += make(body);
       send(client, false, topotek, p);
@@ -83,7 +85,8 @@ struct Gen {
       std::swap(resp[3], resp[4]);
     }
     std::string p = make(req);
-    if (pick(100) < 5) p += make(std::string("#TP") + a + "G2wPTZ00");  // several frames per datagram
+    if (pick(100) < 5)
+      p += make(std::string("#TP") + a + "G2wPTZ00");  // several frames per datagram
     send(client, true, topotek, p);
     if (pick(100) < 98) {
       t += 1000 + pick(19000);

@@ -41,11 +41,16 @@ struct Udp {
   }
   std::string wrap(const std::string& ip) {
     switch (dlt) {
-      case kEn10mb: return eth(ip, vlans);
-      case kNull: return null_lo(ip);
-      case kSll: return sll(ip);
-      case kSll2: return sll2(ip);
-      default: return ip;
+      case kEn10mb:
+        return eth(ip, vlans);
+      case kNull:
+        return null_lo(ip);
+      case kSll:
+        return sll(ip);
+      case kSll2:
+        return sll2(ip);
+      default:
+        return ip;
     }
   }
   void up(std::int64_t ms, const std::string& payload) {
@@ -69,25 +74,27 @@ std::string gac(int i) {
 void sample() {
   // SkyDroid C12 over Ethernet/IPv4/UDP 5000: the bundled sample.
   Udp u("sample.pcap", kEn10mb, 40000, 5000);
-  u.up(0, F("#TPUG2wGAA0A"));                 // attitude push at 10 Hz
+  u.up(0, F("#TPUG2wGAA0A"));  // attitude push at 10 Hz
   u.down(4, F("#TPGU2wGAA0A"));
   for (int i = 0; i < 12; ++i) u.down(100 + i * 100, gac(i));  // the stream, 10 Hz
-  u.up(150, F("#tpUG6wGAYEC7832"));           // yaw -50.00 deg at speed 0x32
-  u.down(162, F("#tpGU6wGAYEC7832"));         // echo after 12 ms
-  u.up(300, F("#tpUG6wGAP03E832") + F("#TPUG2wPTZ05"));  // two frames in one datagram
-  u.down(309, F("#tpGU6wGAP03E832") + "\r\n");           // CRLF after the frame
+  u.up(150, F("#tpUG6wGAYEC7832"));                            // yaw -50.00 deg at speed 0x32
+  u.down(162, F("#tpGU6wGAYEC7832"));                          // echo after 12 ms
+  u.up(300, F("#tpUG6wGAP03E832") + F("#TPUG2wPTZ05"));        // two frames in one datagram
+  u.down(309, F("#tpGU6wGAP03E832") + "\r\n");                 // CRLF after the frame
   u.down(311, F("#TPGU2wPTZ05"));
-  u.up(400, "#tpUG6wGAY0000" "3200");         // wrong checksum ("00")
-  u.up(500, F("#TPUD2rVER00"));               // never answered
-  u.up(600, F("#TPUM2wXYZ01"));               // unknown identifier ...
-  u.down(607, F("#TPMU2wERE!!"));             // ... rejected with ERE
-  u.down(700, F("#TPDU2wREC01"));             // nobody asked
+  u.up(400,
+       "#tpUG6wGAY0000"
+       "3200");                                                       // wrong checksum ("00")
+  u.up(500, F("#TPUD2rVER00"));                                       // never answered
+  u.up(600, F("#TPUM2wXYZ01"));                                       // unknown identifier ...
+  u.down(607, F("#TPMU2wERE!!"));                                     // ... rejected with ERE
+  u.down(700, F("#TPDU2wREC01"));                                     // nobody asked
   for (int i = 0; i < 3; ++i) u.up(800 + 30 * i, F("#TPUG2wPTZ00"));  // sent three times
   u.down(805, F("#TPGU2wPTZ00"));
-  u.up(900, F("#tpUG6wGAYfe0c32"));           // lowercase hex data
+  u.up(900, F("#tpUG6wGAYfe0c32"));  // lowercase hex data
   u.down(910, F("#tpGU6wGAYfe0c32"));
   u.up(1000, F("#tpUG6wGAY03E832"));
-  u.down(1011, F("#tpUG6wGAY03E832"));        // simulator: addresses not swapped
+  u.down(1011, F("#tpUG6wGAY03E832"));  // simulator: addresses not swapped
 }
 
 void topotek_vlan() {
@@ -102,10 +109,10 @@ void topotek_vlan() {
   gps += std::string("\x23\x23\x40\x23\x5e\x45\x11\xe4\x23\x0d\xe8\x03\x00\x00", 14);
   u.up(400, F(gps));
   u.up(500, F("#TPPD2rTMP00"));
-  u.down(520, F("#PDP16TMP1008001720504000FA0123"));     // the documented malformed form
-  u.down(560, F("#tpDP16wTMP1008001720504000FA0123"));   // two-digit length form
+  u.down(520, F("#PDP16TMP1008001720504000FA0123"));    // the documented malformed form
+  u.down(560, F("#tpDP16wTMP1008001720504000FA0123"));  // two-digit length form
   u.up(600, F("#TPPD2wREC01"));
-  u.down(640, F("#tpDPAwREC0000000012"));                // file index, not an echo
+  u.down(640, F("#tpDPAwREC0000000012"));  // file index, not an echo
 }
 
 void links() {
@@ -191,7 +198,8 @@ void truncated() {
   {
     PcapWriter w(p, kEn10mb, 65535);
     auto pkt = [&](const std::string& pl, bool upward) {
-      return eth(upward ? udp4(kClient, kCamera, 40006, 5000, pl) : udp4(kCamera, kClient, 5000, 40006, pl));
+      return eth(upward ? udp4(kClient, kCamera, 40006, 5000, pl)
+                        : udp4(kCamera, kClient, 5000, 40006, pl));
     };
     w.write(T0, pkt(F("#tpUG6wGAYEC7832"), true));
     w.write(T0 + 10000, pkt(F("#tpGU6wGAYEC7832"), false));
@@ -236,10 +244,14 @@ std::string socat_text(const std::string& bytes) {
   std::string o;
   for (char ch : bytes) {
     auto c = static_cast<unsigned char>(ch);
-    if (c == '\r') o += "\\r";
-    else if (c == '\n') o += '\n';
-    else if (c < 0x20 || c >= 0x7f) o += '.';
-    else o += ch;
+    if (c == '\r')
+      o += "\\r";
+    else if (c == '\n')
+      o += '\n';
+    else if (c < 0x20 || c >= 0x7f)
+      o += '.';
+    else
+      o += ch;
   }
   return o;
 }
@@ -299,7 +311,8 @@ void serial_logs() {
   write_file(path("serial-lines.log"), lines);
 
   // raw: what a device sent, one direction
-  raw = gac(0) + gac(1) + std::string("\x00\xff#", 3) + gac(2) + "\r\n" + F("#TPGU2wPTZ05") + gac(3).substr(0, 12);
+  raw = gac(0) + gac(1) + std::string("\x00\xff#", 3) + gac(2) + "\r\n" + F("#TPGU2wPTZ05") +
+        gac(3).substr(0, 12);
   write_file(path("serial-raw.bin"), raw);
 
   // Saleae Logic 2 async serial export, one row per byte, two channels
@@ -307,8 +320,8 @@ void serial_logs() {
   auto add = [&](const char* name, double t0, const std::string& bytes) {
     for (std::size_t i = 0; i < bytes.size(); ++i) {
       char b[128];
-      std::snprintf(b, sizeof b, "%s,data,%.9f,8.68e-05,0x%02X,\n", name, t0 + static_cast<double>(i) * 86.8e-6,
-                    static_cast<unsigned char>(bytes[i]));
+      std::snprintf(b, sizeof b, "%s,data,%.9f,8.68e-05,0x%02X,\n", name,
+                    t0 + static_cast<double>(i) * 86.8e-6, static_cast<unsigned char>(bytes[i]));
       csv += b;
     }
   };

@@ -14,9 +14,12 @@ namespace topdump {
 
 std::string_view to_string(Transport t) noexcept {
   switch (t) {
-    case Transport::udp: return "udp";
-    case Transport::tcp: return "tcp";
-    case Transport::serial: return "serial";
+    case Transport::udp:
+      return "udp";
+    case Transport::tcp:
+      return "tcp";
+    case Transport::serial:
+      return "serial";
   }
   return "?";
 }
@@ -30,7 +33,8 @@ std::string Endpoint::text() const {
   if (family == 6) {
     // RFC 5952 style: longest run of zero groups as "::".
     std::uint16_t g[8];
-    for (int i = 0; i < 8; ++i) g[i] = static_cast<std::uint16_t>(addr[2 * i] << 8 | addr[2 * i + 1]);
+    for (int i = 0; i < 8; ++i)
+      g[i] = static_cast<std::uint16_t>(addr[2 * i] << 8 | addr[2 * i + 1]);
     int best = -1, best_len = 0;
     for (int i = 0; i < 8;) {
       if (g[i] != 0) {
@@ -149,8 +153,7 @@ bool Filter::active() const {
 
 bool Filter::selects(const FrameEvent& e) const {
   const top::Frame& f = e.entry->frame;
-  if (!idents.empty() &&
-      std::find(idents.begin(), idents.end(), f.ident_view()) == idents.end())
+  if (!idents.empty() && std::find(idents.begin(), idents.end(), f.ident_view()) == idents.end())
     return false;
   if (!addrs.empty()) {
     bool any = false;
@@ -204,7 +207,7 @@ struct Direction {
   std::string from, to;
   top::StreamDecoder dec;
   std::deque<Seg> segs;
-  std::uint64_t base = 0;          // stream offset of the decoder's offset 0
+  std::uint64_t base = 0;  // stream offset of the decoder's offset 0
   std::uint64_t last_record = 0;
   std::uint32_t index = 0;
   // TCP
@@ -212,7 +215,7 @@ struct Direction {
   std::uint32_t next_seq = 0;
   std::map<std::uint32_t, Held> ooo;  // keyed by seq - next_seq at insertion time ordering
   std::size_t held = 0;
-  std::string tail;                 // last delivered bytes, for overlap checks
+  std::string tail;  // last delivered bytes, for overlap checks
   // repeats
   std::string last_req;
   std::int64_t last_req_ts = kNoTime;
@@ -252,7 +255,8 @@ struct ConvKeyHash {
       std::uint64_t a, b;
       std::memcpy(&a, e.addr.data(), 8);
       std::memcpy(&b, e.addr.data() + 8, 8);
-      return (a * 0x9E3779B97F4A7C15ull) ^ (b * 0xC2B2AE3D27D4EB4Full) ^ (std::uint64_t{e.port} << 1);
+      return (a * 0x9E3779B97F4A7C15ull) ^ (b * 0xC2B2AE3D27D4EB4Full) ^
+             (std::uint64_t{e.port} << 1);
     };
     std::uint64_t h = one(k.a) * 31 + one(k.b) + static_cast<std::uint64_t>(k.t);
     return static_cast<std::size_t>(h ^ (h >> 29));
@@ -385,9 +389,9 @@ struct Analyzer::Impl {
       ++A.stats_.garbage;
       ++codes[static_cast<std::size_t>(it.finding.code)];
       if (it.finding.severity > A.worst_) A.worst_ = it.finding.severity;
-      if (A.filter_.active() && (!A.filter_.idents.empty() || !A.filter_.addrs.empty() ||
-                                 !A.filter_.selects_time(ts) ||
-                                 (A.filter_.severity_set && it.finding.severity < A.filter_.min_severity)))
+      if (A.filter_.active() &&
+          (!A.filter_.idents.empty() || !A.filter_.addrs.empty() || !A.filter_.selects_time(ts) ||
+           (A.filter_.severity_set && it.finding.severity < A.filter_.min_severity)))
         return;
       GarbageEvent g;
       g.ts = ts;
@@ -415,12 +419,13 @@ struct Analyzer::Impl {
     e.decoded = top::decode(f, o);
     if (role == top::Role::response && top::role_from_addresses(f) == top::Role::request) {
       bool has = false;
-      for (const auto& x : e.decoded.findings) has |= x.code == top::FindingCode::unswapped_addresses;
+      for (const auto& x : e.decoded.findings)
+        has |= x.code == top::FindingCode::unswapped_addresses;
       if (!has)
-        e.decoded.findings.push_back(top::make_finding(
-            top::FindingCode::unswapped_addresses, 3,
-            std::string("a response addressed ") + f.src + " to " + f.dst +
-                " (the request's order; some simulators)"));
+        e.decoded.findings.push_back(
+            top::make_finding(top::FindingCode::unswapped_addresses, 3,
+                              std::string("a response addressed ") + f.src + " to " + f.dst +
+                                  " (the request's order; some simulators)"));
     }
     e.frame = std::move(f);
     e.worst = topdump::worst(e.frame, e.decoded);
@@ -448,7 +453,8 @@ struct Analyzer::Impl {
     for (const auto& [k, v] : idents) s.per_ident[unpack(k)] += v;
     s.per_code.clear();
     for (std::size_t i = 0; i < codes.size(); ++i)
-      if (codes[i]) s.per_code[std::string(top::to_string(static_cast<top::FindingCode>(i)))] += codes[i];
+      if (codes[i])
+        s.per_code[std::string(top::to_string(static_cast<top::FindingCode>(i)))] += codes[i];
     for (std::size_t i = 0; i < acodes.size(); ++i)
       if (acodes[i]) s.per_code[std::string(to_string(static_cast<ACode>(i)))] += acodes[i];
     s.latency.clear();
@@ -522,7 +528,8 @@ struct Analyzer::Impl {
   void unanswered(Conversation& c, const Pending& p, bool at_end) {
     ++A.stats_.unanswered;
     const Direction& D = c.dir[p.dir];
-    std::string msg = escape(std::string_view(p.ident, 3)) + " request (frame " + std::to_string(p.n) + ")";
+    std::string msg =
+        escape(std::string_view(p.ident, 3)) + " request (frame " + std::to_string(p.n) + ")";
     if (at_end)
       msg += " got no response before the end of the capture";
     else
@@ -547,10 +554,10 @@ struct Analyzer::Impl {
     ++c.st.requests;
     if (D.last_req == f.raw && ev.ts != kNoTime && D.last_req_ts != kNoTime &&
         ev.ts - D.last_req_ts <= A.opts_.repeat_window_us)
-      ev.notes.push_back(Note{ACode::repeated, default_severity(ACode::repeated),
-                              "same request again after " +
-                                  std::to_string((ev.ts - D.last_req_ts) / 1000) + " ms",
-                              ev.n});
+      ev.notes.push_back(
+          Note{ACode::repeated, default_severity(ACode::repeated),
+               "same request again after " + std::to_string((ev.ts - D.last_req_ts) / 1000) + " ms",
+               ev.n});
     D.last_req = f.raw;
     D.last_req_ts = ev.ts;
     std::string_view id = f.ident_view();
@@ -558,11 +565,14 @@ struct Analyzer::Impl {
       unsigned v = 0;
       bool ok = !f.data().empty();
       for (char ch : f.data()) {
-        int x = (ch >= '0' && ch <= '9') ? ch - '0'
+        int x = (ch >= '0' && ch <= '9')   ? ch - '0'
                 : (ch >= 'A' && ch <= 'F') ? ch - 'A' + 10
-                : (ch >= 'a' && ch <= 'f') ? ch - 'a' + 10 : -1;
-        if (x < 0) ok = false;
-        else v = v * 16 + static_cast<unsigned>(x);
+                : (ch >= 'a' && ch <= 'f') ? ch - 'a' + 10
+                                           : -1;
+        if (x < 0)
+          ok = false;
+        else
+          v = v * 16 + static_cast<unsigned>(x);
       }
       if (ok) {
         std::string sid = id == "GAA" ? "GAC" : "GIC";
@@ -628,8 +638,8 @@ struct Analyzer::Impl {
       if (!ere && !exempt && m->control == 'w' && f.control == 'w' && m->data != f.data())
         ev.notes.push_back(Note{ACode::echo_differs, default_severity(ACode::echo_differs),
                                 "reply to write (frame " + std::to_string(m->n) + ") carries \"" +
-                                    escape(f.data()) + "\", the write carried \"" + escape(m->data) +
-                                    "\"",
+                                    escape(f.data()) + "\", the write carried \"" +
+                                    escape(m->data) + "\"",
                                 ev.n});
       c.pending.erase(m);
       return;
@@ -646,8 +656,7 @@ struct Analyzer::Impl {
     }
     ++A.stats_.unsolicited;
     ev.notes.push_back(Note{ACode::unsolicited, default_severity(ACode::unsolicited),
-                            escape(id) + " response that no pending request asked for",
-                            ev.n});
+                            escape(id) + " response that no pending request asked for", ev.n});
   }
 
   void check_stream(Conversation& c, const StreamStat& s) {
@@ -710,7 +719,8 @@ struct Analyzer::Impl {
     auto rel = static_cast<std::int32_t>(seq - D.next_seq);
     if (rel > 0) return false;
     auto skip = static_cast<std::size_t>(-static_cast<std::int64_t>(rel));
-    if (skip > 0) overlap_check(c, d, seq, p.substr(0, std::min(skip, p.size())), record, offset, ts);
+    if (skip > 0)
+      overlap_check(c, d, seq, p.substr(0, std::min(skip, p.size())), record, offset, ts);
     if (skip < p.size()) deliver(c, d, p.substr(skip), record, offset + skip, ts);
     return true;
   }
@@ -745,8 +755,8 @@ struct Analyzer::Impl {
       if (rel < best_rel) best_rel = rel, best = it;
     }
     std::uint64_t at = D.base + D.dec.fed();
-    note_event(best->second.ts, Position{best->second.record, 0, best->second.offset},
-               c.transport, &c, &D.from, &D.to,
+    note_event(best->second.ts, Position{best->second.record, 0, best->second.offset}, c.transport,
+               &c, &D.from, &D.to,
                Note{ACode::tcp_gap, default_severity(ACode::tcp_gap),
                     std::to_string(best_rel) + " bytes missing at stream offset " +
                         std::to_string(at) + "; decoding restarts after the gap",
@@ -822,9 +832,9 @@ void Analyzer::datagram(std::int64_t ts, const Endpoint& src, const Endpoint& ds
   }
 }
 
-void Analyzer::segment(std::int64_t ts, const Endpoint& src, const Endpoint& dst,
-                       std::uint32_t seq, bool syn, std::string_view payload,
-                       std::uint64_t record, std::uint32_t offset) {
+void Analyzer::segment(std::int64_t ts, const Endpoint& src, const Endpoint& dst, std::uint32_t seq,
+                       bool syn, std::string_view payload, std::uint64_t record,
+                       std::uint32_t offset) {
   int d = 0;
   Conversation& c = impl_->get(Transport::tcp, src, dst, d);
   Direction& D = c.dir[d];
@@ -847,19 +857,20 @@ void Analyzer::segment(std::int64_t ts, const Endpoint& src, const Endpoint& dst
   auto rel = static_cast<std::int32_t>(seq - D.next_seq);
   impl_->note_event(ts, Position{record, 0, offset}, c.transport, &c, &D.from, &D.to,
                     Note{ACode::tcp_out_of_order, default_severity(ACode::tcp_out_of_order),
-                         std::to_string(payload.size()) + " bytes arrived " +
-                             std::to_string(rel) + " bytes ahead of the stream; held",
+                         std::to_string(payload.size()) + " bytes arrived " + std::to_string(rel) +
+                             " bytes ahead of the stream; held",
                          0});
   auto [it, fresh] = D.ooo.try_emplace(seq, Held{std::string(payload), record, offset, ts});
   if (!fresh) {
     bool same = std::string_view(it->second.bytes).substr(0, payload.size()) ==
                 payload.substr(0, it->second.bytes.size());
     ACode code = same ? ACode::tcp_retransmission : ACode::tcp_overlap_differs;
-    impl_->note_event(ts, Position{record, 0, offset}, c.transport, &c, &D.from, &D.to,
-                      Note{code, default_severity(code),
-                           std::to_string(payload.size()) + " held bytes seen again" +
-                               (same ? " (retransmission)" : " with different content; the longer copy is kept"),
-                           0});
+    impl_->note_event(
+        ts, Position{record, 0, offset}, c.transport, &c, &D.from, &D.to,
+        Note{code, default_severity(code),
+             std::to_string(payload.size()) + " held bytes seen again" +
+                 (same ? " (retransmission)" : " with different content; the longer copy is kept"),
+             0});
     if (it->second.bytes.size() < payload.size()) {
       D.held -= it->second.bytes.size();
       it->second = Held{std::string(payload), record, offset, ts};

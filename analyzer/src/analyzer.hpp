@@ -23,9 +23,9 @@ namespace topdump {
 
 // Named limits (findings fire when they are hit).
 inline constexpr std::size_t kMaxConversations = 4096;
-inline constexpr std::size_t kMaxPending = 256;        // per conversation
-inline constexpr std::size_t kMaxTcpHeld = 1u << 20;   // out-of-order bytes per direction
-inline constexpr std::size_t kMaxTcpSegments = 1024;   // out-of-order segments per direction
+inline constexpr std::size_t kMaxPending = 256;       // per conversation
+inline constexpr std::size_t kMaxTcpHeld = 1u << 20;  // out-of-order bytes per direction
+inline constexpr std::size_t kMaxTcpSegments = 1024;  // out-of-order segments per direction
 inline constexpr std::size_t kMaxStatsConversations = 4096;
 
 inline constexpr std::int64_t kNoTime = INT64_MIN;
@@ -38,7 +38,7 @@ struct Endpoint {
   std::uint8_t family = 0;  // 4, 6, or 0 for a named end
   std::array<std::uint8_t, 16> addr{};
   std::uint16_t port = 0;
-  std::string name;         // family 0
+  std::string name;  // family 0
   bool operator==(const Endpoint&) const = default;
   std::string text() const;  // "10.0.0.1:5000", "[::1]:5000", "host"
 };
@@ -57,7 +57,7 @@ struct Note {
   ACode code{};
   top::Severity severity{};
   std::string message;
-  std::uint64_t frame = 0;   // the frame it is about (0: none)
+  std::uint64_t frame = 0;  // the frame it is about (0: none)
 };
 
 // A decoded frame with its findings summarised.
@@ -70,18 +70,18 @@ struct DecodedEntry {
 };
 
 struct FrameEvent {
-  std::uint64_t n = 0;               // 1-based frame number
-  std::int64_t ts = kNoTime;         // microseconds since the epoch
+  std::uint64_t n = 0;        // 1-based frame number
+  std::int64_t ts = kNoTime;  // microseconds since the epoch
   Position pos;
-  std::uint64_t stream_offset = 0;   // TCP/serial: offset in the direction's byte stream
+  std::uint64_t stream_offset = 0;  // TCP/serial: offset in the direction's byte stream
   Transport transport{};
   const Conversation* conv = nullptr;
-  const std::string* from = nullptr; // endpoint text
+  const std::string* from = nullptr;  // endpoint text
   const std::string* to = nullptr;
   const DecodedEntry* entry = nullptr;
-  std::uint64_t reply_to = 0;        // frame number of the request answered
+  std::uint64_t reply_to = 0;  // frame number of the request answered
   std::int64_t latency_us = -1;
-  std::vector<Note> notes;           // session findings on this frame
+  std::vector<Note> notes;  // session findings on this frame
   top::Severity worst() const noexcept;
   std::uint64_t conv_id() const noexcept;
 };
@@ -101,7 +101,7 @@ struct NoteEvent {
   std::int64_t ts = kNoTime;
   Position pos;
   Transport transport{};
-  const Conversation* conv = nullptr;   // may be null (file-level)
+  const Conversation* conv = nullptr;  // may be null (file-level)
   const std::string* from = nullptr;
   const std::string* to = nullptr;
   Note note;
@@ -136,8 +136,8 @@ class Latency {
 };
 
 struct StreamStat {
-  std::string ident;          // GAC or GIC
-  double asked_hz = 0;        // 0: enable without a rate (Topotek)
+  std::string ident;    // GAC or GIC
+  double asked_hz = 0;  // 0: enable without a rate (Topotek)
   std::uint64_t frames = 0;
   std::int64_t first = kNoTime, last = kNoTime;
   double measured_hz() const;
@@ -145,7 +145,7 @@ struct StreamStat {
 
 struct ConvStats {
   std::uint64_t id = 0;
-  std::string a, b;          // endpoint texts, a is the first sender
+  std::string a, b;  // endpoint texts, a is the first sender
   Transport transport{};
   top::Dialect dialect = top::Dialect::unknown;
   std::uint64_t frames = 0, requests = 0, responses = 0, paired = 0;
@@ -157,12 +157,12 @@ struct Stats {
   std::uint64_t records_skipped = 0;  // not TOP traffic
   std::uint64_t frames = 0;
   std::uint64_t bad_checksum = 0;
-  std::uint64_t garbage = 0;          // garbage runs
+  std::uint64_t garbage = 0;  // garbage runs
   std::uint64_t error_frames = 0;
   std::uint64_t requests = 0, responses = 0, paired = 0, unanswered = 0, unsolicited = 0;
   std::map<std::string, std::uint64_t> per_ident;
-  std::map<std::string, std::uint64_t> per_code;       // frame, catalog and analyzer codes
-  std::map<std::string, Latency> latency;              // per identifier
+  std::map<std::string, std::uint64_t> per_code;  // frame, catalog and analyzer codes
+  std::map<std::string, Latency> latency;         // per identifier
   std::vector<ConvStats> conversations;
   std::uint64_t conversations_dropped = 0;
   std::int64_t first = kNoTime, last = kNoTime;
@@ -171,17 +171,17 @@ struct Stats {
 struct AnalyzerOptions {
   top::Dialect dialect = top::Dialect::unknown;  // forced when not unknown
   top::Model model = top::Model::unknown;
-  std::int64_t timeout_us = 2'000'000;           // unanswered after this
+  std::int64_t timeout_us = 2'000'000;  // unanswered after this
   std::int64_t repeat_window_us = 100'000;
   std::size_t max_conversations = kMaxConversations;
   std::size_t max_tcp_held = kMaxTcpHeld;
-  bool stats = true;                             // count frames in stats
+  bool stats = true;  // count frames in stats
 };
 
 // A filter over frame events (set by the command line).
 struct Filter {
-  std::vector<std::string> idents;    // empty: all
-  std::vector<std::string> addrs;     // TOP address letters or network hosts
+  std::vector<std::string> idents;  // empty: all
+  std::vector<std::string> addrs;   // TOP address letters or network hosts
   top::Severity min_severity = top::Severity::info;
   bool severity_set = false;
   std::int64_t from = kNoTime, to = kNoTime;
@@ -203,8 +203,8 @@ class Analyzer {
   // A record was read (counts records; call once per packet/line/chunk).
   void record(bool top_traffic);
   // A UDP payload: decoded on its own (frames never span datagrams).
-  void datagram(std::int64_t ts, const Endpoint& src, const Endpoint& dst,
-                std::string_view payload, std::uint64_t record, std::uint32_t offset);
+  void datagram(std::int64_t ts, const Endpoint& src, const Endpoint& dst, std::string_view payload,
+                std::uint64_t record, std::uint32_t offset);
   // A TCP segment: reassembled per direction (SYN, retransmission, overlap,
   // out of order, gaps) before decoding.
   void segment(std::int64_t ts, const Endpoint& src, const Endpoint& dst, std::uint32_t seq,

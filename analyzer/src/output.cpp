@@ -177,9 +177,12 @@ void put_esc(O& o, std::string_view bytes) {
 
 std::string_view role_text(top::Role r) {
   switch (r) {
-    case top::Role::request: return "request";
-    case top::Role::response: return "response";
-    case top::Role::any: break;
+    case top::Role::request:
+      return "request";
+    case top::Role::response:
+      return "response";
+    case top::Role::any:
+      break;
   }
   return "any";
 }
@@ -269,15 +272,19 @@ void frame_body(O& o, const top::Frame& f, const top::Decoded& d) {
   app(o, ",\"declared_length\":");
   put_u(o, f.declared_length);
   app(o, ",\"control\":");
-  if (f.control) put_esc(o, std::string_view(&f.control, 1));
-  else app(o, "null");
+  if (f.control)
+    put_esc(o, std::string_view(&f.control, 1));
+  else
+    app(o, "null");
   app(o, ",\"ident\":");
   put_esc(o, f.ident_view());
   app(o, ",\"data\":");
   put_esc(o, f.data());
   app(o, ",\"checksum\":");
-  if (f.checksum_present) put_esc(o, f.checksum_text());
-  else app(o, "null");
+  if (f.checksum_present)
+    put_esc(o, f.checksum_text());
+  else
+    app(o, "null");
   app(o, ",\"checksum_ok\":");
   o += std::string_view(f.checksum_ok ? "true" : "false");
   app(o, ",\"expected_checksum\":");
@@ -345,8 +352,8 @@ void frame_body(O& o, const top::Frame& f, const top::Decoded& d) {
 namespace {
 
 std::string severity_tag(const top::Finding& f) {
-  return std::string(top::to_string(f.severity)) + " " + std::string(top::to_string(f.code)) +
-         "@" + std::to_string(f.offset) + ": " + f.message +
+  return std::string(top::to_string(f.severity)) + " " + std::string(top::to_string(f.code)) + "@" +
+         std::to_string(f.offset) + ": " + f.message +
          (f.quirk.empty() ? "" : " [quirk: " + std::string(f.quirk) + "]");
 }
 
@@ -375,10 +382,14 @@ json frame_event_json(const FrameEvent& e) {
   j["offset"] = e.pos.offset;
   j["stream_offset"] = e.stream_offset;
   j.update(frame_json(e.entry->frame, e.entry->decoded));
-  if (e.reply_to) j["reply_to"] = e.reply_to;
-  else j["reply_to"] = nullptr;
-  if (e.latency_us >= 0) j["latency_ms"] = static_cast<double>(e.latency_us) / 1000.0;
-  else j["latency_ms"] = nullptr;
+  if (e.reply_to)
+    j["reply_to"] = e.reply_to;
+  else
+    j["reply_to"] = nullptr;
+  if (e.latency_us >= 0)
+    j["latency_ms"] = static_cast<double>(e.latency_us) / 1000.0;
+  else
+    j["latency_ms"] = nullptr;
   json s = json::array();
   for (const Note& n : e.notes) s.push_back(note_json(n));
   j["session"] = std::move(s);
@@ -410,11 +421,15 @@ void write_frame_json(std::string& out, const FrameEvent& e) {
   o += ',';
   frame_body(o, e.entry->frame, e.entry->decoded);
   app(o, ",\"reply_to\":");
-  if (e.reply_to) put_u(o, e.reply_to);
-  else app(o, "null");
+  if (e.reply_to)
+    put_u(o, e.reply_to);
+  else
+    app(o, "null");
   app(o, ",\"latency_ms\":");
-  if (e.latency_us >= 0) put_d(o, static_cast<double>(e.latency_us) / 1000.0);
-  else app(o, "null");
+  if (e.latency_us >= 0)
+    put_d(o, static_cast<double>(e.latency_us) / 1000.0);
+  else
+    app(o, "null");
   app(o, ",\"session\":[");
   bool first = true;
   for (const Note& n : e.notes) {
@@ -465,8 +480,10 @@ json note_event_json(const NoteEvent& e) {
   j["code"] = to_string(e.note.code);
   j["severity"] = top::to_string(e.note.severity);
   j["message"] = e.note.message;
-  if (e.note.frame) j["frame"] = e.note.frame;
-  else j["frame"] = nullptr;
+  if (e.note.frame)
+    j["frame"] = e.note.frame;
+  else
+    j["frame"] = nullptr;
   return j;
 }
 
@@ -496,9 +513,14 @@ std::string frame_line(const FrameEvent& e) {
        std::to_string(e.pos.offset) + " \"" + escape(f.raw) + "\" ";
   s += escape(f.ident_view());
   switch (d.role) {
-    case top::Role::request: s += " request"; break;
-    case top::Role::response: s += " response"; break;
-    case top::Role::any: break;
+    case top::Role::request:
+      s += " request";
+      break;
+    case top::Role::response:
+      s += " response";
+      break;
+    case top::Role::any:
+      break;
   }
   if (d.command) s += " (" + std::string(d.command->title) + ")";
   std::string sum = d.summary();
@@ -528,7 +550,8 @@ std::string garbage_line(const GarbageEvent& e) {
 
 std::string note_line(const NoteEvent& e) {
   std::string s = "!! " + where(e.ts, e.transport, e.from, e.to);
-  if (e.pos.record) s += " rec " + std::to_string(e.pos.record) + "@" + std::to_string(e.pos.offset);
+  if (e.pos.record)
+    s += " rec " + std::to_string(e.pos.record) + "@" + std::to_string(e.pos.offset);
   s += " " + std::string(top::to_string(e.note.severity)) + " " +
        std::string(to_string(e.note.code)) + ": " + e.note.message;
   return s;
@@ -560,10 +583,10 @@ void TextSink::note(const NoteEvent& e) {
 
 const std::vector<std::string>& csv_columns() {
   static const std::vector<std::string> c = {
-      "n",      "time",     "transport", "from",   "to",       "conversation", "record",
-      "index",  "offset",   "header",    "src",    "dst",      "control",      "ident",
-      "data",   "raw",      "checksum_ok", "dialect", "role",  "title",        "summary",
-      "findings", "severity", "ok",      "reply_to", "latency_ms"};
+      "n",        "time",     "transport",   "from",     "to",        "conversation", "record",
+      "index",    "offset",   "header",      "src",      "dst",       "control",      "ident",
+      "data",     "raw",      "checksum_ok", "dialect",  "role",      "title",        "summary",
+      "findings", "severity", "ok",          "reply_to", "latency_ms"};
   return c;
 }
 
@@ -573,7 +596,8 @@ bool csv_column_ok(const std::string& c) {
   return std::find(v.begin(), v.end(), c) != v.end();
 }
 
-CsvSink::CsvSink(Out& out, std::vector<std::string> columns) : out_(out), cols_(std::move(columns)) {
+CsvSink::CsvSink(Out& out, std::vector<std::string> columns)
+    : out_(out), cols_(std::move(columns)) {
   std::string& o = out_.buf();
   for (std::size_t i = 0; i < cols_.size(); ++i) o += (i ? "," : "") + cols_[i];
   o += '\n';
@@ -602,33 +626,60 @@ void CsvSink::frame(const FrameEvent& e) {
     if (i) o += ',';
     const std::string& c = cols_[i];
     std::string v;
-    if (c == "n") v = std::to_string(e.n);
-    else if (c == "time") v = format_time(e.ts);
-    else if (c == "transport") v = to_string(e.transport);
-    else if (c == "from") v = *e.from;
-    else if (c == "to") v = *e.to;
-    else if (c == "conversation") v = std::to_string(e.conv_id());
-    else if (c == "record") v = std::to_string(e.pos.record);
-    else if (c == "index") v = std::to_string(e.pos.index);
-    else if (c == "offset") v = std::to_string(e.pos.offset);
-    else if (c == "header") v = f.header_text();
-    else if (c == "src") v = escape(std::string_view(&f.src, 1));
-    else if (c == "dst") v = escape(std::string_view(&f.dst, 1));
-    else if (c == "control") v = f.control ? escape(std::string_view(&f.control, 1)) : "";
-    else if (c == "ident") v = escape(f.ident_view());
-    else if (c == "data") v = escape(f.data());
-    else if (c == "raw") v = escape(f.raw);
-    else if (c == "checksum_ok") v = f.checksum_ok ? "true" : "false";
-    else if (c == "dialect") v = top::to_string(d.dialect);
-    else if (c == "role") v = d.role == top::Role::request ? "request" : d.role == top::Role::response ? "response" : "any";
-    else if (c == "title") v = d.command ? std::string(d.command->title) : "";
-    else if (c == "summary") v = d.summary();
+    if (c == "n")
+      v = std::to_string(e.n);
+    else if (c == "time")
+      v = format_time(e.ts);
+    else if (c == "transport")
+      v = to_string(e.transport);
+    else if (c == "from")
+      v = *e.from;
+    else if (c == "to")
+      v = *e.to;
+    else if (c == "conversation")
+      v = std::to_string(e.conv_id());
+    else if (c == "record")
+      v = std::to_string(e.pos.record);
+    else if (c == "index")
+      v = std::to_string(e.pos.index);
+    else if (c == "offset")
+      v = std::to_string(e.pos.offset);
+    else if (c == "header")
+      v = f.header_text();
+    else if (c == "src")
+      v = escape(std::string_view(&f.src, 1));
+    else if (c == "dst")
+      v = escape(std::string_view(&f.dst, 1));
+    else if (c == "control")
+      v = f.control ? escape(std::string_view(&f.control, 1)) : "";
+    else if (c == "ident")
+      v = escape(f.ident_view());
+    else if (c == "data")
+      v = escape(f.data());
+    else if (c == "raw")
+      v = escape(f.raw);
+    else if (c == "checksum_ok")
+      v = f.checksum_ok ? "true" : "false";
+    else if (c == "dialect")
+      v = top::to_string(d.dialect);
+    else if (c == "role")
+      v = d.role == top::Role::request    ? "request"
+          : d.role == top::Role::response ? "response"
+                                          : "any";
+    else if (c == "title")
+      v = d.command ? std::string(d.command->title) : "";
+    else if (c == "summary")
+      v = d.summary();
     else if (c == "findings") {
-      for (const top::Finding* x : all_findings(f, d)) v += (v.empty() ? "" : ";") + std::string(top::to_string(x->code));
+      for (const top::Finding* x : all_findings(f, d))
+        v += (v.empty() ? "" : ";") + std::string(top::to_string(x->code));
       for (const Note& n : e.notes) v += (v.empty() ? "" : ";") + std::string(to_string(n.code));
-    } else if (c == "severity") v = top::to_string(e.worst());
-    else if (c == "ok") v = e.worst() == top::Severity::error ? "false" : "true";
-    else if (c == "reply_to") v = e.reply_to ? std::to_string(e.reply_to) : "";
+    } else if (c == "severity")
+      v = top::to_string(e.worst());
+    else if (c == "ok")
+      v = e.worst() == top::Severity::error ? "false" : "true";
+    else if (c == "reply_to")
+      v = e.reply_to ? std::to_string(e.reply_to) : "";
     else if (c == "latency_ms") {
       if (e.latency_us >= 0) {
         char b[32];
@@ -716,48 +767,54 @@ json stats_json(const Stats& s, top::Severity worst) {
 std::string stats_text(const Stats& s, top::Severity worst) {
   std::string o;
   char b[256];
-  std::snprintf(b, sizeof b,
-                "frames %llu (bad checksum %llu, with an error %llu), garbage runs %llu, records %llu "
-                "(not TOP %llu), worst finding: %s\n",
-                static_cast<unsigned long long>(s.frames), static_cast<unsigned long long>(s.bad_checksum),
-                static_cast<unsigned long long>(s.error_frames), static_cast<unsigned long long>(s.garbage),
-                static_cast<unsigned long long>(s.records),
-                static_cast<unsigned long long>(s.records_skipped),
-                std::string(top::to_string(worst)).c_str());
+  std::snprintf(
+      b, sizeof b,
+      "frames %llu (bad checksum %llu, with an error %llu), garbage runs %llu, records %llu "
+      "(not TOP %llu), worst finding: %s\n",
+      static_cast<unsigned long long>(s.frames), static_cast<unsigned long long>(s.bad_checksum),
+      static_cast<unsigned long long>(s.error_frames), static_cast<unsigned long long>(s.garbage),
+      static_cast<unsigned long long>(s.records),
+      static_cast<unsigned long long>(s.records_skipped),
+      std::string(top::to_string(worst)).c_str());
   o += b;
   if (s.first != kNoTime) o += "time " + format_time(s.first) + " .. " + format_time(s.last) + "\n";
   app(o, "per identifier:\n");
   for (const auto& [k, v] : s.per_ident) o += "  " + k + " " + std::to_string(v) + "\n";
   app(o, "per finding:\n");
   for (const auto& [k, v] : s.per_code) o += "  " + k + " " + std::to_string(v) + "\n";
-  std::snprintf(b, sizeof b,
-                "pairing: requests %llu, responses %llu, paired %llu, unanswered %llu, unsolicited %llu\n",
-                static_cast<unsigned long long>(s.requests), static_cast<unsigned long long>(s.responses),
-                static_cast<unsigned long long>(s.paired), static_cast<unsigned long long>(s.unanswered),
-                static_cast<unsigned long long>(s.unsolicited));
+  std::snprintf(
+      b, sizeof b,
+      "pairing: requests %llu, responses %llu, paired %llu, unanswered %llu, unsolicited %llu\n",
+      static_cast<unsigned long long>(s.requests), static_cast<unsigned long long>(s.responses),
+      static_cast<unsigned long long>(s.paired), static_cast<unsigned long long>(s.unanswered),
+      static_cast<unsigned long long>(s.unsolicited));
   o += b;
   if (!s.latency.empty()) {
     app(o, "latency (ms): ident count min median p95 max\n");
     for (const auto& [k, l] : s.latency) {
-      std::snprintf(b, sizeof b, "  %s %llu %.3f %.3f %.3f %.3f\n", k.c_str(),
-                    static_cast<unsigned long long>(l.count()), static_cast<double>(l.min()) / 1000.0,
-                    static_cast<double>(l.quantile(0.5)) / 1000.0,
-                    static_cast<double>(l.quantile(0.95)) / 1000.0, static_cast<double>(l.max()) / 1000.0);
+      std::snprintf(
+          b, sizeof b, "  %s %llu %.3f %.3f %.3f %.3f\n", k.c_str(),
+          static_cast<unsigned long long>(l.count()), static_cast<double>(l.min()) / 1000.0,
+          static_cast<double>(l.quantile(0.5)) / 1000.0,
+          static_cast<double>(l.quantile(0.95)) / 1000.0, static_cast<double>(l.max()) / 1000.0);
       o += b;
     }
   }
   app(o, "conversations:\n");
   for (const ConvStats& c : s.conversations) {
-    std::snprintf(b, sizeof b, "  %llu %s %s <> %s %s: frames %llu, requests %llu, responses %llu, paired %llu\n",
-                  static_cast<unsigned long long>(c.id), std::string(to_string(c.transport)).c_str(),
-                  c.a.c_str(), c.b.c_str(), std::string(top::to_string(c.dialect)).c_str(),
-                  static_cast<unsigned long long>(c.frames), static_cast<unsigned long long>(c.requests),
-                  static_cast<unsigned long long>(c.responses), static_cast<unsigned long long>(c.paired));
+    std::snprintf(
+        b, sizeof b,
+        "  %llu %s %s <> %s %s: frames %llu, requests %llu, responses %llu, paired %llu\n",
+        static_cast<unsigned long long>(c.id), std::string(to_string(c.transport)).c_str(),
+        c.a.c_str(), c.b.c_str(), std::string(top::to_string(c.dialect)).c_str(),
+        static_cast<unsigned long long>(c.frames), static_cast<unsigned long long>(c.requests),
+        static_cast<unsigned long long>(c.responses), static_cast<unsigned long long>(c.paired));
     o += b;
     for (const StreamStat& t : c.streams) {
-      std::snprintf(b, sizeof b, "    stream %s: %llu frames at %.2f Hz (asked %s)\n", t.ident.c_str(),
-                    static_cast<unsigned long long>(t.frames), t.measured_hz(),
-                    t.asked_hz > 0 ? (std::to_string(static_cast<int>(t.asked_hz)) + " Hz").c_str() : "enable");
+      std::snprintf(b, sizeof b, "    stream %s: %llu frames at %.2f Hz (asked %s)\n",
+                    t.ident.c_str(), static_cast<unsigned long long>(t.frames), t.measured_hz(),
+                    t.asked_hz > 0 ? (std::to_string(static_cast<int>(t.asked_hz)) + " Hz").c_str()
+                                   : "enable");
       o += b;
     }
   }

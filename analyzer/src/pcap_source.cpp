@@ -3,7 +3,6 @@
 #include <poll.h>
 
 #include <cerrno>
-
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -75,7 +74,8 @@ std::optional<std::int64_t> parse_time(std::string_view s) {
   std::int64_t whole = 0, frac = 0, scale = 100000;
   std::size_t i = 0;
   bool any = false;
-  while (i < s.size() && s[i] >= '0' && s[i] <= '9') whole = whole * 10 + (s[i++] - '0'), any = true;
+  while (i < s.size() && s[i] >= '0' && s[i] <= '9')
+    whole = whole * 10 + (s[i++] - '0'), any = true;
   if (i < s.size() && s[i] == '.') {
     ++i;
     while (i < s.size() && s[i] >= '0' && s[i] <= '9') {
@@ -123,8 +123,15 @@ std::uint32_t be32(const std::uint8_t* p) {
 
 bool Dissector::supported(int dlt) {
   switch (dlt) {
-    case DLT_NULL: case kDltLoop: case DLT_EN10MB: case kDltRaw1: case kDltRaw2:
-    case kDltSll: case kDltSll2: case kDltIpv4: case kDltIpv6:
+    case DLT_NULL:
+    case kDltLoop:
+    case DLT_EN10MB:
+    case kDltRaw1:
+    case kDltRaw2:
+    case kDltSll:
+    case kDltSll2:
+    case kDltIpv4:
+    case kDltIpv6:
       return true;
   }
   return false;
@@ -152,9 +159,12 @@ bool Dissector::packet(int dlt, std::int64_t ts, const std::uint8_t* p, std::uin
                                             std::uint32_t{p[2]} << 16 | std::uint32_t{p[3]} << 24);
       if (dlt == DLT_NULL && af > 0xFFFF) af = be32(p);  // written on a big-endian host
       off = 4;
-      if (af == 2) ethertype = 0x0800;
-      else if (af == 10 || af == 24 || af == 28 || af == 30) ethertype = 0x86DD;
-      else return false;
+      if (af == 2)
+        ethertype = 0x0800;
+      else if (af == 10 || af == 24 || af == 28 || af == 30)
+        ethertype = 0x86DD;
+      else
+        return false;
       break;
     }
     case DLT_EN10MB: {
@@ -204,7 +214,8 @@ bool Dissector::ip(std::int64_t ts, const std::uint8_t* p, std::size_t n, std::s
     std::size_t ihl = (p[off] & 0x0F) * 4u;
     if (ihl < 20 || n < off + ihl) return bad(ts, record, off, "bad IPv4 header length"), false;
     std::size_t total = be16(p + off + 2);
-    if (total < ihl) return bad(ts, record, off + 2, "IPv4 total length below header length"), false;
+    if (total < ihl)
+      return bad(ts, record, off + 2, "IPv4 total length below header length"), false;
     end = std::min(n, off + total);
     std::uint16_t frag = be16(p + off + 6);
     proto = p[off + 9];
@@ -222,7 +233,8 @@ bool Dissector::ip(std::int64_t ts, const std::uint8_t* p, std::size_t n, std::s
     std::memcpy(src.addr.data(), p + off + 8, 16);
     std::memcpy(dst.addr.data(), p + off + 24, 16);
     l4 = off + 40;
-    for (int hops = 0; hops < 8 && (proto == 0 || proto == 43 || proto == 60 || proto == 44); ++hops) {
+    for (int hops = 0; hops < 8 && (proto == 0 || proto == 43 || proto == 60 || proto == 44);
+         ++hops) {
       if (end < l4 + 8) return bad(ts, record, l4, "IPv6 extension header cut short"), false;
       if (proto == 44) return bad(ts, record, l4, "IPv6 fragment (not reassembled)"), false;
       std::uint8_t next = p[l4];
@@ -289,8 +301,8 @@ bool read_file(const std::string& path, Format format, Analyzer& a, const Source
   if (format != Format::pcap) return read_serial_log(path, format, a, o, error);
 
   char errbuf[PCAP_ERRBUF_SIZE] = {0};
-  pcap_t* p = pcap_open_offline_with_tstamp_precision(path.c_str(), PCAP_TSTAMP_PRECISION_MICRO,
-                                                      errbuf);
+  pcap_t* p =
+      pcap_open_offline_with_tstamp_precision(path.c_str(), PCAP_TSTAMP_PRECISION_MICRO, errbuf);
   if (!p) {
     error = path + ": " + errbuf;
     return false;
@@ -332,10 +344,10 @@ bool read_file(const std::string& path, Format format, Analyzer& a, const Source
     if (rc == PCAP_ERROR) {
       std::string where = ng ? "near file offset " + std::to_string(fp ? std::ftell(fp) : 0)
                              : "at file offset " + std::to_string(at);
-      a.source_note(kNoTime, ACode::truncated_file,
-                    path + ": record " + std::to_string(record + 1) + " " + where + ": " +
-                        pcap_geterr(p),
-                    record + 1, ng ? 0 : at);
+      a.source_note(
+          kNoTime, ACode::truncated_file,
+          path + ": record " + std::to_string(record + 1) + " " + where + ": " + pcap_geterr(p),
+          record + 1, ng ? 0 : at);
       break;
     }
     if (rc != 1) continue;
@@ -344,7 +356,8 @@ bool read_file(const std::string& path, Format format, Analyzer& a, const Source
     std::int64_t ts = static_cast<std::int64_t>(h->ts.tv_sec) * 1000000 + h->ts.tv_usec;
     bool top = dis.packet(dlt, ts, data, h->caplen, h->len, record);
     a.record(top);
-    if (o.progress && (record & 0xFFFF) == 0 && fp) o.progress(static_cast<std::uint64_t>(std::ftell(fp)), total);
+    if (o.progress && (record & 0xFFFF) == 0 && fp)
+      o.progress(static_cast<std::uint64_t>(std::ftell(fp)), total);
   }
   pcap_close(p);
   if (o.progress) o.progress(total, total);

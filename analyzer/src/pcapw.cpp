@@ -31,10 +31,12 @@ std::string ip4(Ip4 src, Ip4 dst, std::uint8_t proto, std::string_view l4) {
   be16(h, 2, static_cast<std::uint32_t>(20 + l4.size()));
   h[8] = 64;
   h[9] = static_cast<char>(proto);
-  for (int i = 0; i < 4; ++i) h[12 + i] = static_cast<char>(src[i]), h[16 + i] = static_cast<char>(dst[i]);
+  for (int i = 0; i < 4; ++i)
+    h[12 + i] = static_cast<char>(src[i]), h[16 + i] = static_cast<char>(dst[i]);
   std::uint32_t sum = 0;
   for (int i = 0; i < 20; i += 2)
-    sum += static_cast<std::uint32_t>(static_cast<std::uint8_t>(h[i]) << 8 | static_cast<std::uint8_t>(h[i + 1]));
+    sum += static_cast<std::uint32_t>(static_cast<std::uint8_t>(h[i]) << 8 |
+                                      static_cast<std::uint8_t>(h[i + 1]));
   while (sum >> 16) sum = (sum & 0xFFFF) + (sum >> 16);
   be16(h, 10, ~sum & 0xFFFF);
   return h + std::string(l4);
@@ -45,7 +47,8 @@ std::string ip6(const Ip6& src, const Ip6& dst, std::uint8_t proto, std::string_
   be16(h, 4, static_cast<std::uint32_t>(l4.size()));
   h[6] = static_cast<char>(proto);
   h[7] = 64;
-  for (int i = 0; i < 16; ++i) h[8 + i] = static_cast<char>(src[i]), h[24 + i] = static_cast<char>(dst[i]);
+  for (int i = 0; i < 16; ++i)
+    h[8 + i] = static_cast<char>(src[i]), h[24 + i] = static_cast<char>(dst[i]);
   return h + std::string(l4);
 }
 std::string udp(std::uint16_t sport, std::uint16_t dport, std::string_view payload) {
@@ -75,11 +78,12 @@ std::uint16_t ethertype(std::string_view ip) {
 std::string udp4(Ip4 s, Ip4 d, std::uint16_t sp, std::uint16_t dp, std::string_view p) {
   return ip4(s, d, 17, udp(sp, dp, p));
 }
-std::string udp6(const Ip6& s, const Ip6& d, std::uint16_t sp, std::uint16_t dp, std::string_view p) {
+std::string udp6(const Ip6& s, const Ip6& d, std::uint16_t sp, std::uint16_t dp,
+                 std::string_view p) {
   return ip6(s, d, 17, udp(sp, dp, p));
 }
-std::string tcp4(Ip4 s, Ip4 d, std::uint16_t sp, std::uint16_t dp, std::uint32_t seq, std::uint32_t ack,
-                 std::uint8_t flags, std::string_view p) {
+std::string tcp4(Ip4 s, Ip4 d, std::uint16_t sp, std::uint16_t dp, std::uint32_t seq,
+                 std::uint32_t ack, std::uint8_t flags, std::string_view p) {
   return ip4(s, d, 6, tcp(sp, dp, seq, ack, flags, p));
 }
 std::string tcp6(const Ip6& s, const Ip6& d, std::uint16_t sp, std::uint16_t dp, std::uint32_t seq,
@@ -150,7 +154,8 @@ void PcapWriter::write(std::int64_t ts, std::string_view bytes, std::size_t capl
   pcap_dump(reinterpret_cast<u_char*>(dumper_), &h, reinterpret_cast<const u_char*>(bytes.data()));
 }
 
-std::string pcapng(const std::vector<std::uint16_t>& linktypes, const std::vector<NgPacket>& packets) {
+std::string pcapng(const std::vector<std::uint16_t>& linktypes,
+                   const std::vector<NgPacket>& packets) {
   std::string out;
   auto block = [&](std::uint32_t type, const std::string& body) {
     std::string b;

@@ -20,14 +20,16 @@ namespace topdump::pcapw {
 using Ip4 = std::array<std::uint8_t, 4>;
 using Ip6 = std::array<std::uint8_t, 16>;
 
-std::string udp4(Ip4 src, Ip4 dst, std::uint16_t sport, std::uint16_t dport, std::string_view payload);
+std::string udp4(Ip4 src, Ip4 dst, std::uint16_t sport, std::uint16_t dport,
+                 std::string_view payload);
 std::string udp6(const Ip6& src, const Ip6& dst, std::uint16_t sport, std::uint16_t dport,
                  std::string_view payload);
 inline constexpr std::uint8_t kSyn = 0x02, kAck = 0x10, kPsh = 0x08, kFin = 0x01;
 std::string tcp4(Ip4 src, Ip4 dst, std::uint16_t sport, std::uint16_t dport, std::uint32_t seq,
                  std::uint32_t ack, std::uint8_t flags, std::string_view payload);
 std::string tcp6(const Ip6& src, const Ip6& dst, std::uint16_t sport, std::uint16_t dport,
-                 std::uint32_t seq, std::uint32_t ack, std::uint8_t flags, std::string_view payload);
+                 std::uint32_t seq, std::uint32_t ack, std::uint8_t flags,
+                 std::string_view payload);
 
 // Link layers around an IP packet (ethertype from the IP version).
 std::string eth(std::string_view ip, std::vector<std::uint16_t> vlans = {});
@@ -59,7 +61,8 @@ struct NgPacket {
   std::int64_t ts_us = 0;
   std::string bytes;
 };
-std::string pcapng(const std::vector<std::uint16_t>& linktypes, const std::vector<NgPacket>& packets);
+std::string pcapng(const std::vector<std::uint16_t>& linktypes,
+                   const std::vector<NgPacket>& packets);
 
 // The TOP checksum appended: frame("#TPUG2wGAA01") == "#TPUG2wGAA0136".
 std::string frame(std::string_view without_checksum);

@@ -40,17 +40,20 @@ struct Common {
 void add_common(CLI::App* sub, Common& o, bool outputs) {
   sub->add_option("--dialect", o.dialect, "auto, skydroid or topotek (forces every conversation)")
       ->check(CLI::IsMember({"auto", "skydroid", "topotek"}));
-  sub->add_option("--model", o.model, "c10, c10pro, c12, c13, c20 or sip (unsupported-on-model checks)")
+  sub->add_option("--model", o.model,
+                  "c10, c10pro, c12, c13, c20 or sip (unsupported-on-model checks)")
       ->check(CLI::IsMember({"auto", "c10", "c10pro", "c12", "c13", "c20", "sip"}));
   sub->add_option("--port", o.ports, "another UDP/TCP port that carries TOP (repeatable)");
-  sub->add_option("--ident", o.idents, "only frames with these identifiers (comma list, repeatable)")
+  sub->add_option("--ident", o.idents,
+                  "only frames with these identifiers (comma list, repeatable)")
       ->delimiter(',');
   sub->add_option("--addr", o.addrs,
                   "only frames from/to this TOP address letter (U M D E P G) or host / host:port")
       ->delimiter(',');
   sub->add_option("--severity", o.severity, "only frames whose worst finding is at least this")
       ->check(CLI::IsMember({"info", "warning", "error"}));
-  sub->add_option("--from", o.from, "only frames at or after this time (ISO-8601 or epoch seconds)");
+  sub->add_option("--from", o.from,
+                  "only frames at or after this time (ISO-8601 or epoch seconds)");
   sub->add_option("--to", o.to, "only frames at or before this time (ISO-8601 or epoch seconds)");
   sub->add_option("--timeout-ms", o.timeout_ms, "a request is unanswered after this long")
       ->check(CLI::PositiveNumber);
@@ -128,8 +131,7 @@ class Tee : public Sink {
   void frame(const FrameEvent& e) override { inner_.frame(e); }
   void garbage(const GarbageEvent& e) override { inner_.garbage(e); }
   void note(const NoteEvent& e) override {
-    if (!e.conv)
-      std::fprintf(stderr, "topdump: %s: %s\n", file_.c_str(), note_line(e).c_str());
+    if (!e.conv) std::fprintf(stderr, "topdump: %s: %s\n", file_.c_str(), note_line(e).c_str());
     inner_.note(e);
   }
   Sink& inner_;
@@ -357,7 +359,8 @@ Run add_stats_command(CLI::App& app) {
 
 Run add_live_command(CLI::App& app) {
   auto o = std::make_shared<LiveOptions>();
-  CLI::App* sub = app.add_subcommand("live", "Decode live traffic on an interface (libpcap); Ctrl-C ends");
+  CLI::App* sub =
+      app.add_subcommand("live", "Decode live traffic on an interface (libpcap); Ctrl-C ends");
   add_common(sub, o->c, true);
   sub->add_option("-i,--interface", o->iface, "interface, e.g. eth0 or lo")->required();
   sub->add_option("BPF", o->bpf, "capture filter, e.g. udp port 5000");
@@ -366,7 +369,8 @@ Run add_live_command(CLI::App& app) {
 
 Run add_serial_command(CLI::App& app) {
   auto o = std::make_shared<SerialOptions>();
-  CLI::App* sub = app.add_subcommand("serial", "Decode a serial port as bytes arrive (8N1); Ctrl-C ends");
+  CLI::App* sub =
+      app.add_subcommand("serial", "Decode a serial port as bytes arrive (8N1); Ctrl-C ends");
   add_common(sub, o->c, true);
   sub->add_option("--baud", o->baud, "baud rate")->check(CLI::Range(50u, 4000000u));
   sub->add_option("DEVICE", o->device, "serial device, e.g. /dev/ttyUSB0")->required();

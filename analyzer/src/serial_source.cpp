@@ -1,8 +1,7 @@
 // Serial sources: logs written by other tools, and a live serial port.
-#include <asio.hpp>
-
 #include <algorithm>
 #include <array>
+#include <asio.hpp>
 #include <cctype>
 #include <cerrno>
 #include <cstring>
@@ -26,12 +25,18 @@ std::optional<Format> format_from_string(std::string_view s) {
 
 std::string_view to_string(Format f) noexcept {
   switch (f) {
-    case Format::automatic: return "auto";
-    case Format::pcap: return "pcap";
-    case Format::raw: return "raw";
-    case Format::socat: return "socat";
-    case Format::saleae: return "saleae";
-    case Format::lines: return "lines";
+    case Format::automatic:
+      return "auto";
+    case Format::pcap:
+      return "pcap";
+    case Format::raw:
+      return "raw";
+    case Format::socat:
+      return "socat";
+    case Format::saleae:
+      return "saleae";
+    case Format::lines:
+      return "lines";
   }
   return "?";
 }
@@ -70,8 +75,7 @@ Format detect_format(std::string_view head) {
   if (head.size() >= 4) {
     std::uint32_t m;
     std::memcpy(&m, head.data(), 4);
-    if (m == 0xa1b2c3d4 || m == 0xd4c3b2a1 || m == 0xa1b23c4d || m == 0x4d3cb2a1 ||
-        m == 0x0a0d0d0a)
+    if (m == 0xa1b2c3d4 || m == 0xd4c3b2a1 || m == 0xa1b23c4d || m == 0x4d3cb2a1 || m == 0x0a0d0d0a)
       return Format::pcap;
   }
   std::string_view l = first_line(head);
@@ -105,7 +109,7 @@ struct LineReader {
   std::ifstream in;
   std::string line;
   std::uint64_t number = 0;
-  std::uint64_t offset = 0;   // file offset of the current line
+  std::uint64_t offset = 0;  // file offset of the current line
   std::uint64_t next = 0;
   bool get() {
     if (!std::getline(in, line)) return false;
@@ -230,9 +234,12 @@ std::vector<std::string> csv_split(std::string_view l) {
   for (std::size_t i = 0; i < l.size(); ++i) {
     char c = l[i];
     if (q) {
-      if (c == '"' && i + 1 < l.size() && l[i + 1] == '"') cur += '"', ++i;
-      else if (c == '"') q = false;
-      else cur += c;
+      if (c == '"' && i + 1 < l.size() && l[i + 1] == '"')
+        cur += '"', ++i;
+      else if (c == '"')
+        q = false;
+      else
+        cur += c;
     } else if (c == '"') {
       q = true;
     } else if (c == ',') {
@@ -252,8 +259,9 @@ std::optional<int> csv_byte(std::string_view v) {
     int x = 0;
     for (char c : v.substr(2)) {
       int d = std::isdigit(static_cast<unsigned char>(c)) ? c - '0'
-              : (c >= 'a' && c <= 'f') ? c - 'a' + 10
-              : (c >= 'A' && c <= 'F') ? c - 'A' + 10 : -1;
+              : (c >= 'a' && c <= 'f')                    ? c - 'a' + 10
+              : (c >= 'A' && c <= 'F')                    ? c - 'A' + 10
+                                                          : -1;
       if (d < 0) return std::nullopt;
       x = x * 16 + d;
       if (x > 255) return std::nullopt;
@@ -284,11 +292,16 @@ void saleae_log(const std::string& path, LineReader& r, Analyzer& a) {
   auto head = csv_split(r.line);
   int c_name = -1, c_type = -1, c_time = -1, c_data = -1, c_err = -1;
   for (std::size_t i = 0; i < head.size(); ++i) {
-    if (head[i] == "name") c_name = static_cast<int>(i);
-    else if (head[i] == "type") c_type = static_cast<int>(i);
-    else if (head[i] == "start_time") c_time = static_cast<int>(i);
-    else if (head[i] == "data") c_data = static_cast<int>(i);
-    else if (head[i] == "error") c_err = static_cast<int>(i);
+    if (head[i] == "name")
+      c_name = static_cast<int>(i);
+    else if (head[i] == "type")
+      c_type = static_cast<int>(i);
+    else if (head[i] == "start_time")
+      c_time = static_cast<int>(i);
+    else if (head[i] == "data")
+      c_data = static_cast<int>(i);
+    else if (head[i] == "error")
+      c_err = static_cast<int>(i);
   }
   if (c_time < 0 || c_data < 0) {
     a.source_note(kNoTime, ACode::log_syntax,
@@ -320,7 +333,8 @@ void saleae_log(const std::string& path, LineReader& r, Analyzer& a) {
       bad("too few columns");
       continue;
     }
-    if (c_type >= 0 && c_type < static_cast<int>(cols.size()) && cols[static_cast<std::size_t>(c_type)] != "data")
+    if (c_type >= 0 && c_type < static_cast<int>(cols.size()) &&
+        cols[static_cast<std::size_t>(c_type)] != "data")
       continue;
     std::string name = c_name >= 0 ? cols[static_cast<std::size_t>(c_name)] : "serial";
     auto v = csv_byte(cols[static_cast<std::size_t>(c_data)]);
@@ -328,7 +342,8 @@ void saleae_log(const std::string& path, LineReader& r, Analyzer& a) {
       bad("data \"" + cols[static_cast<std::size_t>(c_data)] + "\" is not a byte");
       continue;
     }
-    if (c_err >= 0 && c_err < static_cast<int>(cols.size()) && !cols[static_cast<std::size_t>(c_err)].empty())
+    if (c_err >= 0 && c_err < static_cast<int>(cols.size()) &&
+        !cols[static_cast<std::size_t>(c_err)].empty())
       bad("the analyzer flagged this byte: " + cols[static_cast<std::size_t>(c_err)]);
     char* endp = nullptr;
     const std::string& ts_text = cols[static_cast<std::size_t>(c_time)];
@@ -337,8 +352,10 @@ void saleae_log(const std::string& path, LineReader& r, Analyzer& a) {
                           ? static_cast<std::int64_t>(secs * 1e6 + (secs >= 0 ? 0.5 : -0.5))
                           : kNoTime;
     std::string other;
-    if (names.size() == 2) other = names[0] == name ? names[1] : names[0];
-    else other = "line";
+    if (names.size() == 2)
+      other = names[0] == name ? names[1] : names[0];
+    else
+      other = "line";
     if (names.size() == 2 && name != names[0] && name != names[1]) other = "line";
     char byte = static_cast<char>(*v);
     a.record(true);
@@ -389,10 +406,18 @@ bool read_serial_log(const std::string& path, Format f, Analyzer& a, const Sourc
     return false;
   }
   switch (f) {
-    case Format::raw: raw_log(r.in, a); break;
-    case Format::socat: socat_log(path, r, a); break;
-    case Format::saleae: saleae_log(path, r, a); break;
-    case Format::lines: lines_log(path, r, a); break;
+    case Format::raw:
+      raw_log(r.in, a);
+      break;
+    case Format::socat:
+      socat_log(path, r, a);
+      break;
+    case Format::saleae:
+      saleae_log(path, r, a);
+      break;
+    case Format::lines:
+      lines_log(path, r, a);
+      break;
     default:
       error = path + ": not a serial log format";
       return false;
@@ -419,10 +444,13 @@ bool read_serial_port(const std::string& device, unsigned baud, Analyzer& a,
   }
   port.set_option(asio::serial_port_base::baud_rate(baud), ec);
   if (!ec) port.set_option(asio::serial_port_base::character_size(8), ec);
-  if (!ec) port.set_option(asio::serial_port_base::parity(asio::serial_port_base::parity::none), ec);
-  if (!ec) port.set_option(asio::serial_port_base::stop_bits(asio::serial_port_base::stop_bits::one), ec);
   if (!ec)
-    port.set_option(asio::serial_port_base::flow_control(asio::serial_port_base::flow_control::none), ec);
+    port.set_option(asio::serial_port_base::parity(asio::serial_port_base::parity::none), ec);
+  if (!ec)
+    port.set_option(asio::serial_port_base::stop_bits(asio::serial_port_base::stop_bits::one), ec);
+  if (!ec)
+    port.set_option(
+        asio::serial_port_base::flow_control(asio::serial_port_base::flow_control::none), ec);
   if (ec) {
     error = device + ": cannot configure " + std::to_string(baud) + " 8N1: " + ec.message();
     return false;
@@ -457,7 +485,8 @@ bool read_serial_port(const std::string& device, unsigned baud, Analyzer& a,
       }
       ++chunk_no;
       a.record(true);
-      a.chunk(now_us(), Transport::serial, src, dst, std::string_view(buf.data(), n), chunk_no, offset);
+      a.chunk(now_us(), Transport::serial, src, dst, std::string_view(buf.data(), n), chunk_no,
+              offset);
       offset += n;
       arm_read();
     });

@@ -38,8 +38,12 @@ struct Fixture {
     opts = o;
     a = std::make_unique<Analyzer>(opts, rec);
   }
-  void up(std::int64_t ms, const std::string& p) { a->datagram(T + ms * 1000, client, device, p, ++record, 42); }
-  void down(std::int64_t ms, const std::string& p) { a->datagram(T + ms * 1000, device, client, p, ++record, 42); }
+  void up(std::int64_t ms, const std::string& p) {
+    a->datagram(T + ms * 1000, client, device, p, ++record, 42);
+  }
+  void down(std::int64_t ms, const std::string& p) {
+    a->datagram(T + ms * 1000, device, client, p, ++record, 42);
+  }
 };
 
 TEST(Pairing, RequestResponseLatencyAndStats) {
@@ -93,10 +97,10 @@ TEST(Pairing, EreAnswersTheRequestToItsSource) {
 
 TEST(Pairing, UnsolicitedEchoDiffersAndRepeated) {
   Fixture f;
-  f.down(0, frame("#TPGU2wPTZ05"));                  // nobody asked
+  f.down(0, frame("#TPGU2wPTZ05"));  // nobody asked
   f.up(10, frame("#TPUG2wPTZ05"));
-  f.up(40, frame("#TPUG2wPTZ05"));                   // again, 30 ms later
-  f.down(45, frame("#TPGU2wPTZ01"));                 // echo with other data
+  f.up(40, frame("#TPUG2wPTZ05"));    // again, 30 ms later
+  f.down(45, frame("#TPGU2wPTZ01"));  // echo with other data
   f.down(46, frame("#TPGU2wPTZ05"));
   f.a->finish();
   ASSERT_EQ(f.rec.frames.size(), 5u);
@@ -211,7 +215,8 @@ TEST(Tcp, EverySplitAndShuffleGivesTheSameFrames) {
     Analyzer a(AnalyzerOptions{}, r);
     a.segment(T, ep4(1, 50000), ep4(2, 5000), 999, true, "", 1, 54);  // SYN
     std::uint64_t rec = 1;
-    for (const auto& [seq, bytes] : segs) a.segment(T, ep4(1, 50000), ep4(2, 5000), seq, false, bytes, ++rec, 54);
+    for (const auto& [seq, bytes] : segs)
+      a.segment(T, ep4(1, 50000), ep4(2, 5000), seq, false, bytes, ++rec, 54);
     a.finish();
     EXPECT_EQ(raws(r), raws(ref)) << "segments of " << cut;
     EXPECT_FALSE(r.has_note(ACode::tcp_gap)) << "segments of " << cut;
@@ -239,7 +244,8 @@ TEST(Tcp, MissingSegmentIsAGapAndDecodingGoesOn) {
   std::string x = frame("#TPUG2wPTZ05"), y = frame("#TPUG2wPTZ01"), z = frame("#TPUG2wPTZ00");
   a.segment(T, ep4(1, 50000), ep4(2, 5000), 0, false, x, 1, 54);
   // y never captured
-  a.segment(T, ep4(1, 50000), ep4(2, 5000), static_cast<std::uint32_t>(x.size() + y.size()), false, z, 3, 54);
+  a.segment(T, ep4(1, 50000), ep4(2, 5000), static_cast<std::uint32_t>(x.size() + y.size()), false,
+            z, 3, 54);
   a.finish();
   EXPECT_TRUE(r.has_note(ACode::tcp_gap));
   EXPECT_EQ(raws(r), (std::vector<std::string>{x, z}));
@@ -266,7 +272,8 @@ TEST(Tcp, SequenceWrapAround) {
   Analyzer a(AnalyzerOptions{}, r);
   std::uint32_t isn = 0xFFFFFF00u;
   for (std::size_t at = 0; at < s.size(); at += 50)
-    a.segment(T, ep4(1, 50000), ep4(2, 5000), isn + static_cast<std::uint32_t>(at), false, s.substr(at, 50), at + 1, 54);
+    a.segment(T, ep4(1, 50000), ep4(2, 5000), isn + static_cast<std::uint32_t>(at), false,
+              s.substr(at, 50), at + 1, 54);
   a.finish();
   EXPECT_EQ(r.frames.size(), 20u);
   EXPECT_FALSE(r.has_note(ACode::tcp_gap));
@@ -280,9 +287,12 @@ nlohmann::json parse_unique(const std::string& line) {
   bool dup = false;
   auto cb = [&](int, nlohmann::json::parse_event_t ev, nlohmann::json& j) {
     using E = nlohmann::json::parse_event_t;
-    if (ev == E::object_start) stack.emplace_back();
-    else if (ev == E::object_end) stack.pop_back();
-    else if (ev == E::key) dup |= !stack.back().insert(j.get<std::string>()).second;
+    if (ev == E::object_start)
+      stack.emplace_back();
+    else if (ev == E::object_end)
+      stack.pop_back();
+    else if (ev == E::key)
+      dup |= !stack.back().insert(j.get<std::string>()).second;
     return true;
   };
   auto j = nlohmann::json::parse(line, cb);
@@ -307,7 +317,8 @@ TEST(Json, FastWriterEqualsReferenceOverTheCaptures) {
     Recorder r;
     Analyzer a(AnalyzerOptions{}, r);
     std::string err;
-    ASSERT_TRUE(read_file(captures_dir() + "/" + cap, Format::automatic, a, SourceOptions{}, err)) << err;
+    ASSERT_TRUE(read_file(captures_dir() + "/" + cap, Format::automatic, a, SourceOptions{}, err))
+        << err;
     a.finish();
     ASSERT_FALSE(r.frames.empty()) << cap;
     expect_fast_equals_reference(r);
@@ -326,9 +337,13 @@ TEST(Json, FastWriterEqualsReferenceOnHostileBytes) {
     std::string p = "#tp";
     int n = static_cast<int>(rng() % 24);
     for (int k = 0; k < n; ++k) p += static_cast<char>(rng() & 0xFF);
-    if (i % 3 == 0) p = frame("#tpUG6wGAY" + std::string(1, static_cast<char>(rng() & 0xFF)) + "00032");
-    if (i % 7 == 0) p = frame("#tPUDEwGPS" + std::string(1, '\x0e') + std::string("\"\\\x00\x7f\x80\xfe#\x0d\x0a\x01\x02\x03\x04\x05\x06", 15));
-    a.chunk(T + i, Transport::serial, i % 2 ? s : d, i % 2 ? d : s, p, static_cast<std::uint64_t>(i + 1), 0);
+    if (i % 3 == 0)
+      p = frame("#tpUG6wGAY" + std::string(1, static_cast<char>(rng() & 0xFF)) + "00032");
+    if (i % 7 == 0)
+      p = frame("#tPUDEwGPS" + std::string(1, '\x0e') +
+                std::string("\"\\\x00\x7f\x80\xfe#\x0d\x0a\x01\x02\x03\x04\x05\x06", 15));
+    a.chunk(T + i, Transport::serial, i % 2 ? s : d, i % 2 ? d : s, p,
+            static_cast<std::uint64_t>(i + 1), 0);
   }
   a.finish();
   ASSERT_GT(r.frames.size(), 50u);
@@ -357,7 +372,8 @@ TEST(AnalyzerFindings, TableIsConsistentAndDocumented) {
     EXPECT_TRUE(seen.insert(code).second) << code;
     EXPECT_EQ(acode_from_string(code), c);
     EXPECT_FALSE(description(c).empty());
-    EXPECT_FALSE(top::finding_code_from_string(code).has_value()) << code << " clashes with a protocol code";
+    EXPECT_FALSE(top::finding_code_from_string(code).has_value())
+        << code << " clashes with a protocol code";
     EXPECT_NE(doc.find("`" + code + "`"), std::string::npos) << code << " is not documented";
   }
 }

@@ -36,7 +36,8 @@ TEST_P(Golden, MatchesCapturesGolden) {
   int rc = run("cd '" + captures_dir() + "' && '" + topdump_bin() + "' " + c.args + " 2>'" +
                    tmp.file("err") + "' </dev/null",
                out);
-  std::string got = out + "-- stderr\n" + slurp(tmp.file("err")) + "-- exit " + std::to_string(rc) + "\n";
+  std::string got =
+      out + "-- stderr\n" + slurp(tmp.file("err")) + "-- exit " + std::to_string(rc) + "\n";
   std::string want = slurp(captures_dir() + "/golden/" + c.name);
   ASSERT_FALSE(want.empty()) << "missing golden " << c.name << "; run captures/update-golden.sh";
   EXPECT_EQ(got, want) << "topdump " << c.args
@@ -60,7 +61,8 @@ TEST(GoldenCases, CoverEveryCapture) {
 INSTANTIATE_TEST_SUITE_P(Captures, Golden, ::testing::ValuesIn(cases()),
                          [](const ::testing::TestParamInfo<Case>& i) {
                            std::string n;
-                           for (char ch : i.param.name) n += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
+                           for (char ch : i.param.name)
+                             n += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
                            return n;
                          });
 

@@ -2,6 +2,7 @@
 // SIGINT; live capture on lo through libpcap when this process may capture.
 #include <arpa/inet.h>
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <netinet/in.h>
 #include <poll.h>
 #include <pty.h>
@@ -9,8 +10,6 @@
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
-
-#include <gtest/gtest.h>
 
 #include <atomic>
 #include <chrono>
@@ -26,7 +25,9 @@ namespace {
 bool read_until(int fd, std::string& acc, const std::string& want, int ms) {
   auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(ms);
   while (acc.find(want) == std::string::npos) {
-    auto left = std::chrono::duration_cast<std::chrono::milliseconds>(end - std::chrono::steady_clock::now()).count();
+    auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+                    end - std::chrono::steady_clock::now())
+                    .count();
     if (left <= 0) return false;
     pollfd p{fd, POLLIN, 0};
     if (poll(&p, 1, static_cast<int>(left)) <= 0) continue;
@@ -51,7 +52,8 @@ TEST(Live, SerialOverAPseudoTerminalEndsCleanlyOnSigint) {
     close(out[0]);
     close(master);
     std::string bin = topdump_bin();
-    execl(bin.c_str(), bin.c_str(), "serial", "--baud", "115200", name, static_cast<char*>(nullptr));
+    execl(bin.c_str(), bin.c_str(), "serial", "--baud", "115200", name,
+          static_cast<char*>(nullptr));
     _exit(127);
   }
   close(out[1]);
@@ -63,7 +65,8 @@ TEST(Live, SerialOverAPseudoTerminalEndsCleanlyOnSigint) {
     ASSERT_EQ(::write(master, f1.data(), f1.size()), static_cast<ssize_t>(f1.size()));
     ASSERT_EQ(::write(master, f2.substr(0, 5).data(), 5), 5);  // a frame split across writes
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    ASSERT_EQ(::write(master, f2.substr(5).data(), f2.size() - 5), static_cast<ssize_t>(f2.size() - 5));
+    ASSERT_EQ(::write(master, f2.substr(5).data(), f2.size() - 5),
+              static_cast<ssize_t>(f2.size() - 5));
     seen = read_until(out[0], acc, "PTZ response", 250);
   }
   EXPECT_TRUE(seen) << acc;
@@ -129,7 +132,8 @@ TEST(Live, CaptureOnLoopback) {
   stop = true;
   t.join();
   close(s);
-  if (!ok && (perm || err.find("ermission") != std::string::npos || err.find("not permitted") != std::string::npos))
+  if (!ok && (perm || err.find("ermission") != std::string::npos ||
+              err.find("not permitted") != std::string::npos))
     GTEST_SKIP() << "no permission to capture on lo (needs root or CAP_NET_RAW): " << err;
   ASSERT_TRUE(ok) << err;
   EXPECT_GT(sink.frames.load(), 0);

@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-
 #include <nlohmann/json.hpp>
 
 #include "pcapw.hpp"
@@ -51,7 +50,8 @@ TEST_P(Links, Ipv4AndIpv6UdpWithPositions) {
     ASSERT_TRUE(w.ok());
     w.write(T, c.wrap(udp4(A, B, 40000, 5000, req)));
     w.write(T + 5000, c.wrap(udp4(B, A, 5000, 40000, resp)));
-    w.write(T + 6000, c.wrap(udp6(A6, B6, 40000, 9003, frame("#TPPG2wGIA01") + frame("#TPPG2wGIA00"))));
+    w.write(T + 6000,
+            c.wrap(udp6(A6, B6, 40000, 9003, frame("#TPPG2wGIA01") + frame("#TPPG2wGIA00"))));
   }
   Recorder r = read(tmp.file("x.pcap"));
   ASSERT_EQ(r.frames.size(), 4u);
@@ -81,9 +81,9 @@ TEST(Pcap, ContentRecognitionAndExtraPorts) {
   TempDir tmp;
   {
     PcapWriter w(tmp.file("x.pcap"), 1);
-    w.write(T, eth(udp4(A, B, 1111, 2222, frame("#TPUG2wPTZ05"))));   // TOP by content
-    w.write(T + 1, eth(udp4(A, B, 1111, 3333, "hello, not TOP")));    // skipped
-    w.write(T + 2, eth(udp4(A, B, 1111, 4444, "ab#")));               // only with --port
+    w.write(T, eth(udp4(A, B, 1111, 2222, frame("#TPUG2wPTZ05"))));  // TOP by content
+    w.write(T + 1, eth(udp4(A, B, 1111, 3333, "hello, not TOP")));   // skipped
+    w.write(T + 2, eth(udp4(A, B, 1111, 4444, "ab#")));              // only with --port
   }
   Recorder r = read(tmp.file("x.pcap"));
   EXPECT_EQ(r.frames.size(), 1u);
@@ -138,7 +138,8 @@ TEST(Pcap, SnapLengthCutIsAFindingAndTheRestIsDecoded) {
   Recorder r = read(tmp.file("x.pcap"));
   EXPECT_TRUE(r.has_note(ACode::snaplen_cut));
   ASSERT_FALSE(r.garbage_codes.empty());
-  EXPECT_NE(std::find(r.garbage_codes.begin(), r.garbage_codes.end(), "truncated"), r.garbage_codes.end());
+  EXPECT_NE(std::find(r.garbage_codes.begin(), r.garbage_codes.end(), "truncated"),
+            r.garbage_codes.end());
   EXPECT_EQ(r.garbage_pos[0].record, 1u);
   ASSERT_EQ(r.frames.size(), 1u);
 }
@@ -148,11 +149,11 @@ TEST(Pcap, MalformedHeadersAreFindingsNotCrashes) {
   {
     PcapWriter w(tmp.file("x.pcap"), 1);
     std::string ip = udp4(A, B, 40000, 5000, frame("#TPUG2wPTZ05"));
-    w.write(T, eth(ip).substr(0, 20));          // IP cut short
+    w.write(T, eth(ip).substr(0, 20));  // IP cut short
     std::string bad = eth(ip);
-    bad[14] = 0x41;                              // IHL 4
+    bad[14] = 0x41;  // IHL 4
     w.write(T + 1, bad);
-    w.write(T + 2, std::string(5, '\0'));        // not even Ethernet
+    w.write(T + 2, std::string(5, '\0'));  // not even Ethernet
     w.write(T + 3, eth(ip));
   }
   Recorder r = read(tmp.file("x.pcap"));
@@ -165,7 +166,8 @@ TEST(Pcap, MalformedHeadersAreFindingsNotCrashes) {
 TEST(SerialLogs, FormatDetection) {
   EXPECT_EQ(detect_format(std::string("\xd4\xc3\xb2\xa1", 4)), Format::pcap);
   EXPECT_EQ(detect_format(std::string("\x0a\x0d\x0d\x0a", 4)), Format::pcap);
-  EXPECT_EQ(detect_format("> 2024/05/01 12:00:00.000000000  length=3 from=0 to=2\nabc"), Format::socat);
+  EXPECT_EQ(detect_format("> 2024/05/01 12:00:00.000000000  length=3 from=0 to=2\nabc"),
+            Format::socat);
   EXPECT_EQ(detect_format("name,type,start_time,duration,data\n"), Format::saleae);
   EXPECT_EQ(detect_format("2024-05-01T12:00:00Z TX #TPUG2wPTZ056F\n"), Format::lines);
   EXPECT_EQ(detect_format("# comment\n2024-05-01T12:00:00Z RX #TP\n"), Format::lines);
@@ -209,8 +211,8 @@ TEST(SerialLogs, SaleaeCsvTwoChannels) {
   auto add = [&](const char* ch, double t, const std::string& bytes) {
     for (std::size_t i = 0; i < bytes.size(); ++i) {
       char b[96];
-      std::snprintf(b, sizeof b, "%s,data,%.6f,8.68e-05,0x%02X,\n", ch, t + static_cast<double>(i) * 1e-4,
-                    static_cast<unsigned char>(bytes[i]));
+      std::snprintf(b, sizeof b, "%s,data,%.6f,8.68e-05,0x%02X,\n", ch,
+                    t + static_cast<double>(i) * 1e-4, static_cast<unsigned char>(bytes[i]));
       csv += b;
     }
   };
@@ -229,7 +231,8 @@ TEST(SerialLogs, SaleaeCsvTwoChannels) {
 TEST(SerialLogs, LineLogWithEscapesAndBadLines) {
   TempDir tmp;
   std::string log = "2024-05-01T12:00:00.5Z TX " + frame("#TPUG2wPTZ05") + "\\r\\n\n" +
-                    "not a line\n" + "2024-05-01T12:00:00.52+00:00 RX " + frame("#TPGU2wPTZ05") + "\n";
+                    "not a line\n" + "2024-05-01T12:00:00.52+00:00 RX " + frame("#TPGU2wPTZ05") +
+                    "\n";
   write_file(tmp.file("l.log"), log);
   Recorder r = read(tmp.file("l.log"));
   ASSERT_EQ(r.frames.size(), 2u);
@@ -241,7 +244,8 @@ TEST(SerialLogs, LineLogWithEscapesAndBadLines) {
 
 TEST(SerialLogs, RawBinaryGpsWithHashBytes) {
   TempDir tmp;
-  std::string gps = frame("#tpPDEwGPS" + std::string("\x23\x23\x40\x23\x5e\x45\x11\xe4\x23\x0d\xe8\x03\x00\x00", 14));
+  std::string gps = frame(
+      "#tpPDEwGPS" + std::string("\x23\x23\x40\x23\x5e\x45\x11\xe4\x23\x0d\xe8\x03\x00\x00", 14));
   write_file(tmp.file("r.bin"), gps + gps);
   Recorder r = read(tmp.file("r.bin"));
   ASSERT_EQ(r.frames.size(), 2u);
@@ -288,7 +292,9 @@ TEST(Binary, StatsJsonHasIntegerCounts) {
 
 TEST(Binary, FiltersSelectFrames) {
   std::string out, caps = captures_dir();
-  run("'" + topdump_bin() + "' read --json --ident GAY --addr G '" + caps + "/sample.pcap' 2>/dev/null", out);
+  run("'" + topdump_bin() + "' read --json --ident GAY --addr G '" + caps +
+          "/sample.pcap' 2>/dev/null",
+      out);
   std::istringstream in(out);
   std::string line;
   int frames = 0;
@@ -300,9 +306,12 @@ TEST(Binary, FiltersSelectFrames) {
     }
   }
   EXPECT_EQ(frames, 7);
-  run("'" + topdump_bin() + "' read --csv ident --severity error '" + caps + "/sample.pcap' 2>/dev/null", out);
+  run("'" + topdump_bin() + "' read --csv ident --severity error '" + caps +
+          "/sample.pcap' 2>/dev/null",
+      out);
   EXPECT_EQ(out, "ident\nGAY\n");
-  run("'" + topdump_bin() + "' read --csv n --addr 192.168.144.108:5000 --from 1714564800.3 --to 1714564800.305 '" +
+  run("'" + topdump_bin() +
+          "' read --csv n --addr 192.168.144.108:5000 --from 1714564800.3 --to 1714564800.305 '" +
           caps + "/sample.pcap' 2>/dev/null",
       out);
   EXPECT_EQ(out, "n\n7\n8\n9\n");
@@ -318,13 +327,18 @@ namespace {
 TEST(BenchGenerator, SmallCaptureHasTheAdvertisedMix) {
   TempDir tmp;
   std::string out;
-  ASSERT_EQ(run("'" + std::string(TOPKIT_BINARY_DIR) + "/analyzer/gen_capture' 3000 '" + tmp.file("b.pcap") + "' 5", out), 0);
-  ASSERT_EQ(run("'" + topdump_bin() + "' stats --json '" + tmp.file("b.pcap") + "' 2>/dev/null", out), 1);
+  ASSERT_EQ(run("'" + std::string(TOPKIT_BINARY_DIR) + "/analyzer/gen_capture' 3000 '" +
+                    tmp.file("b.pcap") + "' 5",
+                out),
+            0);
+  ASSERT_EQ(
+      run("'" + topdump_bin() + "' stats --json '" + tmp.file("b.pcap") + "' 2>/dev/null", out), 1);
   auto j = nlohmann::json::parse(out);
   auto frames = j["frames"].get<std::int64_t>();
   EXPECT_GE(frames, 3000);
   EXPECT_LE(frames, 3003);
-  double bad = static_cast<double>(j["bad_checksum"].get<std::int64_t>()) / static_cast<double>(frames);
+  double bad =
+      static_cast<double>(j["bad_checksum"].get<std::int64_t>()) / static_cast<double>(frames);
   EXPECT_GT(bad, 0.01);
   EXPECT_LT(bad, 0.06);
   EXPECT_GT(j["pairing"]["paired"].get<std::int64_t>(), frames / 5);
