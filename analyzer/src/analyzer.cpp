@@ -820,6 +820,17 @@ void Analyzer::datagram(std::int64_t ts, const Endpoint& src, const Endpoint& ds
                         std::string_view payload, std::uint64_t record, std::uint32_t offset) {
   int d = 0;
   Conversation& c = impl_->get(Transport::udp, src, dst, d);
+  // The common case, a datagram that is exactly one valid frame, skips the
+  // stream decoder's queue: for such a payload it would yield exactly this
+  // frame (no garbage, no terminator, nothing to yield to).
+  if (!payload.empty() && payload[0] == '#') {
+    top::ParseResult r = top::parse_frame(payload, true);
+    if (r.status == top::ParseStatus::frame && r.consumed == payload.size() &&
+        r.frame.checksum_ok) {
+      impl_->frame(c, d, r.frame, Position{record, 0, offset}, ts, 0);
+      return;
+    }
+  }
   Direction& D = c.dir[d];
   D.dec.reset();
   D.dec.feed(payload);

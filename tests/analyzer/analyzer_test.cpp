@@ -8,6 +8,7 @@
 #include <set>
 
 #include "afindings.hpp"
+#include "escape.hpp"
 #include "pcapw.hpp"
 #include "test_support.hpp"
 
@@ -375,6 +376,58 @@ TEST(AnalyzerFindings, TableIsConsistentAndDocumented) {
     EXPECT_FALSE(top::finding_code_from_string(code).has_value())
         << code << " clashes with a protocol code";
     EXPECT_NE(doc.find("`" + code + "`"), std::string::npos) << code << " is not documented";
+  }
+}
+
+}  // namespace
+}  // namespace topdump::test
+
+namespace topdump::test {
+namespace {
+
+// The one-frame datagram fast path gives what the stream decoder gives.
+TEST(Datagram, FastPathEqualsStreamDecoder) {
+  std::mt19937 rng(3);
+  std::vector<std::string> payloads = {
+      pcapw::frame("#tpUG6wGAYEC7832"), pcapw::frame("#TPUG2wPTZ05"), "#TPUG2wPTZ0500",
+      pcapw::frame("#TPUG2wPTZ05") + "\r\n", pcapw::frame("#PDP16TMP1008001720504000FA0123"),
+      pcapw::frame("#tpDP16wTMP1008001720504000FA0123"), pcapw::frame("#tpUG6wGAYfe0c32"),
+      "#tpUG6wGAY", pcapw::frame("#tpUG6wGAY#TPUG2"), pcapw::frame("#TPUG2wPTZ05").substr(0, 13)};
+  for (int i = 0; i < 400; ++i) {
+    std::string p = pcapw::frame("#tpUG6wGAYEC7832");
+    p[static_cast<std::size_t>(rng() % p.size())] = static_cast<char>(rng() & 0xFF);
+    payloads.push_back(p);
+  }
+  for (const std::string& p : payloads) {
+    Recorder r;
+    Analyzer a(AnalyzerOptions{}, r);
+    a.datagram(T, ep4(1, 40000), ep4(2, 5000), p, 1, 42);
+    a.finish();
+    top::StreamDecoder dec;
+    dec.feed(p);
+    dec.finish();
+    top::StreamItem it;
+    std::size_t frames = 0, garbage = 0;
+    while (dec.next(it)) {
+      if (it.kind == top::ItemKind::garbage) {
+        ++garbage;
+        continue;
+      }
+      ASSERT_LT(frames, r.frames.size()) << escape(p);
+      const auto& got = r.frames[frames++];
+      EXPECT_EQ(got.raw, it.frame.raw) << escape(p);
+      EXPECT_EQ(got.pos.offset, 42u + it.offset) << escape(p);
+      std::vector<std::string> want;
+      top::Decoded d = top::decode(it.frame, top::DecodeOptions{top::Dialect::skydroid, top::Model::unknown,
+                                                                top::Role::any});
+      for (const top::Finding* x : all_findings(it.frame, d)) want.emplace_back(top::to_string(x->code));
+      std::vector<std::string> have;
+      for (const auto& c : got.codes)
+        if (!acode_from_string(c)) have.push_back(c);
+      EXPECT_EQ(have, want) << escape(p);
+    }
+    EXPECT_EQ(frames, r.frames.size()) << escape(p);
+    EXPECT_EQ(garbage, r.garbage_codes.size()) << escape(p);
   }
 }
 
