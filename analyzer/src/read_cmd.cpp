@@ -43,13 +43,16 @@ void add_common(CLI::App* sub, Common& o, bool outputs) {
   sub->add_option("--model", o.model,
                   "c10, c10pro, c12, c13, c20 or sip (unsupported-on-model checks)")
       ->check(CLI::IsMember({"auto", "c10", "c10pro", "c12", "c13", "c20", "sip"}));
-  sub->add_option("--port", o.ports, "another UDP/TCP port that carries TOP (repeatable)");
+  sub->add_option("--port", o.ports, "another UDP/TCP port that carries TOP (repeatable)")
+      ->allow_extra_args(false);
   sub->add_option("--ident", o.idents,
                   "only frames with these identifiers (comma list, repeatable)")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->allow_extra_args(false);
   sub->add_option("--addr", o.addrs,
                   "only frames from/to this TOP address letter (U M D E P G) or host / host:port")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->allow_extra_args(false);
   sub->add_option("--severity", o.severity, "only frames whose worst finding is at least this")
       ->check(CLI::IsMember({"info", "warning", "error"}));
   sub->add_option("--from", o.from,

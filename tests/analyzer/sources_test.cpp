@@ -347,3 +347,21 @@ TEST(BenchGenerator, SmallCaptureHasTheAdvertisedMix) {
 
 }  // namespace
 }  // namespace topdump::test
+
+namespace topdump::test {
+namespace {
+
+// A list option takes one value per occurrence: it never swallows the files.
+TEST(Binary, ListOptionsDoNotSwallowFiles) {
+  std::string out, caps = captures_dir();
+  ASSERT_EQ(run("'" + topdump_bin() + "' stats --json --ident GAY --port 6000 '" + caps + "/sll.pcap' '" +
+                    caps + "/sll2.pcap' 2>/dev/null",
+                out),
+            0);
+  auto j = nlohmann::json::parse(out);
+  EXPECT_EQ(j["frames"].get<int>(), 2);
+  EXPECT_EQ(j["records"].get<int>(), 4);
+}
+
+}  // namespace
+}  // namespace topdump::test
