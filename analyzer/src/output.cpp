@@ -33,12 +33,12 @@ class W {
   ~W() { s_.resize(static_cast<std::size_t>(p_ - s_.data())); }
   W(const W&) = delete;
   W& operator=(const W&) = delete;
-  void append(const char* d, std::size_t n) {
+  [[gnu::always_inline]] void append(const char* d, std::size_t n) {
     if (static_cast<std::size_t>(end_ - p_) < n) grow(n);
     std::memcpy(p_, d, n);
     p_ += n;
   }
-  W& operator+=(char c) {
+  [[gnu::always_inline]] W& operator+=(char c) {
     if (p_ == end_) grow(1);
     *p_++ = c;
     return *this;
@@ -75,7 +75,7 @@ json time_json(std::int64_t ts) {
 }
 
 template <class O, std::size_t N>
-void app(O& o, const char (&lit)[N]) {
+[[gnu::always_inline]] inline void app(O& o, const char (&lit)[N]) {
   o.append(lit, N - 1);
 }
 
