@@ -12,6 +12,7 @@ packages=(
   libbenchmark-dev                  # Google Benchmark
   libspdlog-dev nlohmann-json3-dev libcli11-dev
   tcpdump socat                     # capture floor for bench/, pty peers for tests
+  time                              # /usr/bin/time -v: peak RSS in bench/run.sh
 )
 
 missing=()

@@ -12,5 +12,9 @@ namespace topdump {
 using Run = std::function<int()>;
 
 Run add_frame_command(CLI::App& app);
+Run add_read_command(CLI::App& app);
+Run add_stats_command(CLI::App& app);
+Run add_live_command(CLI::App& app);
+Run add_serial_command(CLI::App& app);
 
 }  // namespace topdump

@@ -8,7 +8,11 @@ int main(int argc, char** argv) {
   CLI::App app{"topdump: decode and diagnose TOP (SkyDroid/Topotek gimbal camera) traffic"};
   app.require_subcommand(1);
   std::vector<topdump::Run> runs;
+  runs.push_back(topdump::add_read_command(app));
+  runs.push_back(topdump::add_stats_command(app));
   runs.push_back(topdump::add_frame_command(app));
+  runs.push_back(topdump::add_live_command(app));
+  runs.push_back(topdump::add_serial_command(app));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

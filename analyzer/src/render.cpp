@@ -83,7 +83,7 @@ json field_json(const top::FieldValue& v, const top::Frame& f) {
     }
   }
   if (!s.unit.empty()) j["unit"] = s.unit;
-  j["text"] = format_value(v);
+  j["text"] = escape(format_value(v));
   j["raw"] = escape(std::string_view(f.raw).substr(v.offset, v.length));
   j["offset"] = v.offset;
   return j;
@@ -94,7 +94,7 @@ json finding_json(const top::Finding& x) {
   j["code"] = top::to_string(x.code);
   j["severity"] = top::to_string(x.severity);
   j["offset"] = x.offset;
-  j["message"] = x.message;
+  j["message"] = escape(x.message);
   if (!x.quirk.empty()) j["quirk"] = x.quirk;
   return j;
 }
@@ -104,15 +104,15 @@ json finding_json(const top::Finding& x) {
 json frame_json(const top::Frame& f, const top::Decoded& d) {
   json j;
   j["header"] = f.header_text();
-  j["src"] = std::string(1, f.src);
-  j["dst"] = std::string(1, f.dst);
+  j["src"] = escape(std::string_view(&f.src, 1));
+  j["dst"] = escape(std::string_view(&f.dst, 1));
   j["length"] = f.data_length;
   j["declared_length"] = f.declared_length;
   if (f.control)
-    j["control"] = std::string(1, f.control);
+    j["control"] = escape(std::string_view(&f.control, 1));
   else
     j["control"] = nullptr;
-  j["ident"] = f.ident_view();
+  j["ident"] = escape(f.ident_view());
   j["data"] = escape(f.data());
   if (f.checksum_present)
     j["checksum"] = escape(f.checksum_text());

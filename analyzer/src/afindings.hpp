@@ -1,0 +1,73 @@
+// Analyzer-level findings: problems of the capture, the transport or the
+// session, not of a frame's bytes. Same shape as top::TOP_FINDINGS; the
+// table is documented in docs/topdump-json.md ("Analyzer findings") and
+// tests/analyzer keep both in step.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
+#include "top/findings.hpp"
+
+namespace topdump {
+
+// X(enumerator, "stable-code", default severity, "when it fires")
+#define TOPDUMP_FINDINGS(X)                                                                       \
+  X(truncated_file, "truncated-file", error,                                                      \
+    "the capture file ends inside a record; records before it are decoded")                       \
+  X(snaplen_cut, "snaplen-cut", warning,                                                          \
+    "a packet was cut by the snap length; its TOP bytes may be incomplete")                       \
+  X(bad_packet, "bad-packet", warning, "a link, IP, UDP or TCP header is malformed or cut short") \
+  X(unsupported_link, "unsupported-link", error,                                                  \
+    "the capture's link type is not one topdump dissects")                                        \
+  X(tcp_gap, "tcp-gap", error,                                                                    \
+    "bytes of a TCP stream were never captured; the decoder restarts after "                      \
+    "the gap")                                                                                    \
+  X(tcp_retransmission, "tcp-retransmission", info,                                               \
+    "a TCP segment carries bytes already seen (retransmission or overlap)")                       \
+  X(tcp_overlap_differs, "tcp-overlap-differs", warning,                                          \
+    "an overlapping TCP segment disagrees with the bytes already seen; the "                      \
+    "first copy is kept")                                                                         \
+  X(tcp_out_of_order, "tcp-out-of-order", info,                                                   \
+    "a TCP segment arrived before the bytes that precede it; it is held "                         \
+    "until they come")                                                                            \
+  X(reassembly_limit, "reassembly-limit", error,                                                  \
+    "a TCP stream held more out-of-order bytes than the limit; held bytes "                       \
+    "are dropped as a gap")                                                                       \
+  X(conversation_limit, "conversation-limit", warning,                                            \
+    "more live conversations than the limit; the oldest one was closed")                          \
+  X(log_syntax, "log-syntax", error,                                                              \
+    "a line of a serial log does not follow its format; the line is skipped")                     \
+  X(unanswered, "unanswered", warning,                                                            \
+    "a request got no response within the timeout (or before the end)")                           \
+  X(unsolicited, "unsolicited", warning,                                                          \
+    "a response that no pending request asked for (and no stream explains)")                      \
+  X(echo_differs, "echo-differs", warning,                                                        \
+    "the reply to a write carries other data than the write (Topotek REC "                        \
+    "and CAP answer with a file index and are exempt)")                                           \
+  X(repeated, "repeated", info,                                                                   \
+    "the same request again within the repeat window (some senders send "                         \
+    "each frame three times, 30 ms apart)")                                                       \
+  X(stream_rate, "stream-rate", warning,                                                          \
+    "a GAC/GIC stream runs at a rate more than 25% off the rate GAA asked")                       \
+  X(no_frames, "no-frames", error, "the input held no TOP frame at all")
+
+enum class ACode : std::uint16_t {
+#define TOPDUMP_X(e, s, sev, when) e,
+  TOPDUMP_FINDINGS(TOPDUMP_X)
+#undef TOPDUMP_X
+};
+
+inline constexpr std::size_t acode_count = 0
+#define TOPDUMP_X(e, s, sev, when) +1
+    TOPDUMP_FINDINGS(TOPDUMP_X)
+#undef TOPDUMP_X
+    ;
+
+std::string_view to_string(ACode c) noexcept;
+top::Severity default_severity(ACode c) noexcept;
+std::string_view description(ACode c) noexcept;
+std::optional<ACode> acode_from_string(std::string_view s) noexcept;
+
+}  // namespace topdump

@@ -1,0 +1,936 @@
+#include "analyzer.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+
+#include "escape.hpp"
+#include "render.hpp"
+
+namespace topdump {
+
+std::string_view to_string(Transport t) noexcept {
+  switch (t) {
+    case Transport::udp:
+      return "udp";
+    case Transport::tcp:
+      return "tcp";
+    case Transport::serial:
+      return "serial";
+  }
+  return "?";
+}
+
+std::string Endpoint::text() const {
+  char b[64];
+  if (family == 4) {
+    std::snprintf(b, sizeof b, "%u.%u.%u.%u:%u", addr[0], addr[1], addr[2], addr[3], port);
+    return b;
+  }
+  if (family == 6) {
+    // RFC 5952 style: longest run of zero groups as "::".
+    std::uint16_t g[8];
+    for (int i = 0; i < 8; ++i)
+      g[i] = static_cast<std::uint16_t>(addr[2 * i] << 8 | addr[2 * i + 1]);
+    int best = -1, best_len = 0;
+    for (int i = 0; i < 8;) {
+      if (g[i] != 0) {
+        ++i;
+        continue;
+      }
+      int j = i;
+      while (j < 8 && g[j] == 0) ++j;
+      if (j - i > best_len && j - i >= 2) best = i, best_len = j - i;
+      i = j;
+    }
+    std::string s = "[";
+    for (int i = 0; i < 8; ++i) {
+      if (i == best) {
+        s += "::";
+        i += best_len - 1;
+        continue;
+      }
+      if (!s.empty() && s.back() != ':' && s.back() != '[') s += ':';
+      std::snprintf(b, sizeof b, "%x", g[i]);
+      s += b;
+    }
+    s += "]:" + std::to_string(port);
+    return s;
+  }
+  return escape(name);
+}
+
+bool looks_like_top(std::string_view p) noexcept {
+  for (std::size_t i = p.find('#'); i != std::string_view::npos; i = p.find('#', i + 1)) {
+    if (i + 2 < p.size() && (p[i + 1] == 'T' || p[i + 1] == 't') &&
+        (p[i + 2] == 'P' || p[i + 2] == 'p'))
+      return true;
+    if (p.substr(i, 9) == "#PDP16TMP") return true;
+  }
+  return false;
+}
+
+top::Severity FrameEvent::worst() const noexcept {
+  top::Severity w = entry ? entry->worst : top::Severity::info;
+  for (const Note& x : notes)
+    if (x.severity > w) w = x.severity;
+  return w;
+}
+
+// ---------------------------------------------------------------------------
+// Latency: log buckets of 1% width from 1 us.
+
+std::size_t Latency::bucket(std::int64_t us) {
+  if (us <= 1) return 0;
+  return static_cast<std::size_t>(std::log(static_cast<double>(us)) / std::log(1.01)) + 1;
+}
+std::int64_t Latency::bucket_value(std::size_t b) {
+  if (b == 0) return 1;
+  return static_cast<std::int64_t>(std::llround(std::pow(1.01, static_cast<double>(b))));
+}
+void Latency::add(std::int64_t us) {
+  if (us < 0) us = 0;
+  std::size_t b = std::min<std::size_t>(bucket(us), 4000);
+  if (buckets_.size() <= b) buckets_.resize(b + 1, 0);
+  ++buckets_[b];
+  if (count_ < kExact) exact_.push_back(us);
+  if (count_ == 0 || us < min_) min_ = us;
+  if (count_ == 0 || us > max_) max_ = us;
+  ++count_;
+}
+std::int64_t Latency::quantile(double q) const {
+  if (count_ == 0) return 0;
+  auto rank = static_cast<std::uint64_t>(std::ceil(q * static_cast<double>(count_)));
+  if (rank == 0) rank = 1;
+  if (count_ <= kExact) {
+    std::vector<std::int64_t> v = exact_;
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(rank - 1), v.end());
+    return v[rank - 1];
+  }
+  std::uint64_t seen = 0;
+  for (std::size_t b = 0; b < buckets_.size(); ++b) {
+    seen += buckets_[b];
+    if (seen >= rank) return std::clamp(bucket_value(b), min_, max_);
+  }
+  return max_;
+}
+
+double StreamStat::measured_hz() const {
+  if (frames < 2 || first == kNoTime || last <= first) return 0;
+  return static_cast<double>(frames - 1) * 1e6 / static_cast<double>(last - first);
+}
+
+// ---------------------------------------------------------------------------
+// Filter
+
+namespace {
+std::string_view host_of(std::string_view ep) {
+  if (!ep.empty() && ep.front() == '[') {
+    auto e = ep.find(']');
+    return e == std::string_view::npos ? ep : ep.substr(1, e - 1);
+  }
+  auto c = ep.rfind(':');
+  return c == std::string_view::npos ? ep : ep.substr(0, c);
+}
+bool endpoint_matches(std::string_view want, std::string_view ep) {
+  return want == ep || want == host_of(ep);
+}
+}  // namespace
+
+bool Filter::selects_time(std::int64_t ts) const {
+  if (ts == kNoTime) return from == kNoTime && to == kNoTime;
+  if (from != kNoTime && ts < from) return false;
+  if (to != kNoTime && ts > to) return false;
+  return true;
+}
+
+bool Filter::active() const {
+  return !idents.empty() || !addrs.empty() || severity_set || from != kNoTime || to != kNoTime;
+}
+
+bool Filter::selects(const FrameEvent& e) const {
+  const top::Frame& f = e.entry->frame;
+  if (!idents.empty() && std::find(idents.begin(), idents.end(), f.ident_view()) == idents.end())
+    return false;
+  if (!addrs.empty()) {
+    bool any = false;
+    for (const std::string& a : addrs) {
+      if (a.size() == 1 ? (f.src == a[0] || f.dst == a[0])
+                        : (endpoint_matches(a, *e.from) || endpoint_matches(a, *e.to))) {
+        any = true;
+        break;
+      }
+    }
+    if (!any) return false;
+  }
+  if (severity_set && e.worst() < min_severity) return false;
+  return selects_time(e.ts);
+}
+
+// ---------------------------------------------------------------------------
+// Conversations
+
+namespace {
+
+struct Seg {
+  std::uint64_t stream_off;
+  std::uint64_t record;
+  std::uint64_t rec_off;
+  std::int64_t ts;
+};
+
+struct Held {
+  std::string bytes;
+  std::uint64_t record;
+  std::uint32_t offset;
+  std::int64_t ts;
+};
+
+struct Pending {
+  std::int64_t ts;
+  std::uint64_t n;
+  Position pos;
+  char ident[3];
+  char control;
+  char src, dst;
+  std::string data;
+  int dir;
+};
+
+}  // namespace
+
+struct Direction {
+  Endpoint src, dst;
+  std::string from, to;
+  top::StreamDecoder dec;
+  std::deque<Seg> segs;
+  std::uint64_t base = 0;  // stream offset of the decoder's offset 0
+  std::uint64_t last_record = 0;
+  std::uint32_t index = 0;
+  // TCP
+  bool tcp_init = false;
+  std::uint32_t next_seq = 0;
+  std::map<std::uint32_t, Held> ooo;  // keyed by seq - next_seq at insertion time ordering
+  std::size_t held = 0;
+  std::string tail;  // last delivered bytes, for overlap checks
+  // repeats
+  std::string last_req;
+  std::int64_t last_req_ts = kNoTime;
+};
+
+struct Conversation {
+  std::uint64_t id = 0;
+  Transport transport{};
+  Direction dir[2];
+  bool has_dir1 = false;
+  top::DialectDetector det;
+  std::uint32_t observed = 0;
+  std::deque<Pending> pending;
+  std::uint64_t last_used = 0;
+  ConvStats st;
+};
+
+namespace {
+
+struct ConvKey {
+  Transport t;
+  Endpoint a, b;  // a < b
+  bool operator==(const ConvKey&) const = default;
+};
+
+bool endpoint_less(const Endpoint& x, const Endpoint& y) {
+  if (x.family != y.family) return x.family < y.family;
+  if (x.addr != y.addr) return x.addr < y.addr;
+  if (x.port != y.port) return x.port < y.port;
+  return x.name < y.name;
+}
+
+struct ConvKeyHash {
+  std::size_t operator()(const ConvKey& k) const noexcept {
+    auto one = [](const Endpoint& e) -> std::uint64_t {
+      if (e.family == 0) return std::hash<std::string>{}(e.name);
+      std::uint64_t a, b;
+      std::memcpy(&a, e.addr.data(), 8);
+      std::memcpy(&b, e.addr.data() + 8, 8);
+      return (a * 0x9E3779B97F4A7C15ull) ^ (b * 0xC2B2AE3D27D4EB4Full) ^
+             (std::uint64_t{e.port} << 1);
+    };
+    std::uint64_t h = one(k.a) * 31 + one(k.b) + static_cast<std::uint64_t>(k.t);
+    return static_cast<std::size_t>(h ^ (h >> 29));
+  }
+};
+
+}  // namespace
+
+struct Analyzer::Impl {
+  Analyzer& A;
+  std::unordered_map<ConvKey, std::unique_ptr<Conversation>, ConvKeyHash> convs;
+  std::uint64_t next_conv = 1;
+  std::uint64_t clock = 0;
+  DecodedEntry current;
+  std::unordered_map<std::uint32_t, std::uint64_t> idents;
+  std::array<std::uint64_t, top::finding_code_count> codes{};
+  std::array<std::uint64_t, acode_count> acodes{};
+  std::unordered_map<std::uint32_t, Latency> latency;
+  std::uint64_t limit_notes = 0;
+
+  explicit Impl(Analyzer& a) : A(a) {}
+
+  Conversation& get(Transport t, const Endpoint& src, const Endpoint& dst, int& d) {
+    ConvKey k{t, src, dst};
+    if (endpoint_less(dst, src)) std::swap(k.a, k.b);
+    auto it = convs.find(k);
+    if (it == convs.end()) {
+      if (convs.size() >= A.opts_.max_conversations) evict();
+      auto c = std::make_unique<Conversation>();
+      c->id = next_conv++;
+      c->transport = t;
+      c->dir[0].src = src;
+      c->dir[0].dst = dst;
+      c->dir[0].from = src.text();
+      c->dir[0].to = dst.text();
+      c->dir[1].src = dst;
+      c->dir[1].dst = src;
+      c->dir[1].from = c->dir[0].to;
+      c->dir[1].to = c->dir[0].from;
+      if (A.opts_.dialect != top::Dialect::unknown) c->det.force(A.opts_.dialect);
+      if (A.opts_.model != top::Model::unknown) c->det.force(top::dialect_of(A.opts_.model));
+      if (src.family) c->det.observe_port(src.port);
+      if (dst.family) c->det.observe_port(dst.port);
+      c->st.id = c->id;
+      c->st.a = c->dir[0].from;
+      c->st.b = c->dir[0].to;
+      c->st.transport = t;
+      it = convs.emplace(std::move(k), std::move(c)).first;
+    }
+    Conversation& c = *it->second;
+    c.last_used = ++clock;
+    d = (c.dir[0].src == src && c.dir[0].dst == dst) ? 0 : 1;
+    return c;
+  }
+
+  void evict() {
+    auto victim = convs.begin();
+    for (auto it = convs.begin(); it != convs.end(); ++it)
+      if (it->second->last_used < victim->second->last_used) victim = it;
+    Conversation& c = *victim->second;
+    std::string msg = "more than " + std::to_string(A.opts_.max_conversations) +
+                      " live conversations: closed conversation " + std::to_string(c.id) + " (" +
+                      c.dir[0].from + " <> " + c.dir[0].to + ")";
+    close(c, kNoTime);
+    note_event(kNoTime, Position{}, c.transport, nullptr, nullptr, nullptr,
+               Note{ACode::conversation_limit, default_severity(ACode::conversation_limit), msg, 0},
+               ++limit_notes <= 10);
+    convs.erase(victim);
+  }
+
+  void note_event(std::int64_t ts, Position pos, Transport t, const Conversation* c,
+                  const std::string* from, const std::string* to, Note n, bool emit = true) {
+    ++acodes[static_cast<std::size_t>(n.code)];
+    if (n.severity > A.worst_) A.worst_ = n.severity;
+    if (!emit) return;
+    if (A.filter_.severity_set && n.severity < A.filter_.min_severity) return;
+    if (!A.filter_.selects_time(ts) && ts != kNoTime) return;
+    NoteEvent e;
+    e.ts = ts;
+    e.pos = pos;
+    e.transport = t;
+    e.conv = c;
+    e.from = from;
+    e.to = to;
+    e.note = std::move(n);
+    A.sink_.note(e);
+  }
+
+  // --- items out of a decoder ---------------------------------------------
+
+  Position map_position(Direction& D, std::uint64_t off, std::uint64_t len,
+                        std::uint64_t& stream_off, std::int64_t& ts) {
+    while (D.segs.size() > 1 && D.segs[1].stream_off <= off) D.segs.pop_front();
+    Position p;
+    stream_off = D.base + off;
+    if (!D.segs.empty()) {
+      const Seg& s = D.segs.front();
+      p.record = s.record;
+      p.offset = s.rec_off + (off >= s.stream_off ? off - s.stream_off : 0);
+      // the time of the chunk that holds the item's last byte
+      std::uint64_t last = off + (len ? len - 1 : 0);
+      for (const Seg& x : D.segs) {
+        if (x.stream_off > last) break;
+        if (x.ts != kNoTime) ts = x.ts;
+      }
+    }
+    if (p.record != D.last_record) {
+      D.last_record = p.record;
+      D.index = 0;
+    }
+    p.index = D.index++;
+    return p;
+  }
+
+  void drain_stream(Conversation& c, int d, std::int64_t ts) {
+    Direction& D = c.dir[d];
+    top::StreamItem it;
+    while (D.dec.next(it)) {
+      std::uint64_t so = 0;
+      std::int64_t t = ts;
+      Position pos = map_position(D, it.offset, it.length, so, t);
+      item(c, d, it, pos, t, so);
+    }
+  }
+
+  void item(Conversation& c, int d, top::StreamItem& it, Position pos, std::int64_t ts,
+            std::uint64_t stream_off) {
+    Direction& D = c.dir[d];
+    if (it.kind == top::ItemKind::garbage) {
+      ++A.stats_.garbage;
+      ++codes[static_cast<std::size_t>(it.finding.code)];
+      if (it.finding.severity > A.worst_) A.worst_ = it.finding.severity;
+      if (A.filter_.active() &&
+          (!A.filter_.idents.empty() || !A.filter_.addrs.empty() || !A.filter_.selects_time(ts) ||
+           (A.filter_.severity_set && it.finding.severity < A.filter_.min_severity)))
+        return;
+      GarbageEvent g;
+      g.ts = ts;
+      g.pos = pos;
+      g.transport = c.transport;
+      g.conv = &c;
+      g.from = &D.from;
+      g.to = &D.to;
+      g.item = &it;
+      A.sink_.garbage(g);
+      return;
+    }
+    frame(c, d, it.frame, pos, ts, stream_off);
+  }
+
+  // Decoding is cheaper than any cache keyed by the frame bytes (frames of a
+  // real capture are mostly distinct: angles, attitudes), so each frame is
+  // decoded into one reused entry.
+  const DecodedEntry& lookup(top::Frame& f, top::Dialect dialect, top::Role role) {
+    DecodedEntry& e = current;
+    top::DecodeOptions o;
+    o.dialect = dialect;
+    o.model = A.opts_.model;
+    o.role = role;
+    e.decoded = top::decode(f, o);
+    if (role == top::Role::response && top::role_from_addresses(f) == top::Role::request) {
+      bool has = false;
+      for (const auto& x : e.decoded.findings)
+        has |= x.code == top::FindingCode::unswapped_addresses;
+      if (!has)
+        e.decoded.findings.push_back(
+            top::make_finding(top::FindingCode::unswapped_addresses, 3,
+                              std::string("a response addressed ") + f.src + " to " + f.dst +
+                                  " (the request's order; some simulators)"));
+    }
+    e.frame = std::move(f);
+    e.worst = topdump::worst(e.frame, e.decoded);
+    e.codes.clear();
+    for (const auto& x : e.frame.findings) e.codes.push_back(x.code);
+    for (const auto& x : e.decoded.findings) e.codes.push_back(x.code);
+    e.bad_checksum = e.frame.has(top::FindingCode::bad_checksum);
+    return e;
+  }
+
+  static std::uint32_t pack(std::string_view id) {
+    std::uint32_t k = 0;
+    for (std::size_t i = 0; i < 3 && i < id.size(); ++i)
+      k |= static_cast<std::uint32_t>(static_cast<unsigned char>(id[i])) << (8 * i);
+    return k;
+  }
+  static std::string unpack(std::uint32_t k) {
+    char b[3] = {static_cast<char>(k & 0xFF), static_cast<char>((k >> 8) & 0xFF),
+                 static_cast<char>((k >> 16) & 0xFF)};
+    return escape(std::string_view(b, 3));
+  }
+
+  void materialize(Stats& s) const {
+    s.per_ident.clear();
+    for (const auto& [k, v] : idents) s.per_ident[unpack(k)] += v;
+    s.per_code.clear();
+    for (std::size_t i = 0; i < codes.size(); ++i)
+      if (codes[i])
+        s.per_code[std::string(top::to_string(static_cast<top::FindingCode>(i)))] += codes[i];
+    for (std::size_t i = 0; i < acodes.size(); ++i)
+      if (acodes[i]) s.per_code[std::string(to_string(static_cast<ACode>(i)))] += acodes[i];
+    s.latency.clear();
+    for (const auto& [k, v] : latency) s.latency[unpack(k)] = v;
+  }
+
+  void frame(Conversation& c, int d, top::Frame& f, Position pos, std::int64_t ts,
+             std::uint64_t stream_off) {
+    Direction& D = c.dir[d];
+    if (c.observed < 64) {
+      c.det.observe(f);
+      ++c.observed;
+    }
+    top::Dialect dialect = c.det.current();
+    if (dialect == top::Dialect::unknown) dialect = top::dialect_from_frame(f);
+    top::Role role = top::Role::any;
+    if (!c.pending.empty() && top::is_client_address(f.src) && !top::is_client_address(f.dst)) {
+      // Addressed like a request, but it travels back to a client that asked
+      // the same: a response that kept the request's address order.
+      for (const Pending& p : c.pending)
+        if (p.dir != d && same_ident(p.ident, f.ident_view()) && p.src == f.src && p.dst == f.dst) {
+          role = top::Role::response;
+          break;
+        }
+    }
+    const DecodedEntry& e = lookup(f, dialect, role);
+    const top::Frame& fr = e.frame;
+
+    FrameEvent ev;
+    ev.n = ++A.frame_no_;
+    ev.ts = ts;
+    ev.pos = pos;
+    ev.stream_offset = stream_off;
+    ev.transport = c.transport;
+    ev.conv = &c;
+    ev.from = &D.from;
+    ev.to = &D.to;
+    ev.entry = &e;
+
+    expire(c, ts);
+    ++c.st.frames;
+    if (e.decoded.role == top::Role::request)
+      request(c, d, ev);
+    else if (e.decoded.role == top::Role::response)
+      response(c, d, ev, dialect);
+
+    if (ev.worst() > A.worst_) A.worst_ = ev.worst();
+    for (const Note& n : ev.notes) ++acodes[static_cast<std::size_t>(n.code)];
+    if (A.filter_.active() && !A.filter_.selects(ev)) return;
+    if (A.opts_.stats) {
+      Stats& s = A.stats_;
+      ++s.frames;
+      if (e.bad_checksum) ++s.bad_checksum;
+      if (e.worst == top::Severity::error) ++s.error_frames;
+      ++idents[pack(fr.ident_view())];
+      for (top::FindingCode code : e.codes) ++codes[static_cast<std::size_t>(code)];
+      if (ts != kNoTime) {
+        if (s.first == kNoTime || ts < s.first) s.first = ts;
+        if (s.last == kNoTime || ts > s.last) s.last = ts;
+      }
+    }
+    A.sink_.frame(ev);
+  }
+
+  // --- sessions ------------------------------------------------------------
+
+  static bool same_ident(const char a[3], std::string_view b) {
+    return b.size() == 3 && a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
+  }
+
+  void unanswered(Conversation& c, const Pending& p, bool at_end) {
+    ++A.stats_.unanswered;
+    const Direction& D = c.dir[p.dir];
+    std::string msg =
+        escape(std::string_view(p.ident, 3)) + " request (frame " + std::to_string(p.n) + ")";
+    if (at_end)
+      msg += " got no response before the end of the capture";
+    else
+      msg += " got no response within " + std::to_string(A.opts_.timeout_us / 1000) + " ms";
+    note_event(p.ts, p.pos, c.transport, &c, &D.from, &D.to,
+               Note{ACode::unanswered, default_severity(ACode::unanswered), std::move(msg), p.n});
+  }
+
+  void expire(Conversation& c, std::int64_t ts) {
+    if (ts == kNoTime) return;
+    while (!c.pending.empty() && c.pending.front().ts != kNoTime &&
+           ts - c.pending.front().ts > A.opts_.timeout_us) {
+      unanswered(c, c.pending.front(), false);
+      c.pending.pop_front();
+    }
+  }
+
+  void request(Conversation& c, int d, FrameEvent& ev) {
+    const top::Frame& f = ev.entry->frame;
+    Direction& D = c.dir[d];
+    ++A.stats_.requests;
+    ++c.st.requests;
+    if (D.last_req == f.raw && ev.ts != kNoTime && D.last_req_ts != kNoTime &&
+        ev.ts - D.last_req_ts <= A.opts_.repeat_window_us)
+      ev.notes.push_back(
+          Note{ACode::repeated, default_severity(ACode::repeated),
+               "same request again after " + std::to_string((ev.ts - D.last_req_ts) / 1000) + " ms",
+               ev.n});
+    D.last_req = f.raw;
+    D.last_req_ts = ev.ts;
+    std::string_view id = f.ident_view();
+    if (f.control == 'w' && (id == "GAA" || id == "GIA")) {
+      unsigned v = 0;
+      bool ok = !f.data().empty();
+      for (char ch : f.data()) {
+        int x = (ch >= '0' && ch <= '9')   ? ch - '0'
+                : (ch >= 'A' && ch <= 'F') ? ch - 'A' + 10
+                : (ch >= 'a' && ch <= 'f') ? ch - 'a' + 10
+                                           : -1;
+        if (x < 0)
+          ok = false;
+        else
+          v = v * 16 + static_cast<unsigned>(x);
+      }
+      if (ok) {
+        std::string sid = id == "GAA" ? "GAC" : "GIC";
+        auto& streams = c.st.streams;
+        auto s = std::find_if(streams.begin(), streams.end(),
+                              [&](const StreamStat& x) { return x.ident == sid; });
+        if (v == 0) {
+          // disabled: keep the measured figures
+        } else {
+          if (s == streams.end()) {
+            streams.push_back(StreamStat{sid, 0, 0, kNoTime, kNoTime});
+            s = streams.end() - 1;
+          } else {
+            check_stream(c, *s);
+            *s = StreamStat{sid, 0, 0, kNoTime, kNoTime};
+          }
+          bool topotek = ev.entry->decoded.dialect == top::Dialect::topotek;
+          s->asked_hz = topotek ? 0 : static_cast<double>(v);
+        }
+      }
+    }
+    if (c.pending.size() >= kMaxPending) {
+      unanswered(c, c.pending.front(), false);
+      c.pending.pop_front();
+    }
+    Pending p;
+    p.ts = ev.ts;
+    p.n = ev.n;
+    p.pos = ev.pos;
+    std::memcpy(p.ident, f.ident, 3);
+    p.control = f.control;
+    p.src = f.src;
+    p.dst = f.dst;
+    p.data.assign(f.data());
+    p.dir = d;
+    c.pending.push_back(std::move(p));
+  }
+
+  void response(Conversation& c, int d, FrameEvent& ev, top::Dialect dialect) {
+    const top::Frame& f = ev.entry->frame;
+    ++A.stats_.responses;
+    ++c.st.responses;
+    std::string_view id = f.ident_view();
+    bool ere = id == "ERE";
+    // the oldest pending request it answers, preferring one whose data it echoes
+    auto m = ere ? c.pending.end()
+                 : std::find_if(c.pending.begin(), c.pending.end(), [&](const Pending& p) {
+                     return p.dir != d && same_ident(p.ident, id) && p.data == f.data();
+                   });
+    if (m == c.pending.end())
+      m = std::find_if(c.pending.begin(), c.pending.end(), [&](const Pending& p) {
+        return p.dir != d && (ere ? p.dst == f.src : same_ident(p.ident, id));
+      });
+    if (m != c.pending.end()) {
+      ++A.stats_.paired;
+      ++c.st.paired;
+      ev.reply_to = m->n;
+      if (ev.ts != kNoTime && m->ts != kNoTime) {
+        ev.latency_us = ev.ts - m->ts;
+        latency[pack(std::string_view(m->ident, 3))].add(ev.latency_us);
+      }
+      bool exempt = dialect == top::Dialect::topotek && (id == "REC" || id == "CAP");
+      if (!ere && !exempt && m->control == 'w' && f.control == 'w' && m->data != f.data())
+        ev.notes.push_back(Note{ACode::echo_differs, default_severity(ACode::echo_differs),
+                                "reply to write (frame " + std::to_string(m->n) + ") carries \"" +
+                                    escape(f.data()) + "\", the write carried \"" +
+                                    escape(m->data) + "\"",
+                                ev.n});
+      c.pending.erase(m);
+      return;
+    }
+    for (StreamStat& s : c.st.streams) {
+      if (s.ident == id) {
+        ++s.frames;
+        if (ev.ts != kNoTime) {
+          if (s.first == kNoTime) s.first = ev.ts;
+          s.last = ev.ts;
+        }
+        return;
+      }
+    }
+    ++A.stats_.unsolicited;
+    ev.notes.push_back(Note{ACode::unsolicited, default_severity(ACode::unsolicited),
+                            escape(id) + " response that no pending request asked for", ev.n});
+  }
+
+  void check_stream(Conversation& c, const StreamStat& s) {
+    if (s.asked_hz <= 0 || s.frames < 2) return;
+    double m = s.measured_hz();
+    if (m <= 0 || std::fabs(m - s.asked_hz) <= 0.25 * s.asked_hz) return;
+    char b[160];
+    std::snprintf(b, sizeof b, "%s stream runs at %.1f Hz, GAA asked for %.0f Hz (%llu frames)",
+                  s.ident.c_str(), m, s.asked_hz, static_cast<unsigned long long>(s.frames));
+    note_event(s.last, Position{}, c.transport, &c, &c.dir[0].from, &c.dir[0].to,
+               Note{ACode::stream_rate, default_severity(ACode::stream_rate), b, 0});
+  }
+
+  // --- TCP -----------------------------------------------------------------
+
+  void deliver(Conversation& c, int d, std::string_view bytes, std::uint64_t record,
+               std::uint64_t offset, std::int64_t ts) {
+    Direction& D = c.dir[d];
+    if (bytes.empty()) return;
+    // The other direction spoke before this: release its held frame so the
+    // frames come out in capture order (a CR/LF it sends later is garbage).
+    c.dir[1 - d].dec.flush();
+    drain_stream(c, 1 - d, ts);
+    D.segs.push_back(Seg{D.dec.fed(), record, offset, ts});
+    if (D.segs.size() > 4096) D.segs.pop_front();
+    D.dec.feed(bytes);
+    if (c.transport == Transport::tcp) {
+      D.next_seq += static_cast<std::uint32_t>(bytes.size());
+      D.tail.append(bytes);
+      if (D.tail.size() > 8192) D.tail.erase(0, D.tail.size() - 4096);
+    }
+    drain_stream(c, d, ts);
+  }
+
+  void overlap_check(Conversation& c, int d, std::uint32_t seq, std::string_view bytes,
+                     std::uint64_t record, std::uint64_t offset, std::int64_t ts) {
+    // bytes [seq, seq+len) all lie before next_seq
+    Direction& D = c.dir[d];
+    std::uint32_t back = D.next_seq - seq;  // distance from seq to next_seq
+    std::string msg = std::to_string(bytes.size()) + " bytes at stream offset " +
+                      std::to_string(D.base + D.dec.fed() - back) + " seen again";
+    if (back <= D.tail.size()) {
+      std::string_view old = std::string_view(D.tail).substr(D.tail.size() - back, bytes.size());
+      if (old != bytes) {
+        note_event(ts, Position{record, 0, offset}, c.transport, &c, &D.from, &D.to,
+                   Note{ACode::tcp_overlap_differs, default_severity(ACode::tcp_overlap_differs),
+                        msg + " with different content; the first copy is kept", 0});
+        return;
+      }
+    }
+    note_event(ts, Position{record, 0, offset}, c.transport, &c, &D.from, &D.to,
+               Note{ACode::tcp_retransmission, default_severity(ACode::tcp_retransmission),
+                    msg + " (retransmission)", 0});
+  }
+
+  // Delivers what it can of one segment at seq; returns false if it lies ahead.
+  bool place(Conversation& c, int d, std::uint32_t seq, std::string_view p, std::uint64_t record,
+             std::uint64_t offset, std::int64_t ts) {
+    Direction& D = c.dir[d];
+    auto rel = static_cast<std::int32_t>(seq - D.next_seq);
+    if (rel > 0) return false;
+    auto skip = static_cast<std::size_t>(-static_cast<std::int64_t>(rel));
+    if (skip > 0)
+      overlap_check(c, d, seq, p.substr(0, std::min(skip, p.size())), record, offset, ts);
+    if (skip < p.size()) deliver(c, d, p.substr(skip), record, offset + skip, ts);
+    return true;
+  }
+
+  void drain_ooo(Conversation& c, int d) {
+    Direction& D = c.dir[d];
+    while (!D.ooo.empty()) {
+      // the held segment closest to next_seq
+      auto best = D.ooo.end();
+      std::int32_t best_rel = std::numeric_limits<std::int32_t>::max();
+      for (auto it = D.ooo.begin(); it != D.ooo.end(); ++it) {
+        auto rel = static_cast<std::int32_t>(it->first - D.next_seq);
+        if (rel < best_rel) best_rel = rel, best = it;
+      }
+      if (best_rel > 0) return;
+      Held h = std::move(best->second);
+      std::uint32_t seq = best->first;
+      D.held -= h.bytes.size();
+      D.ooo.erase(best);
+      place(c, d, seq, h.bytes, h.record, h.offset, h.ts);
+    }
+  }
+
+  // Skips to the first held segment: the bytes in between were never seen.
+  void gap(Conversation& c, int d, std::int64_t ts) {
+    Direction& D = c.dir[d];
+    if (D.ooo.empty()) return;
+    auto best = D.ooo.begin();
+    std::int32_t best_rel = std::numeric_limits<std::int32_t>::max();
+    for (auto it = D.ooo.begin(); it != D.ooo.end(); ++it) {
+      auto rel = static_cast<std::int32_t>(it->first - D.next_seq);
+      if (rel < best_rel) best_rel = rel, best = it;
+    }
+    std::uint64_t at = D.base + D.dec.fed();
+    note_event(best->second.ts, Position{best->second.record, 0, best->second.offset}, c.transport,
+               &c, &D.from, &D.to,
+               Note{ACode::tcp_gap, default_severity(ACode::tcp_gap),
+                    std::to_string(best_rel) + " bytes missing at stream offset " +
+                        std::to_string(at) + "; decoding restarts after the gap",
+                    0});
+    restart(c, d, ts, static_cast<std::uint64_t>(best_rel));
+    D.next_seq = best->first;
+    drain_ooo(c, d);
+  }
+
+  void restart(Conversation& c, int d, std::int64_t ts, std::uint64_t skipped) {
+    Direction& D = c.dir[d];
+    D.dec.finish();
+    drain_stream(c, d, ts);
+    D.base += D.dec.fed() + skipped;
+    D.dec.reset();
+    D.segs.clear();
+    D.tail.clear();
+  }
+
+  void close(Conversation& c, std::int64_t ts) {
+    for (int d = 0; d < 2; ++d) {
+      Direction& D = c.dir[d];
+      while (!D.ooo.empty()) gap(c, d, ts);
+      D.dec.finish();
+      drain_stream(c, d, ts);
+    }
+    while (!c.pending.empty()) {
+      unanswered(c, c.pending.front(), true);
+      c.pending.pop_front();
+    }
+    for (const StreamStat& s : c.st.streams) check_stream(c, s);
+    c.st.dialect = c.det.current();
+    if (A.stats_.conversations.size() < kMaxStatsConversations)
+      A.stats_.conversations.push_back(c.st);
+    else
+      ++A.stats_.conversations_dropped;
+  }
+};
+
+// ---------------------------------------------------------------------------
+
+std::uint64_t FrameEvent::conv_id() const noexcept { return conv ? conv->id : 0; }
+std::uint64_t GarbageEvent::conv_id() const noexcept { return conv ? conv->id : 0; }
+std::uint64_t NoteEvent::conv_id() const noexcept { return conv ? conv->id : 0; }
+
+Analyzer::Analyzer(AnalyzerOptions opts, Sink& sink)
+    : impl_(std::make_unique<Impl>(*this)), opts_(opts), sink_(sink) {}
+Analyzer::~Analyzer() = default;
+
+const Stats& Analyzer::stats() const {
+  impl_->materialize(stats_);
+  return stats_;
+}
+
+void Analyzer::record(bool top_traffic) {
+  ++stats_.records;
+  if (!top_traffic) ++stats_.records_skipped;
+}
+
+void Analyzer::datagram(std::int64_t ts, const Endpoint& src, const Endpoint& dst,
+                        std::string_view payload, std::uint64_t record, std::uint32_t offset) {
+  int d = 0;
+  Conversation& c = impl_->get(Transport::udp, src, dst, d);
+  // The common case, a datagram that is exactly one valid frame, skips the
+  // stream decoder's queue: for such a payload it would yield exactly this
+  // frame (no garbage, no terminator, nothing to yield to).
+  if (!payload.empty() && payload[0] == '#') {
+    top::ParseResult r = top::parse_frame(payload, true);
+    if (r.status == top::ParseStatus::frame && r.consumed == payload.size() &&
+        r.frame.checksum_ok) {
+      impl_->frame(c, d, r.frame, Position{record, 0, offset}, ts, 0);
+      return;
+    }
+  }
+  Direction& D = c.dir[d];
+  D.dec.reset();
+  D.dec.feed(payload);
+  D.dec.finish();
+  top::StreamItem it;
+  std::uint32_t index = 0;
+  while (D.dec.next(it)) {
+    Position pos{record, index++, offset + it.offset};
+    impl_->item(c, d, it, pos, ts, it.offset);
+  }
+}
+
+void Analyzer::segment(std::int64_t ts, const Endpoint& src, const Endpoint& dst, std::uint32_t seq,
+                       bool syn, std::string_view payload, std::uint64_t record,
+                       std::uint32_t offset) {
+  int d = 0;
+  Conversation& c = impl_->get(Transport::tcp, src, dst, d);
+  Direction& D = c.dir[d];
+  if (syn) {
+    if (!D.tcp_init || D.dec.fed() == 0) {
+      D.tcp_init = true;
+      D.next_seq = seq + 1;
+    }
+    seq += 1;
+  }
+  if (payload.empty()) return;
+  if (!D.tcp_init) {
+    D.tcp_init = true;
+    D.next_seq = seq;
+  }
+  if (impl_->place(c, d, seq, payload, record, offset, ts)) {
+    impl_->drain_ooo(c, d);
+    return;
+  }
+  auto rel = static_cast<std::int32_t>(seq - D.next_seq);
+  impl_->note_event(ts, Position{record, 0, offset}, c.transport, &c, &D.from, &D.to,
+                    Note{ACode::tcp_out_of_order, default_severity(ACode::tcp_out_of_order),
+                         std::to_string(payload.size()) + " bytes arrived " + std::to_string(rel) +
+                             " bytes ahead of the stream; held",
+                         0});
+  auto [it, fresh] = D.ooo.try_emplace(seq, Held{std::string(payload), record, offset, ts});
+  if (!fresh) {
+    bool same = std::string_view(it->second.bytes).substr(0, payload.size()) ==
+                payload.substr(0, it->second.bytes.size());
+    ACode code = same ? ACode::tcp_retransmission : ACode::tcp_overlap_differs;
+    impl_->note_event(
+        ts, Position{record, 0, offset}, c.transport, &c, &D.from, &D.to,
+        Note{code, default_severity(code),
+             std::to_string(payload.size()) + " held bytes seen again" +
+                 (same ? " (retransmission)" : " with different content; the longer copy is kept"),
+             0});
+    if (it->second.bytes.size() < payload.size()) {
+      D.held -= it->second.bytes.size();
+      it->second = Held{std::string(payload), record, offset, ts};
+      D.held += payload.size();
+    }
+  } else {
+    D.held += payload.size();
+  }
+  if (D.held > opts_.max_tcp_held || D.ooo.size() > kMaxTcpSegments) {
+    impl_->note_event(ts, Position{record, 0, offset}, c.transport, &c, &D.from, &D.to,
+                      Note{ACode::reassembly_limit, default_severity(ACode::reassembly_limit),
+                           std::to_string(D.held) + " bytes in " + std::to_string(D.ooo.size()) +
+                               " segments held past the limit of " +
+                               std::to_string(opts_.max_tcp_held) + " bytes",
+                           0});
+    impl_->gap(c, d, ts);
+  }
+}
+
+void Analyzer::chunk(std::int64_t ts, Transport t, const Endpoint& src, const Endpoint& dst,
+                     std::string_view bytes, std::uint64_t record, std::uint64_t offset) {
+  int d = 0;
+  Conversation& c = impl_->get(t, src, dst, d);
+  impl_->deliver(c, d, bytes, record, offset, ts);
+}
+
+void Analyzer::flush_streams() {
+  for (auto& [k, c] : impl_->convs)
+    for (int d = 0; d < 2; ++d) {
+      c->dir[d].dec.flush();
+      impl_->drain_stream(*c, d, kNoTime);
+    }
+}
+
+void Analyzer::source_note(std::int64_t ts, ACode code, std::string message, std::uint64_t record,
+                           std::uint64_t offset) {
+  impl_->note_event(ts, Position{record, 0, offset}, Transport::udp, nullptr, nullptr, nullptr,
+                    Note{code, default_severity(code), std::move(message), 0});
+}
+
+void Analyzer::finish() {
+  std::vector<Conversation*> order;
+  for (auto& [k, c] : impl_->convs) order.push_back(c.get());
+  std::sort(order.begin(), order.end(),
+            [](const Conversation* a, const Conversation* b) { return a->id < b->id; });
+  for (Conversation* c : order) impl_->close(*c, kNoTime);
+  impl_->convs.clear();
+  std::sort(stats_.conversations.begin(), stats_.conversations.end(),
+            [](const ConvStats& a, const ConvStats& b) { return a.id < b.id; });
+}
+
+}  // namespace topdump

@@ -1,0 +1,451 @@
+// libpcap sources: files (pcap and pcapng) and live interfaces.
+#include <pcap/pcap.h>
+#include <poll.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <fstream>
+
+#include "sources.hpp"
+
+namespace topdump {
+
+std::int64_t now_us() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+std::optional<std::int64_t> parse_time(std::string_view s) {
+  if (s.empty()) return std::nullopt;
+  auto digits = [&](std::size_t at, std::size_t n, int& out) {
+    if (at + n > s.size()) return false;
+    out = 0;
+    for (std::size_t i = at; i < at + n; ++i) {
+      if (s[i] < '0' || s[i] > '9') return false;
+      out = out * 10 + (s[i] - '0');
+    }
+    return true;
+  };
+  if (s.size() >= 19 && s[4] == '-' && s[7] == '-' && (s[10] == 'T' || s[10] == ' ')) {
+    int Y, M, D, h, m, sec;
+    if (!digits(0, 4, Y) || !digits(5, 2, M) || !digits(8, 2, D) || !digits(11, 2, h) ||
+        s[13] != ':' || !digits(14, 2, m) || s[16] != ':' || !digits(17, 2, sec))
+      return std::nullopt;
+    std::tm tm{};
+    tm.tm_year = Y - 1900;
+    tm.tm_mon = M - 1;
+    tm.tm_mday = D;
+    tm.tm_hour = h;
+    tm.tm_min = m;
+    tm.tm_sec = sec;
+    std::int64_t us = static_cast<std::int64_t>(timegm(&tm)) * 1000000;
+    std::size_t i = 19;
+    if (i < s.size() && (s[i] == '.' || s[i] == ',')) {
+      ++i;
+      std::int64_t frac = 0, scale = 100000;
+      while (i < s.size() && s[i] >= '0' && s[i] <= '9') {
+        if (scale > 0) frac += (s[i] - '0') * scale;
+        scale /= 10;
+        ++i;
+      }
+      us += frac;
+    }
+    if (i < s.size() && s[i] == 'Z') {
+      ++i;
+    } else if (i < s.size() && (s[i] == '+' || s[i] == '-')) {
+      int oh, om;
+      bool neg = s[i] == '-';
+      if (!digits(i + 1, 2, oh)) return std::nullopt;
+      std::size_t j = i + 3;
+      if (j < s.size() && s[j] == ':') ++j;
+      if (!digits(j, 2, om)) return std::nullopt;
+      std::int64_t off = (oh * 3600 + om * 60) * std::int64_t{1000000};
+      us += neg ? off : -off;
+      i = j + 2;
+    }
+    if (i != s.size()) return std::nullopt;
+    return us;
+  }
+  // epoch seconds
+  std::int64_t whole = 0, frac = 0, scale = 100000;
+  std::size_t i = 0;
+  bool any = false;
+  while (i < s.size() && s[i] >= '0' && s[i] <= '9')
+    whole = whole * 10 + (s[i++] - '0'), any = true;
+  if (i < s.size() && s[i] == '.') {
+    ++i;
+    while (i < s.size() && s[i] >= '0' && s[i] <= '9') {
+      if (scale > 0) frac += (s[i] - '0') * scale;
+      scale /= 10;
+      ++i;
+      any = true;
+    }
+  }
+  if (!any || i != s.size()) return std::nullopt;
+  return whole * 1000000 + frac;
+}
+
+std::string format_time(std::int64_t us) {
+  if (us == kNoTime) return "-";
+  std::int64_t sec = us / 1000000, frac = us % 1000000;
+  if (frac < 0) frac += 1000000, --sec;
+  std::time_t t = static_cast<std::time_t>(sec);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char b[48];
+  std::snprintf(b, sizeof b, "%04d-%02d-%02dT%02d:%02d:%02d.%06lldZ", tm.tm_year + 1900,
+                tm.tm_mon + 1, tm.tm_mday, tm.tm_hour, tm.tm_min, tm.tm_sec,
+                static_cast<long long>(frac));
+  return b;
+}
+
+// ---------------------------------------------------------------------------
+// Dissection
+
+namespace {
+constexpr int kDltLoop = 108;
+constexpr int kDltRaw1 = 12;
+constexpr int kDltRaw2 = 14;
+constexpr int kDltSll = 113;
+constexpr int kDltSll2 = 276;
+constexpr int kDltIpv4 = 228;
+constexpr int kDltIpv6 = 229;
+
+std::uint16_t be16(const std::uint8_t* p) { return static_cast<std::uint16_t>(p[0] << 8 | p[1]); }
+std::uint32_t be32(const std::uint8_t* p) {
+  return std::uint32_t{p[0]} << 24 | std::uint32_t{p[1]} << 16 | std::uint32_t{p[2]} << 8 | p[3];
+}
+}  // namespace
+
+bool Dissector::supported(int dlt) {
+  switch (dlt) {
+    case DLT_NULL:
+    case kDltLoop:
+    case DLT_EN10MB:
+    case kDltRaw1:
+    case kDltRaw2:
+    case kDltSll:
+    case kDltSll2:
+    case kDltIpv4:
+    case kDltIpv6:
+      return true;
+  }
+  return false;
+}
+
+void Dissector::bad(std::int64_t ts, std::uint64_t record, std::size_t off, std::string msg) {
+  a_.source_note(ts, ACode::bad_packet, std::move(msg), record, off);
+}
+
+bool Dissector::packet(int dlt, std::int64_t ts, const std::uint8_t* p, std::uint32_t caplen,
+                       std::uint32_t len, std::uint64_t record) {
+  if (caplen < len)
+    a_.source_note(ts, ACode::snaplen_cut,
+                   "packet cut by the snap length: " + std::to_string(caplen) + " of " +
+                       std::to_string(len) + " bytes captured",
+                   record, caplen);
+  std::size_t n = caplen, off = 0;
+  std::uint16_t ethertype = 0;
+  switch (dlt) {
+    case DLT_NULL:
+    case kDltLoop: {
+      if (n < 4) return bad(ts, record, 0, "loopback header cut short"), false;
+      std::uint32_t af = dlt == kDltLoop ? be32(p)
+                                         : (std::uint32_t{p[0]} | std::uint32_t{p[1]} << 8 |
+                                            std::uint32_t{p[2]} << 16 | std::uint32_t{p[3]} << 24);
+      if (dlt == DLT_NULL && af > 0xFFFF) af = be32(p);  // written on a big-endian host
+      off = 4;
+      if (af == 2)
+        ethertype = 0x0800;
+      else if (af == 10 || af == 24 || af == 28 || af == 30)
+        ethertype = 0x86DD;
+      else
+        return false;
+      break;
+    }
+    case DLT_EN10MB: {
+      if (n < 14) return bad(ts, record, 0, "Ethernet header cut short"), false;
+      ethertype = be16(p + 12);
+      off = 14;
+      while (ethertype == 0x8100 || ethertype == 0x88A8 || ethertype == 0x9100) {
+        if (n < off + 4) return bad(ts, record, off, "VLAN tag cut short"), false;
+        ethertype = be16(p + off + 2);
+        off += 4;
+      }
+      break;
+    }
+    case kDltSll:
+      if (n < 16) return bad(ts, record, 0, "SLL header cut short"), false;
+      ethertype = be16(p + 14);
+      off = 16;
+      break;
+    case kDltSll2:
+      if (n < 20) return bad(ts, record, 0, "SLL2 header cut short"), false;
+      ethertype = be16(p);
+      off = 20;
+      break;
+    case kDltRaw1:
+    case kDltRaw2:
+    case kDltIpv4:
+    case kDltIpv6:
+      if (n < 1) return false;
+      ethertype = (p[0] >> 4) == 6 ? 0x86DD : 0x0800;
+      break;
+    default:
+      return false;
+  }
+  if (ethertype != 0x0800 && ethertype != 0x86DD) return false;
+  return ip(ts, p, n, off, record);
+}
+
+bool Dissector::ip(std::int64_t ts, const std::uint8_t* p, std::size_t n, std::size_t off,
+                   std::uint64_t record) {
+  Endpoint src, dst;
+  std::uint8_t proto = 0;
+  std::size_t l4 = 0, end = n;
+  if (n <= off) return bad(ts, record, off, "IP header missing"), false;
+  unsigned version = p[off] >> 4;
+  if (version == 4) {
+    if (n < off + 20) return bad(ts, record, off, "IPv4 header cut short"), false;
+    std::size_t ihl = (p[off] & 0x0F) * 4u;
+    if (ihl < 20 || n < off + ihl) return bad(ts, record, off, "bad IPv4 header length"), false;
+    std::size_t total = be16(p + off + 2);
+    if (total < ihl)
+      return bad(ts, record, off + 2, "IPv4 total length below header length"), false;
+    end = std::min(n, off + total);
+    std::uint16_t frag = be16(p + off + 6);
+    proto = p[off + 9];
+    if ((frag & 0x3FFF) != 0 && (proto == 17 || proto == 6))
+      return bad(ts, record, off + 6, "IPv4 fragment (not reassembled)"), false;
+    src.family = dst.family = 4;
+    std::memcpy(src.addr.data(), p + off + 12, 4);
+    std::memcpy(dst.addr.data(), p + off + 16, 4);
+    l4 = off + ihl;
+  } else if (version == 6) {
+    if (n < off + 40) return bad(ts, record, off, "IPv6 header cut short"), false;
+    end = std::min(n, off + 40 + be16(p + off + 4));
+    proto = p[off + 6];
+    src.family = dst.family = 6;
+    std::memcpy(src.addr.data(), p + off + 8, 16);
+    std::memcpy(dst.addr.data(), p + off + 24, 16);
+    l4 = off + 40;
+    for (int hops = 0; hops < 8 && (proto == 0 || proto == 43 || proto == 60 || proto == 44);
+         ++hops) {
+      if (end < l4 + 8) return bad(ts, record, l4, "IPv6 extension header cut short"), false;
+      if (proto == 44) return bad(ts, record, l4, "IPv6 fragment (not reassembled)"), false;
+      std::uint8_t next = p[l4];
+      l4 += (p[l4 + 1] + 1u) * 8u;
+      proto = next;
+    }
+  } else {
+    return bad(ts, record, off, "IP version " + std::to_string(version)), false;
+  }
+  if (proto == 17) {
+    if (end < l4 + 8) return bad(ts, record, l4, "UDP header cut short"), false;
+    src.port = be16(p + l4);
+    dst.port = be16(p + l4 + 2);
+    std::size_t ulen = be16(p + l4 + 4);
+    std::size_t pend = ulen >= 8 ? std::min(end, l4 + ulen) : end;
+    std::string_view payload(reinterpret_cast<const char*>(p + l4 + 8), pend - l4 - 8);
+    if (!o_.udp_ports.count(src.port) && !o_.udp_ports.count(dst.port) && !looks_like_top(payload))
+      return false;
+    a_.datagram(ts, src, dst, payload, record, static_cast<std::uint32_t>(l4 + 8));
+    return true;
+  }
+  if (proto == 6) {
+    if (end < l4 + 20) return bad(ts, record, l4, "TCP header cut short"), false;
+    src.port = be16(p + l4);
+    dst.port = be16(p + l4 + 2);
+    std::uint32_t seq = be32(p + l4 + 4);
+    std::size_t hl = (p[l4 + 12] >> 4) * 4u;
+    if (hl < 20 || end < l4 + hl) return bad(ts, record, l4 + 12, "bad TCP header length"), false;
+    bool syn = (p[l4 + 13] & 0x02) != 0;
+    std::string_view payload(reinterpret_cast<const char*>(p + l4 + hl), end - l4 - hl);
+    if (!o_.tcp_ports.count(src.port) && !o_.tcp_ports.count(dst.port)) {
+      std::string a = src.text(), b = dst.text();
+      std::string key = a < b ? a + " " + b : b + " " + a;
+      if (!tcp_top_.count(key)) {
+        if (!looks_like_top(payload)) return false;
+        if (tcp_top_.size() < kMaxConversations) tcp_top_.insert(key);
+      }
+    }
+    a_.segment(ts, src, dst, seq, syn, payload, record, static_cast<std::uint32_t>(l4 + hl));
+    return true;
+  }
+  return false;
+}
+
+// ---------------------------------------------------------------------------
+// Files
+
+bool read_serial_log(const std::string& path, Format f, Analyzer& a, const SourceOptions& o,
+                     std::string& error);
+
+bool read_file(const std::string& path, Format format, Analyzer& a, const SourceOptions& o,
+               std::string& error) {
+  if (format == Format::automatic) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+      error = path + ": cannot open: " + std::strerror(errno);
+      return false;
+    }
+    std::string head(4096, '\0');
+    in.read(head.data(), static_cast<std::streamsize>(head.size()));
+    head.resize(static_cast<std::size_t>(in.gcount()));
+    format = detect_format(head);
+  }
+  if (format != Format::pcap) return read_serial_log(path, format, a, o, error);
+
+  char errbuf[PCAP_ERRBUF_SIZE] = {0};
+  pcap_t* p =
+      pcap_open_offline_with_tstamp_precision(path.c_str(), PCAP_TSTAMP_PRECISION_MICRO, errbuf);
+  if (!p) {
+    error = path + ": " + errbuf;
+    return false;
+  }
+  int dlt = pcap_datalink(p);
+  if (!Dissector::supported(dlt)) {
+    a.source_note(kNoTime, ACode::unsupported_link,
+                  path + ": link type " + std::to_string(dlt) + " (" +
+                      (pcap_datalink_val_to_name(dlt) ? pcap_datalink_val_to_name(dlt) : "?") +
+                      ") is not dissected",
+                  0, 0);
+    pcap_close(p);
+    return true;
+  }
+  std::uint64_t total = 0;
+  if (o.progress) {
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    total = static_cast<std::uint64_t>(in.tellg());
+  }
+  FILE* fp = pcap_file(p);
+  // pcap: records follow a 24-byte header, each with a 16-byte header, so the
+  // file offset of a record is known without asking the stream (an lseek per
+  // record). pcapng: only known after a failure (ftell).
+  bool ng = false;
+  {
+    std::ifstream in(path, std::ios::binary);
+    char m[4] = {0, 0, 0, 0};
+    in.read(m, 4);
+    ng = std::memcmp(m, "\x0a\x0d\x0d\x0a", 4) == 0;
+  }
+  std::uint64_t at = 24;
+  Dissector dis(a, o);
+  std::uint64_t record = 0;
+  for (;;) {
+    pcap_pkthdr* h = nullptr;
+    const u_char* data = nullptr;
+    int rc = pcap_next_ex(p, &h, &data);
+    if (rc == PCAP_ERROR_BREAK) break;
+    if (rc == PCAP_ERROR) {
+      std::string where = ng ? "near file offset " + std::to_string(fp ? std::ftell(fp) : 0)
+                             : "at file offset " + std::to_string(at);
+      a.source_note(
+          kNoTime, ACode::truncated_file,
+          path + ": record " + std::to_string(record + 1) + " " + where + ": " + pcap_geterr(p),
+          record + 1, ng ? 0 : at);
+      break;
+    }
+    if (rc != 1) continue;
+    ++record;
+    at += 16 + h->caplen;
+    std::int64_t ts = static_cast<std::int64_t>(h->ts.tv_sec) * 1000000 + h->ts.tv_usec;
+    bool top = dis.packet(dlt, ts, data, h->caplen, h->len, record);
+    a.record(top);
+    if (o.progress && (record & 0xFFFF) == 0 && fp)
+      o.progress(static_cast<std::uint64_t>(std::ftell(fp)), total);
+  }
+  pcap_close(p);
+  if (o.progress) o.progress(total, total);
+  return true;
+}
+
+// ---------------------------------------------------------------------------
+// Live
+
+namespace {
+struct LiveCtx {
+  Analyzer* a;
+  Dissector* dis;
+  int dlt;
+  std::uint64_t record = 0;
+};
+void on_packet(u_char* user, const pcap_pkthdr* h, const u_char* data) {
+  auto* c = reinterpret_cast<LiveCtx*>(user);
+  ++c->record;
+  std::int64_t ts = static_cast<std::int64_t>(h->ts.tv_sec) * 1000000 + h->ts.tv_usec;
+  c->a->record(c->dis->packet(c->dlt, ts, data, h->caplen, h->len, c->record));
+}
+}  // namespace
+
+bool capture_live(const std::string& iface, const std::string& bpf, Analyzer& a,
+                  const SourceOptions& o, const std::atomic<bool>& stop, std::string& error,
+                  bool& permission) {
+  permission = false;
+  char errbuf[PCAP_ERRBUF_SIZE] = {0};
+  pcap_t* p = pcap_create(iface.c_str(), errbuf);
+  if (!p) {
+    error = iface + ": " + errbuf;
+    return false;
+  }
+  pcap_set_snaplen(p, 65535);
+  pcap_set_promisc(p, 0);
+  pcap_set_timeout(p, 100);
+  pcap_set_immediate_mode(p, 1);
+  int rc = pcap_activate(p);
+  if (rc < 0) {
+    permission = rc == PCAP_ERROR_PERM_DENIED;
+    error = iface + ": " + pcap_statustostr(rc) + ": " + pcap_geterr(p);
+    pcap_close(p);
+    return false;
+  }
+  if (!bpf.empty()) {
+    bpf_program prog;
+    if (pcap_compile(p, &prog, bpf.c_str(), 1, PCAP_NETMASK_UNKNOWN) != 0 ||
+        pcap_setfilter(p, &prog) != 0) {
+      error = "filter \"" + bpf + "\": " + pcap_geterr(p);
+      pcap_close(p);
+      return false;
+    }
+    pcap_freecode(&prog);
+  }
+  int dlt = pcap_datalink(p);
+  if (!Dissector::supported(dlt)) {
+    error = iface + ": link type " + std::to_string(dlt) + " is not dissected";
+    pcap_close(p);
+    return false;
+  }
+  Dissector dis(a, o);
+  LiveCtx ctx{&a, &dis, dlt};
+  // Non-blocking reads behind our own poll: pcap_dispatch in immediate mode
+  // may block forever on a quiet interface, and SIGINT must end the loop.
+  int fd = pcap_get_selectable_fd(p);
+  if (fd < 0 || pcap_setnonblock(p, 1, errbuf) != 0) {
+    error = iface + ": cannot poll the capture: " + errbuf;
+    pcap_close(p);
+    return false;
+  }
+  while (!stop.load()) {
+    pollfd pfd{fd, POLLIN, 0};
+    if (poll(&pfd, 1, 100) < 0 && errno != EINTR) {
+      error = iface + ": poll: " + std::strerror(errno);
+      pcap_close(p);
+      return false;
+    }
+    int n = pcap_dispatch(p, -1, on_packet, reinterpret_cast<u_char*>(&ctx));
+    if (n == PCAP_ERROR) {
+      error = iface + ": " + pcap_geterr(p);
+      pcap_close(p);
+      return false;
+    }
+    a.flush_streams();
+  }
+  pcap_close(p);
+  return true;
+}
+
+}  // namespace topdump

@@ -1,0 +1,383 @@
+// topdump read / stats / live / serial.
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "output.hpp"
+#include "sources.hpp"
+
+namespace topdump {
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+extern "C" void on_signal(int) { g_stop.store(true); }
+
+struct Common {
+  std::string dialect = "auto";
+  std::string model = "auto";
+  std::string format = "auto";
+  std::vector<std::uint16_t> ports;
+  std::vector<std::string> idents;
+  std::vector<std::string> addrs;
+  std::string severity;
+  std::string from, to;
+  double timeout_ms = 2000;
+  bool json = false;
+  bool verbose = false;
+  std::string csv;
+  bool progress = true;
+};
+
+void add_common(CLI::App* sub, Common& o, bool outputs) {
+  sub->add_option("--dialect", o.dialect, "auto, skydroid or topotek (forces every conversation)")
+      ->check(CLI::IsMember({"auto", "skydroid", "topotek"}));
+  sub->add_option("--model", o.model,
+                  "c10, c10pro, c12, c13, c20 or sip (unsupported-on-model checks)")
+      ->check(CLI::IsMember({"auto", "c10", "c10pro", "c12", "c13", "c20", "sip"}));
+  sub->add_option("--port", o.ports, "another UDP/TCP port that carries TOP (repeatable)")
+      ->allow_extra_args(false);
+  sub->add_option("--ident", o.idents,
+                  "only frames with these identifiers (comma list, repeatable)")
+      ->delimiter(',')
+      ->allow_extra_args(false);
+  sub->add_option("--addr", o.addrs,
+                  "only frames from/to this TOP address letter (U M D E P G) or host / host:port")
+      ->delimiter(',')
+      ->allow_extra_args(false);
+  sub->add_option("--severity", o.severity, "only frames whose worst finding is at least this")
+      ->check(CLI::IsMember({"info", "warning", "error"}));
+  sub->add_option("--from", o.from,
+                  "only frames at or after this time (ISO-8601 or epoch seconds)");
+  sub->add_option("--to", o.to, "only frames at or before this time (ISO-8601 or epoch seconds)");
+  sub->add_option("--timeout-ms", o.timeout_ms, "a request is unanswered after this long")
+      ->check(CLI::PositiveNumber);
+  if (outputs) {
+    sub->add_flag("--json", o.json, "JSON Lines (docs/topdump-json.md)");
+    sub->add_flag("-V,--verbose", o.verbose, "the field tree of every frame");
+    sub->add_option("--csv", o.csv, "CSV with these columns (comma list; field.NAME for a field)");
+  }
+}
+
+struct Setup {
+  AnalyzerOptions aopts;
+  Filter filter;
+  SourceOptions sopts;
+};
+
+// Turns the options into analyzer settings; false (with a message) on bad usage.
+bool setup(const Common& o, Setup& s, std::string& err) {
+  auto dialect = top::dialect_from_string(o.dialect);
+  auto model = top::model_from_string(o.model);
+  if (!dialect || !model) {
+    err = "bad --dialect or --model";
+    return false;
+  }
+  if (*model != top::Model::unknown && *dialect != top::Dialect::unknown &&
+      top::dialect_of(*model) != *dialect) {
+    err = "model " + o.model + " speaks " + std::string(top::to_string(top::dialect_of(*model))) +
+          ", not " + o.dialect;
+    return false;
+  }
+  s.aopts.dialect = *dialect;
+  s.aopts.model = *model;
+  s.aopts.timeout_us = static_cast<std::int64_t>(o.timeout_ms * 1000);
+  for (auto p : o.ports) {
+    s.sopts.udp_ports.insert(p);
+    s.sopts.tcp_ports.insert(p);
+  }
+  for (const auto& i : o.idents) {
+    if (i.size() != 3) {
+      err = "--ident " + i + ": an identifier has three characters";
+      return false;
+    }
+    s.filter.idents.push_back(i);
+  }
+  s.filter.addrs = o.addrs;
+  if (!o.severity.empty()) {
+    s.filter.severity_set = true;
+    s.filter.min_severity = o.severity == "error"     ? top::Severity::error
+                            : o.severity == "warning" ? top::Severity::warning
+                                                      : top::Severity::info;
+  }
+  if (!o.from.empty()) {
+    auto t = parse_time(o.from);
+    if (!t) {
+      err = "--from " + o.from + ": not an ISO-8601 time or epoch seconds";
+      return false;
+    }
+    s.filter.from = *t;
+  }
+  if (!o.to.empty()) {
+    auto t = parse_time(o.to);
+    if (!t) {
+      err = "--to " + o.to + ": not an ISO-8601 time or epoch seconds";
+      return false;
+    }
+    s.filter.to = *t;
+  }
+  return true;
+}
+
+// Source findings also go to stderr, naming the file.
+class Tee : public Sink {
+ public:
+  Tee(Sink& inner, std::string file) : inner_(inner), file_(std::move(file)) {}
+  void frame(const FrameEvent& e) override { inner_.frame(e); }
+  void garbage(const GarbageEvent& e) override { inner_.garbage(e); }
+  void note(const NoteEvent& e) override {
+    if (!e.conv) std::fprintf(stderr, "topdump: %s: %s\n", file_.c_str(), note_line(e).c_str());
+    inner_.note(e);
+  }
+  Sink& inner_;
+  std::string file_;
+};
+
+std::unique_ptr<Sink> make_sink(const Common& o, Out& out, std::string& err) {
+  if (!o.csv.empty()) {
+    std::vector<std::string> cols;
+    std::stringstream ss(o.csv);
+    std::string c;
+    while (std::getline(ss, c, ',')) {
+      if (!csv_column_ok(c)) {
+        err = "--csv: unknown column \"" + c + "\"";
+        return nullptr;
+      }
+      cols.push_back(c);
+    }
+    return std::make_unique<CsvSink>(out, cols);
+  }
+  if (o.json) return std::make_unique<JsonSink>(out);
+  return std::make_unique<TextSink>(out, o.verbose);
+}
+
+void progress_bar(std::uint64_t done, std::uint64_t total) {
+  if (total == 0) return;
+  int pct = static_cast<int>(done * 100 / total);
+  char bar[41];
+  int filled = pct * 40 / 100;
+  for (int i = 0; i < 40; ++i) bar[i] = i < filled ? '#' : ' ';
+  bar[40] = 0;
+  std::fprintf(stderr, "\r[%s] %3d%%", bar, pct);
+  if (done >= total) std::fprintf(stderr, "\r%*s\r", 48, "");
+  std::fflush(stderr);
+}
+
+int status_of(const Analyzer& a) { return a.worst() == top::Severity::error ? 1 : 0; }
+
+struct ReadOptions {
+  Common c;
+  std::string file;
+};
+
+int run_read(const ReadOptions& o) {
+  Setup s;
+  std::string err;
+  if (!setup(o.c, s, err)) {
+    std::cerr << "topdump read: " << err << "\n";
+    return 2;
+  }
+  auto fmt = format_from_string(o.c.format);
+  Out out(stdout);
+  auto sink = make_sink(o.c, out, err);
+  if (!sink) {
+    std::cerr << "topdump read: " << err << "\n";
+    return 2;
+  }
+  Tee tee(*sink, o.file);
+  s.aopts.stats = false;
+  Analyzer a(s.aopts, tee);
+  a.set_filter(s.filter);
+  if (o.c.progress && isatty(2)) s.sopts.progress = progress_bar;
+  if (!read_file(o.file, *fmt, a, s.sopts, err)) {
+    std::cerr << "topdump read: " << err << "\n";
+    return 2;
+  }
+  a.finish();
+  if (a.frames_seen() == 0)
+    a.source_note(kNoTime, ACode::no_frames, o.file + ": no TOP frame found", 0, 0);
+  out.flush();
+  return status_of(a);
+}
+
+struct StatsOptions {
+  Common c;
+  std::vector<std::string> files;
+};
+
+int run_stats(const StatsOptions& o) {
+  Setup s;
+  std::string err;
+  if (!setup(o.c, s, err)) {
+    std::cerr << "topdump stats: " << err << "\n";
+    return 2;
+  }
+  auto fmt = format_from_string(o.c.format);
+  NullSink null;
+  Tee tee(null, "");
+  Analyzer a(s.aopts, tee);
+  a.set_filter(s.filter);
+  if (o.c.progress && isatty(2)) s.sopts.progress = progress_bar;
+  for (const auto& f : o.files) {
+    tee.file_ = f;
+    if (!read_file(f, *fmt, a, s.sopts, err)) {
+      std::cerr << "topdump stats: " << err << "\n";
+      return 2;
+    }
+    a.finish();
+  }
+  if (a.frames_seen() == 0) a.source_note(kNoTime, ACode::no_frames, "no TOP frame found", 0, 0);
+  if (o.c.json)
+    std::cout << stats_json(a.stats(), a.worst()).dump(2) << "\n";
+  else
+    std::cout << stats_text(a.stats(), a.worst());
+  return status_of(a);
+}
+
+void install_signals() {
+  g_stop.store(false);
+  struct sigaction sa {};
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+
+void print_final_stats(const Common& c, const Analyzer& a) {
+  if (c.json) {
+    json j = stats_json(a.stats(), a.worst());
+    json k;
+    k["type"] = "stats";
+    k.update(j);
+    std::cout << k.dump() << "\n";
+  } else {
+    std::cout << "-- statistics\n" << stats_text(a.stats(), a.worst());
+  }
+  std::cout.flush();
+}
+
+struct LiveOptions {
+  Common c;
+  std::string iface;
+  std::vector<std::string> bpf;
+};
+
+int run_live(const LiveOptions& o) {
+  Setup s;
+  std::string err;
+  if (!setup(o.c, s, err)) {
+    std::cerr << "topdump live: " << err << "\n";
+    return 2;
+  }
+  Out out(stdout, true);
+  auto sink = make_sink(o.c, out, err);
+  if (!sink) {
+    std::cerr << "topdump live: " << err << "\n";
+    return 2;
+  }
+  Tee tee(*sink, o.iface);
+  Analyzer a(s.aopts, tee);
+  a.set_filter(s.filter);
+  std::string bpf;
+  for (const auto& w : o.bpf) bpf += (bpf.empty() ? "" : " ") + w;
+  install_signals();
+  bool perm = false;
+  if (!capture_live(o.iface, bpf, a, s.sopts, g_stop, err, perm)) {
+    std::cerr << "topdump live: " << err << (perm ? " (capturing needs root or CAP_NET_RAW)" : "")
+              << "\n";
+    return 2;
+  }
+  a.finish();
+  out.flush();
+  print_final_stats(o.c, a);
+  return status_of(a);
+}
+
+struct SerialOptions {
+  Common c;
+  std::string device;
+  unsigned baud = 115200;
+};
+
+int run_serial(const SerialOptions& o) {
+  Setup s;
+  std::string err;
+  if (!setup(o.c, s, err)) {
+    std::cerr << "topdump serial: " << err << "\n";
+    return 2;
+  }
+  Out out(stdout, true);
+  auto sink = make_sink(o.c, out, err);
+  if (!sink) {
+    std::cerr << "topdump serial: " << err << "\n";
+    return 2;
+  }
+  Tee tee(*sink, o.device);
+  Analyzer a(s.aopts, tee);
+  a.set_filter(s.filter);
+  install_signals();
+  if (!read_serial_port(o.device, o.baud, a, g_stop, err)) {
+    std::cerr << "topdump serial: " << err << "\n";
+    return 2;
+  }
+  a.finish();
+  out.flush();
+  print_final_stats(o.c, a);
+  return status_of(a);
+}
+
+}  // namespace
+
+Run add_read_command(CLI::App& app) {
+  auto o = std::make_shared<ReadOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "read", "Decode a capture: pcap, pcapng, or a serial log (raw, socat, saleae, lines)");
+  add_common(sub, o->c, true);
+  sub->add_option("--format", o->c.format, "auto, pcap, raw, socat, saleae or lines")
+      ->check(CLI::IsMember({"auto", "pcap", "pcapng", "raw", "socat", "saleae", "lines"}));
+  sub->add_flag("!--no-progress", o->c.progress, "no progress bar on stderr");
+  sub->add_option("FILE", o->file, "capture file")->required();
+  return [o, sub]() { return sub->parsed() ? run_read(*o) : -1; };
+}
+
+Run add_stats_command(CLI::App& app) {
+  auto o = std::make_shared<StatsOptions>();
+  CLI::App* sub = app.add_subcommand("stats", "Statistics of one or more captures");
+  add_common(sub, o->c, false);
+  sub->add_flag("--json", o->c.json, "one JSON object (docs/topdump-json.md)");
+  sub->add_option("--format", o->c.format, "auto, pcap, raw, socat, saleae or lines")
+      ->check(CLI::IsMember({"auto", "pcap", "pcapng", "raw", "socat", "saleae", "lines"}));
+  sub->add_flag("!--no-progress", o->c.progress, "no progress bar on stderr");
+  sub->add_option("FILE", o->files, "capture files")->required();
+  return [o, sub]() { return sub->parsed() ? run_stats(*o) : -1; };
+}
+
+Run add_live_command(CLI::App& app) {
+  auto o = std::make_shared<LiveOptions>();
+  CLI::App* sub =
+      app.add_subcommand("live", "Decode live traffic on an interface (libpcap); Ctrl-C ends");
+  add_common(sub, o->c, true);
+  sub->add_option("-i,--interface", o->iface, "interface, e.g. eth0 or lo")->required();
+  sub->add_option("BPF", o->bpf, "capture filter, e.g. udp port 5000");
+  return [o, sub]() { return sub->parsed() ? run_live(*o) : -1; };
+}
+
+Run add_serial_command(CLI::App& app) {
+  auto o = std::make_shared<SerialOptions>();
+  CLI::App* sub =
+      app.add_subcommand("serial", "Decode a serial port as bytes arrive (8N1); Ctrl-C ends");
+  add_common(sub, o->c, true);
+  sub->add_option("--baud", o->baud, "baud rate")->check(CLI::Range(50u, 4000000u));
+  sub->add_option("DEVICE", o->device, "serial device, e.g. /dev/ttyUSB0")->required();
+  return [o, sub]() { return sub->parsed() ? run_serial(*o) : -1; };
+}
+
+}  // namespace topdump

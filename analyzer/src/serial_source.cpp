@@ -1,0 +1,500 @@
+// Serial sources: logs written by other tools, and a live serial port.
+#include <algorithm>
+#include <array>
+#include <asio.hpp>
+#include <cctype>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <vector>
+
+#include "escape.hpp"
+#include "sources.hpp"
+
+namespace topdump {
+
+std::optional<Format> format_from_string(std::string_view s) {
+  if (s == "auto") return Format::automatic;
+  if (s == "pcap" || s == "pcapng") return Format::pcap;
+  if (s == "raw") return Format::raw;
+  if (s == "socat") return Format::socat;
+  if (s == "saleae") return Format::saleae;
+  if (s == "lines") return Format::lines;
+  return std::nullopt;
+}
+
+std::string_view to_string(Format f) noexcept {
+  switch (f) {
+    case Format::automatic:
+      return "auto";
+    case Format::pcap:
+      return "pcap";
+    case Format::raw:
+      return "raw";
+    case Format::socat:
+      return "socat";
+    case Format::saleae:
+      return "saleae";
+    case Format::lines:
+      return "lines";
+  }
+  return "?";
+}
+
+namespace {
+
+bool is_socat_header(std::string_view l) {
+  // "> 2026/11/22 05:32:42.000581031  length=19 from=0 to=18"
+  return l.size() > 24 && (l[0] == '>' || l[0] == '<') && l[1] == ' ' && l[6] == '/' &&
+         l[9] == '/' && l.find("length=") != std::string_view::npos;
+}
+
+std::string_view first_line(std::string_view s) {
+  auto e = s.find('\n');
+  std::string_view l = s.substr(0, e);
+  if (!l.empty() && l.back() == '\r') l.remove_suffix(1);
+  return l;
+}
+
+// "<ISO time> <TX|RX> <frame>"
+bool split_line_log(std::string_view l, std::string_view& time, std::string_view& dir,
+                    std::string_view& rest) {
+  auto a = l.find(' ');
+  if (a == std::string_view::npos) return false;
+  auto b = l.find(' ', a + 1);
+  if (b == std::string_view::npos) return false;
+  time = l.substr(0, a);
+  dir = l.substr(a + 1, b - a - 1);
+  rest = l.substr(b + 1);
+  return dir == "TX" || dir == "RX";
+}
+
+}  // namespace
+
+Format detect_format(std::string_view head) {
+  if (head.size() >= 4) {
+    std::uint32_t m;
+    std::memcpy(&m, head.data(), 4);
+    if (m == 0xa1b2c3d4 || m == 0xd4c3b2a1 || m == 0xa1b23c4d || m == 0x4d3cb2a1 || m == 0x0a0d0d0a)
+      return Format::pcap;
+  }
+  std::string_view l = first_line(head);
+  // a line log may open with "# " comment lines
+  for (std::string_view rest = head; l.size() > 1 && l[0] == '#' && l[1] == ' ';) {
+    auto nl = rest.find('\n');
+    if (nl == std::string_view::npos) break;
+    rest.remove_prefix(nl + 1);
+    std::string_view next = first_line(rest);
+    std::string_view t, d, r;
+    if (split_line_log(next, t, d, r) && parse_time(t)) return Format::lines;
+    l = next;
+  }
+  if (is_socat_header(l)) return Format::socat;
+  if (l.find("start_time") != std::string_view::npos && l.find(',') != std::string_view::npos)
+    return Format::saleae;
+  std::string_view t, d, r;
+  if (split_line_log(l, t, d, r) && parse_time(t)) return Format::lines;
+  return Format::raw;
+}
+
+namespace {
+
+Endpoint named(std::string n) {
+  Endpoint e;
+  e.name = std::move(n);
+  return e;
+}
+
+struct LineReader {
+  std::ifstream in;
+  std::string line;
+  std::uint64_t number = 0;
+  std::uint64_t offset = 0;  // file offset of the current line
+  std::uint64_t next = 0;
+  bool get() {
+    if (!std::getline(in, line)) return false;
+    ++number;
+    offset = next;
+    next += line.size() + 1;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    return true;
+  }
+};
+
+void raw_log(std::ifstream& in, Analyzer& a) {
+  Endpoint src = named("log"), dst = named("line");
+  std::vector<char> buf(1 << 16);
+  std::uint64_t off = 0;
+  a.record(true);
+  while (in) {
+    in.read(buf.data(), static_cast<std::streamsize>(buf.size()));
+    auto n = static_cast<std::size_t>(in.gcount());
+    if (n == 0) break;
+    a.chunk(kNoTime, Transport::serial, src, dst, std::string_view(buf.data(), n), 1, off);
+    off += n;
+  }
+}
+
+// socat -v (text) and socat -x -v (hex) dumps. In text mode socat writes
+// CR as "\r", LF as a line break and every other non-printable byte as '.',
+// so text dumps of binary frames are lossy; -x -v dumps are exact.
+void socat_log(const std::string& path, LineReader& r, Analyzer& a) {
+  Endpoint left = named("left"), right = named("right");
+  std::uint64_t chunk_no = 0;
+  std::string pending;  // text after the data of a chunk (next header glued on)
+  bool have_line = false;
+  for (;;) {
+    if (!have_line) {
+      if (!r.get()) break;
+    }
+    have_line = false;
+    std::string_view l = r.line;
+    if (!pending.empty()) {
+      pending += r.line;
+      l = pending;
+    }
+    if (l.empty() || l == "--") {
+      pending.clear();
+      continue;
+    }
+    if (!is_socat_header(l)) {
+      a.source_note(kNoTime, ACode::log_syntax,
+                    path + ": line " + std::to_string(r.number) +
+                        ": expected a socat chunk header (\"> YYYY/MM/DD ... length=N\")",
+                    r.number, r.offset);
+      pending.clear();
+      continue;
+    }
+    ++chunk_no;
+    a.record(true);
+    bool rtl = l[0] == '<';
+    // time: "YYYY/MM/DD HH:MM:SS.nnnnnnnnn" (local time of the logging host; read as UTC)
+    std::string iso(l.substr(2, 29));
+    if (iso.size() >= 10) iso[4] = iso[7] = '-', iso[10] = 'T';
+    auto sp = iso.find(' ');
+    if (sp != std::string::npos) iso.resize(sp);
+    auto ts = parse_time(iso);
+    std::int64_t t = ts ? *ts : kNoTime;
+    auto lp = l.find("length=");
+    std::size_t length = std::strtoul(std::string(l.substr(lp + 7)).c_str(), nullptr, 10);
+    pending.clear();
+    std::string bytes;
+    bool hex = false, decided = false;
+    while (bytes.size() < length && r.get()) {
+      std::string_view d = r.line;
+      if (!decided) {
+        decided = true;
+        hex = d.size() >= 3 && d[0] == ' ' && std::isxdigit(static_cast<unsigned char>(d[1])) &&
+              std::isxdigit(static_cast<unsigned char>(d[2])) && (d.size() == 3 || d[3] == ' ');
+      }
+      if (hex) {
+        std::string_view h = d.substr(0, std::min<std::size_t>(d.size(), 49));
+        for (std::size_t i = 1; i + 1 < h.size() && bytes.size() < length; i += 3) {
+          if (!std::isxdigit(static_cast<unsigned char>(h[i])) ||
+              !std::isxdigit(static_cast<unsigned char>(h[i + 1])))
+            break;
+          bytes.push_back(static_cast<char>(std::stoi(std::string(h.substr(i, 2)), nullptr, 16)));
+        }
+        continue;
+      }
+      // text: "\r" is CR, the line break is LF
+      for (std::size_t i = 0; i < d.size() && bytes.size() < length; ++i) {
+        if (d[i] == '\\' && i + 1 < d.size() && d[i + 1] == 'r') {
+          bytes.push_back('\r');
+          ++i;
+        } else {
+          bytes.push_back(d[i]);
+        }
+        if (bytes.size() == length && i + 1 < d.size()) {
+          // the next header follows the data on the same line
+          pending = std::string(d.substr(i + 1));
+        }
+      }
+      if (bytes.size() < length) bytes.push_back('\n');
+    }
+    if (!hex && !pending.empty()) {
+      r.line = pending;
+      pending.clear();
+      have_line = true;
+    }
+    if (bytes.size() < length)
+      a.source_note(t, ACode::log_syntax,
+                    path + ": chunk " + std::to_string(chunk_no) + " (line " +
+                        std::to_string(r.number) + "): " + std::to_string(bytes.size()) + " of " +
+                        std::to_string(length) + " bytes present",
+                    chunk_no, bytes.size());
+    a.chunk(t, Transport::serial, rtl ? right : left, rtl ? left : right, bytes, chunk_no, 0);
+  }
+}
+
+std::vector<std::string> csv_split(std::string_view l) {
+  std::vector<std::string> out;
+  std::string cur;
+  bool q = false;
+  for (std::size_t i = 0; i < l.size(); ++i) {
+    char c = l[i];
+    if (q) {
+      if (c == '"' && i + 1 < l.size() && l[i + 1] == '"')
+        cur += '"', ++i;
+      else if (c == '"')
+        q = false;
+      else
+        cur += c;
+    } else if (c == '"') {
+      q = true;
+    } else if (c == ',') {
+      out.push_back(std::move(cur));
+      cur.clear();
+    } else {
+      cur += c;
+    }
+  }
+  out.push_back(std::move(cur));
+  return out;
+}
+
+std::optional<int> csv_byte(std::string_view v) {
+  if (v.size() == 1) return static_cast<unsigned char>(v[0]);
+  if (v.size() >= 3 && v[0] == '0' && (v[1] == 'x' || v[1] == 'X')) {
+    int x = 0;
+    for (char c : v.substr(2)) {
+      int d = std::isdigit(static_cast<unsigned char>(c)) ? c - '0'
+              : (c >= 'a' && c <= 'f')                    ? c - 'a' + 10
+              : (c >= 'A' && c <= 'F')                    ? c - 'A' + 10
+                                                          : -1;
+      if (d < 0) return std::nullopt;
+      x = x * 16 + d;
+      if (x > 255) return std::nullopt;
+    }
+    return x;
+  }
+  if (v.size() >= 2 && v[0] == '\'' && v.back() == '\'') {
+    std::string err;
+    auto u = unescape(v.substr(1, v.size() - 2), err);
+    if (u && u->size() == 1) return static_cast<unsigned char>((*u)[0]);
+    return std::nullopt;
+  }
+  int x = 0;
+  if (v.empty()) return std::nullopt;
+  for (char c : v) {
+    if (!std::isdigit(static_cast<unsigned char>(c))) return std::nullopt;
+    x = x * 10 + (c - '0');
+    if (x > 255) return std::nullopt;
+  }
+  return x;
+}
+
+// Saleae Logic 2 Async Serial export: name,type,start_time,duration,data[,error]
+// (times in seconds from the start of the capture; read as seconds after the
+// epoch). Each analyzer name is one direction.
+void saleae_log(const std::string& path, LineReader& r, Analyzer& a) {
+  if (!r.get()) return;
+  auto head = csv_split(r.line);
+  int c_name = -1, c_type = -1, c_time = -1, c_data = -1, c_err = -1;
+  for (std::size_t i = 0; i < head.size(); ++i) {
+    if (head[i] == "name")
+      c_name = static_cast<int>(i);
+    else if (head[i] == "type")
+      c_type = static_cast<int>(i);
+    else if (head[i] == "start_time")
+      c_time = static_cast<int>(i);
+    else if (head[i] == "data")
+      c_data = static_cast<int>(i);
+    else if (head[i] == "error")
+      c_err = static_cast<int>(i);
+  }
+  if (c_time < 0 || c_data < 0) {
+    a.source_note(kNoTime, ACode::log_syntax,
+                  path + ": line 1: the header lacks start_time or data", 1, 0);
+    return;
+  }
+  // first pass: the first two analyzer names are the two directions
+  std::vector<std::string> names;
+  {
+    std::ifstream scan(path, std::ios::binary);
+    std::string l;
+    std::getline(scan, l);
+    while (names.size() < 2 && std::getline(scan, l)) {
+      if (!l.empty() && l.back() == '\r') l.pop_back();
+      auto cols = csv_split(l);
+      if (c_name < 0 || static_cast<int>(cols.size()) <= c_name) break;
+      const std::string& n = cols[static_cast<std::size_t>(c_name)];
+      if (std::find(names.begin(), names.end(), n) == names.end()) names.push_back(n);
+    }
+  }
+  while (r.get()) {
+    if (r.line.empty()) continue;
+    auto cols = csv_split(r.line);
+    auto bad = [&](const std::string& why) {
+      a.source_note(kNoTime, ACode::log_syntax,
+                    path + ": line " + std::to_string(r.number) + ": " + why, r.number, r.offset);
+    };
+    if (static_cast<int>(cols.size()) <= std::max(c_time, c_data)) {
+      bad("too few columns");
+      continue;
+    }
+    if (c_type >= 0 && c_type < static_cast<int>(cols.size()) &&
+        cols[static_cast<std::size_t>(c_type)] != "data")
+      continue;
+    std::string name = c_name >= 0 ? cols[static_cast<std::size_t>(c_name)] : "serial";
+    auto v = csv_byte(cols[static_cast<std::size_t>(c_data)]);
+    if (!v) {
+      bad("data \"" + cols[static_cast<std::size_t>(c_data)] + "\" is not a byte");
+      continue;
+    }
+    if (c_err >= 0 && c_err < static_cast<int>(cols.size()) &&
+        !cols[static_cast<std::size_t>(c_err)].empty())
+      bad("the analyzer flagged this byte: " + cols[static_cast<std::size_t>(c_err)]);
+    char* endp = nullptr;
+    const std::string& ts_text = cols[static_cast<std::size_t>(c_time)];
+    double secs = std::strtod(ts_text.c_str(), &endp);
+    std::int64_t ts = (endp && *endp == 0 && !ts_text.empty())
+                          ? static_cast<std::int64_t>(secs * 1e6 + (secs >= 0 ? 0.5 : -0.5))
+                          : kNoTime;
+    std::string other;
+    if (names.size() == 2)
+      other = names[0] == name ? names[1] : names[0];
+    else
+      other = "line";
+    if (names.size() == 2 && name != names[0] && name != names[1]) other = "line";
+    char byte = static_cast<char>(*v);
+    a.record(true);
+    a.chunk(ts, Transport::serial, named(name), named(other), std::string_view(&byte, 1), r.number,
+            0);
+  }
+}
+
+void lines_log(const std::string& path, LineReader& r, Analyzer& a) {
+  Endpoint host = named("host"), device = named("device");
+  while (r.get()) {
+    if (r.line.empty() || (r.line.size() > 1 && r.line[0] == '#' && r.line[1] == ' ')) continue;
+    std::string_view t, d, rest;
+    auto bad = [&](const std::string& why) {
+      a.source_note(kNoTime, ACode::log_syntax,
+                    path + ": line " + std::to_string(r.number) + ": " + why, r.number, r.offset);
+    };
+    if (!split_line_log(r.line, t, d, rest)) {
+      bad("expected \"<ISO-8601 time> <TX|RX> <frame>\"");
+      continue;
+    }
+    auto ts = parse_time(t);
+    if (!ts) {
+      bad("bad time \"" + std::string(t) + "\"");
+      continue;
+    }
+    std::string err;
+    auto bytes = unescape(rest, err);
+    if (!bytes) {
+      bad(err);
+      continue;
+    }
+    a.record(true);
+    bool tx = d == "TX";
+    a.chunk(*ts, Transport::serial, tx ? host : device, tx ? device : host, *bytes, r.number,
+            static_cast<std::uint64_t>(rest.data() - r.line.data()));
+  }
+}
+
+}  // namespace
+
+bool read_serial_log(const std::string& path, Format f, Analyzer& a, const SourceOptions&,
+                     std::string& error) {
+  LineReader r;
+  r.in.open(path, std::ios::binary);
+  if (!r.in) {
+    error = path + ": cannot open: " + std::strerror(errno);
+    return false;
+  }
+  switch (f) {
+    case Format::raw:
+      raw_log(r.in, a);
+      break;
+    case Format::socat:
+      socat_log(path, r, a);
+      break;
+    case Format::saleae:
+      saleae_log(path, r, a);
+      break;
+    case Format::lines:
+      lines_log(path, r, a);
+      break;
+    default:
+      error = path + ": not a serial log format";
+      return false;
+  }
+  if (r.in.bad()) {
+    error = path + ": read error";
+    return false;
+  }
+  return true;
+}
+
+// ---------------------------------------------------------------------------
+// Live serial port
+
+bool read_serial_port(const std::string& device, unsigned baud, Analyzer& a,
+                      const std::atomic<bool>& stop, std::string& error) {
+  asio::io_context io;
+  asio::serial_port port(io);
+  asio::error_code ec;
+  port.open(device, ec);
+  if (ec) {
+    error = device + ": " + ec.message();
+    return false;
+  }
+  port.set_option(asio::serial_port_base::baud_rate(baud), ec);
+  if (!ec) port.set_option(asio::serial_port_base::character_size(8), ec);
+  if (!ec)
+    port.set_option(asio::serial_port_base::parity(asio::serial_port_base::parity::none), ec);
+  if (!ec)
+    port.set_option(asio::serial_port_base::stop_bits(asio::serial_port_base::stop_bits::one), ec);
+  if (!ec)
+    port.set_option(
+        asio::serial_port_base::flow_control(asio::serial_port_base::flow_control::none), ec);
+  if (ec) {
+    error = device + ": cannot configure " + std::to_string(baud) + " 8N1: " + ec.message();
+    return false;
+  }
+  Endpoint src = named(device), dst = named("host");
+  std::array<char, 4096> buf;
+  std::uint64_t chunk_no = 0, offset = 0;
+  asio::steady_timer tick(io);
+  bool failed = false;
+  std::function<void()> arm_tick = [&]() {
+    tick.expires_after(std::chrono::milliseconds(50));
+    tick.async_wait([&](const asio::error_code& e) {
+      if (e) return;
+      if (stop.load()) {
+        asio::error_code ignored;
+        port.cancel(ignored);
+        return;
+      }
+      a.flush_streams();
+      arm_tick();
+    });
+  };
+  std::function<void()> arm_read = [&]() {
+    port.async_read_some(asio::buffer(buf), [&](const asio::error_code& e, std::size_t n) {
+      if (e) {
+        if (e != asio::error::operation_aborted && !stop.load()) {
+          error = device + ": " + e.message();
+          failed = true;
+        }
+        tick.cancel();
+        return;
+      }
+      ++chunk_no;
+      a.record(true);
+      a.chunk(now_us(), Transport::serial, src, dst, std::string_view(buf.data(), n), chunk_no,
+              offset);
+      offset += n;
+      arm_read();
+    });
+  };
+  arm_read();
+  arm_tick();
+  io.run();
+  return !failed;
+}
+
+}  // namespace topdump

@@ -1,0 +1,77 @@
+// Capture sources: pcap/pcapng files and live interfaces through libpcap,
+// serial logs (raw, socat -v / -x -v, Saleae Logic 2 CSV, line log) and a
+// live serial port through Asio. Each feeds an Analyzer.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+
+#include "analyzer.hpp"
+
+namespace topdump {
+
+enum class Format : std::uint8_t { automatic, pcap, raw, socat, saleae, lines };
+std::optional<Format> format_from_string(std::string_view s);
+std::string_view to_string(Format f) noexcept;
+
+// Picks the format from the first bytes of a file.
+Format detect_format(std::string_view head);
+
+struct SourceOptions {
+  std::set<std::uint16_t> udp_ports{5000, 9002, 9003, 9004, 12580};
+  std::set<std::uint16_t> tcp_ports{5000};
+  // Called now and then with (bytes read, total bytes) for a progress bar.
+  std::function<void(std::uint64_t, std::uint64_t)> progress;
+};
+
+// Dissects one captured packet of link type `dlt` (Ethernet with VLAN tags,
+// Linux SLL/SLL2, raw IP, BSD loopback; IPv4/IPv6; UDP/TCP) and hands any
+// TOP payload to the analyzer. Returns false when it is not TOP traffic.
+class Dissector {
+ public:
+  Dissector(Analyzer& a, const SourceOptions& o) : a_(a), o_(o) {}
+  bool packet(int dlt, std::int64_t ts, const std::uint8_t* data, std::uint32_t caplen,
+              std::uint32_t len, std::uint64_t record);
+  static bool supported(int dlt);
+
+ private:
+  bool ip(std::int64_t ts, const std::uint8_t* p, std::size_t n, std::size_t off,
+          std::uint64_t record);
+  void bad(std::int64_t ts, std::uint64_t record, std::size_t off, std::string msg);
+  Analyzer& a_;
+  const SourceOptions& o_;
+  std::set<std::string> tcp_top_;  // TCP flows recognised by content (bounded)
+};
+
+// Reads a capture file of any supported format into the analyzer. Returns
+// false and sets `error` when the file cannot be read at all (exit 2);
+// problems inside the file become findings.
+bool read_file(const std::string& path, Format format, Analyzer& a, const SourceOptions& o,
+               std::string& error);
+
+// Live capture on an interface with an optional BPF filter until `stop` is
+// set (SIGINT). Returns false with `error` (and `permission` when the cause
+// is a lack of capture privileges) when the capture cannot start.
+bool capture_live(const std::string& iface, const std::string& bpf, Analyzer& a,
+                  const SourceOptions& o, const std::atomic<bool>& stop, std::string& error,
+                  bool& permission);
+
+// Reads a serial device at `baud` (8N1) until `stop` is set.
+bool read_serial_port(const std::string& device, unsigned baud, Analyzer& a,
+                      const std::atomic<bool>& stop, std::string& error);
+
+// Current time in microseconds since the epoch.
+std::int64_t now_us();
+
+// Parses "2024-05-01T12:00:00.123Z", "...+02:00", or plain epoch seconds
+// ("1714564800.5"); microseconds since the epoch.
+std::optional<std::int64_t> parse_time(std::string_view s);
+// "2024-05-01T12:00:00.123456Z"
+std::string format_time(std::int64_t us);
+
+}  // namespace topdump

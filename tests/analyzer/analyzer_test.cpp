@@ -1,0 +1,435 @@
+// The session layer: pairing, latency, streams, repeats, limits, TCP
+// reassembly, and the fast JSON writer proven equal to the nlohmann one.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <set>
+
+#include "afindings.hpp"
+#include "escape.hpp"
+#include "pcapw.hpp"
+#include "test_support.hpp"
+
+namespace topdump::test {
+namespace {
+
+using pcapw::frame;
+
+Endpoint ep4(std::uint8_t last, std::uint16_t port) {
+  Endpoint e;
+  e.family = 4;
+  e.addr[0] = 10;
+  e.addr[3] = last;
+  e.port = port;
+  return e;
+}
+
+constexpr std::int64_t T = 1714564800LL * 1000000;
+
+struct Fixture {
+  Recorder rec;
+  AnalyzerOptions opts;
+  std::unique_ptr<Analyzer> a;
+  Endpoint client = ep4(1, 40000), device = ep4(2, 5000);
+  std::uint64_t record = 0;
+  Fixture() { a = std::make_unique<Analyzer>(opts, rec); }
+  void reset(AnalyzerOptions o) {
+    opts = o;
+    a = std::make_unique<Analyzer>(opts, rec);
+  }
+  void up(std::int64_t ms, const std::string& p) {
+    a->datagram(T + ms * 1000, client, device, p, ++record, 42);
+  }
+  void down(std::int64_t ms, const std::string& p) {
+    a->datagram(T + ms * 1000, device, client, p, ++record, 42);
+  }
+};
+
+TEST(Pairing, RequestResponseLatencyAndStats) {
+  Fixture f;
+  f.up(0, frame("#tpUG6wGAYEC7832"));
+  f.down(12, frame("#tpGU6wGAYEC7832"));
+  f.up(20, frame("#tpUG6wGAYEC7832"));
+  f.down(27, frame("#tpGU6wGAYEC7832"));
+  f.a->finish();
+  ASSERT_EQ(f.rec.frames.size(), 4u);
+  EXPECT_EQ(f.rec.frames[1].reply_to, 1u);
+  EXPECT_EQ(f.rec.frames[1].latency, 12000);
+  EXPECT_EQ(f.rec.frames[3].reply_to, 3u);
+  const Stats& s = f.a->stats();
+  EXPECT_EQ(s.paired, 2u);
+  EXPECT_EQ(s.unanswered, 0u);
+  const Latency& l = s.latency.at("GAY");
+  EXPECT_EQ(l.count(), 2u);
+  EXPECT_EQ(l.min(), 7000);
+  EXPECT_EQ(l.max(), 12000);
+  EXPECT_EQ(l.quantile(0.5), 7000);
+  EXPECT_EQ(f.a->worst(), top::Severity::info);
+}
+
+TEST(Pairing, UnansweredByTimeoutAndAtEnd) {
+  Fixture f;
+  AnalyzerOptions o;
+  o.timeout_us = 100000;
+  f.reset(o);
+  f.up(0, frame("#TPUD2rVER00"));
+  f.up(500, frame("#TPUG2wPTZ05"));  // expires the VER request
+  ASSERT_EQ(f.rec.count_note(ACode::unanswered), 1u);
+  EXPECT_NE(f.rec.notes[0].note.message.find("within 100 ms"), std::string::npos);
+  EXPECT_EQ(f.rec.notes[0].pos.record, 1u);
+  f.a->finish();
+  EXPECT_EQ(f.rec.count_note(ACode::unanswered), 2u);
+  EXPECT_EQ(f.a->stats().unanswered, 2u);
+  EXPECT_EQ(f.a->worst(), top::Severity::warning);
+}
+
+TEST(Pairing, EreAnswersTheRequestToItsSource) {
+  Fixture f;
+  f.up(0, frame("#tpUG6wGAYEC7832"));
+  f.up(1, frame("#TPUM2wXYZ01"));
+  f.down(5, frame("#TPMU2wERE!!"));
+  f.a->finish();
+  ASSERT_EQ(f.rec.frames.size(), 3u);
+  EXPECT_EQ(f.rec.frames[2].reply_to, 2u);  // the M request, not the older G one
+  EXPECT_TRUE(has_code(f.rec.frames[2], "error-reply"));
+}
+
+TEST(Pairing, UnsolicitedEchoDiffersAndRepeated) {
+  Fixture f;
+  f.down(0, frame("#TPGU2wPTZ05"));  // nobody asked
+  f.up(10, frame("#TPUG2wPTZ05"));
+  f.up(40, frame("#TPUG2wPTZ05"));    // again, 30 ms later
+  f.down(45, frame("#TPGU2wPTZ01"));  // echo with other data
+  f.down(46, frame("#TPGU2wPTZ05"));
+  f.a->finish();
+  ASSERT_EQ(f.rec.frames.size(), 5u);
+  EXPECT_TRUE(has_code(f.rec.frames[0], "unsolicited"));
+  EXPECT_TRUE(has_code(f.rec.frames[2], "repeated"));
+  EXPECT_FALSE(has_code(f.rec.frames[1], "repeated"));
+  EXPECT_TRUE(has_code(f.rec.frames[3], "echo-differs"));
+  EXPECT_EQ(f.rec.frames[4].reply_to, 3u);  // the one whose data it echoes... or the other
+}
+
+TEST(Pairing, UnswappedResponseIsPairedAndReported) {
+  Fixture f;
+  f.up(0, frame("#tpUG6wGAY03E832"));
+  f.down(11, frame("#tpUG6wGAY03E832"));  // simulator keeps U G
+  f.a->finish();
+  ASSERT_EQ(f.rec.frames.size(), 2u);
+  EXPECT_EQ(f.rec.frames[1].role, top::Role::response);
+  EXPECT_EQ(f.rec.frames[1].reply_to, 1u);
+  EXPECT_TRUE(has_code(f.rec.frames[1], "unswapped-addresses"));
+  EXPECT_EQ(f.a->stats().unanswered, 0u);
+}
+
+TEST(Streams, RateMeasuredAgainstAsked) {
+  Fixture f;
+  f.up(0, frame("#TPUG2wGAA0A"));  // 10 Hz
+  f.down(2, frame("#TPGU2wGAA0A"));
+  for (int i = 0; i < 11; ++i) f.down(100 + i * 200, frame("#TPGUCrGAC000000000000"));  // 5 Hz
+  f.a->finish();
+  EXPECT_EQ(f.a->stats().unsolicited, 0u);
+  ASSERT_EQ(f.rec.count_note(ACode::stream_rate), 1u);
+  const auto& c = f.a->stats().conversations.at(0);
+  ASSERT_EQ(c.streams.size(), 1u);
+  EXPECT_EQ(c.streams[0].frames, 11u);
+  EXPECT_NEAR(c.streams[0].measured_hz(), 5.0, 1e-9);
+  EXPECT_EQ(c.streams[0].asked_hz, 10.0);
+}
+
+TEST(Streams, RateWithinToleranceIsQuiet) {
+  Fixture f;
+  f.up(0, frame("#TPUG2wGAA14"));  // 20 Hz
+  for (int i = 0; i < 21; ++i) f.down(50 + i * 50, frame("#TPGUCrGAC000000000000"));
+  f.a->finish();
+  EXPECT_FALSE(f.rec.has_note(ACode::stream_rate));
+}
+
+TEST(Limits, ConversationLimitClosesTheOldest) {
+  Fixture f;
+  AnalyzerOptions o;
+  o.max_conversations = 4;
+  f.reset(o);
+  for (std::uint16_t i = 0; i < 10; ++i)
+    f.a->datagram(T, ep4(1, static_cast<std::uint16_t>(40000 + i)), ep4(2, 5000),
+                  frame("#TPUG2wPTZ05"), i + 1u, 42);
+  f.a->finish();
+  EXPECT_EQ(f.rec.count_note(ACode::conversation_limit), 6u);
+  EXPECT_EQ(f.a->stats().conversations.size(), 10u);
+  EXPECT_EQ(f.rec.frames.size(), 10u);
+}
+
+TEST(Positions, SeveralFramesPerDatagram) {
+  Fixture f;
+  std::string a = frame("#TPUG2wPTZ05"), b = frame("#tpUG6wGAYEC7832");
+  f.up(0, a + "\r\n" + b);
+  f.a->finish();
+  ASSERT_EQ(f.rec.frames.size(), 2u);
+  EXPECT_EQ(f.rec.frames[0].pos.record, 1u);
+  EXPECT_EQ(f.rec.frames[0].pos.index, 0u);
+  EXPECT_EQ(f.rec.frames[0].pos.offset, 42u);
+  EXPECT_EQ(f.rec.frames[1].pos.index, 1u);
+  EXPECT_EQ(f.rec.frames[1].pos.offset, 42u + a.size() + 2);
+  // keys never repeat: two objects, each complete
+  for (const auto& x : f.rec.frames) EXPECT_EQ(nlohmann::json::parse(x.json_fast)["record"], 1);
+}
+
+// --- TCP reassembly -----------------------------------------------------------
+
+std::string tcp_stream() {
+  std::string s;
+  for (int i = 0; i < 20; ++i) {
+    char b[32];
+    std::snprintf(b, sizeof b, "#tpUG6wGAY%04X32", (i * 97) & 0xFFFF);
+    s += frame(b);
+    if (i % 5 == 0) s += "\r\n";
+  }
+  return s;
+}
+
+std::vector<std::string> raws(const Recorder& r) {
+  std::vector<std::string> v;
+  for (const auto& f : r.frames) v.push_back(f.raw);
+  return v;
+}
+
+TEST(Tcp, EverySplitAndShuffleGivesTheSameFrames) {
+  std::string s = tcp_stream();
+  Recorder ref;
+  {
+    Analyzer a(AnalyzerOptions{}, ref);
+    a.segment(T, ep4(1, 50000), ep4(2, 5000), 100, false, s, 1, 54);
+    a.finish();
+  }
+  ASSERT_EQ(ref.frames.size(), 20u);
+  std::mt19937 rng(7);
+  for (std::size_t cut = 1; cut < s.size(); cut += 3) {
+    // segments of `cut` bytes, the order shuffled, one retransmitted
+    std::vector<std::pair<std::uint32_t, std::string>> segs;
+    for (std::size_t at = 0; at < s.size(); at += cut)
+      segs.emplace_back(static_cast<std::uint32_t>(1000 + at), s.substr(at, cut));
+    segs.push_back(segs[segs.size() / 2]);
+    std::shuffle(segs.begin() + 1, segs.end(), rng);
+    Recorder r;
+    Analyzer a(AnalyzerOptions{}, r);
+    a.segment(T, ep4(1, 50000), ep4(2, 5000), 999, true, "", 1, 54);  // SYN
+    std::uint64_t rec = 1;
+    for (const auto& [seq, bytes] : segs)
+      a.segment(T, ep4(1, 50000), ep4(2, 5000), seq, false, bytes, ++rec, 54);
+    a.finish();
+    EXPECT_EQ(raws(r), raws(ref)) << "segments of " << cut;
+    EXPECT_FALSE(r.has_note(ACode::tcp_gap)) << "segments of " << cut;
+    EXPECT_TRUE(r.has_note(ACode::tcp_retransmission)) << "segments of " << cut;
+  }
+}
+
+TEST(Tcp, OverlapThatDisagreesIsReported) {
+  Recorder r;
+  Analyzer a(AnalyzerOptions{}, r);
+  std::string x = frame("#TPUG2wPTZ05");
+  a.segment(T, ep4(1, 50000), ep4(2, 5000), 10, false, x, 1, 54);
+  std::string y = x;
+  y[4] = 'Q';
+  a.segment(T, ep4(1, 50000), ep4(2, 5000), 10, false, y, 2, 54);
+  a.finish();
+  EXPECT_TRUE(r.has_note(ACode::tcp_overlap_differs));
+  ASSERT_EQ(r.frames.size(), 1u);
+  EXPECT_EQ(r.frames[0].raw, x);
+}
+
+TEST(Tcp, MissingSegmentIsAGapAndDecodingGoesOn) {
+  Recorder r;
+  Analyzer a(AnalyzerOptions{}, r);
+  std::string x = frame("#TPUG2wPTZ05"), y = frame("#TPUG2wPTZ01"), z = frame("#TPUG2wPTZ00");
+  a.segment(T, ep4(1, 50000), ep4(2, 5000), 0, false, x, 1, 54);
+  // y never captured
+  a.segment(T, ep4(1, 50000), ep4(2, 5000), static_cast<std::uint32_t>(x.size() + y.size()), false,
+            z, 3, 54);
+  a.finish();
+  EXPECT_TRUE(r.has_note(ACode::tcp_gap));
+  EXPECT_EQ(raws(r), (std::vector<std::string>{x, z}));
+  EXPECT_EQ(a.worst(), top::Severity::error);
+}
+
+TEST(Tcp, HeldBytesAreBounded) {
+  Recorder r;
+  AnalyzerOptions o;
+  o.max_tcp_held = 4096;
+  Analyzer a(o, r);
+  std::string chunk(1000, 'x');
+  a.segment(T, ep4(1, 50000), ep4(2, 5000), 0, true, "", 1, 54);  // SYN: the stream starts at 1
+  // never fill the hole before 1000: everything is held until the limit
+  for (std::uint32_t i = 1; i <= 10; ++i)
+    a.segment(T, ep4(1, 50000), ep4(2, 5000), i * 1000, false, chunk, i, 54);
+  a.finish();
+  EXPECT_TRUE(r.has_note(ACode::reassembly_limit));
+}
+
+TEST(Tcp, SequenceWrapAround) {
+  std::string s = tcp_stream();
+  Recorder r;
+  Analyzer a(AnalyzerOptions{}, r);
+  std::uint32_t isn = 0xFFFFFF00u;
+  for (std::size_t at = 0; at < s.size(); at += 50)
+    a.segment(T, ep4(1, 50000), ep4(2, 5000), isn + static_cast<std::uint32_t>(at), false,
+              s.substr(at, 50), at + 1, 54);
+  a.finish();
+  EXPECT_EQ(r.frames.size(), 20u);
+  EXPECT_FALSE(r.has_note(ACode::tcp_gap));
+}
+
+// --- JSON fast path vs nlohmann reference ------------------------------------------
+
+// Parses with nlohmann and fails on a key that repeats inside an object.
+nlohmann::json parse_unique(const std::string& line) {
+  std::vector<std::set<std::string>> stack;
+  bool dup = false;
+  auto cb = [&](int, nlohmann::json::parse_event_t ev, nlohmann::json& j) {
+    using E = nlohmann::json::parse_event_t;
+    if (ev == E::object_start)
+      stack.emplace_back();
+    else if (ev == E::object_end)
+      stack.pop_back();
+    else if (ev == E::key)
+      dup |= !stack.back().insert(j.get<std::string>()).second;
+    return true;
+  };
+  auto j = nlohmann::json::parse(line, cb);
+  EXPECT_FALSE(dup) << "duplicate key in " << line;
+  return j;
+}
+
+void expect_fast_equals_reference(const Recorder& r) {
+  for (const auto& f : r.frames) {
+    ASSERT_FALSE(f.json_fast.empty());
+    ASSERT_EQ(f.json_fast.back(), '\n');
+    EXPECT_EQ(std::count(f.json_fast.begin(), f.json_fast.end(), '\n'), 1);
+    nlohmann::json fast = parse_unique(f.json_fast);
+    nlohmann::json ref = parse_unique(f.json_ref);
+    EXPECT_EQ(fast, ref) << f.json_fast << "\n" << f.json_ref;
+  }
+}
+
+TEST(Json, FastWriterEqualsReferenceOverTheCaptures) {
+  for (const char* cap : {"sample.pcap", "topotek-vlan.pcap", "tcp-c10.pcap", "serial-raw.bin",
+                          "serial-lines.log", "serial-saleae.csv", "truncated.pcap"}) {
+    Recorder r;
+    Analyzer a(AnalyzerOptions{}, r);
+    std::string err;
+    ASSERT_TRUE(read_file(captures_dir() + "/" + cap, Format::automatic, a, SourceOptions{}, err))
+        << err;
+    a.finish();
+    ASSERT_FALSE(r.frames.empty()) << cap;
+    expect_fast_equals_reference(r);
+  }
+}
+
+TEST(Json, FastWriterEqualsReferenceOnHostileBytes) {
+  // random bytes around frame starts, names with quotes and control bytes
+  std::mt19937 rng(11);
+  Recorder r;
+  Analyzer a(AnalyzerOptions{}, r);
+  Endpoint s, d;
+  s.name = std::string("tty\"\\\x01\xff", 6);
+  d.name = "host";
+  for (int i = 0; i < 300; ++i) {
+    std::string p = "#tp";
+    int n = static_cast<int>(rng() % 24);
+    for (int k = 0; k < n; ++k) p += static_cast<char>(rng() & 0xFF);
+    if (i % 3 == 0)
+      p = frame("#tpUG6wGAY" + std::string(1, static_cast<char>(rng() & 0xFF)) + "00032");
+    if (i % 7 == 0)
+      p = frame("#tPUDEwGPS" + std::string(1, '\x0e') +
+                std::string("\"\\\x00\x7f\x80\xfe#\x0d\x0a\x01\x02\x03\x04\x05\x06", 15));
+    a.chunk(T + i, Transport::serial, i % 2 ? s : d, i % 2 ? d : s, p,
+            static_cast<std::uint64_t>(i + 1), 0);
+  }
+  a.finish();
+  ASSERT_GT(r.frames.size(), 50u);
+  expect_fast_equals_reference(r);
+}
+
+TEST(Latency, ExactThenHistogramWithinOnePercent) {
+  Latency l;
+  for (int i = 1; i <= 100; ++i) l.add(i * 1000);
+  EXPECT_EQ(l.quantile(0.5), 50000);
+  EXPECT_EQ(l.quantile(0.95), 95000);
+  Latency big;
+  for (int i = 1; i <= 100000; ++i) big.add(i);
+  EXPECT_NEAR(static_cast<double>(big.quantile(0.5)), 50000.0, 500.0);
+  EXPECT_NEAR(static_cast<double>(big.quantile(0.95)), 95000.0, 950.0);
+  EXPECT_EQ(big.min(), 1);
+  EXPECT_EQ(big.max(), 100000);
+}
+
+TEST(AnalyzerFindings, TableIsConsistentAndDocumented) {
+  std::string doc = slurp(std::string(TOPKIT_SOURCE_DIR) + "/docs/topdump-json.md");
+  std::set<std::string> seen;
+  for (std::size_t i = 0; i < acode_count; ++i) {
+    auto c = static_cast<ACode>(i);
+    std::string code(to_string(c));
+    EXPECT_TRUE(seen.insert(code).second) << code;
+    EXPECT_EQ(acode_from_string(code), c);
+    EXPECT_FALSE(description(c).empty());
+    EXPECT_FALSE(top::finding_code_from_string(code).has_value())
+        << code << " clashes with a protocol code";
+    EXPECT_NE(doc.find("`" + code + "`"), std::string::npos) << code << " is not documented";
+  }
+}
+
+}  // namespace
+}  // namespace topdump::test
+
+namespace topdump::test {
+namespace {
+
+// The one-frame datagram fast path gives what the stream decoder gives.
+TEST(Datagram, FastPathEqualsStreamDecoder) {
+  std::mt19937 rng(3);
+  std::vector<std::string> payloads = {
+      pcapw::frame("#tpUG6wGAYEC7832"), pcapw::frame("#TPUG2wPTZ05"), "#TPUG2wPTZ0500",
+      pcapw::frame("#TPUG2wPTZ05") + "\r\n", pcapw::frame("#PDP16TMP1008001720504000FA0123"),
+      pcapw::frame("#tpDP16wTMP1008001720504000FA0123"), pcapw::frame("#tpUG6wGAYfe0c32"),
+      "#tpUG6wGAY", pcapw::frame("#tpUG6wGAY#TPUG2"), pcapw::frame("#TPUG2wPTZ05").substr(0, 13)};
+  for (int i = 0; i < 400; ++i) {
+    std::string p = pcapw::frame("#tpUG6wGAYEC7832");
+    p[static_cast<std::size_t>(rng() % p.size())] = static_cast<char>(rng() & 0xFF);
+    payloads.push_back(p);
+  }
+  for (const std::string& p : payloads) {
+    Recorder r;
+    Analyzer a(AnalyzerOptions{}, r);
+    a.datagram(T, ep4(1, 40000), ep4(2, 5000), p, 1, 42);
+    a.finish();
+    top::StreamDecoder dec;
+    dec.feed(p);
+    dec.finish();
+    top::StreamItem it;
+    std::size_t frames = 0, garbage = 0;
+    while (dec.next(it)) {
+      if (it.kind == top::ItemKind::garbage) {
+        ++garbage;
+        continue;
+      }
+      ASSERT_LT(frames, r.frames.size()) << escape(p);
+      const auto& got = r.frames[frames++];
+      EXPECT_EQ(got.raw, it.frame.raw) << escape(p);
+      EXPECT_EQ(got.pos.offset, 42u + it.offset) << escape(p);
+      std::vector<std::string> want;
+      top::Decoded d = top::decode(it.frame, top::DecodeOptions{top::Dialect::skydroid, top::Model::unknown,
+                                                                top::Role::any});
+      for (const top::Finding* x : all_findings(it.frame, d)) want.emplace_back(top::to_string(x->code));
+      std::vector<std::string> have;
+      for (const auto& c : got.codes)
+        if (!acode_from_string(c)) have.push_back(c);
+      EXPECT_EQ(have, want) << escape(p);
+    }
+    EXPECT_EQ(frames, r.frames.size()) << escape(p);
+    EXPECT_EQ(garbage, r.garbage_codes.size()) << escape(p);
+  }
+}
+
+}  // namespace
+}  // namespace topdump::test

@@ -1,0 +1,367 @@
+// Capture sources: pcap link types written with libpcap, hand-built pcapng
+// with several interfaces, truncated files, snap length cuts, serial log
+// formats, and the exit status and stats JSON of the real binary.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+
+#include "pcapw.hpp"
+#include "test_support.hpp"
+
+namespace topdump::test {
+namespace {
+
+using namespace pcapw;
+
+constexpr std::int64_t T = 1714564800LL * 1000000;
+const Ip4 A{10, 1, 0, 1}, B{10, 1, 0, 2};
+const Ip6 A6{0x20, 0x01, 0x0d, 0xb8, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1};
+const Ip6 B6{0x20, 0x01, 0x0d, 0xb8, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2};
+
+Recorder read(const std::string& path, SourceOptions o = {}, Format f = Format::automatic) {
+  Recorder r;
+  Analyzer a(AnalyzerOptions{}, r);
+  std::string err;
+  EXPECT_TRUE(read_file(path, f, a, o, err)) << err;
+  a.finish();
+  return r;
+}
+
+struct LinkCase {
+  const char* name;
+  int dlt;
+  std::string (*wrap)(std::string_view);
+  std::uint32_t ip_offset;
+};
+
+std::string eth_plain(std::string_view ip) { return eth(ip); }
+std::string eth_vlan(std::string_view ip) { return eth(ip, {100, 200}); }
+std::string raw_ip(std::string_view ip) { return std::string(ip); }
+
+class Links : public ::testing::TestWithParam<LinkCase> {};
+
+TEST_P(Links, Ipv4AndIpv6UdpWithPositions) {
+  const LinkCase& c = GetParam();
+  TempDir tmp;
+  std::string req = frame("#tpUG6wGAYEC7832"), resp = frame("#tpGU6wGAYEC7832");
+  {
+    PcapWriter w(tmp.file("x.pcap"), c.dlt);
+    ASSERT_TRUE(w.ok());
+    w.write(T, c.wrap(udp4(A, B, 40000, 5000, req)));
+    w.write(T + 5000, c.wrap(udp4(B, A, 5000, 40000, resp)));
+    w.write(T + 6000,
+            c.wrap(udp6(A6, B6, 40000, 9003, frame("#TPPG2wGIA01") + frame("#TPPG2wGIA00"))));
+  }
+  Recorder r = read(tmp.file("x.pcap"));
+  ASSERT_EQ(r.frames.size(), 4u);
+  EXPECT_EQ(r.frames[0].from, "10.1.0.1:40000");
+  EXPECT_EQ(r.frames[0].to, "10.1.0.2:5000");
+  EXPECT_EQ(r.frames[0].pos.record, 1u);
+  EXPECT_EQ(r.frames[0].pos.offset, c.ip_offset + 28u);
+  EXPECT_EQ(r.frames[1].reply_to, 1u);
+  EXPECT_EQ(r.frames[1].latency, 5000);
+  EXPECT_EQ(r.frames[2].from, "[2001:db8::1]:40000");
+  EXPECT_EQ(r.frames[2].pos.offset, c.ip_offset + 48u);
+  EXPECT_EQ(r.frames[3].pos.record, 3u);
+  EXPECT_EQ(r.frames[3].pos.index, 1u);
+  EXPECT_EQ(r.frames[3].pos.offset, c.ip_offset + 48u + 14u);
+  EXPECT_TRUE(r.notes.empty() || !r.has_note(ACode::bad_packet));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Pcap, Links,
+    ::testing::Values(LinkCase{"ethernet", 1, eth_plain, 14}, LinkCase{"vlan", 1, eth_vlan, 22},
+                      LinkCase{"sll", 113, sll, 16}, LinkCase{"sll2", 276, sll2, 20},
+                      LinkCase{"raw", 12, raw_ip, 0}, LinkCase{"ipv4", 228, raw_ip, 0},
+                      LinkCase{"null", 0, null_lo, 4}, LinkCase{"loop", 108, loop_lo, 4}),
+    [](const ::testing::TestParamInfo<LinkCase>& i) { return std::string(i.param.name); });
+
+TEST(Pcap, ContentRecognitionAndExtraPorts) {
+  TempDir tmp;
+  {
+    PcapWriter w(tmp.file("x.pcap"), 1);
+    w.write(T, eth(udp4(A, B, 1111, 2222, frame("#TPUG2wPTZ05"))));  // TOP by content
+    w.write(T + 1, eth(udp4(A, B, 1111, 3333, "hello, not TOP")));   // skipped
+    w.write(T + 2, eth(udp4(A, B, 1111, 4444, "ab#")));              // only with --port
+  }
+  Recorder r = read(tmp.file("x.pcap"));
+  EXPECT_EQ(r.frames.size(), 1u);
+  SourceOptions o;
+  o.udp_ports.insert(4444);
+  Recorder r2 = read(tmp.file("x.pcap"), o);
+  EXPECT_EQ(r2.frames.size(), 1u);
+  EXPECT_EQ(r2.garbage_codes.size(), 1u);
+}
+
+TEST(Pcap, MultiInterfacePcapng) {
+  TempDir tmp;
+  std::vector<NgPacket> pk = {
+      {0, T, eth(udp4(A, B, 40000, 5000, frame("#TPUG2wPTZ05")))},
+      {1, T + 1000, eth(udp4(B, A, 9003, 9004, frame("#TPGP2wGIA01")))},
+      {0, T + 2000, eth(udp4(B, A, 5000, 40000, frame("#TPGU2wPTZ05")))},
+  };
+  write_file(tmp.file("x.pcapng"), pcapng({1, 1}, pk));
+  Recorder r = read(tmp.file("x.pcapng"));
+  ASSERT_EQ(r.frames.size(), 3u);
+  EXPECT_EQ(r.frames[1].pos.record, 2u);
+  EXPECT_EQ(r.frames[1].ts, T + 1000);
+  EXPECT_EQ(r.frames[2].reply_to, 1u);
+}
+
+TEST(Pcap, TruncatedFileKeepsEarlierRecords) {
+  TempDir tmp;
+  {
+    PcapWriter w(tmp.file("x.pcap"), 1);
+    for (int i = 0; i < 3; ++i) w.write(T + i, eth(udp4(A, B, 40000, 5000, frame("#TPUG2wPTZ05"))));
+  }
+  std::string all = slurp(tmp.file("x.pcap"));
+  write_file(tmp.file("x.pcap"), all.substr(0, all.size() - 10));
+  Recorder r = read(tmp.file("x.pcap"));
+  EXPECT_EQ(r.frames.size(), 2u);
+  ASSERT_TRUE(r.has_note(ACode::truncated_file));
+  for (const auto& n : r.notes)
+    if (n.note.code == ACode::truncated_file) {
+      EXPECT_EQ(n.pos.record, 3u);
+      EXPECT_EQ(n.note.severity, top::Severity::error);
+    }
+}
+
+TEST(Pcap, SnapLengthCutIsAFindingAndTheRestIsDecoded) {
+  TempDir tmp;
+  std::string p = eth(udp4(A, B, 40000, 5000, frame("#tpUG6wGAYEC7832")));
+  {
+    PcapWriter w(tmp.file("x.pcap"), 1);
+    w.write(T, p, 50);
+    w.write(T + 1, eth(udp4(A, B, 40000, 5000, frame("#TPUG2wPTZ05"))));
+  }
+  Recorder r = read(tmp.file("x.pcap"));
+  EXPECT_TRUE(r.has_note(ACode::snaplen_cut));
+  ASSERT_FALSE(r.garbage_codes.empty());
+  EXPECT_NE(std::find(r.garbage_codes.begin(), r.garbage_codes.end(), "truncated"),
+            r.garbage_codes.end());
+  EXPECT_EQ(r.garbage_pos[0].record, 1u);
+  ASSERT_EQ(r.frames.size(), 1u);
+}
+
+TEST(Pcap, MalformedHeadersAreFindingsNotCrashes) {
+  TempDir tmp;
+  {
+    PcapWriter w(tmp.file("x.pcap"), 1);
+    std::string ip = udp4(A, B, 40000, 5000, frame("#TPUG2wPTZ05"));
+    w.write(T, eth(ip).substr(0, 20));  // IP cut short
+    std::string bad = eth(ip);
+    bad[14] = 0x41;  // IHL 4
+    w.write(T + 1, bad);
+    w.write(T + 2, std::string(5, '\0'));  // not even Ethernet
+    w.write(T + 3, eth(ip));
+  }
+  Recorder r = read(tmp.file("x.pcap"));
+  EXPECT_EQ(r.count_note(ACode::bad_packet), 3u);
+  EXPECT_EQ(r.frames.size(), 1u);
+}
+
+// --- serial logs -------------------------------------------------------------
+
+TEST(SerialLogs, FormatDetection) {
+  EXPECT_EQ(detect_format(std::string("\xd4\xc3\xb2\xa1", 4)), Format::pcap);
+  EXPECT_EQ(detect_format(std::string("\x0a\x0d\x0d\x0a", 4)), Format::pcap);
+  EXPECT_EQ(detect_format("> 2024/05/01 12:00:00.000000000  length=3 from=0 to=2\nabc"),
+            Format::socat);
+  EXPECT_EQ(detect_format("name,type,start_time,duration,data\n"), Format::saleae);
+  EXPECT_EQ(detect_format("2024-05-01T12:00:00Z TX #TPUG2wPTZ056F\n"), Format::lines);
+  EXPECT_EQ(detect_format("# comment\n2024-05-01T12:00:00Z RX #TP\n"), Format::lines);
+  EXPECT_EQ(detect_format("#TPUG2wPTZ056F"), Format::raw);
+}
+
+TEST(SerialLogs, SocatTextWithGluedHeaderAndCr) {
+  TempDir tmp;
+  std::string f1 = frame("#TPUG2wPTZ05"), f2 = frame("#TPGU2wPTZ05");
+  std::string log = "> 2024/05/01 12:00:00.000100000  length=" + std::to_string(f1.size() + 2) +
+                    " from=0 to=15\n" + f1 + "\\r\n" +
+                    "< 2024/05/01 12:00:00.005100000  length=" + std::to_string(f2.size()) +
+                    " from=0 to=13\n" + f2 +  // no newline: socat glues the next header
+                    "> 2024/05/01 12:00:00.010000000  length=3 from=16 to=18\n..#";
+  write_file(tmp.file("s.log"), log);
+  Recorder r = read(tmp.file("s.log"));
+  ASSERT_EQ(r.frames.size(), 2u);
+  EXPECT_EQ(r.frames[0].ts, T + 100);
+  EXPECT_EQ(r.frames[0].from, "left");
+  EXPECT_TRUE(has_code(r.frames[0], "crlf"));
+  EXPECT_EQ(r.frames[1].reply_to, 1u);
+  EXPECT_EQ(r.frames[1].latency, 5000);
+  EXPECT_FALSE(r.has_note(ACode::log_syntax));
+}
+
+TEST(SerialLogs, SocatHexDump) {
+  TempDir tmp;
+  std::string log =
+      "> 2024/05/01 12:00:00.000000000  length=14 from=0 to=13\n"
+      " 23 54 50 55 47 32 77 50 54 5a 30 35 36 46        #TPUG2wPTZ056F\n"
+      "--\n";
+  write_file(tmp.file("s.log"), log);
+  Recorder r = read(tmp.file("s.log"));
+  ASSERT_EQ(r.frames.size(), 1u);
+  EXPECT_EQ(r.frames[0].raw, "#TPUG2wPTZ056F");
+}
+
+TEST(SerialLogs, SaleaeCsvTwoChannels) {
+  TempDir tmp;
+  std::string csv = "name,type,start_time,duration,data,error\n";
+  auto add = [&](const char* ch, double t, const std::string& bytes) {
+    for (std::size_t i = 0; i < bytes.size(); ++i) {
+      char b[96];
+      std::snprintf(b, sizeof b, "%s,data,%.6f,8.68e-05,0x%02X,\n", ch,
+                    t + static_cast<double>(i) * 1e-4, static_cast<unsigned char>(bytes[i]));
+      csv += b;
+    }
+  };
+  add("TX", 1.0, frame("#TPUG2wPTZ05"));
+  add("RX", 1.01, frame("#TPGU2wPTZ05"));
+  csv += "RX,data,2.0,8.68e-05,0xZZ,\n";
+  write_file(tmp.file("s.csv"), csv);
+  Recorder r = read(tmp.file("s.csv"));
+  ASSERT_EQ(r.frames.size(), 2u);
+  EXPECT_EQ(r.frames[0].from, "TX");
+  EXPECT_EQ(r.frames[0].to, "RX");
+  EXPECT_EQ(r.frames[1].reply_to, 1u);
+  EXPECT_TRUE(r.has_note(ACode::log_syntax));
+}
+
+TEST(SerialLogs, LineLogWithEscapesAndBadLines) {
+  TempDir tmp;
+  std::string log = "2024-05-01T12:00:00.5Z TX " + frame("#TPUG2wPTZ05") + "\\r\\n\n" +
+                    "not a line\n" + "2024-05-01T12:00:00.52+00:00 RX " + frame("#TPGU2wPTZ05") +
+                    "\n";
+  write_file(tmp.file("l.log"), log);
+  Recorder r = read(tmp.file("l.log"));
+  ASSERT_EQ(r.frames.size(), 2u);
+  EXPECT_EQ(r.frames[0].ts, T + 500000);
+  EXPECT_EQ(r.frames[1].latency, 20000);
+  EXPECT_EQ(r.count_note(ACode::log_syntax), 1u);
+  EXPECT_EQ(r.notes[0].pos.record, 2u);
+}
+
+TEST(SerialLogs, RawBinaryGpsWithHashBytes) {
+  TempDir tmp;
+  std::string gps = frame(
+      "#tpPDEwGPS" + std::string("\x23\x23\x40\x23\x5e\x45\x11\xe4\x23\x0d\xe8\x03\x00\x00", 14));
+  write_file(tmp.file("r.bin"), gps + gps);
+  Recorder r = read(tmp.file("r.bin"));
+  ASSERT_EQ(r.frames.size(), 2u);
+  EXPECT_EQ(r.frames[1].pos.offset, gps.size());
+  EXPECT_TRUE(r.garbage_codes.empty());
+}
+
+TEST(Time, ParseAndFormat) {
+  EXPECT_EQ(parse_time("2024-05-01T12:00:00Z"), T);
+  EXPECT_EQ(parse_time("2024-05-01T14:00:00.25+02:00"), T + 250000);
+  EXPECT_EQ(parse_time("1714564800.000001"), T + 1);
+  EXPECT_FALSE(parse_time("yesterday"));
+  EXPECT_EQ(format_time(T + 1), "2024-05-01T12:00:00.000001Z");
+}
+
+// --- the binary: exit status, stats JSON -----------------------------------------
+
+TEST(Binary, ExitStatus) {
+  std::string out, bin = topdump_bin(), caps = captures_dir();
+  EXPECT_EQ(run("'" + bin + "' read '" + caps + "/sll.pcap' 2>/dev/null", out), 0);
+  EXPECT_EQ(run("'" + bin + "' read '" + caps + "/sample.pcap' 2>/dev/null", out), 1);
+  EXPECT_EQ(run("'" + bin + "' read /nonexistent.pcap 2>/dev/null", out), 2);
+  EXPECT_EQ(run("'" + bin + "' read --bogus x 2>/dev/null", out), 2);
+  EXPECT_EQ(run("'" + bin + "' read --csv n,nope '" + caps + "/sll.pcap' 2>/dev/null", out), 2);
+  EXPECT_EQ(run("'" + bin + "' read --from yesterday '" + caps + "/sll.pcap' 2>/dev/null", out), 2);
+  EXPECT_EQ(run("'" + bin + "' 2>/dev/null", out), 2);
+  EXPECT_EQ(run("'" + bin + "' stats '" + caps + "/sll.pcap' /nonexistent 2>/dev/null", out), 2);
+}
+
+TEST(Binary, StatsJsonHasIntegerCounts) {
+  std::string out;
+  ASSERT_EQ(run("'" + topdump_bin() + "' stats --json '" + captures_dir() + "/sample.pcap' '" +
+                    captures_dir() + "/sll.pcap' 2>/dev/null",
+                out),
+            1);
+  auto j = nlohmann::json::parse(out);
+  ASSERT_TRUE(j["frames"].is_number_integer());
+  ASSERT_TRUE(j["bad_checksum"].is_number_integer());
+  EXPECT_EQ(j["frames"].get<int>(), 35);
+  EXPECT_EQ(j["bad_checksum"].get<int>(), 1);
+  EXPECT_EQ(j["per_ident"]["GAY"].get<int>(), 9);
+  EXPECT_EQ(j["pairing"]["unanswered"].get<int>(), 4);
+}
+
+TEST(Binary, FiltersSelectFrames) {
+  std::string out, caps = captures_dir();
+  run("'" + topdump_bin() + "' read --json --ident GAY --addr G '" + caps +
+          "/sample.pcap' 2>/dev/null",
+      out);
+  std::istringstream in(out);
+  std::string line;
+  int frames = 0;
+  while (std::getline(in, line)) {
+    auto j = nlohmann::json::parse(line);
+    if (j["type"] == "frame") {
+      EXPECT_EQ(j["ident"], "GAY");
+      ++frames;
+    }
+  }
+  EXPECT_EQ(frames, 7);
+  run("'" + topdump_bin() + "' read --csv ident --severity error '" + caps +
+          "/sample.pcap' 2>/dev/null",
+      out);
+  EXPECT_EQ(out, "ident\nGAY\n");
+  run("'" + topdump_bin() +
+          "' read --csv n --addr 192.168.144.108:5000 --from 1714564800.3 --to 1714564800.305 '" +
+          caps + "/sample.pcap' 2>/dev/null",
+      out);
+  EXPECT_EQ(out, "n\n7\n8\n9\n");
+}
+
+}  // namespace
+}  // namespace topdump::test
+
+namespace topdump::test {
+namespace {
+
+// CI smoke test of the bench generator at a tiny size.
+TEST(BenchGenerator, SmallCaptureHasTheAdvertisedMix) {
+  TempDir tmp;
+  std::string out;
+  ASSERT_EQ(run("'" + std::string(TOPKIT_BINARY_DIR) + "/analyzer/gen_capture' 3000 '" +
+                    tmp.file("b.pcap") + "' 5",
+                out),
+            0);
+  ASSERT_EQ(
+      run("'" + topdump_bin() + "' stats --json '" + tmp.file("b.pcap") + "' 2>/dev/null", out), 1);
+  auto j = nlohmann::json::parse(out);
+  auto frames = j["frames"].get<std::int64_t>();
+  EXPECT_GE(frames, 3000);
+  EXPECT_LE(frames, 3003);
+  double bad =
+      static_cast<double>(j["bad_checksum"].get<std::int64_t>()) / static_cast<double>(frames);
+  EXPECT_GT(bad, 0.01);
+  EXPECT_LT(bad, 0.06);
+  EXPECT_GT(j["pairing"]["paired"].get<std::int64_t>(), frames / 5);
+  EXPECT_LT(j["records"].get<std::int64_t>(), frames);  // some datagrams carry several frames
+}
+
+}  // namespace
+}  // namespace topdump::test
+
+namespace topdump::test {
+namespace {
+
+// A list option takes one value per occurrence: it never swallows the files.
+TEST(Binary, ListOptionsDoNotSwallowFiles) {
+  std::string out, caps = captures_dir();
+  ASSERT_EQ(run("'" + topdump_bin() + "' stats --json --ident GAY --port 6000 '" + caps + "/sll.pcap' '" +
+                    caps + "/sll2.pcap' 2>/dev/null",
+                out),
+            0);
+  auto j = nlohmann::json::parse(out);
+  EXPECT_EQ(j["frames"].get<int>(), 2);
+  EXPECT_EQ(j["records"].get<int>(), 4);
+}
+
+}  // namespace
+}  // namespace topdump::test

@@ -1,0 +1,112 @@
+// Helpers shared by the topdump tests.
+#pragma once
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "analyzer.hpp"
+#include "output.hpp"
+#include "sources.hpp"
+
+namespace topdump::test {
+
+inline std::string topdump_bin() { return std::string(TOPKIT_BINARY_DIR) + "/analyzer/topdump"; }
+inline std::string captures_dir() { return std::string(TOPKIT_SOURCE_DIR) + "/captures"; }
+
+inline std::string slurp(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+// A temporary directory removed at the end of the test.
+struct TempDir {
+  std::string path;
+  TempDir() {
+    char t[] = "/tmp/topdump_test_XXXXXX";
+    path = mkdtemp(t);
+  }
+  ~TempDir() { std::system(("rm -rf '" + path + "'").c_str()); }
+  std::string file(const std::string& n) const { return path + "/" + n; }
+};
+
+// Runs a shell command; stdout into `out`, returns the exit status.
+inline int run(const std::string& cmd, std::string& out) {
+  out.clear();
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return -1;
+  char buf[4096];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  int st = pclose(p);
+  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+// Records every event an analyzer emits.
+struct Recorder : Sink {
+  struct F {
+    std::uint64_t n;
+    std::int64_t ts;
+    Position pos;
+    std::string from, to, raw, ident;
+    top::Role role;
+    std::uint64_t reply_to;
+    std::int64_t latency;
+    std::vector<std::string> codes;  // frame, catalog and session codes
+    std::string json_fast;
+    std::string json_ref;
+  };
+  std::vector<F> frames;
+  std::vector<NoteEvent> notes;
+  std::vector<std::string> garbage_codes;
+  std::vector<Position> garbage_pos;
+  void frame(const FrameEvent& e) override {
+    F f;
+    f.n = e.n;
+    f.ts = e.ts;
+    f.pos = e.pos;
+    f.from = *e.from;
+    f.to = *e.to;
+    f.raw = e.entry->frame.raw;
+    f.ident = std::string(e.entry->frame.ident_view());
+    f.role = e.entry->decoded.role;
+    f.reply_to = e.reply_to;
+    f.latency = e.latency_us;
+    for (const top::Finding* x : all_findings(e.entry->frame, e.entry->decoded))
+      f.codes.emplace_back(top::to_string(x->code));
+    for (const Note& n : e.notes) f.codes.emplace_back(to_string(n.code));
+    write_frame_json(f.json_fast, e);
+    f.json_ref = frame_event_json(e).dump();
+    frames.push_back(std::move(f));
+  }
+  void garbage(const GarbageEvent& e) override {
+    garbage_codes.emplace_back(top::to_string(e.item->finding.code));
+    garbage_pos.push_back(e.pos);
+  }
+  void note(const NoteEvent& e) override { notes.push_back(e); }
+  bool has_note(ACode c) const {
+    for (const auto& n : notes)
+      if (n.note.code == c) return true;
+    return false;
+  }
+  std::size_t count_note(ACode c) const {
+    std::size_t k = 0;
+    for (const auto& n : notes) k += n.note.code == c;
+    return k;
+  }
+};
+
+inline bool has_code(const Recorder::F& f, const std::string& c) {
+  for (const auto& x : f.codes)
+    if (x == c) return true;
+  return false;
+}
+
+}  // namespace topdump::test
