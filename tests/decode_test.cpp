@@ -75,3 +75,110 @@ TEST(Decode, EncodeRoundTrip) {
   EncodeValue too_big[2] = {{.number = 400.0}, {.number = 5.0}};
   EXPECT_FALSE(encode_fields(c->forms[0], too_big, data));
 }
+
+TEST(Decode, AttitudeStream) {
+  // A real Topotek reply (DESIGN.md field notes): addresses swapped.
+  Decoded d = dec("#tpGPCrGACFF36ED5A0048DE");
+  EXPECT_EQ(d.dialect, Dialect::topotek);
+  EXPECT_EQ(d.role, Role::response);
+  EXPECT_NEAR(field(d, "yaw").value, -2.02, 1e-9);
+  EXPECT_NEAR(field(d, "pitch").value, -47.74, 1e-9);
+  EXPECT_NEAR(field(d, "roll").value, 0.72, 1e-9);
+  EXPECT_TRUE(d.findings.empty());
+}
+
+TEST(Decode, ZoomPositionIsSigned) {
+  Decoded d = dec("#tpMU4rZOMFFB447");
+  EXPECT_EQ(field(d, "position").integer, -76);
+}
+
+TEST(Decode, GpsBinaryStructLittleEndian) {
+  std::string data;
+  auto le = [&](std::uint32_t v, int n) {
+    for (int i = 0; i < n; ++i) data += static_cast<char>((v >> (8 * i)) & 0xFF);
+  };
+  le(static_cast<std::uint16_t>(-1500), 2);
+  le(static_cast<std::uint32_t>(1203456789), 4);
+  le(static_cast<std::uint32_t>(-301234567), 4);
+  le(static_cast<std::uint32_t>(123456), 4);
+  std::string s = build_frame({.header = Header::variable, .src = 'P', .dst = 'D',
+                               .control = 'w', .ident = "GPS", .data = data});
+  Decoded d = dec(s);
+  ASSERT_NE(d.command, nullptr);
+  EXPECT_NEAR(field(d, "longitude").value, 120.3456789, 1e-9);
+  EXPECT_NEAR(field(d, "latitude").value, -30.1234567, 1e-9);
+  EXPECT_NEAR(field(d, "altitude").value, 123.456, 1e-9);
+  EXPECT_EQ(field(d, "longitude").unit(), "deg");
+  for (const auto& f : d.findings) EXPECT_NE(f.severity, Severity::error) << f.message;
+}
+
+TEST(Decode, TmpQuirkTemperatures) {
+  std::string body = "#PDP16TMP" + std::string("0A0" "64" "01F4") + "140" "20" "FF38" + "0123";
+  char cs[2];
+  put_hex2(checksum(body), cs);
+  Decoded d = dec(body + std::string(cs, 2));
+  ASSERT_NE(d.command, nullptr);
+  EXPECT_EQ(d.command->ident, "TMP");
+  EXPECT_EQ(field(d, "x_high").integer, 0xA0);
+  EXPECT_NEAR(field(d, "t_high").value, 50.0, 1e-9);
+  EXPECT_NEAR(field(d, "t_low").value, -20.0, 1e-9);
+  EXPECT_NEAR(field(d, "t_center").value, 29.1, 1e-9);
+  EXPECT_EQ(field(d, "t_center").unit(), "degC");
+}
+
+TEST(Decode, IpAddressAndCardCapacity) {
+  Decoded ip = dec("#tpUDDwIPV192.168.31.22D7", Dialect::skydroid);
+  EXPECT_EQ(field(ip, "address").text, "192.168.31.22");
+  std::string sdc = build_frame({.header = Header::variable, .src = 'D', .dst = 'U',
+                                 .control = 'r', .ident = "SDC", .data = "0123400ABC"});
+  Decoded d = dec(sdc, Dialect::skydroid);
+  EXPECT_EQ(field(d, "free").integer, 0x01234);
+  EXPECT_EQ(field(d, "total").integer, 0x00ABC);
+  EXPECT_EQ(format_value(field(d, "free")), "4660 MB");
+  std::string none = build_frame({.header = Header::variable, .src = 'D', .dst = 'P',
+                                  .control = 'r', .ident = "SDC", .data = "NNNNN"});
+  Decoded n = dec(none, Dialect::topotek);
+  ASSERT_FALSE(n.fields.empty());
+  EXPECT_TRUE(n.fields[0].none);
+}
+
+TEST(Decode, LowercaseHexDataIsDecodedAndReported) {
+  std::string s = build_frame({.header = Header::variable, .src = 'U', .dst = 'G',
+                               .control = 'w', .ident = "GAY", .data = "ec7832"});
+  Decoded d = dec(s, Dialect::topotek);
+  EXPECT_DOUBLE_EQ(field(d, "angle").value, -50.0);
+  EXPECT_TRUE(toptest::has_code(d.findings, FindingCode::lowercase_hex));
+}
+
+TEST(Decode, UnknownIdentKeepsTheFrame) {
+  Decoded d = dec("#TPUD2wQQQ0155", Dialect::skydroid);
+  EXPECT_EQ(d.command, nullptr);
+  EXPECT_TRUE(toptest::has_code(d.findings, FindingCode::unknown_ident));
+}
+
+TEST(Decode, ExampleDataDecodesCleanForEveryForm) {
+  for (Dialect dl : {Dialect::skydroid, Dialect::topotek})
+    for (const CommandSpec& c : commands(dl))
+      for (const FormSpec& f : c.forms) {
+        std::string data = example_data(f);
+        EXPECT_GE(data.size(), f.min_length) << c.ident;
+        EXPECT_LE(data.size(), f.max_length) << c.ident;
+      }
+}
+
+TEST(Decode, SkydroidNoCardIsNotZeroMegabytes) {
+  std::string s = build_frame({.header = Header::variable, .src = 'D', .dst = 'U',
+                               .control = 'r', .ident = "SDC", .data = "0000000000"});
+  Decoded d = dec(s, Dialect::skydroid);
+  ASSERT_EQ(d.fields.size(), 2u);
+  EXPECT_TRUE(d.fields[0].none);
+  EXPECT_TRUE(d.fields[1].none);
+  EXPECT_EQ(d.summary(), "none (all zero: no memory card)");
+  // A full card (no MB free) is not "no card".
+  std::string full = build_frame({.header = Header::variable, .src = 'D', .dst = 'U',
+                                  .control = 'r', .ident = "SDC", .data = "000001D1C0"});
+  Decoded f = dec(full, Dialect::skydroid);
+  EXPECT_FALSE(f.fields[0].none);
+  EXPECT_EQ(f.fields[0].integer, 0);
+  EXPECT_EQ(f.fields[1].integer, 0x1D1C0);
+}

@@ -160,3 +160,35 @@ TEST(Stream, FlushReleasesAHeldFrame) {
   ASSERT_TRUE(d.next(it));
   EXPECT_EQ(it.frame.raw, "#TPUD2wCAP013E");
 }
+
+TEST(Stream, LargeChunkIsDecodedLazily) {
+  std::string big;
+  for (int i = 0; i < 100000; ++i) big += "#TPUD2wCAP013E";
+  StreamDecoder d;
+  d.feed(big);
+  StreamItem it;
+  std::size_t n = 0;
+  ASSERT_TRUE(d.next(it));
+  ++n;
+  // Only a bounded number of items were decoded ahead.
+  EXPECT_GT(d.buffered(), big.size() / 2);
+  while (d.next(it)) ++n;
+  d.finish();
+  while (d.next(it)) ++n;
+  EXPECT_EQ(n, 100000u);
+}
+
+TEST(Stream, HostileNestedHeadersStayLinear) {
+  // A long #Tp frame with a bad checksum whose data is full of '#Tp' headers
+  // that each declare 65535 bytes: only a bounded number are tried.
+  std::string unit = std::string("#TpUD\xff\xff") + "GPS";
+  std::string data;
+  while (data.size() + unit.size() < 60000) data += unit;
+  std::string frame = std::string("#TpUD") + static_cast<char>(data.size() >> 8) +
+                      static_cast<char>(data.size() & 0xFF) + "GPS" + data + "00";
+  auto items = decode_all(frame + frame);
+  ASSERT_FALSE(items.empty());
+  std::uint64_t covered = 0;
+  for (const auto& it : items) covered += it.length;
+  EXPECT_EQ(covered, 2 * frame.size());
+}

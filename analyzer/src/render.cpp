@@ -171,8 +171,11 @@ std::string finding_line(const top::Finding& x) {
 std::string frame_tree(const top::Frame& f, const top::Decoded& d) {
   std::string s;
   auto line = [&](const std::string& t) { s += "  " + t + "\n"; };
-  line("header   " + std::string(f.header_text()) + " (" +
-       std::string(top::to_string(f.header)) + ")                  @0");
+  static constexpr const char* kHeaderKind[] = {
+      "fixed, length 2", "variable, one hex length char", "extended, one raw length byte",
+      "extended, two raw length bytes", "malformed Topotek TMP form"};
+  line("header   " + escape(f.header_text()) + " (" +
+       kHeaderKind[static_cast<int>(f.header)] + ")   @0");
   line("src      " + address_name(f.src));
   line("dst      " + address_name(f.dst));
   std::string len = "length   " + std::to_string(f.data_length);

@@ -2,6 +2,10 @@
 // Section numbers are the document's own.
 #include "catalog_data.hpp"
 
+// Designated initializers leave the other members at their defaults on
+// purpose; GCC before 13 warns about each omitted member under -Wextra.
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+
 namespace top::detail {
 namespace {
 
@@ -10,7 +14,7 @@ constexpr ModelSet c10pro = model_bit(Model::c10pro);
 constexpr ModelSet c12 = model_bit(Model::c12);
 constexpr ModelSet c13 = model_bit(Model::c13);
 constexpr ModelSet c20 = model_bit(Model::c20);
-// Sections without a "支持 ..." line: every model of the document.
+// Sections without a "supported models" line: every model of the document.
 constexpr ModelSet all = c10 | c10pro | c12 | c13 | c20;
 
 // ---------------------------------------------------------------------------
@@ -254,7 +258,7 @@ constexpr FormSpec kSdcForms[] = {
      .fields = kSdcQueryFields},
     {.control = 'r', .role = Role::response, .min_length = 10,
      .max_length = 10, .fields = kSdcFields,
-     .note = "all zero: no memory card"},
+     .note = "all zero: no memory card", .none = "0000000000"},
 };
 
 // 4.5.1 AWB, one char per lens
@@ -694,7 +698,7 @@ constexpr CommandSpec kTable[] = {
     {.ident = "IMG", .dialect = Dialect::skydroid, .address = 'D',
      .title = "thermal palette", .section = "SkyDroid 4.8",
      .models = c12, .forms = kImgForms,
-     .note = "the section title reads 伪装 (camouflage) for 伪彩 (palette); "
+     .note = "the section title reads 'camouflage' for 'pseudo-colour palette'; "
              "02 is not listed"},
     {.ident = "IPV", .dialect = Dialect::skydroid, .address = 'D',
      .title = "camera IP address", .section = "SkyDroid 4.9.1",
@@ -705,7 +709,7 @@ constexpr CommandSpec kTable[] = {
     {.ident = "GTW", .dialect = Dialect::skydroid, .address = 'D',
      .title = "camera gateway", .section = "SkyDroid 4.9.2",
      .models = all, .forms = kAddressReadWriteForms,
-     .note = "4.9.2.2 lists 标志位 IPV for setting the gateway (erratum; the "
+     .note = "4.9.2.2 lists the identifier IPV for setting the gateway (erratum; the "
              "example uses GTW); no support line: all five models assumed"},
     {.ident = "DNS", .dialect = Dialect::skydroid, .address = 'D',
      .title = "DNS server", .section = "SkyDroid 4.9.2",
@@ -749,7 +753,7 @@ constexpr CommandSpec kTable[] = {
     {.ident = "TDI", .dialect = Dialect::skydroid, .address = 'D',
      .title = "thermal detail enhancement", .section = "SkyDroid 4.16",
      .models = c13, .forms = kTdiForms,
-     .note = "4.16.1 gives only the table (labelled 时间, time) without "
+     .note = "4.16.1 gives only the table (its column labelled 'time') without "
              "control or identifier lines; layout taken from the read"},
     {.ident = "TIB", .dialect = Dialect::skydroid, .address = 'D',
      .title = "thermal brightness", .section = "SkyDroid 4.17",

@@ -347,6 +347,19 @@ Decoded decode(const Frame& frame, const DecodeOptions& opts) {
   std::string_view data = frame.data();
   std::size_t pos = 0;
   out.fields.reserve(form->fields.size());
+  if (!form->none.empty() && data == form->none) {
+    for (const FieldSpec& fs : form->fields) {
+      FieldValue fv;
+      fv.spec = &fs;
+      fv.offset = static_cast<std::uint32_t>(frame.data_offset + pos);
+      fv.length = fs.width ? fs.width : static_cast<std::uint32_t>(data.size() - pos);
+      fv.valid = fv.none = true;
+      fv.text = std::string(data.substr(pos, fv.length));
+      pos += fv.length;
+      out.fields.push_back(std::move(fv));
+    }
+    return out;
+  }
   for (const FieldSpec& fs : form->fields) {
     if (pos >= data.size() && fs.width != 0) break;
     std::size_t w = fs.width == 0 ? data.size() - pos : fs.width;
@@ -406,6 +419,9 @@ std::string format_value(const FieldValue& f) {
 
 std::string Decoded::summary() const {
   std::string s;
+  if (form && !form->none.empty() && !fields.empty() && fields.front().none &&
+      !form->note.empty())
+    return "none (" + std::string(form->note) + ")";
   for (const FieldValue& f : fields) {
     if (!s.empty()) s += ", ";
     s += f.name();

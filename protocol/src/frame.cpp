@@ -154,7 +154,7 @@ ParseResult parse_frame(std::string_view b, bool at_end,
     lay.header = Header::tmp_quirk;
     lay.ident_at = 6;
     lay.data_at = 9;
-    lay.declared = static_cast<std::size_t>(hex_value(b[4]) * 16 + hex_value(b[5]));
+    lay.declared = static_cast<std::size_t>(hex_value(b[4])) * 16 + static_cast<std::size_t>(hex_value(b[5]));
     lay.hex_length = false;
   } else {
     if (b[1] != 'T' && b[1] != 't')
@@ -211,7 +211,7 @@ ParseResult parse_frame(std::string_view b, bool at_end,
                                " is not r or w");
           lay.control = b[7];
           lay.declared =
-              static_cast<std::size_t>(hex_value(b[5]) * 16 + hex_value(b[6]));
+              static_cast<std::size_t>(hex_value(b[5])) * 16 + static_cast<std::size_t>(hex_value(b[6]));
           lay.two_digit = true;
           lay.hex_length = false;
           lay.ident_at = 8;

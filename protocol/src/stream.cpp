@@ -7,8 +7,14 @@ namespace top {
 namespace {
 // A garbage run is reported at the latest when it reaches this size, so a
 // stream of noise is neither held nor counted forever.
-constexpr std::uint64_t kMaxGarbageRun = 64 * 1024;
+constexpr std::uint64_t kMaxGarbageRun = std::uint64_t{64} * 1024;
 constexpr std::size_t kPreview = 32;
+// Items decoded ahead of next(): a large chunk is decoded lazily, so the
+// queue stays small whatever the chunk size.
+constexpr std::size_t kMaxReady = 64;
+// '#' bytes inside a frame that fails its checksum that are tried as the
+// start of a valid frame; a cap keeps hostile binary data linear.
+constexpr int kMaxInnerCandidates = 16;
 }  // namespace
 
 StreamDecoder::StreamDecoder(StreamOptions opts) : opts_(opts) {}
@@ -111,7 +117,7 @@ void StreamDecoder::flush_garbage() {
 
 void StreamDecoder::pump() {
   const std::string_view all(buf_);
-  while (pos_ < buf_.size()) {
+  while (pos_ < buf_.size() && ready_.size() < kMaxReady) {
     char c = buf_[pos_];
     if (has_pending_ && (c == '\r' || c == '\n')) {
       if (pending_.frame.terminator < 255) ++pending_.frame.terminator;
@@ -139,8 +145,10 @@ void StreamDecoder::pump() {
     // inside it: trust a validated length over an unvalidated one.
     if (!r.frame.checksum_ok) {
       bool wait = false, yielded = false;
-      for (std::size_t q = pos_ + 1; q < pos_ + r.consumed; ++q) {
+      int tried = 0;
+      for (std::size_t q = pos_ + 1; q < pos_ + r.consumed && tried < kMaxInnerCandidates; ++q) {
         if (buf_[q] != '#') continue;
+        ++tried;
         ParseResult inner = parse_frame(all.substr(q), at_end_, opts_.parse);
         if (inner.status == ParseStatus::need_more) {
           wait = true;

@@ -86,6 +86,9 @@ struct FormSpec {
   std::uint16_t max_length = 0;
   std::span<const FieldSpec> fields;
   std::string_view note;
+  // Whole data that means "no value" (SkyDroid SDC all zero: no card); the
+  // note says what it means.
+  std::string_view none;
 };
 
 struct CommandSpec {

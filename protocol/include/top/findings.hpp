@@ -93,7 +93,7 @@ enum class FindingCode : std::uint16_t {
 };
 
 inline constexpr std::size_t finding_code_count = 0
-#define TOP_X(e, s, sev, when) +1
+#define TOP_X(e, s, sev, when) +1  // NOLINT(bugprone-macro-parentheses)
     TOP_FINDINGS(TOP_X)
 #undef TOP_X
     ;
