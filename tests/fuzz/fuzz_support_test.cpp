@@ -35,7 +35,7 @@ TEST(Mutator, RepairsLengthAndChecksumOfEachHeader) {
   std::string ext8 = repaired(std::string("#tPUD\x01wGPS0123456789ZZ"));
   EXPECT_EQ(static_cast<unsigned char>(ext8[5]), 10u);
   EXPECT_TRUE(clean(ext8));
-  std::string ext16 = repaired(std::string("#TpUD\x09\x09LOCabcdefZZ", 17));
+  std::string ext16 = repaired(std::string("#TpUD\x09\x09LOCabcdefZZ", 18));
   EXPECT_EQ(ext16[5], 0);
   EXPECT_EQ(ext16[6], 6);
   EXPECT_TRUE(clean(ext16));
