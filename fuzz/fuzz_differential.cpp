@@ -51,13 +51,13 @@ void compare_fields(const top::Frame& f, const topref::Frame& g, std::string_vie
                    std::to_string(ref.size()));
     for (std::size_t i = 0; i < ref.size(); ++i) {
       const top::FieldValue& v = dec.fields[i];
-      FUZZ_CHECK(v.length == static_cast<std::uint32_t>(layout->fields[i].first),
+      FUZZ_CHECK(v.length == static_cast<std::uint32_t>(layout->fields[i].width),
                  std::string(name) + " \"" + show(in) + "\": field " + std::string(v.name()) +
                      " is " + std::to_string(v.length) + " chars wide, the document says " +
-                     std::to_string(layout->fields[i].first));
-      FUZZ_CHECK(v.valid == ref[i].valid,
+                     std::to_string(layout->fields[i].width));
+      FUZZ_CHECK(v.valid == ref[i].valid && v.none == ref[i].none,
                  std::string(name) + " \"" + show(in) + "\": field " + std::string(v.name()) +
-                     " validity differs");
+                     (v.none != ref[i].none ? " placeholder" : " validity") + " differs");
       if (v.valid && !v.none)
         FUZZ_CHECK(v.integer == ref[i].value,
                    std::string(name) + " \"" + show(in) + "\": field " + std::string(v.name()) +

@@ -89,24 +89,32 @@ inline std::optional<Frame> parse(std::string_view s) {
   return f;
 }
 
-// Field layouts the documents give for a few commands, as (width in chars,
-// signed) pairs of hex fields. Only what the text says outright.
+// Field layouts the documents give for a few commands: hex fields of a
+// width in chars, signed or not, and the placeholder the text allows in
+// place of a value (Topotek ZFP: "if only zoom is set, fill focus with
+// 'N''N''N''N'"). Only what the text says outright.
+struct Field {
+  int width;
+  bool is_signed;
+  const char* none = nullptr;
+};
+
 struct Layout {
   const char* dialect;  // "skydroid" or "topotek"
   const char* ident;
   char control;
   std::size_t length;
-  std::vector<std::pair<int, bool>> fields;
+  std::vector<Field> fields;
 };
 
 inline const std::vector<Layout>& layouts() {
-  using F = std::vector<std::pair<int, bool>>;
+  using F = std::vector<Field>;
   const F u2{{2, false}}, s2{{2, true}}, s2s2{{2, true}, {2, true}};
   const F s2s2s2{{2, true}, {2, true}, {2, true}};
   const F angle{{4, true}, {2, false}};
   const F angle2{{4, true}, {2, false}, {4, true}, {2, false}};
   const F att{{4, true}, {4, true}, {4, true}};
-  const F s4{{4, true}}, s4s4{{4, true}, {4, true}};
+  const F s4{{4, true}}, zoom_focus{{4, true}, {4, true, "NNNN"}};
   static const std::vector<Layout> all = {
       // SkyDroid 3.1 PTZ x1x2; 3.2 speed X0X1 "8-bit signed"; 3.3.1 angle
       // X0X1X2X3 "16-bit signed" + speed X4X5 hex; 3.3.2 GAA X0X1;
@@ -143,7 +151,7 @@ inline const std::vector<Layout>& layouts() {
       {"topotek", "GAC", 'r', 12, att},
       {"topotek", "ZOM", 'r', 4, s4},
       {"topotek", "FOC", 'r', 4, s4},
-      {"topotek", "ZFP", 'w', 8, s4s4},
+      {"topotek", "ZFP", 'w', 8, zoom_focus},
   };
   return all;
 }
@@ -156,18 +164,29 @@ inline const Layout* find_layout(std::string_view dialect, const Frame& f) {
   return nullptr;
 }
 
-// A decoded hex field: valid when every char is a hex digit (either case).
+// A decoded hex field: valid when every char is a hex digit (either case)
+// or it is the documented placeholder (none).
 struct Value {
   bool valid = false;
+  bool none = false;
   std::int64_t value = 0;
 };
 
 inline std::vector<Value> decode(const Layout& l, std::string_view data) {
   std::vector<Value> out;
   std::size_t at = 0;
-  for (auto [width, is_signed] : l.fields) {
+  for (const Field& field : l.fields) {
+    const int width = field.width;
+    const bool is_signed = field.is_signed;
     Value v;
     v.valid = true;
+    if (field.none != nullptr &&
+        data.substr(at, static_cast<std::size_t>(width)) == field.none) {
+      v.none = true;
+      out.push_back(v);
+      at += static_cast<std::size_t>(width);
+      continue;
+    }
     std::uint64_t u = 0;
     for (int i = 0; i < width; ++i) {
       char c = data[at + static_cast<std::size_t>(i)];

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "../test_util.hpp"
+#include "reference.hpp"
 #include "top/top.hpp"
 
 using namespace top;
@@ -89,4 +90,33 @@ TEST(FuzzRegression, GarbageRunsEndAt64KiBHoweverTheBytesArrive) {
     EXPECT_EQ(items[1].offset, 65536u);
     EXPECT_EQ(items[1].length, 70000u - 65536u);
   }
+}
+
+// fuzz/regressions/differential/zfp-focus-placeholder-nnnn
+//
+// Malformed: "#tpUM8wZFP!tpUNNNNDA", a Topotek ZFP (zoom & focus position)
+// whose zoom field "!tpU" is not hex and whose focus field is "NNNN". The
+// fault was in the reference parser, not the library: Topotek 3.x says "if
+// only zoom is set, fill focus with 'N''N''N''N'", which the catalog models
+// and the reference did not. Both must now read focus as the placeholder and
+// zoom as invalid, so the differential target agrees.
+TEST(FuzzRegression, ZfpFocusPlaceholderIsNotAValue) {
+  const std::string in = regression("differential", "zfp-focus-placeholder-nnnn");
+  const auto g = topref::parse(in);
+  ASSERT_TRUE(g.has_value());
+  const topref::Layout* l = topref::find_layout("topotek", *g);
+  ASSERT_NE(l, nullptr);
+  const auto ref = topref::decode(*l, g->data);
+  ASSERT_EQ(ref.size(), 2u);
+  EXPECT_FALSE(ref[0].valid);
+  EXPECT_TRUE(ref[1].valid && ref[1].none);
+
+  const ParseResult r = parse_exact(in);
+  ASSERT_EQ(r.status, ParseStatus::frame);
+  DecodeOptions o;
+  o.dialect = Dialect::topotek;
+  const Decoded d = decode(r.frame, o);
+  ASSERT_EQ(d.fields.size(), 2u);
+  EXPECT_FALSE(d.fields[0].valid);
+  EXPECT_TRUE(d.fields[1].valid && d.fields[1].none);
 }
