@@ -32,7 +32,7 @@ fi
 
 started=$(date +%s)
 cmake --preset fuzz >/dev/null
-cmake --build --preset fuzz
+cmake --build --preset fuzz --target topkit_fuzz_all
 build=build/fuzz/fuzz
 dict=$build/top.dict
 artifacts=build/fuzz/artifacts
