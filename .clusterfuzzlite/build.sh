@@ -12,8 +12,8 @@ cmake -S . -B build/oss -G Ninja \
   -DCMAKE_C_COMPILER="$CC" -DCMAKE_CXX_COMPILER="$CXX" \
   -DCMAKE_C_FLAGS="$CFLAGS" -DCMAKE_CXX_FLAGS="$CXXFLAGS" \
   -DTOPKIT_FUZZ=ON -DTOPKIT_FUZZ_ENGINE="$LIB_FUZZING_ENGINE" \
-  -DTOPKIT_TESTS=OFF -DTOPKIT_TOOLS=OFF -DTOPKIT_BENCH=OFF
-cmake --build build/oss -j"$(nproc)"
+  -DTOPKIT_TESTS=OFF -DTOPKIT_TOOLS=ON -DTOPKIT_BENCH=OFF
+cmake --build build/oss -j"$(nproc)" --target topkit_fuzz_all
 
 cp build/oss/fuzz/top.dict "$OUT/top.dict"
 for bin in build/oss/fuzz/fuzz_*; do
