@@ -6,7 +6,8 @@
 # summary line per target. Skips, with a message, when clang++ or libFuzzer
 # is missing.
 #
-#   fuzz/run-ci.sh                   # every target, 60 s each
+#   fuzz/run-ci.sh                   # every target, 60 s each (less when
+#                                    # they would not fit TOPKIT_FUZZ_BUDGET=450 s)
 #   TOPKIT_FUZZ_SECONDS=10 TOPKIT_FUZZ_JOBS=1 fuzz/run-ci.sh fuzz_frame
 #
 # Crash inputs are kept under build/fuzz/artifacts/<target>/ (turn each
@@ -16,6 +17,9 @@ cd "$(dirname "$0")/.."
 
 seconds=${TOPKIT_FUZZ_SECONDS:-60}
 jobs=${TOPKIT_FUZZ_JOBS:-2}
+# The whole script (build included) should end within this many seconds:
+# when there are too many targets for $seconds each, each gets less.
+budget=${TOPKIT_FUZZ_BUDGET:-450}
 
 if ! command -v clang++ >/dev/null 2>&1; then
   echo "fuzz/run-ci.sh: SKIPPED: clang++ not found (install clang and libclang-rt-14-dev to fuzz)"
@@ -46,6 +50,15 @@ fi
 if [ ${#targets[@]} -eq 0 ]; then
   echo "fuzz/run-ci.sh: no fuzz targets were built" >&2
   exit 1
+fi
+
+elapsed=$(( $(date +%s) - started ))
+rounds=$(( (${#targets[@]} + jobs - 1) / jobs ))
+fair=$(( (budget - elapsed) / rounds ))
+if [ "$fair" -lt "$seconds" ]; then
+  [ "$fair" -lt 10 ] && fair=10
+  echo "fuzz/run-ci.sh: ${#targets[@]} targets in a ${budget}s budget (build took ${elapsed}s): ${fair}s each"
+  seconds=$fair
 fi
 
 work=$(mktemp -d)
