@@ -29,6 +29,7 @@ void StreamDecoder::reset() {
   garbage_preview_.clear();
   garbage_has_reason_ = false;
   ready_.clear();
+  has_held_ = false;
 }
 
 void StreamDecoder::feed(std::string_view chunk) {
@@ -37,7 +38,10 @@ void StreamDecoder::feed(std::string_view chunk) {
   buf_.append(chunk.data(), chunk.size());
 }
 
-void StreamDecoder::finish() { at_end_ = true; }
+void StreamDecoder::finish() {
+  at_end_ = true;
+  has_held_ = false;  // judged again with no more bytes to come
+}
 
 void StreamDecoder::flush() {
   pump();
@@ -78,21 +82,31 @@ void StreamDecoder::release_pending() {
 
 void StreamDecoder::add_garbage(std::size_t at, std::size_t len, const Finding* why) {
   release_pending();
-  std::uint64_t off = base_ + at;
-  if (garbage_len_ == 0) {
-    garbage_start_ = off;
-    garbage_preview_.clear();
-    garbage_has_reason_ = false;
+  // A run ends at exactly kMaxGarbageRun bytes however the bytes arrived
+  // (adding a long span at once used to overshoot the cap, so the items
+  // depended on the chunking).
+  while (len > 0) {
+    std::uint64_t off = base_ + at;
+    if (garbage_len_ == 0) {
+      garbage_start_ = off;
+      garbage_preview_.clear();
+      garbage_has_reason_ = false;
+    }
+    if (why && !garbage_has_reason_) {
+      garbage_reason_ = *why;
+      garbage_reason_.offset += static_cast<std::uint32_t>(off - garbage_start_);
+      garbage_has_reason_ = true;
+    }
+    const std::size_t take =
+        static_cast<std::size_t>(std::min<std::uint64_t>(len, kMaxGarbageRun - garbage_len_));
+    if (garbage_preview_.size() < kPreview)
+      garbage_preview_.append(buf_, at, std::min(take, kPreview - garbage_preview_.size()));
+    garbage_len_ += take;
+    at += take;
+    len -= take;
+    why = nullptr;
+    if (garbage_len_ >= kMaxGarbageRun) flush_garbage();
   }
-  if (why && !garbage_has_reason_) {
-    garbage_reason_ = *why;
-    garbage_reason_.offset += static_cast<std::uint32_t>(off - garbage_start_);
-    garbage_has_reason_ = true;
-  }
-  if (garbage_preview_.size() < kPreview)
-    garbage_preview_.append(buf_, at, std::min(len, kPreview - garbage_preview_.size()));
-  garbage_len_ += len;
-  if (garbage_len_ >= kMaxGarbageRun) flush_garbage();
 }
 
 void StreamDecoder::flush_garbage() {
@@ -132,7 +146,17 @@ void StreamDecoder::pump() {
       pos_ = end;
       continue;
     }
-    ParseResult r = parse_frame(all.substr(pos_), at_end_, opts_.parse);
+    ParseResult r;
+    std::size_t scan_from = pos_ + 1;
+    int tried = 0;
+    if (has_held_ && held_at_ == base_ + pos_) {
+      r = std::move(held_);
+      scan_from = static_cast<std::size_t>(held_scan_ - base_);
+      tried = held_tried_;
+    } else {
+      r = parse_frame(all.substr(pos_), at_end_, opts_.parse);
+    }
+    has_held_ = false;
     if (r.status == ParseStatus::need_more) break;
     if (r.status == ParseStatus::invalid) {
       std::size_t next = buf_.find('#', pos_ + 1);
@@ -145,15 +169,19 @@ void StreamDecoder::pump() {
     // inside it: trust a validated length over an unvalidated one.
     if (!r.frame.checksum_ok) {
       bool wait = false, yielded = false;
-      int tried = 0;
-      for (std::size_t q = pos_ + 1; q < pos_ + r.consumed && tried < kMaxInnerCandidates; ++q) {
+      for (std::size_t q = scan_from; q < pos_ + r.consumed && tried < kMaxInnerCandidates; ++q) {
         if (buf_[q] != '#') continue;
-        ++tried;
         ParseResult inner = parse_frame(all.substr(q), at_end_, opts_.parse);
         if (inner.status == ParseStatus::need_more) {
+          // Hold the outer parse; resume at this '#' when more bytes come.
           wait = true;
+          has_held_ = true;
+          held_at_ = base_ + pos_;
+          held_scan_ = base_ + q;
+          held_tried_ = tried;
           break;
         }
+        ++tried;
         if (inner.status == ParseStatus::frame && inner.frame.checksum_ok) {
           Finding why = make_finding(
               r.frame.has(FindingCode::no_checksum) ? FindingCode::no_checksum
@@ -167,7 +195,10 @@ void StreamDecoder::pump() {
           break;
         }
       }
-      if (wait) break;
+      if (wait) {
+        held_ = std::move(r);
+        break;
+      }
       if (yielded) continue;
     }
     release_pending();

@@ -77,6 +77,15 @@ class StreamDecoder {
   Finding garbage_reason_;
   bool garbage_has_reason_ = false;
   std::deque<StreamItem> ready_;
+  // A complete frame that fails its checksum, held while a frame that
+  // starts inside it is still incomplete: its parse and the stream offset of
+  // the '#' to try next, so each new chunk costs only that inner parse
+  // rather than the whole frame again (which made small chunks quadratic).
+  bool has_held_ = false;
+  std::uint64_t held_at_ = 0;
+  std::uint64_t held_scan_ = 0;
+  int held_tried_ = 0;
+  ParseResult held_;
 };
 
 }  // namespace top

@@ -1,0 +1,108 @@
+// Target: one buffer that should hold one frame (parse_exact), decoded in
+// every dialect. Checks the frame model's invariants, and that the parse
+// verdict does not depend on whether more bytes may follow.
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "check.hpp"
+#include "mutator.hpp"
+#include "top/top.hpp"
+
+using namespace top;
+using topfuzz::show;
+
+namespace {
+
+std::string describe(const Frame& f) {
+  return "raw=\"" + show(f.raw) + "\" data_offset=" + std::to_string(f.data_offset) +
+         " data_length=" + std::to_string(f.data_length);
+}
+
+void check_frame(std::string_view in, const Frame& f) {
+  FUZZ_CHECK(f.raw.size() <= in.size() && in.substr(0, f.raw.size()) == f.raw,
+             "raw is not a prefix of the input: " + describe(f));
+  FUZZ_CHECK(std::size_t{f.data_offset} + f.data_length <= f.raw.size(),
+             "data runs past the frame: " + describe(f));
+  const std::size_t cs_at = std::size_t{f.data_offset} + f.data_length;
+  FUZZ_CHECK(f.raw.size() == cs_at + (f.checksum_present ? 2 : 0),
+             "frame length is not data + checksum: " + describe(f));
+  FUZZ_CHECK(f.expected_checksum == checksum(std::string_view(f.raw).substr(0, cs_at)),
+             "expected_checksum is not the byte sum: " + describe(f));
+  FUZZ_CHECK(f.checksum_ok == (f.checksum_present && f.checksum == f.expected_checksum),
+             "checksum_ok disagrees with the digits: " + describe(f));
+  FUZZ_CHECK(f.checksum_ok || f.has(FindingCode::bad_checksum) ||
+                 f.has(FindingCode::no_checksum) ||
+                 f.has(FindingCode::checksum_header_case),
+             "a failing checksum without a finding that says so: " + describe(f));
+  FUZZ_CHECK(!f.checksum_present || f.checksum_text().size() == 2,
+             "checksum text is not two chars: " + describe(f));
+  for (const Finding& x : f.findings) {
+    FUZZ_CHECK(x.offset <= in.size(), "finding " + std::string(to_string(x.code)) +
+                                          " offset " + std::to_string(x.offset) +
+                                          " past the input of " + std::to_string(in.size()));
+    FUZZ_CHECK(!x.message.empty(), "finding without a message");
+  }
+  FUZZ_CHECK(is_address(f.src) && is_address(f.dst), "addresses outside U M D E P G: " + describe(f));
+}
+
+void check_decoded(const Frame& f, const Decoded& d) {
+  for (const FieldValue& v : d.fields) {
+    FUZZ_CHECK(v.spec != nullptr, "field without a spec");
+    FUZZ_CHECK(v.offset >= f.data_offset &&
+                   std::size_t{v.offset} + v.length <= std::size_t{f.data_offset} + f.data_length,
+               "field " + std::string(v.name()) + " outside the data: " + describe(f));
+    (void)format_value(v);
+  }
+  FUZZ_CHECK(d.form == nullptr || d.command != nullptr, "a form without a command");
+  FUZZ_CHECK(d.fields.empty() || d.form != nullptr, "fields without a form");
+  for (const Finding& x : d.findings)
+    FUZZ_CHECK(x.offset <= f.raw.size() + 2, "decode finding " + std::string(to_string(x.code)) +
+                                                 " past the frame: " + describe(f));
+  (void)d.summary();
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string_view in(reinterpret_cast<const char*>(data), size);
+  const ParseResult r = parse_exact(in);
+  FUZZ_CHECK(r.status != ParseStatus::need_more, "parse_exact asked for more bytes");
+
+  // The verdict with more bytes possibly to come is either "need more" or the
+  // same frame.
+  const ParseResult open = parse_frame(in, false);
+  const ParseResult closed = parse_frame(in, true);
+  FUZZ_CHECK(closed.status != ParseStatus::need_more, "at_end parse asked for more bytes");
+  if (open.status == ParseStatus::frame) {
+    FUZZ_CHECK(closed.status == ParseStatus::frame && closed.consumed == open.consumed &&
+                   closed.frame.raw == open.frame.raw &&
+                   closed.frame.findings.size() == open.frame.findings.size(),
+               "a frame found before the end differs at the end of input: \"" + show(in) + "\"");
+  } else if (open.status == ParseStatus::invalid) {
+    FUZZ_CHECK(closed.status == ParseStatus::invalid && closed.error.code == open.error.code &&
+                   closed.error.offset == open.error.offset,
+               "an invalid verdict changed at the end of input: \"" + show(in) + "\"");
+  }
+
+  if (r.status == ParseStatus::invalid) {
+    FUZZ_CHECK(r.error.offset <= size, "error offset past the input");
+    FUZZ_CHECK(!r.error.message.empty(), "error without a message");
+    return 0;
+  }
+  FUZZ_CHECK(r.consumed == size, "parse_exact did not account for every byte");
+  const Frame& f = r.frame;
+  check_frame(in, f);
+  FUZZ_CHECK(closed.status == ParseStatus::frame && closed.frame.raw == f.raw,
+             "parse_exact and parse_frame disagree on the frame");
+
+  static constexpr DecodeOptions kOptions[] = {
+      {Dialect::unknown, Model::unknown, Role::any},
+      {Dialect::skydroid, Model::c12, Role::any},
+      {Dialect::skydroid, Model::c10, Role::request},
+      {Dialect::topotek, Model::sip, Role::any},
+      {Dialect::topotek, Model::unknown, Role::response},
+  };
+  for (const DecodeOptions& o : kOptions) check_decoded(f, decode(f, o));
+  return 0;
+}

@@ -1,0 +1,142 @@
+// Target: the stream decoder fed in chunks whose sizes come from the input.
+//
+// Input: byte 0 = k - 1 in its low 3 bits (k chunk sizes follow); then k
+// bytes, each a chunk size 0-255 (cycled; 0 is an empty feed); the rest is
+// the stream. The items must be the same as when the stream is fed in one
+// piece; they must cover every byte exactly once, in order; frames must be
+// the stream's bytes at their offsets; and the decoder may hold no more than
+// a bounded number of bytes, whatever the split. A third run calls flush()
+// after every chunk (a live link going quiet) and must still cover every
+// byte.
+#include <algorithm>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "check.hpp"
+#include "mutator.hpp"
+#include "top/top.hpp"
+
+using namespace top;
+using topfuzz::show;
+
+namespace {
+
+// The decoder may hold a partial frame, or a frame that fails its checksum
+// plus a partial frame starting inside it: two maximal frames.
+constexpr std::size_t kMaxBuffered = 2 * max_frame_size + 64;
+
+std::string describe(const StreamItem& it) {
+  std::string s = it.kind == ItemKind::frame ? "frame" : "garbage";
+  s += " @" + std::to_string(it.offset) + "+" + std::to_string(it.length);
+  if (it.kind == ItemKind::frame)
+    s += " \"" + show(it.frame.raw) + "\" term=" + std::to_string(it.frame.terminator);
+  else
+    s += " " + std::string(to_string(it.finding.code)) + " \"" + show(it.preview) + "\"";
+  return s;
+}
+
+bool same_findings(const std::vector<Finding>& a, const std::vector<Finding>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i].code != b[i].code || a[i].severity != b[i].severity ||
+        a[i].offset != b[i].offset || a[i].message != b[i].message)
+      return false;
+  return true;
+}
+
+bool same_item(const StreamItem& a, const StreamItem& b) {
+  if (a.kind != b.kind || a.offset != b.offset || a.length != b.length) return false;
+  if (a.kind == ItemKind::garbage)
+    return a.preview == b.preview && a.finding.code == b.finding.code &&
+           a.finding.offset == b.finding.offset && a.finding.message == b.finding.message;
+  const Frame& x = a.frame;
+  const Frame& y = b.frame;
+  return x.raw == y.raw && x.header == y.header && x.data_offset == y.data_offset &&
+         x.data_length == y.data_length && x.terminator == y.terminator &&
+         x.checksum_ok == y.checksum_ok && same_findings(x.findings, y.findings);
+}
+
+void drain(StreamDecoder& d, std::vector<StreamItem>& out) {
+  StreamItem it;
+  while (d.next(it)) out.push_back(std::move(it));
+  FUZZ_CHECK(d.buffered() <= kMaxBuffered,
+             "decoder holds " + std::to_string(d.buffered()) + " bytes");
+}
+
+// Every byte of the stream belongs to exactly one item (a frame's CR/LF
+// terminator belongs to the frame), in order, and frames are the stream's own
+// bytes.
+void check_cover(std::string_view stream, const std::vector<StreamItem>& items,
+                 const char* run) {
+  std::uint64_t at = 0;
+  for (const StreamItem& it : items) {
+    FUZZ_CHECK(it.offset == at, std::string(run) + ": item " + describe(it) +
+                                    " does not start where the previous ended (" +
+                                    std::to_string(at) + ")");
+    FUZZ_CHECK(it.length > 0, std::string(run) + ": empty item " + describe(it));
+    at = it.offset + it.length;
+    if (it.kind == ItemKind::frame) {
+      FUZZ_CHECK(it.frame.raw.size() == it.length &&
+                     stream.substr(it.offset, it.length) == it.frame.raw,
+                 std::string(run) + ": frame bytes differ from the stream: " + describe(it));
+      at += it.frame.terminator;
+    }
+    FUZZ_CHECK(at <= stream.size(), std::string(run) + ": item past the end: " + describe(it));
+  }
+  FUZZ_CHECK(at == stream.size(), std::string(run) + ": items cover " + std::to_string(at) +
+                                      " of " + std::to_string(stream.size()) + " bytes");
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  if (size < 1) return 0;
+  const std::size_t k = (data[0] & 7u) + 1;
+  if (size < 1 + k) return 0;
+  std::vector<std::size_t> sizes(data + 1, data + 1 + k);
+  if (std::all_of(sizes.begin(), sizes.end(), [](std::size_t s) { return s == 0; }))
+    sizes.assign(1, 1);
+  const std::string_view stream(reinterpret_cast<const char*>(data + 1 + k), size - 1 - k);
+
+  std::vector<StreamItem> whole;
+  {
+    StreamDecoder d;
+    d.feed(stream);
+    drain(d, whole);
+    d.finish();
+    drain(d, whole);
+    FUZZ_CHECK(d.buffered() == 0, "bytes left after finish()");
+  }
+  check_cover(stream, whole, "one piece");
+
+  std::vector<StreamItem> split;
+  std::vector<StreamItem> flushed;
+  StreamDecoder d, f;
+  std::size_t at = 0, n = 0;
+  while (at < stream.size()) {
+    const std::size_t len = std::min(sizes[n++ % sizes.size()], stream.size() - at);
+    d.feed(stream.substr(at, len));
+    drain(d, split);
+    f.feed(stream.substr(at, len));
+    f.flush();
+    drain(f, flushed);
+    at += len;
+  }
+  d.finish();
+  drain(d, split);
+  f.finish();
+  drain(f, flushed);
+
+  const std::size_t common = std::min(whole.size(), split.size());
+  for (std::size_t i = 0; i < common; ++i)
+    FUZZ_CHECK(same_item(whole[i], split[i]),
+               "item " + std::to_string(i) + " depends on the split: one piece " +
+                   describe(whole[i]) + ", split " + describe(split[i]));
+  FUZZ_CHECK(whole.size() == split.size(),
+             "split gives " + std::to_string(split.size()) + " items, one piece " +
+                 std::to_string(whole.size()));
+  check_cover(stream, flushed, "flushed");
+  return 0;
+}

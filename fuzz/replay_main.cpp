@@ -1,0 +1,171 @@
+// The replay main linked into every fuzz target when libFuzzer is not used
+// (g++ builds, ctest). Runs LLVMFuzzerTestOneInput once per input:
+//
+//   fuzz_<target> [--prefix HEX] [--vectors PATH]... PATH...
+//
+// A PATH is a file or a directory (walked recursively, files in sorted
+// order). --vectors PATH takes a JSON test-vector file, or a directory of
+// them, ({"vectors":[{"name","bytes",...}]}; each code point <= 0xFF of
+// "bytes" is one byte) and runs each vector's bytes, after the bytes of
+// --prefix HEX if given (for targets whose input starts with control bytes). Every input is copied
+// into a heap block of exactly its size so ASan sees any over-read, as
+// libFuzzer does. A missing path, an unreadable file or a path with no
+// inputs is an error (exit 2): a replay that silently ran nothing would pass
+// for the wrong reason.
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size);
+extern "C" __attribute__((weak)) int LLVMFuzzerInitialize(int* argc, char*** argv);
+
+namespace fs = std::filesystem;
+
+namespace {
+
+void run_one(const std::string& bytes) {
+  std::unique_ptr<std::uint8_t[]> copy(new std::uint8_t[bytes.size()]);
+  if (!bytes.empty()) std::memcpy(copy.get(), bytes.data(), bytes.size());
+  LLVMFuzzerTestOneInput(copy.get(), bytes.size());
+}
+
+bool read_file(const fs::path& p, std::string& out) {
+  std::ifstream in(p, std::ios::binary);
+  if (!in) return false;
+  out.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return !in.bad();
+}
+
+std::vector<fs::path> files_under(const fs::path& p) {
+  std::vector<fs::path> files;
+  if (fs::is_directory(p)) {
+    for (const auto& e : fs::recursive_directory_iterator(p))
+      if (e.is_regular_file() && e.path().filename().string()[0] != '.')
+        files.push_back(e.path());
+    std::sort(files.begin(), files.end());
+  } else if (fs::exists(p)) {
+    files.push_back(p);
+  }
+  return files;
+}
+
+// JSON strings are UTF-8; each code point <= 0xFF stands for one byte.
+bool bytes_of(const std::string& utf8, std::string& out) {
+  out.clear();
+  for (std::size_t i = 0; i < utf8.size();) {
+    auto c = static_cast<unsigned char>(utf8[i]);
+    if (c < 0x80) {
+      out += static_cast<char>(c);
+      ++i;
+    } else if ((c & 0xE0) == 0xC0 && i + 1 < utf8.size()) {
+      unsigned cp = ((c & 0x1Fu) << 6) | (static_cast<unsigned char>(utf8[i + 1]) & 0x3Fu);
+      out += static_cast<char>(cp & 0xFF);
+      i += 2;
+    } else {
+      return false;  // a code point above 0xFF is not a byte
+    }
+  }
+  return true;
+}
+
+bool unhex(const std::string& hex, std::string& out) {
+  if (hex.size() % 2 != 0) return false;
+  out.clear();
+  for (std::size_t i = 0; i < hex.size(); i += 2) {
+    unsigned v = 0;
+    if (std::sscanf(hex.c_str() + i, "%2x", &v) != 1) return false;
+    out += static_cast<char>(v);
+  }
+  return true;
+}
+
+int replay_vectors(const fs::path& p, const std::string& prefix, std::size_t& count) {
+  std::vector<fs::path> files;
+  for (const fs::path& f : files_under(p))
+    if (f.extension() == ".json") files.push_back(f);
+  if (files.empty()) {
+    std::fprintf(stderr, "replay: no JSON vector files at %s\n", p.c_str());
+    return 2;
+  }
+  for (const fs::path& f : files) {
+    std::string text;
+    if (!read_file(f, text)) {
+      std::fprintf(stderr, "replay: cannot read %s\n", f.c_str());
+      return 2;
+    }
+    nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
+    if (doc.is_discarded() || !doc.contains("vectors") || !doc["vectors"].is_array()) {
+      std::fprintf(stderr, "replay: %s is not a vector file ({\"vectors\":[...]})\n",
+                   f.c_str());
+      return 2;
+    }
+    std::size_t index = 0;
+    for (const auto& v : doc["vectors"]) {
+      std::string bytes;
+      if (!v.contains("bytes") || !v["bytes"].is_string() ||
+          !bytes_of(v["bytes"].get<std::string>(), bytes)) {
+        std::fprintf(stderr, "replay: %s: vector %zu has no byte string\n", f.c_str(),
+                     index);
+        return 2;
+      }
+      run_one(prefix + bytes);
+      ++count;
+      ++index;
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (LLVMFuzzerInitialize) LLVMFuzzerInitialize(&argc, &argv);
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: %s [--prefix HEX] [--vectors PATH]... PATH...\n", argv[0]);
+    return 2;
+  }
+  std::size_t count = 0;
+  std::string prefix;
+  for (int i = 1; i < argc; ++i) {
+    std::string arg = argv[i];
+    if (arg == "--prefix") {
+      if (i + 1 >= argc || !unhex(argv[++i], prefix)) {
+        std::fprintf(stderr, "replay: --prefix needs hex digits\n");
+        return 2;
+      }
+      continue;
+    }
+    if (arg == "--vectors") {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "replay: --vectors needs a path\n");
+        return 2;
+      }
+      if (int rc = replay_vectors(argv[++i], prefix, count)) return rc;
+      continue;
+    }
+    std::vector<fs::path> files = files_under(arg);
+    if (files.empty()) {
+      std::fprintf(stderr, "replay: no inputs at %s\n", arg.c_str());
+      return 2;
+    }
+    for (const fs::path& f : files) {
+      std::string bytes;
+      if (!read_file(f, bytes)) {
+        std::fprintf(stderr, "replay: cannot read %s\n", f.c_str());
+        return 2;
+      }
+      run_one(bytes);
+      ++count;
+    }
+  }
+  std::printf("replayed %zu input(s) through %s\n", count, argv[0]);
+  return 0;
+}

@@ -1,0 +1,174 @@
+// The fuzzing support code is itself tested: a mutator that repaired
+// nothing, a reference parser that accepted everything or a dictionary the
+// engine cannot read would make every fuzz run pass for the wrong reason.
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <fstream>
+#include <string>
+
+#include "mutator.hpp"
+#include "reference.hpp"
+#include "top/top.hpp"
+
+using namespace top;
+
+namespace {
+
+std::string repaired(std::string s) {
+  topfuzz::repair_frames(reinterpret_cast<std::uint8_t*>(s.data()), s.size());
+  return s;
+}
+
+// One libFuzzer dictionary line: kw<N>="<printable, \\, \" or \xHH>".
+bool dict_entry(const std::string& line) {
+  std::size_t i = 0;
+  if (line.compare(0, 2, "kw") != 0) return false;
+  for (i = 2; i < line.size() && line[i] >= '0' && line[i] <= '9'; ++i) {
+  }
+  if (i == 2 || line.compare(i, 2, "=\"") != 0) return false;
+  for (i += 2; i + 1 < line.size(); ++i) {
+    const char c = line[i];
+    if (c == '"' || c < 0x20 || c > 0x7E) return false;
+    if (c != '\\') continue;
+    const char e = line[++i];
+    if (e == 'x') {
+      if (i + 2 >= line.size() || !std::isxdigit(static_cast<unsigned char>(line[i + 1])) ||
+          !std::isxdigit(static_cast<unsigned char>(line[i + 2])))
+        return false;
+      i += 2;
+    } else if (e != '\\' && e != '"') {
+      return false;
+    }
+  }
+  return i == line.size() - 1 && line.back() == '"';
+}
+
+bool clean(std::string_view s) {
+  ParseResult r = parse_exact(s);
+  return r.status == ParseStatus::frame && r.frame.checksum_ok && r.frame.findings.empty();
+}
+
+}  // namespace
+
+TEST(Mutator, RepairsLengthAndChecksumOfEachHeader) {
+  // Wrong length char and checksum.
+  EXPECT_EQ(repaired("#tpUG3wGAYEF0732XX"), "#tpUG6wGAYEF073288");
+  EXPECT_TRUE(clean(repaired("#TPUG9wPTZ0600")));
+  // #tP: raw length byte; #Tp: two raw length bytes.
+  std::string ext8 = repaired(std::string("#tPUD\x01wGPS0123456789ZZ"));
+  EXPECT_EQ(static_cast<unsigned char>(ext8[5]), 10u);
+  EXPECT_TRUE(clean(ext8));
+  std::string ext16 = repaired(std::string("#TpUD\x09\x09LOCabcdefZZ", 18));
+  EXPECT_EQ(ext16[5], 0);
+  EXPECT_EQ(ext16[6], 6);
+  EXPECT_TRUE(clean(ext16));
+}
+
+TEST(Mutator, RepairsEveryFrameOfABufferAndKeepsItsSize) {
+  const std::string in = "xx#tpUG0wGAYEF0732..\r\n#TPUG2wPTZ06!!#tpUM2wZMC00";
+  const std::string out = repaired(in);
+  ASSERT_EQ(out.size(), in.size());
+  StreamDecoder d;
+  d.feed(out);
+  d.finish();
+  StreamItem it;
+  int frames = 0;
+  while (d.next(it))
+    if (it.kind == ItemKind::frame) {
+      EXPECT_TRUE(it.frame.checksum_ok) << it.frame.raw;
+      ++frames;
+    }
+  EXPECT_EQ(frames, 3);
+}
+
+TEST(Mutator, CapsTheLengthAtTheHeaderMaximum) {
+  // 20 data chars do not fit a hex digit: length F, checksum after 15.
+  const std::string out = repaired("#tpUG0wGAY0123456789ABCDEFGHIJ__");
+  EXPECT_EQ(out[5], 'F');
+  EXPECT_TRUE(clean(std::string_view(out).substr(0, 10 + 15 + 2)));
+}
+
+TEST(Mutator, LeavesNothingToRepairAlone) {
+  for (std::string s : {"", "#", "#tp", "#tpUG2wPTZ0", "no frame at all", "#XY0123456789"}) {
+    std::string before = s;
+    EXPECT_EQ(topfuzz::repair_frames(reinterpret_cast<std::uint8_t*>(s.data()), s.size()), 0u)
+        << before;
+    EXPECT_EQ(s, before);
+  }
+}
+
+TEST(Mutator, LeavesAboutOneInEightUnrepaired) {
+  int left = 0;
+  const int n = 80000;
+  for (int seed = 0; seed < n; ++seed) left += topfuzz::leave_unrepaired(static_cast<unsigned>(seed));
+  EXPECT_GT(left, n / 8 - n / 80);
+  EXPECT_LT(left, n / 8 + n / 80);
+  // Deterministic from the seed.
+  EXPECT_EQ(topfuzz::leave_unrepaired(12345), topfuzz::leave_unrepaired(12345));
+}
+
+TEST(Reference, AcceptsTheDocumentsExamples) {
+  for (const char* s : {"#TPUG2wPTZ006A", "#tpUG6wGAYEF073288", "#TPMU2wERE!!30",
+                        "#tpMU4rZOMFFB447", "#tpUM8wZFPFFB400320F", "#tpPM5rVSNM33265D"}) {
+    auto f = topref::parse(s);
+    ASSERT_TRUE(f.has_value()) << s;
+    EXPECT_EQ(f->size, std::string_view(s).size()) << s;
+  }
+}
+
+TEST(Reference, RejectsWhatTheDocumentsDoNotDefine) {
+  for (const char* s : {
+           "#TPUG6wGAYEF073288",    // SkyDroid erratum: checksum computed as #tp
+           "#tpUG6wGAYEF0732 88",   // data longer than declared
+           "#tpDU3rVER0105025A",    // lying length (field note)
+           "#tpUG2wPTZ006a",        // checksum digits must be uppercase (every example)
+           "#tpUg2wPTZ0073",        // address outside U M D E P G
+           "#tpUG2xPTZ0074",        // control outside r/w
+           "#tpUG2wPtz00AA",        // identifier not uppercase
+           "#tpUG2wPTZ0",           // ends inside the frame
+       })
+    EXPECT_FALSE(topref::parse(s).has_value() && topref::parse(s)->size == std::string_view(s).size())
+        << s;
+}
+
+TEST(Reference, DecodesTheDocumentsWorkedValues) {
+  // Topotek: "#tpMU4rZOMFFB447; Z0Z1Z2Z3 = FFB4 -> -76".
+  auto f = topref::parse("#tpMU4rZOMFFB447");
+  ASSERT_TRUE(f);
+  const topref::Layout* l = topref::find_layout("topotek", *f);
+  ASSERT_NE(l, nullptr);
+  auto v = topref::decode(*l, f->data);
+  ASSERT_EQ(v.size(), 1u);
+  EXPECT_EQ(v[0].value, -76);
+  // SkyDroid 3.3.1: "-50 deg is -5000 = 0xEC78"; speed hex.
+  std::string frame = "#tpUG6wGAYEC7805";
+  char cs[2];
+  put_hex2(checksum(frame), cs);
+  frame.append(cs, 2);
+  auto h = topref::parse(frame);
+  ASSERT_TRUE(h);
+  auto w = topref::decode(*topref::find_layout("skydroid", *h), h->data);
+  ASSERT_EQ(w.size(), 2u);
+  EXPECT_EQ(w[0].value, -5000);
+  EXPECT_EQ(w[1].value, 5);
+}
+
+TEST(Dictionary, IsGeneratedFromTheCatalogInLibFuzzerSyntax) {
+  std::ifstream in(std::string(TOPKIT_BINARY_DIR) + "/fuzz/top.dict");
+  ASSERT_TRUE(in) << "fuzz/top.dict was not generated";
+  std::string line, all;
+  int entries = 0;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    EXPECT_TRUE(dict_entry(line)) << line;
+    ++entries;
+    all += line + "\n";
+  }
+  EXPECT_GT(entries, 50);
+  for (Dialect d : {Dialect::skydroid, Dialect::topotek})
+    for (const CommandSpec& c : commands(d))
+      EXPECT_NE(all.find("=\"" + std::string(c.ident) + "\""), std::string::npos) << c.ident;
+  for (const char* h : {"#TP", "#tp", "#tP", "#Tp", "#PDP16TMP"})
+    EXPECT_NE(all.find(std::string("=\"") + h + "\""), std::string::npos) << h;
+}
