@@ -4,6 +4,7 @@
 #include <asio.hpp>
 #include <cctype>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <vector>
@@ -292,16 +293,21 @@ void saleae_log(const std::string& path, LineReader& r, Analyzer& a) {
   auto head = csv_split(r.line);
   int c_name = -1, c_type = -1, c_time = -1, c_data = -1, c_err = -1;
   for (std::size_t i = 0; i < head.size(); ++i) {
-    if (head[i] == "name")
-      c_name = static_cast<int>(i);
-    else if (head[i] == "type")
-      c_type = static_cast<int>(i);
-    else if (head[i] == "start_time")
-      c_time = static_cast<int>(i);
-    else if (head[i] == "data")
-      c_data = static_cast<int>(i);
-    else if (head[i] == "error")
-      c_err = static_cast<int>(i);
+    int* col = head[i] == "name"         ? &c_name
+               : head[i] == "type"       ? &c_type
+               : head[i] == "start_time" ? &c_time
+               : head[i] == "data"       ? &c_data
+               : head[i] == "error"      ? &c_err
+                                         : nullptr;
+    if (!col) continue;
+    if (*col >= 0) {
+      a.source_note(kNoTime, ACode::log_syntax,
+                    path + ": line 1: the header names column \"" + head[i] +
+                        "\" twice; the first one is read",
+                    1, 0);
+      continue;
+    }
+    *col = static_cast<int>(i);
   }
   if (c_time < 0 || c_data < 0) {
     a.source_note(kNoTime, ACode::log_syntax,
@@ -329,7 +335,9 @@ void saleae_log(const std::string& path, LineReader& r, Analyzer& a) {
       a.source_note(kNoTime, ACode::log_syntax,
                     path + ": line " + std::to_string(r.number) + ": " + why, r.number, r.offset);
     };
-    if (static_cast<int>(cols.size()) <= std::max(c_time, c_data)) {
+    // every column the header names must be in the row (the header may name
+    // a column twice, the later one past the data columns)
+    if (static_cast<int>(cols.size()) <= std::max({c_time, c_data, c_name})) {
       bad("too few columns");
       continue;
     }
@@ -348,7 +356,10 @@ void saleae_log(const std::string& path, LineReader& r, Analyzer& a) {
     char* endp = nullptr;
     const std::string& ts_text = cols[static_cast<std::size_t>(c_time)];
     double secs = std::strtod(ts_text.c_str(), &endp);
-    std::int64_t ts = (endp && *endp == 0 && !ts_text.empty())
+    // beyond +-2^62 us (146 000 years) the time is not a time: converting it
+    // to an integer would be undefined
+    std::int64_t ts = (endp && *endp == 0 && !ts_text.empty() && std::isfinite(secs) &&
+                       std::fabs(secs) < 4.6e12)
                           ? static_cast<std::int64_t>(secs * 1e6 + (secs >= 0 ? 0.5 : -0.5))
                           : kNoTime;
     std::string other;

@@ -228,6 +228,51 @@ TEST(SerialLogs, SaleaeCsvTwoChannels) {
   EXPECT_TRUE(r.has_note(ACode::log_syntax));
 }
 
+// fuzz/regressions/capture_saleae/duplicate-name-column-out-of-range (found by
+// fuzz_capture_saleae): the header names "name", "type" and "start_time"
+// twice, the second "name" past the end of every data row. The reader took the
+// last column of each name and indexed the row with it unchecked: a read past
+// the row's end, then std::length_error. Must: say the header repeats a
+// column, read the first one, report short rows as log-syntax, and go on.
+TEST(FuzzRegression, SaleaeCsvWithADuplicatedColumnReadsTheFirst) {
+  const std::string path = std::string(TOPKIT_SOURCE_DIR) +
+                           "/fuzz/regressions/capture_saleae/duplicate-name-column-out-of-range";
+  Recorder r = read(path, {}, Format::saleae);
+  ASSERT_FALSE(r.notes.empty());
+  EXPECT_EQ(r.notes[0].note.code, ACode::log_syntax);
+  EXPECT_NE(r.notes[0].note.message.find("line 1: the header names column \"name\" twice"),
+            std::string::npos)
+      << r.notes[0].note.message;
+
+  // The same header shape, well-formed rows: the first columns are read.
+  TempDir tmp;
+  std::string csv = "name,type,start_time,duration,data,error,name\n";
+  for (char c : frame("#TPUG2wPTZ05"))
+    csv += "TX,data,1.0,8.68e-05,0x" + std::string(1, "0123456789ABCDEF"[(c >> 4) & 15]) +
+           std::string(1, "0123456789ABCDEF"[c & 15]) + ",\n";
+  csv += "TX,data,1.0\n";  // short: too few columns, not a crash
+  write_file(tmp.file("d.csv"), csv);
+  Recorder d = read(tmp.file("d.csv"), {}, Format::saleae);
+  ASSERT_EQ(d.frames.size(), 1u);
+  EXPECT_EQ(d.frames[0].from, "TX");
+  EXPECT_EQ(d.count_note(ACode::log_syntax), 2u);  // the header, the short row
+}
+
+// A start_time too large for a microsecond count (1e300 s) is no time, not
+// an undefined conversion (the asan preset adds -fsanitize=float-cast-overflow,
+// which GCC leaves out of "undefined", to catch it).
+TEST(SerialLogs, SaleaeCsvHugeTimeIsNoTime) {
+  TempDir tmp;
+  std::string csv = "name,type,start_time,duration,data,error\n";
+  for (char c : frame("#TPUG2wPTZ05"))
+    csv += "TX,data,1e300,8.68e-05,0x" + std::string(1, "0123456789ABCDEF"[(c >> 4) & 15]) +
+           std::string(1, "0123456789ABCDEF"[c & 15]) + ",\n";
+  write_file(tmp.file("h.csv"), csv);
+  Recorder r = read(tmp.file("h.csv"), {}, Format::saleae);
+  ASSERT_EQ(r.frames.size(), 1u);
+  EXPECT_EQ(r.frames[0].ts, kNoTime);
+}
+
 TEST(SerialLogs, LineLogWithEscapesAndBadLines) {
   TempDir tmp;
   std::string log = "2024-05-01T12:00:00.5Z TX " + frame("#TPUG2wPTZ05") + "\\r\\n\n" +

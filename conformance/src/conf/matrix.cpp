@@ -21,6 +21,28 @@ struct Ctx {
   }
 };
 
+// nlohmann's DOM parser with its errors returned instead of thrown: a syntax
+// error is a parse_error, but a number too large for a double (3e7043) is an
+// out_of_range (406) that carries no position. Both reach parse_error() here
+// with the byte offset.
+class Sax : public nlohmann::detail::json_sax_dom_parser<json> {
+ public:
+  explicit Sax(json& doc) : json_sax_dom_parser(doc, false) {}
+  bool parse_error(std::size_t byte, const std::string& /*token*/,
+                   const nlohmann::detail::exception& e) {
+    error = "not valid JSON at byte " + std::to_string(byte) + ": " + e.what();
+    return false;
+  }
+  std::string error;
+};
+
+std::optional<std::string> parse_json(std::string_view text, json& doc) {
+  Sax sax(doc);
+  if (!json::sax_parse(text.begin(), text.end(), &sax) || !sax.error.empty())
+    return sax.error.empty() ? std::string("not valid JSON") : sax.error;
+  return std::nullopt;
+}
+
 void only_keys(const Ctx& c, const json& o, const std::string& where,
                std::initializer_list<std::string_view> keys) {
   for (auto it = o.begin(); it != o.end(); ++it) {
@@ -433,11 +455,8 @@ LoadResult load_matrix(std::string_view text, std::string_view file) {
   LoadResult res;
   Ctx c{std::string(file), "", &res.errors};
   json doc;
-  try {
-    doc = json::parse(text.begin(), text.end());
-  } catch (const json::parse_error& e) {
-    c.err("(json)",
-          std::string("not valid JSON at byte ") + std::to_string(e.byte) + ": " + e.what());
+  if (auto bad = parse_json(text, doc)) {
+    c.err("(json)", *bad);
     return res;
   }
   if (!doc.is_object()) {
