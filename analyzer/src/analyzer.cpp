@@ -85,7 +85,19 @@ top::Severity FrameEvent::worst() const noexcept {
 
 std::size_t Latency::bucket(std::int64_t us) {
   if (us <= 1) return 0;
-  return static_cast<std::size_t>(std::log(static_cast<double>(us)) / std::log(1.01)) + 1;
+  auto exact = [](std::int64_t x) {
+    return static_cast<std::size_t>(std::log(static_cast<double>(x)) / std::log(1.01)) + 1;
+  };
+  // a log per sample is a fair part of the per-frame cost: latencies under
+  // 65.536 ms come from a table of the same formula
+  static const std::vector<std::uint16_t> table = [&] {
+    std::vector<std::uint16_t> t(std::size_t{1} << 16);
+    for (std::size_t x = 2; x < t.size(); ++x)
+      t[x] = static_cast<std::uint16_t>(exact(static_cast<std::int64_t>(x)));
+    return t;
+  }();
+  if (us < static_cast<std::int64_t>(table.size())) return table[static_cast<std::size_t>(us)];
+  return exact(us);
 }
 std::int64_t Latency::bucket_value(std::size_t b) {
   if (b == 0) return 1;
@@ -229,7 +241,49 @@ struct Conversation {
   top::DialectDetector det;
   std::uint32_t observed = 0;
   std::deque<Pending> pending;
+  // How many pending requests per (identifier, direction): lets most frames
+  // skip the scan of `pending` (stream frames, requests).
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pending_keys;
   std::uint64_t last_used = 0;
+
+  static std::uint32_t key(const char ident[3], int direction) noexcept {
+    return static_cast<std::uint32_t>(static_cast<unsigned char>(ident[0])) |
+           static_cast<std::uint32_t>(static_cast<unsigned char>(ident[1])) << 8 |
+           static_cast<std::uint32_t>(static_cast<unsigned char>(ident[2])) << 16 |
+           static_cast<std::uint32_t>(direction) << 24;
+  }
+  std::uint32_t pending_count(const char ident[3], int direction) const noexcept {
+    const std::uint32_t k = key(ident, direction);
+    for (const auto& [x, n] : pending_keys)
+      if (x == k) return n;
+    return 0;
+  }
+  void count_pending(const Pending& p, bool add) {
+    const std::uint32_t k = key(p.ident, p.dir);
+    for (auto it = pending_keys.begin(); it != pending_keys.end(); ++it) {
+      if (it->first != k) continue;
+      if (add) {
+        ++it->second;
+      } else if (--it->second == 0) {
+        *it = pending_keys.back();
+        pending_keys.pop_back();
+      }
+      return;
+    }
+    if (add) pending_keys.emplace_back(k, 1);
+  }
+  void push_pending(Pending p) {
+    count_pending(p, true);
+    pending.push_back(std::move(p));
+  }
+  void pop_pending() {
+    count_pending(pending.front(), false);
+    pending.pop_front();
+  }
+  void erase_pending(std::deque<Pending>::iterator it) {
+    count_pending(*it, false);
+    pending.erase(it);
+  }
   ConvStats st;
 };
 
@@ -271,7 +325,25 @@ struct Analyzer::Impl {
   std::uint64_t next_conv = 1;
   std::uint64_t clock = 0;
   DecodedEntry current;
-  std::unordered_map<std::uint32_t, std::uint64_t> idents;
+  top::ParseResult scratch;  // the one-frame datagram path parses into this
+  std::unordered_map<std::uint32_t, std::uint64_t> idents;  // other identifiers
+  // Frames per identifier of three [0-9A-Z] characters (every valid one): a
+  // flat table indexed in base 36.
+  std::vector<std::uint64_t> ident_table = std::vector<std::uint64_t>(36 * 36 * 36);
+
+  static int b36(char ch) noexcept {
+    return ch >= '0' && ch <= '9' ? ch - '0' : ch >= 'A' && ch <= 'Z' ? ch - 'A' + 10 : -1;
+  }
+  void count_ident(std::string_view id) {
+    if (id.size() == 3) {
+      const int a = b36(id[0]), b = b36(id[1]), c = b36(id[2]);
+      if (a >= 0 && b >= 0 && c >= 0) {
+        ++ident_table[static_cast<std::size_t>((a * 36 + b) * 36 + c)];
+        return;
+      }
+    }
+    ++idents[pack(id)];
+  }
   std::array<std::uint64_t, top::finding_code_count> codes{};
   std::array<std::uint64_t, acode_count> acodes{};
   std::unordered_map<std::uint32_t, Latency> latency;
@@ -279,7 +351,41 @@ struct Analyzer::Impl {
 
   explicit Impl(Analyzer& a) : A(a) {}
 
+  // Recently used (transport, src, dst) -> conversation and direction, so
+  // most records skip building and hashing a ConvKey. Checked on every hit;
+  // cleared when a conversation is closed.
+  struct CacheSlot {
+    Conversation* c = nullptr;
+    int d = 0;
+  };
+  std::array<CacheSlot, 64> cache{};
+
+  static std::size_t cache_slot(Transport t, const Endpoint& src, const Endpoint& dst) noexcept {
+    std::uint64_t h = static_cast<std::uint64_t>(t) + 1;
+    for (const Endpoint* e : {&src, &dst}) {
+      std::uint64_t a = 0, b = 0;
+      std::memcpy(&a, e->addr.data(), 8);
+      std::memcpy(&b, e->addr.data() + 8, 8);
+      h = (h ^ a ^ (b >> 1) ^ (std::uint64_t{e->port} << 7) ^ e->name.size()) * 0x9E3779B97F4A7C15ull;
+    }
+    return static_cast<std::size_t>(h >> 58);  // 64 slots
+  }
+
   Conversation& get(Transport t, const Endpoint& src, const Endpoint& dst, int& d) {
+    CacheSlot& slot = cache[cache_slot(t, src, dst)];
+    if (slot.c && slot.c->transport == t && slot.c->dir[slot.d].src == src &&
+        slot.c->dir[slot.d].dst == dst) {
+      slot.c->last_used = ++clock;
+      d = slot.d;
+      return *slot.c;
+    }
+    Conversation& c = get_slow(t, src, dst, d);
+    slot.c = &c;
+    slot.d = d;
+    return c;
+  }
+
+  Conversation& get_slow(Transport t, const Endpoint& src, const Endpoint& dst, int& d) {
     ConvKey k{t, src, dst};
     if (endpoint_less(dst, src)) std::swap(k.a, k.b);
     auto it = convs.find(k);
@@ -321,6 +427,7 @@ struct Analyzer::Impl {
                       " live conversations: closed conversation " + std::to_string(c.id) + " (" +
                       c.dir[0].from + " <> " + c.dir[0].to + ")";
     close(c, kNoTime);
+    cache.fill(CacheSlot{});
     note_event(kNoTime, Position{}, c.transport, nullptr, nullptr, nullptr,
                Note{ACode::conversation_limit, default_severity(ACode::conversation_limit), msg, 0},
                ++limit_notes <= 10);
@@ -416,7 +523,7 @@ struct Analyzer::Impl {
     o.dialect = dialect;
     o.model = A.opts_.model;
     o.role = role;
-    e.decoded = top::decode(f, o);
+    top::decode(f, o, e.decoded);
     if (role == top::Role::response && top::role_from_addresses(f) == top::Role::request) {
       bool has = false;
       for (const auto& x : e.decoded.findings)
@@ -427,7 +534,8 @@ struct Analyzer::Impl {
                               std::string("a response addressed ") + f.src + " to " + f.dst +
                                   " (the request's order; some simulators)"));
     }
-    e.frame = std::move(f);
+    // swapped, not moved: both keep their buffers for the next frames
+    std::swap(e.frame, f);
     e.worst = topdump::worst(e.frame, e.decoded);
     e.codes.clear();
     for (const auto& x : e.frame.findings) e.codes.push_back(x.code);
@@ -451,6 +559,11 @@ struct Analyzer::Impl {
   void materialize(Stats& s) const {
     s.per_ident.clear();
     for (const auto& [k, v] : idents) s.per_ident[unpack(k)] += v;
+    static constexpr char kDigits[] = "0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZ";
+    for (std::size_t i = 0; i < ident_table.size(); ++i)
+      if (ident_table[i])
+        s.per_ident[std::string{kDigits[i / 1296], kDigits[i / 36 % 36], kDigits[i % 36]}] +=
+            ident_table[i];
     s.per_code.clear();
     for (std::size_t i = 0; i < codes.size(); ++i)
       if (codes[i])
@@ -471,7 +584,8 @@ struct Analyzer::Impl {
     top::Dialect dialect = c.det.current();
     if (dialect == top::Dialect::unknown) dialect = top::dialect_from_frame(f);
     top::Role role = top::Role::any;
-    if (!c.pending.empty() && top::is_client_address(f.src) && !top::is_client_address(f.dst)) {
+    if (top::is_client_address(f.src) && !top::is_client_address(f.dst) &&
+        c.pending_count(f.ident, 1 - d) > 0) {
       // Addressed like a request, but it travels back to a client that asked
       // the same: a response that kept the request's address order.
       for (const Pending& p : c.pending)
@@ -509,7 +623,7 @@ struct Analyzer::Impl {
       ++s.frames;
       if (e.bad_checksum) ++s.bad_checksum;
       if (e.worst == top::Severity::error) ++s.error_frames;
-      ++idents[pack(fr.ident_view())];
+      count_ident(fr.ident_view());
       for (top::FindingCode code : e.codes) ++codes[static_cast<std::size_t>(code)];
       if (ts != kNoTime) {
         if (s.first == kNoTime || ts < s.first) s.first = ts;
@@ -543,7 +657,7 @@ struct Analyzer::Impl {
     while (!c.pending.empty() && c.pending.front().ts != kNoTime &&
            ts - c.pending.front().ts > A.opts_.timeout_us) {
       unanswered(c, c.pending.front(), false);
-      c.pending.pop_front();
+      c.pop_pending();
     }
   }
 
@@ -596,7 +710,7 @@ struct Analyzer::Impl {
     }
     if (c.pending.size() >= kMaxPending) {
       unanswered(c, c.pending.front(), false);
-      c.pending.pop_front();
+      c.pop_pending();
     }
     Pending p;
     p.ts = ev.ts;
@@ -608,7 +722,7 @@ struct Analyzer::Impl {
     p.dst = f.dst;
     p.data.assign(f.data());
     p.dir = d;
-    c.pending.push_back(std::move(p));
+    c.push_pending(std::move(p));
   }
 
   void response(Conversation& c, int d, FrameEvent& ev, top::Dialect dialect) {
@@ -618,11 +732,12 @@ struct Analyzer::Impl {
     std::string_view id = f.ident_view();
     bool ere = id == "ERE";
     // the oldest pending request it answers, preferring one whose data it echoes
-    auto m = ere ? c.pending.end()
+    const bool none = !ere && c.pending_count(f.ident, 1 - d) == 0;
+    auto m = ere || none ? c.pending.end()
                  : std::find_if(c.pending.begin(), c.pending.end(), [&](const Pending& p) {
                      return p.dir != d && same_ident(p.ident, id) && p.data == f.data();
                    });
-    if (m == c.pending.end())
+    if (m == c.pending.end() && !none)
       m = std::find_if(c.pending.begin(), c.pending.end(), [&](const Pending& p) {
         return p.dir != d && (ere ? p.dst == f.src : same_ident(p.ident, id));
       });
@@ -641,7 +756,7 @@ struct Analyzer::Impl {
                                     escape(f.data()) + "\", the write carried \"" +
                                     escape(m->data) + "\"",
                                 ev.n});
-      c.pending.erase(m);
+      c.erase_pending(m);
       return;
     }
     for (StreamStat& s : c.st.streams) {
@@ -785,7 +900,7 @@ struct Analyzer::Impl {
     }
     while (!c.pending.empty()) {
       unanswered(c, c.pending.front(), true);
-      c.pending.pop_front();
+      c.pop_pending();
     }
     for (const StreamStat& s : c.st.streams) check_stream(c, s);
     c.st.dialect = c.det.current();
@@ -820,26 +935,32 @@ void Analyzer::datagram(std::int64_t ts, const Endpoint& src, const Endpoint& ds
                         std::string_view payload, std::uint64_t record, std::uint32_t offset) {
   int d = 0;
   Conversation& c = impl_->get(Transport::udp, src, dst, d);
-  // The common case, a datagram that is exactly one valid frame, skips the
-  // stream decoder's queue: for such a payload it would yield exactly this
-  // frame (no garbage, no terminator, nothing to yield to).
-  if (!payload.empty() && payload[0] == '#') {
-    top::ParseResult r = top::parse_frame(payload, true);
-    if (r.status == top::ParseStatus::frame && r.consumed == payload.size() &&
-        r.frame.checksum_ok) {
-      impl_->frame(c, d, r.frame, Position{record, 0, offset}, ts, 0);
-      return;
-    }
+  // The common case, a datagram of back-to-back frames that pass their
+  // checksum (each perhaps followed by CR/LF), skips the stream decoder's
+  // queue: for such bytes it yields exactly these frames. The decoder takes
+  // over at the first byte that is anything else; its state there would be
+  // empty, so it yields for the rest what it yields for the whole.
+  std::size_t p = 0;
+  std::uint32_t index = 0;
+  top::ParseResult& r = impl_->scratch;
+  while (p < payload.size() && payload[p] == '#') {
+    top::parse_frame(payload.substr(p), true, top::ParseOptions{}, r);
+    if (r.status != top::ParseStatus::frame || !r.frame.checksum_ok) break;
+    std::size_t q = p + r.consumed;
+    while (q < payload.size() && (payload[q] == '\r' || payload[q] == '\n')) ++q;
+    top::note_terminator(r.frame, q - p - r.consumed);
+    impl_->frame(c, d, r.frame, Position{record, index++, offset + p}, ts, p);
+    p = q;
   }
+  if (p == payload.size()) return;
   Direction& D = c.dir[d];
   D.dec.reset();
-  D.dec.feed(payload);
+  D.dec.feed(payload.substr(p));
   D.dec.finish();
   top::StreamItem it;
-  std::uint32_t index = 0;
   while (D.dec.next(it)) {
-    Position pos{record, index++, offset + it.offset};
-    impl_->item(c, d, it, pos, ts, it.offset);
+    Position pos{record, index++, offset + p + it.offset};
+    impl_->item(c, d, it, pos, ts, p + it.offset);
   }
 }
 
@@ -928,6 +1049,7 @@ void Analyzer::finish() {
   std::sort(order.begin(), order.end(),
             [](const Conversation* a, const Conversation* b) { return a->id < b->id; });
   for (Conversation* c : order) impl_->close(*c, kNoTime);
+  impl_->cache.fill(Impl::CacheSlot{});
   impl_->convs.clear();
   std::sort(stats_.conversations.begin(), stats_.conversations.end(),
             [](const ConvStats& a, const ConvStats& b) { return a.id < b.id; });

@@ -247,8 +247,11 @@ void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes,
 
 }  // namespace
 
-Decoded decode(const Frame& frame, const DecodeOptions& opts) {
-  Decoded out;
+void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
+  out.fields.clear();
+  out.findings.clear();
+  out.command = nullptr;
+  out.form = nullptr;
   Ctx ctx{frame, out};
   out.role = opts.role != Role::any ? opts.role : role_from_addresses(frame);
   Dialect d = opts.dialect;
@@ -284,7 +287,7 @@ Decoded decode(const Frame& frame, const DecodeOptions& opts) {
             "identifier " + std::string(ident) + " is not in the " +
                 std::string(d == Dialect::unknown ? "TOP" : to_string(d)) +
                 " catalog");
-    return out;
+    return;
   }
   if (opts.model != Model::unknown && !cmd->supports(opts.model))
     ctx.add(FindingCode::unsupported_on_model, ident_at,
@@ -325,7 +328,7 @@ Decoded decode(const Frame& frame, const DecodeOptions& opts) {
     ctx.add(FindingCode::unsupported_control, 6,
             std::string(ident) + " has no '" + std::string(1, frame.control) +
                 "' form in " + std::string(cmd->section));
-    return out;
+    return;
   }
   if (!form) {
     std::string allowed;
@@ -339,7 +342,7 @@ Decoded decode(const Frame& frame, const DecodeOptions& opts) {
     ctx.add(FindingCode::data_length, frame.data_offset,
             std::to_string(len) + " data byte(s); " + std::string(ident) + " '" +
                 std::string(1, frame.control ? frame.control : '?') + "' takes " + allowed);
-    return out;
+    return;
   }
   out.form = form;
   if (form->role != Role::any && out.role == Role::any) out.role = form->role;
@@ -358,7 +361,7 @@ Decoded decode(const Frame& frame, const DecodeOptions& opts) {
       pos += fv.length;
       out.fields.push_back(std::move(fv));
     }
-    return out;
+    return;
   }
   for (const FieldSpec& fs : form->fields) {
     if (pos >= data.size() && fs.width != 0) break;
@@ -369,12 +372,16 @@ Decoded decode(const Frame& frame, const DecodeOptions& opts) {
                   std::to_string(data.size() - pos) + " left");
       break;
     }
-    FieldValue fv;
     decode_field(ctx, fs, data.substr(pos, w),
-                 static_cast<std::uint32_t>(frame.data_offset + pos), fv);
-    out.fields.push_back(std::move(fv));
+                 static_cast<std::uint32_t>(frame.data_offset + pos), out.fields.emplace_back());
     pos += w;
   }
+  return;
+}
+
+Decoded decode(const Frame& frame, const DecodeOptions& opts) {
+  Decoded out;
+  decode(frame, opts, out);
   return out;
 }
 

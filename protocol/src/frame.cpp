@@ -126,10 +126,21 @@ bool checksum_at(std::string_view b, std::size_t p, unsigned prefix_sum,
   return value == static_cast<std::uint8_t>(prefix_sum & 0xFF);
 }
 
-}  // namespace
+// Back to a default frame, keeping the capacity of raw and findings.
+void reset_keep_capacity(Frame& f) {
+  std::string raw = std::move(f.raw);
+  std::vector<Finding> findings = std::move(f.findings);
+  f = Frame{};
+  raw.clear();
+  findings.clear();
+  f.raw = std::move(raw);
+  f.findings = std::move(findings);
+}
 
-ParseResult parse_frame(std::string_view b, bool at_end,
-                        const ParseOptions& opts) {
+// The parser. A frame is built in `f` (reset first), which the result
+// refers to only when its status is frame.
+ParseResult parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Frame& f) {
+  reset_keep_capacity(f);
   const std::size_t n = b.size();
   auto short_of = [&](std::size_t want) { return n < want; };
   if (n == 0) return at_end ? truncated(0, 1) : need_more();
@@ -172,9 +183,8 @@ ParseResult parse_frame(std::string_view b, bool at_end,
       lay.header = b[2] == 'p' ? Header::variable : Header::ext8;
   }
 
-  Frame f;
   f.header = lay.header;
-  std::vector<Finding> notes;
+  std::vector<Finding>& notes = f.findings;
 
   if (lay.header != Header::tmp_quirk) {
     // --- addresses --------------------------------------------------------
@@ -312,9 +322,7 @@ ParseResult parse_frame(std::string_view b, bool at_end,
     f.checksum_present = present;
     f.checksum = value;
     f.checksum_ok = present && value == f.expected_checksum;
-    f.findings = std::move(notes);
     r.consumed = end;
-    r.frame = std::move(f);
     return r;
   };
 
@@ -414,6 +422,23 @@ ParseResult parse_frame(std::string_view b, bool at_end,
               : "checksum field '" + got + "' is not two hex digits, expected " +
                     hex2(expected)));
   return finish(L, present, value, prefix_declared);
+}
+
+}  // namespace
+
+ParseResult parse_frame(std::string_view bytes, bool at_end, const ParseOptions& opts) {
+  Frame f;
+  ParseResult r = parse_into(bytes, at_end, opts, f);
+  if (r.status == ParseStatus::frame) r.frame = std::move(f);
+  return r;
+}
+
+void parse_frame(std::string_view bytes, bool at_end, const ParseOptions& opts, ParseResult& out) {
+  ParseResult r = parse_into(bytes, at_end, opts, out.frame);
+  out.status = r.status;
+  out.consumed = r.consumed;
+  out.error = std::move(r.error);
+  if (r.status != ParseStatus::frame) reset_keep_capacity(out.frame);
 }
 
 ParseResult parse_exact(std::string_view bytes, const ParseOptions& opts) {

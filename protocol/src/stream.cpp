@@ -69,13 +69,18 @@ void StreamDecoder::compact() {
   }
 }
 
+void note_terminator(Frame& f, std::size_t count) {
+  if (count == 0) return;
+  f.terminator = static_cast<std::uint8_t>(std::min<std::size_t>(count, 255));
+  f.findings.push_back(make_finding(
+      FindingCode::crlf, static_cast<std::uint32_t>(f.raw.size()),
+      "frame followed by " + std::to_string(f.terminator) + " CR/LF byte(s)"));
+}
+
 void StreamDecoder::release_pending() {
   if (!has_pending_) return;
   Frame& f = pending_.frame;
-  if (f.terminator > 0)
-    f.findings.push_back(make_finding(
-        FindingCode::crlf, static_cast<std::uint32_t>(f.raw.size()),
-        "frame followed by " + std::to_string(f.terminator) + " CR/LF byte(s)"));
+  note_terminator(f, f.terminator);
   ready_.push_back(std::move(pending_));
   has_pending_ = false;
 }

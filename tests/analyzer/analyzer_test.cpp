@@ -398,6 +398,20 @@ TEST(Datagram, FastPathEqualsStreamDecoder) {
     p[static_cast<std::size_t>(rng() % p.size())] = static_cast<char>(rng() & 0xFF);
     payloads.push_back(p);
   }
+  // Several frames per datagram, with CR/LF runs (one over 255 bytes), and
+  // then one byte anywhere replaced: the fast path hands over to the decoder
+  // at the first byte it does not take.
+  const std::vector<std::string> parts = {
+      pcapw::frame("#tpUG6wGAYEC7832"), pcapw::frame("#TPUG2wPTZ05"), pcapw::frame("#TPUD2rVER00"),
+      pcapw::frame("#tpUG6wGAYfe0c32"), pcapw::frame("#PDP16TMP1008001720504000FA0123"), "\r\n",
+      "\n", std::string(300, '\r'), "x", "#TPUG2wPTZ0500"};
+  for (int i = 0; i < 600; ++i) {
+    std::string p;
+    const std::size_t n = 2 + rng() % 4;
+    for (std::size_t k = 0; k < n; ++k) p += parts[rng() % (k == 0 ? 5 : parts.size())];
+    if (i % 2) p[static_cast<std::size_t>(rng() % p.size())] = static_cast<char>(rng() & 0xFF);
+    payloads.push_back(p);
+  }
   for (const std::string& p : payloads) {
     Recorder r;
     Analyzer a(AnalyzerOptions{}, r);
@@ -410,6 +424,9 @@ TEST(Datagram, FastPathEqualsStreamDecoder) {
     std::size_t frames = 0, garbage = 0;
     while (dec.next(it)) {
       if (it.kind == top::ItemKind::garbage) {
+        ASSERT_LT(garbage, r.garbage_pos.size()) << escape(p);
+        EXPECT_EQ(r.garbage_pos[garbage].offset, 42u + it.offset) << escape(p);
+        EXPECT_EQ(r.garbage_pos[garbage].index, frames + garbage) << escape(p);
         ++garbage;
         continue;
       }
@@ -417,9 +434,11 @@ TEST(Datagram, FastPathEqualsStreamDecoder) {
       const auto& got = r.frames[frames++];
       EXPECT_EQ(got.raw, it.frame.raw) << escape(p);
       EXPECT_EQ(got.pos.offset, 42u + it.offset) << escape(p);
+      EXPECT_EQ(got.pos.index, frames + garbage - 1) << escape(p);
       std::vector<std::string> want;
-      top::Decoded d = top::decode(it.frame, top::DecodeOptions{top::Dialect::skydroid, top::Model::unknown,
-                                                                top::Role::any});
+      // in the dialect the conversation settled on (a TMP frame makes it Topotek)
+      top::Decoded d = top::decode(
+          it.frame, top::DecodeOptions{got.dialect, top::Model::unknown, top::Role::any});
       for (const top::Finding* x : all_findings(it.frame, d)) want.emplace_back(top::to_string(x->code));
       std::vector<std::string> have;
       for (const auto& c : got.codes)

@@ -57,6 +57,7 @@ struct Recorder : Sink {
     Position pos;
     std::string from, to, raw, ident;
     top::Role role;
+    top::Dialect dialect;
     std::uint64_t reply_to;
     std::int64_t latency;
     std::vector<std::string> codes;  // frame, catalog and session codes
@@ -77,6 +78,7 @@ struct Recorder : Sink {
     f.raw = e.entry->frame.raw;
     f.ident = std::string(e.entry->frame.ident_view());
     f.role = e.entry->decoded.role;
+    f.dialect = e.entry->decoded.dialect;
     f.reply_to = e.reply_to;
     f.latency = e.latency_us;
     for (const top::Finding* x : all_findings(e.entry->frame, e.entry->decoded))

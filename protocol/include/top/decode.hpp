@@ -55,6 +55,9 @@ Role role_from_addresses(const Frame& f) noexcept;
 // Decodes the data of a structurally parsed frame. Never fails: unknown
 // identifiers, wrong lengths and bad digits become findings.
 Decoded decode(const Frame& frame, const DecodeOptions& opts = {});
+// The same into `out`, reusing the capacity of its vectors (for loops over
+// many frames).
+void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out);
 
 // Encodes field values (in scaled units, or enum values, or text) into the
 // data of a form. Values are matched to fields by position; missing trailing

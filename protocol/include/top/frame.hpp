@@ -105,6 +105,11 @@ struct ParseResult {
 // the bytes, never on how they were split.
 ParseResult parse_frame(std::string_view bytes, bool at_end,
                         const ParseOptions& opts = {});
+// The same into `out`, reusing the capacity of its frame's raw bytes and
+// findings (for loops over many frames: no allocation once warm). The frame
+// is a default one unless the status is frame.
+void parse_frame(std::string_view bytes, bool at_end, const ParseOptions& opts,
+                 ParseResult& out);
 
 // Parses a buffer that should hold exactly one frame: a missing frame gives
 // invalid, anything after the frame but CR/LF gives a trailing-bytes finding.

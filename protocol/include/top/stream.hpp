@@ -29,6 +29,10 @@ struct StreamItem {
   std::string preview;        // kind == garbage: the first bytes (<= 32)
 };
 
+// Records that `count` CR/LF bytes followed a frame: sets its terminator
+// (capped at 255) and adds the crlf finding, as the decoder does.
+void note_terminator(Frame& f, std::size_t count);
+
 struct StreamOptions {
   ParseOptions parse;
 };
