@@ -731,14 +731,27 @@ struct Analyzer::Impl {
     ++c.st.responses;
     std::string_view id = f.ident_view();
     bool ere = id == "ERE";
-    // the oldest pending request it answers, preferring one whose data it echoes
+    // The newest pending request it answers, preferring one whose data it
+    // echoes. TOP frames carry no sequence number. Oldest-first would pair a
+    // reply to a request that was lost (never answered) instead of the
+    // retry it answers: the latency would be off by up to the timeout and
+    // the retry reported unanswered. Newest-first can only swap two
+    // identical requests in flight, whose latencies are alike.
     const bool none = !ere && c.pending_count(f.ident, 1 - d) == 0;
-    auto m = ere || none ? c.pending.end()
-                 : std::find_if(c.pending.begin(), c.pending.end(), [&](const Pending& p) {
-                     return p.dir != d && same_ident(p.ident, id) && p.data == f.data();
-                   });
+    auto m = c.pending.end();
+    auto newest = [&](auto pred) {
+      for (auto it = c.pending.end(); it != c.pending.begin();) {
+        --it;
+        if (pred(*it)) return it;
+      }
+      return c.pending.end();
+    };
+    if (!ere && !none)
+      m = newest([&](const Pending& p) {
+        return p.dir != d && same_ident(p.ident, id) && p.data == f.data();
+      });
     if (m == c.pending.end() && !none)
-      m = std::find_if(c.pending.begin(), c.pending.end(), [&](const Pending& p) {
+      m = newest([&](const Pending& p) {
         return p.dir != d && (ere ? p.dst == f.src : same_ident(p.ident, id));
       });
     if (m != c.pending.end()) {

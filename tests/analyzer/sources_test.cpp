@@ -388,6 +388,14 @@ TEST(BenchGenerator, SmallCaptureHasTheAdvertisedMix) {
   EXPECT_LT(bad, 0.06);
   EXPECT_GT(j["pairing"]["paired"].get<std::int64_t>(), frames / 5);
   EXPECT_LT(j["records"].get<std::int64_t>(), frames);  // some datagrams carry several frames
+  // Every reply comes 1-20 ms after its request; 2% of requests are never
+  // answered (and 5% of datagrams add a PTZ request nobody answers). Pairing
+  // must not hand a reply to one of those: p95 within the generator's 20 ms.
+  ASSERT_GE(j["latency"].size(), 6u);
+  for (const auto& [ident, l] : j["latency"].items()) {
+    EXPECT_LE(l["p95_ms"].get<double>(), 20.0) << ident;
+    EXPECT_GE(l["min_ms"].get<double>(), 1.0) << ident;
+  }
 }
 
 }  // namespace
