@@ -3,15 +3,19 @@
 // lines), built as fuzz_capture_<format>. The input is written to an
 // in-memory file (memfd) and read with read_file() exactly as `topdump read
 // -f FORMAT` reads a file, then the analyzer is finished. Checks: read_file
-// either reads or explains why not; every frame event the analyzer reports
-// carries the frame's own bytes; nothing crashes, leaks or hangs.
+// either reads or explains why not; the sink sees no more frames than the
+// analyzer counted; every event written as JSON Lines is valid
+// JSON; nothing crashes, leaks or hangs.
 #include <sys/mman.h>
 #include <unistd.h>
 
 #include <cstdint>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "analyzer.hpp"
+#include "output.hpp"
 #include "check.hpp"
 #include "sources.hpp"
 
@@ -23,12 +27,38 @@
 
 namespace {
 
+// Writes every event as `topdump read --json` does and checks that each
+// line is one valid JSON object (UTF-8 included: input bytes quoted in a
+// message once made nlohmann throw, aborting topdump).
 class CheckingSink : public topdump::Sink {
  public:
-  void frame(const topdump::FrameEvent& e) override { ++frames; (void)e; }
-  void garbage(const topdump::GarbageEvent&) override { ++garbage_runs; }
-  void note(const topdump::NoteEvent&) override { ++notes; }
+  void frame(const topdump::FrameEvent& e) override {
+    ++frames;
+    line.clear();
+    topdump::write_frame_json(line, e);
+    check();
+  }
+  void garbage(const topdump::GarbageEvent& e) override {
+    ++garbage_runs;
+    line = topdump::garbage_event_json(e).dump() + "\n";
+    check();
+  }
+  void note(const topdump::NoteEvent& e) override {
+    ++notes;
+    line.clear();
+    topdump::write_note_json(line, e);
+    check();
+  }
   std::uint64_t frames = 0, garbage_runs = 0, notes = 0;
+
+ private:
+  void check() {
+    FUZZ_CHECK(!line.empty() && line.back() == '\n' && line.find('\n') == line.size() - 1,
+               "a JSON line must end in its only newline");
+    FUZZ_CHECK(nlohmann::json::accept(std::string_view(line).substr(0, line.size() - 1)),
+               "not valid JSON: " + line);
+  }
+  std::string line;
 };
 
 int memfd() {

@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
 #include "test_util.hpp"
 
 using namespace top;
@@ -181,4 +185,67 @@ TEST(Decode, SkydroidNoCardIsNotZeroMegabytes) {
   EXPECT_FALSE(f.fields[0].none);
   EXPECT_EQ(f.fields[0].integer, 0);
   EXPECT_EQ(f.fields[1].integer, 0x1D1C0);
+}
+
+// format_value writes numbers as printf("%.*f") would (it uses std::to_chars,
+// which promises the same text): every numeric field of the catalog, with
+// values across its range and beyond, and huge decimal numbers.
+TEST(Decode, FormatValueNumbersAreThoseOfPrintf) {
+  auto decimals = [](double scale) {  // as decode.cpp decides them
+    int d = 0;
+    double s = scale;
+    while (d < 9 && scale > 0 && std::fabs(s - std::round(s)) > 1e-9) {
+      s *= 10;
+      ++d;
+    }
+    return d;
+  };
+  auto printf_text = [](double v, int d) {
+    std::vector<char> b(static_cast<std::size_t>(std::snprintf(nullptr, 0, "%.*f", d, v)) + 1);
+    std::snprintf(b.data(), b.size(), "%.*f", d, v);
+    return std::string(b.data());
+  };
+  std::size_t checked = 0;
+  std::uint64_t x = 88172645463325252ull;
+  auto rnd = [&] {
+    x ^= x << 13;
+    x ^= x >> 7;
+    x ^= x << 17;
+    return x;
+  };
+  for (Dialect dl : {Dialect::skydroid, Dialect::topotek})
+    for (const CommandSpec& c : commands(dl))
+      for (const FormSpec& form : c.forms)
+        for (const FieldSpec& s : form.fields) {
+          if (s.kind != FieldKind::hex_u && s.kind != FieldKind::hex_s &&
+              s.kind != FieldKind::dec_u && s.kind != FieldKind::le_i16 &&
+              s.kind != FieldKind::le_u16 && s.kind != FieldKind::le_i32 &&
+              s.kind != FieldKind::number)
+            continue;
+          for (int i = 0; i < 200; ++i) {
+            FieldValue fv;
+            fv.spec = &s;
+            fv.valid = true;
+            fv.integer = static_cast<std::int64_t>(rnd() % 2000001) - 1000000;
+            if (i % 4 == 0) fv.integer = static_cast<std::int64_t>(rnd() >> (rnd() % 64));
+            fv.value = static_cast<double>(fv.integer) * s.scale;
+            if (s.kind == FieldKind::number) {
+              fv.text = "12.5";
+              continue;  // printed as its text
+            }
+            std::string want = printf_text(fv.value, decimals(s.scale));
+            if (!s.unit.empty()) want += " " + std::string(s.unit);
+            const std::string got = format_value(fv);
+            ASSERT_EQ(got.substr(0, want.size()), want) << s.name << " " << fv.integer;
+            ++checked;
+          }
+        }
+  EXPECT_GT(checked, 5000u);
+  // past the 64-character buffer: a 1e300 value in a decimal field
+  static const FieldSpec big{"big", FieldKind::hex_u, 2, 0.5, "", 0, -1};
+  FieldValue fv;
+  fv.spec = &big;
+  fv.valid = true;
+  fv.value = 1e300;
+  EXPECT_EQ(format_value(fv), printf_text(1e300, 1));
 }

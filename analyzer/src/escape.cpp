@@ -73,4 +73,19 @@ std::string escape(std::string_view bytes) {
   return out;
 }
 
+std::string ascii_text(std::string_view message) {
+  std::string out;
+  out.reserve(message.size());
+  for (unsigned char c : message) {
+    if (c < 0x80) {
+      out += static_cast<char>(c);
+    } else {
+      char b[5];
+      std::snprintf(b, sizeof b, "\\x%02X", c);
+      out += b;
+    }
+  }
+  return out;
+}
+
 }  // namespace topdump

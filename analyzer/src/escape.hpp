@@ -15,4 +15,9 @@ std::optional<std::string> unescape(std::string_view arg, std::string& error);
 // result round-trips through unescape().
 std::string escape(std::string_view bytes);
 
+// A message as text that is valid UTF-8 (ASCII): bytes 0x80-0xFF as \xNN,
+// everything else as it is. Messages quote input through escape(); this
+// keeps a byte that slipped through from breaking a JSON line.
+std::string ascii_text(std::string_view message);
+
 }  // namespace topdump

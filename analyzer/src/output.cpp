@@ -65,7 +65,7 @@ json note_json(const Note& n) {
   json j;
   j["code"] = to_string(n.code);
   j["severity"] = top::to_string(n.severity);
-  j["message"] = n.message;
+  j["message"] = ascii_text(n.message);
   return j;
 }
 
@@ -130,8 +130,11 @@ void put_time(O& o, std::int64_t ts) {
     app(o, "null");
     return;
   }
-  std::int64_t sec = ts / 1000000, frac = ts % 1000000;
-  put_u(o, static_cast<std::uint64_t>(sec));
+  // before 1970 (a log's negative seconds): the sign, then the magnitude
+  std::uint64_t mag = ts < 0 ? 0 - static_cast<std::uint64_t>(ts) : static_cast<std::uint64_t>(ts);
+  if (ts < 0) o += '-';
+  std::uint64_t sec = mag / 1000000, frac = mag % 1000000;
+  put_u(o, sec);
   char b[7];
   b[0] = '.';
   for (int i = 6; i >= 1; --i) {
@@ -161,6 +164,24 @@ void put_double(O& o, double v) {
   std::string_view s(b, static_cast<std::size_t>(r.ptr - b));
   o += s;
   if (s.find_first_of(".e") == std::string_view::npos) app(o, ".0");
+}
+
+// A string that needs no escaping: the catalog's names, titles, sections,
+// units and enum names, finding codes and quirks, header texts (a test
+// checks every one of them).
+template <class O>
+[[gnu::always_inline]] inline void put_plain(O& o, std::string_view s) {
+  o += '"';
+  o += s;
+  o += '"';
+}
+
+// A message (ASCII by convention) as a JSON string: put_str(ascii_text(s)).
+template <class O>
+void put_text(O& o, std::string_view s) {
+  for (unsigned char c : s)
+    if (c >= 0x80) return put_str(o, std::string_view(ascii_text(s)));
+  put_str(o, s);
 }
 
 // put_str(escape(bytes)) without the temporary when nothing needs escaping.
@@ -199,7 +220,7 @@ void put_finding(O& o, const top::Finding& x) {
   put_esc(o, x.message);
   if (!x.quirk.empty()) {
     app(o, ",\"quirk\":");
-    put_str(o, x.quirk);
+    put_plain(o, x.quirk);
   }
   o += '}';
 }
@@ -227,7 +248,7 @@ void put_field(O& o, const top::FieldValue& v, const top::Frame& f) {
         put_i(o, v.integer);
         if (!v.enum_name.empty()) {
           app(o, ",\"name\":");
-          put_str(o, v.enum_name);
+          put_plain(o, v.enum_name);
         }
         break;
       default:
@@ -238,14 +259,14 @@ void put_field(O& o, const top::FieldValue& v, const top::Frame& f) {
           put_double(o, v.value);
         if (!v.enum_name.empty()) {
           app(o, ",\"name\":");
-          put_str(o, v.enum_name);
+          put_plain(o, v.enum_name);
         }
         break;
     }
   }
   if (!s.unit.empty()) {
     app(o, ",\"unit\":");
-    put_str(o, s.unit);
+    put_plain(o, s.unit);
   }
   app(o, ",\"text\":");
   put_esc(o, format_value(v));
@@ -262,7 +283,7 @@ void put_field(O& o, const top::FieldValue& v, const top::Frame& f) {
 template <class O>
 void frame_body(O& o, const top::Frame& f, const top::Decoded& d) {
   app(o, "\"header\":");
-  put_str(o, f.header_text());
+  put_plain(o, f.header_text());
   app(o, ",\"src\":");
   put_esc(o, std::string_view(&f.src, 1));
   app(o, ",\"dst\":");
@@ -290,23 +311,23 @@ void frame_body(O& o, const top::Frame& f, const top::Decoded& d) {
   app(o, ",\"expected_checksum\":");
   char hx[2];
   top::put_hex2(f.expected_checksum, hx);
-  put_str(o, std::string_view(hx, 2));
+  put_plain(o, std::string_view(hx, 2));
   app(o, ",\"raw\":");
   put_esc(o, f.raw);
   app(o, ",\"dialect\":");
-  put_str(o, top::to_string(d.dialect));
+  put_plain(o, top::to_string(d.dialect));
   app(o, ",\"role\":");
-  put_str(o, role_text(d.role));
+  put_plain(o, role_text(d.role));
   app(o, ",\"command\":");
   if (d.command) {
     app(o, "{\"ident\":");
-    put_str(o, d.command->ident);
+    put_plain(o, d.command->ident);
     app(o, ",\"title\":");
-    put_str(o, d.command->title);
+    put_plain(o, d.command->title);
     app(o, ",\"section\":");
-    put_str(o, d.command->section);
+    put_plain(o, d.command->section);
     app(o, ",\"address_class\":");
-    put_str(o, std::string_view(&d.command->address, 1));
+    put_plain(o, std::string_view(&d.command->address, 1));
     o += '}';
   } else {
     app(o, "null");
@@ -317,7 +338,7 @@ void frame_body(O& o, const top::Frame& f, const top::Decoded& d) {
   for (const auto& v : d.fields) {
     if (!first) o += ',';
     first = false;
-    put_str(o, v.name());
+    put_plain(o, v.name());
     o += ':';
     put_field(o, v, f);
   }
@@ -332,7 +353,7 @@ void frame_body(O& o, const top::Frame& f, const top::Decoded& d) {
     put_finding(o, x);
     if (!x.quirk.empty()) {
       if (!quirks.empty()) quirks += ',';
-      put_str(quirks, x.quirk);
+      put_plain(quirks, x.quirk);
     }
     if (x.severity > w) w = x.severity;
   };
@@ -440,7 +461,7 @@ void write_frame_json(std::string& out, const FrameEvent& e) {
     app(o, "\",\"severity\":\"");
     o += top::to_string(n.severity);
     app(o, "\",\"message\":");
-    put_str(o, n.message);
+    put_text(o, n.message);
     o += '}';
   }
   app(o, "]}\n");
@@ -479,7 +500,7 @@ json note_event_json(const NoteEvent& e) {
   j["offset"] = e.pos.offset;
   j["code"] = to_string(e.note.code);
   j["severity"] = top::to_string(e.note.severity);
-  j["message"] = e.note.message;
+  j["message"] = ascii_text(e.note.message);
   if (e.note.frame)
     j["frame"] = e.note.frame;
   else
@@ -496,9 +517,45 @@ void JsonSink::garbage(const GarbageEvent& e) {
   out_.buf() += '\n';
   out_.done();
 }
+void write_note_json(std::string& out, const NoteEvent& e) {
+  W o(out);
+  app(o, "{\"type\":\"finding\",\"time\":");
+  put_time(o, e.ts);
+  if (e.from) {
+    app(o, ",\"transport\":\"");
+    o += to_string(e.transport);
+    app(o, "\",\"from\":");
+    put_str(o, *e.from);
+    app(o, ",\"to\":");
+    put_str(o, *e.to);
+  } else {
+    app(o, ",\"transport\":null,\"from\":null,\"to\":null");
+  }
+  app(o, ",\"conversation\":");
+  if (e.conv)
+    put_u(o, e.conv_id());
+  else
+    app(o, "null");
+  app(o, ",\"record\":");
+  put_u(o, e.pos.record);
+  app(o, ",\"offset\":");
+  put_u(o, e.pos.offset);
+  app(o, ",\"code\":");
+  put_plain(o, to_string(e.note.code));
+  app(o, ",\"severity\":");
+  put_plain(o, top::to_string(e.note.severity));
+  app(o, ",\"message\":");
+  put_text(o, e.note.message);
+  app(o, ",\"frame\":");
+  if (e.note.frame)
+    put_u(o, e.note.frame);
+  else
+    app(o, "null");
+  app(o, "}\n");
+}
+
 void JsonSink::note(const NoteEvent& e) {
-  out_.buf() += note_event_json(e).dump();
-  out_.buf() += '\n';
+  write_note_json(out_.buf(), e);
   out_.done();
 }
 

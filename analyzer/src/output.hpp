@@ -37,6 +37,8 @@ json note_event_json(const NoteEvent& e);
 void write_frame_body(std::string& out, const top::Frame& f, const top::Decoded& d);
 // The fast writer of a frame event: appends one line (with '\n').
 void write_frame_json(std::string& out, const FrameEvent& e);
+// note_event_json(e).dump() plus a newline, written directly.
+void write_note_json(std::string& out, const NoteEvent& e);
 
 // "2 udp 10.0.0.1:40000 > 10.0.0.2:5000 ..." (no newline)
 std::string frame_line(const FrameEvent& e);

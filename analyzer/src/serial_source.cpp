@@ -302,7 +302,7 @@ void saleae_log(const std::string& path, LineReader& r, Analyzer& a) {
     if (!col) continue;
     if (*col >= 0) {
       a.source_note(kNoTime, ACode::log_syntax,
-                    path + ": line 1: the header names column \"" + head[i] +
+                    path + ": line 1: the header names column \"" + escape(head[i]) +
                         "\" twice; the first one is read",
                     1, 0);
       continue;
@@ -347,12 +347,12 @@ void saleae_log(const std::string& path, LineReader& r, Analyzer& a) {
     std::string name = c_name >= 0 ? cols[static_cast<std::size_t>(c_name)] : "serial";
     auto v = csv_byte(cols[static_cast<std::size_t>(c_data)]);
     if (!v) {
-      bad("data \"" + cols[static_cast<std::size_t>(c_data)] + "\" is not a byte");
+      bad("data \"" + escape(cols[static_cast<std::size_t>(c_data)]) + "\" is not a byte");
       continue;
     }
     if (c_err >= 0 && c_err < static_cast<int>(cols.size()) &&
         !cols[static_cast<std::size_t>(c_err)].empty())
-      bad("the analyzer flagged this byte: " + cols[static_cast<std::size_t>(c_err)]);
+      bad("the analyzer flagged this byte: " + escape(cols[static_cast<std::size_t>(c_err)]));
     char* endp = nullptr;
     const std::string& ts_text = cols[static_cast<std::size_t>(c_time)];
     double secs = std::strtod(ts_text.c_str(), &endp);
@@ -390,7 +390,7 @@ void lines_log(const std::string& path, LineReader& r, Analyzer& a) {
     }
     auto ts = parse_time(t);
     if (!ts) {
-      bad("bad time \"" + std::string(t) + "\"");
+      bad("bad time \"" + escape(t) + "\"");
       continue;
     }
     std::string err;

@@ -1,5 +1,7 @@
 #include "top/decode.hpp"
 
+#include <array>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -37,10 +39,16 @@ int decimals_of(double scale) noexcept {
   return d;
 }
 
+// printf("%.*f") (std::to_chars promises the same text, several times
+// faster); past 64 characters (a huge decimal number field) snprintf sizes it.
 std::string fmt_number(double v, int decimals) {
   char b[64];
-  std::snprintf(b, sizeof b, "%.*f", decimals, v);
-  return b;
+  auto r = std::to_chars(b, b + sizeof b, v, std::chars_format::fixed, decimals);
+  if (r.ec == std::errc()) return std::string(b, r.ptr);
+  const int n = std::snprintf(nullptr, 0, "%.*f", decimals, v);
+  std::string s(static_cast<std::size_t>(n > 0 ? n : 0), '\0');
+  std::snprintf(s.data(), s.size() + 1, "%.*f", decimals, v);
+  return s;
 }
 
 const EnumValue* find_enum(std::span<const EnumValue> e, std::int64_t v) noexcept {
@@ -268,13 +276,24 @@ void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
 
   if (frame.header == Header::fixed && frame.declared_length != 2) {
     bool g_class = cmd && cmd->address == 'G' && d == Dialect::skydroid;
-    Finding f = make_finding(
-        FindingCode::tp_length, 5,
-        "#TP frame with length " + std::to_string(frame.declared_length) +
-            " (the fixed header implies 2)" +
-            (g_class ? "; SkyDroid puts every G-class command under #TP" : ""));
-    if (g_class) f.severity = Severity::info;
-    out.findings.push_back(std::move(f));
+    // Every SkyDroid GAC stream frame has this finding: its 32 possible
+    // messages (length 0-F, G class or not) are built once.
+    auto message = [](std::uint32_t length, bool g) {
+      return "#TP frame with length " + std::to_string(length) + " (the fixed header implies 2)" +
+             (g ? "; SkyDroid puts every G-class command under #TP" : "");
+    };
+    static const std::array<std::string, 32> kMessages = [&] {
+      std::array<std::string, 32> m;
+      for (std::uint32_t i = 0; i < m.size(); ++i) m[i] = message(i % 16, i >= 16);
+      return m;
+    }();
+    Finding& f = out.findings.emplace_back();
+    f.code = FindingCode::tp_length;
+    f.severity = g_class ? Severity::info : default_severity(FindingCode::tp_length);
+    f.offset = 5;
+    f.message = frame.declared_length < 16  // two-digit lengths (TMP quirk) go past F
+                    ? kMessages[frame.declared_length + (g_class ? 16 : 0)]
+                    : message(frame.declared_length, g_class);
   }
   if (d == Dialect::skydroid &&
       (frame.header == Header::ext8 || frame.header == Header::ext16))

@@ -128,13 +128,15 @@ bool checksum_at(std::string_view b, std::size_t p, unsigned prefix_sum,
 
 // Back to a default frame, keeping the capacity of raw and findings.
 void reset_keep_capacity(Frame& f) {
-  std::string raw = std::move(f.raw);
-  std::vector<Finding> findings = std::move(f.findings);
-  f = Frame{};
-  raw.clear();
-  findings.clear();
-  f.raw = std::move(raw);
-  f.findings = std::move(findings);
+  f.header = Header::variable;
+  f.src = f.dst = f.control = 0;
+  f.ident[0] = f.ident[1] = f.ident[2] = 0;
+  f.declared_length = f.data_offset = f.data_length = 0;
+  f.checksum = f.expected_checksum = 0;
+  f.checksum_present = f.checksum_ok = false;
+  f.terminator = 0;
+  f.raw.clear();
+  f.findings.clear();
 }
 
 // The parser. A frame is built in `f` (reset first), which the result

@@ -325,6 +325,11 @@ nlohmann::json parse_unique(const std::string& line) {
 }
 
 void expect_fast_equals_reference(const Recorder& r) {
+  for (const auto& [line, ref] : r.note_json) {
+    ASSERT_EQ(line.back(), '\n');
+    EXPECT_EQ(std::count(line.begin(), line.end(), '\n'), 1);
+    EXPECT_EQ(parse_unique(line), parse_unique(ref)) << line;
+  }
   for (const auto& f : r.frames) {
     ASSERT_FALSE(f.json_fast.empty());
     ASSERT_EQ(f.json_fast.back(), '\n');
@@ -371,7 +376,61 @@ TEST(Json, FastWriterEqualsReferenceOnHostileBytes) {
   }
   a.finish();
   ASSERT_GT(r.frames.size(), 50u);
+  ASSERT_FALSE(r.notes.empty());
   expect_fast_equals_reference(r);
+}
+
+Endpoint named_ep(const char* n) {
+  Endpoint e;
+  e.name = n;
+  return e;
+}
+
+// Times before 1970 (a serial log's negative seconds) are written with their
+// sign; the writer used to put '0' minus a digit in the fraction ("0.00000/").
+TEST(Json, NegativeTimesAreNumbers) {
+  Recorder r;
+  Analyzer a(AnalyzerOptions{}, r);
+  a.chunk(-1, Transport::serial, named_ep("a"), named_ep("b"), frame("#TPUG2wPTZ05"), 1, 0);
+  a.chunk(-2500001, Transport::serial, named_ep("b"), named_ep("a"), frame("#TPGU2wPTZ05"), 2, 0);
+  a.source_note(-7, ACode::log_syntax, "a note", 3, 0);
+  a.finish();
+  ASSERT_EQ(r.frames.size(), 2u);
+  EXPECT_EQ(nlohmann::json::parse(r.frames[0].json_fast)["time"].get<double>(), -1e-6);
+  EXPECT_EQ(nlohmann::json::parse(r.frames[1].json_fast)["time"].get<double>(), -2.500001);
+  expect_fast_equals_reference(r);
+}
+
+// The JSON writer puts the catalog's strings between quotes as they are: none
+// may need escaping.
+TEST(Json, CatalogStringsNeedNoEscaping) {
+  auto plain = [](std::string_view s) {
+    for (unsigned char c : s)
+      if (c < 0x20 || c >= 0x7F || c == '"' || c == '\\') return false;
+    return true;
+  };
+  std::size_t n = 0;
+  for (top::Dialect dl : {top::Dialect::skydroid, top::Dialect::topotek}) {
+    EXPECT_TRUE(plain(top::to_string(dl)));
+    for (const top::CommandSpec& c : top::commands(dl)) {
+      EXPECT_TRUE(plain(c.ident) && plain(c.title) && plain(c.section) &&
+                  plain(std::string_view(&c.address, 1)))
+          << c.ident;
+      for (const top::FormSpec& f : c.forms)
+        for (const top::FieldSpec& fs : f.fields) {
+          EXPECT_TRUE(plain(fs.name) && plain(fs.unit) && plain(top::to_string(fs.kind)))
+              << c.ident << " " << fs.name;
+          for (const top::EnumValue& e : fs.enums) EXPECT_TRUE(plain(e.name)) << e.name;
+          ++n;
+        }
+    }
+  }
+  EXPECT_GT(n, 200u);
+  for (std::size_t i = 0; i < top::finding_code_count; ++i)
+    EXPECT_TRUE(plain(top::to_string(static_cast<top::FindingCode>(i))));
+  for (top::Header h : {top::Header::fixed, top::Header::variable, top::Header::ext8,
+                        top::Header::ext16, top::Header::tmp_quirk})
+    EXPECT_TRUE(plain(top::to_string(h)));
 }
 
 TEST(Latency, ExactThenHistogramWithinOnePercent) {

@@ -258,6 +258,31 @@ TEST(FuzzRegression, SaleaeCsvWithADuplicatedColumnReadsTheFirst) {
   EXPECT_EQ(d.count_note(ACode::log_syntax), 2u);  // the header, the short row
 }
 
+// The same input through `topdump read --json`: a short row's message quotes
+// its data column, which holds a byte 0xAB. nlohmann refused to dump the
+// non-UTF-8 message and threw: topdump aborted (exit 134). Must: exit 1 (the
+// log has errors) with every line valid JSON, the byte written as \xAB.
+TEST(FuzzRegression, SaleaeCsvNonUtf8BytesInMessagesAreEscapedInJson) {
+  std::string out;
+  const int rc = run("'" + topdump_bin() + "' read --json --format saleae '" +
+                         std::string(TOPKIT_SOURCE_DIR) +
+                         "/fuzz/regressions/capture_saleae/duplicate-name-column-out-of-range' "
+                         "2>/dev/null",
+                     out);
+  EXPECT_EQ(rc, 1);
+  std::istringstream in(out);
+  std::string line;
+  std::size_t lines = 0;
+  bool escaped = false;
+  while (std::getline(in, line)) {
+    ++lines;
+    EXPECT_TRUE(nlohmann::json::accept(line)) << line;
+    escaped |= line.find("\\\\xAB") != std::string::npos;
+  }
+  EXPECT_GT(lines, 3u);
+  EXPECT_TRUE(escaped) << out;
+}
+
 // A start_time too large for a microsecond count (1e300 s) is no time, not
 // an undefined conversion (the asan preset adds -fsanitize=float-cast-overflow,
 // which GCC leaves out of "undefined", to catch it).

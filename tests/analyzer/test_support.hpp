@@ -92,7 +92,15 @@ struct Recorder : Sink {
     garbage_codes.emplace_back(top::to_string(e.item->finding.code));
     garbage_pos.push_back(e.pos);
   }
-  void note(const NoteEvent& e) override { notes.push_back(e); }
+  // the JSON of each note, fast writer and reference, written while its
+  // endpoint strings live (the conversation may be gone after finish())
+  std::vector<std::pair<std::string, std::string>> note_json;
+  void note(const NoteEvent& e) override {
+    notes.push_back(e);
+    std::string fast;
+    write_note_json(fast, e);
+    note_json.emplace_back(std::move(fast), note_event_json(e).dump());
+  }
   bool has_note(ACode c) const {
     for (const auto& n : notes)
       if (n.note.code == c) return true;
