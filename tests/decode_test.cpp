@@ -229,11 +229,15 @@ TEST(Decode, FormatValueNumbersAreThoseOfPrintf) {
             fv.integer = static_cast<std::int64_t>(rnd() % 2000001) - 1000000;
             if (i % 4 == 0) fv.integer = static_cast<std::int64_t>(rnd() >> (rnd() % 64));
             fv.value = static_cast<double>(fv.integer) * s.scale;
+            const int d = decimals(s.scale);
+            const double m = std::round(s.scale * std::pow(10.0, d));
+            if (i % 2 && std::fabs(static_cast<double>(fv.integer) * m) < 1e15)
+              fv.value = static_cast<double>(fv.integer) * m / std::pow(10.0, d);  // as decoded
             if (s.kind == FieldKind::number) {
               fv.text = "12.5";
               continue;  // printed as its text
             }
-            std::string want = printf_text(fv.value, decimals(s.scale));
+            std::string want = printf_text(fv.value, d);
             if (!s.unit.empty()) want += " " + std::string(s.unit);
             const std::string got = format_value(fv);
             ASSERT_EQ(got.substr(0, want.size()), want) << s.name << " " << fv.integer;
@@ -248,4 +252,24 @@ TEST(Decode, FormatValueNumbersAreThoseOfPrintf) {
   fv.valid = true;
   fv.value = 1e300;
   EXPECT_EQ(format_value(fv), printf_text(1e300, 1));
+}
+
+// A scaled value is the double nearest to its decimal: 70 x 0.01 is 0.7, not
+// 0.7000000000000001 (what the multiplication gives, and what topdump --json
+// printed for about one field in six of the benchmark capture).
+TEST(Decode, ScaledValuesAreTheNearestDoubleToTheirDecimal) {
+  ParseResult r = parse_exact(build_frame({.header = Header::fixed, .src = 'G', .dst = 'U',
+                                           .control = 'r', .ident = "GAC",
+                                           .data = "0046FFAD0053"}));
+  ASSERT_EQ(r.status, ParseStatus::frame);
+  const Decoded d = decode(r.frame, {.dialect = Dialect::skydroid});
+  EXPECT_EQ(field(d, "yaw").value, 0.7);
+  EXPECT_EQ(field(d, "pitch").value, -0.83);
+  EXPECT_EQ(field(d, "roll").value, 0.83);
+  std::int64_t mant = 0;
+  int dec = 0;
+  ASSERT_TRUE(exact_decimal(field(d, "pitch"), mant, dec));
+  EXPECT_EQ(mant, -83);
+  EXPECT_EQ(dec, 2);
+  EXPECT_EQ(format_value(field(d, "pitch")), "-0.83 deg");
 }

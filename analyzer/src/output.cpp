@@ -184,6 +184,52 @@ void put_text(O& o, std::string_view s) {
   put_str(o, s);
 }
 
+// mantissa / 10^decimals as JSON: fixed notation, trailing zeros dropped
+// but one digit kept after the point ("5.0", "-2.95"), which is how nlohmann
+// writes the double nearest to it while 0.001 <= |x| < 10^15.
+template <class O>
+void put_decimal(O& o, std::int64_t mantissa, int decimals) {
+  char b[40];
+  char* e = b + sizeof b;
+  char* p = e;
+  std::uint64_t u = mantissa < 0 ? 0 - static_cast<std::uint64_t>(mantissa)
+                                 : static_cast<std::uint64_t>(mantissa);
+  bool any = false;  // a nonzero fraction digit written
+  for (int i = 0; i < decimals; ++i) {
+    const auto digit = static_cast<char>('0' + u % 10);
+    u /= 10;
+    if (any || digit != '0') {
+      *--p = digit;
+      any = true;
+    }
+  }
+  if (!any) *--p = '0';
+  *--p = '.';
+  do {
+    *--p = static_cast<char>('0' + u % 10);
+    u /= 10;
+  } while (u);
+  if (mantissa < 0) *--p = '-';
+  o.append(p, static_cast<std::size_t>(e - p));
+}
+
+constexpr double kPow10[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
+
+// A field's value: from its exact decimal when the double is the one nearest
+// to it (the decoder makes it so), else the shortest digits of the double.
+template <class O>
+void put_value(O& o, const top::FieldValue& v) {
+  std::int64_t mant = 0;
+  int dec = 0;
+  if (top::exact_decimal(v, mant, dec) && dec < 10 &&
+      static_cast<double>(mant) / kPow10[dec] == v.value &&
+      (mant == 0 || std::abs(static_cast<double>(mant)) >= kPow10[dec] / 1000)) {
+    put_decimal(o, mant, dec);
+    return;
+  }
+  put_double(o, v.value);
+}
+
 // put_str(escape(bytes)) without the temporary when nothing needs escaping.
 template <class O>
 void put_esc(O& o, std::string_view bytes) {
@@ -256,7 +302,7 @@ void put_field(O& o, const top::FieldValue& v, const top::Frame& f) {
         if (s.scale == 1.0 && s.kind != top::FieldKind::number && s.kind != top::FieldKind::nmea)
           put_i(o, v.integer);
         else
-          put_double(o, v.value);
+          put_value(o, v);
         if (!v.enum_name.empty()) {
           app(o, ",\"name\":");
           put_plain(o, v.enum_name);
@@ -448,7 +494,7 @@ void write_frame_json(std::string& out, const FrameEvent& e) {
     app(o, "null");
   app(o, ",\"latency_ms\":");
   if (e.latency_us >= 0)
-    put_d(o, static_cast<double>(e.latency_us) / 1000.0);
+    put_decimal(o, e.latency_us, 3);  // the double nearest to it is latency_us / 1000.0
   else
     app(o, "null");
   app(o, ",\"session\":[");

@@ -41,6 +41,34 @@ int decimals_of(double scale) noexcept {
 
 // printf("%.*f") (std::to_chars promises the same text, several times
 // faster); past 64 characters (a huge decimal number field) snprintf sizes it.
+constexpr double kPow10[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
+
+// A scale as m / 10^d with m an integer (0.01 -> 1/10^2, 0.5 -> 5/10^1);
+// false when it is no decimal fraction (1/3) or needs more than 9 decimals.
+bool decimal_scale(double scale, std::int64_t& m, int& d) noexcept {
+  if (scale == 1.0) {
+    m = 1;
+    d = 0;
+    return true;
+  }
+  d = decimals_of(scale);
+  const double x = scale * kPow10[d];
+  if (!(scale > 0) || std::fabs(x - std::round(x)) > 1e-9 || x > 1e9) return false;
+  m = std::llround(x);
+  return true;
+}
+
+// integer * scale, correctly rounded when the scale is a decimal fraction:
+// 0.01 * -295 gives -2.95 rather than -2.9500000000000002.
+double scaled(std::int64_t iv, double scale) noexcept {
+  std::int64_t m = 0, mant = 0;
+  int d = 0;
+  if (decimal_scale(scale, m, d) && !__builtin_mul_overflow(iv, m, &mant) &&
+      mant > -(std::int64_t{1} << 53) && mant < (std::int64_t{1} << 53))
+    return static_cast<double>(mant) / kPow10[d];
+  return static_cast<double>(iv) * scale;
+}
+
 std::string fmt_number(double v, int decimals) {
   char b[64];
   auto r = std::to_chars(b, b + sizeof b, v, std::chars_format::fixed, decimals);
@@ -147,7 +175,7 @@ void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes,
           iv = static_cast<std::int64_t>(v) - (static_cast<std::int64_t>(1) << bits);
       }
       fv.integer = iv;
-      fv.value = static_cast<double>(iv) * spec.scale;
+      fv.value = scaled(iv, spec.scale);
       fv.valid = true;
       break;
     }
@@ -159,7 +187,7 @@ void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes,
         v = v * 10 + (c - '0');
       }
       fv.integer = v;
-      fv.value = static_cast<double>(v) * spec.scale;
+      fv.value = scaled(v, spec.scale);
       fv.valid = true;
       break;
     }
@@ -204,7 +232,7 @@ void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes,
       else
         iv = static_cast<std::int32_t>(u);
       fv.integer = iv;
-      fv.value = static_cast<double>(iv) * spec.scale;
+      fv.value = scaled(iv, spec.scale);
       fv.valid = true;
       break;
     }
@@ -404,6 +432,52 @@ Decoded decode(const Frame& frame, const DecodeOptions& opts) {
   return out;
 }
 
+bool exact_decimal(const FieldValue& f, std::int64_t& mantissa, int& decimals) noexcept {
+  if (!f.spec || !f.valid || f.none) return false;
+  switch (f.spec->kind) {
+    case FieldKind::hex_u:
+    case FieldKind::hex_s:
+    case FieldKind::dec_u:
+    case FieldKind::le_i16:
+    case FieldKind::le_u16:
+    case FieldKind::le_i32:
+      break;
+    default:
+      return false;
+  }
+  std::int64_t m = 0;
+  if (!decimal_scale(f.spec->scale, m, decimals)) return false;
+  constexpr std::int64_t kMax = 1'000'000'000'000'000;  // 10^15: 15 digits
+  // and the value must be that decimal's double (a FieldValue built by hand
+  // may say otherwise): then the two texts agree
+  return !__builtin_mul_overflow(f.integer, m, &mantissa) && mantissa > -kMax &&
+         mantissa < kMax && static_cast<double>(mantissa) / kPow10[decimals] == f.value;
+}
+
+namespace {
+
+// mantissa / 10^decimals with exactly `decimals` digits after the point.
+void append_fixed(std::string& out, std::int64_t mantissa, int decimals) {
+  char b[32];
+  char* e = b + sizeof b;
+  char* p = e;
+  std::uint64_t u = mantissa < 0 ? 0 - static_cast<std::uint64_t>(mantissa)
+                                 : static_cast<std::uint64_t>(mantissa);
+  for (int i = 0; i < decimals; ++i) {
+    *--p = static_cast<char>('0' + u % 10);
+    u /= 10;
+  }
+  if (decimals > 0) *--p = '.';
+  do {
+    *--p = static_cast<char>('0' + u % 10);
+    u /= 10;
+  } while (u);
+  if (mantissa < 0) *--p = '-';
+  out.append(p, static_cast<std::size_t>(e - p));
+}
+
+}  // namespace
+
 std::string format_value(const FieldValue& f) {
   if (!f.spec) return {};
   const FieldSpec& s = *f.spec;
@@ -436,7 +510,14 @@ std::string format_value(const FieldValue& f) {
     case FieldKind::nmea: return with_unit(fmt_number(f.value, 7)) + " (" + f.text + ")";
     case FieldKind::number: return with_unit(f.text);
     default: {
-      std::string v = with_unit(fmt_number(f.value, decimals_of(s.scale)));
+      std::string v;
+      std::int64_t mantissa = 0;
+      int decimals = 0;
+      if (exact_decimal(f, mantissa, decimals))
+        append_fixed(v, mantissa, decimals);  // the text printf would give, without it
+      else
+        v = fmt_number(f.value, decimals_of(s.scale));
+      v = with_unit(std::move(v));
       if (!f.enum_name.empty()) v += " (" + std::string(f.enum_name) + ")";
       return v;
     }

@@ -30,6 +30,13 @@ struct FieldValue {
 // The value as a person reads it: "-50.00 deg", "follow (06)", "192.168.1.2".
 std::string format_value(const FieldValue& f);
 
+// The decimal a numeric field stands for, exactly: its value is the double
+// nearest to mantissa / 10^decimals, and `decimals` is the number of digits
+// format_value shows. For the integer kinds (hex, decimal, little-endian)
+// whose scale is a decimal fraction (1, 0.5, 0.01); false for the others and
+// past 15 digits.
+bool exact_decimal(const FieldValue& f, std::int64_t& mantissa, int& decimals) noexcept;
+
 struct DecodeOptions {
   Dialect dialect = Dialect::unknown;  // unknown: detect from the frame
   Model model = Model::unknown;         // unknown: no model checks
