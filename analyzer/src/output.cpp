@@ -1,6 +1,7 @@
 #include "output.hpp"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -47,6 +48,14 @@ class W {
     append(v.data(), v.size());
     return *this;
   }
+  // '"' + v + '"' (v needs no escaping)
+  [[gnu::always_inline]] void quoted(std::string_view v) {
+    if (static_cast<std::size_t>(end_ - p_) < v.size() + 2) grow(v.size() + 2);
+    *p_++ = '"';
+    std::memcpy(p_, v.data(), v.size());
+    p_ += v.size();
+    *p_++ = '"';
+  }
 
  private:
   void grow(std::size_t n) {
@@ -79,20 +88,36 @@ template <class O, std::size_t N>
   o.append(lit, N - 1);
 }
 
+// Bytes that go into a JSON string as they are.
+constexpr std::array<bool, 256> kPlain = [] {
+  std::array<bool, 256> t{};
+  for (int c = 0x20; c < 0x7F; ++c) t[static_cast<std::size_t>(c)] = c != '"' && c != '\\';
+  return t;
+}();
+
 bool plain(std::string_view s) {
-  for (char ch : s) {
-    auto c = static_cast<unsigned char>(ch);
-    if (c < 0x20 || c >= 0x7F || c == '"' || c == '\\') return false;
-  }
+  for (char ch : s)
+    if (!kPlain[static_cast<unsigned char>(ch)]) return false;
   return true;
+}
+
+// '"' + s + '"' through the writer's one-check path, or appends.
+template <class O>
+[[gnu::always_inline]] inline void quoted(O& o, std::string_view s) {
+  if constexpr (requires { o.quoted(s); }) {
+    o.quoted(s);
+  } else {
+    o += '"';
+    o += s;
+    o += '"';
+  }
 }
 
 template <class O>
 void put_str(O& o, std::string_view s) {
+  if (plain(s)) return quoted(o, s);
   o += '"';
-  if (plain(s)) {
-    o += s;
-  } else {
+  {
     for (char ch : s) {
       auto c = static_cast<unsigned char>(ch);
       if (c == '"' || c == '\\') {
@@ -171,9 +196,7 @@ void put_double(O& o, double v) {
 // checks every one of them).
 template <class O>
 [[gnu::always_inline]] inline void put_plain(O& o, std::string_view s) {
-  o += '"';
-  o += s;
-  o += '"';
+  quoted(o, s);
 }
 
 // A message (ASCII by convention) as a JSON string: put_str(ascii_text(s)).
@@ -234,9 +257,7 @@ void put_value(O& o, const top::FieldValue& v) {
 template <class O>
 void put_esc(O& o, std::string_view bytes) {
   if (plain(bytes)) {
-    o += '"';
-    o += bytes;
-    o += '"';
+    quoted(o, bytes);
   } else {
     put_str(o, std::string_view(escape(bytes)));
   }

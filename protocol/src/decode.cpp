@@ -46,11 +46,20 @@ constexpr double kPow10[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
 // A scale as m / 10^d with m an integer (0.01 -> 1/10^2, 0.5 -> 5/10^1);
 // false when it is no decimal fraction (1/3) or needs more than 9 decimals.
 bool decimal_scale(double scale, std::int64_t& m, int& d) noexcept {
-  if (scale == 1.0) {
-    m = 1;
-    d = 0;
-    return true;
-  }
+  // the scales of the catalog, without the search below
+  struct Known {
+    double scale;
+    std::int64_t m;
+    int d;
+  };
+  static constexpr Known kKnown[] = {{1.0, 1, 0},   {0.01, 1, 2},  {0.1, 1, 1},  {0.001, 1, 3},
+                                     {0.5, 5, 1},   {1e-7, 1, 7},  {0.05, 5, 2}, {0.0001, 1, 4}};
+  for (const Known& k : kKnown)
+    if (scale == k.scale) {
+      m = k.m;
+      d = k.d;
+      return true;
+    }
   d = decimals_of(scale);
   const double x = scale * kPow10[d];
   if (!(scale > 0) || std::fabs(x - std::round(x)) > 1e-9 || x > 1e9) return false;
