@@ -1,6 +1,7 @@
 #include "analyzer.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -791,11 +792,17 @@ struct Analyzer::Impl {
     if (s.asked_hz <= 0 || s.frames < 2) return;
     double m = s.measured_hz();
     if (m <= 0 || std::fabs(m - s.asked_hz) <= 0.25 * s.asked_hz) return;
-    char b[160];
-    std::snprintf(b, sizeof b, "%s stream runs at %.1f Hz, GAA asked for %.0f Hz (%llu frames)",
-                  s.ident.c_str(), m, s.asked_hz, static_cast<unsigned long long>(s.frames));
+    // printf's "%.1f" and "%.0f" through to_chars (the same text, without
+    // printf's cost on every re-asked stream)
+    auto fixed = [](double v, int decimals) {
+      char b[64];
+      auto r = std::to_chars(b, b + sizeof b, v, std::chars_format::fixed, decimals);
+      return r.ec == std::errc() ? std::string(b, r.ptr) : std::to_string(v);
+    };
+    std::string msg = s.ident + " stream runs at " + fixed(m, 1) + " Hz, GAA asked for " +
+                      fixed(s.asked_hz, 0) + " Hz (" + std::to_string(s.frames) + " frames)";
     note_event(s.last, Position{}, c.transport, &c, &c.dir[0].from, &c.dir[0].to,
-               Note{ACode::stream_rate, default_severity(ACode::stream_rate), b, 0});
+               Note{ACode::stream_rate, default_severity(ACode::stream_rate), std::move(msg), 0});
   }
 
   // --- TCP -----------------------------------------------------------------
@@ -948,17 +955,20 @@ void Analyzer::datagram(std::int64_t ts, const Endpoint& src, const Endpoint& ds
                         std::string_view payload, std::uint64_t record, std::uint32_t offset) {
   int d = 0;
   Conversation& c = impl_->get(Transport::udp, src, dst, d);
-  // The common case, a datagram of back-to-back frames that pass their
-  // checksum (each perhaps followed by CR/LF), skips the stream decoder's
-  // queue: for such bytes it yields exactly these frames. The decoder takes
-  // over at the first byte that is anything else; its state there would be
-  // empty, so it yields for the rest what it yields for the whole.
+  // The common case, a datagram of back-to-back frames (each perhaps
+  // followed by CR/LF), skips the stream decoder's queue: for such bytes it
+  // yields exactly these frames. A frame that fails its checksum qualifies
+  // when no '#' inside it could start a frame the decoder would prefer. The
+  // decoder takes over at the first byte that is anything else; its state
+  // there would be empty, so it yields for the rest what it yields for the
+  // whole.
   std::size_t p = 0;
   std::uint32_t index = 0;
   top::ParseResult& r = impl_->scratch;
   while (p < payload.size() && payload[p] == '#') {
     top::parse_frame(payload.substr(p), true, top::ParseOptions{}, r);
-    if (r.status != top::ParseStatus::frame || !r.frame.checksum_ok) break;
+    if (r.status != top::ParseStatus::frame) break;
+    if (!r.frame.checksum_ok && std::memchr(payload.data() + p + 1, '#', r.consumed - 1)) break;
     std::size_t q = p + r.consumed;
     while (q < payload.size() && (payload[q] == '\r' || payload[q] == '\n')) ++q;
     top::note_terminator(r.frame, q - p - r.consumed);

@@ -70,6 +70,12 @@ bool decimal_scale(double scale, std::int64_t& m, int& d) noexcept {
 // integer * scale, correctly rounded when the scale is a decimal fraction:
 // 0.01 * -295 gives -2.95 rather than -2.9500000000000002.
 double scaled(std::int64_t iv, double scale) noexcept {
+  constexpr std::int64_t kExact = std::int64_t{1} << 53;  // integers a double holds
+  if (iv > -kExact && iv < kExact) {  // the catalog's usual scales, inline
+    if (scale == 1.0) return static_cast<double>(iv);
+    if (scale == 0.01) return static_cast<double>(iv) / 100.0;
+    if (scale == 0.1) return static_cast<double>(iv) / 10.0;
+  }
   std::int64_t m = 0, mant = 0;
   int d = 0;
   if (decimal_scale(scale, m, d) && !__builtin_mul_overflow(iv, m, &mant) &&

@@ -85,16 +85,23 @@ bool is_ident_char(char c) noexcept {
 
 bool is_boundary(char c) noexcept { return c == '#' || c == '\r' || c == '\n'; }
 
-ParseResult invalid(FindingCode code, std::size_t offset, std::string msg) {
-  ParseResult r;
+// A parse's verdict without its frame (built in place by parse_into).
+struct Verdict {
+  ParseStatus status = ParseStatus::need_more;
+  std::size_t consumed = 0;
+  Finding error;
+};
+
+Verdict invalid(FindingCode code, std::size_t offset, std::string msg) {
+  Verdict r;
   r.status = ParseStatus::invalid;
   r.error = make_finding(code, static_cast<std::uint32_t>(offset), std::move(msg));
   return r;
 }
 
-ParseResult need_more() { return ParseResult{}; }
+Verdict need_more() { return Verdict{}; }
 
-ParseResult truncated(std::size_t have, std::size_t want) {
+Verdict truncated(std::size_t have, std::size_t want) {
   return invalid(FindingCode::truncated, have,
                  "input ends after " + std::to_string(have) +
                      " bytes of a frame that needs " + std::to_string(want));
@@ -141,7 +148,7 @@ void reset_keep_capacity(Frame& f) {
 
 // The parser. A frame is built in `f` (reset first), which the result
 // refers to only when its status is frame.
-ParseResult parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Frame& f) {
+Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Frame& f) {
   reset_keep_capacity(f);
   const std::size_t n = b.size();
   auto short_of = [&](std::size_t want) { return n < want; };
@@ -314,8 +321,8 @@ ParseResult parse_into(std::string_view b, bool at_end, const ParseOptions& opts
   };
 
   auto finish = [&](std::size_t data_len, bool present, std::uint8_t value,
-                    unsigned prefix) -> ParseResult {
-    ParseResult r;
+                    unsigned prefix) -> Verdict {
+    Verdict r;
     r.status = ParseStatus::frame;
     f.data_length = static_cast<std::uint32_t>(data_len);
     std::size_t end = lay.data_at + data_len + (present ? 2 : 0);
@@ -429,14 +436,17 @@ ParseResult parse_into(std::string_view b, bool at_end, const ParseOptions& opts
 }  // namespace
 
 ParseResult parse_frame(std::string_view bytes, bool at_end, const ParseOptions& opts) {
-  Frame f;
-  ParseResult r = parse_into(bytes, at_end, opts, f);
-  if (r.status == ParseStatus::frame) r.frame = std::move(f);
+  ParseResult r;
+  Verdict v = parse_into(bytes, at_end, opts, r.frame);
+  r.status = v.status;
+  r.consumed = v.consumed;
+  r.error = std::move(v.error);
+  if (r.status != ParseStatus::frame) r.frame = Frame{};
   return r;
 }
 
 void parse_frame(std::string_view bytes, bool at_end, const ParseOptions& opts, ParseResult& out) {
-  ParseResult r = parse_into(bytes, at_end, opts, out.frame);
+  Verdict r = parse_into(bytes, at_end, opts, out.frame);
   out.status = r.status;
   out.consumed = r.consumed;
   out.error = std::move(r.error);
