@@ -192,3 +192,56 @@ TEST(Stream, HostileNestedHeadersStayLinear) {
   for (const auto& it : items) covered += it.length;
   EXPECT_EQ(covered, 2 * frame.size());
 }
+
+// A frame that fails its checksum waits for look-ahead: other data lengths
+// (the length char may lie) and frames starting inside it. On a quiet live
+// link that look-ahead never comes; flush() leaves the frame held (it runs
+// after every chunk), so topconf and its simulated link ended the stream
+// (finish, reset) when the line went quiet. settle() decides and goes on.
+TEST(Stream, SettleDecidesOnAFrameWaitingForLookAhead) {
+  // declared length 6, but the checksum validates with the 4 data bytes there
+  std::string lying = "#tpUD6wCAP0000";
+  char cs[2];
+  put_hex2(checksum(lying), cs);
+  lying.append(cs, 2);
+  StreamDecoder d;
+  d.feed(lying);
+  StreamItem it;
+  EXPECT_FALSE(d.next(it));  // waits: 28 bytes are needed to judge other lengths
+  d.flush();
+  EXPECT_FALSE(d.next(it));  // flush() does not decide
+  d.settle();
+  ASSERT_TRUE(d.next(it));
+  EXPECT_EQ(it.kind, ItemKind::frame);
+  EXPECT_EQ(it.frame.raw, lying);
+  EXPECT_TRUE(toptest::has_code(it.frame.findings, FindingCode::length_mismatch));
+
+  // a frame that fails its checksum with a '#' inside whose frame needs more
+  // bytes than there are
+  StreamDecoder e;
+  e.feed("#tpUD6wCAP00000#tpUD");
+  EXPECT_FALSE(e.next(it));
+  e.settle();
+  ASSERT_TRUE(e.next(it));
+  EXPECT_EQ(it.frame.raw, "#tpUD6wCAP00000#");  // 'tp' is no checksum: not in the frame
+  EXPECT_TRUE(toptest::has_code(it.frame.findings, FindingCode::bad_checksum));
+  // the stream goes on: the rest is garbage once a frame follows it
+  e.feed("#TPUD2wCAP013E");
+  e.settle();
+  ASSERT_TRUE(e.next(it));
+  EXPECT_EQ(it.kind, ItemKind::garbage);
+  EXPECT_EQ(it.offset, 16u);
+  ASSERT_TRUE(e.next(it));
+  EXPECT_EQ(it.frame.raw, "#TPUD2wCAP013E");
+  EXPECT_EQ(it.offset, 20u);
+
+  // an incomplete frame is not judged: it waits for its rest
+  StreamDecoder f;
+  f.feed("#TPUD2wCA");
+  f.settle();
+  EXPECT_FALSE(f.next(it));
+  f.feed("P013E");
+  f.settle();
+  ASSERT_TRUE(f.next(it));
+  EXPECT_EQ(it.frame.raw, "#TPUD2wCAP013E");
+}

@@ -48,6 +48,17 @@ void StreamDecoder::flush() {
   release_pending();
 }
 
+void StreamDecoder::settle() {
+  // Judge the bytes held as if nothing followed them (a frame that fails its
+  // checksum no longer waits for the look-ahead that could show another
+  // length or a frame inside it), but keep the stream open: a frame cut
+  // short still waits for its rest.
+  flushing_ = true;
+  pump();
+  flushing_ = false;
+  release_pending();
+}
+
 bool StreamDecoder::next(StreamItem& out) {
   if (ready_.empty()) pump();
   if (ready_.empty()) return false;
@@ -136,6 +147,7 @@ void StreamDecoder::flush_garbage() {
 
 void StreamDecoder::pump() {
   const std::string_view all(buf_);
+  const bool judge = at_end_ || flushing_;  // parse as if no more bytes came
   while (pos_ < buf_.size() && ready_.size() < kMaxReady) {
     char c = buf_[pos_];
     if (has_pending_ && (c == '\r' || c == '\n')) {
@@ -159,10 +171,13 @@ void StreamDecoder::pump() {
       scan_from = static_cast<std::size_t>(held_scan_ - base_);
       tried = held_tried_;
     } else {
-      r = parse_frame(all.substr(pos_), at_end_, opts_.parse);
+      r = parse_frame(all.substr(pos_), judge, opts_.parse);
     }
     has_held_ = false;
     if (r.status == ParseStatus::need_more) break;
+    // flushing: a frame cut short is not garbage yet, its rest may come
+    if (r.status == ParseStatus::invalid && !at_end_ && r.error.code == FindingCode::truncated)
+      break;
     if (r.status == ParseStatus::invalid) {
       std::size_t next = buf_.find('#', pos_ + 1);
       std::size_t end = next == std::string::npos ? buf_.size() : next;
@@ -176,7 +191,7 @@ void StreamDecoder::pump() {
       bool wait = false, yielded = false;
       for (std::size_t q = scan_from; q < pos_ + r.consumed && tried < kMaxInnerCandidates; ++q) {
         if (buf_[q] != '#') continue;
-        ParseResult inner = parse_frame(all.substr(q), at_end_, opts_.parse);
+        ParseResult inner = parse_frame(all.substr(q), judge, opts_.parse);
         if (inner.status == ParseStatus::need_more) {
           // Hold the outer parse; resume at this '#' when more bytes come.
           wait = true;

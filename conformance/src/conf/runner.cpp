@@ -65,9 +65,8 @@ class Wire {
         // A quiet stream with bytes held (a frame failing its checksum waits
         // for look-ahead): the link went quiet, so decide now.
         if (!t_.datagram() && dec_.buffered() > 0) {
-          dec_.finish();
+          dec_.settle();
           collect();
-          dec_.reset();
           if (!frames_.empty()) continue;
         }
         return false;

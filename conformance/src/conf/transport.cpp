@@ -90,10 +90,13 @@ bool SimTransport::receive(std::uint64_t deadline_us, std::string& out) {
     }
     now_ = std::max(now_, t);
     if (t == t_quiet && t < t_queue) {
-      decoder_.finish();
+      const std::size_t held = decoder_.buffered();
+      decoder_.settle();
       std::vector<std::string> replies;
       handle_items(replies);
-      decoder_.reset();
+      // a frame cut short keeps waiting: the line's bytes are all here, so
+      // it is junk; drop it as a device whose UART timed out would
+      if (decoder_.buffered() >= held) decoder_.reset();
       schedule(replies);
       continue;
     }

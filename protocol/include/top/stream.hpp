@@ -48,8 +48,14 @@ class StreamDecoder {
   // truncated garbage item, a held frame is released.
   void finish();
   // Releases a complete frame held to see whether CR/LF follows it (for live
-  // links that go quiet); a later CR/LF is then reported as garbage.
+  // links, after each chunk); a later CR/LF is then reported as garbage.
   void flush();
+  // For a live link that has gone quiet: flush(), and decide on a frame that
+  // fails its checksum with the bytes there are (no longer waiting for the
+  // look-ahead that could show another length or a frame starting inside
+  // it), and on one whose checksum never came. A frame cut short inside its
+  // header or data keeps waiting; the stream stays open.
+  void settle();
   // Forgets everything; offsets restart at 0.
   void reset();
   // Moves the next item into `out`; false when none is ready.
@@ -73,6 +79,7 @@ class StreamDecoder {
   std::size_t pos_ = 0;
   std::uint64_t base_ = 0;   // stream offset of buf_[0]
   bool at_end_ = false;
+  bool flushing_ = false;  // inside settle(): judge as at the end, keep the stream open
   bool has_pending_ = false; // a frame held until we know what follows it
   StreamItem pending_;
   std::uint64_t garbage_start_ = 0;
