@@ -11,8 +11,7 @@ namespace topfuzz {
 
 [[noreturn]] inline void fail(const char* file, int line, const char* what,
                               const std::string& detail) {
-  std::fprintf(stderr, "%s:%d: fuzz check failed: %s\n  %s\n", file, line, what,
-               detail.c_str());
+  std::fprintf(stderr, "%s:%d: fuzz check failed: %s\n  %s\n", file, line, what, detail.c_str());
   std::fflush(stderr);
   std::abort();
 }
@@ -38,7 +37,7 @@ inline std::string show(std::string_view s, std::size_t limit = 200) {
 
 // FUZZ_CHECK(cond, detail): abort with `detail` (a std::string expression,
 // evaluated only on failure) when `cond` is false.
-#define FUZZ_CHECK(cond, detail)                                   \
-  do {                                                             \
+#define FUZZ_CHECK(cond, detail)                                       \
+  do {                                                                 \
     if (!(cond)) ::topfuzz::fail(__FILE__, __LINE__, #cond, (detail)); \
   } while (0)

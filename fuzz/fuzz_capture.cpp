@@ -10,13 +10,12 @@
 #include <unistd.h>
 
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <string>
 
-#include <nlohmann/json.hpp>
-
 #include "analyzer.hpp"
-#include "output.hpp"
 #include "check.hpp"
+#include "output.hpp"
 #include "sources.hpp"
 
 #ifndef TOPKIT_FUZZ_FORMAT

@@ -36,8 +36,10 @@ bool encodable(FieldKind k) {
     case FieldKind::dec_u:
     case FieldKind::le_i16:
     case FieldKind::le_u16:
-    case FieldKind::le_i32: return true;
-    default: return false;
+    case FieldKind::le_i32:
+      return true;
+    default:
+      return false;
   }
 }
 

@@ -79,11 +79,10 @@ void single_frame(std::string_view in) {
   if (!ref_ok) return;
   const top::Frame& f = r.frame;
   const std::string header(f.header_text().substr(1));
-  FUZZ_CHECK(header == g->header && f.src == g->src && f.dst == g->dst &&
-                 f.control == g->control && f.ident_view() == g->ident &&
-                 f.declared_length == g->length && f.data_length == g->length &&
-                 f.data_offset == g->data_offset && f.data() == g->data &&
-                 f.checksum == g->checksum,
+  FUZZ_CHECK(header == g->header && f.src == g->src && f.dst == g->dst && f.control == g->control &&
+                 f.ident_view() == g->ident && f.declared_length == g->length &&
+                 f.data_length == g->length && f.data_offset == g->data_offset &&
+                 f.data() == g->data && f.checksum == g->checksum,
              "\"" + show(in) + "\": the parts differ from the reference's");
   compare_fields(f, *g, in);
 }

@@ -31,19 +31,19 @@ void check_frame(std::string_view in, const Frame& f) {
              "expected_checksum is not the byte sum: " + describe(f));
   FUZZ_CHECK(f.checksum_ok == (f.checksum_present && f.checksum == f.expected_checksum),
              "checksum_ok disagrees with the digits: " + describe(f));
-  FUZZ_CHECK(f.checksum_ok || f.has(FindingCode::bad_checksum) ||
-                 f.has(FindingCode::no_checksum) ||
+  FUZZ_CHECK(f.checksum_ok || f.has(FindingCode::bad_checksum) || f.has(FindingCode::no_checksum) ||
                  f.has(FindingCode::checksum_header_case),
              "a failing checksum without a finding that says so: " + describe(f));
   FUZZ_CHECK(!f.checksum_present || f.checksum_text().size() == 2,
              "checksum text is not two chars: " + describe(f));
   for (const Finding& x : f.findings) {
-    FUZZ_CHECK(x.offset <= in.size(), "finding " + std::string(to_string(x.code)) +
-                                          " offset " + std::to_string(x.offset) +
-                                          " past the input of " + std::to_string(in.size()));
+    FUZZ_CHECK(x.offset <= in.size(), "finding " + std::string(to_string(x.code)) + " offset " +
+                                          std::to_string(x.offset) + " past the input of " +
+                                          std::to_string(in.size()));
     FUZZ_CHECK(!x.message.empty(), "finding without a message");
   }
-  FUZZ_CHECK(is_address(f.src) && is_address(f.dst), "addresses outside U M D E P G: " + describe(f));
+  FUZZ_CHECK(is_address(f.src) && is_address(f.dst),
+             "addresses outside U M D E P G: " + describe(f));
 }
 
 void check_decoded(const Frame& f, const Decoded& d) {

@@ -76,8 +76,7 @@ void build_then_parse(std::string_view in) {
   const ParseResult r = parse_exact(raw);
   FUZZ_CHECK(r.status == ParseStatus::frame, "built \"" + show(raw) + "\" does not parse");
   const Frame& f = r.frame;
-  const bool has_letter =
-      raw[raw.size() - 2] > '9' || raw[raw.size() - 1] > '9';
+  const bool has_letter = raw[raw.size() - 2] > '9' || raw[raw.size() - 1] > '9';
   const std::size_t allowed = spec.lowercase_checksum && has_letter ? 1 : 0;
   FUZZ_CHECK(f.checksum_ok && f.findings.size() == allowed &&
                  (allowed == 0 || f.findings[0].code == FindingCode::checksum_case),

@@ -40,8 +40,8 @@ std::string describe(const StreamItem& it) {
 bool same_findings(const std::vector<Finding>& a, const std::vector<Finding>& b) {
   if (a.size() != b.size()) return false;
   for (std::size_t i = 0; i < a.size(); ++i)
-    if (a[i].code != b[i].code || a[i].severity != b[i].severity ||
-        a[i].offset != b[i].offset || a[i].message != b[i].message)
+    if (a[i].code != b[i].code || a[i].severity != b[i].severity || a[i].offset != b[i].offset ||
+        a[i].message != b[i].message)
       return false;
   return true;
 }
@@ -68,8 +68,7 @@ void drain(StreamDecoder& d, std::vector<StreamItem>& out) {
 // Every byte of the stream belongs to exactly one item (a frame's CR/LF
 // terminator belongs to the frame), in order, and frames are the stream's own
 // bytes.
-void check_cover(std::string_view stream, const std::vector<StreamItem>& items,
-                 const char* run) {
+void check_cover(std::string_view stream, const std::vector<StreamItem>& items, const char* run) {
   std::uint64_t at = 0;
   for (const StreamItem& it : items) {
     FUZZ_CHECK(it.offset == at, std::string(run) + ": item " + describe(it) +
@@ -78,9 +77,9 @@ void check_cover(std::string_view stream, const std::vector<StreamItem>& items,
     FUZZ_CHECK(it.length > 0, std::string(run) + ": empty item " + describe(it));
     at = it.offset + it.length;
     if (it.kind == ItemKind::frame) {
-      FUZZ_CHECK(it.frame.raw.size() == it.length &&
-                     stream.substr(it.offset, it.length) == it.frame.raw,
-                 std::string(run) + ": frame bytes differ from the stream: " + describe(it));
+      FUZZ_CHECK(
+          it.frame.raw.size() == it.length && stream.substr(it.offset, it.length) == it.frame.raw,
+          std::string(run) + ": frame bytes differ from the stream: " + describe(it));
       at += it.frame.terminator;
     }
     FUZZ_CHECK(at <= stream.size(), std::string(run) + ": item past the end: " + describe(it));
@@ -134,9 +133,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     FUZZ_CHECK(same_item(whole[i], split[i]),
                "item " + std::to_string(i) + " depends on the split: one piece " +
                    describe(whole[i]) + ", split " + describe(split[i]));
-  FUZZ_CHECK(whole.size() == split.size(),
-             "split gives " + std::to_string(split.size()) + " items, one piece " +
-                 std::to_string(whole.size()));
+  FUZZ_CHECK(whole.size() == split.size(), "split gives " + std::to_string(split.size()) +
+                                               " items, one piece " + std::to_string(whole.size()));
   check_cover(stream, flushed, "flushed");
   return 0;
 }

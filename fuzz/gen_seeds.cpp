@@ -79,11 +79,22 @@ int main(int argc, char** argv) {
   const fs::path out = argv[1];
   std::vector<std::string> frames = {
       // The documents' examples, errata included.
-      "#TPUG2wPTZ006A", "#TPUG2wGSYE276", "#TPUG6wGAYEF073288", "#tpUG6wGAYEF073288",
-      "#TPMU2wERE!!30", "#tpUM2wZMC009C", "#tpMU4rZOMFFB447", "#tpPM5rVSNM33265D",
-      "#tpUM8wZFPFFB400320F", "#TPUG2rGAC0032", "#TPUG2wGAA0136", "#tpUG6wGIYEF073290",
+      "#TPUG2wPTZ006A",
+      "#TPUG2wGSYE276",
+      "#TPUG6wGAYEF073288",
+      "#tpUG6wGAYEF073288",
+      "#TPMU2wERE!!30",
+      "#tpUM2wZMC009C",
+      "#tpMU4rZOMFFB447",
+      "#tpPM5rVSNM33265D",
+      "#tpUM8wZFPFFB400320F",
+      "#TPUG2rGAC0032",
+      "#TPUG2wGAA0136",
+      "#tpUG6wGIYEF073290",
       // Field notes: a lying length, swapped reply, lowercase data, CRLF.
-      "#tpDU3rVER0105025A", "#tpGPCrGACFF36ED5A0048DE", "#tpUG6wGAYef073288",
+      "#tpDU3rVER0105025A",
+      "#tpGPCrGACFF36ED5A0048DE",
+      "#tpUG6wGAYef073288",
       "#TPUG2wPTZ006A\r\n",
   };
   // The TMP quirk in both forms, and the extended headers.
@@ -92,7 +103,8 @@ int main(int argc, char** argv) {
   frames.push_back(with_checksum("#tpDP16wTMP" + tmp));
   frames.push_back(with_checksum(std::string("#tPUD") + char(20) + "wGPS" +
                                  std::string("\x10\x27\x00\x00#\x01\x02\x03\x04\x05\x06\x07\x08\x09"
-                                             "\x0A\x0B\x0C\x0D\x0E\x0F", 20)));
+                                             "\x0A\x0B\x0C\x0D\x0E\x0F",
+                                             20)));
   frames.push_back(with_checksum(std::string("#TpUD") + char(0) + char(3) + "LOCABC"));
 
   std::vector<std::string> decode_sky, decode_topo;
@@ -140,8 +152,7 @@ int main(int argc, char** argv) {
   // Streams: groups of four frames, joined three ways, behind chunk sizes.
   static const std::string kJoin[] = {"", "\r\n", "zz#"};
   static const std::string kPrefix[] = {std::string("\x02\x01\x07\x0D", 4),
-                                        std::string("\x00\x01", 2),
-                                        std::string("\x01\x20\x03", 3)};
+                                        std::string("\x00\x01", 2), std::string("\x01\x20\x03", 3)};
   for (std::size_t i = 0; i < frames.size(); i += 4) {
     const std::size_t v = (i / 4) % 3;
     std::string s = kPrefix[v];
@@ -154,7 +165,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "cannot write under %s\n", out.c_str());
     return 1;
   }
-  std::printf("%zu frames, %zu + %zu decode records under %s\n", frames.size(),
-              decode_sky.size(), decode_topo.size(), out.c_str());
+  std::printf("%zu frames, %zu + %zu decode records under %s\n", frames.size(), decode_sky.size(),
+              decode_topo.size(), out.c_str());
   return 0;
 }

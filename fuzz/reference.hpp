@@ -29,15 +29,15 @@
 namespace topref {
 
 struct Frame {
-  std::string header;          // "TP", "tp", "tP" or "Tp"
+  std::string header;  // "TP", "tp", "tP" or "Tp"
   char src = 0, dst = 0;
-  char control = 0;            // 0 for #Tp
+  char control = 0;  // 0 for #Tp
   std::string ident;
-  std::size_t length = 0;      // declared data length
+  std::size_t length = 0;  // declared data length
   std::size_t data_offset = 0;
   std::string data;
   unsigned checksum = 0;
-  std::size_t size = 0;        // bytes of the whole frame
+  std::size_t size = 0;  // bytes of the whole frame
 };
 
 inline bool is_addr(char c) {
@@ -158,8 +158,8 @@ inline const std::vector<Layout>& layouts() {
 
 inline const Layout* find_layout(std::string_view dialect, const Frame& f) {
   for (const Layout& l : layouts())
-    if (dialect == l.dialect && f.ident == l.ident &&
-        (f.control == 0 || f.control == l.control) && f.length == l.length)
+    if (dialect == l.dialect && f.ident == l.ident && (f.control == 0 || f.control == l.control) &&
+        f.length == l.length)
       return &l;
   return nullptr;
 }
@@ -180,8 +180,7 @@ inline std::vector<Value> decode(const Layout& l, std::string_view data) {
     const bool is_signed = field.is_signed;
     Value v;
     v.valid = true;
-    if (field.none != nullptr &&
-        data.substr(at, static_cast<std::size_t>(width)) == field.none) {
+    if (field.none != nullptr && data.substr(at, static_cast<std::size_t>(width)) == field.none) {
       v.none = true;
       out.push_back(v);
       at += static_cast<std::size_t>(width);

@@ -48,8 +48,7 @@ std::vector<fs::path> files_under(const fs::path& p) {
   std::vector<fs::path> files;
   if (fs::is_directory(p)) {
     for (const auto& e : fs::recursive_directory_iterator(p))
-      if (e.is_regular_file() && e.path().filename().string()[0] != '.')
-        files.push_back(e.path());
+      if (e.is_regular_file() && e.path().filename().string()[0] != '.') files.push_back(e.path());
     std::sort(files.begin(), files.end());
   } else if (fs::exists(p)) {
     files.push_back(p);
@@ -103,8 +102,7 @@ int replay_vectors(const fs::path& p, const std::string& prefix, std::size_t& co
     }
     nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
     if (doc.is_discarded() || !doc.contains("vectors") || !doc["vectors"].is_array()) {
-      std::fprintf(stderr, "replay: %s is not a vector file ({\"vectors\":[...]})\n",
-                   f.c_str());
+      std::fprintf(stderr, "replay: %s is not a vector file ({\"vectors\":[...]})\n", f.c_str());
       return 2;
     }
     std::size_t index = 0;
@@ -112,8 +110,7 @@ int replay_vectors(const fs::path& p, const std::string& prefix, std::size_t& co
       std::string bytes;
       if (!v.contains("bytes") || !v["bytes"].is_string() ||
           !bytes_of(v["bytes"].get<std::string>(), bytes)) {
-        std::fprintf(stderr, "replay: %s: vector %zu has no byte string\n", f.c_str(),
-                     index);
+        std::fprintf(stderr, "replay: %s: vector %zu has no byte string\n", f.c_str(), index);
         return 2;
       }
       run_one(prefix + bytes);

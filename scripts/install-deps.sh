@@ -6,6 +6,7 @@ set -euo pipefail
 packages=(
   build-essential g++ cmake ninja-build pkg-config python3 zip
   clang libclang-rt-14-dev          # libFuzzer and the sanitizer runtimes
+  clang-format clang-tidy           # the lint tests (format, bugprone/analyzer checks)
   libpcap-dev                       # pcap/pcapng I/O
   libasio-dev                       # standalone Asio: sockets, serial ports
   libgtest-dev libgmock-dev         # GoogleTest

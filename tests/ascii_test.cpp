@@ -9,7 +9,8 @@ namespace fs = std::filesystem;
 
 TEST(Sources, AsciiOnly) {
   int files = 0;
-  for (const char* dir : {"protocol", "analyzer", "conformance", "fuzz", "tests", "bench", "tools"}) {
+  for (const char* dir :
+       {"protocol", "analyzer", "conformance", "fuzz", "tests", "bench", "tools"}) {
     fs::path root = fs::path(TOPKIT_SOURCE_DIR) / dir;
     if (!fs::exists(root)) continue;
     for (const auto& e : fs::recursive_directory_iterator(root)) {

@@ -12,11 +12,11 @@ namespace {
 // Every identifier named anywhere in the documents (appendix tables and
 // body text); the catalog must hold each one.
 const char* const kSkydroidIdents[] = {
-    "PTZ", "GSY", "GSP", "GSR", "GSM", "GAY", "GAP", "GAR", "GAM", "GAA", "GAC", "SUM",
-    "GOT", "FAE", "FAI", "REC", "CAP", "VID", "SDC", "AWB", "IQE", "TIM", "DZM", "IMG",
-    "IPV", "GTW", "DNS", "BNS", "VOM", "VER", "EXT", "UID", "TSM", "TAS", "TDI", "TIB",
-    "TIC", "TAR", "TTR", "TGM", "SLR", "ZMC", "FCC", "ZFP", "IRC", "MNU", "EVS", "LAT",
-    "ALT", "LON", "TMP", "RST", "RTF", "ERE"};
+    "PTZ", "GSY", "GSP", "GSR", "GSM", "GAY", "GAP", "GAR", "GAM", "GAA", "GAC",
+    "SUM", "GOT", "FAE", "FAI", "REC", "CAP", "VID", "SDC", "AWB", "IQE", "TIM",
+    "DZM", "IMG", "IPV", "GTW", "DNS", "BNS", "VOM", "VER", "EXT", "UID", "TSM",
+    "TAS", "TDI", "TIB", "TIC", "TAR", "TTR", "TGM", "SLR", "ZMC", "FCC", "ZFP",
+    "IRC", "MNU", "EVS", "LAT", "ALT", "LON", "TMP", "RST", "RTF", "ERE"};
 const char* const kTopotekIdents[] = {
     "ZMC", "ZOM", "FCC", "FOC", "ZFP", "ZMP", "SWH", "IRC", "ATE", "VSN", "MUL", "APC",
     "PTZ", "GSY", "GSP", "GSR", "GSM", "RPS", "YPR", "GAY", "GAP", "GAR", "GAM", "GIY",
@@ -126,21 +126,23 @@ TEST(Catalog, BuildParseRoundTrip) {
         ASSERT_LE(data.size(), f.max_length);
         bool response = f.role == Role::response;
         char client = d == Dialect::topotek ? 'P' : 'U';
-        std::string bytes =
-            build_frame({.header = choose_header(d, c.address, data.size()),
-                         .src = response ? c.address : client,
-                         .dst = response ? client : c.address,
-                         .control = f.control,
-                         .ident = c.ident,
-                         .data = data});
+        std::string bytes = build_frame({.header = choose_header(d, c.address, data.size()),
+                                         .src = response ? c.address : client,
+                                         .dst = response ? client : c.address,
+                                         .control = f.control,
+                                         .ident = c.ident,
+                                         .data = data});
         toptest::ExactBuffer buf(bytes);
         ParseResult r = parse_exact(buf.view());
         ASSERT_EQ(r.status, ParseStatus::frame) << bytes;
         EXPECT_TRUE(r.frame.checksum_ok) << bytes;
         EXPECT_EQ(r.frame.data(), data);
-        EXPECT_EQ(build_frame({.header = r.frame.header, .src = r.frame.src,
-                               .dst = r.frame.dst, .control = r.frame.control,
-                               .ident = r.frame.ident_view(), .data = r.frame.data()}),
+        EXPECT_EQ(build_frame({.header = r.frame.header,
+                               .src = r.frame.src,
+                               .dst = r.frame.dst,
+                               .control = r.frame.control,
+                               .ident = r.frame.ident_view(),
+                               .data = r.frame.data()}),
                   bytes);
         Decoded dec = decode(r.frame, {.dialect = d});
         EXPECT_EQ(dec.command, &c) << bytes;

@@ -58,13 +58,16 @@ TEST(Decode, TpLengthSeverityDependsOnClassAndDialect) {
 TEST(Decode, EnumNamesPerDialect) {
   EXPECT_EQ(field(dec("#TPUG2wPTZ0670", Dialect::skydroid), "action").enum_name, "follow");
   EXPECT_EQ(field(dec("#TPUG2wPTZ0670", Dialect::topotek), "action").enum_name, "lock");
-  EXPECT_EQ(format_value(field(dec("#TPUG2wPTZ0670", Dialect::skydroid), "action")),
-            "follow (06)");
+  EXPECT_EQ(format_value(field(dec("#TPUG2wPTZ0670", Dialect::skydroid), "action")), "follow (06)");
 }
 
 TEST(Decode, UndocumentedEnumValue) {
-  std::string s = build_frame({.header = Header::fixed, .src = 'U', .dst = 'G', .control = 'w',
-                               .ident = "PTZ", .data = "7F"});
+  std::string s = build_frame({.header = Header::fixed,
+                               .src = 'U',
+                               .dst = 'G',
+                               .control = 'w',
+                               .ident = "PTZ",
+                               .data = "7F"});
   Decoded d = dec(s, Dialect::skydroid);
   EXPECT_TRUE(toptest::has_code(d.findings, FindingCode::value_out_of_range));
 }
@@ -105,8 +108,12 @@ TEST(Decode, GpsBinaryStructLittleEndian) {
   le(static_cast<std::uint32_t>(1203456789), 4);
   le(static_cast<std::uint32_t>(-301234567), 4);
   le(static_cast<std::uint32_t>(123456), 4);
-  std::string s = build_frame({.header = Header::variable, .src = 'P', .dst = 'D',
-                               .control = 'w', .ident = "GPS", .data = data});
+  std::string s = build_frame({.header = Header::variable,
+                               .src = 'P',
+                               .dst = 'D',
+                               .control = 'w',
+                               .ident = "GPS",
+                               .data = data});
   Decoded d = dec(s);
   ASSERT_NE(d.command, nullptr);
   EXPECT_NEAR(field(d, "longitude").value, 120.3456789, 1e-9);
@@ -117,7 +124,15 @@ TEST(Decode, GpsBinaryStructLittleEndian) {
 }
 
 TEST(Decode, TmpQuirkTemperatures) {
-  std::string body = "#PDP16TMP" + std::string("0A0" "64" "01F4") + "140" "20" "FF38" + "0123";
+  std::string body = "#PDP16TMP" +
+                     std::string(
+                         "0A0"
+                         "64"
+                         "01F4") +
+                     "140"
+                     "20"
+                     "FF38" +
+                     "0123";
   char cs[2];
   put_hex2(checksum(body), cs);
   Decoded d = dec(body + std::string(cs, 2));
@@ -133,22 +148,34 @@ TEST(Decode, TmpQuirkTemperatures) {
 TEST(Decode, IpAddressAndCardCapacity) {
   Decoded ip = dec("#tpUDDwIPV192.168.31.22D7", Dialect::skydroid);
   EXPECT_EQ(field(ip, "address").text, "192.168.31.22");
-  std::string sdc = build_frame({.header = Header::variable, .src = 'D', .dst = 'U',
-                                 .control = 'r', .ident = "SDC", .data = "0123400ABC"});
+  std::string sdc = build_frame({.header = Header::variable,
+                                 .src = 'D',
+                                 .dst = 'U',
+                                 .control = 'r',
+                                 .ident = "SDC",
+                                 .data = "0123400ABC"});
   Decoded d = dec(sdc, Dialect::skydroid);
   EXPECT_EQ(field(d, "free").integer, 0x01234);
   EXPECT_EQ(field(d, "total").integer, 0x00ABC);
   EXPECT_EQ(format_value(field(d, "free")), "4660 MB");
-  std::string none = build_frame({.header = Header::variable, .src = 'D', .dst = 'P',
-                                  .control = 'r', .ident = "SDC", .data = "NNNNN"});
+  std::string none = build_frame({.header = Header::variable,
+                                  .src = 'D',
+                                  .dst = 'P',
+                                  .control = 'r',
+                                  .ident = "SDC",
+                                  .data = "NNNNN"});
   Decoded n = dec(none, Dialect::topotek);
   ASSERT_FALSE(n.fields.empty());
   EXPECT_TRUE(n.fields[0].none);
 }
 
 TEST(Decode, LowercaseHexDataIsDecodedAndReported) {
-  std::string s = build_frame({.header = Header::variable, .src = 'U', .dst = 'G',
-                               .control = 'w', .ident = "GAY", .data = "ec7832"});
+  std::string s = build_frame({.header = Header::variable,
+                               .src = 'U',
+                               .dst = 'G',
+                               .control = 'w',
+                               .ident = "GAY",
+                               .data = "ec7832"});
   Decoded d = dec(s, Dialect::topotek);
   EXPECT_DOUBLE_EQ(field(d, "angle").value, -50.0);
   EXPECT_TRUE(toptest::has_code(d.findings, FindingCode::lowercase_hex));
@@ -171,16 +198,24 @@ TEST(Decode, ExampleDataDecodesCleanForEveryForm) {
 }
 
 TEST(Decode, SkydroidNoCardIsNotZeroMegabytes) {
-  std::string s = build_frame({.header = Header::variable, .src = 'D', .dst = 'U',
-                               .control = 'r', .ident = "SDC", .data = "0000000000"});
+  std::string s = build_frame({.header = Header::variable,
+                               .src = 'D',
+                               .dst = 'U',
+                               .control = 'r',
+                               .ident = "SDC",
+                               .data = "0000000000"});
   Decoded d = dec(s, Dialect::skydroid);
   ASSERT_EQ(d.fields.size(), 2u);
   EXPECT_TRUE(d.fields[0].none);
   EXPECT_TRUE(d.fields[1].none);
   EXPECT_EQ(d.summary(), "none (all zero: no memory card)");
   // A full card (no MB free) is not "no card".
-  std::string full = build_frame({.header = Header::variable, .src = 'D', .dst = 'U',
-                                  .control = 'r', .ident = "SDC", .data = "000001D1C0"});
+  std::string full = build_frame({.header = Header::variable,
+                                  .src = 'D',
+                                  .dst = 'U',
+                                  .control = 'r',
+                                  .ident = "SDC",
+                                  .data = "000001D1C0"});
   Decoded f = dec(full, Dialect::skydroid);
   EXPECT_FALSE(f.fields[0].none);
   EXPECT_EQ(f.fields[0].integer, 0);
@@ -258,8 +293,11 @@ TEST(Decode, FormatValueNumbersAreThoseOfPrintf) {
 // 0.7000000000000001 (what the multiplication gives, and what topdump --json
 // printed for about one field in six of the benchmark capture).
 TEST(Decode, ScaledValuesAreTheNearestDoubleToTheirDecimal) {
-  ParseResult r = parse_exact(build_frame({.header = Header::fixed, .src = 'G', .dst = 'U',
-                                           .control = 'r', .ident = "GAC",
+  ParseResult r = parse_exact(build_frame({.header = Header::fixed,
+                                           .src = 'G',
+                                           .dst = 'U',
+                                           .control = 'r',
+                                           .ident = "GAC",
                                            .data = "0046FFAD0053"}));
   ASSERT_EQ(r.status, ParseStatus::frame);
   const Decoded d = decode(r.frame, {.dialect = Dialect::skydroid});

@@ -50,8 +50,12 @@ const std::map<FindingCode, Trigger>& triggers() {
       {FindingCode::tmp_quirk, {with_checksum("#PDP16TMP" + std::string(22, '0'))}},
       {FindingCode::two_digit_length, {with_checksum("#tpUD10wIPV" + std::string(16, '1'))}},
       {FindingCode::ext_header_skydroid,
-       {build_frame({.header = Header::ext8, .src = 'U', .dst = 'D', .control = 'w',
-                     .ident = "CAP", .data = "01"}),
+       {build_frame({.header = Header::ext8,
+                     .src = 'U',
+                     .dst = 'D',
+                     .control = 'w',
+                     .ident = "CAP",
+                     .data = "01"}),
         Dialect::skydroid}},
       {FindingCode::unknown_ident, {"#TPUD2wQQQ0155"}},
       {FindingCode::unsupported_on_model, {"#TPUG2wPTZ006A", Dialect::skydroid, Model::c13}},
@@ -120,9 +124,7 @@ TEST(Findings, EveryCodeIsDocumented) {
   }
 }
 
-TEST(Findings, EveryCodeHasATrigger) {
-  EXPECT_EQ(triggers().size(), finding_code_count);
-}
+TEST(Findings, EveryCodeHasATrigger) { EXPECT_EQ(triggers().size(), finding_code_count); }
 
 class FindingFires : public ::testing::TestWithParam<std::size_t> {};
 

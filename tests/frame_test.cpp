@@ -125,18 +125,18 @@ TEST_P(ParseInvalid, NamesCodeAndOffset) {
   EXPECT_FALSE(r.error.message.empty());
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Cases, ParseInvalid,
-    ::testing::Values(Invalid{"#XPUD2wCAP013E", FindingCode::bad_header, 1},
-                      Invalid{"#TXUD2wCAP013E", FindingCode::bad_header, 2},
-                      Invalid{"TPUD2wCAP013E", FindingCode::bad_header, 0},
-                      Invalid{"#TPXD2wCAP013E", FindingCode::bad_address, 3},
-                      Invalid{"#TPUx2wCAP013E", FindingCode::bad_address, 4},
-                      Invalid{"#TPUDZwCAP013E", FindingCode::bad_length_char, 5},
-                      Invalid{"#TPUD2xCAP013E", FindingCode::bad_control, 6},
-                      Invalid{"#TPUD2wCaP013E", FindingCode::bad_ident, 8},
-                      Invalid{"#TPUD2wCAP0", FindingCode::truncated, 11},
-                      Invalid{"#TP", FindingCode::truncated, 3}));
+INSTANTIATE_TEST_SUITE_P(Cases, ParseInvalid,
+                         ::testing::Values(Invalid{"#XPUD2wCAP013E", FindingCode::bad_header, 1},
+                                           Invalid{"#TXUD2wCAP013E", FindingCode::bad_header, 2},
+                                           Invalid{"TPUD2wCAP013E", FindingCode::bad_header, 0},
+                                           Invalid{"#TPXD2wCAP013E", FindingCode::bad_address, 3},
+                                           Invalid{"#TPUx2wCAP013E", FindingCode::bad_address, 4},
+                                           Invalid{"#TPUDZwCAP013E", FindingCode::bad_length_char,
+                                                   5},
+                                           Invalid{"#TPUD2xCAP013E", FindingCode::bad_control, 6},
+                                           Invalid{"#TPUD2wCaP013E", FindingCode::bad_ident, 8},
+                                           Invalid{"#TPUD2wCAP0", FindingCode::truncated, 11},
+                                           Invalid{"#TP", FindingCode::truncated, 3}));
 
 TEST(Parse, FrameTooLong) {
   ParseOptions o;
@@ -161,8 +161,12 @@ TEST(Parse, TrailingBytesAndCrlf) {
 }
 
 TEST(Parse, LowercaseLengthChar) {
-  std::string s = build_frame({.header = Header::variable, .src = 'U', .dst = 'D',
-                               .control = 'w', .ident = "IPV", .data = "192.168.1.100"});
+  std::string s = build_frame({.header = Header::variable,
+                               .src = 'U',
+                               .dst = 'D',
+                               .control = 'w',
+                               .ident = "IPV",
+                               .data = "192.168.1.100"});
   s[5] = 'd';
   s.replace(s.size() - 2, 2, [&] {
     char b[2];
@@ -176,7 +180,15 @@ TEST(Parse, LowercaseLengthChar) {
 }
 
 TEST(Parse, TmpQuirkDocumentedForm) {
-  std::string body = "#PDP16TMP" + std::string("0A0" "64" "01F4") + "140" "20" "FF38" + "0123";
+  std::string body = "#PDP16TMP" +
+                     std::string(
+                         "0A0"
+                         "64"
+                         "01F4") +
+                     "140"
+                     "20"
+                     "FF38" +
+                     "0123";
   ASSERT_EQ(body.size(), 9u + 22u);
   char cs[2];
   put_hex2(checksum(body), cs);
@@ -215,15 +227,27 @@ TEST(Parse, TwoDigitLengthOnAnotherIdent) {
 }
 
 TEST(Build, HeadersAndLengths) {
-  EXPECT_EQ(build_frame({.header = Header::fixed, .src = 'U', .dst = 'D', .control = 'w',
-                         .ident = "AWB", .data = "01"}),
+  EXPECT_EQ(build_frame({.header = Header::fixed,
+                         .src = 'U',
+                         .dst = 'D',
+                         .control = 'w',
+                         .ident = "AWB",
+                         .data = "01"}),
             "#TPUD2wAWB0144");
-  EXPECT_EQ(build_frame({.header = Header::variable, .src = 'U', .dst = 'G', .control = 'w',
-                         .ident = "GAY", .data = "EF0732"}),
+  EXPECT_EQ(build_frame({.header = Header::variable,
+                         .src = 'U',
+                         .dst = 'G',
+                         .control = 'w',
+                         .ident = "GAY",
+                         .data = "EF0732"}),
             "#tpUG6wGAYEF073288");
   std::string d(40, 'x');
-  std::string e8 = build_frame({.header = Header::variable, .src = 'P', .dst = 'D',
-                                .control = 'w', .ident = "ABC", .data = d});
+  std::string e8 = build_frame({.header = Header::variable,
+                                .src = 'P',
+                                .dst = 'D',
+                                .control = 'w',
+                                .ident = "ABC",
+                                .data = d});
   EXPECT_EQ(e8.substr(0, 3), "#tP");
   EXPECT_EQ(static_cast<unsigned char>(e8[5]), 40u);
   ParseResult r = parse_exact(e8);
@@ -233,8 +257,12 @@ TEST(Build, HeadersAndLengths) {
   EXPECT_TRUE(r.frame.checksum_ok);
 
   std::string big(300, '#');
-  std::string e16 = build_frame({.header = Header::ext8, .src = 'P', .dst = 'D',
-                                 .control = 'w', .ident = "ABC", .data = big});
+  std::string e16 = build_frame({.header = Header::ext8,
+                                 .src = 'P',
+                                 .dst = 'D',
+                                 .control = 'w',
+                                 .ident = "ABC",
+                                 .data = big});
   EXPECT_EQ(e16.substr(0, 3), "#Tp");
   ParseResult r16 = parse_exact(e16);
   ASSERT_EQ(r16.status, ParseStatus::frame);
@@ -245,8 +273,12 @@ TEST(Build, HeadersAndLengths) {
 }
 
 TEST(Build, LowercaseChecksumOption) {
-  std::string s = build_frame({.header = Header::variable, .src = 'U', .dst = 'M',
-                               .control = 'r', .ident = "ZOM", .data = "00",
+  std::string s = build_frame({.header = Header::variable,
+                               .src = 'U',
+                               .dst = 'M',
+                               .control = 'r',
+                               .ident = "ZOM",
+                               .data = "00",
                                .lowercase_checksum = true});
   EXPECT_EQ(s, "#tpUM2rZOM00a3");
 }

@@ -66,8 +66,12 @@ std::string gps_frame_with_hash() {
   le(static_cast<std::uint32_t>(1203456789), 4);
   le(static_cast<std::uint32_t>(301234567), 4);
   le(static_cast<std::uint32_t>(123456), 4);
-  return build_frame({.header = Header::variable, .src = 'U', .dst = 'D', .control = 'w',
-                      .ident = "GPS", .data = data});
+  return build_frame({.header = Header::variable,
+                      .src = 'U',
+                      .dst = 'D',
+                      .control = 'w',
+                      .ident = "GPS",
+                      .data = data});
 }
 }  // namespace
 
@@ -132,7 +136,8 @@ TEST(Stream, MemoryStaysBounded) {
       c = r == 0 ? '#' : r == 1 ? 'T' : r == 2 ? 'p' : static_cast<char>(rng() & 0xFF);
     }
     d.feed(chunk);
-    while (d.next(it)) covered += it.length + (it.kind == ItemKind::frame ? it.frame.terminator : 0);
+    while (d.next(it))
+      covered += it.length + (it.kind == ItemKind::frame ? it.frame.terminator : 0);
     max_buffered = std::max(max_buffered, d.buffered());
   }
   d.finish();
@@ -147,7 +152,8 @@ TEST(Stream, ByteAccountingWithFrames) {
   std::string stream = "ab#TPUD2wCAP013E\r\n#T#tpUM2rZOM00A3zz";
   auto items = decode_all(stream);
   std::uint64_t covered = 0;
-  for (const auto& it : items) covered += it.length + (it.kind == ItemKind::frame ? it.frame.terminator : 0);
+  for (const auto& it : items)
+    covered += it.length + (it.kind == ItemKind::frame ? it.frame.terminator : 0);
   EXPECT_EQ(covered, stream.size()) << describe(items);
 }
 

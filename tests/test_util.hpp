@@ -43,7 +43,8 @@ inline std::vector<top::StreamItem> decode_chunked(std::string_view bytes,
 // A copy of the bytes in a heap block of exactly their size, so ASan flags
 // any read past the end.
 struct ExactBuffer {
-  explicit ExactBuffer(std::string_view s) : size(s.size()), data(new char[s.size() ? s.size() : 1]) {
+  explicit ExactBuffer(std::string_view s)
+      : size(s.size()), data(new char[s.size() ? s.size() : 1]) {
     if (!s.empty()) std::memcpy(data.get(), s.data(), s.size());
   }
   std::string_view view() const { return {data.get(), size}; }

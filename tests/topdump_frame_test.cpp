@@ -88,9 +88,9 @@ TEST(TopdumpFrame, JsonKeysAndResync) {
   EXPECT_TRUE(v[0].value("garbage", false));
   EXPECT_EQ(v[0]["findings"][0]["code"], "bad-header");
   const json& f = v[1];
-  for (const char* k : {"header", "src", "dst", "length", "control", "ident", "data", "checksum",
-                        "checksum_ok", "expected_checksum", "command", "fields", "findings",
-                        "quirks"})
+  for (const char* k :
+       {"header", "src", "dst", "length", "control", "ident", "data", "checksum", "checksum_ok",
+        "expected_checksum", "command", "fields", "findings", "quirks"})
     EXPECT_TRUE(f.contains(k)) << k;
   EXPECT_EQ(f["ident"], "CAP");
   EXPECT_EQ(f["offset"], 2);
@@ -114,13 +114,13 @@ TEST(TopdumpFrame, BadUsageExitsTwo) {
   EXPECT_EQ(run_topdump({"frame", "--dialect", "klingon", "#TPUD2wCAP013E"}).status, 2);
   EXPECT_EQ(run_topdump({"frame", "--model", "c99", "#TPUD2wCAP013E"}).status, 2);
   EXPECT_EQ(run_topdump({"frame", "\\xZZ"}).status, 2);
-  EXPECT_EQ(run_topdump({"frame", "--model", "sip", "--dialect", "skydroid", "#TPUD2wCAP013E"}).status, 2);
+  EXPECT_EQ(
+      run_topdump({"frame", "--model", "sip", "--dialect", "skydroid", "#TPUD2wCAP013E"}).status,
+      2);
   EXPECT_EQ(run_topdump({"no-such-command"}).status, 2);
 }
 
-TEST(TopdumpFrame, NoFrameIsAnError) {
-  EXPECT_EQ(run_topdump({"frame", "hello"}).status, 1);
-}
+TEST(TopdumpFrame, NoFrameIsAnError) { EXPECT_EQ(run_topdump({"frame", "hello"}).status, 1); }
 
 TEST(TopdumpFrame, DialectDecidesPtzNames) {
   auto sky = lines(run_topdump({"frame", "--json", "--dialect", "skydroid", "#TPUG2wPTZ0670"}).out);
@@ -132,7 +132,8 @@ TEST(TopdumpFrame, DialectDecidesPtzNames) {
 }
 
 TEST(TopdumpFrame, SeveralFramesAndEscapes) {
-  ProcResult r = run_topdump({"frame", "--json", "#TPUD2wCAP013E\\r\\n#tpUM2rZOM00A3", "#TPUD2rREC003E"});
+  ProcResult r =
+      run_topdump({"frame", "--json", "#TPUD2wCAP013E\\r\\n#tpUM2rZOM00A3", "#TPUD2rREC003E"});
   EXPECT_EQ(r.status, 0) << r.out;
   auto v = lines(r.out);
   ASSERT_EQ(v.size(), 3u) << r.out;

@@ -21,9 +21,12 @@ std::string models(top::ModelSet m) {
 
 std::string role(top::Role r) {
   switch (r) {
-    case top::Role::request: return "request";
-    case top::Role::response: return "response";
-    case top::Role::any: break;
+    case top::Role::request:
+      return "request";
+    case top::Role::response:
+      return "response";
+    case top::Role::any:
+      break;
   }
   return "any";
 }
@@ -55,15 +58,15 @@ int main() {
     for (const top::CommandSpec& c : cmds) {
       std::printf("### %.*s: %s\n\n", static_cast<int>(c.ident.size()), c.ident.data(),
                   std::string(c.title).c_str());
-      std::printf("%s; address class %c; models: %s.", std::string(c.section).c_str(),
-                  c.address, models(c.models).c_str());
+      std::printf("%s; address class %c; models: %s.", std::string(c.section).c_str(), c.address,
+                  models(c.models).c_str());
       if (!c.note.empty()) std::printf(" %s.", std::string(c.note).c_str());
       std::printf("\n\n");
       for (const top::FormSpec& f : c.forms) {
-        std::printf("- `%c` %s, data length %u%s%s%s\n", f.control, role(f.role).c_str(),
-                    f.min_length,
-                    f.min_length == f.max_length ? "" : ("-" + std::to_string(f.max_length)).c_str(),
-                    f.note.empty() ? "" : ": ", std::string(f.note).c_str());
+        std::printf(
+            "- `%c` %s, data length %u%s%s%s\n", f.control, role(f.role).c_str(), f.min_length,
+            f.min_length == f.max_length ? "" : ("-" + std::to_string(f.max_length)).c_str(),
+            f.note.empty() ? "" : ": ", std::string(f.note).c_str());
         for (const top::FieldSpec& s : f.fields) {
           std::string line = "  - `" + std::string(s.name) + "` " +
                              std::string(top::to_string(s.kind)) + " width " +

@@ -1,8 +1,8 @@
 #include "analyzer.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -367,7 +367,8 @@ struct Analyzer::Impl {
       std::uint64_t a = 0, b = 0;
       std::memcpy(&a, e->addr.data(), 8);
       std::memcpy(&b, e->addr.data() + 8, 8);
-      h = (h ^ a ^ (b >> 1) ^ (std::uint64_t{e->port} << 7) ^ e->name.size()) * 0x9E3779B97F4A7C15ull;
+      h = (h ^ a ^ (b >> 1) ^ (std::uint64_t{e->port} << 7) ^ e->name.size()) *
+          0x9E3779B97F4A7C15ull;
     }
     return static_cast<std::size_t>(h >> 58);  // 64 slots
   }

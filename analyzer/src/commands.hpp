@@ -3,9 +3,8 @@
 // 0 no error finding, 1 an error finding, 2 unreadable input or bad usage.
 #pragma once
 
-#include <functional>
-
 #include <CLI/CLI.hpp>
+#include <functional>
 
 namespace topdump {
 

@@ -28,11 +28,21 @@ std::optional<std::string> unescape(std::string_view arg, std::string& error) {
     }
     char e = arg[++i];
     switch (e) {
-      case 'r': out += '\r'; break;
-      case 'n': out += '\n'; break;
-      case 't': out += '\t'; break;
-      case '0': out += '\0'; break;
-      case '\\': out += '\\'; break;
+      case 'r':
+        out += '\r';
+        break;
+      case 'n':
+        out += '\n';
+        break;
+      case 't':
+        out += '\t';
+        break;
+      case '0':
+        out += '\0';
+        break;
+      case '\\':
+        out += '\\';
+        break;
       case 'x': {
         int hi = i + 1 < arg.size() ? hexv(arg[i + 1]) : -1;
         int lo = i + 2 < arg.size() ? hexv(arg[i + 2]) : -1;

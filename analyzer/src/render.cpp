@@ -12,8 +12,9 @@ std::vector<const top::Finding*> all_findings(const top::Frame& f, const top::De
   v.reserve(f.findings.size() + d.findings.size());
   for (const auto& x : f.findings) v.push_back(&x);
   for (const auto& x : d.findings) v.push_back(&x);
-  std::stable_sort(v.begin(), v.end(),
-                   [](const top::Finding* a, const top::Finding* b) { return a->offset < b->offset; });
+  std::stable_sort(v.begin(), v.end(), [](const top::Finding* a, const top::Finding* b) {
+    return a->offset < b->offset;
+  });
   return v;
 }
 
@@ -26,12 +27,18 @@ top::Severity worst(const top::Frame& f, const top::Decoded& d) {
 
 std::string address_name(char a) {
   switch (a) {
-    case 'U': return "U (UART/UDP client)";
-    case 'M': return "M (lens)";
-    case 'D': return "D (system/image)";
-    case 'E': return "E (auxiliary)";
-    case 'P': return "P (network client)";
-    case 'G': return "G (gimbal)";
+    case 'U':
+      return "U (UART/UDP client)";
+    case 'M':
+      return "M (lens)";
+    case 'D':
+      return "D (system/image)";
+    case 'E':
+      return "E (auxiliary)";
+    case 'P':
+      return "P (network client)";
+    case 'G':
+      return "G (gimbal)";
   }
   return escape(std::string(1, a));
 }
@@ -47,9 +54,12 @@ std::string hex2(std::uint8_t v) {
 
 std::string_view role_name(top::Role r) {
   switch (r) {
-    case top::Role::request: return "request";
-    case top::Role::response: return "response";
-    case top::Role::any: break;
+    case top::Role::request:
+      return "request";
+    case top::Role::response:
+      return "response";
+    case top::Role::any:
+      break;
   }
   return "any";
 }
@@ -67,7 +77,9 @@ json field_json(const top::FieldValue& v, const top::Frame& f) {
   } else {
     switch (s.kind) {
       case top::FieldKind::text:
-      case top::FieldKind::raw: j["value"] = escape(v.text); break;
+      case top::FieldKind::raw:
+        j["value"] = escape(v.text);
+        break;
       case top::FieldKind::enum_hex:
       case top::FieldKind::enum_char:
         j["value"] = v.integer;
@@ -174,8 +186,8 @@ std::string frame_tree(const top::Frame& f, const top::Decoded& d) {
   static constexpr const char* kHeaderKind[] = {
       "fixed, length 2", "variable, one hex length char", "extended, one raw length byte",
       "extended, two raw length bytes", "malformed Topotek TMP form"};
-  line("header   " + escape(f.header_text()) + " (" +
-       kHeaderKind[static_cast<int>(f.header)] + ")   @0");
+  line("header   " + escape(f.header_text()) + " (" + kHeaderKind[static_cast<int>(f.header)] +
+       ")   @0");
   line("src      " + address_name(f.src));
   line("dst      " + address_name(f.dst));
   std::string len = "length   " + std::to_string(f.data_length);

@@ -358,10 +358,10 @@ void saleae_log(const std::string& path, LineReader& r, Analyzer& a) {
     double secs = std::strtod(ts_text.c_str(), &endp);
     // beyond +-2^62 us (146 000 years) the time is not a time: converting it
     // to an integer would be undefined
-    std::int64_t ts = (endp && *endp == 0 && !ts_text.empty() && std::isfinite(secs) &&
-                       std::fabs(secs) < 4.6e12)
-                          ? static_cast<std::int64_t>(secs * 1e6 + (secs >= 0 ? 0.5 : -0.5))
-                          : kNoTime;
+    std::int64_t ts =
+        (endp && *endp == 0 && !ts_text.empty() && std::isfinite(secs) && std::fabs(secs) < 4.6e12)
+            ? static_cast<std::int64_t>(secs * 1e6 + (secs >= 0 ? 0.5 : -0.5))
+            : kNoTime;
     std::string other;
     if (names.size() == 2)
       other = names[0] == name ? names[1] : names[0];

@@ -9,22 +9,32 @@ namespace top {
 
 std::string_view to_string(Dialect d) noexcept {
   switch (d) {
-    case Dialect::skydroid: return "skydroid";
-    case Dialect::topotek: return "topotek";
-    case Dialect::unknown: break;
+    case Dialect::skydroid:
+      return "skydroid";
+    case Dialect::topotek:
+      return "topotek";
+    case Dialect::unknown:
+      break;
   }
   return "unknown";
 }
 
 std::string_view to_string(Model m) noexcept {
   switch (m) {
-    case Model::c10: return "c10";
-    case Model::c10pro: return "c10pro";
-    case Model::c12: return "c12";
-    case Model::c13: return "c13";
-    case Model::c20: return "c20";
-    case Model::sip: return "sip";
-    case Model::unknown: break;
+    case Model::c10:
+      return "c10";
+    case Model::c10pro:
+      return "c10pro";
+    case Model::c12:
+      return "c12";
+    case Model::c13:
+      return "c13";
+    case Model::c20:
+      return "c20";
+    case Model::sip:
+      return "sip";
+    case Model::unknown:
+      break;
   }
   return "unknown";
 }
@@ -45,9 +55,12 @@ std::optional<Model> model_from_string(std::string_view s) noexcept {
 
 Dialect dialect_of(Model m) noexcept {
   switch (m) {
-    case Model::sip: return Dialect::topotek;
-    case Model::unknown: return Dialect::unknown;
-    default: return Dialect::skydroid;
+    case Model::sip:
+      return Dialect::topotek;
+    case Model::unknown:
+      return Dialect::unknown;
+    default:
+      return Dialect::skydroid;
   }
 }
 
@@ -59,18 +72,30 @@ std::span<const Model> all_models() noexcept {
 
 std::string_view to_string(FieldKind k) noexcept {
   switch (k) {
-    case FieldKind::hex_u: return "hex_u";
-    case FieldKind::hex_s: return "hex_s";
-    case FieldKind::dec_u: return "dec_u";
-    case FieldKind::enum_hex: return "enum_hex";
-    case FieldKind::enum_char: return "enum_char";
-    case FieldKind::text: return "text";
-    case FieldKind::number: return "number";
-    case FieldKind::le_i16: return "le_i16";
-    case FieldKind::le_u16: return "le_u16";
-    case FieldKind::le_i32: return "le_i32";
-    case FieldKind::nmea: return "nmea";
-    case FieldKind::raw: return "raw";
+    case FieldKind::hex_u:
+      return "hex_u";
+    case FieldKind::hex_s:
+      return "hex_s";
+    case FieldKind::dec_u:
+      return "dec_u";
+    case FieldKind::enum_hex:
+      return "enum_hex";
+    case FieldKind::enum_char:
+      return "enum_char";
+    case FieldKind::text:
+      return "text";
+    case FieldKind::number:
+      return "number";
+    case FieldKind::le_i16:
+      return "le_i16";
+    case FieldKind::le_u16:
+      return "le_u16";
+    case FieldKind::le_i32:
+      return "le_i32";
+    case FieldKind::nmea:
+      return "nmea";
+    case FieldKind::raw:
+      return "raw";
   }
   return "?";
 }
@@ -83,9 +108,12 @@ bool CommandSpec::has_control(char control) const noexcept {
 
 std::span<const CommandSpec> commands(Dialect d) noexcept {
   switch (d) {
-    case Dialect::skydroid: return detail::skydroid_table();
-    case Dialect::topotek: return detail::topotek_table();
-    case Dialect::unknown: break;
+    case Dialect::skydroid:
+      return detail::skydroid_table();
+    case Dialect::topotek:
+      return detail::topotek_table();
+    case Dialect::unknown:
+      break;
   }
   return {};
 }
@@ -146,13 +174,11 @@ const CommandSpec* find_command(Dialect d, std::string_view ident) noexcept {
 const CommandSpec* find_any(std::string_view ident, Dialect preferred) noexcept {
   if (preferred == Dialect::unknown) preferred = Dialect::skydroid;
   if (const CommandSpec* c = find_command(preferred, ident)) return c;
-  Dialect other =
-      preferred == Dialect::skydroid ? Dialect::topotek : Dialect::skydroid;
+  Dialect other = preferred == Dialect::skydroid ? Dialect::topotek : Dialect::skydroid;
   return find_command(other, ident);
 }
 
-Header choose_header(Dialect dialect, char address_class,
-                     std::size_t data_length) noexcept {
+Header choose_header(Dialect dialect, char address_class, std::size_t data_length) noexcept {
   if (data_length > max_data_ext8) return Header::ext16;
   if (data_length > max_data_hex) return Header::ext8;
   if (dialect == Dialect::skydroid) {

@@ -52,8 +52,8 @@ bool decimal_scale(double scale, std::int64_t& m, int& d) noexcept {
     std::int64_t m;
     int d;
   };
-  static constexpr Known kKnown[] = {{1.0, 1, 0},   {0.01, 1, 2},  {0.1, 1, 1},  {0.001, 1, 3},
-                                     {0.5, 5, 1},   {1e-7, 1, 7},  {0.05, 5, 2}, {0.0001, 1, 4}};
+  static constexpr Known kKnown[] = {{1.0, 1, 0}, {0.01, 1, 2}, {0.1, 1, 1},  {0.001, 1, 3},
+                                     {0.5, 5, 1}, {1e-7, 1, 7}, {0.05, 5, 2}, {0.0001, 1, 4}};
   for (const Known& k : kKnown)
     if (scale == k.scale) {
       m = k.m;
@@ -71,7 +71,7 @@ bool decimal_scale(double scale, std::int64_t& m, int& d) noexcept {
 // 0.01 * -295 gives -2.95 rather than -2.9500000000000002.
 double scaled(std::int64_t iv, double scale) noexcept {
   constexpr std::int64_t kExact = std::int64_t{1} << 53;  // integers a double holds
-  if (iv > -kExact && iv < kExact) {  // the catalog's usual scales, inline
+  if (iv > -kExact && iv < kExact) {                      // the catalog's usual scales, inline
     if (scale == 1.0) return static_cast<double>(iv);
     if (scale == 0.01) return static_cast<double>(iv) / 100.0;
     if (scale == 0.1) return static_cast<double>(iv) / 10.0;
@@ -147,8 +147,8 @@ struct Ctx {
   }
 };
 
-void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes,
-                  std::uint32_t offset, FieldValue& fv) {
+void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes, std::uint32_t offset,
+                  FieldValue& fv) {
   fv.spec = &spec;
   fv.offset = offset;
   fv.length = static_cast<std::uint32_t>(bytes.size());
@@ -161,8 +161,7 @@ void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes,
   auto bad = [&](std::string why) {
     fv.valid = false;
     fv.text = std::string(bytes);
-    ctx.add(FindingCode::bad_field, offset,
-            std::string(spec.name) + ": " + why);
+    ctx.add(FindingCode::bad_field, offset, std::string(spec.name) + ": " + why);
   };
   switch (spec.kind) {
     case FieldKind::hex_u:
@@ -180,8 +179,7 @@ void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes,
       if (lower && !ctx.lowercase_reported) {
         ctx.lowercase_reported = true;
         ctx.add(FindingCode::lowercase_hex, offset,
-                std::string(spec.name) + ": hex digits '" + std::string(bytes) +
-                    "' in lowercase");
+                std::string(spec.name) + ": hex digits '" + std::string(bytes) + "' in lowercase");
       }
       std::int64_t iv = static_cast<std::int64_t>(v);
       if (spec.kind == FieldKind::hex_s) {
@@ -280,8 +278,7 @@ void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes,
       fv.enum_name = e->name;
     } else if (spec.kind == FieldKind::enum_hex || spec.kind == FieldKind::enum_char) {
       ctx.add(FindingCode::value_out_of_range, offset,
-              std::string(spec.name) + ": '" + std::string(bytes) +
-                  "' is not a documented value");
+              std::string(spec.name) + ": '" + std::string(bytes) + "' is not a documented value");
       return;
     }
   }
@@ -290,9 +287,8 @@ void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes,
     int d = decimals_of(spec.scale);
     ctx.add(FindingCode::value_out_of_range, offset,
             std::string(spec.name) + " " + fmt_number(fv.value, d) +
-                (spec.unit.empty() ? "" : " ") + std::string(spec.unit) +
-                " outside [" + fmt_number(spec.min, d) + ", " +
-                fmt_number(spec.max, d) + "]");
+                (spec.unit.empty() ? "" : " ") + std::string(spec.unit) + " outside [" +
+                fmt_number(spec.min, d) + ", " + fmt_number(spec.max, d) + "]");
   }
 }
 
@@ -309,10 +305,9 @@ void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
   if (d == Dialect::unknown && opts.model != Model::unknown) d = dialect_of(opts.model);
   if (d == Dialect::unknown) d = dialect_from_frame(frame);
   const std::string_view ident = frame.ident_view();
-  const auto ident_at = static_cast<std::uint32_t>(
-      frame.header == Header::tmp_quirk ? 6 : frame.data_offset - 3);
-  const CommandSpec* cmd =
-      d == Dialect::unknown ? find_any(ident) : find_command(d, ident);
+  const auto ident_at =
+      static_cast<std::uint32_t>(frame.header == Header::tmp_quirk ? 6 : frame.data_offset - 3);
+  const CommandSpec* cmd = d == Dialect::unknown ? find_any(ident) : find_command(d, ident);
   if (cmd && d == Dialect::unknown) d = cmd->dialect;
   out.dialect = d;
   out.command = cmd;
@@ -338,8 +333,7 @@ void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
                     ? kMessages[frame.declared_length + (g_class ? 16 : 0)]
                     : message(frame.declared_length, g_class);
   }
-  if (d == Dialect::skydroid &&
-      (frame.header == Header::ext8 || frame.header == Header::ext16))
+  if (d == Dialect::skydroid && (frame.header == Header::ext8 || frame.header == Header::ext16))
     ctx.add(FindingCode::ext_header_skydroid, 0,
             std::string(to_string(frame.header)) +
                 " is a Topotek extended header; SkyDroid defines only #TP/#tp");
@@ -347,18 +341,17 @@ void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
   if (!cmd) {
     ctx.add(FindingCode::unknown_ident, ident_at,
             "identifier " + std::string(ident) + " is not in the " +
-                std::string(d == Dialect::unknown ? "TOP" : to_string(d)) +
-                " catalog");
+                std::string(d == Dialect::unknown ? "TOP" : to_string(d)) + " catalog");
     return;
   }
   if (opts.model != Model::unknown && !cmd->supports(opts.model))
     ctx.add(FindingCode::unsupported_on_model, ident_at,
-            std::string(ident) + " (" + std::string(cmd->section) +
-                ") is not listed for " + std::string(to_string(opts.model)));
+            std::string(ident) + " (" + std::string(cmd->section) + ") is not listed for " +
+                std::string(to_string(opts.model)));
   if (ident == "ERE")
     ctx.add(FindingCode::error_reply, ident_at,
-            std::string("the device rejected a command as invalid (") +
-                frame.src + " to " + frame.dst + ")");
+            std::string("the device rejected a command as invalid (") + frame.src + " to " +
+                frame.dst + ")");
 
   const std::size_t len = frame.data_length;
   const FormSpec* form = nullptr;
@@ -383,13 +376,13 @@ void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
     if (form)
       ctx.add(FindingCode::unswapped_addresses, 3,
               std::string("laid out as a ") +
-                  (form->role == Role::response ? "response" : "request") +
-                  " but addressed " + frame.src + " to " + frame.dst);
+                  (form->role == Role::response ? "response" : "request") + " but addressed " +
+                  frame.src + " to " + frame.dst);
   }
   if (!control_known) {
     ctx.add(FindingCode::unsupported_control, 6,
-            std::string(ident) + " has no '" + std::string(1, frame.control) +
-                "' form in " + std::string(cmd->section));
+            std::string(ident) + " has no '" + std::string(1, frame.control) + "' form in " +
+                std::string(cmd->section));
     return;
   }
   if (!form) {
@@ -434,8 +427,8 @@ void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
                   std::to_string(data.size() - pos) + " left");
       break;
     }
-    decode_field(ctx, fs, data.substr(pos, w),
-                 static_cast<std::uint32_t>(frame.data_offset + pos), out.fields.emplace_back());
+    decode_field(ctx, fs, data.substr(pos, w), static_cast<std::uint32_t>(frame.data_offset + pos),
+                 out.fields.emplace_back());
     pos += w;
   }
   return;
@@ -465,8 +458,8 @@ bool exact_decimal(const FieldValue& f, std::int64_t& mantissa, int& decimals) n
   constexpr std::int64_t kMax = 1'000'000'000'000'000;  // 10^15: 15 digits
   // and the value must be that decimal's double (a FieldValue built by hand
   // may say otherwise): then the two texts agree
-  return !__builtin_mul_overflow(f.integer, m, &mantissa) && mantissa > -kMax &&
-         mantissa < kMax && static_cast<double>(mantissa) / kPow10[decimals] == f.value;
+  return !__builtin_mul_overflow(f.integer, m, &mantissa) && mantissa > -kMax && mantissa < kMax &&
+         static_cast<double>(mantissa) / kPow10[decimals] == f.value;
 }
 
 namespace {
@@ -508,22 +501,22 @@ std::string format_value(const FieldValue& f) {
   switch (s.kind) {
     case FieldKind::enum_hex:
     case FieldKind::enum_char: {
-      std::string code = s.kind == FieldKind::enum_char
-                             ? f.text
-                             : [&] {
-                                 char b[24];
-                                 std::snprintf(b, sizeof b, "%0*llX",
-                                               static_cast<int>(f.length),
-                                               static_cast<unsigned long long>(f.integer));
-                                 return std::string(b);
-                               }();
+      std::string code = s.kind == FieldKind::enum_char ? f.text : [&] {
+        char b[24];
+        std::snprintf(b, sizeof b, "%0*llX", static_cast<int>(f.length),
+                      static_cast<unsigned long long>(f.integer));
+        return std::string(b);
+      }();
       if (!f.enum_name.empty()) return std::string(f.enum_name) + " (" + code + ")";
       return code + " (undocumented)";
     }
     case FieldKind::text:
-    case FieldKind::raw: return f.text;
-    case FieldKind::nmea: return with_unit(fmt_number(f.value, 7)) + " (" + f.text + ")";
-    case FieldKind::number: return with_unit(f.text);
+    case FieldKind::raw:
+      return f.text;
+    case FieldKind::nmea:
+      return with_unit(fmt_number(f.value, 7)) + " (" + f.text + ")";
+    case FieldKind::number:
+      return with_unit(f.text);
     default: {
       std::string v;
       std::int64_t mantissa = 0;
@@ -541,8 +534,7 @@ std::string format_value(const FieldValue& f) {
 
 std::string Decoded::summary() const {
   std::string s;
-  if (form && !form->none.empty() && !fields.empty() && fields.front().none &&
-      !form->note.empty())
+  if (form && !form->none.empty() && !fields.empty() && fields.front().none && !form->note.empty())
     return "none (" + std::string(form->note) + ")";
   for (const FieldValue& f : fields) {
     if (!s.empty()) s += ", ";
@@ -564,16 +556,14 @@ bool put_hex(std::int64_t v, std::size_t width, bool is_signed, std::string& out
   if (v < lo || v > hi) return false;
   std::uint64_t u = static_cast<std::uint64_t>(v) & ((static_cast<std::uint64_t>(1) << bits) - 1);
   char b[24];
-  std::snprintf(b, sizeof b, "%0*llX", static_cast<int>(width),
-                static_cast<unsigned long long>(u));
+  std::snprintf(b, sizeof b, "%0*llX", static_cast<int>(width), static_cast<unsigned long long>(u));
   out += b;
   return true;
 }
 
 }  // namespace
 
-bool encode_fields(const FormSpec& form, std::span<const EncodeValue> values,
-                   std::string& out) {
+bool encode_fields(const FormSpec& form, std::span<const EncodeValue> values, std::string& out) {
   out.clear();
   if (values.size() < form.fields.size()) return false;
   for (std::size_t i = 0; i < form.fields.size(); ++i) {
@@ -586,8 +576,8 @@ bool encode_fields(const FormSpec& form, std::span<const EncodeValue> values,
       out.append(v.text);
       continue;
     }
-    std::int64_t iv = static_cast<std::int64_t>(
-        std::llround(s.scale != 0 ? v.number / s.scale : v.number));
+    std::int64_t iv =
+        static_cast<std::int64_t>(std::llround(s.scale != 0 ? v.number / s.scale : v.number));
     switch (s.kind) {
       case FieldKind::hex_u:
       case FieldKind::enum_hex:
@@ -599,8 +589,8 @@ bool encode_fields(const FormSpec& form, std::span<const EncodeValue> values,
       case FieldKind::dec_u: {
         if (iv < 0 || w == 0 || w > 18) return false;
         char b[32];
-        int n = std::snprintf(b, sizeof b, "%0*lld", static_cast<int>(w),
-                              static_cast<long long>(iv));
+        int n =
+            std::snprintf(b, sizeof b, "%0*lld", static_cast<int>(w), static_cast<long long>(iv));
         if (n != static_cast<int>(w)) return false;
         out += b;
         break;
@@ -626,10 +616,10 @@ bool encode_fields(const FormSpec& form, std::span<const EncodeValue> values,
       case FieldKind::le_u16:
       case FieldKind::le_i32: {
         std::size_t n = s.kind == FieldKind::le_i32 ? 4 : 2;
-        std::int64_t lo = s.kind == FieldKind::le_i16 ? -32768
+        std::int64_t lo = s.kind == FieldKind::le_i16   ? -32768
                           : s.kind == FieldKind::le_u16 ? 0
                                                         : INT32_MIN;
-        std::int64_t hi = s.kind == FieldKind::le_i16 ? 32767
+        std::int64_t hi = s.kind == FieldKind::le_i16   ? 32767
                           : s.kind == FieldKind::le_u16 ? 65535
                                                         : INT32_MAX;
         if (iv < lo || iv > hi) return false;
@@ -676,8 +666,11 @@ std::string example_data(const FormSpec& form) {
         out += t;
         continue;
       }
-      case FieldKind::raw: out += std::string(w, '0'); continue;
-      default: break;
+      case FieldKind::raw:
+        out += std::string(w, '0');
+        continue;
+      default:
+        break;
     }
     if (w == 0 && s.kind != FieldKind::number) {
       // Variable-width numeric: use two digits.

@@ -6,10 +6,13 @@ Dialect dialect_from_port(std::uint16_t port) noexcept {
   switch (port) {
     case 5000:
     case 9002:
-    case 12580: return Dialect::skydroid;
+    case 12580:
+      return Dialect::skydroid;
     case 9003:
-    case 9004: return Dialect::topotek;
-    default: return Dialect::unknown;
+    case 9004:
+      return Dialect::topotek;
+    default:
+      return Dialect::unknown;
   }
 }
 
@@ -19,8 +22,7 @@ bool is_top_port(std::uint16_t port) noexcept {
 
 Dialect dialect_from_frame(const Frame& f) noexcept {
   if (f.src == 'P' || f.dst == 'P') return Dialect::topotek;
-  if (f.header == Header::ext8 || f.header == Header::ext16 ||
-      f.header == Header::tmp_quirk)
+  if (f.header == Header::ext8 || f.header == Header::ext16 || f.header == Header::tmp_quirk)
     return Dialect::topotek;
   std::string_view id = f.ident_view();
   const bool sky = find_command(Dialect::skydroid, id) != nullptr;
@@ -37,9 +39,14 @@ void DialectDetector::observe_port(std::uint16_t port) noexcept {
 
 void DialectDetector::observe(const Frame& f) noexcept {
   switch (dialect_from_frame(f)) {
-    case Dialect::skydroid: ++votes_skydroid_; break;
-    case Dialect::topotek: ++votes_topotek_; break;
-    case Dialect::unknown: break;
+    case Dialect::skydroid:
+      ++votes_skydroid_;
+      break;
+    case Dialect::topotek:
+      ++votes_topotek_;
+      break;
+    case Dialect::unknown:
+      break;
   }
 }
 

@@ -22,9 +22,12 @@ constexpr std::array<Row, finding_code_count> kRows = {{
 
 std::string_view to_string(Severity s) noexcept {
   switch (s) {
-    case Severity::info: return "info";
-    case Severity::warning: return "warning";
-    case Severity::error: return "error";
+    case Severity::info:
+      return "info";
+    case Severity::warning:
+      return "warning";
+    case Severity::error:
+      return "error";
   }
   return "?";
 }
@@ -50,8 +53,8 @@ std::optional<FindingCode> finding_code_from_string(std::string_view s) noexcept
   return std::nullopt;
 }
 
-Finding make_finding(FindingCode code, std::uint32_t offset,
-                     std::string message, std::string_view quirk) {
+Finding make_finding(FindingCode code, std::uint32_t offset, std::string message,
+                     std::string_view quirk) {
   return Finding{code, default_severity(code), offset, std::move(message), quirk};
 }
 

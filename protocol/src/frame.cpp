@@ -15,11 +15,16 @@ using detail::is_lower_hex;
 
 std::string_view to_string(Header h) noexcept {
   switch (h) {
-    case Header::fixed: return "#TP";
-    case Header::variable: return "#tp";
-    case Header::ext8: return "#tP";
-    case Header::ext16: return "#Tp";
-    case Header::tmp_quirk: return "#P";
+    case Header::fixed:
+      return "#TP";
+    case Header::variable:
+      return "#tp";
+    case Header::ext8:
+      return "#tP";
+    case Header::ext16:
+      return "#Tp";
+    case Header::tmp_quirk:
+      return "#P";
   }
   return "?";
 }
@@ -79,9 +84,7 @@ std::string printable(char c) {
   return b;
 }
 
-bool is_ident_char(char c) noexcept {
-  return (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
-}
+bool is_ident_char(char c) noexcept { return (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9'); }
 
 bool is_boundary(char c) noexcept { return c == '#' || c == '\r' || c == '\n'; }
 
@@ -103,8 +106,8 @@ Verdict need_more() { return Verdict{}; }
 
 Verdict truncated(std::size_t have, std::size_t want) {
   return invalid(FindingCode::truncated, have,
-                 "input ends after " + std::to_string(have) +
-                     " bytes of a frame that needs " + std::to_string(want));
+                 "input ends after " + std::to_string(have) + " bytes of a frame that needs " +
+                     std::to_string(want));
 }
 
 // Header variants whose checksum a sender may have used by mistake.
@@ -154,8 +157,7 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
   auto short_of = [&](std::size_t want) { return n < want; };
   if (n == 0) return at_end ? truncated(0, 1) : need_more();
   if (b[0] != '#')
-    return invalid(FindingCode::bad_header, 0,
-                   "frame must start with '#', got " + printable(b[0]));
+    return invalid(FindingCode::bad_header, 0, "frame must start with '#', got " + printable(b[0]));
 
   Layout lay;
   // --- header -----------------------------------------------------------
@@ -167,25 +169,25 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
       if (i >= n) return at_end ? truncated(n, 33) : need_more();
       bool okc = kTmp[i] == '?' ? is_hex(b[i]) : b[i] == kTmp[i];
       if (!okc)
-        return invalid(FindingCode::bad_header, 1,
-                       "'#' followed by " + printable(b[1]) +
-                           ", not a TOP header (#TP #tp #tP #Tp)");
+        return invalid(
+            FindingCode::bad_header, 1,
+            "'#' followed by " + printable(b[1]) + ", not a TOP header (#TP #tp #tP #Tp)");
     }
     lay.header = Header::tmp_quirk;
     lay.ident_at = 6;
     lay.data_at = 9;
-    lay.declared = static_cast<std::size_t>(hex_value(b[4])) * 16 + static_cast<std::size_t>(hex_value(b[5]));
+    lay.declared =
+        static_cast<std::size_t>(hex_value(b[4])) * 16 + static_cast<std::size_t>(hex_value(b[5]));
     lay.hex_length = false;
   } else {
     if (b[1] != 'T' && b[1] != 't')
       return invalid(FindingCode::bad_header, 1,
-                     "'#' followed by " + printable(b[1]) +
-                         ", not a TOP header (#TP #tp #tP #Tp)");
+                     "'#' followed by " + printable(b[1]) + ", not a TOP header (#TP #tp #tP #Tp)");
     if (short_of(3)) return at_end ? truncated(n, 12) : need_more();
     if (b[2] != 'P' && b[2] != 'p')
-      return invalid(FindingCode::bad_header, 2,
-                     std::string("\"#") + b[1] + "\" followed by " +
-                         printable(b[2]) + ", not a TOP header");
+      return invalid(
+          FindingCode::bad_header, 2,
+          std::string("\"#") + b[1] + "\" followed by " + printable(b[2]) + ", not a TOP header");
     if (b[1] == 'T')
       lay.header = b[2] == 'P' ? Header::fixed : Header::ext16;
     else
@@ -201,9 +203,8 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
       if (short_of(i + 1)) return at_end ? truncated(n, 12) : need_more();
       if (!is_address(b[i]))
         return invalid(FindingCode::bad_address, i,
-                       std::string(i == 3 ? "source" : "destination") +
-                           " address " + printable(b[i]) +
-                           " is not one of U M D E P G");
+                       std::string(i == 3 ? "source" : "destination") + " address " +
+                           printable(b[i]) + " is not one of U M D E P G");
     }
     // --- length and control ----------------------------------------------
     if (short_of(6)) return at_end ? truncated(n, 12) : need_more();
@@ -212,11 +213,10 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
       case Header::variable: {
         if (!is_hex(b[5]))
           return invalid(FindingCode::bad_length_char, 5,
-                         "length char " + printable(b[5]) +
-                             " is not a hex digit");
+                         "length char " + printable(b[5]) + " is not a hex digit");
         if (is_lower_hex(b[5]))
-          notes.push_back(make_finding(FindingCode::lowercase_hex, 5,
-                                       "length char written in lowercase"));
+          notes.push_back(
+              make_finding(FindingCode::lowercase_hex, 5, "length char written in lowercase"));
         if (short_of(7)) return at_end ? truncated(n, 12) : need_more();
         if (b[6] == 'r' || b[6] == 'w') {
           lay.control = b[6];
@@ -226,11 +226,10 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
           if (short_of(8)) return at_end ? truncated(n, 13) : need_more();
           if (b[7] != 'r' && b[7] != 'w')
             return invalid(FindingCode::bad_control, 6,
-                           "control char " + printable(b[6]) +
-                               " is not r or w");
+                           "control char " + printable(b[6]) + " is not r or w");
           lay.control = b[7];
-          lay.declared =
-              static_cast<std::size_t>(hex_value(b[5])) * 16 + static_cast<std::size_t>(hex_value(b[6]));
+          lay.declared = static_cast<std::size_t>(hex_value(b[5])) * 16 +
+                         static_cast<std::size_t>(hex_value(b[6]));
           lay.two_digit = true;
           lay.hex_length = false;
           lay.ident_at = 8;
@@ -253,15 +252,16 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
       }
       case Header::ext16: {
         if (short_of(7)) return at_end ? truncated(n, 12) : need_more();
-        lay.declared = static_cast<std::size_t>(
-            static_cast<unsigned char>(b[5]) << 8 | static_cast<unsigned char>(b[6]));
+        lay.declared = static_cast<std::size_t>(static_cast<unsigned char>(b[5]) << 8 |
+                                                static_cast<unsigned char>(b[6]));
         lay.hex_length = false;
         lay.control = 0;
         lay.ident_at = 7;
         lay.data_at = 10;
         break;
       }
-      case Header::tmp_quirk: break;
+      case Header::tmp_quirk:
+        break;
     }
   }
 
@@ -270,14 +270,12 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
     if (short_of(i + 1)) return at_end ? truncated(n, lay.data_at + 2) : need_more();
     if (!is_ident_char(b[i]))
       return invalid(FindingCode::bad_ident, i,
-                     "identifier char " + printable(b[i]) +
-                         " is not an uppercase letter or digit");
+                     "identifier char " + printable(b[i]) + " is not an uppercase letter or digit");
   }
   if (lay.declared > opts.max_data_length)
     return invalid(FindingCode::frame_too_long, 5,
                    "declared data length " + std::to_string(lay.declared) +
-                       " exceeds the limit of " +
-                       std::to_string(opts.max_data_length));
+                       " exceeds the limit of " + std::to_string(opts.max_data_length));
 
   f.src = lay.header == Header::tmp_quirk ? b[2] : b[3];
   f.dst = lay.header == Header::tmp_quirk ? b[3] : b[4];
@@ -289,18 +287,18 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
   f.data_offset = static_cast<std::uint32_t>(lay.data_at);
 
   if (lay.header == Header::tmp_quirk || (lay.two_digit && f.ident_view() == "TMP")) {
-    notes.push_back(make_finding(
-        FindingCode::tmp_quirk, lay.header == Header::tmp_quirk ? 1 : 5,
-        lay.header == Header::tmp_quirk
-            ? "the malformed TMP form documented in Topotek 12.2 (#PDP16TMP: "
-              "no 'tp', two-digit length, no control char)"
-            : "TMP frame with a two-digit length (Topotek 12.2: 22 data chars "
-              "do not fit one hex digit)",
-        "topotek-tmp-length"));
+    notes.push_back(
+        make_finding(FindingCode::tmp_quirk, lay.header == Header::tmp_quirk ? 1 : 5,
+                     lay.header == Header::tmp_quirk
+                         ? "the malformed TMP form documented in Topotek 12.2 (#PDP16TMP: "
+                           "no 'tp', two-digit length, no control char)"
+                         : "TMP frame with a two-digit length (Topotek 12.2: 22 data chars "
+                           "do not fit one hex digit)",
+                     "topotek-tmp-length"));
   } else if (lay.two_digit) {
-    notes.push_back(make_finding(FindingCode::two_digit_length, 5,
-                                 "length written as two hex digits (0x" +
-                                     std::string(b.substr(5, 2)) + ")"));
+    notes.push_back(
+        make_finding(FindingCode::two_digit_length, 5,
+                     "length written as two hex digits (0x" + std::string(b.substr(5, 2)) + ")"));
   }
 
   // --- data and checksum -------------------------------------------------------
@@ -341,10 +339,10 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
     std::uint8_t v = 0;
     if (checksum_at(b, declared_cs, prefix_declared, v)) {
       if (is_lower_hex(b[declared_cs]) || is_lower_hex(b[declared_cs + 1]))
-        notes.push_back(make_finding(
-            FindingCode::checksum_case, static_cast<std::uint32_t>(declared_cs),
-            "checksum " + std::string(b.substr(declared_cs, 2)) +
-                " is right but lowercase; strict receivers expect " + hex2(v)));
+        notes.push_back(
+            make_finding(FindingCode::checksum_case, static_cast<std::uint32_t>(declared_cs),
+                         "checksum " + std::string(b.substr(declared_cs, 2)) +
+                             " is right but lowercase; strict receivers expect " + hex2(v)));
       return finish(L, true, v, prefix_declared);
     }
   }
@@ -372,11 +370,10 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
       found_prefix = s;
     }
     if (count == 1) {
-      notes.push_back(make_finding(
-          FindingCode::length_mismatch, 5,
-          "declared length " + std::to_string(L) + " but the checksum validates with " +
-              std::to_string(found) + " data bytes; decoded with " +
-              std::to_string(found)));
+      notes.push_back(make_finding(FindingCode::length_mismatch, 5,
+                                   "declared length " + std::to_string(L) +
+                                       " but the checksum validates with " + std::to_string(found) +
+                                       " data bytes; decoded with " + std::to_string(found)));
       return finish(found, true, found_value, found_prefix);
     }
   }
@@ -396,10 +393,9 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
 
   // No checksum at all: the data is followed directly by a boundary.
   if (is_boundary(b[declared_cs])) {
-    notes.push_back(make_finding(
-        FindingCode::no_checksum, static_cast<std::uint32_t>(declared_cs),
-        "frame ends where its checksum should be (expected " +
-            hex2(static_cast<std::uint8_t>(prefix_declared)) + ")"));
+    notes.push_back(make_finding(FindingCode::no_checksum, static_cast<std::uint32_t>(declared_cs),
+                                 "frame ends where its checksum should be (expected " +
+                                     hex2(static_cast<std::uint8_t>(prefix_declared)) + ")"));
     return finish(L, false, 0, prefix_declared);
   }
 
@@ -410,16 +406,16 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
   bool present = hi >= 0 && lo >= 0;
   std::uint8_t value = present ? static_cast<std::uint8_t>(hi * 16 + lo) : 0;
   if (present && lay.header != Header::tmp_quirk) {
-    unsigned base = prefix_declared - static_cast<unsigned char>(b[1]) -
-                    static_cast<unsigned char>(b[2]);
+    unsigned base =
+        prefix_declared - static_cast<unsigned char>(b[1]) - static_cast<unsigned char>(b[2]);
     for (const auto& v : kHeaderVariants) {
       if (v[0] == b[1] && v[1] == b[2]) continue;
       unsigned alt = base + static_cast<unsigned char>(v[0]) + static_cast<unsigned char>(v[1]);
       if (static_cast<std::uint8_t>(alt & 0xFF) == value) {
         notes.push_back(make_finding(
             FindingCode::checksum_header_case, static_cast<std::uint32_t>(declared_cs),
-            "checksum " + got + " is the sum with header #" + std::string(v.data(), 2) +
-                ", not #" + std::string(b.substr(1, 2)) + " (expected " + hex2(expected) + ")",
+            "checksum " + got + " is the sum with header #" + std::string(v.data(), 2) + ", not #" +
+                std::string(b.substr(1, 2)) + " (expected " + hex2(expected) + ")",
             "skydroid-doc-header-case"));
         return finish(L, true, value, prefix_declared);
       }
@@ -428,8 +424,7 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
   notes.push_back(make_finding(
       FindingCode::bad_checksum, static_cast<std::uint32_t>(declared_cs),
       present ? "checksum " + got + ", expected " + hex2(expected)
-              : "checksum field '" + got + "' is not two hex digits, expected " +
-                    hex2(expected)));
+              : "checksum field '" + got + "' is not two hex digits, expected " + hex2(expected)));
   return finish(L, present, value, prefix_declared);
 }
 
@@ -464,14 +459,14 @@ ParseResult parse_exact(std::string_view bytes, const ParseOptions& opts) {
   }
   if (crlf > 0) {
     r.frame.terminator = static_cast<std::uint8_t>(std::min<std::size_t>(crlf, 255));
-    r.frame.findings.push_back(make_finding(
-        FindingCode::crlf, static_cast<std::uint32_t>(r.consumed),
-        "frame followed by " + std::to_string(crlf) + " CR/LF byte(s)"));
+    r.frame.findings.push_back(
+        make_finding(FindingCode::crlf, static_cast<std::uint32_t>(r.consumed),
+                     "frame followed by " + std::to_string(crlf) + " CR/LF byte(s)"));
   }
   if (i < bytes.size())
-    r.frame.findings.push_back(make_finding(
-        FindingCode::trailing_bytes, static_cast<std::uint32_t>(i),
-        std::to_string(bytes.size() - i) + " byte(s) after the frame"));
+    r.frame.findings.push_back(
+        make_finding(FindingCode::trailing_bytes, static_cast<std::uint32_t>(i),
+                     std::to_string(bytes.size() - i) + " byte(s) after the frame"));
   r.consumed = bytes.size();
   return r;
 }
@@ -479,8 +474,7 @@ ParseResult parse_exact(std::string_view bytes, const ParseOptions& opts) {
 std::string build_frame(const BuildSpec& spec) {
   Header h = spec.header;
   std::size_t len = spec.data.size();
-  if ((h == Header::fixed || h == Header::variable) && len > max_data_hex)
-    h = Header::ext8;
+  if ((h == Header::fixed || h == Header::variable) && len > max_data_hex) h = Header::ext8;
   if (h == Header::ext8 && len > max_data_ext8) h = Header::ext16;
   if (h == Header::tmp_quirk) h = Header::variable;
   std::string out;
@@ -502,7 +496,8 @@ std::string build_frame(const BuildSpec& spec) {
       out += static_cast<char>((len >> 8) & 0xFF);
       out += static_cast<char>(len & 0xFF);
       break;
-    case Header::tmp_quirk: break;
+    case Header::tmp_quirk:
+      break;
   }
   out.append(spec.ident.substr(0, 3));
   out.append(spec.data);

@@ -83,9 +83,9 @@ void StreamDecoder::compact() {
 void note_terminator(Frame& f, std::size_t count) {
   if (count == 0) return;
   f.terminator = static_cast<std::uint8_t>(std::min<std::size_t>(count, 255));
-  f.findings.push_back(make_finding(
-      FindingCode::crlf, static_cast<std::uint32_t>(f.raw.size()),
-      "frame followed by " + std::to_string(f.terminator) + " CR/LF byte(s)"));
+  f.findings.push_back(
+      make_finding(FindingCode::crlf, static_cast<std::uint32_t>(f.raw.size()),
+                   "frame followed by " + std::to_string(f.terminator) + " CR/LF byte(s)"));
 }
 
 void StreamDecoder::release_pending() {
@@ -203,12 +203,12 @@ void StreamDecoder::pump() {
         }
         ++tried;
         if (inner.status == ParseStatus::frame && inner.frame.checksum_ok) {
-          Finding why = make_finding(
-              r.frame.has(FindingCode::no_checksum) ? FindingCode::no_checksum
-                                                    : FindingCode::bad_checksum,
-              0,
-              "abandoned a frame that fails its checksum for a valid frame at +" +
-                  std::to_string(q - pos_));
+          Finding why =
+              make_finding(r.frame.has(FindingCode::no_checksum) ? FindingCode::no_checksum
+                                                                 : FindingCode::bad_checksum,
+                           0,
+                           "abandoned a frame that fails its checksum for a valid frame at +" +
+                               std::to_string(q - pos_));
           add_garbage(pos_, q - pos_, &why);
           pos_ = q;
           yielded = true;

@@ -470,11 +470,16 @@ namespace {
 // The one-frame datagram fast path gives what the stream decoder gives.
 TEST(Datagram, FastPathEqualsStreamDecoder) {
   std::mt19937 rng(3);
-  std::vector<std::string> payloads = {
-      pcapw::frame("#tpUG6wGAYEC7832"), pcapw::frame("#TPUG2wPTZ05"), "#TPUG2wPTZ0500",
-      pcapw::frame("#TPUG2wPTZ05") + "\r\n", pcapw::frame("#PDP16TMP1008001720504000FA0123"),
-      pcapw::frame("#tpDP16wTMP1008001720504000FA0123"), pcapw::frame("#tpUG6wGAYfe0c32"),
-      "#tpUG6wGAY", pcapw::frame("#tpUG6wGAY#TPUG2"), pcapw::frame("#TPUG2wPTZ05").substr(0, 13)};
+  std::vector<std::string> payloads = {pcapw::frame("#tpUG6wGAYEC7832"),
+                                       pcapw::frame("#TPUG2wPTZ05"),
+                                       "#TPUG2wPTZ0500",
+                                       pcapw::frame("#TPUG2wPTZ05") + "\r\n",
+                                       pcapw::frame("#PDP16TMP1008001720504000FA0123"),
+                                       pcapw::frame("#tpDP16wTMP1008001720504000FA0123"),
+                                       pcapw::frame("#tpUG6wGAYfe0c32"),
+                                       "#tpUG6wGAY",
+                                       pcapw::frame("#tpUG6wGAY#TPUG2"),
+                                       pcapw::frame("#TPUG2wPTZ05").substr(0, 13)};
   for (int i = 0; i < 400; ++i) {
     std::string p = pcapw::frame("#tpUG6wGAYEC7832");
     p[static_cast<std::size_t>(rng() % p.size())] = static_cast<char>(rng() & 0xFF);
@@ -483,10 +488,16 @@ TEST(Datagram, FastPathEqualsStreamDecoder) {
   // Several frames per datagram, with CR/LF runs (one over 255 bytes), and
   // then one byte anywhere replaced: the fast path hands over to the decoder
   // at the first byte it does not take.
-  const std::vector<std::string> parts = {
-      pcapw::frame("#tpUG6wGAYEC7832"), pcapw::frame("#TPUG2wPTZ05"), pcapw::frame("#TPUD2rVER00"),
-      pcapw::frame("#tpUG6wGAYfe0c32"), pcapw::frame("#PDP16TMP1008001720504000FA0123"), "\r\n",
-      "\n", std::string(300, '\r'), "x", "#TPUG2wPTZ0500"};
+  const std::vector<std::string> parts = {pcapw::frame("#tpUG6wGAYEC7832"),
+                                          pcapw::frame("#TPUG2wPTZ05"),
+                                          pcapw::frame("#TPUD2rVER00"),
+                                          pcapw::frame("#tpUG6wGAYfe0c32"),
+                                          pcapw::frame("#PDP16TMP1008001720504000FA0123"),
+                                          "\r\n",
+                                          "\n",
+                                          std::string(300, '\r'),
+                                          "x",
+                                          "#TPUG2wPTZ0500"};
   for (int i = 0; i < 600; ++i) {
     std::string p;
     const std::size_t n = 2 + rng() % 4;
@@ -521,7 +532,8 @@ TEST(Datagram, FastPathEqualsStreamDecoder) {
       // in the dialect the conversation settled on (a TMP frame makes it Topotek)
       top::Decoded d = top::decode(
           it.frame, top::DecodeOptions{got.dialect, top::Model::unknown, top::Role::any});
-      for (const top::Finding* x : all_findings(it.frame, d)) want.emplace_back(top::to_string(x->code));
+      for (const top::Finding* x : all_findings(it.frame, d))
+        want.emplace_back(top::to_string(x->code));
       std::vector<std::string> have;
       for (const auto& c : got.codes)
         if (!acode_from_string(c)) have.push_back(c);

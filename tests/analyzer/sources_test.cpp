@@ -264,11 +264,11 @@ TEST(FuzzRegression, SaleaeCsvWithADuplicatedColumnReadsTheFirst) {
 // log has errors) with every line valid JSON, the byte written as \xAB.
 TEST(FuzzRegression, SaleaeCsvNonUtf8BytesInMessagesAreEscapedInJson) {
   std::string out;
-  const int rc = run("'" + topdump_bin() + "' read --json --format saleae '" +
-                         std::string(TOPKIT_SOURCE_DIR) +
-                         "/fuzz/regressions/capture_saleae/duplicate-name-column-out-of-range' "
-                         "2>/dev/null",
-                     out);
+  const int rc =
+      run("'" + topdump_bin() + "' read --json --format saleae '" + std::string(TOPKIT_SOURCE_DIR) +
+              "/fuzz/regressions/capture_saleae/duplicate-name-column-out-of-range' "
+              "2>/dev/null",
+          out);
   EXPECT_EQ(rc, 1);
   std::istringstream in(out);
   std::string line;
@@ -432,8 +432,8 @@ namespace {
 // A list option takes one value per occurrence: it never swallows the files.
 TEST(Binary, ListOptionsDoNotSwallowFiles) {
   std::string out, caps = captures_dir();
-  ASSERT_EQ(run("'" + topdump_bin() + "' stats --json --ident GAY --port 6000 '" + caps + "/sll.pcap' '" +
-                    caps + "/sll2.pcap' 2>/dev/null",
+  ASSERT_EQ(run("'" + topdump_bin() + "' stats --json --ident GAY --port 6000 '" + caps +
+                    "/sll.pcap' '" + caps + "/sll2.pcap' 2>/dev/null",
                 out),
             0);
   auto j = nlohmann::json::parse(out);

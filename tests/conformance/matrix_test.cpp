@@ -34,9 +34,9 @@ std::string replace(std::string s, std::string_view from, std::string_view to) {
 // as out_of_range 406, not parse_error, and load_matrix (which never throws)
 // let it escape. Must: an error naming the file and the byte offset.
 TEST(FuzzRegression, MatrixNumberOverflowIsAnErrorNotAThrow) {
-  std::ifstream in(std::string(TOPKIT_SOURCE_DIR) +
-                       "/fuzz/regressions/matrix/number-overflow-throws",
-                   std::ios::binary);
+  std::ifstream in(
+      std::string(TOPKIT_SOURCE_DIR) + "/fuzz/regressions/matrix/number-overflow-throws",
+      std::ios::binary);
   ASSERT_TRUE(in);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   topconf::LoadResult r;
@@ -46,9 +46,9 @@ TEST(FuzzRegression, MatrixNumberOverflowIsAnErrorNotAThrow) {
   const std::size_t at = text.find("3e7043");
   ASSERT_NE(at, std::string::npos);
   // the offset is where the lexer stands after the number: its last byte
-  EXPECT_NE(r.errors[0].find("overflow.json: (json): not valid JSON at byte " +
-                             std::to_string(at + 6)),
-            std::string::npos)
+  EXPECT_NE(
+      r.errors[0].find("overflow.json: (json): not valid JSON at byte " + std::to_string(at + 6)),
+      std::string::npos)
       << r.errors[0];
   EXPECT_NE(r.errors[0].find("number overflow"), std::string::npos) << r.errors[0];
 

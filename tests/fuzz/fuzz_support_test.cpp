@@ -101,7 +101,8 @@ TEST(Mutator, LeavesNothingToRepairAlone) {
 TEST(Mutator, LeavesAboutOneInEightUnrepaired) {
   int left = 0;
   const int n = 80000;
-  for (int seed = 0; seed < n; ++seed) left += topfuzz::leave_unrepaired(static_cast<unsigned>(seed));
+  for (int seed = 0; seed < n; ++seed)
+    left += topfuzz::leave_unrepaired(static_cast<unsigned>(seed));
   EXPECT_GT(left, n / 8 - n / 80);
   EXPECT_LT(left, n / 8 + n / 80);
   // Deterministic from the seed.
@@ -119,16 +120,17 @@ TEST(Reference, AcceptsTheDocumentsExamples) {
 
 TEST(Reference, RejectsWhatTheDocumentsDoNotDefine) {
   for (const char* s : {
-           "#TPUG6wGAYEF073288",    // SkyDroid erratum: checksum computed as #tp
-           "#tpUG6wGAYEF0732 88",   // data longer than declared
-           "#tpDU3rVER0105025A",    // lying length (field note)
-           "#tpUG2wPTZ006a",        // checksum digits must be uppercase (every example)
-           "#tpUg2wPTZ0073",        // address outside U M D E P G
-           "#tpUG2xPTZ0074",        // control outside r/w
-           "#tpUG2wPtz00AA",        // identifier not uppercase
-           "#tpUG2wPTZ0",           // ends inside the frame
+           "#TPUG6wGAYEF073288",   // SkyDroid erratum: checksum computed as #tp
+           "#tpUG6wGAYEF0732 88",  // data longer than declared
+           "#tpDU3rVER0105025A",   // lying length (field note)
+           "#tpUG2wPTZ006a",       // checksum digits must be uppercase (every example)
+           "#tpUg2wPTZ0073",       // address outside U M D E P G
+           "#tpUG2xPTZ0074",       // control outside r/w
+           "#tpUG2wPtz00AA",       // identifier not uppercase
+           "#tpUG2wPTZ0",          // ends inside the frame
        })
-    EXPECT_FALSE(topref::parse(s).has_value() && topref::parse(s)->size == std::string_view(s).size())
+    EXPECT_FALSE(topref::parse(s).has_value() &&
+                 topref::parse(s)->size == std::string_view(s).size())
         << s;
 }
 

@@ -110,7 +110,8 @@ class Wire {
       if (id != "GAC" && id != "GIC") ++late;  // attitude pushes are expected
     }
     frames_.clear();
-    if (late > 0) note("discarded " + std::to_string(late) + " late frame(s) before the next exchange");
+    if (late > 0)
+      note("discarded " + std::to_string(late) + " late frame(s) before the next exchange");
   }
 
   std::uint64_t chunks() const noexcept { return chunks_; }

@@ -22,8 +22,8 @@ enum class Dialect : std::uint8_t { unknown, skydroid, topotek };
 
 enum class Model : std::uint8_t { unknown, c10, c10pro, c12, c13, c20, sip };
 
-std::string_view to_string(Dialect d) noexcept;   // "skydroid", "topotek"
-std::string_view to_string(Model m) noexcept;     // "c10", ..., "sip"
+std::string_view to_string(Dialect d) noexcept;  // "skydroid", "topotek"
+std::string_view to_string(Model m) noexcept;    // "c10", ..., "sip"
 std::optional<Dialect> dialect_from_string(std::string_view s) noexcept;
 std::optional<Model> model_from_string(std::string_view s) noexcept;
 // The dialect a model speaks (sip -> topotek, the C series -> skydroid).
@@ -36,9 +36,9 @@ using ModelSet = std::uint8_t;
 constexpr ModelSet model_bit(Model m) noexcept {
   return static_cast<ModelSet>(1u << static_cast<unsigned>(m));
 }
-inline constexpr ModelSet skydroid_models =
-    model_bit(Model::c10) | model_bit(Model::c10pro) | model_bit(Model::c12) |
-    model_bit(Model::c13) | model_bit(Model::c20);
+inline constexpr ModelSet skydroid_models = model_bit(Model::c10) | model_bit(Model::c10pro) |
+                                            model_bit(Model::c12) | model_bit(Model::c13) |
+                                            model_bit(Model::c20);
 inline constexpr ModelSet topotek_models = model_bit(Model::sip);
 
 // How a field's bytes are read.
@@ -60,27 +60,27 @@ enum class FieldKind : std::uint8_t {
 std::string_view to_string(FieldKind k) noexcept;
 
 struct EnumValue {
-  std::int64_t value;        // numeric value (enum_hex) or first char (enum_char)
+  std::int64_t value;  // numeric value (enum_hex) or first char (enum_char)
   std::string_view name;
 };
 
 struct FieldSpec {
-  std::string_view name;      // snake_case, stable: "yaw", "speed"
+  std::string_view name;  // snake_case, stable: "yaw", "speed"
   FieldKind kind = FieldKind::hex_u;
-  std::uint16_t width = 2;    // chars (bytes for le_*); 0 = rest of the data
-  double scale = 1.0;         // value = raw * scale
-  std::string_view unit;      // "deg", "deg/s", "MB", "degC", "m", ""
-  double min = 0, max = -1;   // allowed range in scaled units (min > max: none)
+  std::uint16_t width = 2;           // chars (bytes for le_*); 0 = rest of the data
+  double scale = 1.0;                // value = raw * scale
+  std::string_view unit;             // "deg", "deg/s", "MB", "degC", "m", ""
+  double min = 0, max = -1;          // allowed range in scaled units (min > max: none)
   std::span<const EnumValue> enums;  // for enum_* kinds (and hex_u labels)
-  std::string_view none;      // placeholder meaning "no value" ("NNNN")
-  std::string_view note;      // one line from the document
+  std::string_view none;             // placeholder meaning "no value" ("NNNN")
+  std::string_view note;             // one line from the document
 };
 
 // Who sends a form.
 enum class Role : std::uint8_t { request, response, any };
 
 struct FormSpec {
-  char control = 'w';          // 'r' or 'w'
+  char control = 'w';  // 'r' or 'w'
   Role role = Role::any;
   std::uint16_t min_length = 0;  // data length range this form covers
   std::uint16_t max_length = 0;
@@ -92,14 +92,14 @@ struct FormSpec {
 };
 
 struct CommandSpec {
-  std::string_view ident;       // "GAY"
+  std::string_view ident;  // "GAY"
   Dialect dialect = Dialect::unknown;
-  char address = 'G';           // class: G, M, D or E (the device side)
-  std::string_view title;       // "gimbal yaw angle"
-  std::string_view section;     // "SkyDroid 3.3.1" / "Topotek 4.3.1"
+  char address = 'G';        // class: G, M, D or E (the device side)
+  std::string_view title;    // "gimbal yaw angle"
+  std::string_view section;  // "SkyDroid 3.3.1" / "Topotek 4.3.1"
   ModelSet models = 0;
   std::span<const FormSpec> forms;
-  std::string_view note;        // errata, caveats
+  std::string_view note;  // errata, caveats
 
   bool supports(Model m) const noexcept {
     return m == Model::unknown || (models & model_bit(m)) != 0;
@@ -112,14 +112,12 @@ std::span<const CommandSpec> commands(Dialect d) noexcept;
 // The entry for an identifier in a dialect, or nullptr.
 const CommandSpec* find_command(Dialect d, std::string_view ident) noexcept;
 // The entry in either dialect, preferring `preferred` (for detection).
-const CommandSpec* find_any(std::string_view ident,
-                            Dialect preferred = Dialect::skydroid) noexcept;
+const CommandSpec* find_any(std::string_view ident, Dialect preferred = Dialect::skydroid) noexcept;
 
 // The header a sender of `dialect` uses for a frame to or from `address`
 // class with `data_length` bytes of data: SkyDroid puts every G-class command
 // under #TP and uses #TP for length 2; Topotek uses #tp for M-class, #TP for
 // length 2 otherwise, and #tP/#Tp past 15.
-Header choose_header(Dialect dialect, char address_class,
-                     std::size_t data_length) noexcept;
+Header choose_header(Dialect dialect, char address_class, std::size_t data_length) noexcept;
 
 }  // namespace top

@@ -14,14 +14,14 @@ namespace top {
 
 struct FieldValue {
   const FieldSpec* spec = nullptr;
-  std::uint32_t offset = 0;   // first byte of the field in the frame
-  std::uint32_t length = 0;   // bytes of the field
-  bool valid = false;         // the bytes fit the kind
-  bool none = false;          // the "no value" placeholder ("NNNNN")
-  std::int64_t integer = 0;   // raw integer (numeric and enum kinds)
-  double value = 0;           // integer * scale, or the parsed number
-  std::string text;           // text, nmea source, raw bytes
-  std::string_view enum_name; // enum kinds, when the value is known
+  std::uint32_t offset = 0;    // first byte of the field in the frame
+  std::uint32_t length = 0;    // bytes of the field
+  bool valid = false;          // the bytes fit the kind
+  bool none = false;           // the "no value" placeholder ("NNNNN")
+  std::int64_t integer = 0;    // raw integer (numeric and enum kinds)
+  double value = 0;            // integer * scale, or the parsed number
+  std::string text;            // text, nmea source, raw bytes
+  std::string_view enum_name;  // enum kinds, when the value is known
 
   std::string_view name() const noexcept { return spec ? spec->name : ""; }
   std::string_view unit() const noexcept { return spec ? spec->unit : ""; }
@@ -39,7 +39,7 @@ bool exact_decimal(const FieldValue& f, std::int64_t& mantissa, int& decimals) n
 
 struct DecodeOptions {
   Dialect dialect = Dialect::unknown;  // unknown: detect from the frame
-  Model model = Model::unknown;         // unknown: no model checks
+  Model model = Model::unknown;        // unknown: no model checks
   Role role = Role::any;               // any: from the addresses
 };
 
@@ -49,7 +49,7 @@ struct Decoded {
   const CommandSpec* command = nullptr;
   const FormSpec* form = nullptr;
   std::vector<FieldValue> fields;
-  std::vector<Finding> findings;       // catalog-level findings
+  std::vector<Finding> findings;  // catalog-level findings
 
   // "yaw -50.00 deg, speed 5.0 deg/s"
   std::string summary() const;
@@ -72,11 +72,10 @@ void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out);
 // value does not fit its field.
 struct EncodeValue {
   double number = 0;
-  std::string_view text;   // used by text, number, nmea, enum_char, none
+  std::string_view text;  // used by text, number, nmea, enum_char, none
   bool use_text = false;
 };
-bool encode_fields(const FormSpec& form, std::span<const EncodeValue> values,
-                   std::string& out);
+bool encode_fields(const FormSpec& form, std::span<const EncodeValue> values, std::string& out);
 
 // An example data string for a form, every field mid-range (for tests,
 // fuzz seeds and the simulator's defaults).

@@ -46,16 +46,16 @@ struct Frame {
   Header header = Header::variable;
   char src = 0;
   char dst = 0;
-  char control = 0;           // 'r', 'w', or 0 for #Tp and the TMP form
+  char control = 0;  // 'r', 'w', or 0 for #Tp and the TMP form
   char ident[3] = {0, 0, 0};
-  std::uint32_t declared_length = 0;  // what the length field says
-  std::uint32_t data_offset = 0;      // where the data starts in raw
-  std::uint32_t data_length = 0;      // the data length actually used
-  std::uint8_t checksum = 0;          // value of the checksum digits
-  std::uint8_t expected_checksum = 0; // sum of the bytes before them
-  bool checksum_present = false;      // two hex digits were there
-  bool checksum_ok = false;           // present and equal (any case)
-  std::uint8_t terminator = 0;        // CR/LF bytes that followed the frame
+  std::uint32_t declared_length = 0;   // what the length field says
+  std::uint32_t data_offset = 0;       // where the data starts in raw
+  std::uint32_t data_length = 0;       // the data length actually used
+  std::uint8_t checksum = 0;           // value of the checksum digits
+  std::uint8_t expected_checksum = 0;  // sum of the bytes before them
+  bool checksum_present = false;       // two hex digits were there
+  bool checksum_ok = false;            // present and equal (any case)
+  std::uint8_t terminator = 0;         // CR/LF bytes that followed the frame
   std::string raw;
   std::vector<Finding> findings;
 
@@ -103,13 +103,11 @@ struct ParseResult {
 // `at_end` says no more bytes will follow these, so a partial frame is
 // reported as truncated rather than need_more. The result depends only on
 // the bytes, never on how they were split.
-ParseResult parse_frame(std::string_view bytes, bool at_end,
-                        const ParseOptions& opts = {});
+ParseResult parse_frame(std::string_view bytes, bool at_end, const ParseOptions& opts = {});
 // The same into `out`, reusing the capacity of its frame's raw bytes and
 // findings (for loops over many frames: no allocation once warm). The frame
 // is a default one unless the status is frame.
-void parse_frame(std::string_view bytes, bool at_end, const ParseOptions& opts,
-                 ParseResult& out);
+void parse_frame(std::string_view bytes, bool at_end, const ParseOptions& opts, ParseResult& out);
 
 // Parses a buffer that should hold exactly one frame: a missing frame gives
 // invalid, anything after the frame but CR/LF gives a trailing-bytes finding.

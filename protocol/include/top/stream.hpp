@@ -22,11 +22,11 @@ enum class ItemKind : std::uint8_t {
 
 struct StreamItem {
   ItemKind kind = ItemKind::frame;
-  std::uint64_t offset = 0;   // first byte of the frame or garbage
-  std::uint64_t length = 0;   // bytes covered (frame without terminator)
-  Frame frame;                // kind == frame
-  Finding finding;            // kind == garbage: code, offset 0, message
-  std::string preview;        // kind == garbage: the first bytes (<= 32)
+  std::uint64_t offset = 0;  // first byte of the frame or garbage
+  std::uint64_t length = 0;  // bytes covered (frame without terminator)
+  Frame frame;               // kind == frame
+  Finding finding;           // kind == garbage: code, offset 0, message
+  std::string preview;       // kind == garbage: the first bytes (<= 32)
 };
 
 // Records that `count` CR/LF bytes followed a frame: sets its terminator
@@ -75,12 +75,12 @@ class StreamDecoder {
   void compact();
 
   StreamOptions opts_;
-  std::string buf_;          // unconsumed bytes live in [pos_, size)
+  std::string buf_;  // unconsumed bytes live in [pos_, size)
   std::size_t pos_ = 0;
-  std::uint64_t base_ = 0;   // stream offset of buf_[0]
+  std::uint64_t base_ = 0;  // stream offset of buf_[0]
   bool at_end_ = false;
-  bool flushing_ = false;  // inside settle(): judge as at the end, keep the stream open
-  bool has_pending_ = false; // a frame held until we know what follows it
+  bool flushing_ = false;     // inside settle(): judge as at the end, keep the stream open
+  bool has_pending_ = false;  // a frame held until we know what follows it
   StreamItem pending_;
   std::uint64_t garbage_start_ = 0;
   std::uint64_t garbage_len_ = 0;
