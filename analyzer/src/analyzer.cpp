@@ -348,6 +348,15 @@ struct Analyzer::Impl {
   std::array<std::uint64_t, top::finding_code_count> codes{};
   std::array<std::uint64_t, acode_count> acodes{};
   std::unordered_map<std::uint32_t, Latency> latency;
+  std::uint32_t last_latency_key = 0;  // the entry used last (pointers into the map are stable)
+  Latency* last_latency = nullptr;
+  Latency& latency_of(std::uint32_t key) {
+    if (!last_latency || key != last_latency_key) {
+      last_latency = &latency[key];
+      last_latency_key = key;
+    }
+    return *last_latency;
+  }
   std::uint64_t limit_notes = 0;
 
   explicit Impl(Analyzer& a) : A(a) {}
@@ -762,7 +771,7 @@ struct Analyzer::Impl {
       ev.reply_to = m->n;
       if (ev.ts != kNoTime && m->ts != kNoTime) {
         ev.latency_us = ev.ts - m->ts;
-        latency[pack(std::string_view(m->ident, 3))].add(ev.latency_us);
+        latency_of(pack(std::string_view(m->ident, 3))).add(ev.latency_us);
       }
       bool exempt = dialect == top::Dialect::topotek && (id == "REC" || id == "CAP");
       if (!ere && !exempt && m->control == 'w' && f.control == 'w' && m->data != f.data())

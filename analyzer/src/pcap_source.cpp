@@ -251,8 +251,7 @@ bool Dissector::ip(std::int64_t ts, const std::uint8_t* p, std::size_t n, std::s
     std::size_t ulen = be16(p + l4 + 4);
     std::size_t pend = ulen >= 8 ? std::min(end, l4 + ulen) : end;
     std::string_view payload(reinterpret_cast<const char*>(p + l4 + 8), pend - l4 - 8);
-    if (!o_.udp_ports.count(src.port) && !o_.udp_ports.count(dst.port) && !looks_like_top(payload))
-      return false;
+    if (!udp_port_[src.port] && !udp_port_[dst.port] && !looks_like_top(payload)) return false;
     a_.datagram(ts, src, dst, payload, record, static_cast<std::uint32_t>(l4 + 8));
     return true;
   }
@@ -265,7 +264,7 @@ bool Dissector::ip(std::int64_t ts, const std::uint8_t* p, std::size_t n, std::s
     if (hl < 20 || end < l4 + hl) return bad(ts, record, l4 + 12, "bad TCP header length"), false;
     bool syn = (p[l4 + 13] & 0x02) != 0;
     std::string_view payload(reinterpret_cast<const char*>(p + l4 + hl), end - l4 - hl);
-    if (!o_.tcp_ports.count(src.port) && !o_.tcp_ports.count(dst.port)) {
+    if (!tcp_port_[src.port] && !tcp_port_[dst.port]) {
       std::string a = src.text(), b = dst.text();
       std::string key = a < b ? a + " " + b : b + " " + a;
       if (!tcp_top_.count(key)) {

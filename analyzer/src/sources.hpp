@@ -10,6 +10,7 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "analyzer.hpp"
 
@@ -34,7 +35,10 @@ struct SourceOptions {
 // TOP payload to the analyzer. Returns false when it is not TOP traffic.
 class Dissector {
  public:
-  Dissector(Analyzer& a, const SourceOptions& o) : a_(a), o_(o) {}
+  Dissector(Analyzer& a, const SourceOptions& o) : a_(a), o_(o) {
+    for (auto p : o.udp_ports) udp_port_[p] = true;
+    for (auto p : o.tcp_ports) tcp_port_[p] = true;
+  }
   bool packet(int dlt, std::int64_t ts, const std::uint8_t* data, std::uint32_t caplen,
               std::uint32_t len, std::uint64_t record);
   static bool supported(int dlt);
@@ -46,6 +50,8 @@ class Dissector {
   Analyzer& a_;
   const SourceOptions& o_;
   std::set<std::string> tcp_top_;  // TCP flows recognised by content (bounded)
+  // o_.udp_ports / tcp_ports as tables: a lookup per packet
+  std::vector<bool> udp_port_ = std::vector<bool>(65536), tcp_port_ = std::vector<bool>(65536);
 };
 
 // Reads a capture file of any supported format into the analyzer. Returns

@@ -42,9 +42,13 @@ int main(int argc, char** argv) {
   int reply_port = -1;
   unsigned baud = 115200;
   app.add_option("--model", model_name, "c10|c10pro|c12|c13|c20|sip")->capture_default_str();
-  app.add_option("--udp", udp, "serve UDP on HOST:PORT (default 127.0.0.1 and the model's port)")
+  app.add_option("--udp", udp,
+                 "serve UDP on HOST:PORT (default 127.0.0.1 and the model's port; the default "
+                 "transport but for the C20)")
       ->expected(0, 1);
-  app.add_option("--tcp", tcp, "serve TCP on HOST:PORT (default 127.0.0.1 and the model's port)")
+  app.add_option("--tcp", tcp,
+                 "serve TCP on HOST:PORT (default 127.0.0.1 and the model's port; the default "
+                 "transport of the C20)")
       ->expected(0, 1);
   app.add_flag("--pty", pty, "serve on a new pseudo-terminal and print its path");
   app.add_option("--serial", serial, "serve on a serial device");
@@ -84,7 +88,9 @@ int main(int argc, char** argv) {
     cfg.kind = topsim::TransportKind::serial;
     cfg.device = serial;
   } else {
-    cfg.kind = app.count("--tcp") ? topsim::TransportKind::tcp : topsim::TransportKind::udp;
+    cfg.kind = app.count("--tcp")   ? topsim::TransportKind::tcp
+               : app.count("--udp") ? topsim::TransportKind::udp
+                                    : topsim::default_transport(*model);
     const std::string& spec = cfg.kind == topsim::TransportKind::tcp ? tcp : udp;
     if (!spec.empty() && !split_host_port(spec, cfg.host, cfg.port)) {
       spdlog::error("{}: expected HOST:PORT", spec);

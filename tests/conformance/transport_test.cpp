@@ -152,6 +152,15 @@ TEST(Record, TopconfWritesThePcapOfTheRun) {
   std::remove(path.c_str());
 }
 
+// SkyDroid 2.1 gives the C20 TCP 5000 only: topsim serves it over TCP when
+// no transport is chosen (it used to pick UDP for every model).
+TEST(Server, DefaultTransportIsTcpForTheC20Only) {
+  for (top::Model m : top::all_models())
+    EXPECT_EQ(topsim::default_transport(m),
+              m == top::Model::c20 ? topsim::TransportKind::tcp : topsim::TransportKind::udp)
+        << top::to_string(m);
+}
+
 TEST(Server, ServesExtraUdpPortsLikeTheC10) {
   topsim::ServerConfig cfg;
   cfg.model = top::Model::c10;

@@ -60,6 +60,10 @@ std::uint16_t default_port(top::Model m) noexcept {
   return top::dialect_of(m) == top::Dialect::topotek ? 9003 : 5000;
 }
 
+TransportKind default_transport(top::Model m) noexcept {
+  return m == top::Model::c20 ? TransportKind::tcp : TransportKind::udp;
+}
+
 struct Server::Impl {
   ServerConfig cfg;
   asio::io_context io;

@@ -33,6 +33,9 @@ struct ServerConfig {
 
 // The default UDP/TCP port of a model: SkyDroid 5000, Topotek 9003.
 std::uint16_t default_port(top::Model m) noexcept;
+// The network transport a model speaks when none is chosen: TCP for the
+// C20 (SkyDroid 2.1: TCP 5000 only), UDP for the others.
+TransportKind default_transport(top::Model m) noexcept;
 
 struct ServerStats {
   std::atomic<std::uint64_t> bytes_in{0};
