@@ -11,6 +11,13 @@ int hexv(char c) {
   if (c >= 'A' && c <= 'F') return c - 'A' + 10;
   return -1;
 }
+// "\xNN", uppercase hex.
+void put_hex_escape(std::string& out, unsigned char c) {
+  static constexpr char kHex[] = "0123456789ABCDEF";
+  const char b[4] = {'\\', 'x', kHex[c >> 4], kHex[c & 15]};
+  out.append(b, 4);
+}
+
 }  // namespace
 
 std::optional<std::string> unescape(std::string_view arg, std::string& error) {
@@ -75,9 +82,7 @@ std::string escape(std::string_view bytes) {
     } else if (c >= 0x20 && c < 0x7F) {
       out += static_cast<char>(c);
     } else {
-      char b[5];
-      std::snprintf(b, sizeof b, "\\x%02X", c);
-      out += b;
+      put_hex_escape(out, c);
     }
   }
   return out;
@@ -87,13 +92,10 @@ std::string ascii_text(std::string_view message) {
   std::string out;
   out.reserve(message.size());
   for (unsigned char c : message) {
-    if (c < 0x80) {
+    if (c < 0x80)
       out += static_cast<char>(c);
-    } else {
-      char b[5];
-      std::snprintf(b, sizeof b, "\\x%02X", c);
-      out += b;
-    }
+    else
+      put_hex_escape(out, c);
   }
   return out;
 }

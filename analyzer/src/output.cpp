@@ -199,6 +199,17 @@ template <class O>
   quoted(o, s);
 }
 
+// ,"transport":"udp","from":"...","to":"..."
+template <class O>
+void put_endpoints(O& o, Transport t, const std::string& from, const std::string& to) {
+  app(o, ",\"transport\":\"");
+  o += to_string(t);
+  app(o, "\",\"from\":");
+  put_str(o, from);
+  app(o, ",\"to\":");
+  put_str(o, to);
+}
+
 // A message (ASCII by convention) as a JSON string: put_str(ascii_text(s)).
 template <class O>
 void put_text(O& o, std::string_view s) {
@@ -490,12 +501,7 @@ void write_frame_json(std::string& out, const FrameEvent& e) {
   put_u(o, e.n);
   app(o, ",\"time\":");
   put_time(o, e.ts);
-  app(o, ",\"transport\":\"");
-  o += to_string(e.transport);
-  app(o, "\",\"from\":");
-  put_str(o, *e.from);
-  app(o, ",\"to\":");
-  put_str(o, *e.to);
+  put_endpoints(o, e.transport, *e.from, *e.to);
   app(o, ",\"conversation\":");
   put_u(o, e.conv ? e.conv_id() : 0);
   app(o, ",\"record\":");
@@ -589,12 +595,7 @@ void write_note_json(std::string& out, const NoteEvent& e) {
   app(o, "{\"type\":\"finding\",\"time\":");
   put_time(o, e.ts);
   if (e.from) {
-    app(o, ",\"transport\":\"");
-    o += to_string(e.transport);
-    app(o, "\",\"from\":");
-    put_str(o, *e.from);
-    app(o, ",\"to\":");
-    put_str(o, *e.to);
+    put_endpoints(o, e.transport, *e.from, *e.to);
   } else {
     app(o, ",\"transport\":null,\"from\":null,\"to\":null");
   }
