@@ -247,17 +247,14 @@ void put_decimal(O& o, std::int64_t mantissa, int decimals) {
   o.append(p, static_cast<std::size_t>(e - p));
 }
 
-constexpr double kPow10[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
-
-// A field's value: from its exact decimal when the double is the one nearest
-// to it (the decoder makes it so), else the shortest digits of the double.
+// A field's value: from its exact decimal (top::exact_decimal checks that the
+// double is the one nearest to it) while nlohmann would write it in fixed
+// notation, |x| >= 0.001; else the shortest digits of the double.
 template <class O>
 void put_value(O& o, const top::FieldValue& v) {
   std::int64_t mant = 0;
   int dec = 0;
-  if (top::exact_decimal(v, mant, dec) && dec < 10 &&
-      static_cast<double>(mant) / kPow10[dec] == v.value &&
-      (mant == 0 || std::abs(static_cast<double>(mant)) >= kPow10[dec] / 1000)) {
+  if (top::exact_decimal(v, mant, dec) && (mant == 0 || std::fabs(v.value) >= 0.001)) {
     put_decimal(o, mant, dec);
     return;
   }
