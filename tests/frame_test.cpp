@@ -16,6 +16,22 @@ TEST(Checksum, AppendixExample) {
   EXPECT_EQ(std::string(b, 2), "44");
 }
 
+// The sum is taken eight bytes at a time: every length and every byte value
+// (0xFF runs included, which carry furthest) against the plain loop, from
+// an exact-size buffer so ASan sees any read past the end.
+TEST(Checksum, EveryLengthAndByteAgreesWithTheByteLoop) {
+  for (std::size_t n = 0; n <= 70; ++n)
+    for (int fill : {0x00, 0x01, 0x7F, 0x80, 0xFF, -1}) {
+      std::string s(n, '\0');
+      for (std::size_t i = 0; i < n; ++i)
+        s[i] = static_cast<char>(fill >= 0 ? fill : static_cast<int>((i * 131 + n * 7) & 0xFF));
+      unsigned plain = 0;
+      for (unsigned char c : s) plain += c;
+      ExactBuffer buf(s);
+      EXPECT_EQ(checksum(buf.view()), static_cast<std::uint8_t>(plain & 0xFF)) << n << " " << fill;
+    }
+}
+
 TEST(Parse, ValidFixedFrame) {
   ExactBuffer buf("#TPUD2wAWB0144");
   ParseResult r = parse_frame(buf.view(), true);

@@ -236,3 +236,51 @@ TEST(Vectors, ReusedParseAndDecodeEqualFresh) {
   }
   EXPECT_GT(frames, 300u);
 }
+
+namespace {
+
+// The verdict of a decode: what a caller that only counts needs.
+std::string describe_verdict(const Decoded& d) {
+  std::string s = std::to_string(static_cast<int>(d.dialect)) + " " +
+                  std::to_string(static_cast<int>(d.role)) + " " +
+                  (d.command ? std::string(d.command->ident) : "-") + " " +
+                  (d.form ? std::to_string(d.form - d.command->forms.data()) : "-");
+  for (const auto& x : d.findings)
+    s += " [" + std::string(to_string(x.code)) + "/" +
+         std::to_string(static_cast<int>(x.severity)) + "@" + std::to_string(x.offset) + " " +
+         std::string(x.quirk) + "]";
+  return s;
+}
+
+}  // namespace
+
+// Decoding without detail (topdump stats) gives the verdict decoding with
+// detail gives, findings and their severities and offsets included, with no
+// field values and no messages: every vector and each cut short, under
+// every dialect, role and a model of each dialect, into one reused result.
+TEST(Vectors, DecodeWithoutDetailKeepsTheVerdict) {
+  Decoded lean;
+  std::size_t frames = 0, with_findings = 0;
+  for (const auto& v : vectors()) {
+    const std::string b = bytes_of(v.v.at("bytes").get<std::string>());
+    for (const std::string& in : {b, b.size() > 4 ? b.substr(0, b.size() - 3) : b}) {
+      const ParseResult r = parse_frame(in, true);
+      if (r.status != ParseStatus::frame) continue;
+      ++frames;
+      for (Dialect dl : {Dialect::unknown, Dialect::skydroid, Dialect::topotek})
+        for (Role role : {Role::any, Role::request, Role::response})
+          for (Model m : {Model::unknown, Model::c12, Model::sip}) {
+            DecodeOptions o{dl, m, role};
+            const Decoded full = decode(r.frame, o);
+            o.detail = false;
+            decode(r.frame, o, lean);
+            ASSERT_EQ(describe_verdict(lean), describe_verdict(full)) << in;
+            EXPECT_TRUE(lean.fields.empty()) << in;
+            for (const auto& x : lean.findings) EXPECT_TRUE(x.message.empty()) << in;
+            with_findings += !full.findings.empty();
+          }
+    }
+  }
+  EXPECT_GT(frames, 150u);
+  EXPECT_GT(with_findings, 1000u);
+}

@@ -165,7 +165,7 @@ bool Filter::active() const {
 }
 
 bool Filter::selects(const FrameEvent& e) const {
-  const top::Frame& f = e.entry->frame;
+  const top::Frame& f = *e.entry->frame;
   if (!idents.empty() && std::find(idents.begin(), idents.end(), f.ident_view()) == idents.end())
     return false;
   if (!addrs.empty()) {
@@ -534,24 +534,25 @@ struct Analyzer::Impl {
     o.dialect = dialect;
     o.model = A.opts_.model;
     o.role = role;
+    o.detail = A.opts_.detail;
     top::decode(f, o, e.decoded);
     if (role == top::Role::response && top::role_from_addresses(f) == top::Role::request) {
       bool has = false;
       for (const auto& x : e.decoded.findings)
         has |= x.code == top::FindingCode::unswapped_addresses;
       if (!has)
-        e.decoded.findings.push_back(
-            top::make_finding(top::FindingCode::unswapped_addresses, 3,
-                              std::string("a response addressed ") + f.src + " to " + f.dst +
-                                  " (the request's order; some simulators)"));
+        e.decoded.findings.push_back(top::make_finding(
+            top::FindingCode::unswapped_addresses, 3,
+            A.opts_.detail ? std::string("a response addressed ") + f.src + " to " + f.dst +
+                                 " (the request's order; some simulators)"
+                           : std::string()));
     }
-    // swapped, not moved: both keep their buffers for the next frames
-    std::swap(e.frame, f);
-    e.worst = topdump::worst(e.frame, e.decoded);
+    e.frame = &f;
+    e.worst = topdump::worst(f, e.decoded);
     e.codes.clear();
-    for (const auto& x : e.frame.findings) e.codes.push_back(x.code);
+    for (const auto& x : f.findings) e.codes.push_back(x.code);
     for (const auto& x : e.decoded.findings) e.codes.push_back(x.code);
-    e.bad_checksum = e.frame.has(top::FindingCode::bad_checksum);
+    e.bad_checksum = f.has(top::FindingCode::bad_checksum);
     return e;
   }
 
@@ -606,7 +607,7 @@ struct Analyzer::Impl {
         }
     }
     const DecodedEntry& e = lookup(f, dialect, role);
-    const top::Frame& fr = e.frame;
+    const top::Frame& fr = *e.frame;
 
     FrameEvent ev;
     ev.n = ++A.frame_no_;
@@ -653,12 +654,14 @@ struct Analyzer::Impl {
   void unanswered(Conversation& c, const Pending& p, bool at_end) {
     ++A.stats_.unanswered;
     const Direction& D = c.dir[p.dir];
-    std::string msg =
-        escape(std::string_view(p.ident, 3)) + " request (frame " + std::to_string(p.n) + ")";
-    if (at_end)
-      msg += " got no response before the end of the capture";
-    else
-      msg += " got no response within " + std::to_string(A.opts_.timeout_us / 1000) + " ms";
+    std::string msg;
+    if (A.opts_.detail) {
+      msg = escape(std::string_view(p.ident, 3)) + " request (frame " + std::to_string(p.n) + ")";
+      if (at_end)
+        msg += " got no response before the end of the capture";
+      else
+        msg += " got no response within " + std::to_string(A.opts_.timeout_us / 1000) + " ms";
+    }
     note_event(p.ts, p.pos, c.transport, &c, &D.from, &D.to,
                Note{ACode::unanswered, default_severity(ACode::unanswered), std::move(msg), p.n});
   }
@@ -673,16 +676,18 @@ struct Analyzer::Impl {
   }
 
   void request(Conversation& c, int d, FrameEvent& ev) {
-    const top::Frame& f = ev.entry->frame;
+    const top::Frame& f = *ev.entry->frame;
     Direction& D = c.dir[d];
     ++A.stats_.requests;
     ++c.st.requests;
     if (D.last_req == f.raw && ev.ts != kNoTime && D.last_req_ts != kNoTime &&
         ev.ts - D.last_req_ts <= A.opts_.repeat_window_us)
-      ev.notes.push_back(
-          Note{ACode::repeated, default_severity(ACode::repeated),
-               "same request again after " + std::to_string((ev.ts - D.last_req_ts) / 1000) + " ms",
-               ev.n});
+      ev.notes.push_back(Note{
+          ACode::repeated, default_severity(ACode::repeated),
+          A.opts_.detail
+              ? "same request again after " + std::to_string((ev.ts - D.last_req_ts) / 1000) + " ms"
+              : std::string(),
+          ev.n});
     D.last_req = f.raw;
     D.last_req_ts = ev.ts;
     std::string_view id = f.ident_view();
@@ -737,7 +742,7 @@ struct Analyzer::Impl {
   }
 
   void response(Conversation& c, int d, FrameEvent& ev, top::Dialect dialect) {
-    const top::Frame& f = ev.entry->frame;
+    const top::Frame& f = *ev.entry->frame;
     ++A.stats_.responses;
     ++c.st.responses;
     std::string_view id = f.ident_view();
@@ -776,9 +781,11 @@ struct Analyzer::Impl {
       bool exempt = dialect == top::Dialect::topotek && (id == "REC" || id == "CAP");
       if (!ere && !exempt && m->control == 'w' && f.control == 'w' && m->data != f.data())
         ev.notes.push_back(Note{ACode::echo_differs, default_severity(ACode::echo_differs),
-                                "reply to write (frame " + std::to_string(m->n) + ") carries \"" +
-                                    escape(f.data()) + "\", the write carried \"" +
-                                    escape(m->data) + "\"",
+                                A.opts_.detail
+                                    ? "reply to write (frame " + std::to_string(m->n) +
+                                          ") carries \"" + escape(f.data()) +
+                                          "\", the write carried \"" + escape(m->data) + "\""
+                                    : std::string(),
                                 ev.n});
       c.erase_pending(m);
       return;
@@ -794,14 +801,21 @@ struct Analyzer::Impl {
       }
     }
     ++A.stats_.unsolicited;
-    ev.notes.push_back(Note{ACode::unsolicited, default_severity(ACode::unsolicited),
-                            escape(id) + " response that no pending request asked for", ev.n});
+    ev.notes.push_back(Note{
+        ACode::unsolicited, default_severity(ACode::unsolicited),
+        A.opts_.detail ? escape(id) + " response that no pending request asked for" : std::string(),
+        ev.n});
   }
 
   void check_stream(Conversation& c, const StreamStat& s) {
     if (s.asked_hz <= 0 || s.frames < 2) return;
     double m = s.measured_hz();
     if (m <= 0 || std::fabs(m - s.asked_hz) <= 0.25 * s.asked_hz) return;
+    if (!A.opts_.detail) {
+      note_event(s.last, Position{}, c.transport, &c, &c.dir[0].from, &c.dir[0].to,
+                 Note{ACode::stream_rate, default_severity(ACode::stream_rate), {}, 0});
+      return;
+    }
     // printf's "%.1f" and "%.0f" through to_chars (the same text, without
     // printf's cost on every re-asked stream)
     auto fixed = [](double v, int decimals) {

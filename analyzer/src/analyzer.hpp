@@ -62,7 +62,7 @@ struct Note {
 
 // A decoded frame with its findings summarised.
 struct DecodedEntry {
-  top::Frame frame;
+  const top::Frame* frame = nullptr;  // the parser's, valid during the event
   top::Decoded decoded;
   top::Severity worst = top::Severity::info;
   bool bad_checksum = false;
@@ -176,6 +176,10 @@ struct AnalyzerOptions {
   std::size_t max_conversations = kMaxConversations;
   std::size_t max_tcp_held = kMaxTcpHeld;
   bool stats = true;  // count frames in stats
+  // false: frames are judged and counted but not described: no decoded field
+  // values, and empty messages in catalog findings and session notes (for a
+  // sink that shows neither: topdump stats). Source notes keep theirs.
+  bool detail = true;
 };
 
 // A filter over frame events (set by the command line).

@@ -477,7 +477,7 @@ json frame_event_json(const FrameEvent& e) {
   j["index"] = e.pos.index;
   j["offset"] = e.pos.offset;
   j["stream_offset"] = e.stream_offset;
-  j.update(frame_json(e.entry->frame, e.entry->decoded));
+  j.update(frame_json(*e.entry->frame, e.entry->decoded));
   if (e.reply_to)
     j["reply_to"] = e.reply_to;
   else
@@ -510,7 +510,7 @@ void write_frame_json(std::string& out, const FrameEvent& e) {
   app(o, ",\"stream_offset\":");
   put_u(o, e.stream_offset);
   o += ',';
-  frame_body(o, e.entry->frame, e.entry->decoded);
+  frame_body(o, *e.entry->frame, e.entry->decoded);
   app(o, ",\"reply_to\":");
   if (e.reply_to)
     put_u(o, e.reply_to);
@@ -628,7 +628,7 @@ void JsonSink::note(const NoteEvent& e) {
 // Text
 
 std::string frame_line(const FrameEvent& e) {
-  const top::Frame& f = e.entry->frame;
+  const top::Frame& f = *e.entry->frame;
   const top::Decoded& d = e.entry->decoded;
   std::string s = "#" + std::to_string(e.n) + " " + where(e.ts, e.transport, e.from, e.to);
   s += " rec " + std::to_string(e.pos.record) + "." + std::to_string(e.pos.index) + "@" +
@@ -684,7 +684,7 @@ void TextSink::frame(const FrameEvent& e) {
   o += frame_line(e);
   o += '\n';
   if (verbose_) {
-    o += frame_tree(e.entry->frame, e.entry->decoded);
+    o += frame_tree(*e.entry->frame, e.entry->decoded);
     for (const Note& n : e.notes)
       o += "  " + std::string(top::to_string(n.severity)) + " " + std::string(to_string(n.code)) +
            ": " + n.message + "\n";
@@ -741,7 +741,7 @@ void csv_cell(std::string& o, std::string_view v) {
 }  // namespace
 
 void CsvSink::frame(const FrameEvent& e) {
-  const top::Frame& f = e.entry->frame;
+  const top::Frame& f = *e.entry->frame;
   const top::Decoded& d = e.entry->decoded;
   std::string& o = out_.buf();
   for (std::size_t i = 0; i < cols_.size(); ++i) {

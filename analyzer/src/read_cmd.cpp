@@ -223,6 +223,7 @@ int run_stats(const StatsOptions& o) {
   auto fmt = format_from_string(o.c.format);
   NullSink null;
   Tee tee(null, "");
+  s.aopts.detail = false;  // nothing shows a frame or a session note
   Analyzer a(s.aopts, tee);
   a.set_filter(s.filter);
   if (o.c.progress && isatty(2)) s.sopts.progress = progress_bar;

@@ -125,31 +125,38 @@ namespace {
 constexpr int kAlphabet = 36;
 constexpr int kSlots = kAlphabet * kAlphabet * kAlphabet;
 
-int char_index(char c) noexcept {
-  if (c >= 'A' && c <= 'Z') return c - 'A';
-  if (c >= '0' && c <= '9') return 26 + (c - '0');
-  return -1;
-}
+// [A-Z] -> 0-25, [0-9] -> 26-35, anything else -> -1.
+constexpr std::array<std::int16_t, 256> kCharIndex = [] {
+  std::array<std::int16_t, 256> t{};
+  for (auto& v : t) v = -1;
+  for (int c = 'A'; c <= 'Z'; ++c)
+    t[static_cast<std::size_t>(c)] = static_cast<std::int16_t>(c - 'A');
+  for (int c = '0'; c <= '9'; ++c)
+    t[static_cast<std::size_t>(c)] = static_cast<std::int16_t>(26 + c - '0');
+  return t;
+}();
 
 int ident_index(std::string_view ident) noexcept {
   if (ident.size() != 3) return -1;
-  int a = char_index(ident[0]), b = char_index(ident[1]), c = char_index(ident[2]);
-  if (a < 0 || b < 0 || c < 0) return -1;
+  int a = kCharIndex[static_cast<unsigned char>(ident[0])];
+  int b = kCharIndex[static_cast<unsigned char>(ident[1])];
+  int c = kCharIndex[static_cast<unsigned char>(ident[2])];
+  if ((a | b | c) < 0) return -1;
   return (a * kAlphabet + b) * kAlphabet + c;
 }
 
 struct Index {
-  std::array<std::int16_t, kSlots> slot[2];
+  std::array<const CommandSpec*, kSlots> slot[2];
   Index() {
-    for (auto& s : slot) s.fill(-1);
+    for (auto& s : slot) s.fill(nullptr);
     build(0, commands(Dialect::skydroid));
     build(1, commands(Dialect::topotek));
   }
   void build(int d, std::span<const CommandSpec> table) {
-    for (std::size_t i = 0; i < table.size(); ++i) {
-      int k = ident_index(table[i].ident);
-      if (k >= 0 && slot[d][static_cast<std::size_t>(k)] < 0)
-        slot[d][static_cast<std::size_t>(k)] = static_cast<std::int16_t>(i);
+    for (const CommandSpec& c : table) {
+      int k = ident_index(c.ident);
+      if (k >= 0 && !slot[d][static_cast<std::size_t>(k)])
+        slot[d][static_cast<std::size_t>(k)] = &c;
     }
   }
 };
@@ -165,10 +172,7 @@ const CommandSpec* find_command(Dialect d, std::string_view ident) noexcept {
   if (d == Dialect::unknown) return nullptr;
   int k = ident_index(ident);
   if (k < 0) return nullptr;
-  int di = d == Dialect::skydroid ? 0 : 1;
-  std::int16_t i = index().slot[di][static_cast<std::size_t>(k)];
-  if (i < 0) return nullptr;
-  return &commands(d)[static_cast<std::size_t>(i)];
+  return index().slot[d == Dialect::skydroid ? 0 : 1][static_cast<std::size_t>(k)];
 }
 
 const CommandSpec* find_any(std::string_view ident, Dialect preferred) noexcept {

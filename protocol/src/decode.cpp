@@ -14,14 +14,6 @@ namespace top {
 using detail::hex_value;
 using detail::is_lower_hex;
 
-Role role_from_addresses(const Frame& f) noexcept {
-  bool from_client = is_client_address(f.src);
-  bool to_client = is_client_address(f.dst);
-  if (from_client && !to_client) return Role::request;
-  if (to_client && !from_client) return Role::response;
-  return Role::any;
-}
-
 namespace {
 
 bool role_fits(Role form, Role frame) noexcept {
@@ -141,9 +133,15 @@ bool parse_number(std::string_view s, double& out) noexcept {
 struct Ctx {
   const Frame& frame;
   Decoded& out;
+  bool detail = true;  // DecodeOptions::detail
   bool lowercase_reported = false;
   void add(FindingCode code, std::uint32_t offset, std::string msg) {
-    out.findings.push_back(make_finding(code, offset, std::move(msg)));
+    out.findings.push_back(make_finding(code, offset, detail ? std::move(msg) : std::string()));
+  }
+  // The field's text (text, number, nmea and raw kinds; the bytes of an
+  // invalid or "none" field), kept only with detail.
+  void keep(FieldValue& fv, std::string_view bytes) const {
+    if (detail) fv.text.assign(bytes);
   }
 };
 
@@ -155,12 +153,12 @@ void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes, std::
   if (!spec.none.empty() && bytes == spec.none) {
     fv.none = true;
     fv.valid = true;
-    fv.text = std::string(bytes);
+    ctx.keep(fv, bytes);
     return;
   }
   auto bad = [&](std::string why) {
     fv.valid = false;
-    fv.text = std::string(bytes);
+    ctx.keep(fv, bytes);
     ctx.add(FindingCode::bad_field, offset, std::string(spec.name) + ": " + why);
   };
   switch (spec.kind) {
@@ -208,13 +206,13 @@ void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes, std::
       if (bytes.empty()) return bad("empty");
       fv.integer = static_cast<unsigned char>(bytes[0]);
       fv.value = static_cast<double>(fv.integer);
-      fv.text = std::string(bytes);
+      ctx.keep(fv, bytes);
       fv.valid = true;
       break;
     }
     case FieldKind::text: {
       if (!all_printable(bytes)) return bad("non-printable bytes in text");
-      fv.text = std::string(bytes);
+      ctx.keep(fv, bytes);
       fv.valid = true;
       return;
     }
@@ -225,7 +223,7 @@ void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes, std::
       if (!parse_number(t, v)) return bad("'" + std::string(bytes) + "' is not a number");
       fv.value = v * spec.scale;
       fv.integer = static_cast<std::int64_t>(v);
-      fv.text = std::string(bytes);
+      ctx.keep(fv, bytes);
       fv.valid = true;
       break;
     }
@@ -263,12 +261,12 @@ void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes, std::
       double v = deg + minutes / 60.0;
       if (hemi == 'W' || hemi == 'S') v = -v;
       fv.value = v;
-      fv.text = std::string(bytes);
+      ctx.keep(fv, bytes);
       fv.valid = true;
       break;
     }
     case FieldKind::raw: {
-      fv.text = std::string(bytes);
+      ctx.keep(fv, bytes);
       fv.valid = true;
       return;
     }
@@ -299,7 +297,7 @@ void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
   out.findings.clear();
   out.command = nullptr;
   out.form = nullptr;
-  Ctx ctx{frame, out};
+  Ctx ctx{frame, out, opts.detail};
   out.role = opts.role != Role::any ? opts.role : role_from_addresses(frame);
   Dialect d = opts.dialect;
   if (d == Dialect::unknown && opts.model != Model::unknown) d = dialect_of(opts.model);
@@ -329,9 +327,10 @@ void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
     f.code = FindingCode::tp_length;
     f.severity = g_class ? Severity::info : default_severity(FindingCode::tp_length);
     f.offset = 5;
-    f.message = frame.declared_length < 16  // two-digit lengths (TMP quirk) go past F
-                    ? kMessages[frame.declared_length + (g_class ? 16 : 0)]
-                    : message(frame.declared_length, g_class);
+    if (ctx.detail)
+      f.message = frame.declared_length < 16  // two-digit lengths (TMP quirk) go past F
+                      ? kMessages[frame.declared_length + (g_class ? 16 : 0)]
+                      : message(frame.declared_length, g_class);
   }
   if (d == Dialect::skydroid && (frame.header == Header::ext8 || frame.header == Header::ext16))
     ctx.add(FindingCode::ext_header_skydroid, 0,
@@ -404,8 +403,8 @@ void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
 
   std::string_view data = frame.data();
   std::size_t pos = 0;
-  out.fields.reserve(form->fields.size());
   if (!form->none.empty() && data == form->none) {
+    if (!ctx.detail) return;
     for (const FieldSpec& fs : form->fields) {
       FieldValue fv;
       fv.spec = &fs;
@@ -427,8 +426,9 @@ void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
                   std::to_string(data.size() - pos) + " left");
       break;
     }
+    FieldValue scratch;  // without detail: validated, then dropped
     decode_field(ctx, fs, data.substr(pos, w), static_cast<std::uint32_t>(frame.data_offset + pos),
-                 out.fields.emplace_back());
+                 ctx.detail ? out.fields.emplace_back() : scratch);
     pos += w;
   }
   return;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <set>
@@ -351,6 +352,60 @@ TEST(Json, FastWriterEqualsReferenceOverTheCaptures) {
     a.finish();
     ASSERT_FALSE(r.frames.empty()) << cap;
     expect_fast_equals_reference(r);
+  }
+}
+
+// Counts what stats needs of each event: codes and severities, no text.
+struct VerdictSink : Sink {
+  std::vector<std::string> seen;
+  void frame(const FrameEvent& e) override {
+    std::string s = std::to_string(e.n) + " " + std::to_string(static_cast<int>(e.worst())) + " r" +
+                    std::to_string(e.reply_to) + " " +
+                    std::to_string(static_cast<int>(e.entry->decoded.role));
+    for (top::FindingCode c : e.entry->codes) s += " " + std::string(top::to_string(c));
+    for (const Note& n : e.notes) s += " " + std::string(to_string(n.code));
+    seen.push_back(std::move(s));
+  }
+  void note(const NoteEvent& e) override {
+    seen.push_back("note " + std::string(to_string(e.note.code)) + " " +
+                   std::to_string(static_cast<int>(e.note.severity)) + " " +
+                   std::to_string(e.note.frame));
+  }
+};
+
+// topdump stats runs the analyzer without detail: every capture (and a
+// generated one with every kind of session finding) gives the same
+// events, the same statistics and the same exit status as with detail.
+TEST(Stats, WithoutDetailEqualsWithDetail) {
+  TempDir tmp;
+  std::string out;
+  ASSERT_EQ(run("'" + std::string(TOPKIT_BINARY_DIR) + "/analyzer/gen_capture' 20000 '" +
+                    tmp.file("g.pcap") + "' 3",
+                out),
+            0);
+  std::vector<std::string> inputs = {tmp.file("g.pcap")};
+  for (const auto& e : std::filesystem::directory_iterator(captures_dir()))
+    if (e.is_regular_file() && e.path().extension() != ".md" && e.path().extension() != ".sh" &&
+        e.path().extension() != ".cpp" && e.path().extension() != ".txt")
+      inputs.push_back(e.path().string());
+  ASSERT_GT(inputs.size(), 15u);
+  for (const std::string& in : inputs) {
+    SCOPED_TRACE(in);
+    VerdictSink sinks[2];
+    std::unique_ptr<Analyzer> as[2];
+    for (int detail = 0; detail < 2; ++detail) {
+      AnalyzerOptions o;
+      o.detail = detail == 1;
+      as[detail] = std::make_unique<Analyzer>(o, sinks[detail]);
+      std::string err;
+      ASSERT_TRUE(read_file(in, Format::automatic, *as[detail], SourceOptions{}, err)) << err;
+      as[detail]->finish();
+    }
+    EXPECT_EQ(sinks[0].seen, sinks[1].seen);
+    EXPECT_EQ(stats_json(as[0]->stats(), as[0]->worst()),
+              stats_json(as[1]->stats(), as[1]->worst()));
+    EXPECT_EQ(as[0]->worst(), as[1]->worst());
+    EXPECT_GT(as[0]->stats().frames, 0u);
   }
 }
 

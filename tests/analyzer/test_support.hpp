@@ -75,13 +75,13 @@ struct Recorder : Sink {
     f.pos = e.pos;
     f.from = *e.from;
     f.to = *e.to;
-    f.raw = e.entry->frame.raw;
-    f.ident = std::string(e.entry->frame.ident_view());
+    f.raw = e.entry->frame->raw;
+    f.ident = std::string(e.entry->frame->ident_view());
     f.role = e.entry->decoded.role;
     f.dialect = e.entry->decoded.dialect;
     f.reply_to = e.reply_to;
     f.latency = e.latency_us;
-    for (const top::Finding* x : all_findings(e.entry->frame, e.entry->decoded))
+    for (const top::Finding* x : all_findings(*e.entry->frame, e.entry->decoded))
       f.codes.emplace_back(top::to_string(x->code));
     for (const Note& n : e.notes) f.codes.emplace_back(to_string(n.code));
     write_frame_json(f.json_fast, e);

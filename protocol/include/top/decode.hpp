@@ -41,6 +41,10 @@ struct DecodeOptions {
   Dialect dialect = Dialect::unknown;  // unknown: detect from the frame
   Model model = Model::unknown;        // unknown: no model checks
   Role role = Role::any;               // any: from the addresses
+  // false: the verdict only (dialect, role, command, form, and findings with
+  // codes, severities and offsets but empty messages); no field values. For
+  // callers that count rather than show (topdump stats).
+  bool detail = true;
 };
 
 struct Decoded {
@@ -57,7 +61,12 @@ struct Decoded {
 
 // The role a frame plays, judged from its addresses: a frame from U/P is a
 // request, one to U/P a response.
-Role role_from_addresses(const Frame& f) noexcept;
+inline Role role_from_addresses(const Frame& f) noexcept {
+  const bool from_client = is_client_address(f.src), to_client = is_client_address(f.dst);
+  if (from_client && !to_client) return Role::request;
+  if (to_client && !from_client) return Role::response;
+  return Role::any;
+}
 
 // Decodes the data of a structurally parsed frame. Never fails: unknown
 // identifiers, wrong lengths and bad digits become findings.

@@ -37,9 +37,11 @@ inline constexpr std::size_t prefix_size = 10;
 inline constexpr std::size_t max_frame_size = 3 + 2 + 2 + 3 + max_data_ext16 + 2;
 
 // True for the address characters the documents define (U M D E P G).
-bool is_address(char c) noexcept;
+inline bool is_address(char c) noexcept {
+  return c == 'U' || c == 'M' || c == 'D' || c == 'E' || c == 'P' || c == 'G';
+}
 // True for a client-side address: U (UART/UDP client) or P (network client).
-bool is_client_address(char c) noexcept;
+inline bool is_client_address(char c) noexcept { return c == 'U' || c == 'P'; }
 
 // A parsed frame. `raw` holds exactly the frame's bytes (no terminator).
 struct Frame {
