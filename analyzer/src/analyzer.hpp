@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <cstring>
 #include <deque>
 #include <map>
 #include <memory>
@@ -39,7 +40,12 @@ struct Endpoint {
   std::array<std::uint8_t, 16> addr{};
   std::uint16_t port = 0;
   std::string name;  // family 0
-  bool operator==(const Endpoint&) const = default;
+  // Compared on every packet (the conversation cache): ports and family
+  // first, the address as one block, the name last.
+  bool operator==(const Endpoint& o) const noexcept {
+    return port == o.port && family == o.family &&
+           std::memcmp(addr.data(), o.addr.data(), sizeof addr) == 0 && name == o.name;
+  }
   std::string text() const;  // "10.0.0.1:5000", "[::1]:5000", "host"
 };
 

@@ -61,13 +61,19 @@ bool decimal_scale(double scale, std::int64_t& m, int& d) noexcept {
 
 // integer * scale, correctly rounded when the scale is a decimal fraction:
 // 0.01 * -295 gives -2.95 rather than -2.9500000000000002.
-double scaled(std::int64_t iv, double scale) noexcept {
+double scaled_slow(std::int64_t iv, double scale) noexcept;
+
+inline double scaled(std::int64_t iv, double scale) noexcept {
   constexpr std::int64_t kExact = std::int64_t{1} << 53;  // integers a double holds
   if (iv > -kExact && iv < kExact) {                      // the catalog's usual scales, inline
     if (scale == 1.0) return static_cast<double>(iv);
     if (scale == 0.01) return static_cast<double>(iv) / 100.0;
     if (scale == 0.1) return static_cast<double>(iv) / 10.0;
   }
+  return scaled_slow(iv, scale);
+}
+
+double scaled_slow(std::int64_t iv, double scale) noexcept {
   std::int64_t m = 0, mant = 0;
   int d = 0;
   if (decimal_scale(scale, m, d) && !__builtin_mul_overflow(iv, m, &mant) &&
@@ -417,6 +423,7 @@ void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
     }
     return;
   }
+  FieldValue scratch;  // without detail: each field is validated here, then dropped
   for (const FieldSpec& fs : form->fields) {
     if (pos >= data.size() && fs.width != 0) break;
     std::size_t w = fs.width == 0 ? data.size() - pos : fs.width;
@@ -426,7 +433,12 @@ void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
                   std::to_string(data.size() - pos) + " left");
       break;
     }
-    FieldValue scratch;  // without detail: validated, then dropped
+    if (!ctx.detail) {
+      scratch.valid = scratch.none = false;
+      scratch.integer = 0;
+      scratch.value = 0;
+      scratch.enum_name = {};
+    }
     decode_field(ctx, fs, data.substr(pos, w), static_cast<std::uint32_t>(frame.data_offset + pos),
                  ctx.detail ? out.fields.emplace_back() : scratch);
     pos += w;
