@@ -101,24 +101,22 @@ bool is_ident_char(char c) noexcept { return (c >= 'A' && c <= 'Z') || (c >= '0'
 
 bool is_boundary(char c) noexcept { return c == '#' || c == '\r' || c == '\n'; }
 
-// A parse's verdict without its frame (built in place by parse_into).
+// A parse's verdict without its frame (built in place by parse_into) or its
+// error (written to the caller's Finding only when invalid).
 struct Verdict {
   ParseStatus status = ParseStatus::need_more;
   std::size_t consumed = 0;
-  Finding error;
 };
 
-Verdict invalid(FindingCode code, std::size_t offset, std::string msg) {
-  Verdict r;
-  r.status = ParseStatus::invalid;
-  r.error = make_finding(code, static_cast<std::uint32_t>(offset), std::move(msg));
-  return r;
+Verdict invalid(Finding& err, FindingCode code, std::size_t offset, std::string msg) {
+  err = make_finding(code, static_cast<std::uint32_t>(offset), std::move(msg));
+  return Verdict{ParseStatus::invalid, 0};
 }
 
 Verdict need_more() { return Verdict{}; }
 
-Verdict truncated(std::size_t have, std::size_t want) {
-  return invalid(FindingCode::truncated, have,
+Verdict truncated(Finding& err, std::size_t have, std::size_t want) {
+  return invalid(err, FindingCode::truncated, have,
                  "input ends after " + std::to_string(have) + " bytes of a frame that needs " +
                      std::to_string(want));
 }
@@ -164,26 +162,28 @@ void reset_keep_capacity(Frame& f) {
 
 // The parser. A frame is built in `f` (reset first), which the result
 // refers to only when its status is frame.
-Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Frame& f) {
+Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Frame& f,
+                   Finding& err) {
   reset_keep_capacity(f);
   const std::size_t n = b.size();
   auto short_of = [&](std::size_t want) { return n < want; };
-  if (n == 0) return at_end ? truncated(0, 1) : need_more();
+  if (n == 0) return at_end ? truncated(err, 0, 1) : need_more();
   if (b[0] != '#')
-    return invalid(FindingCode::bad_header, 0, "frame must start with '#', got " + printable(b[0]));
+    return invalid(err, FindingCode::bad_header, 0,
+                   "frame must start with '#', got " + printable(b[0]));
 
   Layout lay;
   // --- header -----------------------------------------------------------
-  if (short_of(2)) return at_end ? truncated(n, 12) : need_more();
+  if (short_of(2)) return at_end ? truncated(err, n, 12) : need_more();
   if (b[1] == 'P') {
     // Topotek 12.2 documents "#PDP16TMP<22 chars><RR>": no 'tp', no control.
     static constexpr std::string_view kTmp = "#PDP??TMP";
     for (std::size_t i = 1; i < kTmp.size(); ++i) {
-      if (i >= n) return at_end ? truncated(n, 33) : need_more();
+      if (i >= n) return at_end ? truncated(err, n, 33) : need_more();
       bool okc = kTmp[i] == '?' ? is_hex(b[i]) : b[i] == kTmp[i];
       if (!okc)
         return invalid(
-            FindingCode::bad_header, 1,
+            err, FindingCode::bad_header, 1,
             "'#' followed by " + printable(b[1]) + ", not a TOP header (#TP #tp #tP #Tp)");
     }
     lay.header = Header::tmp_quirk;
@@ -194,12 +194,12 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
     lay.hex_length = false;
   } else {
     if (b[1] != 'T' && b[1] != 't')
-      return invalid(FindingCode::bad_header, 1,
+      return invalid(err, FindingCode::bad_header, 1,
                      "'#' followed by " + printable(b[1]) + ", not a TOP header (#TP #tp #tP #Tp)");
-    if (short_of(3)) return at_end ? truncated(n, 12) : need_more();
+    if (short_of(3)) return at_end ? truncated(err, n, 12) : need_more();
     if (b[2] != 'P' && b[2] != 'p')
       return invalid(
-          FindingCode::bad_header, 2,
+          err, FindingCode::bad_header, 2,
           std::string("\"#") + b[1] + "\" followed by " + printable(b[2]) + ", not a TOP header");
     if (b[1] == 'T')
       lay.header = b[2] == 'P' ? Header::fixed : Header::ext16;
@@ -213,32 +213,32 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
   if (lay.header != Header::tmp_quirk) {
     // --- addresses --------------------------------------------------------
     for (std::size_t i = 3; i < 5; ++i) {
-      if (short_of(i + 1)) return at_end ? truncated(n, 12) : need_more();
+      if (short_of(i + 1)) return at_end ? truncated(err, n, 12) : need_more();
       if (!is_address(b[i]))
-        return invalid(FindingCode::bad_address, i,
+        return invalid(err, FindingCode::bad_address, i,
                        std::string(i == 3 ? "source" : "destination") + " address " +
                            printable(b[i]) + " is not one of U M D E P G");
     }
     // --- length and control ----------------------------------------------
-    if (short_of(6)) return at_end ? truncated(n, 12) : need_more();
+    if (short_of(6)) return at_end ? truncated(err, n, 12) : need_more();
     switch (lay.header) {
       case Header::fixed:
       case Header::variable: {
         if (!is_hex(b[5]))
-          return invalid(FindingCode::bad_length_char, 5,
+          return invalid(err, FindingCode::bad_length_char, 5,
                          "length char " + printable(b[5]) + " is not a hex digit");
         if (is_lower_hex(b[5]))
           notes.push_back(
               make_finding(FindingCode::lowercase_hex, 5, "length char written in lowercase"));
-        if (short_of(7)) return at_end ? truncated(n, 12) : need_more();
+        if (short_of(7)) return at_end ? truncated(err, n, 12) : need_more();
         if (b[6] == 'r' || b[6] == 'w') {
           lay.control = b[6];
           lay.declared = static_cast<std::size_t>(hex_value(b[5]));
         } else if (is_hex(b[6])) {
           // Two-digit length ("#tpDP16wTMP..."): the TMP firmware quirk.
-          if (short_of(8)) return at_end ? truncated(n, 13) : need_more();
+          if (short_of(8)) return at_end ? truncated(err, n, 13) : need_more();
           if (b[7] != 'r' && b[7] != 'w')
-            return invalid(FindingCode::bad_control, 6,
+            return invalid(err, FindingCode::bad_control, 6,
                            "control char " + printable(b[6]) + " is not r or w");
           lay.control = b[7];
           lay.declared = static_cast<std::size_t>(hex_value(b[5])) * 16 +
@@ -248,7 +248,7 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
           lay.ident_at = 8;
           lay.data_at = 11;
         } else {
-          return invalid(FindingCode::bad_control, 6,
+          return invalid(err, FindingCode::bad_control, 6,
                          "control char " + printable(b[6]) + " is not r or w");
         }
         break;
@@ -256,15 +256,15 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
       case Header::ext8: {
         lay.declared = static_cast<unsigned char>(b[5]);
         lay.hex_length = false;
-        if (short_of(7)) return at_end ? truncated(n, 12) : need_more();
+        if (short_of(7)) return at_end ? truncated(err, n, 12) : need_more();
         if (b[6] != 'r' && b[6] != 'w')
-          return invalid(FindingCode::bad_control, 6,
+          return invalid(err, FindingCode::bad_control, 6,
                          "control char " + printable(b[6]) + " is not r or w");
         lay.control = b[6];
         break;
       }
       case Header::ext16: {
-        if (short_of(7)) return at_end ? truncated(n, 12) : need_more();
+        if (short_of(7)) return at_end ? truncated(err, n, 12) : need_more();
         lay.declared = static_cast<std::size_t>(static_cast<unsigned char>(b[5]) << 8 |
                                                 static_cast<unsigned char>(b[6]));
         lay.hex_length = false;
@@ -280,13 +280,13 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
 
   // --- identifier -----------------------------------------------------------
   for (std::size_t i = lay.ident_at; i < lay.ident_at + 3; ++i) {
-    if (short_of(i + 1)) return at_end ? truncated(n, lay.data_at + 2) : need_more();
+    if (short_of(i + 1)) return at_end ? truncated(err, n, lay.data_at + 2) : need_more();
     if (!is_ident_char(b[i]))
-      return invalid(FindingCode::bad_ident, i,
+      return invalid(err, FindingCode::bad_ident, i,
                      "identifier char " + printable(b[i]) + " is not an uppercase letter or digit");
   }
   if (lay.declared > opts.max_data_length)
-    return invalid(FindingCode::frame_too_long, 5,
+    return invalid(err, FindingCode::frame_too_long, 5,
                    "declared data length " + std::to_string(lay.declared) +
                        " exceeds the limit of " + std::to_string(opts.max_data_length));
 
@@ -329,8 +329,7 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
 
   auto finish = [&](std::size_t data_len, bool present, std::uint8_t value,
                     unsigned prefix) -> Verdict {
-    Verdict r;
-    r.status = ParseStatus::frame;
+    Verdict r{ParseStatus::frame, 0};
     f.data_length = static_cast<std::uint32_t>(data_len);
     std::size_t end = lay.data_at + data_len + (present ? 2 : 0);
     f.raw.assign(b.data(), end);
@@ -397,7 +396,7 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
                                        hex2(static_cast<std::uint8_t>(p)) + ")"));
       return finish(L, false, 0, p);
     }
-    return truncated(n, declared_end);
+    return truncated(err, n, declared_end);
   }
 
   // No checksum at all: the data is followed directly by a boundary.
@@ -441,19 +440,16 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
 
 ParseResult parse_frame(std::string_view bytes, bool at_end, const ParseOptions& opts) {
   ParseResult r;
-  Verdict v = parse_into(bytes, at_end, opts, r.frame);
-  r.status = v.status;
-  r.consumed = v.consumed;
-  r.error = std::move(v.error);
-  if (r.status != ParseStatus::frame) r.frame = Frame{};
+  parse_frame(bytes, at_end, opts, r);
   return r;
 }
 
 void parse_frame(std::string_view bytes, bool at_end, const ParseOptions& opts, ParseResult& out) {
-  Verdict r = parse_into(bytes, at_end, opts, out.frame);
+  // the error of an earlier parse goes (most parses have none to write)
+  if (out.error.code != FindingCode{} || !out.error.message.empty()) out.error = Finding{};
+  const Verdict r = parse_into(bytes, at_end, opts, out.frame, out.error);
   out.status = r.status;
   out.consumed = r.consumed;
-  out.error = std::move(r.error);
   if (r.status != ParseStatus::frame) reset_keep_capacity(out.frame);
 }
 
