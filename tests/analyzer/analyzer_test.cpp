@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -407,6 +408,30 @@ TEST(Stats, WithoutDetailEqualsWithDetail) {
     EXPECT_EQ(as[0]->worst(), as[1]->worst());
     EXPECT_GT(as[0]->stats().frames, 0u);
   }
+}
+
+// json_plain reads eight bytes at a time: every byte value at every
+// position of strings of every length up to 24, against the byte table,
+// from exact-size buffers (ASan sees a read past the end).
+TEST(Json, PlainCheckAgreesWithTheByteTable) {
+  std::size_t checked = 0;
+  for (std::size_t n = 1; n <= 24; ++n)
+    for (std::size_t at = 0; at < n; ++at)
+      for (int v = 0; v < 256; ++v) {
+        std::string s(n, 'A');
+        s[at] = static_cast<char>(v);
+        const std::unique_ptr<char[]> exact(new char[n]);
+        std::memcpy(exact.get(), s.data(), n);
+        const bool want = detail::kJsonPlain[static_cast<std::size_t>(v)];
+        ASSERT_EQ(json_plain(std::string_view(exact.get(), n)), want) << n << " " << at << " " << v;
+        ++checked;
+      }
+  EXPECT_EQ(checked, 256u * 300u);
+  EXPECT_TRUE(json_plain(""));
+  EXPECT_FALSE(detail::kJsonPlain['"']);
+  EXPECT_FALSE(detail::kJsonPlain['\\']);
+  EXPECT_FALSE(detail::kJsonPlain[0x7F]);
+  EXPECT_TRUE(detail::kJsonPlain['~']);
 }
 
 TEST(Json, FastWriterEqualsReferenceOnHostileBytes) {
