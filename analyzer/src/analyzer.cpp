@@ -347,15 +347,15 @@ struct Analyzer::Impl {
   }
   std::array<std::uint64_t, top::finding_code_count> codes{};
   std::array<std::uint64_t, acode_count> acodes{};
-  std::unordered_map<std::uint32_t, Latency> latency;
-  std::uint32_t last_latency_key = 0;  // the entry used last (pointers into the map are stable)
-  Latency* last_latency = nullptr;
+  // Latency per identifier: a capture pairs a handful of identifiers, so a
+  // linear search of their keys beats hashing (a division per reply).
+  std::vector<std::uint32_t> latency_keys;
+  std::deque<Latency> latency;  // latency[i] is latency_keys[i]'s
   Latency& latency_of(std::uint32_t key) {
-    if (!last_latency || key != last_latency_key) {
-      last_latency = &latency[key];
-      last_latency_key = key;
-    }
-    return *last_latency;
+    for (std::size_t i = 0; i < latency_keys.size(); ++i)
+      if (latency_keys[i] == key) return latency[i];
+    latency_keys.push_back(key);
+    return latency.emplace_back();
   }
   std::uint64_t limit_notes = 0;
 
@@ -583,7 +583,8 @@ struct Analyzer::Impl {
     for (std::size_t i = 0; i < acodes.size(); ++i)
       if (acodes[i]) s.per_code[std::string(to_string(static_cast<ACode>(i)))] += acodes[i];
     s.latency.clear();
-    for (const auto& [k, v] : latency) s.latency[unpack(k)] = v;
+    for (std::size_t i = 0; i < latency_keys.size(); ++i)
+      s.latency[unpack(latency_keys[i])] = latency[i];
   }
 
   void frame(Conversation& c, int d, top::Frame& f, Position pos, std::int64_t ts,
@@ -680,8 +681,8 @@ struct Analyzer::Impl {
     Direction& D = c.dir[d];
     ++A.stats_.requests;
     ++c.st.requests;
-    if (D.last_req == f.raw && ev.ts != kNoTime && D.last_req_ts != kNoTime &&
-        ev.ts - D.last_req_ts <= A.opts_.repeat_window_us)
+    if (ev.ts != kNoTime && D.last_req_ts != kNoTime &&
+        ev.ts - D.last_req_ts <= A.opts_.repeat_window_us && D.last_req == f.raw)
       ev.notes.push_back(Note{
           ACode::repeated, default_severity(ACode::repeated),
           A.opts_.detail
@@ -754,22 +755,31 @@ struct Analyzer::Impl {
     // the retry reported unanswered. Newest-first can only swap two
     // identical requests in flight, whose latencies are alike.
     const bool none = !ere && c.pending_count(f.ident, 1 - d) == 0;
-    auto m = c.pending.end();
-    auto newest = [&](auto pred) {
-      for (auto it = c.pending.end(); it != c.pending.begin();) {
+    // one pass from the newest: the first request whose data it echoes, else
+    // the newest of its identifier (ERE: the newest to the device it speaks for)
+    const auto end = c.pending.end();
+    auto m = end;
+    if (!none) {
+      auto by_ident = end;
+      for (auto it = end; it != c.pending.begin();) {
         --it;
-        if (pred(*it)) return it;
+        if (it->dir == d) continue;
+        if (ere) {
+          if (it->dst == f.src) {
+            by_ident = it;
+            break;
+          }
+          continue;
+        }
+        if (!same_ident(it->ident, id)) continue;
+        if (it->data == f.data()) {
+          m = it;
+          break;
+        }
+        if (by_ident == end) by_ident = it;
       }
-      return c.pending.end();
-    };
-    if (!ere && !none)
-      m = newest([&](const Pending& p) {
-        return p.dir != d && same_ident(p.ident, id) && p.data == f.data();
-      });
-    if (m == c.pending.end() && !none)
-      m = newest([&](const Pending& p) {
-        return p.dir != d && (ere ? p.dst == f.src : same_ident(p.ident, id));
-      });
+      if (m == end) m = by_ident;
+    }
     if (m != c.pending.end()) {
       ++A.stats_.paired;
       ++c.st.paired;
