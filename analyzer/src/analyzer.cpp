@@ -273,10 +273,6 @@ struct Conversation {
     }
     if (add) pending_keys.emplace_back(k, 1);
   }
-  void push_pending(Pending p) {
-    count_pending(p, true);
-    pending.push_back(std::move(p));
-  }
   void pop_pending() {
     count_pending(pending.front(), false);
     pending.pop_front();
@@ -548,11 +544,16 @@ struct Analyzer::Impl {
                            : std::string()));
     }
     e.frame = &f;
-    e.worst = topdump::worst(f, e.decoded);
+    // worst severity, codes and the bad checksum in one pass
+    e.worst = top::Severity::info;
+    e.bad_checksum = false;
     e.codes.clear();
-    for (const auto& x : f.findings) e.codes.push_back(x.code);
-    for (const auto& x : e.decoded.findings) e.codes.push_back(x.code);
-    e.bad_checksum = f.has(top::FindingCode::bad_checksum);
+    for (const auto* list : {&f.findings, &e.decoded.findings})
+      for (const top::Finding& x : *list) {
+        e.codes.push_back(x.code);
+        if (x.severity > e.worst) e.worst = x.severity;
+        e.bad_checksum |= x.code == top::FindingCode::bad_checksum && list == &f.findings;
+      }
     return e;
   }
 
@@ -729,7 +730,7 @@ struct Analyzer::Impl {
       unanswered(c, c.pending.front(), false);
       c.pop_pending();
     }
-    Pending p;
+    Pending& p = c.pending.emplace_back();  // built in place (no moves)
     p.ts = ev.ts;
     p.n = ev.n;
     p.pos = ev.pos;
@@ -739,7 +740,7 @@ struct Analyzer::Impl {
     p.dst = f.dst;
     p.data.assign(f.data());
     p.dir = d;
-    c.push_pending(std::move(p));
+    c.count_pending(p, true);
   }
 
   void response(Conversation& c, int d, FrameEvent& ev, top::Dialect dialect) {
