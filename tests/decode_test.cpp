@@ -311,3 +311,36 @@ TEST(Decode, ScaledValuesAreTheNearestDoubleToTheirDecimal) {
   EXPECT_EQ(dec, 2);
   EXPECT_EQ(format_value(field(d, "pitch")), "-0.83 deg");
 }
+
+// An enum_hex code is written as printf("%0*llX", width, value) would: the
+// field's width, wider when the value needs more digits; with its name or
+// "(undocumented)". append_value appends to what the buffer holds.
+TEST(Decode, EnumCodesAreThoseOfPrintf) {
+  static constexpr EnumValue kNames[] = {{0x06, "follow"}};
+  FieldSpec spec;
+  spec.name = "action";
+  spec.kind = FieldKind::enum_hex;
+  spec.enums = kNames;
+  std::size_t checked = 0;
+  for (std::uint32_t width = 0; width <= 17; ++width)
+    for (std::uint64_t v : {0x0ull, 0x6ull, 0x7Full, 0x1ABull, 0xFFFFull, 0x123456789ABCDEFull,
+                            0xFEDCBA9876543210ull}) {
+      FieldValue f;
+      f.spec = &spec;
+      f.valid = true;
+      f.length = width;
+      f.integer = static_cast<std::int64_t>(v);
+      f.enum_name = v == 0x6 ? "follow" : "";
+      char b[64];
+      std::snprintf(b, sizeof b, "%0*llX", static_cast<int>(width),
+                    static_cast<unsigned long long>(v));
+      const std::string want =
+          v == 0x6 ? "follow (" + std::string(b) + ")" : std::string(b) + " (undocumented)";
+      EXPECT_EQ(format_value(f), want) << width << " " << v;
+      std::string appended = "x=";
+      append_value(f, appended);
+      EXPECT_EQ(appended, "x=" + want);
+      ++checked;
+    }
+  EXPECT_EQ(checked, 18u * 7u);
+}

@@ -357,7 +357,10 @@ void put_field(O& o, const top::FieldValue& v, const top::Frame& f) {
     put_plain(o, s.unit);
   }
   app(o, ",\"text\":");
-  put_esc(o, format_value(v));
+  static thread_local std::string text;  // reused: no allocation per field
+  text.clear();
+  top::append_value(v, text);
+  put_esc(o, text);
   app(o, ",\"raw\":");
   put_esc(o, std::string_view(f.raw).substr(v.offset, v.length));
   app(o, ",\"offset\":");

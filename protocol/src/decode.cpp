@@ -1,5 +1,6 @@
 #include "top/decode.hpp"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -498,50 +499,99 @@ void append_fixed(std::string& out, std::int64_t mantissa, int decimals) {
 
 }  // namespace
 
-std::string format_value(const FieldValue& f) {
-  if (!f.spec) return {};
+void append_value(const FieldValue& f, std::string& out) {
+  if (!f.spec) return;
   const FieldSpec& s = *f.spec;
-  if (f.none) return "none (" + f.text + ")";
-  if (!f.valid) return "'" + f.text + "' (invalid)";
-  auto with_unit = [&](std::string v) {
+  if (f.none) {
+    out += "none (";
+    out += f.text;
+    out += ')';
+    return;
+  }
+  if (!f.valid) {
+    out += '\'';
+    out += f.text;
+    out += "' (invalid)";
+    return;
+  }
+  auto unit = [&] {
     if (!s.unit.empty()) {
-      v += ' ';
-      v += s.unit;
+      out += ' ';
+      out += s.unit;
     }
-    return v;
   };
   switch (s.kind) {
     case FieldKind::enum_hex:
     case FieldKind::enum_char: {
-      std::string code = s.kind == FieldKind::enum_char ? f.text : [&] {
-        char b[24];
-        std::snprintf(b, sizeof b, "%0*llX", static_cast<int>(f.length),
-                      static_cast<unsigned long long>(f.integer));
-        return std::string(b);
-      }();
-      if (!f.enum_name.empty()) return std::string(f.enum_name) + " (" + code + ")";
-      return code + " (undocumented)";
+      // the code: the character(s), or the value as hex digits of the
+      // field's width (printf's "%0*llX")
+      char b[24];
+      std::string_view code = f.text;
+      if (s.kind == FieldKind::enum_hex) {
+        int n = 0;
+        if (f.length <= 16) {
+          static constexpr char kDigits[] = "0123456789ABCDEF";
+          const auto u = static_cast<unsigned long long>(f.integer);
+          const int w = static_cast<int>(f.length);
+          int digits = 1;  // printf widens the field for a value that needs more digits
+          while (digits < 16 && (u >> (4 * digits)) != 0) ++digits;
+          n = std::max(w, digits);
+          for (int i = 0; i < n; ++i) b[i] = kDigits[(u >> (4 * (n - 1 - i))) & 0xF];
+        } else {
+          n = std::snprintf(b, sizeof b, "%0*llX", static_cast<int>(f.length),
+                            static_cast<unsigned long long>(f.integer));
+          n = std::clamp(n, 0, static_cast<int>(sizeof b) - 1);
+        }
+        code = std::string_view(b, static_cast<std::size_t>(n));
+      }
+      if (!f.enum_name.empty()) {
+        out += f.enum_name;
+        out += " (";
+        out += code;
+        out += ')';
+      } else {
+        out += code;
+        out += " (undocumented)";
+      }
+      return;
     }
     case FieldKind::text:
     case FieldKind::raw:
-      return f.text;
+      out += f.text;
+      return;
     case FieldKind::nmea:
-      return with_unit(fmt_number(f.value, 7)) + " (" + f.text + ")";
+      out += fmt_number(f.value, 7);
+      unit();
+      out += " (";
+      out += f.text;
+      out += ')';
+      return;
     case FieldKind::number:
-      return with_unit(f.text);
+      out += f.text;
+      unit();
+      return;
     default: {
-      std::string v;
       std::int64_t mantissa = 0;
       int decimals = 0;
       if (exact_decimal(f, mantissa, decimals))
-        append_fixed(v, mantissa, decimals);  // the text printf would give, without it
+        append_fixed(out, mantissa, decimals);  // the text printf would give, without it
       else
-        v = fmt_number(f.value, decimals_of(s.scale));
-      v = with_unit(std::move(v));
-      if (!f.enum_name.empty()) v += " (" + std::string(f.enum_name) + ")";
-      return v;
+        out += fmt_number(f.value, decimals_of(s.scale));
+      unit();
+      if (!f.enum_name.empty()) {
+        out += " (";
+        out += f.enum_name;
+        out += ')';
+      }
+      return;
     }
   }
+}
+
+std::string format_value(const FieldValue& f) {
+  std::string s;
+  append_value(f, s);
+  return s;
 }
 
 std::string Decoded::summary() const {

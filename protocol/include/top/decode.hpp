@@ -29,6 +29,8 @@ struct FieldValue {
 
 // The value as a person reads it: "-50.00 deg", "follow (06)", "192.168.1.2".
 std::string format_value(const FieldValue& f);
+// The same text appended to `out` (for writers that reuse one buffer).
+void append_value(const FieldValue& f, std::string& out);
 
 // The decimal a numeric field stands for, exactly: its value is the double
 // nearest to mantissa / 10^decimals, and `decimals` is the number of digits
