@@ -4,6 +4,7 @@
 #include <benchmark/benchmark.h>
 
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "analyzer.hpp"
@@ -50,6 +51,20 @@ void BM_decode(benchmark::State& s) {
 }
 BENCHMARK(BM_decode);
 
+// The verdict only, into one reused result (topdump stats).
+void BM_decode_verdict(benchmark::State& s) {
+  auto r = top::parse_frame(kFrame, true);
+  top::Decoded d;
+  top::DecodeOptions o;
+  o.detail = false;
+  for (auto _ : s) {
+    top::decode(r.frame, o, d);
+    benchmark::DoNotOptimize(d);
+  }
+  s.SetItemsProcessed(s.iterations());
+}
+BENCHMARK(BM_decode_verdict);
+
 struct Null : topdump::Sink {};
 struct Json : topdump::Sink {
   std::string out;
@@ -59,10 +74,13 @@ struct Json : topdump::Sink {
   }
 };
 
+// topdump stats judges without detail; read --json with it.
 template <class S>
 void analyzer_datagrams(benchmark::State& s) {
   S sink;
-  topdump::Analyzer a(topdump::AnalyzerOptions{}, sink);
+  topdump::AnalyzerOptions o;
+  o.detail = std::is_same_v<S, Json>;
+  topdump::Analyzer a(o, sink);
   topdump::Endpoint c, d;
   c.family = d.family = 4;
   c.port = 40000;
