@@ -379,12 +379,9 @@ struct VerdictSink : Sink {
 // events, the same statistics and the same exit status as with detail.
 TEST(Stats, WithoutDetailEqualsWithDetail) {
   TempDir tmp;
-  std::string out;
-  ASSERT_EQ(run("'" + std::string(TOPKIT_BINARY_DIR) + "/analyzer/gen_capture' 20000 '" +
-                    tmp.file("g.pcap") + "' 3",
-                out),
-            0);
-  std::vector<std::string> inputs = {tmp.file("g.pcap")};
+  const std::string generated = generated_capture(tmp, "g.pcap", 20000, 3);
+  ASSERT_FALSE(generated.empty());
+  std::vector<std::string> inputs = {generated};
   for (const auto& e : std::filesystem::directory_iterator(captures_dir()))
     if (e.is_regular_file() && e.path().extension() != ".md" && e.path().extension() != ".sh" &&
         e.path().extension() != ".cpp" && e.path().extension() != ".txt")

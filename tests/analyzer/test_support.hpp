@@ -49,6 +49,19 @@ inline int run(const std::string& cmd, std::string& out) {
   return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
 }
 
+// Writes a capture of `frames` frames with the bench generator
+// (bench/gen_capture.cpp) into `tmp`; its path, or "" when the generator
+// failed.
+inline std::string generated_capture(const TempDir& tmp, const std::string& name, int frames,
+                                     int seed) {
+  std::string out;
+  const std::string path = tmp.file(name);
+  const int rc = run("'" + std::string(TOPKIT_BINARY_DIR) + "/analyzer/gen_capture' " +
+                         std::to_string(frames) + " '" + path + "' " + std::to_string(seed),
+                     out);
+  return rc == 0 ? path : std::string();
+}
+
 // Records every event an analyzer emits.
 struct Recorder : Sink {
   struct F {
