@@ -355,6 +355,13 @@ struct Analyzer::Impl {
   }
   std::uint64_t limit_notes = 0;
 
+  // A finding's or note's message, built only when events are described
+  // (AnalyzerOptions::detail); topdump stats counts them without text.
+  template <class Make>
+  std::string message(Make&& make) const {
+    return A.opts_.detail ? std::string(make()) : std::string();
+  }
+
   explicit Impl(Analyzer& a) : A(a) {}
 
   // Recently used (transport, src, dst) -> conversation and direction, so
@@ -537,11 +544,11 @@ struct Analyzer::Impl {
       for (const auto& x : e.decoded.findings)
         has |= x.code == top::FindingCode::unswapped_addresses;
       if (!has)
-        e.decoded.findings.push_back(top::make_finding(
-            top::FindingCode::unswapped_addresses, 3,
-            A.opts_.detail ? std::string("a response addressed ") + f.src + " to " + f.dst +
-                                 " (the request's order; some simulators)"
-                           : std::string()));
+        e.decoded.findings.push_back(
+            top::make_finding(top::FindingCode::unswapped_addresses, 3, message([&] {
+                                return std::string("a response addressed ") + f.src + " to " +
+                                       f.dst + " (the request's order; some simulators)";
+                              })));
     }
     e.frame = &f;
     // worst severity, codes and the bad checksum in one pass
@@ -656,14 +663,12 @@ struct Analyzer::Impl {
   void unanswered(Conversation& c, const Pending& p, bool at_end) {
     ++A.stats_.unanswered;
     const Direction& D = c.dir[p.dir];
-    std::string msg;
-    if (A.opts_.detail) {
-      msg = escape(std::string_view(p.ident, 3)) + " request (frame " + std::to_string(p.n) + ")";
-      if (at_end)
-        msg += " got no response before the end of the capture";
-      else
-        msg += " got no response within " + std::to_string(A.opts_.timeout_us / 1000) + " ms";
-    }
+    std::string msg = message([&] {
+      return escape(std::string_view(p.ident, 3)) + " request (frame " + std::to_string(p.n) + ")" +
+             (at_end
+                  ? std::string(" got no response before the end of the capture")
+                  : " got no response within " + std::to_string(A.opts_.timeout_us / 1000) + " ms");
+    });
     note_event(p.ts, p.pos, c.transport, &c, &D.from, &D.to,
                Note{ACode::unanswered, default_severity(ACode::unanswered), std::move(msg), p.n});
   }
@@ -684,12 +689,11 @@ struct Analyzer::Impl {
     ++c.st.requests;
     if (ev.ts != kNoTime && D.last_req_ts != kNoTime &&
         ev.ts - D.last_req_ts <= A.opts_.repeat_window_us && D.last_req == f.raw)
-      ev.notes.push_back(Note{
-          ACode::repeated, default_severity(ACode::repeated),
-          A.opts_.detail
-              ? "same request again after " + std::to_string((ev.ts - D.last_req_ts) / 1000) + " ms"
-              : std::string(),
-          ev.n});
+      ev.notes.push_back(Note{ACode::repeated, default_severity(ACode::repeated), message([&] {
+                                return "same request again after " +
+                                       std::to_string((ev.ts - D.last_req_ts) / 1000) + " ms";
+                              }),
+                              ev.n});
     D.last_req = f.raw;
     D.last_req_ts = ev.ts;
     std::string_view id = f.ident_view();
@@ -791,13 +795,12 @@ struct Analyzer::Impl {
       }
       bool exempt = dialect == top::Dialect::topotek && (id == "REC" || id == "CAP");
       if (!ere && !exempt && m->control == 'w' && f.control == 'w' && m->data != f.data())
-        ev.notes.push_back(Note{ACode::echo_differs, default_severity(ACode::echo_differs),
-                                A.opts_.detail
-                                    ? "reply to write (frame " + std::to_string(m->n) +
-                                          ") carries \"" + escape(f.data()) +
-                                          "\", the write carried \"" + escape(m->data) + "\""
-                                    : std::string(),
-                                ev.n});
+        ev.notes.push_back(
+            Note{ACode::echo_differs, default_severity(ACode::echo_differs), message([&] {
+                   return "reply to write (frame " + std::to_string(m->n) + ") carries \"" +
+                          escape(f.data()) + "\", the write carried \"" + escape(m->data) + "\"";
+                 }),
+                 ev.n});
       c.erase_pending(m);
       return;
     }
@@ -814,19 +817,13 @@ struct Analyzer::Impl {
     ++A.stats_.unsolicited;
     ev.notes.push_back(Note{
         ACode::unsolicited, default_severity(ACode::unsolicited),
-        A.opts_.detail ? escape(id) + " response that no pending request asked for" : std::string(),
-        ev.n});
+        message([&] { return escape(id) + " response that no pending request asked for"; }), ev.n});
   }
 
   void check_stream(Conversation& c, const StreamStat& s) {
     if (s.asked_hz <= 0 || s.frames < 2) return;
     double m = s.measured_hz();
     if (m <= 0 || std::fabs(m - s.asked_hz) <= 0.25 * s.asked_hz) return;
-    if (!A.opts_.detail) {
-      note_event(s.last, Position{}, c.transport, &c, &c.dir[0].from, &c.dir[0].to,
-                 Note{ACode::stream_rate, default_severity(ACode::stream_rate), {}, 0});
-      return;
-    }
     // printf's "%.1f" and "%.0f" through to_chars (the same text, without
     // printf's cost on every re-asked stream)
     auto fixed = [](double v, int decimals) {
@@ -834,8 +831,10 @@ struct Analyzer::Impl {
       auto r = std::to_chars(b, b + sizeof b, v, std::chars_format::fixed, decimals);
       return r.ec == std::errc() ? std::string(b, r.ptr) : std::to_string(v);
     };
-    std::string msg = s.ident + " stream runs at " + fixed(m, 1) + " Hz, GAA asked for " +
-                      fixed(s.asked_hz, 0) + " Hz (" + std::to_string(s.frames) + " frames)";
+    std::string msg = message([&] {
+      return s.ident + " stream runs at " + fixed(m, 1) + " Hz, GAA asked for " +
+             fixed(s.asked_hz, 0) + " Hz (" + std::to_string(s.frames) + " frames)";
+    });
     note_event(s.last, Position{}, c.transport, &c, &c.dir[0].from, &c.dir[0].to,
                Note{ACode::stream_rate, default_severity(ACode::stream_rate), std::move(msg), 0});
   }
