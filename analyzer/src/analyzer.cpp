@@ -10,6 +10,7 @@
 
 #include "escape.hpp"
 #include "render.hpp"
+#include "ring.hpp"
 
 namespace topdump {
 
@@ -241,7 +242,7 @@ struct Conversation {
   bool has_dir1 = false;
   top::DialectDetector det;
   std::uint32_t observed = 0;
-  std::deque<Pending> pending;
+  Ring<Pending> pending;
   // How many pending requests per (identifier, direction): lets most frames
   // skip the scan of `pending` (stream frames, requests).
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pending_keys;
@@ -277,9 +278,9 @@ struct Conversation {
     count_pending(pending.front(), false);
     pending.pop_front();
   }
-  void erase_pending(std::deque<Pending>::iterator it) {
-    count_pending(*it, false);
-    pending.erase(it);
+  void erase_pending(std::size_t i) {
+    count_pending(pending[i], false);
+    pending.erase(i);
   }
   ConvStats st;
 };
@@ -609,11 +610,13 @@ struct Analyzer::Impl {
         c.pending_count(f.ident, 1 - d) > 0) {
       // Addressed like a request, but it travels back to a client that asked
       // the same: a response that kept the request's address order.
-      for (const Pending& p : c.pending)
+      for (std::size_t i = 0; i < c.pending.size(); ++i) {
+        const Pending& p = c.pending[i];
         if (p.dir != d && same_ident(p.ident, f.ident_view()) && p.src == f.src && p.dst == f.dst) {
           role = top::Role::response;
           break;
         }
+      }
     }
     const DecodedEntry& e = lookup(f, dialect, role);
     const top::Frame& fr = *e.frame;
@@ -734,7 +737,7 @@ struct Analyzer::Impl {
       unanswered(c, c.pending.front(), false);
       c.pop_pending();
     }
-    Pending& p = c.pending.emplace_back();  // built in place (no moves)
+    Pending& p = c.pending.push_back();  // a reused slot: every member is assigned
     p.ts = ev.ts;
     p.n = ev.n;
     p.pos = ev.pos;
@@ -762,30 +765,31 @@ struct Analyzer::Impl {
     const bool none = !ere && c.pending_count(f.ident, 1 - d) == 0;
     // one pass from the newest: the first request whose data it echoes, else
     // the newest of its identifier (ERE: the newest to the device it speaks for)
-    const auto end = c.pending.end();
-    auto m = end;
+    constexpr std::size_t kNone = SIZE_MAX;
+    std::size_t mi = kNone;
     if (!none) {
-      auto by_ident = end;
-      for (auto it = end; it != c.pending.begin();) {
-        --it;
-        if (it->dir == d) continue;
+      std::size_t by_ident = kNone;
+      for (std::size_t i = c.pending.size(); i-- > 0;) {
+        const Pending& p = c.pending[i];
+        if (p.dir == d) continue;
         if (ere) {
-          if (it->dst == f.src) {
-            by_ident = it;
+          if (p.dst == f.src) {
+            by_ident = i;
             break;
           }
           continue;
         }
-        if (!same_ident(it->ident, id)) continue;
-        if (it->data == f.data()) {
-          m = it;
+        if (!same_ident(p.ident, id)) continue;
+        if (p.data == f.data()) {
+          mi = i;
           break;
         }
-        if (by_ident == end) by_ident = it;
+        if (by_ident == kNone) by_ident = i;
       }
-      if (m == end) m = by_ident;
+      if (mi == kNone) mi = by_ident;
     }
-    if (m != c.pending.end()) {
+    if (mi != kNone) {
+      const Pending* m = &c.pending[mi];
       ++A.stats_.paired;
       ++c.st.paired;
       ev.reply_to = m->n;
@@ -801,7 +805,7 @@ struct Analyzer::Impl {
                           escape(f.data()) + "\", the write carried \"" + escape(m->data) + "\"";
                  }),
                  ev.n});
-      c.erase_pending(m);
+      c.erase_pending(mi);
       return;
     }
     for (StreamStat& s : c.st.streams) {

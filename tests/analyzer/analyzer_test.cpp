@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <deque>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -12,6 +13,7 @@
 #include "afindings.hpp"
 #include "escape.hpp"
 #include "pcapw.hpp"
+#include "ring.hpp"
 #include "test_support.hpp"
 
 namespace topdump::test {
@@ -429,6 +431,43 @@ TEST(Json, PlainCheckAgreesWithTheByteTable) {
   EXPECT_FALSE(detail::kJsonPlain['\\']);
   EXPECT_FALSE(detail::kJsonPlain[0x7F]);
   EXPECT_TRUE(detail::kJsonPlain['~']);
+}
+
+// The pending-request ring against a std::deque, through random pushes,
+// pops and erasures anywhere, across growth and wrap-around; a slot handed
+// back by push_back is reused, so the test assigns all of it as the
+// analyzer does.
+TEST(Ring, BehavesAsADequeThroughGrowthWrapAndErase) {
+  Ring<std::string> ring;
+  std::deque<std::string> model;
+  std::mt19937 rng(5);
+  std::size_t erased_inside = 0, max_size = 0;
+  for (int step = 0; step < 20000; ++step) {
+    const auto op = rng() % 10;
+    if (op < 5 || model.empty()) {
+      // strings past the small-string size, so buffers are reused for real
+      std::string v = "request-" + std::to_string(step) + std::string(rng() % 40, 'x');
+      ring.push_back().assign(v);
+      model.push_back(v);
+    } else if (op < 7) {
+      ring.pop_front();
+      model.pop_front();
+    } else {
+      const std::size_t i = rng() % model.size();
+      erased_inside += i + 1 < model.size();
+      ring.erase(i);
+      model.erase(model.begin() + static_cast<std::ptrdiff_t>(i));
+    }
+    max_size = std::max(max_size, model.size());
+    ASSERT_EQ(ring.size(), model.size());
+    ASSERT_EQ(ring.empty(), model.empty());
+    for (std::size_t i = 0; i < model.size(); ++i) ASSERT_EQ(ring[i], model[i]) << step;
+    if (!model.empty()) {
+      ASSERT_EQ(ring.front(), model.front());
+    }
+  }
+  EXPECT_GT(max_size, 40u);  // grew several times past its first 8 slots
+  EXPECT_GT(erased_inside, 1000u);
 }
 
 TEST(Json, FastWriterEqualsReferenceOnHostileBytes) {

@@ -1,0 +1,50 @@
+// A FIFO of reusable slots for the session layer (pending requests).
+#pragma once
+
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+namespace topdump {
+
+// A FIFO that keeps its slots, and the buffers of their strings, for reuse:
+// requests come and go at tens of hertz per conversation, and a std::deque
+// allocates and frees a block every few of them. Elements are reached by
+// age, oldest first.
+template <class T>
+class Ring {
+ public:
+  std::size_t size() const noexcept { return n_; }
+  bool empty() const noexcept { return n_ == 0; }
+  T& operator[](std::size_t i) noexcept { return v_[(head_ + i) & (v_.size() - 1)]; }
+  const T& operator[](std::size_t i) const noexcept { return v_[(head_ + i) & (v_.size() - 1)]; }
+  T& front() noexcept { return (*this)[0]; }
+  // A slot at the back, as an earlier element left it: the caller assigns
+  // every member.
+  T& push_back() {
+    if (n_ == v_.size()) grow();
+    ++n_;
+    return (*this)[n_ - 1];
+  }
+  void pop_front() noexcept {
+    head_ = (head_ + 1) & (v_.size() - 1);
+    --n_;
+  }
+  // Removes element i; the later ones move down by one.
+  void erase(std::size_t i) noexcept {
+    for (; i + 1 < n_; ++i) std::swap((*this)[i], (*this)[i + 1]);
+    --n_;
+  }
+
+ private:
+  void grow() {
+    std::vector<T> bigger(v_.empty() ? 8 : v_.size() * 2);  // a power of two
+    for (std::size_t i = 0; i < n_; ++i) bigger[i] = std::move((*this)[i]);
+    v_ = std::move(bigger);
+    head_ = 0;
+  }
+  std::vector<T> v_;
+  std::size_t head_ = 0, n_ = 0;
+};
+
+}  // namespace topdump
