@@ -345,6 +345,28 @@ TEST(Binary, ExitStatus) {
   EXPECT_EQ(run("'" + bin + "' stats '" + caps + "/sll.pcap' /nonexistent 2>/dev/null", out), 2);
 }
 
+// With --format pcap the file is opened by topdump (a larger read buffer
+// for libpcap): a missing file and a file that is no capture are exit 2
+// with the file named, and a capture reads as with detection.
+TEST(Binary, ForcedPcapFormatOpensAndNamesTheFile) {
+  TempDir tmp;
+  std::string out;
+  const std::string bin = topdump_bin();
+  EXPECT_EQ(run("'" + bin + "' read --format pcap /nonexistent.pcap 2>&1", out), 2);
+  EXPECT_NE(out.find("/nonexistent.pcap: cannot open"), std::string::npos) << out;
+  {
+    std::ofstream junk(tmp.file("junk.pcap"));
+    junk << "not a capture at all";
+  }
+  EXPECT_EQ(run("'" + bin + "' stats --format pcap '" + tmp.file("junk.pcap") + "' 2>&1", out), 2);
+  EXPECT_NE(out.find(tmp.file("junk.pcap") + ": "), std::string::npos) << out;
+  std::string forced, detected;
+  EXPECT_EQ(run("'" + bin + "' read --format pcap '" + captures_dir() + "/sll.pcap'", forced), 0);
+  EXPECT_EQ(run("'" + bin + "' read '" + captures_dir() + "/sll.pcap'", detected), 0);
+  EXPECT_FALSE(forced.empty());
+  EXPECT_EQ(forced, detected);
+}
+
 TEST(Binary, StatsJsonHasIntegerCounts) {
   std::string out;
   ASSERT_EQ(run("'" + topdump_bin() + "' stats --json '" + captures_dir() + "/sample.pcap' '" +
