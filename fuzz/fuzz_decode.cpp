@@ -116,5 +116,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
   }
   (void)d.summary();
   if (d.form != nullptr) check_reencode(*d.form, d, data);
+
+  // Without detail (topdump stats) the verdict is the same: command, form,
+  // role, and every finding's code, severity and offset.
+  DecodeOptions bare = opts;
+  bare.detail = false;
+  const Decoded v = decode(f, bare);
+  bool same = v.dialect == d.dialect && v.role == d.role && v.command == d.command &&
+              v.form == d.form && v.fields.empty() && v.findings.size() == d.findings.size();
+  for (std::size_t i = 0; same && i < v.findings.size(); ++i)
+    same = v.findings[i].code == d.findings[i].code &&
+           v.findings[i].severity == d.findings[i].severity &&
+           v.findings[i].offset == d.findings[i].offset;
+  FUZZ_CHECK(same, "decoding without detail changes the verdict on \"" + show(raw) + "\"");
   return 0;
 }

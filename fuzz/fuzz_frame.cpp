@@ -85,6 +85,29 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                "an invalid verdict changed at the end of input: \"" + show(in) + "\"");
   }
 
+  // The one-pass path for clean frames builds what the general parse builds.
+  ParseOptions general;
+  general.fast_path = false;
+  for (const ParseResult* fast : {&open, &closed}) {
+    const ParseResult slow = parse_frame(in, fast == &closed, general);
+    bool same = slow.status == fast->status && slow.consumed == fast->consumed;
+    if (same && slow.status == ParseStatus::frame) {
+      const Frame &a = fast->frame, &b = slow.frame;
+      same = a.header == b.header && a.src == b.src && a.dst == b.dst && a.control == b.control &&
+             a.ident_view() == b.ident_view() && a.declared_length == b.declared_length &&
+             a.data_offset == b.data_offset && a.data_length == b.data_length &&
+             a.checksum == b.checksum && a.expected_checksum == b.expected_checksum &&
+             a.checksum_present == b.checksum_present && a.checksum_ok == b.checksum_ok &&
+             a.terminator == b.terminator && a.raw == b.raw &&
+             a.findings.size() == b.findings.size();
+      for (std::size_t i = 0; same && i < a.findings.size(); ++i)
+        same = a.findings[i].code == b.findings[i].code &&
+               a.findings[i].offset == b.findings[i].offset &&
+               a.findings[i].message == b.findings[i].message;
+    }
+    FUZZ_CHECK(same, "the one-pass parse and the general parse disagree on \"" + show(in) + "\"");
+  }
+
   if (r.status == ParseStatus::invalid) {
     FUZZ_CHECK(r.error.offset <= size, "error offset past the input");
     FUZZ_CHECK(!r.error.message.empty(), "error without a message");

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+#include <vector>
+
 #include "test_util.hpp"
 
 using namespace top;
@@ -50,6 +53,78 @@ TEST(Parse, ValidFixedFrame) {
   EXPECT_EQ(f.checksum_text(), "44");
   EXPECT_TRUE(f.findings.empty());
   EXPECT_TRUE(f.ok());
+}
+
+// Every member of a parse result, as text, for comparing two parses.
+std::string describe_parse(const ParseResult& r) {
+  std::string s =
+      std::to_string(static_cast<int>(r.status)) + " consumed " + std::to_string(r.consumed);
+  if (r.status == ParseStatus::invalid)
+    return s + " error " + std::string(to_string(r.error.code)) + "@" +
+           std::to_string(r.error.offset) + " " + r.error.message;
+  if (r.status != ParseStatus::frame) return s;
+  const Frame& f = r.frame;
+  s += " header " + std::to_string(static_cast<int>(f.header)) + " " + f.src + f.dst +
+       std::to_string(f.control) + std::string(f.ident_view()) + " declared " +
+       std::to_string(f.declared_length) + " data " + std::to_string(f.data_offset) + "+" +
+       std::to_string(f.data_length) + " checksum " + std::to_string(f.checksum) + "/" +
+       std::to_string(f.expected_checksum) + (f.checksum_present ? " present" : "") +
+       (f.checksum_ok ? " ok" : "") + " term " + std::to_string(f.terminator) + " raw " + f.raw;
+  for (const Finding& x : f.findings)
+    s += " | " + std::string(to_string(x.code)) + "/" + std::string(to_string(x.severity)) + "@" +
+         std::to_string(x.offset) + " " + x.message + " " + std::string(x.quirk);
+  return s;
+}
+
+// The one-pass path for clean frames gives what the general parse gives, on
+// clean frames of every header and on each of them with one byte changed
+// (header, address, length, control, identifier, data and checksum chars,
+// case, CR/LF, '#', bytes outside ASCII) or cut short, with and without more
+// bytes to come. One result is reused throughout, as the analyzer reuses it,
+// so a fast parse after a general one (findings, error) must leave nothing
+// of it behind.
+TEST(Parse, FastPathAgreesWithTheGeneralParse) {
+  std::vector<std::string> bases;
+  for (Header h : {Header::fixed, Header::variable, Header::ext8, Header::ext16})
+    for (std::string_view data : {"", "01", "0A1B2C3D4E5F", "ffff"})
+      for (bool lower : {false, true}) {
+        BuildSpec b;
+        b.header = h;
+        b.ident = "GAC";
+        b.data = data;
+        b.lowercase_checksum = lower;
+        bases.push_back(build_frame(b));
+      }
+  bases.emplace_back("#TPUD2wAWB0144");
+  bases.emplace_back("#PDP16TMP0000000000000000000000");
+  static constexpr std::string_view kChars = "#TtPpUMDEPGXrw09AFafZ\r\n \x00\xff";
+  ParseOptions general;
+  general.fast_path = false;
+  ParseResult reused;
+  std::size_t fast_frames = 0, compared = 0;
+  auto compare = [&](const std::string& in) {
+    ExactBuffer buf(in);
+    for (bool at_end : {true, false}) {
+      parse_frame(buf.view(), at_end, ParseOptions{}, reused);
+      const ParseResult slow = parse_frame(buf.view(), at_end, general);
+      ASSERT_EQ(describe_parse(reused), describe_parse(slow))
+          << testing::PrintToString(in) << " " << at_end;
+      fast_frames += reused.status == ParseStatus::frame && reused.frame.findings.empty();
+      ++compared;
+    }
+  };
+  for (const std::string& base : bases) {
+    for (std::size_t n = 0; n <= base.size(); ++n) compare(base.substr(0, n));
+    compare(base + "\r\n#TP");
+    for (std::size_t i = 0; i < base.size(); ++i)
+      for (char c : kChars) {
+        std::string m = base;
+        m[i] = c;
+        compare(m);
+      }
+  }
+  EXPECT_GT(compared, 5000u);
+  EXPECT_GT(fast_frames, 100u);  // the one-pass path was taken
 }
 
 TEST(Parse, NeedMoreUntilComplete) {

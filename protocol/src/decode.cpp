@@ -152,6 +152,31 @@ struct Ctx {
   }
 };
 
+// The enum and range checks of a field's number (`value()` gives it scaled,
+// asked for only when the field has a range); the enum name when known.
+template <class Value>
+std::string_view judge(Ctx& ctx, const FieldSpec& spec, std::string_view bytes,
+                       std::uint32_t offset, std::int64_t integer, Value&& value) {
+  if (!spec.enums.empty()) {
+    if (const EnumValue* e = find_enum(spec.enums, integer)) return e->name;
+    if (spec.kind == FieldKind::enum_hex || spec.kind == FieldKind::enum_char) {
+      ctx.add(FindingCode::value_out_of_range, offset,
+              std::string(spec.name) + ": '" + std::string(bytes) + "' is not a documented value");
+      return {};
+    }
+  }
+  if (spec.min > spec.max) return {};
+  const double v = value();
+  if (v < spec.min - 1e-9 || v > spec.max + 1e-9) {
+    int d = decimals_of(spec.scale);
+    ctx.add(FindingCode::value_out_of_range, offset,
+            std::string(spec.name) + " " + fmt_number(v, d) + (spec.unit.empty() ? "" : " ") +
+                std::string(spec.unit) + " outside [" + fmt_number(spec.min, d) + ", " +
+                fmt_number(spec.max, d) + "]");
+  }
+  return {};
+}
+
 void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes, std::uint32_t offset,
                   FieldValue& fv) {
   fv.spec = &spec;
@@ -278,23 +303,40 @@ void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes, std::
       return;
     }
   }
-  if (!spec.enums.empty()) {
-    if (const EnumValue* e = find_enum(spec.enums, fv.integer)) {
-      fv.enum_name = e->name;
-    } else if (spec.kind == FieldKind::enum_hex || spec.kind == FieldKind::enum_char) {
-      ctx.add(FindingCode::value_out_of_range, offset,
-              std::string(spec.name) + ": '" + std::string(bytes) + "' is not a documented value");
+  fv.enum_name = judge(ctx, spec, bytes, offset, fv.integer, [&] { return fv.value; });
+}
+
+// Without detail: the findings decode_field gives, without building a value.
+// The hex kinds whose digits are all uppercase hex (most fields) are judged
+// here; anything else goes through decode_field into `scratch`.
+void check_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes, std::uint32_t offset,
+                 FieldValue& scratch) {
+  const bool hex = spec.kind == FieldKind::hex_u || spec.kind == FieldKind::hex_s ||
+                   spec.kind == FieldKind::enum_hex;
+  if (hex && !bytes.empty() && bytes.size() <= 15 && (spec.none.empty() || bytes != spec.none)) {
+    std::uint64_t v = 0;
+    int digits = 0;  // negative once a byte is no hex digit
+    bool lower = false;
+    for (char c : bytes) {
+      const int h = hex_value(c);
+      digits |= h;
+      lower |= is_lower_hex(c);
+      v = v * 16 + static_cast<unsigned>(h & 0x0F);
+    }
+    if (digits >= 0 && !lower) {
+      std::int64_t iv = static_cast<std::int64_t>(v);
+      const unsigned bits = static_cast<unsigned>(bytes.size()) * 4;  // at most 60
+      if (spec.kind == FieldKind::hex_s && (v >> (bits - 1)) & 1u)
+        iv -= static_cast<std::int64_t>(1) << bits;
+      judge(ctx, spec, bytes, offset, iv, [&] { return scaled(iv, spec.scale); });
       return;
     }
   }
-  if (spec.min <= spec.max && fv.enum_name.empty() &&
-      (fv.value < spec.min - 1e-9 || fv.value > spec.max + 1e-9)) {
-    int d = decimals_of(spec.scale);
-    ctx.add(FindingCode::value_out_of_range, offset,
-            std::string(spec.name) + " " + fmt_number(fv.value, d) +
-                (spec.unit.empty() ? "" : " ") + std::string(spec.unit) + " outside [" +
-                fmt_number(spec.min, d) + ", " + fmt_number(spec.max, d) + "]");
-  }
+  scratch.valid = scratch.none = false;
+  scratch.integer = 0;
+  scratch.value = 0;
+  scratch.enum_name = {};
+  decode_field(ctx, spec, bytes, offset, scratch);
 }
 
 }  // namespace
@@ -434,14 +476,11 @@ void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
                   std::to_string(data.size() - pos) + " left");
       break;
     }
-    if (!ctx.detail) {
-      scratch.valid = scratch.none = false;
-      scratch.integer = 0;
-      scratch.value = 0;
-      scratch.enum_name = {};
-    }
-    decode_field(ctx, fs, data.substr(pos, w), static_cast<std::uint32_t>(frame.data_offset + pos),
-                 ctx.detail ? out.fields.emplace_back() : scratch);
+    const auto at = static_cast<std::uint32_t>(frame.data_offset + pos);
+    if (ctx.detail)
+      decode_field(ctx, fs, data.substr(pos, w), at, out.fields.emplace_back());
+    else
+      check_field(ctx, fs, data.substr(pos, w), at, scratch);
     pos += w;
   }
   return;

@@ -160,10 +160,54 @@ void reset_keep_capacity(Frame& f) {
   f.findings.clear();
 }
 
+// The common frame in one pass: #TP or #tp, two addresses, an uppercase hex
+// length char, r or w, an identifier, the declared data and two uppercase
+// checksum digits that match. These are exactly the frames on which the
+// general parse below gives no finding and keeps the declared length, and it
+// builds the same frame; false (with `f` untouched) sends every other input
+// there.
+bool parse_plain(std::string_view b, const ParseOptions& opts, Frame& f, Verdict& r) {
+  const std::size_t n = b.size();
+  if (n < prefix_size + 2 || b[0] != '#') return false;
+  const bool fixed = b[1] == 'T' && b[2] == 'P';
+  if (!fixed && !(b[1] == 't' && b[2] == 'p')) return false;
+  const int len = hex_value(b[5]);
+  if (!is_address(b[3]) || !is_address(b[4]) || len < 0 || is_lower_hex(b[5]) ||
+      (b[6] != 'r' && b[6] != 'w') || !is_ident_char(b[7]) || !is_ident_char(b[8]) ||
+      !is_ident_char(b[9]))
+    return false;
+  const auto L = static_cast<std::size_t>(len);
+  const std::size_t cs = prefix_size + L;
+  if (L > opts.max_data_length || n < cs + 2 || is_lower_hex(b[cs]) || is_lower_hex(b[cs + 1]))
+    return false;
+  const unsigned prefix = byte_sum(b.data(), cs);
+  std::uint8_t value = 0;
+  if (!checksum_at(b, cs, prefix, value)) return false;
+  f.header = fixed ? Header::fixed : Header::variable;
+  f.src = b[3];
+  f.dst = b[4];
+  f.control = b[6];
+  f.ident[0] = b[7];
+  f.ident[1] = b[8];
+  f.ident[2] = b[9];
+  f.declared_length = static_cast<std::uint32_t>(L);
+  f.data_offset = static_cast<std::uint32_t>(prefix_size);
+  f.data_length = static_cast<std::uint32_t>(L);
+  f.checksum = f.expected_checksum = value;
+  f.checksum_present = f.checksum_ok = true;
+  f.terminator = 0;
+  f.raw.clear();
+  f.raw.append(b.data(), cs + 2);
+  f.findings.clear();
+  r = Verdict{ParseStatus::frame, cs + 2};
+  return true;
+}
+
 // The parser. A frame is built in `f` (reset first), which the result
 // refers to only when its status is frame.
 Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Frame& f,
                    Finding& err) {
+  if (Verdict plain; opts.fast_path && parse_plain(b, opts, f, plain)) return plain;
   reset_keep_capacity(f);
   const std::size_t n = b.size();
   auto short_of = [&](std::size_t want) { return n < want; };
@@ -332,7 +376,7 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
     Verdict r{ParseStatus::frame, 0};
     f.data_length = static_cast<std::uint32_t>(data_len);
     std::size_t end = lay.data_at + data_len + (present ? 2 : 0);
-    f.raw.assign(b.data(), end);
+    f.raw.append(b.data(), end);  // empty since the reset (cheaper than assign)
     f.expected_checksum = static_cast<std::uint8_t>(prefix & 0xFF);
     f.checksum_present = present;
     f.checksum = value;

@@ -92,6 +92,10 @@ struct ParseOptions {
   std::size_t max_data_length = max_data_ext16;
   // Try other data lengths when the declared one fails the checksum.
   bool recover_lying_length = true;
+  // Accept the common clean frame in one pass before the general parse (the
+  // result is the same either way; false is for tests and fuzzers that
+  // compare the two).
+  bool fast_path = true;
 };
 
 struct ParseResult {
