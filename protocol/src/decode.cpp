@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <charconv>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -339,6 +341,168 @@ void check_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes, std::u
   decode_field(ctx, spec, bytes, offset, scratch);
 }
 
+// --- the verdict without detail, planned per form ---------------------------
+//
+// Most forms are a few hex fields of 1-8 chars, at most 16 chars in all.
+// Without detail such a form is judged with few branches and none on its
+// digits: the whole data is checked for 0-9 A-F as two eight-byte words,
+// and only the fields that have a range or labels are converted (lane-wise,
+// from one word each) and compared with integer bounds worked out once from
+// the field's scaled range. Frames of every identifier arrive interleaved, so
+// the per-char loops, scale tests and comparisons of decode_field mispredict
+// often. Any byte outside 0-9 A-F sends the whole form back to check_field,
+// which gives the exact findings.
+
+constexpr std::uint64_t kOnes = 0x0101010101010101ull, kTops = 0x8080808080808080ull;
+
+// The top `n` (0-8) bytes of a word as their top bits, and as whole bytes.
+constexpr std::uint64_t top_lanes(unsigned n) noexcept { return n ? kTops << (8 * (8 - n)) : 0; }
+constexpr std::uint64_t top_bytes(unsigned n) noexcept { return (top_lanes(n) >> 7) * 0xFF; }
+
+// A field that has a range or labels.
+struct FieldCheck {
+  std::uint32_t end = 0;                        // offset in the data just past the field
+  std::uint32_t bits = 0;                       // 4 per char
+  std::uint64_t bytes = 0;                      // the field's chars in the word that ends with it
+  std::uint64_t sign_bit = 0;                   // hex_s: the top bit of the value (0: unsigned)
+  std::uint64_t label_bits = 0;                 // which values 0-63 have a label
+  bool labels = false;                          // a value with a label is exempt from the range
+  bool enum_only = false;                       // enum_hex: a value without a label is out of range
+  std::int64_t lo = INT64_MIN, hi = INT64_MAX;  // the integers inside the range
+};
+
+struct FormPlan {
+  bool fast = false;        // every field is planned and the form has no "none" data
+  std::uint32_t width = 0;  // the data length the fields cover (at most 16)
+  // The data is checked as the words that end at `head` and at `width`.
+  std::uint32_t head = 0;
+  std::uint64_t head_lanes = 0, tail_lanes = 0;
+  std::vector<FieldCheck> valued;  // the fields with a range or labels
+};
+
+// The integers whose scaled value judge() finds inside [min, max]: scaled()
+// rises with the integer, so they are one interval, found by stepping from
+// the nearest guess. False when the range cannot be planned.
+bool plan_range(const FieldSpec& s, std::int64_t& lo, std::int64_t& hi) {
+  if (!(s.scale > 0) || !std::isfinite(s.scale) || !std::isfinite(s.min) || !std::isfinite(s.max) ||
+      std::fabs(s.min / s.scale) > 1e12 || std::fabs(s.max / s.scale) > 1e12)
+    return false;
+  auto above_min = [&](std::int64_t i) { return !(scaled(i, s.scale) < s.min - 1e-9); };
+  auto below_max = [&](std::int64_t i) { return !(scaled(i, s.scale) > s.max + 1e-9); };
+  lo = std::llround(s.min / s.scale);
+  hi = std::llround(s.max / s.scale);
+  for (int step = 0; step < 64 && above_min(lo - 1); ++step) --lo;
+  for (int step = 0; step < 64 && !above_min(lo); ++step) ++lo;
+  for (int step = 0; step < 64 && below_max(hi + 1); ++step) ++hi;
+  for (int step = 0; step < 64 && !below_max(hi); ++step) --hi;
+  return above_min(lo) && !above_min(lo - 1) && below_max(hi) && !below_max(hi + 1);
+}
+
+// Plans a field of a fast form; false when the form cannot be planned.
+bool plan_field(const FieldSpec& s, std::uint32_t at, FormPlan& p) {
+  if ((s.kind != FieldKind::hex_u && s.kind != FieldKind::hex_s && s.kind != FieldKind::enum_hex) ||
+      s.width == 0 || s.width > 8 || !s.none.empty())
+    return false;
+  FieldCheck c;
+  c.end = at + s.width;
+  c.bits = 4u * s.width;
+  c.bytes = top_bytes(s.width);
+  c.sign_bit = s.kind == FieldKind::hex_s ? std::uint64_t{1} << (c.bits - 1) : 0;
+  if (!s.enums.empty()) {
+    for (const EnumValue& e : s.enums) {
+      if (e.value < 0 || e.value > 63) return false;
+      c.label_bits |= std::uint64_t{1} << e.value;
+    }
+    c.labels = true;
+    c.enum_only = s.kind == FieldKind::enum_hex;
+  }
+  if (s.min <= s.max && !plan_range(s, c.lo, c.hi)) return false;
+  if (c.labels || s.min <= s.max) p.valued.push_back(c);
+  return true;
+}
+
+FormPlan plan_form(const FormSpec& f) {
+  FormPlan p;
+  p.fast = std::endian::native == std::endian::little && f.none.empty();
+  for (const FieldSpec& s : f.fields) {
+    p.fast = p.fast && plan_field(s, p.width, p);
+    p.width += s.width;
+  }
+  p.fast = p.fast && p.width <= 16;
+  const unsigned head = std::min(p.width, 8u), tail = p.width > 8 ? p.width - 8 : p.width;
+  p.head = head;
+  p.head_lanes = top_lanes(head);
+  p.tail_lanes = top_lanes(tail);
+  return p;
+}
+
+// The plan of a form of a catalog command (commands() holds every command a
+// decode can find); an empty plan for anything else.
+const FormPlan& plan_of(const CommandSpec& cmd, const FormSpec& form) {
+  using Plans = std::vector<std::vector<FormPlan>>;  // [command][form]
+  static const std::array<Plans, 2> kPlans = [] {
+    std::array<Plans, 2> all;
+    for (int d = 0; d < 2; ++d)
+      for (const CommandSpec& c : commands(d == 0 ? Dialect::skydroid : Dialect::topotek)) {
+        auto& forms = all[static_cast<std::size_t>(d)].emplace_back();
+        for (const FormSpec& f : c.forms) forms.push_back(plan_form(f));
+      }
+    return all;
+  }();
+  static const FormPlan kNone;
+  const int d = cmd.dialect == Dialect::topotek ? 1 : 0;
+  const std::span<const CommandSpec> table = commands(cmd.dialect);
+  const auto ci = static_cast<std::size_t>(&cmd - table.data());
+  const auto fi = static_cast<std::size_t>(&form - cmd.forms.data());
+  if (table.empty() || &cmd < table.data() || ci >= table.size() || fi >= cmd.forms.size())
+    return kNone;
+  return kPlans[static_cast<std::size_t>(d)][ci][fi];
+}
+
+// The eight bytes that end at p (the frame's own: every header puts at least
+// eight bytes before the data).
+std::uint64_t word_before(const char* p) noexcept {
+  std::uint64_t x;
+  std::memcpy(&x, p - 8, 8);
+  return x;
+}
+
+// The lanes of x (bytes below 0x80) whose byte lies in [lo, hi], as their
+// top bit.
+std::uint64_t lanes_in(std::uint64_t x, unsigned lo, unsigned hi) noexcept {
+  return (x + kOnes * (0x80 - lo)) & ~(x + kOnes * (0x7F - hi)) & kTops;
+}
+
+// True when every lane of `lanes` holds 0-9 or A-F.
+bool hex_lanes(std::uint64_t x, std::uint64_t lanes) noexcept {
+  return ((lanes_in(x, '0', '9') | lanes_in(x, 'A', 'F')) & lanes) == lanes && (x & lanes) == 0;
+}
+
+// Judges a planned form; false (having added nothing) when a byte of the
+// data is outside 0-9 A-F, which check_field must see.
+bool judge_planned(Ctx& ctx, const FormPlan& plan, const Frame& frame) {
+  const char* data = frame.raw.data() + frame.data_offset;
+  if (!(hex_lanes(word_before(data + plan.head), plan.head_lanes) &
+        hex_lanes(word_before(data + plan.width), plan.tail_lanes)))
+    return false;
+  for (const FieldCheck& c : plan.valued) {
+    const std::uint64_t x = word_before(data + c.end) & c.bytes;  // the chars, at the top
+    const std::uint64_t nibbles = (x & (kOnes * 0x0F)) + (lanes_in(x, 'A', 'F') >> 7) * 9;
+    // the last char lowest, then pairs, quads and eights of nibbles joined
+    std::uint64_t v = __builtin_bswap64(nibbles);
+    v = (v | (v >> 4)) & 0x00FF00FF00FF00FFull;
+    v = (v | (v >> 8)) & 0x0000FFFF0000FFFFull;
+    v = (v | (v >> 16)) & 0x00000000FFFFFFFFull;
+    const auto iv = static_cast<std::int64_t>(v) -
+                    static_cast<std::int64_t>((v & c.sign_bit) ? c.sign_bit << 1 : 0);
+    const bool labelled = c.labels & (iv >= 0) & (iv < 64) & ((c.label_bits >> (iv & 63)) & 1u);
+    if (!labelled && (c.enum_only || iv < c.lo || iv > c.hi))
+      ctx.add(FindingCode::value_out_of_range, frame.data_offset + c.end - c.bits / 4,
+              std::string());
+  }
+  return true;
+}
+
 }  // namespace
 
 void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
@@ -465,6 +629,10 @@ void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
       out.fields.push_back(std::move(fv));
     }
     return;
+  }
+  if (!ctx.detail && frame.data_offset >= 8) {
+    const FormPlan& plan = plan_of(*cmd, *form);
+    if (plan.fast && plan.width == data.size() && judge_planned(ctx, plan, frame)) return;
   }
   FieldValue scratch;  // without detail: each field is validated here, then dropped
   for (const FieldSpec& fs : form->fields) {
