@@ -95,6 +95,13 @@ TEST(Parse, FastPathAgreesWithTheGeneralParse) {
         b.lowercase_checksum = lower;
         bases.push_back(build_frame(b));
       }
+  for (std::size_t n = 0; n <= 15; ++n) {  // every one-digit length (raw copied in words)
+    BuildSpec b;
+    b.ident = "GAC";
+    const std::string data = std::string("0123456789ABCDEF").substr(0, n);
+    b.data = data;
+    bases.push_back(build_frame(b));
+  }
   bases.emplace_back("#TPUD2wAWB0144");
   bases.emplace_back("#PDP16TMP0000000000000000000000");
   static constexpr std::string_view kChars = "#TtPpUMDEPGXrw09AFafZ\r\n \x00\xff";
