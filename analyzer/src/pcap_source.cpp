@@ -345,31 +345,37 @@ bool read_file(const std::string& path, Format format, Analyzer& a, const Source
     in.read(m, 4);
     ng = std::memcmp(m, "\x0a\x0d\x0d\x0a", 4) == 0;
   }
-  std::uint64_t at = 24;
-  Dissector dis(a, o);
-  std::uint64_t record = 0;
-  for (;;) {
-    pcap_pkthdr* h = nullptr;
-    const u_char* data = nullptr;
-    int rc = pcap_next_ex(p, &h, &data);
-    if (rc == PCAP_ERROR_BREAK) break;
-    if (rc == PCAP_ERROR) {
-      std::string where = ng ? "near file offset " + std::to_string(fp ? std::ftell(fp) : 0)
-                             : "at file offset " + std::to_string(at);
-      a.source_note(
-          kNoTime, ACode::truncated_file,
-          path + ": record " + std::to_string(record + 1) + " " + where + ": " + pcap_geterr(p),
-          record + 1, ng ? 0 : at);
-      break;
-    }
-    if (rc != 1) continue;
-    ++record;
-    at += 16 + h->caplen;
-    std::int64_t ts = static_cast<std::int64_t>(h->ts.tv_sec) * 1000000 + h->ts.tv_usec;
-    bool top = dis.packet(dlt, ts, data, h->caplen, h->len, record);
-    a.record(top);
-    if (o.progress && (record & 0xFFFF) == 0 && fp)
-      o.progress(static_cast<std::uint64_t>(std::ftell(fp)), total);
+  // pcap_loop hands each record to the callback from inside libpcap's read
+  // loop (pcap_next_ex costs a call chain per record).
+  struct Reader {
+    Dissector dis;
+    Analyzer& a;
+    const SourceOptions& o;
+    int dlt;
+    FILE* fp;
+    std::uint64_t total;
+    std::uint64_t at = 24;
+    std::uint64_t record = 0;
+  } rd{Dissector(a, o), a, o, dlt, fp, total};
+  const int rc = pcap_loop(
+      p, -1,
+      [](u_char* user, const pcap_pkthdr* h, const u_char* data) {
+        auto& r = *reinterpret_cast<Reader*>(user);
+        ++r.record;
+        r.at += 16 + h->caplen;
+        const std::int64_t ts = static_cast<std::int64_t>(h->ts.tv_sec) * 1000000 + h->ts.tv_usec;
+        r.a.record(r.dis.packet(r.dlt, ts, data, h->caplen, h->len, r.record));
+        if (r.o.progress && (r.record & 0xFFFF) == 0 && r.fp)
+          r.o.progress(static_cast<std::uint64_t>(std::ftell(r.fp)), r.total);
+      },
+      reinterpret_cast<u_char*>(&rd));
+  if (rc == PCAP_ERROR) {
+    std::string where = ng ? "near file offset " + std::to_string(fp ? std::ftell(fp) : 0)
+                           : "at file offset " + std::to_string(rd.at);
+    a.source_note(
+        kNoTime, ACode::truncated_file,
+        path + ": record " + std::to_string(rd.record + 1) + " " + where + ": " + pcap_geterr(p),
+        rd.record + 1, ng ? 0 : rd.at);
   }
   pcap_close(p);
   if (o.progress) o.progress(total, total);
