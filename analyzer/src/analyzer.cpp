@@ -243,37 +243,30 @@ struct Conversation {
   top::DialectDetector det;
   std::uint32_t observed = 0;
   Ring<Pending> pending;
-  // How many pending requests per (identifier, direction): lets most frames
-  // skip the scan of `pending` (stream frames, requests).
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pending_keys;
-  std::uint64_t last_used = 0;
+  // How many pending requests per (identifier, direction), counted in 64
+  // buckets by a hash of the pair: a frame whose bucket is empty has no
+  // request to answer and skips the scan of `pending` (stream frames,
+  // requests). Pairs that share a bucket only cost a scan that finds
+  // nothing; the scan decides.
+  std::array<std::uint16_t, 64> pending_keys{};
+  static_assert(kMaxPending < 0xFFFF);
 
-  static std::uint32_t key(const char ident[3], int direction) noexcept {
-    return static_cast<std::uint32_t>(static_cast<unsigned char>(ident[0])) |
-           static_cast<std::uint32_t>(static_cast<unsigned char>(ident[1])) << 8 |
-           static_cast<std::uint32_t>(static_cast<unsigned char>(ident[2])) << 16 |
-           static_cast<std::uint32_t>(direction) << 24;
+  static std::size_t key(const char ident[3], int direction) noexcept {
+    const std::uint32_t k = static_cast<std::uint32_t>(static_cast<unsigned char>(ident[0])) |
+                            static_cast<std::uint32_t>(static_cast<unsigned char>(ident[1])) << 8 |
+                            static_cast<std::uint32_t>(static_cast<unsigned char>(ident[2])) << 16 |
+                            static_cast<std::uint32_t>(direction) << 24;
+    return (k * 0x9E3779B1u) >> 26;  // 64 buckets
   }
   std::uint32_t pending_count(const char ident[3], int direction) const noexcept {
-    const std::uint32_t k = key(ident, direction);
-    for (const auto& [x, n] : pending_keys)
-      if (x == k) return n;
-    return 0;
+    return pending_keys[key(ident, direction)];
   }
-  void count_pending(const Pending& p, bool add) {
-    const std::uint32_t k = key(p.ident, p.dir);
-    for (auto it = pending_keys.begin(); it != pending_keys.end(); ++it) {
-      if (it->first != k) continue;
-      if (add) {
-        ++it->second;
-      } else if (--it->second == 0) {
-        *it = pending_keys.back();
-        pending_keys.pop_back();
-      }
-      return;
-    }
-    if (add) pending_keys.emplace_back(k, 1);
+  void count_pending(const Pending& p, bool add) noexcept {
+    std::uint16_t& n = pending_keys[key(p.ident, p.dir)];
+    n = static_cast<std::uint16_t>(add ? n + 1 : n - 1);
   }
+  std::uint64_t last_used = 0;
+
   void pop_pending() {
     count_pending(pending.front(), false);
     pending.pop_front();
@@ -511,7 +504,7 @@ struct Analyzer::Impl {
       ++A.stats_.garbage;
       ++codes[static_cast<std::size_t>(it.finding.code)];
       if (it.finding.severity > A.worst_) A.worst_ = it.finding.severity;
-      if (A.filter_.active() &&
+      if (A.filtering_ &&
           (!A.filter_.idents.empty() || !A.filter_.addrs.empty() || !A.filter_.selects_time(ts) ||
            (A.filter_.severity_set && it.finding.severity < A.filter_.min_severity)))
         return;
@@ -641,7 +634,7 @@ struct Analyzer::Impl {
 
     if (ev.worst() > A.worst_) A.worst_ = ev.worst();
     for (const Note& n : ev.notes) ++acodes[static_cast<std::size_t>(n.code)];
-    if (A.filter_.active() && !A.filter_.selects(ev)) return;
+    if (A.filtering_ && !A.filter_.selects(ev)) return;
     if (A.opts_.stats) {
       Stats& s = A.stats_;
       ++s.frames;
@@ -767,6 +760,7 @@ struct Analyzer::Impl {
     // the newest of its identifier (ERE: the newest to the device it speaks for)
     constexpr std::size_t kNone = SIZE_MAX;
     std::size_t mi = kNone;
+    bool echoed = false;  // the request found carries the reply's data
     if (!none) {
       std::size_t by_ident = kNone;
       for (std::size_t i = c.pending.size(); i-- > 0;) {
@@ -782,6 +776,7 @@ struct Analyzer::Impl {
         if (!same_ident(p.ident, id)) continue;
         if (p.data == f.data()) {
           mi = i;
+          echoed = true;
           break;
         }
         if (by_ident == kNone) by_ident = i;
@@ -798,7 +793,7 @@ struct Analyzer::Impl {
         latency_of(pack(std::string_view(m->ident, 3))).add(ev.latency_us);
       }
       bool exempt = dialect == top::Dialect::topotek && (id == "REC" || id == "CAP");
-      if (!ere && !exempt && m->control == 'w' && f.control == 'w' && m->data != f.data())
+      if (!ere && !exempt && m->control == 'w' && f.control == 'w' && !echoed)
         ev.notes.push_back(
             Note{ACode::echo_differs, default_severity(ACode::echo_differs), message([&] {
                    return "reply to write (frame " + std::to_string(m->n) + ") carries \"" +

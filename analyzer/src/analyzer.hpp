@@ -209,7 +209,10 @@ class Analyzer {
   Analyzer(const Analyzer&) = delete;
   Analyzer& operator=(const Analyzer&) = delete;
 
-  void set_filter(Filter f) { filter_ = std::move(f); }
+  void set_filter(Filter f) {
+    filter_ = std::move(f);
+    filtering_ = filter_.active();
+  }
   // A record was read (counts records; call once per packet/line/chunk).
   void record(bool top_traffic);
   // A UDP payload: decoded on its own (frames never span datagrams).
@@ -243,6 +246,7 @@ class Analyzer {
   AnalyzerOptions opts_;
   Sink& sink_;
   Filter filter_;
+  bool filtering_ = false;  // filter_.active(), asked once per frame
   mutable Stats stats_;
   top::Severity worst_ = top::Severity::info;
   std::uint64_t frame_no_ = 0;

@@ -30,9 +30,12 @@ class Ring {
     head_ = (head_ + 1) & (v_.size() - 1);
     --n_;
   }
-  // Removes element i; the later ones move down by one.
+  // Removes element i; the later ones move down by one, and its slot (with
+  // its buffers) goes to the back for reuse: one move per later element.
   void erase(std::size_t i) noexcept {
-    for (; i + 1 < n_; ++i) std::swap((*this)[i], (*this)[i + 1]);
+    T gone = std::move((*this)[i]);
+    for (; i + 1 < n_; ++i) (*this)[i] = std::move((*this)[i + 1]);
+    (*this)[n_ - 1] = std::move(gone);
     --n_;
   }
 

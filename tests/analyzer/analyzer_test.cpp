@@ -119,6 +119,34 @@ TEST(Pairing, UnsolicitedEchoDiffersAndRepeated) {
   EXPECT_EQ(f.rec.frames[4].reply_to, 2u);
 }
 
+// Pending requests are counted per identifier and direction in 64 hashed
+// buckets, so a reply can skip the scan when nothing it could answer is
+// pending. With 200 identifiers in flight at once, many share a bucket:
+// every reply still answers its own request, a reply nobody asked for is
+// still unsolicited, and a client-addressed reply still finds the request
+// whose order it kept.
+TEST(Pairing, ManyIdentifiersInFlightEachPairsWithItsOwn) {
+  Fixture f;
+  auto ident = [](int i) {
+    return std::string{static_cast<char>('A' + i % 26), static_cast<char>('A' + i / 26 % 26), 'Q'};
+  };
+  for (int i = 0; i < 200; ++i) f.up(i, frame("#TPUG2w" + ident(i) + "01"));
+  for (int i = 199; i >= 0; i -= 2) f.down(300 + i, frame("#TPGU2w" + ident(i) + "01"));
+  for (int i = 200; i < 260; ++i) f.down(600 + i, frame("#TPGU2w" + ident(i) + "01"));
+  for (int i = 0; i < 200; i += 2) f.down(900 + i, frame("#TPUG2w" + ident(i) + "01"));
+  f.a->finish();
+  const Stats& s = f.a->stats();
+  EXPECT_EQ(s.requests, 200u);
+  EXPECT_EQ(s.paired, 200u);
+  EXPECT_EQ(s.unanswered, 0u);
+  EXPECT_EQ(s.unsolicited, 60u);
+  for (const auto& e : f.rec.frames) {
+    if (e.reply_to != 0) {
+      EXPECT_EQ(f.rec.frames[e.reply_to - 1].ident, e.ident);
+    }
+  }
+}
+
 // A request that is lost and retried: the reply answers the retry. Pairing
 // the oldest pending request first (as topdump did) gave a latency of 510 ms
 // and reported the retry unanswered; on the benchmark capture, whose replies
