@@ -42,9 +42,13 @@ struct Endpoint {
   std::string name;  // family 0
   // Compared on every packet (the conversation cache): ports and family
   // first, the address as one block, the name last.
+  // The address is compared as two eight-byte words, as the dissector
+  // writes it.
   bool operator==(const Endpoint& o) const noexcept {
-    return port == o.port && family == o.family &&
-           std::memcmp(addr.data(), o.addr.data(), sizeof addr) == 0 && name == o.name;
+    std::uint64_t a[2], b[2];
+    std::memcpy(a, addr.data(), 16);
+    std::memcpy(b, o.addr.data(), 16);
+    return port == o.port && family == o.family && a[0] == b[0] && a[1] == b[1] && name == o.name;
   }
   std::string text() const;  // "10.0.0.1:5000", "[::1]:5000", "host"
 };

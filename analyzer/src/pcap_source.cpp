@@ -205,7 +205,10 @@ bool Dissector::packet(int dlt, std::int64_t ts, const std::uint8_t* p, std::uin
 
 bool Dissector::ip(std::int64_t ts, const std::uint8_t* p, std::size_t n, std::size_t off,
                    std::uint64_t record) {
-  Endpoint src, dst;
+  // Reused from packet to packet (name stays empty): the stores below are
+  // all that change.
+  Endpoint& src = src_;
+  Endpoint& dst = dst_;
   std::uint8_t proto = 0;
   std::size_t l4 = 0, end = n;
   if (n <= off) return bad(ts, record, off, "IP header missing"), false;
@@ -223,8 +226,14 @@ bool Dissector::ip(std::int64_t ts, const std::uint8_t* p, std::size_t n, std::s
     if ((frag & 0x3FFF) != 0 && (proto == 17 || proto == 6))
       return bad(ts, record, off + 6, "IPv4 fragment (not reassembled)"), false;
     src.family = dst.family = 4;
-    std::memcpy(src.addr.data(), p + off + 12, 4);
-    std::memcpy(dst.addr.data(), p + off + 16, 4);
+    // Each address in one sixteen-byte store: the conversation lookup reads
+    // it right after in eight-byte words, and a load that spans several
+    // smaller stores waits for them to retire.
+    std::uint64_t s4[2] = {0, 0}, d4[2] = {0, 0};
+    std::memcpy(s4, p + off + 12, 4);
+    std::memcpy(d4, p + off + 16, 4);
+    std::memcpy(src.addr.data(), s4, 16);
+    std::memcpy(dst.addr.data(), d4, 16);
     l4 = off + ihl;
   } else if (version == 6) {
     if (n < off + 40) return bad(ts, record, off, "IPv6 header cut short"), false;

@@ -50,6 +50,7 @@ class Dissector {
   Analyzer& a_;
   const SourceOptions& o_;
   std::set<std::string> tcp_top_;  // TCP flows recognised by content (bounded)
+  Endpoint src_, dst_;             // the endpoints of the packet at hand
   // o_.udp_ports / tcp_ports as tables: a lookup per packet
   std::vector<bool> udp_port_ = std::vector<bool>(65536), tcp_port_ = std::vector<bool>(65536);
 };
