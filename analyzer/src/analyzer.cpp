@@ -322,18 +322,24 @@ struct Analyzer::Impl {
   // flat table indexed in base 36.
   std::vector<std::uint64_t> ident_table = std::vector<std::uint64_t>(36 * 36 * 36);
 
-  static int b36(char ch) noexcept {
-    return ch >= '0' && ch <= '9' ? ch - '0' : ch >= 'A' && ch <= 'Z' ? ch - 'A' + 10 : -1;
-  }
-  void count_ident(std::string_view id) {
-    if (id.size() == 3) {
-      const int a = b36(id[0]), b = b36(id[1]), c = b36(id[2]);
-      if (a >= 0 && b >= 0 && c >= 0) {
-        ++ident_table[static_cast<std::size_t>((a * 36 + b) * 36 + c)];
-        return;
-      }
-    }
-    ++idents[pack(id)];
+  // [0-9] -> 0-9, [A-Z] -> 10-35, anything else -> -1.
+  static constexpr std::array<std::int8_t, 256> kB36 = [] {
+    std::array<std::int8_t, 256> t{};
+    for (auto& v : t) v = -1;
+    for (int ch = '0'; ch <= '9'; ++ch)
+      t[static_cast<std::size_t>(ch)] = static_cast<std::int8_t>(ch - '0');
+    for (int ch = 'A'; ch <= 'Z'; ++ch)
+      t[static_cast<std::size_t>(ch)] = static_cast<std::int8_t>(ch - 'A' + 10);
+    return t;
+  }();
+  void count_ident(const char id[3]) {
+    const int a = kB36[static_cast<unsigned char>(id[0])],
+              b = kB36[static_cast<unsigned char>(id[1])],
+              c = kB36[static_cast<unsigned char>(id[2])];
+    if ((a | b | c) >= 0)
+      ++ident_table[static_cast<std::size_t>((a * 36 + b) * 36 + c)];
+    else
+      ++idents[pack(std::string_view(id, 3))];
   }
   std::array<std::uint64_t, top::finding_code_count> codes{};
   std::array<std::uint64_t, acode_count> acodes{};
@@ -545,16 +551,14 @@ struct Analyzer::Impl {
                               })));
     }
     e.frame = &f;
-    // worst severity, codes and the bad checksum in one pass
+    // the worst severity and the bad checksum in one pass
     e.worst = top::Severity::info;
     e.bad_checksum = false;
-    e.codes.clear();
-    for (const auto* list : {&f.findings, &e.decoded.findings})
-      for (const top::Finding& x : *list) {
-        e.codes.push_back(x.code);
-        if (x.severity > e.worst) e.worst = x.severity;
-        e.bad_checksum |= x.code == top::FindingCode::bad_checksum && list == &f.findings;
-      }
+    for (const top::Finding& x : f.findings) {
+      e.worst = std::max(e.worst, x.severity);
+      e.bad_checksum |= x.code == top::FindingCode::bad_checksum;
+    }
+    for (const top::Finding& x : e.decoded.findings) e.worst = std::max(e.worst, x.severity);
     return e;
   }
 
@@ -640,8 +644,9 @@ struct Analyzer::Impl {
       ++s.frames;
       if (e.bad_checksum) ++s.bad_checksum;
       if (e.worst == top::Severity::error) ++s.error_frames;
-      count_ident(fr.ident_view());
-      for (top::FindingCode code : e.codes) ++codes[static_cast<std::size_t>(code)];
+      count_ident(fr.ident);
+      for (const top::Finding& x : fr.findings) ++codes[static_cast<std::size_t>(x.code)];
+      for (const top::Finding& x : e.decoded.findings) ++codes[static_cast<std::size_t>(x.code)];
       if (ts != kNoTime) {
         if (s.first == kNoTime || ts < s.first) s.first = ts;
         if (s.last == kNoTime || ts > s.last) s.last = ts;

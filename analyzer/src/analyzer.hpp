@@ -76,7 +76,6 @@ struct DecodedEntry {
   top::Decoded decoded;
   top::Severity worst = top::Severity::info;
   bool bad_checksum = false;
-  std::vector<top::FindingCode> codes;
 };
 
 struct FrameEvent {

@@ -50,11 +50,4 @@ void DialectDetector::observe(const Frame& f) noexcept {
   }
 }
 
-Dialect DialectDetector::current() const noexcept {
-  if (forced_ != Dialect::unknown) return forced_;
-  if (votes_skydroid_ > votes_topotek_) return Dialect::skydroid;
-  if (votes_topotek_ > votes_skydroid_) return Dialect::topotek;
-  return port_;
-}
-
 }  // namespace top

@@ -393,7 +393,9 @@ struct VerdictSink : Sink {
     std::string s = std::to_string(e.n) + " " + std::to_string(static_cast<int>(e.worst())) + " r" +
                     std::to_string(e.reply_to) + " " +
                     std::to_string(static_cast<int>(e.entry->decoded.role));
-    for (top::FindingCode c : e.entry->codes) s += " " + std::string(top::to_string(c));
+    for (const auto* list : {&e.entry->frame->findings, &e.entry->decoded.findings})
+      for (const top::Finding& x : *list) s += " " + std::string(top::to_string(x.code));
+    s += e.entry->bad_checksum ? " bad" : " ok";
     for (const Note& n : e.notes) s += " " + std::string(to_string(n.code));
     seen.push_back(std::move(s));
   }

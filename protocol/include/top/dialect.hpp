@@ -27,7 +27,13 @@ class DialectDetector {
   void force(Dialect d) noexcept { forced_ = d; }
   void observe_port(std::uint16_t port) noexcept;
   void observe(const Frame& f) noexcept;
-  Dialect current() const noexcept;
+  // Asked for every frame, so inline.
+  Dialect current() const noexcept {
+    if (forced_ != Dialect::unknown) return forced_;
+    if (votes_skydroid_ > votes_topotek_) return Dialect::skydroid;
+    if (votes_topotek_ > votes_skydroid_) return Dialect::topotek;
+    return port_;
+  }
 
  private:
   Dialect forced_ = Dialect::unknown;
