@@ -266,14 +266,20 @@ struct Conversation {
     n = static_cast<std::uint16_t>(add ? n + 1 : n - 1);
   }
   std::uint64_t last_used = 0;
+  // The time of the oldest pending request (kNoTime: none, or untimed), so
+  // the timeout check of every frame reads one member.
+  std::int64_t oldest = kNoTime;
 
+  void pending_changed() noexcept { oldest = pending.empty() ? kNoTime : pending.front().ts; }
   void pop_pending() {
     count_pending(pending.front(), false);
     pending.pop_front();
+    pending_changed();
   }
   void erase_pending(std::size_t i) {
     count_pending(pending[i], false);
     pending.erase(i);
+    pending_changed();
   }
   ConvStats st;
 };
@@ -676,8 +682,7 @@ struct Analyzer::Impl {
 
   void expire(Conversation& c, std::int64_t ts) {
     if (ts == kNoTime) return;
-    while (!c.pending.empty() && c.pending.front().ts != kNoTime &&
-           ts - c.pending.front().ts > A.opts_.timeout_us) {
+    while (c.oldest != kNoTime && ts - c.oldest > A.opts_.timeout_us) {
       unanswered(c, c.pending.front(), false);
       c.pop_pending();
     }
@@ -746,6 +751,7 @@ struct Analyzer::Impl {
     p.data.assign(f.data());
     p.dir = d;
     c.count_pending(p, true);
+    c.pending_changed();
   }
 
   void response(Conversation& c, int d, FrameEvent& ev, top::Dialect dialect) {
