@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -85,21 +86,55 @@ top::Severity FrameEvent::worst() const noexcept {
 // ---------------------------------------------------------------------------
 // Latency: log buckets of 1% width from 1 us.
 
-std::size_t Latency::bucket(std::int64_t us) {
+std::size_t Latency::bucket_exact(std::int64_t us) {
   if (us <= 1) return 0;
-  auto exact = [](std::int64_t x) {
-    return static_cast<std::size_t>(std::log(static_cast<double>(x)) / std::log(1.01)) + 1;
+  return static_cast<std::size_t>(std::log(static_cast<double>(us)) / std::log(1.01)) + 1;
+}
+
+std::size_t Latency::bucket(std::int64_t us) {
+  // A log per sample is a fair part of the per-frame cost, and so was a
+  // 128 KiB table of the buckets below 65.536 ms (its lines missed the
+  // cache). Below 256 us a small table; up to 65.536 ms the range of each
+  // power of two is cut in 64 slices, each under 1.6% wide, so at most two
+  // 1% buckets begin inside a slice: its first bucket and where the next two
+  // begin. The same buckets as bucket_exact (tested for every value).
+  struct Slice {
+    std::uint16_t base;
+    std::uint16_t t1, t2;  // offsets in the slice where base + 1 and base + 2 begin
   };
-  // a log per sample is a fair part of the per-frame cost: latencies under
-  // 65.536 ms come from a table of the same formula
-  static const std::vector<std::uint16_t> table = [&] {
-    std::vector<std::uint16_t> t(std::size_t{1} << 16);
-    for (std::size_t x = 2; x < t.size(); ++x)
-      t[x] = static_cast<std::uint16_t>(exact(static_cast<std::int64_t>(x)));
+  struct Tables {
+    std::array<std::uint16_t, 256> small{};
+    std::array<std::array<Slice, 64>, 8> slices{};  // powers 2^8 .. 2^15
+  };
+  static const Tables kTables = [] {
+    Tables t;
+    for (std::int64_t x = 0; x < 256; ++x)
+      t.small[static_cast<std::size_t>(x)] = static_cast<std::uint16_t>(bucket_exact(x));
+    for (int k = 8; k < 16; ++k)
+      for (std::int64_t j = 0; j < 64; ++j) {
+        const std::int64_t width = std::int64_t{1} << (k - 6);
+        const std::int64_t lo = (std::int64_t{1} << k) + j * width;
+        Slice& s = t.slices[static_cast<std::size_t>(k - 8)][static_cast<std::size_t>(j)];
+        const std::size_t base = bucket_exact(lo);
+        s.base = static_cast<std::uint16_t>(base);
+        s.t1 = s.t2 = static_cast<std::uint16_t>(width);
+        for (std::int64_t i = 1; i < width; ++i) {
+          const std::size_t b = bucket_exact(lo + i);
+          if (b > base && s.t1 == width) s.t1 = static_cast<std::uint16_t>(i);
+          if (b > base + 1 && s.t2 == width) s.t2 = static_cast<std::uint16_t>(i);
+        }
+      }
     return t;
   }();
-  if (us < static_cast<std::int64_t>(table.size())) return table[static_cast<std::size_t>(us)];
-  return exact(us);
+  if (us < 256) return us <= 1 ? 0 : kTables.small[static_cast<std::size_t>(us)];
+  if (us >= 65536) return bucket_exact(us);
+  const auto x = static_cast<std::uint32_t>(us);
+  const int k = 31 - std::countl_zero(x);  // 8 .. 15
+  const std::uint32_t at = x - (std::uint32_t{1} << k);
+  const std::uint32_t shift = static_cast<std::uint32_t>(k - 6);
+  const Slice& s = kTables.slices[static_cast<std::size_t>(k - 8)][at >> shift];
+  const std::uint32_t in = at & ((std::uint32_t{1} << shift) - 1);
+  return std::size_t{s.base} + (in >= s.t1) + (in >= s.t2);
 }
 std::int64_t Latency::bucket_value(std::size_t b) {
   if (b == 0) return 1;

@@ -579,6 +579,19 @@ TEST(Json, CatalogStringsNeedNoEscaping) {
     EXPECT_TRUE(plain(top::to_string(h)));
 }
 
+// The bucket of a latency comes from small tables up to 65.536 ms (each
+// slice of a power of two holds at most two bucket starts): for every value
+// up to 2^17 us and values far beyond, the bucket the formula gives.
+TEST(Latency, BucketTablesAgreeWithTheFormula) {
+  for (std::int64_t us = -3; us < (std::int64_t{1} << 17); ++us)
+    ASSERT_EQ(Latency::bucket(us), Latency::bucket_exact(us)) << us;
+  std::mt19937_64 rng(7);
+  for (int i = 0; i < 100000; ++i) {
+    const auto us = static_cast<std::int64_t>(rng() >> (rng() % 60));
+    ASSERT_EQ(Latency::bucket(us), Latency::bucket_exact(us)) << us;
+  }
+}
+
 TEST(Latency, ExactThenHistogramWithinOnePercent) {
   Latency l;
   for (int i = 1; i <= 100; ++i) l.add(i * 1000);
