@@ -388,11 +388,21 @@ struct Analyzer::Impl {
   // linear search of their keys beats hashing (a division per reply).
   std::vector<std::uint32_t> latency_keys;
   std::deque<Latency> latency;  // latency[i] is latency_keys[i]'s
+  // The last index found for each of 64 hashed slots: most replies find
+  // their identifier's table there without a search (whose exit, at a
+  // different place for each identifier, mispredicted).
+  std::array<std::uint32_t, 64> latency_hint{};  // 1 + index into latency, 0: none
   Latency& latency_of(std::uint32_t key) {
-    for (std::size_t i = 0; i < latency_keys.size(); ++i)
-      if (latency_keys[i] == key) return latency[i];
-    latency_keys.push_back(key);
-    return latency.emplace_back();
+    std::uint32_t& hint = latency_hint[(key * 0x9E3779B1u) >> 26];
+    if (hint != 0 && latency_keys[hint - 1] == key) return latency[hint - 1];
+    std::size_t i = 0;
+    while (i < latency_keys.size() && latency_keys[i] != key) ++i;
+    if (i == latency_keys.size()) {
+      latency_keys.push_back(key);
+      latency.emplace_back();
+    }
+    hint = static_cast<std::uint32_t>(i + 1);
+    return latency[i];
   }
   std::uint64_t limit_notes = 0;
 

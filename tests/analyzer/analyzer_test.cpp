@@ -140,6 +140,13 @@ TEST(Pairing, ManyIdentifiersInFlightEachPairsWithItsOwn) {
   EXPECT_EQ(s.paired, 200u);
   EXPECT_EQ(s.unanswered, 0u);
   EXPECT_EQ(s.unsolicited, 60u);
+  // latency per identifier (found through 64 hashed slots): one sample each
+  ASSERT_EQ(s.latency.size(), 200u);
+  for (int i = 0; i < 200; ++i) {
+    const Latency& l = s.latency.at(ident(i));
+    EXPECT_EQ(l.count(), 1u) << ident(i);
+    EXPECT_EQ(l.min(), (i % 2 ? 300 : 900) * 1000) << ident(i);  // ms after its request
+  }
   for (const auto& e : f.rec.frames) {
     if (e.reply_to != 0) {
       EXPECT_EQ(f.rec.frames[e.reply_to - 1].ident, e.ident);
