@@ -33,6 +33,10 @@ class Ring {
   // Removes element i; the later ones move down by one, and its slot (with
   // its buffers) goes to the back for reuse: one move per later element.
   void erase(std::size_t i) noexcept {
+    if (i + 1 == n_) {  // the newest (most replies answer it): nothing moves
+      --n_;
+      return;
+    }
     T gone = std::move((*this)[i]);
     for (; i + 1 < n_; ++i) (*this)[i] = std::move((*this)[i + 1]);
     (*this)[n_ - 1] = std::move(gone);
