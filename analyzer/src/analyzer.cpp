@@ -793,7 +793,8 @@ struct Analyzer::Impl {
     p.control = f.control;
     p.src = f.src;
     p.dst = f.dst;
-    p.data.assign(f.data());
+    p.data.clear();  // append into the slot's buffer: cheaper than assign's replace
+    p.data.append(f.data());
     p.dir = d;
     c.count_pending(p, true);
     c.pending_changed();

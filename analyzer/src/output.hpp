@@ -82,9 +82,6 @@ class CsvSink : public Sink {
   std::vector<std::string> cols_;
 };
 
-// Counts only (stats).
-class NullSink : public Sink {};
-
 // Forwards to a sink and prints source findings to stderr with the file name.
 json stats_json(const Stats& s, top::Severity worst);
 std::string stats_text(const Stats& s, top::Severity worst);

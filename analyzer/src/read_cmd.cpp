@@ -221,9 +221,15 @@ int run_stats(const StatsOptions& o) {
     return 2;
   }
   auto fmt = format_from_string(o.c.format);
-  NullSink null;
-  Tee tee(null, "");
-  s.aopts.detail = false;  // nothing shows a frame or a session note
+  // Nothing shows a frame or a session note: the sink only prints source
+  // notes (one virtual call per frame, to the empty Sink::frame).
+  struct SourceNotes : Sink {
+    void note(const NoteEvent& e) override {
+      if (!e.conv) std::fprintf(stderr, "topdump: %s: %s\n", file_.c_str(), note_line(e).c_str());
+    }
+    std::string file_;
+  } tee;
+  s.aopts.detail = false;
   Analyzer a(s.aopts, tee);
   a.set_filter(s.filter);
   if (o.c.progress && isatty(2)) s.sopts.progress = progress_bar;
