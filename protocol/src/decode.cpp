@@ -482,8 +482,8 @@ bool hex_lanes(std::uint64_t x, std::uint64_t lanes) noexcept {
 // data is outside 0-9 A-F, which check_field must see.
 bool judge_planned(Ctx& ctx, const FormPlan& plan, const Frame& frame) {
   const char* data = frame.raw.data() + frame.data_offset;
-  if (!(hex_lanes(word_before(data + plan.head), plan.head_lanes) &
-        hex_lanes(word_before(data + plan.width), plan.tail_lanes)))
+  if (!hex_lanes(word_before(data + plan.head), plan.head_lanes) ||
+      !hex_lanes(word_before(data + plan.width), plan.tail_lanes))
     return false;
   for (const FieldCheck& c : plan.valued) {
     const std::uint64_t x = word_before(data + c.end) & c.bytes;  // the chars, at the top
