@@ -355,7 +355,8 @@ void check_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes, std::u
 
 constexpr std::uint64_t kOnes = 0x0101010101010101ull, kTops = 0x8080808080808080ull;
 
-// The top `n` (0-8) bytes of a word as their top bits, and as whole bytes.
+// The top `n` (0-8; no more) bytes of a word as their top bits, and as
+// whole bytes.
 constexpr std::uint64_t top_lanes(unsigned n) noexcept { return n ? kTops << (8 * (8 - n)) : 0; }
 constexpr std::uint64_t top_bytes(unsigned n) noexcept { return (top_lanes(n) >> 7) * 0xFF; }
 
@@ -429,6 +430,7 @@ FormPlan plan_form(const FormSpec& f) {
     p.width += s.width;
   }
   p.fast = p.fast && p.width <= 16;
+  if (!p.fast) return p;
   const unsigned head = std::min(p.width, 8u), tail = p.width > 8 ? p.width - 8 : p.width;
   p.head = head;
   p.head_lanes = top_lanes(head);
