@@ -478,7 +478,7 @@ TEST(Ring, BehavesAsADequeThroughGrowthWrapAndErase) {
   Ring<std::string> ring;
   std::deque<std::string> model;
   std::mt19937 rng(5);
-  std::size_t erased_inside = 0, max_size = 0;
+  std::size_t erased_inside = 0, erased_newest = 0, max_size = 0;
   for (int step = 0; step < 20000; ++step) {
     const auto op = rng() % 10;
     if (op < 5 || model.empty()) {
@@ -490,8 +490,10 @@ TEST(Ring, BehavesAsADequeThroughGrowthWrapAndErase) {
       ring.pop_front();
       model.pop_front();
     } else {
-      const std::size_t i = rng() % model.size();
+      // op 9: the newest, as most replies erase (the ring moves nothing then)
+      const std::size_t i = op == 9 ? model.size() - 1 : rng() % model.size();
       erased_inside += i + 1 < model.size();
+      erased_newest += i + 1 == model.size();
       ring.erase(i);
       model.erase(model.begin() + static_cast<std::ptrdiff_t>(i));
     }
@@ -505,6 +507,7 @@ TEST(Ring, BehavesAsADequeThroughGrowthWrapAndErase) {
   }
   EXPECT_GT(max_size, 40u);  // grew several times past its first 8 slots
   EXPECT_GT(erased_inside, 1000u);
+  EXPECT_GT(erased_newest, 1000u);
 }
 
 TEST(Json, FastWriterEqualsReferenceOnHostileBytes) {
