@@ -90,8 +90,10 @@ std::string fmt_number(double v, int decimals) {
   auto r = std::to_chars(b, b + sizeof b, v, std::chars_format::fixed, decimals);
   if (r.ec == std::errc()) return std::string(b, r.ptr);
   const int n = std::snprintf(nullptr, 0, "%.*f", decimals, v);
-  std::string s(static_cast<std::size_t>(n > 0 ? n : 0), '\0');
-  std::snprintf(s.data(), s.size() + 1, "%.*f", decimals, v);
+  if (n <= 0) return std::string();
+  std::string s(static_cast<std::size_t>(n) + 1, '\0');  // with snprintf's terminator
+  const int written = std::snprintf(s.data(), s.size(), "%.*f", decimals, v);
+  s.resize(static_cast<std::size_t>(std::clamp(written, 0, n)));
   return s;
 }
 
