@@ -34,6 +34,9 @@ once() {
 }
 min() { awk -v a="$1" -v b="$2" 'BEGIN{print (a == "" || b < a) ? b : a}'; }
 
+# whether the build is profile-guided (cmake/pgo.cmake): say which is timed
+pgo=$(awk -F= '/^TOPKIT_PGO:/ {print $2}' "$build/CMakeCache.txt" 2>/dev/null || true)
+echo "topdump: $topdump (TOPKIT_PGO=${pgo:-unknown})"
 printf '%-8s %10s %10s %10s %10s %8s %8s %12s %10s %10s\n' capture frames floor_s stats_s json_s \
   stats/fl json/fl json_fr/s rss_stats rss_json
 for mult in 1 4; do

@@ -117,12 +117,22 @@ std::size_t Latency::bucket(std::int64_t us) {
         Slice& s = t.slices[static_cast<std::size_t>(k - 8)][static_cast<std::size_t>(j)];
         const std::size_t base = bucket_exact(lo);
         s.base = static_cast<std::uint16_t>(base);
-        s.t1 = s.t2 = static_cast<std::uint16_t>(width);
-        for (std::int64_t i = 1; i < width; ++i) {
-          const std::size_t b = bucket_exact(lo + i);
-          if (b > base && s.t1 == width) s.t1 = static_cast<std::uint16_t>(i);
-          if (b > base + 1 && s.t2 == width) s.t2 = static_cast<std::uint16_t>(i);
-        }
+        // the first offset in [1, width) whose bucket is past b (width: none),
+        // by bisection (the buckets rise with the value): a tenth of the
+        // logarithms of a scan, at every start of topdump
+        auto first_past = [&](std::size_t b) {
+          std::int64_t a = 1, z = width;
+          while (a < z) {
+            const std::int64_t m = a + (z - a) / 2;
+            if (bucket_exact(lo + m) > b)
+              z = m;
+            else
+              a = m + 1;
+          }
+          return static_cast<std::uint16_t>(a);
+        };
+        s.t1 = first_past(base);
+        s.t2 = first_past(base + 1);
       }
     return t;
   }();
@@ -1061,7 +1071,7 @@ void Analyzer::datagram(std::int64_t ts, const Endpoint& src, const Endpoint& ds
     if (!r.frame.checksum_ok && std::memchr(payload.data() + p + 1, '#', r.consumed - 1)) break;
     std::size_t q = p + r.consumed;
     while (q < payload.size() && (payload[q] == '\r' || payload[q] == '\n')) ++q;
-    top::note_terminator(r.frame, q - p - r.consumed);
+    if (q != p + r.consumed) top::note_terminator(r.frame, q - p - r.consumed);
     impl_->frame(c, d, r.frame, Position{record, index++, offset + p}, ts, p);
     p = q;
   }

@@ -444,23 +444,29 @@ FormPlan plan_form(const FormSpec& f) {
 // decode can find); an empty plan for anything else.
 const FormPlan& plan_of(const CommandSpec& cmd, const FormSpec& form) {
   using Plans = std::vector<std::vector<FormPlan>>;  // [command][form]
-  static const std::array<Plans, 2> kPlans = [] {
-    std::array<Plans, 2> all;
-    for (int d = 0; d < 2; ++d)
-      for (const CommandSpec& c : commands(d == 0 ? Dialect::skydroid : Dialect::topotek)) {
-        auto& forms = all[static_cast<std::size_t>(d)].emplace_back();
+  struct Dialects {
+    std::array<std::span<const CommandSpec>, 2> table;  // commands(): SkyDroid, Topotek
+    std::array<Plans, 2> plans;
+  };
+  static const Dialects kAll = [] {
+    Dialects all;
+    for (std::size_t d = 0; d < 2; ++d) {
+      all.table[d] = commands(d == 0 ? Dialect::skydroid : Dialect::topotek);
+      for (const CommandSpec& c : all.table[d]) {
+        auto& forms = all.plans[d].emplace_back();
         for (const FormSpec& f : c.forms) forms.push_back(plan_form(f));
       }
+    }
     return all;
   }();
   static const FormPlan kNone;
-  const int d = cmd.dialect == Dialect::topotek ? 1 : 0;
-  const std::span<const CommandSpec> table = commands(cmd.dialect);
+  const std::size_t d = cmd.dialect == Dialect::topotek ? 1 : 0;
+  const std::span<const CommandSpec> table = kAll.table[d];
   const auto ci = static_cast<std::size_t>(&cmd - table.data());
   const auto fi = static_cast<std::size_t>(&form - cmd.forms.data());
   if (table.empty() || &cmd < table.data() || ci >= table.size() || fi >= cmd.forms.size())
     return kNone;
-  return kPlans[static_cast<std::size_t>(d)][ci][fi];
+  return kAll.plans[d][ci][fi];
 }
 
 // The eight bytes that end at p (the frame's own: every header puts at least

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -69,6 +70,31 @@ unsigned byte_sum(const char* p, std::size_t n) noexcept {
   return s;
 }
 
+// byte_sum for n >= 8 without a loop over the last n % 8 bytes: the
+// eight bytes that end at p + n make the last word, less the low bytes that
+// the words before it summed already.
+unsigned byte_sum8(const char* p, std::size_t n) noexcept {
+  constexpr std::uint64_t kLow = 0x00FF00FF00FF00FFull;
+  auto sum = [](std::uint64_t x) {
+    const std::uint64_t pairs = (x & kLow) + ((x >> 8) & kLow);
+    return static_cast<unsigned>((pairs * 0x0001000100010001ull) >> 48);
+  };
+  unsigned s = 0;
+  std::size_t i = 0;
+  std::uint64_t x;
+  for (; i + 8 < n; i += 8) {
+    std::memcpy(&x, p + i, 8);
+    s += sum(x);
+  }
+  std::memcpy(&x, p + n - 8, 8);
+  const std::size_t seen = i + 8 - n;  // 0-7 low bytes counted above
+  if (std::endian::native == std::endian::little)
+    x &= ~std::uint64_t{0} << (8 * seen);
+  else
+    x &= ~std::uint64_t{0} >> (8 * seen);
+  return s + sum(x);
+}
+
 // dst[0, n) = src[0, n) for 8 <= n <= 32 in four eight-byte moves, the last
 // ones overlapping (no length-dependent branch, no string instruction).
 void copy_short(char* dst, const char* src, std::size_t n) noexcept {
@@ -83,7 +109,9 @@ void copy_short(char* dst, const char* src, std::size_t n) noexcept {
 }  // namespace
 
 std::uint8_t checksum(std::string_view bytes) noexcept {
-  return static_cast<std::uint8_t>(byte_sum(bytes.data(), bytes.size()) & 0xFF);
+  const unsigned s = bytes.size() >= 8 ? byte_sum8(bytes.data(), bytes.size())
+                                       : byte_sum(bytes.data(), bytes.size());
+  return static_cast<std::uint8_t>(s & 0xFF);
 }
 
 void put_hex2(std::uint8_t v, char out[2]) noexcept {
@@ -191,7 +219,7 @@ bool parse_plain(std::string_view b, const ParseOptions& opts, Frame& f, Verdict
   const std::size_t cs = prefix_size + L;
   if (L > opts.max_data_length || n < cs + 2 || is_lower_hex(b[cs]) || is_lower_hex(b[cs + 1]))
     return false;
-  const unsigned prefix = byte_sum(b.data(), cs);
+  const unsigned prefix = byte_sum8(b.data(), cs);  // cs >= prefix_size
   std::uint8_t value = 0;
   if (!checksum_at(b, cs, prefix, value)) return false;
   f.header = fixed ? Header::fixed : Header::variable;
@@ -214,11 +242,11 @@ bool parse_plain(std::string_view b, const ParseOptions& opts, Frame& f, Verdict
   return true;
 }
 
-// The parser. A frame is built in `f` (reset first), which the result
-// refers to only when its status is frame.
+// The general parser (parse_frame tries parse_plain first). A frame is
+// built in `f` (reset first), which the result refers to only when its
+// status is frame.
 Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Frame& f,
                    Finding& err) {
-  if (Verdict plain; opts.fast_path && parse_plain(b, opts, f, plain)) return plain;
   reset_keep_capacity(f);
   const std::size_t n = b.size();
   auto short_of = [&](std::size_t want) { return n < want; };
@@ -502,6 +530,13 @@ ParseResult parse_frame(std::string_view bytes, bool at_end, const ParseOptions&
 void parse_frame(std::string_view bytes, bool at_end, const ParseOptions& opts, ParseResult& out) {
   // the error of an earlier parse goes (most parses have none to write)
   if (out.error.code != FindingCode{} || !out.error.message.empty()) out.error = Finding{};
+  // the common frame here, without parse_into's entry (it saves the
+  // registers of the whole general parse)
+  if (Verdict plain; opts.fast_path && parse_plain(bytes, opts, out.frame, plain)) {
+    out.status = plain.status;
+    out.consumed = plain.consumed;
+    return;
+  }
   const Verdict r = parse_into(bytes, at_end, opts, out.frame, out.error);
   out.status = r.status;
   out.consumed = r.consumed;
