@@ -129,5 +129,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
            v.findings[i].severity == d.findings[i].severity &&
            v.findings[i].offset == d.findings[i].offset;
   FUZZ_CHECK(same, "decoding without detail changes the verdict on \"" + show(raw) + "\"");
+
+  // Through the shape cache (kept across inputs, so its slots hold other
+  // shapes' results): the same verdict, quirks included.
+  static DecodeCache cache;
+  bare.cache = &cache;
+  const Decoded c = decode(f, bare);
+  same = c.dialect == v.dialect && c.role == v.role && c.command == v.command && c.form == v.form &&
+         c.fields.empty() && c.findings.size() == v.findings.size();
+  for (std::size_t i = 0; same && i < c.findings.size(); ++i)
+    same = c.findings[i].code == v.findings[i].code &&
+           c.findings[i].severity == v.findings[i].severity &&
+           c.findings[i].offset == v.findings[i].offset &&
+           c.findings[i].quirk == v.findings[i].quirk;
+  FUZZ_CHECK(same, "the decode cache changes the verdict on \"" + show(raw) + "\"");
   return 0;
 }

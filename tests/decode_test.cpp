@@ -438,3 +438,78 @@ TEST(Decode, VerdictWithoutDetailAgreesOnEveryFieldValue) {
   EXPECT_GT(compared, 20000u);
   EXPECT_GT(out_of_range, 1000u);  // the bounds were crossed, not only approached
 }
+
+// DecodeCache replays what a frame's shape decided (command, form, role,
+// shape findings) instead of looking it up again. Every command of both
+// catalogs, under every header, control, a spread of data lengths (inside,
+// at and past each form's bounds), both address orders, each role and
+// dialect asked for and a model of each dialect (or none), plus unknown
+// identifiers: decoded through one cache shared by all of them (so its slots
+// are reused by other shapes), twice, the verdict is the one without it,
+// quirks included.
+TEST(Decode, CacheGivesTheVerdictOfEveryShapeUnchanged) {
+  DecodeCache cache;
+  std::size_t compared = 0, with_findings = 0;
+  Decoded plain, cached;
+  auto verdict = [](const Decoded& d) {
+    std::string s = verdict_of(d);
+    for (const Finding& x : d.findings) s += " q:" + std::string(x.quirk);
+    return s;
+  };
+  // the dialect and model asked for: none, each dialect, each model's, and a
+  // model of the other dialect
+  const std::pair<Dialect, Model> kAsked[] = {
+      {Dialect::unknown, Model::unknown}, {Dialect::skydroid, Model::unknown},
+      {Dialect::topotek, Model::unknown}, {Dialect::unknown, Model::c10},
+      {Dialect::unknown, Model::sip},     {Dialect::skydroid, Model::sip}};
+  std::vector<std::pair<std::string_view, char>> idents;  // identifier, its address class
+  for (Dialect dl : {Dialect::skydroid, Dialect::topotek})
+    for (const CommandSpec& cmd : commands(dl)) idents.emplace_back(cmd.ident, cmd.address);
+  idents.emplace_back("ZZZ", 'G');
+  idents.emplace_back("ERE", 'G');
+  for (const auto& [ident, address] : idents)
+    for (Header h : {Header::fixed, Header::variable, Header::ext8, Header::ext16})
+      for (char control : {'r', 'w'})
+        for (std::size_t len : {0, 1, 2, 4, 6, 12, 16, 40})
+          for (bool reply : {false, true}) {
+            BuildSpec b;
+            b.header = h;
+            b.src = reply ? address : 'U';
+            b.dst = reply ? 'U' : address;
+            b.control = control;
+            b.ident = ident;
+            const std::string data(len, '1');
+            b.data = data;
+            const ParseResult r = parse_frame(build_frame(b), true);
+            ASSERT_EQ(r.status, ParseStatus::frame) << ident << " " << len;
+            for (auto [dl, m] : kAsked)
+              for (Role role : {Role::any, Role::request, Role::response}) {
+                DecodeOptions o{dl, m, role};
+                o.detail = false;
+                decode(r.frame, o, plain);
+                o.cache = &cache;
+                for (int pass = 0; pass < 2; ++pass) {
+                  decode(r.frame, o, cached);
+                  ASSERT_EQ(verdict(cached), verdict(plain))
+                      << ident << " " << to_string(h) << " " << control << " len " << len
+                      << " pass " << pass;
+                  ASSERT_TRUE(cached.fields.empty());
+                }
+                ++compared;
+                with_findings += !plain.findings.empty();
+              }
+          }
+  EXPECT_GT(compared, 250000u);
+  EXPECT_GT(with_findings, compared / 4);
+  // With detail the cache is not used: messages come out as without it.
+  Decoded full, full_cached;
+  const ParseResult r = parse_frame(std::string_view("#TPUG2wZZZ007A"), true);
+  ASSERT_EQ(r.status, ParseStatus::frame);
+  DecodeOptions o{Dialect::skydroid, Model::unknown, Role::any};
+  decode(r.frame, o, full);
+  o.cache = &cache;
+  decode(r.frame, o, full_cached);
+  ASSERT_FALSE(full.findings.empty());
+  EXPECT_EQ(full_cached.findings.front().message, full.findings.front().message);
+  EXPECT_FALSE(full_cached.findings.front().message.empty());
+}

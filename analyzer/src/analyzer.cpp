@@ -367,7 +367,8 @@ struct Analyzer::Impl {
   std::uint64_t next_conv = 1;
   std::uint64_t clock = 0;
   DecodedEntry current;
-  top::ParseResult scratch;  // the one-frame datagram path parses into this
+  top::DecodeCache decode_cache;  // used without detail (topdump stats)
+  top::ParseResult scratch;       // the one-frame datagram path parses into this
   std::unordered_map<std::uint32_t, std::uint64_t> idents;  // other identifiers
   // Frames per identifier of three [0-9A-Z] characters (every valid one): a
   // flat table indexed in base 36.
@@ -599,6 +600,7 @@ struct Analyzer::Impl {
     o.model = A.opts_.model;
     o.role = role;
     o.detail = A.opts_.detail;
+    o.cache = &decode_cache;
     top::decode(f, o, e.decoded);
     if (role == top::Role::response && top::role_from_addresses(f) == top::Role::request) {
       bool has = false;

@@ -513,18 +513,11 @@ bool judge_planned(Ctx& ctx, const FormPlan& plan, const Frame& frame) {
   return true;
 }
 
-}  // namespace
-
-void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
-  out.fields.clear();
-  out.findings.clear();
-  out.command = nullptr;
-  out.form = nullptr;
-  Ctx ctx{frame, out, opts.detail};
-  out.role = opts.role != Role::any ? opts.role : role_from_addresses(frame);
-  Dialect d = opts.dialect;
-  if (d == Dialect::unknown && opts.model != Model::unknown) d = dialect_of(opts.model);
-  if (d == Dialect::unknown) d = dialect_from_frame(frame);
+// What a frame's dialect, role, identifier, header, lengths and control
+// decide: the command, the form and their findings, in `out` (out.form stays
+// null when no form applies: the decode ends there).
+void decode_shape(Ctx& ctx, const Frame& frame, const DecodeOptions& opts, Dialect d,
+                  Decoded& out) {
   const std::string_view ident = frame.ident_view();
   const auto ident_at =
       static_cast<std::uint32_t>(frame.header == Header::tmp_quirk ? 6 : frame.data_offset - 3);
@@ -623,6 +616,129 @@ void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
   }
   out.form = form;
   if (form->role != Role::any && out.role == Role::any) out.role = form->role;
+}
+
+// The shape's key for DecodeCache: everything decode_shape reads of the
+// frame and the options (messages aside), packed; 0 when a length or the
+// control does not fit (those frames are decoded without the cache).
+std::uint64_t shape_key(const Frame& f, Dialect d, Role role, Model model) noexcept {
+  if (f.declared_length > 0xFF || f.data_length > 0xFF || f.data_offset > 0xF) return 0;
+  const std::uint64_t control = f.control == 0     ? 0
+                                : f.control == 'r' ? 1
+                                : f.control == 'w' ? 2
+                                                   : 3;
+  if (control == 3) return 0;
+  const auto byte = [](char c) { return std::uint64_t{static_cast<unsigned char>(c)}; };
+  return std::uint64_t{1} << 63 | static_cast<std::uint64_t>(d) << 54 |
+         static_cast<std::uint64_t>(role) << 52 | byte(f.ident[0]) << 44 | byte(f.ident[1]) << 36 |
+         byte(f.ident[2]) << 28 | static_cast<std::uint64_t>(f.header) << 25 |
+         std::uint64_t{f.declared_length} << 17 | control << 15 |
+         std::uint64_t{f.data_length} << 7 | std::uint64_t{f.data_offset} << 3 |
+         static_cast<std::uint64_t>(model);
+}
+
+}  // namespace
+
+struct DecodeCache::Slot {
+  static constexpr std::size_t kFindings = 3;  // a shape with more is not remembered
+  std::uint64_t key = 0;
+  bool known = false;  // the members below are the key's
+  Dialect dialect = Dialect::unknown;
+  Role role = Role::any;
+  std::uint8_t count = 0;
+  const CommandSpec* command = nullptr;
+  const FormSpec* form = nullptr;
+  const FormPlan* plan = nullptr;
+  struct Seen {
+    FindingCode code{};
+    Severity severity{};
+    std::uint32_t offset = 0;
+    std::string_view quirk;
+  };
+  std::array<Seen, kFindings> findings{};
+};
+
+namespace {
+constexpr std::size_t kCacheSlots = 128;
+static_assert(std::has_single_bit(kCacheSlots));
+static_assert(static_cast<int>(Model::sip) < 8 && static_cast<int>(Header::tmp_quirk) < 8);
+}  // namespace
+
+DecodeCache::DecodeCache() : slots_(std::make_unique<Slot[]>(kCacheSlots)) {}
+DecodeCache::~DecodeCache() = default;
+
+DecodeCache::Slot& DecodeCache::slot(std::uint64_t key) noexcept {
+  Slot& s = slots_[(key * 0x9E3779B97F4A7C15ull) >> (64 - std::countr_zero(kCacheSlots))];
+  if (s.key != key) {
+    s.key = key;
+    s.known = false;
+  }
+  return s;
+}
+
+namespace {
+
+// The cache's slot for this frame's shape, or null (no cache, or a shape it
+// does not key).
+DecodeCache::Slot* shape_slot(const DecodeOptions& opts, const Frame& f, Dialect d,
+                              Role role) noexcept {
+  if (!opts.cache) return nullptr;
+  const std::uint64_t key = shape_key(f, d, role, opts.model);
+  return key ? &opts.cache->slot(key) : nullptr;
+}
+
+void remember(DecodeCache::Slot& s, const Decoded& out) {
+  if (out.findings.size() > DecodeCache::Slot::kFindings) return;
+  s.dialect = out.dialect;
+  s.role = out.role;
+  s.command = out.command;
+  s.form = out.form;
+  s.plan = out.form ? &plan_of(*out.command, *out.form) : nullptr;
+  s.count = static_cast<std::uint8_t>(out.findings.size());
+  for (std::size_t i = 0; i < out.findings.size(); ++i) {
+    const Finding& f = out.findings[i];
+    s.findings[i] = {f.code, f.severity, f.offset, f.quirk};
+  }
+  s.known = true;
+}
+
+void replay(const DecodeCache::Slot& s, Decoded& out) {
+  out.dialect = s.dialect;
+  out.role = s.role;
+  out.command = s.command;
+  out.form = s.form;
+  for (std::size_t i = 0; i < s.count; ++i) {
+    const DecodeCache::Slot::Seen& x = s.findings[i];
+    out.findings.push_back(Finding{x.code, x.severity, x.offset, std::string(), x.quirk});
+  }
+}
+
+}  // namespace
+
+void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
+  out.fields.clear();
+  out.findings.clear();
+  out.command = nullptr;
+  out.form = nullptr;
+  Ctx ctx{frame, out, opts.detail};
+  out.role = opts.role != Role::any ? opts.role : role_from_addresses(frame);
+  Dialect d = opts.dialect;
+  if (d == Dialect::unknown && opts.model != Model::unknown) d = dialect_of(opts.model);
+  if (d == Dialect::unknown) d = dialect_from_frame(frame);
+  const FormPlan* plan = nullptr;  // the form's, when the shape cache knows it
+  if (DecodeCache::Slot* slot = ctx.detail ? nullptr : shape_slot(opts, frame, d, out.role)) {
+    if (slot->known) {
+      replay(*slot, out);
+    } else {
+      decode_shape(ctx, frame, opts, d, out);
+      remember(*slot, out);
+    }
+    plan = slot->plan;
+  } else {
+    decode_shape(ctx, frame, opts, d, out);
+  }
+  if (!out.form) return;
+  const FormSpec* form = out.form;
 
   std::string_view data = frame.data();
   std::size_t pos = 0;
@@ -641,8 +757,8 @@ void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
     return;
   }
   if (!ctx.detail && frame.data_offset >= 8) {
-    const FormPlan& plan = plan_of(*cmd, *form);
-    if (plan.fast && plan.width == data.size() && judge_planned(ctx, plan, frame)) return;
+    if (!plan) plan = &plan_of(*out.command, *form);
+    if (plan->fast && plan->width == data.size() && judge_planned(ctx, *plan, frame)) return;
   }
   FieldValue scratch;  // without detail: each field is validated here, then dropped
   for (const FieldSpec& fs : form->fields) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -39,6 +40,26 @@ void append_value(const FieldValue& f, std::string& out);
 // past 15 digits.
 bool exact_decimal(const FieldValue& f, std::int64_t& mantissa, int& decimals) noexcept;
 
+// Remembers what decode() without detail found for a frame's shape: its
+// dialect, role, identifier, header, lengths and control decide the command,
+// the form and the findings that follow from them, so a frame of a shape
+// seen before skips the catalog lookups and goes straight to its data. The
+// results are the same with or without it (tested, and compared by the
+// decode fuzzers). One per thread; 128 slots, a few kilobytes.
+class DecodeCache {
+ public:
+  DecodeCache();
+  ~DecodeCache();
+  DecodeCache(const DecodeCache&) = delete;
+  DecodeCache& operator=(const DecodeCache&) = delete;
+
+  struct Slot;  // decode.cpp
+  Slot& slot(std::uint64_t key) noexcept;
+
+ private:
+  std::unique_ptr<Slot[]> slots_;
+};
+
 struct DecodeOptions {
   Dialect dialect = Dialect::unknown;  // unknown: detect from the frame
   Model model = Model::unknown;        // unknown: no model checks
@@ -47,6 +68,8 @@ struct DecodeOptions {
   // codes, severities and offsets but empty messages); no field values. For
   // callers that count rather than show (topdump stats).
   bool detail = true;
+  // Used only without detail (messages are not remembered); null: none.
+  DecodeCache* cache = nullptr;
 };
 
 struct Decoded {
