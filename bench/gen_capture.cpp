@@ -1,16 +1,23 @@
 // Generates a realistic TOP capture for benchmarks: a few autopilot clients
-// talking to SkyDroid and Topotek gimbals over UDP, written with libpcap.
+// talking to SkyDroid and Topotek gimbals, written with libpcap.
 //
-//   gen_capture FRAMES OUT.pcap [SEED]
+//   gen_capture FRAMES OUT [SEED] [udp|tcp|serial]
 //
 // Mix: angle and speed commands with their echoes (1-20 ms later), version
 // and zoom queries, GAC/GIC attitude streams at 50 Hz after GAA/GIA, about
 // 3% frames with a wrong checksum, about 5% of datagrams carrying 2-3 frames,
 // some CR/LF-terminated frames, some requests never answered.
+//
+// udp (the default): Ethernet/IPv4/UDP on the devices' ports. tcp: the same
+// traffic over TCP port 5000 (as the C10 and C20 serve it), one connection
+// per client, every tenth payload split in two segments. serial: the bytes
+// of every frame, both directions, as one raw serial dump (no pcap).
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <random>
 #include <string>
+#include <string_view>
 
 #include "pcapw.hpp"
 
@@ -18,13 +25,31 @@ using namespace topdump::pcapw;
 
 namespace {
 
+enum class Mode { udp, tcp, serial };
+
 struct Gen {
   std::mt19937_64 rng;
-  PcapWriter w;
+  Mode mode;
+  std::unique_ptr<PcapWriter> w;  // udp, tcp
+  std::FILE* raw = nullptr;       // serial
   std::uint64_t frames = 0, target;
   std::int64_t t = 1714564800LL * 1000000;
-  explicit Gen(const char* path, std::uint64_t n, std::uint64_t seed)
-      : rng(seed), w(path, 1), target(n) {}
+  std::uint32_t seq[4][2] = {};  // tcp: next sequence number per client, up and down
+  Gen(const char* path, std::uint64_t n, std::uint64_t seed, Mode m)
+      : rng(seed), mode(m), target(n) {
+    if (mode == Mode::serial)
+      raw = std::fopen(path, "wb");
+    else
+      w = std::make_unique<PcapWriter>(path, 1);
+  }
+  bool ok() const { return mode == Mode::serial ? raw != nullptr : w->ok(); }
+  bool close() {
+    if (mode != Mode::serial) {
+      w->close();
+      return true;
+    }
+    return std::fclose(raw) == 0;
+  }
 
   unsigned pick(unsigned n) { return static_cast<unsigned>(rng() % n); }
   std::string hex4(int v) {
@@ -44,8 +69,32 @@ struct Gen {
     Ip4 d{192, 168, 144, static_cast<std::uint8_t>(topotek ? 25 : 108)};
     std::uint16_t cp = topotek ? 9004 : static_cast<std::uint16_t>(40000 + client);
     std::uint16_t dp = topotek ? 9003 : 5000;
-    std::string ip = up ? udp4(c, d, cp, dp, payload) : udp4(d, c, dp, cp, payload);
-    w.write(t, eth(ip));
+    if (mode == Mode::serial) {
+      std::fwrite(payload.data(), 1, payload.size(), raw);
+      return;
+    }
+    if (mode == Mode::udp) {
+      std::string ip = up ? udp4(c, d, cp, dp, payload) : udp4(d, c, dp, cp, payload);
+      w->write(t, eth(ip));
+      return;
+    }
+    cp = static_cast<std::uint16_t>(40000 + client);
+    dp = 5000;
+    std::uint32_t& mine = seq[client][up ? 0 : 1];
+    const std::uint32_t theirs = seq[client][up ? 1 : 0];
+    // every tenth payload in two segments, cut at a random byte
+    const std::size_t cut = payload.size() > 1 && pick(10) == 0
+                                ? 1 + pick(static_cast<unsigned>(payload.size() - 1))
+                                : payload.size();
+    for (std::size_t at = 0; at < payload.size();) {
+      const std::size_t end = at < cut ? cut : payload.size();
+      const std::string_view part = std::string_view(payload).substr(at, end - at);
+      std::string ip = up ? tcp4(c, d, cp, dp, mine, theirs, kAck | kPsh, part)
+                          : tcp4(d, c, dp, cp, mine, theirs, kAck | kPsh, part);
+      w->write(t, eth(ip));
+      mine += static_cast<std::uint32_t>(part.size());
+      at = end;
+    }
   }
   // One step of one client: a command and (usually) its answer, or stream frames.
   void step() {
@@ -99,18 +148,26 @@ struct Gen {
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: gen_capture FRAMES OUT.pcap [SEED]\n");
+    std::fprintf(stderr, "usage: gen_capture FRAMES OUT [SEED] [udp|tcp|serial]\n");
     return 2;
   }
   std::uint64_t n = std::strtoull(argv[1], nullptr, 10);
   std::uint64_t seed = argc > 3 ? std::strtoull(argv[3], nullptr, 10) : 1;
-  Gen g(argv[2], n, seed);
-  if (!g.w.ok()) {
+  const std::string mode = argc > 4 ? argv[4] : "udp";
+  if (mode != "udp" && mode != "tcp" && mode != "serial") {
+    std::fprintf(stderr, "gen_capture: mode %s is not udp, tcp or serial\n", mode.c_str());
+    return 2;
+  }
+  Gen g(argv[2], n, seed, mode == "tcp" ? Mode::tcp : mode == "serial" ? Mode::serial : Mode::udp);
+  if (!g.ok()) {
     std::fprintf(stderr, "gen_capture: cannot write %s\n", argv[2]);
     return 2;
   }
   while (g.frames < n) g.step();
-  g.w.close();
+  if (!g.close()) {
+    std::fprintf(stderr, "gen_capture: cannot write %s\n", argv[2]);
+    return 2;
+  }
   std::printf("%llu frames\n", static_cast<unsigned long long>(g.frames));
   return 0;
 }

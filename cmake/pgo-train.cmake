@@ -29,6 +29,17 @@ train(${GEN} 200000 ${capture} 7)
 train(${TOPDUMP} stats ${capture})
 train(${TOPDUMP} stats --json ${capture})
 train(${TOPDUMP} read --json --no-progress ${capture})
+# The same traffic over TCP (reassembly) and as a raw serial dump (the
+# stream decoder), in a volume that keeps those paths as hot in the profile
+# as they are in use.
+set(tcp ${WORK}/train-tcp.pcap)
+train(${GEN} 100000 ${tcp} 9 tcp)
+train(${TOPDUMP} stats ${tcp})
+train(${TOPDUMP} read --json --no-progress ${tcp})
+set(serial ${WORK}/train-serial.bin)
+train(${GEN} 100000 ${serial} 13 serial)
+train(${TOPDUMP} stats --format raw ${serial})
+train(${TOPDUMP} read --json --no-progress --format raw ${serial})
 set(small ${WORK}/small.pcap)
 train(${GEN} 20000 ${small} 11)
 train(${TOPDUMP} read --no-progress ${small})

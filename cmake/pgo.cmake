@@ -3,11 +3,12 @@
 # With TOPKIT_PGO (on in the default preset), the build first builds an
 # instrumented topdump and gen_capture in ${CMAKE_BINARY_DIR}/pgo/gen (a
 # nested build of this same source tree), runs them on a training set
-# (cmake/pgo-train.cmake: a generated capture and every bundled one, through
-# read, read -V, read --json, read --csv and stats), and then compiles the
-# library, topdump_core and topdump with the profile. Everything else builds
-# as usual. The training capture is not the benchmark's (another seed and
-# size); bench/README.md gives the figures with and without the profile.
+# (cmake/pgo-train.cmake: generated UDP and TCP captures and a serial dump,
+# and every bundled capture, through read, read -V, read --json, read --csv
+# and stats), and then compiles the library, topdump_core and topdump with
+# the profile. Everything else builds as usual. The training captures are
+# not the benchmark's (other seeds and sizes); bench/README.md gives the
+# figures with and without the profile.
 #
 # Object files of both builds sit at the same paths relative to their build
 # directories, and -fprofile-prefix-path strips those directories, so the

@@ -442,6 +442,33 @@ TEST(BenchGenerator, SmallCaptureHasTheAdvertisedMix) {
   }
 }
 
+// The generator's TCP mode (the C10/C20 TCP port, some payloads split in
+// two segments) and serial mode (a raw dump of both directions) carry the
+// same traffic: the TCP capture reassembles to every frame and pairs as the
+// UDP one does; the serial dump decodes to every frame, with no garbage.
+TEST(BenchGenerator, TcpAndSerialModesCarryTheSameFrames) {
+  TempDir tmp;
+  const std::string tcp = generated_capture(tmp, "t.pcap", 3000, 5, "tcp");
+  const std::string raw = generated_capture(tmp, "s.bin", 3000, 5, "serial");
+  ASSERT_FALSE(tcp.empty());
+  ASSERT_FALSE(raw.empty());
+  std::string out;
+  ASSERT_EQ(run("'" + topdump_bin() + "' stats --json '" + tcp + "' 2>/dev/null", out), 1);
+  auto j = nlohmann::json::parse(out);
+  const auto frames = j["frames"].get<std::int64_t>();
+  EXPECT_GE(frames, 3000);
+  EXPECT_LE(frames, 3003);
+  EXPECT_GT(j["records"].get<std::int64_t>(), frames);  // some payloads in two segments
+  EXPECT_GT(j["pairing"]["paired"].get<std::int64_t>(), frames / 5);
+  EXPECT_EQ(j["garbage"].get<std::int64_t>(), 0);
+  for (const auto& c : j["conversations"]) EXPECT_EQ(c["transport"], "tcp");
+  ASSERT_EQ(run("'" + topdump_bin() + "' stats --json --format raw '" + raw + "' 2>/dev/null", out),
+            1);
+  j = nlohmann::json::parse(out);
+  EXPECT_EQ(j["frames"].get<std::int64_t>(), frames);
+  EXPECT_EQ(j["garbage"].get<std::int64_t>(), 0);
+}
+
 }  // namespace
 }  // namespace topdump::test
 

@@ -53,12 +53,13 @@ inline int run(const std::string& cmd, std::string& out) {
 // (bench/gen_capture.cpp) into `tmp`; its path, or "" when the generator
 // failed.
 inline std::string generated_capture(const TempDir& tmp, const std::string& name, int frames,
-                                     int seed) {
+                                     int seed, const std::string& mode = "udp") {
   std::string out;
   const std::string path = tmp.file(name);
-  const int rc = run("'" + std::string(TOPKIT_BINARY_DIR) + "/analyzer/gen_capture' " +
-                         std::to_string(frames) + " '" + path + "' " + std::to_string(seed),
-                     out);
+  const int rc =
+      run("'" + std::string(TOPKIT_BINARY_DIR) + "/analyzer/gen_capture' " +
+              std::to_string(frames) + " '" + path + "' " + std::to_string(seed) + " " + mode,
+          out);
   return rc == 0 ? path : std::string();
 }
 
