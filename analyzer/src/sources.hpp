@@ -35,7 +35,7 @@ struct SourceOptions {
 // TOP payload to the analyzer. Returns false when it is not TOP traffic.
 class Dissector {
  public:
-  Dissector(Analyzer& a, const SourceOptions& o) : a_(a), o_(o) {
+  Dissector(Analyzer& a, const SourceOptions& o) : a_(a) {
     for (auto p : o.udp_ports) udp_port_[p] = true;
     for (auto p : o.tcp_ports) tcp_port_[p] = true;
   }
@@ -48,10 +48,9 @@ class Dissector {
           std::uint64_t record);
   void bad(std::int64_t ts, std::uint64_t record, std::size_t off, std::string msg);
   Analyzer& a_;
-  const SourceOptions& o_;
   std::set<std::string> tcp_top_;  // TCP flows recognised by content (bounded)
   Endpoint src_, dst_;             // the endpoints of the packet at hand
-  // o_.udp_ports / tcp_ports as tables: a lookup per packet
+  // SourceOptions::udp_ports / tcp_ports as tables: a lookup per packet
   std::vector<bool> udp_port_ = std::vector<bool>(65536), tcp_port_ = std::vector<bool>(65536);
 };
 
