@@ -439,6 +439,42 @@ TEST(Decode, VerdictWithoutDetailAgreesOnEveryFieldValue) {
   EXPECT_GT(out_of_range, 1000u);  // the bounds were crossed, not only approached
 }
 
+// A shape with more findings than a slot remembers is decoded afresh each
+// time, and must not reuse anything of the shape its slot held before: here
+// a PTZ write, whose planned form (one two-char field) once judged the data
+// of the ERE frame after it.
+TEST(Decode, CacheForgetsTheShapeItEvicts) {
+  DecodeCache one(1);  // every shape in the same slot
+  DecodeOptions o{Dialect::skydroid, Model::sip, Role::any};
+  o.detail = false;
+  BuildSpec b;
+  b.header = Header::fixed;
+  b.src = 'U';
+  b.dst = 'G';
+  b.control = 'w';
+  b.ident = "PTZ";
+  b.data = "FF";
+  const ParseResult ptz = parse_frame(build_frame(b), true);
+  // ERE under #tP from a client: extended header, not on the model, an
+  // error reply, a response's form addressed as a request
+  b.header = Header::ext8;
+  b.dst = 'M';
+  b.ident = "ERE";
+  const ParseResult ere = parse_frame(build_frame(b), true);
+  ASSERT_EQ(ptz.status, ParseStatus::frame);
+  ASSERT_EQ(ere.status, ParseStatus::frame);
+  Decoded plain, cached;
+  decode(ere.frame, o, plain);
+  ASSERT_GT(plain.findings.size(), 3u);  // more than a slot remembers
+  ASSERT_NE(plain.form, nullptr);
+  o.cache = &one;
+  decode(ptz.frame, o, cached);
+  for (int pass = 0; pass < 2; ++pass) {
+    decode(ere.frame, o, cached);
+    EXPECT_EQ(verdict_of(cached), verdict_of(plain)) << pass;
+  }
+}
+
 // DecodeCache replays what a frame's shape decided (command, form, role,
 // shape findings) instead of looking it up again. Every command of both
 // catalogs, under every header, control, a spread of data lengths (inside,
@@ -448,7 +484,11 @@ TEST(Decode, VerdictWithoutDetailAgreesOnEveryFieldValue) {
 // are reused by other shapes), twice, the verdict is the one without it,
 // quirks included.
 TEST(Decode, CacheGivesTheVerdictOfEveryShapeUnchanged) {
-  DecodeCache cache;
+  // The default size, and one and two slots, where every shape evicts the
+  // last: nothing of a shape may outlive its slot (a shape with too many
+  // findings to remember once judged its data by the plan of the shape
+  // before it).
+  DecodeCache caches[] = {DecodeCache(), DecodeCache(1), DecodeCache(2)};
   std::size_t compared = 0, with_findings = 0;
   Decoded plain, cached;
   auto verdict = [](const Decoded& d) {
@@ -478,28 +518,32 @@ TEST(Decode, CacheGivesTheVerdictOfEveryShapeUnchanged) {
             b.dst = reply ? 'U' : address;
             b.control = control;
             b.ident = ident;
-            const std::string data(len, '1');
-            b.data = data;
-            const ParseResult r = parse_frame(build_frame(b), true);
-            ASSERT_EQ(r.status, ParseStatus::frame) << ident << " " << len;
-            for (auto [dl, m] : kAsked)
-              for (Role role : {Role::any, Role::request, Role::response}) {
-                DecodeOptions o{dl, m, role};
-                o.detail = false;
-                decode(r.frame, o, plain);
-                o.cache = &cache;
-                for (int pass = 0; pass < 2; ++pass) {
-                  decode(r.frame, o, cached);
-                  ASSERT_EQ(verdict(cached), verdict(plain))
-                      << ident << " " << to_string(h) << " " << control << " len " << len
-                      << " pass " << pass;
-                  ASSERT_TRUE(cached.fields.empty());
+            for (char fill : {'1', 'F'}) {
+              const std::string data(len, fill);
+              b.data = data;
+              const ParseResult r = parse_frame(build_frame(b), true);
+              ASSERT_EQ(r.status, ParseStatus::frame) << ident << " " << len;
+              for (auto [dl, m] : kAsked)
+                for (Role role : {Role::any, Role::request, Role::response}) {
+                  DecodeOptions o{dl, m, role};
+                  o.detail = false;
+                  decode(r.frame, o, plain);
+                  for (DecodeCache& cache : caches) {
+                    o.cache = &cache;
+                    for (int pass = 0; pass < 2; ++pass) {
+                      decode(r.frame, o, cached);
+                      ASSERT_EQ(verdict(cached), verdict(plain))
+                          << ident << " " << to_string(h) << " " << control << " len " << len << " "
+                          << fill << " pass " << pass << " of " << &cache - caches;
+                      ASSERT_TRUE(cached.fields.empty());
+                    }
+                  }
+                  ++compared;
+                  with_findings += !plain.findings.empty();
                 }
-                ++compared;
-                with_findings += !plain.findings.empty();
-              }
+            }
           }
-  EXPECT_GT(compared, 250000u);
+  EXPECT_GT(compared, 500000u);
   EXPECT_GT(with_findings, compared / 4);
   // With detail the cache is not used: messages come out as without it.
   Decoded full, full_cached;
@@ -507,7 +551,7 @@ TEST(Decode, CacheGivesTheVerdictOfEveryShapeUnchanged) {
   ASSERT_EQ(r.status, ParseStatus::frame);
   DecodeOptions o{Dialect::skydroid, Model::unknown, Role::any};
   decode(r.frame, o, full);
-  o.cache = &cache;
+  o.cache = &caches[0];
   decode(r.frame, o, full_cached);
   ASSERT_FALSE(full.findings.empty());
   EXPECT_EQ(full_cached.findings.front().message, full.findings.front().message);

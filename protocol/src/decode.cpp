@@ -658,20 +658,19 @@ struct DecodeCache::Slot {
   std::array<Seen, kFindings> findings{};
 };
 
-namespace {
-constexpr std::size_t kCacheSlots = 128;
-static_assert(std::has_single_bit(kCacheSlots));
 static_assert(static_cast<int>(Model::sip) < 8 && static_cast<int>(Header::tmp_quirk) < 8);
-}  // namespace
 
-DecodeCache::DecodeCache() : slots_(std::make_unique<Slot[]>(kCacheSlots)) {}
+DecodeCache::DecodeCache(std::size_t slots)
+    : slots_(std::make_unique<Slot[]>(std::bit_ceil(std::max<std::size_t>(slots, 1)))),
+      mask_(std::bit_ceil(std::max<std::size_t>(slots, 1)) - 1) {}
 DecodeCache::~DecodeCache() = default;
 
 DecodeCache::Slot& DecodeCache::slot(std::uint64_t key) noexcept {
-  Slot& s = slots_[(key * 0x9E3779B97F4A7C15ull) >> (64 - std::countr_zero(kCacheSlots))];
-  if (s.key != key) {
+  Slot& s = slots_[static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 32) & mask_];
+  if (s.key != key) {  // another shape's: forget it all
     s.key = key;
     s.known = false;
+    s.plan = nullptr;
   }
   return s;
 }
@@ -731,9 +730,9 @@ void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
       replay(*slot, out);
     } else {
       decode_shape(ctx, frame, opts, d, out);
-      remember(*slot, out);
+      remember(*slot, out);  // unless the shape has too many findings
     }
-    plan = slot->plan;
+    if (slot->known) plan = slot->plan;
   } else {
     decode_shape(ctx, frame, opts, d, out);
   }

@@ -45,10 +45,11 @@ bool exact_decimal(const FieldValue& f, std::int64_t& mantissa, int& decimals) n
 // the form and the findings that follow from them, so a frame of a shape
 // seen before skips the catalog lookups and goes straight to its data. The
 // results are the same with or without it (tested, and compared by the
-// decode fuzzers). One per thread; 128 slots, a few kilobytes.
+// decode fuzzers). One per thread; 128 slots by default (a few kilobytes),
+// rounded up to a power of two.
 class DecodeCache {
  public:
-  DecodeCache();
+  explicit DecodeCache(std::size_t slots = 128);
   ~DecodeCache();
   DecodeCache(const DecodeCache&) = delete;
   DecodeCache& operator=(const DecodeCache&) = delete;
@@ -58,6 +59,7 @@ class DecodeCache {
 
  private:
   std::unique_ptr<Slot[]> slots_;
+  std::size_t mask_ = 0;  // slots - 1
 };
 
 struct DecodeOptions {
