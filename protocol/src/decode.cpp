@@ -660,14 +660,20 @@ struct DecodeCache::Slot {
 
 static_assert(static_cast<int>(Model::sip) < 8 && static_cast<int>(Header::tmp_quirk) < 8);
 
-DecodeCache::DecodeCache(std::size_t slots)
-    : slots_(std::make_unique<Slot[]>(std::bit_ceil(std::max<std::size_t>(slots, 1)))),
-      mask_(std::bit_ceil(std::max<std::size_t>(slots, 1)) - 1) {}
+DecodeCache::DecodeCache(std::size_t slots) {
+  const std::size_t n = std::bit_ceil(std::clamp<std::size_t>(slots, 1, std::size_t{1} << 20));
+  slots_ = std::make_unique<Slot[]>(n);
+  shift_ = 32 - static_cast<unsigned>(std::countr_zero(n));
+}
 DecodeCache::~DecodeCache() = default;
 
 DecodeCache::Slot& DecodeCache::slot(std::uint64_t key) noexcept {
-  Slot& s = slots_[static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 32) & mask_];
+  // the top bits of the product: every bit of the key reaches them (the low
+  // bits of a product see only the key's low bits, where shapes of different
+  // identifiers look alike)
+  Slot& s = slots_[static_cast<std::size_t>(((key * 0x9E3779B97F4A7C15ull) >> 32) >> shift_)];
   if (s.key != key) {  // another shape's: forget it all
+    ++misses_;
     s.key = key;
     s.known = false;
     s.plan = nullptr;

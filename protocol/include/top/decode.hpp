@@ -56,10 +56,13 @@ class DecodeCache {
 
   struct Slot;  // decode.cpp
   Slot& slot(std::uint64_t key) noexcept;
+  // Shapes looked up that their slot did not hold (first sight or evicted).
+  std::uint64_t misses() const noexcept { return misses_; }
 
  private:
   std::unique_ptr<Slot[]> slots_;
-  std::size_t mask_ = 0;  // slots - 1
+  std::uint64_t misses_ = 0;
+  unsigned shift_ = 32;  // a slot is the top log2(slots) bits of a 32-bit hash
 };
 
 struct DecodeOptions {
