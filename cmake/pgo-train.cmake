@@ -12,11 +12,13 @@ endforeach()
 file(REMOVE_RECURSE ${DATA} ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 
-# Runs a tool; exit statuses 0-2 are verdicts (findings, unreadable input),
-# anything else (a crash) stops the build.
+# Runs a tool; exit statuses 0 and 1 are verdicts (1: a finding is an
+# error). Anything else stops the build: 2 (bad usage or unreadable input)
+# would otherwise leave that path out of the profile without a word, and a
+# crash is a crash.
 function(train)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_QUIET ERROR_QUIET)
-  if(NOT rc MATCHES "^[012]$")
+  if(NOT rc MATCHES "^[01]$")
     list(JOIN ARGN " " cmd)
     message(FATAL_ERROR "pgo-train: ${cmd}: ${rc}")
   endif()
