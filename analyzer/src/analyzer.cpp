@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 
@@ -248,6 +249,14 @@ struct Held {
   std::int64_t ts;
 };
 
+// Why a request may go unanswered, as far as the capture shows.
+enum class Cause : std::uint8_t {
+  none,
+  bad_checksum,  // devices drop frames they cannot trust
+  uart_source,   // Topotek: source U over the network, answers go to the UART
+  unsupported    // not in the catalog, or not on the model
+};
+
 struct Pending {
   std::int64_t ts;
   std::uint64_t n;
@@ -257,6 +266,27 @@ struct Pending {
   char src, dst;
   std::string data;
   int dir;
+  Cause cause;
+};
+
+// A request that was answered, to recognise its copies.
+struct Answered {
+  char ident[3] = {};
+  char control = 0;
+  std::string data;
+  std::int64_t ts = kNoTime;  // of the request
+};
+
+// Requests that went unanswered while the device said nothing: reported as
+// one finding for the stretch.
+struct Silence {
+  std::uint64_t count = 0;
+  std::uint64_t first_n = 0, last_n = 0;
+  std::int64_t first_ts = kNoTime, last_ts = kNoTime;
+  Position pos;
+  int dir = 0;
+  std::string idents;  // "GAY, VER, PTZ"
+  std::string single;  // the message when the stretch holds one request
 };
 
 }  // namespace
@@ -278,6 +308,8 @@ struct Direction {
   // repeats
   std::string last_req;
   std::int64_t last_req_ts = kNoTime;
+  std::int64_t last_frame_ts = kNoTime;  // the last frame this direction sent
+  bool sent_frame = false;
 };
 
 struct Conversation {
@@ -285,6 +317,14 @@ struct Conversation {
   Transport transport{};
   Direction dir[2];
   bool has_dir1 = false;
+  // The direction the device sends in (-1: not known yet): from the ports
+  // (a well-known device port at one end), else from the first frame that
+  // only a device sends (addressed to a client, or answering a request), or
+  // the first stream switch (GAA, GIA, FAE) a client sends.
+  int device_dir = -1;
+  std::array<Answered, 8> answered{};
+  std::size_t answered_next = 0;
+  Silence silence;
   top::DialectDetector det;
   std::uint32_t observed = 0;
   Ring<Pending> pending;
@@ -482,6 +522,11 @@ struct Analyzer::Impl {
       if (A.opts_.model != top::Model::unknown) c->det.force(top::dialect_of(A.opts_.model));
       if (src.family) c->det.observe_port(src.port);
       if (dst.family) c->det.observe_port(dst.port);
+      if (src.family && dst.family) {
+        const bool s_dev = top::port_role(src.port) == top::PortRole::device;
+        const bool d_dev = top::port_role(dst.port) == top::PortRole::device;
+        if (s_dev != d_dev) c->device_dir = s_dev ? 0 : 1;
+      }
       c->st.id = c->id;
       c->st.a = c->dir[0].from;
       c->st.b = c->dir[0].to;
@@ -602,17 +647,7 @@ struct Analyzer::Impl {
     o.detail = A.opts_.detail;
     o.cache = &decode_cache;
     top::decode(f, o, e.decoded);
-    if (role == top::Role::response && top::role_from_addresses(f) == top::Role::request) {
-      bool has = false;
-      for (const auto& x : e.decoded.findings)
-        has |= x.code == top::FindingCode::unswapped_addresses;
-      if (!has)
-        e.decoded.findings.push_back(
-            top::make_finding(top::FindingCode::unswapped_addresses, 3, message([&] {
-                                return std::string("a response addressed ") + f.src + " to " +
-                                       f.dst + " (the request's order; some simulators)";
-                              })));
-    }
+    if (role == top::Role::response) note_device_form(f, e.decoded);
     e.frame = &f;
     // the worst severity and the bad checksum in one pass
     e.worst = top::Severity::info;
@@ -623,6 +658,51 @@ struct Analyzer::Impl {
     }
     for (const top::Finding& x : e.decoded.findings) e.worst = std::max(e.worst, x.severity);
     return e;
+  }
+
+  // A frame from the device in a form other than the document's rule (the
+  // request's address order, #TP with another length): named with the
+  // source that records the form (top/device.hpp), or as seen in some
+  // simulators when nothing does.
+  void note_device_form(const top::Frame& f, top::Decoded& dec) {
+    const bool unswapped = top::role_from_addresses(f) == top::Role::request;
+    top::Finding* tp = nullptr;
+    top::Finding* un = nullptr;
+    for (top::Finding& x : dec.findings) {
+      if (x.code == top::FindingCode::tp_length && x.severity != top::Severity::info) tp = &x;
+      if (x.code == top::FindingCode::unswapped_addresses) un = &x;
+    }
+    if (!unswapped && !tp) return;
+    const top::StreamSpec* st = top::stream_of(dec.dialect, f.ident_view());
+    const bool push = st && st->sender == top::Sender::device;
+    const top::DeviceForm* rf = top::recorded_form(dec.dialect, A.opts_.model, f,
+                                                   push ? top::Sent::push : top::Sent::reply);
+    auto source = [&] {
+      return "; " + std::string(top::to_string(rf->source)) + ": " + std::string(rf->evidence);
+    };
+    if (unswapped && !un) {
+      dec.findings.push_back(top::make_finding(
+          top::FindingCode::unswapped_addresses, 3, message([&] {
+            if (!rf)
+              return std::string("a response addressed ") + f.src + " to " + f.dst +
+                     " (the request's order; some simulators)";
+            return std::string(f.ident_view()) + (push ? " push" : " reply") + " addressed " +
+                   f.src + " to " + f.dst + " (the request's order)" + source();
+          })));
+      un = &dec.findings.back();
+      if (tp) tp = &*std::find_if(dec.findings.begin(), dec.findings.end(), [](const auto& x) {
+        return x.code == top::FindingCode::tp_length;
+      });
+    } else if (un && rf && A.opts_.detail) {
+      un->message += source();
+    }
+    if (!rf) return;
+    if (un) un->quirk = rf->evidence;
+    if (tp) {
+      tp->severity = top::Severity::info;
+      tp->quirk = rf->evidence;
+      if (A.opts_.detail) tp->message += source();
+    }
   }
 
   static std::uint32_t pack(std::string_view id) {
@@ -665,19 +745,15 @@ struct Analyzer::Impl {
     }
     top::Dialect dialect = c.det.current();
     if (dialect == top::Dialect::unknown) dialect = top::dialect_from_frame(f);
+    if (c.device_dir < 0) learn_device(c, d, f, dialect);
+    // The device's frames are responses and pushes whatever their address
+    // order (real C12s push #tpUGCrGAC, client first); the client's are
+    // requests.
     top::Role role = top::Role::any;
-    if (top::is_client_address(f.src) && !top::is_client_address(f.dst) &&
-        c.pending_count(f.ident, 1 - d) > 0) {
-      // Addressed like a request, but it travels back to a client that asked
-      // the same: a response that kept the request's address order.
-      for (std::size_t i = 0; i < c.pending.size(); ++i) {
-        const Pending& p = c.pending[i];
-        if (p.dir != d && same_ident(p.ident, f.ident_view()) && p.src == f.src && p.dst == f.dst) {
-          role = top::Role::response;
-          break;
-        }
-      }
-    }
+    if (c.device_dir >= 0) role = d == c.device_dir ? top::Role::response : top::Role::request;
+    if (c.silence.count && (d == c.device_dir || d != c.silence.dir)) emit_silence(c);
+    D.last_frame_ts = ts;
+    D.sent_frame = true;
     const DecodedEntry& e = lookup(f, dialect, role);
     const top::Frame& fr = *e.frame;
 
@@ -697,7 +773,7 @@ struct Analyzer::Impl {
     if (e.decoded.role == top::Role::request)
       request(c, d, ev);
     else if (e.decoded.role == top::Role::response)
-      response(c, d, ev, dialect);
+      response(c, d, ev);
 
     if (ev.worst() > A.worst_) A.worst_ = ev.worst();
     for (const Note& n : ev.notes) ++acodes[static_cast<std::size_t>(n.code)];
@@ -720,21 +796,110 @@ struct Analyzer::Impl {
 
   // --- sessions ------------------------------------------------------------
 
+  // Learns which direction the device sends in from a frame of direction d,
+  // when the ports did not say: a frame addressed to a client, or one that
+  // answers a pending request of the other direction, comes from the
+  // device; a stream switch (GAA, GIA, FAE write) comes from a client.
+  void learn_device(Conversation& c, int d, const top::Frame& f, top::Dialect dialect) {
+    if (top::role_from_addresses(f) == top::Role::response) {
+      c.device_dir = d;
+      return;
+    }
+    if (c.pending_count(f.ident, 1 - d) > 0) {
+      for (std::size_t i = 0; i < c.pending.size(); ++i) {
+        const Pending& p = c.pending[i];
+        if (p.dir != d && same_ident(p.ident, f.ident_view())) {
+          c.device_dir = d;
+          return;
+        }
+      }
+    }
+    if (f.control == 'w' && dialect != top::Dialect::unknown &&
+        top::stream_enabled_by(dialect, f.ident_view()))
+      c.device_dir = 1 - d;
+  }
+
   static bool same_ident(const char a[3], std::string_view b) {
     return b.size() == 3 && a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
   }
 
   void unanswered(Conversation& c, const Pending& p, bool at_end) {
+    // A copy of a request that was answered (senders that send each frame
+    // several times) is not unanswered: the device answered one of them.
+    if (p.ts != kNoTime)
+      for (const Answered& a : c.answered)
+        if (a.ts != kNoTime && same_ident(p.ident, std::string_view(a.ident, 3)) &&
+            a.control == p.control && a.data == p.data &&
+            std::llabs(a.ts - p.ts) <= std::max<std::int64_t>(A.opts_.repeat_window_us, 0))
+          return;
     ++A.stats_.unanswered;
     const Direction& D = c.dir[p.dir];
+    const Direction& other = c.dir[1 - p.dir];
+    const bool silent = p.cause == Cause::none && p.ts != kNoTime &&
+                        (!other.sent_frame || other.last_frame_ts == kNoTime ||
+                         other.last_frame_ts < p.ts);
     std::string msg = message([&] {
-      return escape(std::string_view(p.ident, 3)) + " request (frame " + std::to_string(p.n) + ")" +
-             (at_end
-                  ? std::string(" got no response before the end of the capture")
-                  : " got no response within " + std::to_string(A.opts_.timeout_us / 1000) + " ms");
+      std::string m = escape(std::string_view(p.ident, 3)) + " request (frame " +
+                      std::to_string(p.n) + ")" +
+                      (at_end ? std::string(" got no response before the end of the capture")
+                              : " got no response within " +
+                                    std::to_string(A.opts_.timeout_us / 1000) + " ms");
+      switch (p.cause) {
+        case Cause::bad_checksum:
+          m += ": its checksum is bad, and devices drop such frames";
+          break;
+        case Cause::uart_source:
+          m += ": a Topotek request with source U over the network; the device answers U "
+               "requests on its UART only (the network client is P)";
+          break;
+        case Cause::unsupported:
+          m += ": the identifier is not supported on the model";
+          break;
+        case Cause::none:
+          break;
+      }
+      return m;
     });
+    if (silent) {
+      Silence& s = c.silence;
+      if (s.count && s.dir != p.dir) emit_silence(c);
+      if (s.count == 0) {
+        s.first_n = p.n;
+        s.first_ts = p.ts;
+        s.pos = p.pos;
+        s.dir = p.dir;
+        s.idents.clear();
+        s.single = std::move(msg);
+      }
+      ++s.count;
+      s.last_n = p.n;
+      s.last_ts = p.ts;
+      const std::string id = escape(std::string_view(p.ident, 3));
+      if (s.idents.find(id) == std::string::npos && s.idents.size() < 64)
+        s.idents += (s.idents.empty() ? "" : ", ") + id;
+      return;
+    }
     note_event(p.ts, p.pos, c.transport, &c, &D.from, &D.to,
                Note{ACode::unanswered, default_severity(ACode::unanswered), std::move(msg), p.n});
+  }
+
+  // One finding for requests that went unanswered while the device said
+  // nothing (the first request's message when it is alone).
+  void emit_silence(Conversation& c) {
+    Silence& s = c.silence;
+    if (s.count == 0) return;
+    const Direction& D = c.dir[s.dir];
+    std::string msg = s.count == 1 ? std::move(s.single) : message([&] {
+      char span[32];
+      std::snprintf(span, sizeof span, "%.3f", static_cast<double>(s.last_ts - s.first_ts) / 1e6);
+      return "the device was silent: " + std::to_string(s.count) + " requests (" + s.idents +
+             ") from frame " + std::to_string(s.first_n) + " to frame " +
+             std::to_string(s.last_n) + " over " + span + " s got no response";
+    });
+    note_event(s.first_ts, s.pos, c.transport, &c, &D.from, &D.to,
+               Note{ACode::unanswered, default_severity(ACode::unanswered), std::move(msg),
+                    s.first_n});
+    s = Silence{};
   }
 
   void expire(Conversation& c, std::int64_t ts) {
@@ -760,7 +925,21 @@ struct Analyzer::Impl {
     D.last_req = f.raw;
     D.last_req_ts = ev.ts;
     std::string_view id = f.ident_view();
-    if (f.control == 'w' && (id == "GAA" || id == "GIA")) {
+    const top::Dialect dialect = ev.entry->decoded.dialect;
+    // A client stream's frame (FAI after FAE) expects no answer.
+    for (StreamStat& s : c.st.streams) {
+      if (s.from_client && s.ident == id) {
+        ++s.frames;
+        if (ev.ts != kNoTime) {
+          if (s.first == kNoTime) s.first = ev.ts;
+          s.last = ev.ts;
+        }
+        return;
+      }
+    }
+    const top::StreamSpec* switched =
+        f.control == 'w' ? top::stream_enabled_by(dialect, id) : nullptr;
+    if (switched) {
       unsigned v = 0;
       bool ok = !f.data().empty();
       for (char ch : f.data()) {
@@ -774,7 +953,7 @@ struct Analyzer::Impl {
           v = v * 16 + static_cast<unsigned>(x);
       }
       if (ok) {
-        std::string sid = id == "GAA" ? "GAC" : "GIC";
+        const std::string sid(switched->push);
         auto& streams = c.st.streams;
         auto s = std::find_if(streams.begin(), streams.end(),
                               [&](const StreamStat& x) { return x.ident == sid; });
@@ -782,14 +961,16 @@ struct Analyzer::Impl {
           // disabled: keep the measured figures
         } else {
           if (s == streams.end()) {
-            streams.push_back(StreamStat{sid, 0, 0, kNoTime, kNoTime});
+            streams.push_back(StreamStat{});
             s = streams.end() - 1;
           } else {
             check_stream(c, *s);
-            *s = StreamStat{sid, 0, 0, kNoTime, kNoTime};
+            *s = StreamStat{};
           }
-          bool topotek = ev.entry->decoded.dialect == top::Dialect::topotek;
-          s->asked_hz = topotek ? 0 : static_cast<double>(v);
+          s->ident = sid;
+          s->asked_by = std::string(switched->request);
+          s->from_client = switched->sender == top::Sender::client;
+          s->asked_hz = switched->rate_in_data ? static_cast<double>(v) : 0;
         }
       }
     }
@@ -808,11 +989,24 @@ struct Analyzer::Impl {
     p.data.clear();  // append into the slot's buffer: cheaper than assign's replace
     p.data.append(f.data());
     p.dir = d;
+    p.cause = Cause::none;
+    if (ev.entry->bad_checksum) {
+      p.cause = Cause::bad_checksum;
+    } else if (dialect == top::Dialect::topotek && f.src == 'U' &&
+               c.transport != Transport::serial) {
+      p.cause = Cause::uart_source;
+    } else {
+      for (const top::Finding& x : ev.entry->decoded.findings)
+        if (x.code == top::FindingCode::unknown_ident ||
+            (x.code == top::FindingCode::unsupported_on_model &&
+             x.severity == top::Severity::error))
+          p.cause = Cause::unsupported;
+    }
     c.count_pending(p, true);
     c.pending_changed();
   }
 
-  void response(Conversation& c, int d, FrameEvent& ev, top::Dialect dialect) {
+  void response(Conversation& c, int d, FrameEvent& ev) {
     const top::Frame& f = *ev.entry->frame;
     ++A.stats_.responses;
     ++c.st.responses;
@@ -861,7 +1055,10 @@ struct Analyzer::Impl {
         ev.latency_us = ev.ts - m->ts;
         latency_of(pack(std::string_view(m->ident, 3))).add(ev.latency_us);
       }
-      bool exempt = dialect == top::Dialect::topotek && (id == "REC" || id == "CAP");
+      // Writes answered in a layout of their own (Topotek REC/CAP file index,
+      // LON/LAT, LRF) are not echoes.
+      const top::CommandSpec* cmd = ev.entry->decoded.command;
+      bool exempt = cmd && top::write_reply(*cmd) != top::WriteReply::echo;
       if (!ere && !exempt && m->control == 'w' && f.control == 'w' && !echoed)
         ev.notes.push_back(
             Note{ACode::echo_differs, default_severity(ACode::echo_differs), message([&] {
@@ -869,6 +1066,11 @@ struct Analyzer::Impl {
                           escape(f.data()) + "\", the write carried \"" + escape(m->data) + "\"";
                  }),
                  ev.n});
+      Answered& a = c.answered[c.answered_next++ % c.answered.size()];
+      std::memcpy(a.ident, m->ident, 3);
+      a.control = m->control;
+      a.data = m->data;
+      a.ts = m->ts;
       c.erase_pending(mi);
       return;
     }
@@ -900,7 +1102,7 @@ struct Analyzer::Impl {
       return r.ec == std::errc() ? std::string(b, r.ptr) : std::to_string(v);
     };
     std::string msg = message([&] {
-      return s.ident + " stream runs at " + fixed(m, 1) + " Hz, GAA asked for " +
+      return s.ident + " stream runs at " + fixed(m, 1) + " Hz, " + s.asked_by + " asked for " +
              fixed(s.asked_hz, 0) + " Hz (" + std::to_string(s.frames) + " frames)";
     });
     note_event(s.last, Position{}, c.transport, &c, &c.dir[0].from, &c.dir[0].to,
@@ -1024,6 +1226,7 @@ struct Analyzer::Impl {
       unanswered(c, c.pending.front(), true);
       c.pop_pending();
     }
+    emit_silence(c);
     for (const StreamStat& s : c.st.streams) check_stream(c, s);
     c.st.dialect = c.det.current();
     if (A.stats_.conversations.size() < kMaxStatsConversations)

@@ -62,6 +62,32 @@ int main(int argc, char** argv) {
                  "UDP: send replies to this client port (0: the request's source port; "
                  "default 9004 for sip as the Topotek document says, 0 otherwise)");
   app.add_flag("-v,--verbose", verbose, "log every datagram");
+  std::string profile_name = "field", push_order, push_header, reply_order, reply_header;
+  std::string yaw_sign, pitch_sign, field_codes;
+  bool describe = false;
+  app.add_option("--profile", profile_name,
+                 "field: follow field evidence, then the document's examples, then its rules; "
+                 "document: the document's examples, then its rules")
+      ->check(CLI::IsMember({"field", "document"}))
+      ->capture_default_str();
+  app.add_option("--push-order", push_order, "attitude push addresses: swapped|request-order")
+      ->check(CLI::IsMember({"swapped", "request-order"}));
+  app.add_option("--push-header", push_header, "attitude push header: TP|tp")
+      ->check(CLI::IsMember({"TP", "tp"}));
+  app.add_option("--reply-order", reply_order, "read reply addresses: swapped|request-order")
+      ->check(CLI::IsMember({"swapped", "request-order"}));
+  app.add_option("--reply-header", reply_header, "read reply header (2-15 data chars): TP|tp")
+      ->check(CLI::IsMember({"TP", "tp"}));
+  app.add_option("--yaw-sign", yaw_sign, "attitude yaw against the command: normal|inverted")
+      ->check(CLI::IsMember({"normal", "inverted"}));
+  app.add_option("--pitch-sign", pitch_sign, "attitude pitch against the command: normal|inverted")
+      ->check(CLI::IsMember({"normal", "inverted"}));
+  app.add_option("--field-codes", field_codes,
+                 "accept the command values field evidence says the model takes (C13 PTZ): "
+                 "on|off")
+      ->check(CLI::IsMember({"on", "off"}));
+  app.add_flag("--describe", describe,
+               "print the device's traits with their sources (profile, options) and exit");
   CLI11_PARSE(app, argc, argv);
 
   auto model = top::model_from_string(model_name);
@@ -78,6 +104,29 @@ int main(int argc, char** argv) {
   }
   topsim::ServerConfig cfg;
   cfg.model = *model;
+  topsim::DeviceOptions& dopt = cfg.device_options;
+  dopt.profile = *top::profile_from_string(profile_name);
+  auto order = [](const std::string& v) {
+    return v == "swapped" ? top::Order::swapped : top::Order::request_order;
+  };
+  auto header = [](const std::string& v) {
+    return v == "TP" ? top::Header::fixed : top::Header::variable;
+  };
+  if (!push_order.empty()) dopt.push_order = order(push_order);
+  if (!push_header.empty()) dopt.push_header = header(push_header);
+  if (!reply_order.empty()) dopt.reply_order = order(reply_order);
+  if (!reply_header.empty()) dopt.reply_header = header(reply_header);
+  if (!yaw_sign.empty()) dopt.yaw_inverted = yaw_sign == "inverted";
+  if (!pitch_sign.empty()) dopt.pitch_inverted = pitch_sign == "inverted";
+  if (!field_codes.empty()) dopt.field_ptz = field_codes == "on";
+  if (describe) {
+    const topsim::Device dev(*model, dopt);
+    std::printf("topsim %s, profile %s\n", model_name.c_str(), profile_name.c_str());
+    for (const auto& t : dev.describe())
+      std::printf("  %-24s %-22s %-17s %s\n", t.name.c_str(), t.value.c_str(), t.source.c_str(),
+                  t.evidence.c_str());
+    return std::fflush(stdout) == 0 && !std::ferror(stdout) ? 0 : 2;
+  }
   cfg.seed = seed;
   cfg.record = record;
   cfg.baud = baud;
@@ -99,6 +148,10 @@ int main(int argc, char** argv) {
     // SkyDroid 2.1.1: the C10 also answers on UDP 9002.
     if (cfg.kind == topsim::TransportKind::udp && spec.empty() && *model == top::Model::c10)
       cfg.extra_udp_ports.push_back(9002);
+    // Field: some C12 clients also send to UDP 12580 (top/device.hpp).
+    if (const top::Trait* t = top::find_trait(top::TraitKind::extra_port, *model, dopt.profile);
+        t && cfg.kind == topsim::TransportKind::udp && spec.empty())
+      cfg.extra_udp_ports.push_back(static_cast<std::uint16_t>(t->value));
   }
   cfg.reply_port = reply_port >= 0 ? static_cast<std::uint16_t>(reply_port)
                    : top::dialect_of(*model) == top::Dialect::topotek ? std::uint16_t{9004}

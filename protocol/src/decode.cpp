@@ -10,6 +10,7 @@
 #include <cstring>
 
 #include "chars.hpp"
+#include "top/device.hpp"
 #include "top/dialect.hpp"
 
 namespace top {
@@ -559,10 +560,18 @@ void decode_shape(Ctx& ctx, const Frame& frame, const DecodeOptions& opts, Diale
                 std::string(d == Dialect::unknown ? "TOP" : to_string(d)) + " catalog");
     return;
   }
-  if (opts.model != Model::unknown && !cmd->supports(opts.model))
+  if (opts.model != Model::unknown && !cmd->supports(opts.model)) {
+    // Not in the document for the model: a warning when field evidence says
+    // the firmware takes it anyway (device.hpp), an error when nothing does.
+    const FieldSupport* fs = field_supported(d, opts.model, ident, std::nullopt);
     ctx.add(FindingCode::unsupported_on_model, ident_at,
             std::string(ident) + " (" + std::string(cmd->section) + ") is not listed for " +
-                std::string(to_string(opts.model)));
+                std::string(to_string(opts.model)) +
+                (fs ? "; field: " + std::string(fs->evidence) : std::string()));
+    Finding& x = out.findings.back();
+    x.severity = fs ? Severity::warning : Severity::error;
+    if (fs) x.quirk = fs->evidence;
+  }
   if (ident == "ERE")
     ctx.add(FindingCode::error_reply, ident_at,
             std::string("the device rejected a command as invalid (") + frame.src + " to " +

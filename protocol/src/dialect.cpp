@@ -20,6 +20,11 @@ bool is_top_port(std::uint16_t port) noexcept {
   return dialect_from_port(port) != Dialect::unknown;
 }
 
+PortRole port_role(std::uint16_t port) noexcept {
+  if (port == 9004) return PortRole::client;  // Topotek: the client's port
+  return is_top_port(port) ? PortRole::device : PortRole::unknown;
+}
+
 Dialect dialect_from_frame(const Frame& f) noexcept {
   if (f.src == 'P' || f.dst == 'P') return Dialect::topotek;
   if (f.header == Header::ext8 || f.header == Header::ext16 || f.header == Header::tmp_quirk)

@@ -77,6 +77,12 @@ bool catalog_rejects(const top::Decoded& dec) {
 
 Device::Device(top::Model model, DeviceOptions opts)
     : model_(model), dialect_(top::dialect_of(model)), opts_(opts) {
+  const top::Profile p = opts_.profile;
+  yaw_inverted_ = opts_.yaw_inverted.value_or(
+      top::find_trait(top::TraitKind::yaw_inverted, model, p) != nullptr);
+  pitch_inverted_ = opts_.pitch_inverted.value_or(
+      top::find_trait(top::TraitKind::pitch_inverted, model, p) != nullptr);
+  field_ptz_ = opts_.field_ptz.value_or(p == top::Profile::field);
   if (dialect_ == Dialect::topotek) {
     axes_[0].min = -150;
     axes_[0].max = 150;
@@ -119,6 +125,17 @@ void Device::advance(std::uint64_t now_us) noexcept {
   }
 }
 
+bool Device::takes_in_field(const top::Decoded& dec) const {
+  // The only rejection field evidence lifts: unsupported-on-model for a
+  // value the field says the model's firmware takes (C13 PTZ).
+  if (!field_ptz_ || !dec.command || dec.fields.empty() || !dec.fields[0].valid) return false;
+  for (const auto& f : dec.findings)
+    if (f.code != FindingCode::unsupported_on_model && f.severity != top::Severity::info)
+      return false;
+  return top::field_supported(dialect_, model_, dec.command->ident, dec.fields[0].integer) !=
+         nullptr;
+}
+
 bool Device::accepts(const Frame& f, Link link) const noexcept {
   if (dialect_ != Dialect::topotek) return true;
   // Topotek answers to the interface the source byte names.
@@ -143,7 +160,118 @@ void Device::reply_error(const Frame& req, std::vector<std::string>& out) const 
 }
 
 std::string Device::attitude_data() const {
-  return hex_s16(axes_[0].angle) + hex_s16(axes_[1].angle) + hex_s16(axes_[2].angle);
+  // C12 field trait: the attitude reports the opposite sign of the command.
+  const double yaw = yaw_inverted_ ? -axes_[0].angle : axes_[0].angle;
+  const double pitch = pitch_inverted_ ? -axes_[1].angle : axes_[1].angle;
+  return hex_s16(yaw) + hex_s16(pitch) + hex_s16(axes_[2].angle);
+}
+
+top::DeviceForm Device::form_of(std::string_view ident, top::Sent sent,
+                                std::size_t length) const {
+  top::DeviceForm f = top::device_form(model_, ident, 'r', sent, length, opts_.profile);
+  const auto& order = sent == top::Sent::push ? opts_.push_order : opts_.reply_order;
+  const auto& header = sent == top::Sent::push ? opts_.push_header : opts_.reply_header;
+  if (order) f.order = *order;
+  if (header) f.header = *header;
+  if (!opts_.swap_addresses) f.order = top::Order::request_order;
+  // A header the length cannot take (#TP/#tp past 15 chars) is the rule's.
+  if (length > top::max_data_hex) f.header = top::choose_header(dialect_, 'G', length);
+  return f;
+}
+
+std::string Device::build(const top::DeviceForm& form, char client, char device, char control,
+                          std::string_view ident, std::string_view data) const {
+  top::BuildSpec spec;
+  spec.header = form.header;
+  const bool swapped = form.order == top::Order::swapped;
+  spec.src = swapped ? device : client;
+  spec.dst = swapped ? client : device;
+  spec.control = control;
+  spec.ident = ident;
+  spec.data = data;
+  return top::build_frame(spec);
+}
+
+std::vector<Device::TraitLine> Device::describe() const {
+  std::vector<TraitLine> out;
+  auto src = [](const top::DeviceForm& f) { return std::string(top::to_string(f.source)); };
+  auto header = [](top::Header h) { return std::string(top::to_string(h)); };
+  auto order = [](top::Order o) {
+    return o == top::Order::swapped ? std::string("swapped") : std::string("request-order");
+  };
+  const top::StreamSpec* push = nullptr;
+  for (const top::StreamSpec& s : top::streams()) {
+    const top::CommandSpec* req = top::find_command(dialect_, s.request);
+    if (s.dialect == dialect_ && s.sender == top::Sender::device && req && req->supports(model_)) {
+      push = &s;
+      break;
+    }
+  }
+  if (push) {
+    const top::DeviceForm f = form_of(push->push, top::Sent::push, 12);
+    const top::DeviceForm p =
+        top::device_form(model_, push->push, 'r', top::Sent::push, 12, opts_.profile);
+    out.push_back({std::string(push->push) + "-push-header", header(f.header),
+                   opts_.push_header ? "option" : src(p), std::string(p.evidence)});
+    out.push_back({std::string(push->push) + "-push-order", order(f.order),
+                   opts_.push_order || !opts_.swap_addresses ? "option" : src(p),
+                   std::string(p.evidence)});
+  }
+  std::vector<std::string_view> seen;
+  for (const top::DeviceForm& r : top::device_forms()) {
+    if (r.sent != top::Sent::reply || r.dialect != dialect_ ||
+        !(r.models & top::model_bit(model_)) ||
+        std::find(seen.begin(), seen.end(), r.ident) != seen.end())
+      continue;
+    seen.push_back(r.ident);
+    std::size_t len = 4;
+    if (const top::CommandSpec* c = top::find_command(dialect_, r.ident))
+      for (const top::FormSpec& x : c->forms)
+        if (x.control == r.control && x.role == top::Role::response) len = x.min_length;
+    const top::DeviceForm p =
+        top::device_form(model_, r.ident, r.control, top::Sent::reply, len, opts_.profile);
+    const top::DeviceForm f = form_of(r.ident, top::Sent::reply, len);
+    out.push_back({std::string(r.ident) + "-reply", header(f.header) + " " + order(f.order),
+                   opts_.reply_header || opts_.reply_order || !opts_.swap_addresses ? "option"
+                                                                                    : src(p),
+                   std::string(p.evidence)});
+  }
+  {
+    const top::DeviceForm rule = top::device_form(model_, "???", 'r', top::Sent::reply, 4,
+                                                  opts_.profile);
+    out.push_back({"reply", opts_.swap_addresses ? "swapped" : "request-order",
+                   opts_.swap_addresses ? "document rule" : "option", std::string(rule.evidence)});
+  }
+  auto trait = [&](top::TraitKind k, const std::optional<bool>& opt, bool on) {
+    const top::Trait* t = top::find_trait(k, model_, top::Profile::field);
+    if (!t && !on) return;
+    const bool from_profile = top::find_trait(k, model_, opts_.profile) != nullptr;
+    out.push_back({std::string(top::to_string(k)), on ? "on" : "off",
+                   opt ? "option"
+                   : from_profile ? std::string(top::to_string(t->source))
+                                  : "document rule",
+                   t ? std::string(t->evidence) : std::string()});
+  };
+  trait(top::TraitKind::yaw_inverted, opts_.yaw_inverted, yaw_inverted_);
+  trait(top::TraitKind::pitch_inverted, opts_.pitch_inverted, pitch_inverted_);
+  for (const top::FieldSupport& fs : top::field_support()) {
+    if (fs.dialect != dialect_ || !(fs.models & top::model_bit(model_))) continue;
+    std::string v;
+    for (std::int64_t x : fs.values) v += (v.empty() ? "" : ",") + hex_u(static_cast<std::uint64_t>(x), 2);
+    out.push_back({std::string(fs.ident) + "-field-codes", field_ptz_ ? v : "off",
+                   opts_.field_ptz ? "option" : field_ptz_ ? "field" : "document rule",
+                   std::string(fs.evidence)});
+  }
+  for (top::TraitKind k : {top::TraitKind::answers_to_source, top::TraitKind::extra_port,
+                           top::TraitKind::link_by_source, top::TraitKind::speed_refresh}) {
+    const top::Trait* t = top::find_trait(k, model_, opts_.profile);
+    if (!t) continue;
+    std::string value = t->value ? std::to_string(t->value) : "on";
+    if (k == top::TraitKind::speed_refresh) value = std::to_string(opts_.speed_hold_ms) + " ms";
+    out.push_back({std::string(top::to_string(k)), value, std::string(top::to_string(t->source)),
+                   std::string(t->evidence)});
+  }
+  return out;
 }
 
 void Device::start_stream(std::string_view ident, std::uint32_t hz, char dst,
@@ -172,15 +300,9 @@ void Device::poll(std::uint64_t now_us, std::vector<std::string>& out) {
     if (s.period_us == 0) continue;
     // Never emit a backlog: a late poll sends one frame and catches up.
     if (s.next_us > now_us) continue;
-    top::BuildSpec spec;
-    spec.header = top::choose_header(dialect_, 'G', 12);
-    spec.src = opts_.swap_addresses ? 'G' : s.dst;
-    spec.dst = opts_.swap_addresses ? s.dst : 'G';
-    spec.control = 'r';
-    spec.ident = s.ident;
     const std::string data = attitude_data();
-    spec.data = data;
-    out.push_back(top::build_frame(spec));
+    out.push_back(
+        build(form_of(s.ident, top::Sent::push, data.size()), s.dst, 'G', 'r', s.ident, data));
     s.next_us += s.period_us;
     if (s.next_us <= now_us) s.next_us = now_us + s.period_us;
   }
@@ -296,6 +418,14 @@ bool Device::handle_special(const Frame& req, const top::Decoded& dec, std::uint
       x.has_target = false;
     } else if (act == 5) {
       for (Axis& x : axes_) x.target = 0, x.target_speed = 9.9, x.has_target = true, x.rate = 0;
+    } else if (act >= 0x0E && act <= 0x13 && field_ptz_ &&
+               top::field_supported(dialect_, model_, id, act)) {
+      // C13 field evidence: 0E/0F pitch +/-, 10/11 yaw +/-, 12/13 roll +/-.
+      static constexpr int kAxis[] = {1, 0, 2};
+      Axis& x = axes_[kAxis[(act - 0x0E) / 2]];
+      x.rate = (act % 2 == 0) ? kPtzRate : -kPtzRate;
+      x.rate_until = now_us + std::uint64_t{opts_.speed_hold_ms} * 1000;
+      x.has_target = false;
     }
   } else if (id == "GAA") {
     const auto* r = field(dec, "rate");
@@ -343,7 +473,8 @@ void Device::handle(const Frame& req, Link link, std::uint64_t now_us,
       handle_special(req, dec, now_us, out))
     return;
   // A request laid out as a response form (a 1-char VER read) is invalid too.
-  if (!dec.command || catalog_rejects(dec) || !dec.form || dec.form->role == top::Role::response) {
+  if (!dec.command || (catalog_rejects(dec) && !takes_in_field(dec)) || !dec.form ||
+      dec.form->role == top::Role::response) {
     reply_error(req, out);
     return;
   }
@@ -389,7 +520,8 @@ void Device::handle(const Frame& req, Link link, std::uint64_t now_us,
     out.push_back(std::move(f));
     return;
   }
-  out.push_back(make(top::choose_header(dialect_, cmd.address, data.size()), req, 'r', id, data));
+  const top::DeviceForm form = form_of(id, top::Sent::reply, data.size());
+  out.push_back(build(form, req.src, req.dst, 'r', id, data));
 }
 
 Session::Session(Device& device, Link link, bool datagram)

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -20,6 +21,17 @@ namespace topsim {
 enum class Link : std::uint8_t { network, uart };
 
 struct DeviceOptions {
+  // Where the device's behaviour comes from (top/device.hpp): field
+  // evidence, then the document's examples, then its rules; or the
+  // document alone. Each trait below overrides the profile when set.
+  top::Profile profile = top::Profile::field;
+  std::optional<top::Order> push_order;    // GAC/GIC pushes
+  std::optional<top::Header> push_header;  // fixed (#TP) or variable (#tp)
+  std::optional<top::Order> reply_order;   // replies to reads
+  std::optional<top::Header> reply_header;
+  std::optional<bool> yaw_inverted;    // attitude reports -yaw of the command
+  std::optional<bool> pitch_inverted;  // the same for pitch
+  std::optional<bool> field_ptz;       // C13: PTZ codes the field says work
   bool swap_addresses = true;  // false: the no-swap fault (client first)
   bool tmp_quirk = false;      // answer TMP in the malformed #tpDU16wTMP form
   // A speed command holds for this long unless refreshed (field notes:
@@ -55,6 +67,15 @@ class Device {
   explicit Device(top::Model model, DeviceOptions opts = {});
 
   top::Model model() const noexcept { return model_; }
+  // One trait as the device applies it, with its source.
+  struct TraitLine {
+    std::string name;   // the switch: "push-order"
+    std::string value;  // "request-order"
+    std::string source;  // "field", "document example", "document rule", "option"
+    std::string evidence;
+  };
+  // Every trait of this device (for `topsim --describe`).
+  std::vector<TraitLine> describe() const;
   top::Dialect dialect() const noexcept { return dialect_; }
   const DeviceOptions& options() const noexcept { return opts_; }
 
@@ -90,10 +111,17 @@ class Device {
   void start_stream(std::string_view ident, std::uint32_t hz, char dst, std::uint64_t now_us);
   std::string attitude_data() const;
   std::string read_data(const top::CommandSpec& cmd, const top::FormSpec& form) const;
+  // The form of a reply or push of `ident` with `length` data chars: the
+  // profile's, then the options' overrides, then the no-swap fault.
+  top::DeviceForm form_of(std::string_view ident, top::Sent sent, std::size_t length) const;
+  std::string build(const top::DeviceForm& form, char client, char device, char control,
+                    std::string_view ident, std::string_view data) const;
+  bool takes_in_field(const top::Decoded& dec) const;
 
   top::Model model_;
   top::Dialect dialect_;
   DeviceOptions opts_;
+  bool yaw_inverted_ = false, pitch_inverted_ = false, field_ptz_ = false;
   Axis axes_[3];
   std::uint64_t now_us_ = 0;
   bool recording_ = false;

@@ -15,6 +15,12 @@ Dialect dialect_from_port(std::uint16_t port) noexcept;
 // True for the ports the documents and field reports use for TOP traffic.
 bool is_top_port(std::uint16_t port) noexcept;
 
+// Which end of a conversation a well-known port belongs to: the device
+// (SkyDroid 5000, 9002, 12580; Topotek 9003) or the client (Topotek 9004,
+// the port the Topotek document sends replies to).
+enum class PortRole : std::uint8_t { unknown, device, client };
+PortRole port_role(std::uint16_t port) noexcept;
+
 // The dialect one frame points to, unknown when it says nothing: a P
 // address, an extended header or an identifier only Topotek defines point
 // to topotek; an identifier only SkyDroid defines points to skydroid.

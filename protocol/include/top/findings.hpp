@@ -63,8 +63,10 @@ std::string_view to_string(Severity s) noexcept;
     "defines")                                                                                     \
   X(unknown_ident, "unknown-ident", warning,                                                       \
     "the identifier is not in the catalog of the dialect")                                         \
-  X(unsupported_on_model, "unsupported-on-model", warning,                                         \
-    "the command exists but the document does not list it for the model")                          \
+  X(unsupported_on_model, "unsupported-on-model", error,                                           \
+    "the command exists but neither the document nor field evidence lists it "                     \
+    "for the model; a warning naming the evidence when the field says the "                        \
+    "firmware takes it (C13 PTZ)")                                                                 \
   X(unsupported_control, "unsupported-control", warning,                                           \
     "the command exists but not in this form (a read of a write-only "                             \
     "command or the reverse)")                                                                     \

@@ -3,6 +3,7 @@
 
 #include "top/catalog.hpp"
 #include "top/decode.hpp"
+#include "top/device.hpp"
 #include "top/dialect.hpp"
 #include "top/findings.hpp"
 #include "top/frame.hpp"

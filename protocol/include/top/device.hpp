@@ -1,0 +1,152 @@
+// Device behaviour: what a camera sends, as the documents write it and as
+// real devices (and the clients written against them) show it.
+//
+// The catalog (catalog.hpp) says what a frame means; this says how a device
+// behaves: which request turns on which stream, what a device answers to a
+// write, the header and address order of each reply and push, and traits
+// seen on real firmware. Every fact carries its source: a document example,
+// a document rule, or field evidence with a one-line note. topsim's
+// profiles, topdump's roles and topconf's matrices read it from here;
+// docs/FIELD.md is generated from it.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string_view>
+
+#include "top/catalog.hpp"
+#include "top/frame.hpp"
+
+namespace top {
+
+// Where a fact about a device comes from.
+enum class Source : std::uint8_t {
+  document_example,  // an example frame of the document
+  document_rule,     // a rule of the document (2.3.1: a reply swaps the addresses)
+  field              // what real devices or clients written against them show
+};
+std::string_view to_string(Source s) noexcept;  // "document example", ...
+
+// What topsim follows. field: field evidence, then the document's examples,
+// then its rules. document: the document's examples, then its rules.
+enum class Profile : std::uint8_t { field, document };
+std::string_view to_string(Profile p) noexcept;  // "field", "document"
+std::optional<Profile> profile_from_string(std::string_view s) noexcept;
+
+// Who sends the frames of a stream.
+enum class Sender : std::uint8_t { device, client };
+
+// A stream: a write of `request` turns on frames of `push`.
+struct StreamSpec {
+  Dialect dialect = Dialect::unknown;
+  std::string_view request;  // "GAA"
+  std::string_view push;     // "GAC"
+  Sender sender = Sender::device;
+  // The write's data is the rate in Hz (SkyDroid GAA 01-64); otherwise it is
+  // on (01) or off (00) and the rate is the device's own.
+  bool rate_in_data = false;
+  std::string_view section;  // where the document says so
+  std::string_view note;
+};
+
+// Every stream of both dialects.
+std::span<const StreamSpec> streams() noexcept;
+// The stream a write of `request` switches, or nullptr.
+const StreamSpec* stream_enabled_by(Dialect d, std::string_view request) noexcept;
+// The stream whose frames carry `push`, or nullptr.
+const StreamSpec* stream_of(Dialect d, std::string_view push) noexcept;
+
+// What a device answers to a valid write.
+enum class WriteReply : std::uint8_t {
+  echo,        // the write itself, addresses swapped (SkyDroid 2.3.1)
+  data,        // a reply layout of its own (Topotek LON/LAT target, LRF)
+  file_index,  // state and file index (Topotek 5.1 REC, 5.2 CAP)
+  nothing      // no answer (a stream of the client: FAI)
+};
+std::string_view to_string(WriteReply r) noexcept;
+// What a device answers to a write of `cmd` (ERE for an invalid one is the
+// dialect's rule, not the command's).
+WriteReply write_reply(const CommandSpec& cmd) noexcept;
+
+// The address order of a frame the device sends.
+enum class Order : std::uint8_t {
+  swapped,       // device first: the reply of 2.3.1 (#TPGU...)
+  request_order  // client first, as in the request (#tpUGCrGAC...)
+};
+std::string_view to_string(Order o) noexcept;  // "swapped", "request order"
+
+// Whether a device frame answers a request or is pushed by a stream.
+enum class Sent : std::uint8_t { reply, push };
+
+// One recorded form of a device frame: for these models, a `sent` frame of
+// `ident` with `control` comes with `header` in `order`.
+struct DeviceForm {
+  Dialect dialect = Dialect::unknown;
+  ModelSet models = 0;
+  std::string_view ident;
+  char control = 'r';
+  Sent sent = Sent::reply;
+  Header header = Header::fixed;
+  Order order = Order::swapped;
+  Source source = Source::document_rule;
+  std::string_view evidence;  // the example, or one line of field evidence
+};
+
+// Every recorded form (document examples and field evidence; the rule is
+// not listed: see device_form()).
+std::span<const DeviceForm> device_forms() noexcept;
+
+// The form a device of `model` uses for a frame of `ident`/`control` with
+// `data_length` bytes under `profile`: the first recorded form the profile
+// takes (field: field, then example; document: example), else the rule
+// (choose_header and swapped addresses), returned with source
+// document_rule and evidence naming the rule.
+DeviceForm device_form(Model model, std::string_view ident, char control, Sent sent,
+                       std::size_t data_length, Profile profile) noexcept;
+
+// The recorded form a device frame matches (its header and address order),
+// or nullptr: for topdump and topconf to name the source of a frame that
+// deviates from the rule. `model` unknown matches every model.
+const DeviceForm* recorded_form(Dialect d, Model model, const Frame& f, Sent sent) noexcept;
+
+// A trait of real firmware that is not a frame form.
+enum class TraitKind : std::uint8_t {
+  yaw_inverted,       // the attitude reports the opposite sign of the yaw commanded
+  pitch_inverted,     // the same for pitch
+  answers_to_source,  // the reply goes to the datagram's source address and port
+  extra_port,         // the device also listens on this UDP port
+  link_by_source,     // Topotek: answers only the link the source byte names
+  speed_refresh       // a speed command must be refreshed or the motors stop
+};
+std::string_view to_string(TraitKind k) noexcept;
+
+struct Trait {
+  TraitKind kind{};
+  Dialect dialect = Dialect::unknown;
+  ModelSet models = 0;
+  std::uint32_t value = 0;  // extra_port: the port; speed_refresh: ms
+  Source source = Source::field;
+  std::string_view evidence;
+};
+std::span<const Trait> traits() noexcept;
+// The trait of `kind` for `model` under `profile` (a field trait only under
+// the field profile), or nullptr.
+const Trait* find_trait(TraitKind kind, Model model, Profile profile) noexcept;
+
+// A command value the document does not list for a model but field
+// evidence says the firmware takes (C13 PTZ codes).
+struct FieldSupport {
+  Dialect dialect = Dialect::unknown;
+  ModelSet models = 0;
+  std::string_view ident;
+  std::span<const std::int64_t> values;  // the first field's values; empty: any
+  std::string_view evidence;
+};
+std::span<const FieldSupport> field_support() noexcept;
+// The field evidence that `model` takes `ident` with the first field's value
+// `value` (nullopt: any value), or nullptr.
+const FieldSupport* field_supported(Dialect d, Model model, std::string_view ident,
+                                    std::optional<std::int64_t> value) noexcept;
+
+}  // namespace top

@@ -1,0 +1,348 @@
+// Device behaviour tables: streams, write replies, recorded frame forms and
+// firmware traits, each with its source. See top/device.hpp.
+#include "top/device.hpp"
+
+#include <array>
+
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+
+namespace top {
+namespace {
+
+constexpr ModelSet c10 = model_bit(Model::c10);
+constexpr ModelSet c10pro = model_bit(Model::c10pro);
+constexpr ModelSet c12 = model_bit(Model::c12);
+constexpr ModelSet c13 = model_bit(Model::c13);
+constexpr ModelSet c20 = model_bit(Model::c20);
+constexpr ModelSet sip = model_bit(Model::sip);
+
+constexpr StreamSpec kStreams[] = {
+    {.dialect = Dialect::skydroid,
+     .request = "GAA",
+     .push = "GAC",
+     .rate_in_data = true,
+     .section = "SkyDroid 3.3.2",
+     .note = "GAA 01-64 (hex) pushes GAC at 1-100 Hz; 00 stops it"},
+    {.dialect = Dialect::skydroid,
+     .request = "FAE",
+     .push = "FAI",
+     .sender = Sender::client,
+     .section = "SkyDroid 3.3.6",
+     .note = "FAE 01 lets the flight controller send its attitude as FAI writes; "
+             "the document gives FAI no reply"},
+    {.dialect = Dialect::topotek,
+     .request = "GAA",
+     .push = "GAC",
+     .section = "Topotek 3.4",
+     .note = "GAA 01 switches the gimbal attitude push on, 00 off; the rate is "
+             "the device's"},
+    {.dialect = Dialect::topotek,
+     .request = "GIA",
+     .push = "GIC",
+     .section = "Topotek 3.6",
+     .note = "GIA 01 switches the gyroscope attitude push on, 00 off; the rate "
+             "is the device's"},
+};
+
+constexpr DeviceForm kForms[] = {
+    // SkyDroid 3.3.2.2: "接收: #TPUGCrGACY0Y1Y2Y3P0P1P2P3R0R1R2R3CC".
+    {.dialect = Dialect::skydroid,
+     .models = c10 | c10pro | c12 | c20,
+     .ident = "GAC",
+     .control = 'r',
+     .sent = Sent::push,
+     .header = Header::fixed,
+     .order = Order::request_order,
+     .source = Source::document_example,
+     .evidence = "SkyDroid 3.3.2.2 example #TPUGCrGACY0Y1Y2Y3P0P1P2P3R0R1R2R3CC: "
+                 "uppercase #TP, U first"},
+    {.dialect = Dialect::skydroid,
+     .models = c12,
+     .ident = "GAC",
+     .control = 'r',
+     .sent = Sent::push,
+     .header = Header::variable,
+     .order = Order::request_order,
+     .source = Source::field,
+     .evidence = "real C12s push #tpUGCrGAC<12 hex><cs>: an Android app and two Python "
+                 "C12 drivers (one checks the checksum) accept only that prefix"},
+    // SkyDroid 4.22: "接收示例: #TPUD4rSLR0005BC".
+    {.dialect = Dialect::skydroid,
+     .models = c13,
+     .ident = "SLR",
+     .control = 'r',
+     .sent = Sent::reply,
+     .header = Header::fixed,
+     .order = Order::request_order,
+     .source = Source::document_example,
+     .evidence = "SkyDroid 4.22 reply example #TPUD4rSLR0005BC: #TP with length 4, U first"},
+    {.dialect = Dialect::skydroid,
+     .models = c13,
+     .ident = "SLR",
+     .control = 'r',
+     .sent = Sent::reply,
+     .header = Header::fixed,
+     .order = Order::swapped,
+     .source = Source::field,
+     .evidence = "a public C13 SDK takes a range only from a datagram holding #TPDU and "
+                 "SLR: #TP with length 4, addresses swapped"},
+    {.dialect = Dialect::skydroid,
+     .models = c12,
+     .ident = "IMG",
+     .control = 'r',
+     .sent = Sent::reply,
+     .header = Header::fixed,
+     .order = Order::swapped,
+     .source = Source::field,
+     .evidence = "a Python C12 console reads the thermal palette only from a reply that "
+                 "starts #TPDU and holds IMG"},
+    {.dialect = Dialect::skydroid,
+     .models = c12,
+     .ident = "VER",
+     .control = 'r',
+     .sent = Sent::reply,
+     .header = Header::variable,
+     .order = Order::swapped,
+     .source = Source::field,
+     .evidence = "a real C12 answered VER with #tpDU3rVER0105025A (its length char lies)"},
+    // Topotek 3.5: "receive: #tpGU C r GIC Y0Y1Y2Y3P0P1P2P3R0R1R2R3 CC".
+    {.dialect = Dialect::topotek,
+     .models = sip,
+     .ident = "GIC",
+     .control = 'r',
+     .sent = Sent::reply,
+     .header = Header::variable,
+     .order = Order::swapped,
+     .source = Source::document_example,
+     .evidence = "Topotek 3.5 example #tpGU C r GIC Y0Y1Y2Y3P0P1P2P3R0R1R2R3 CC"},
+    {.dialect = Dialect::topotek,
+     .models = sip,
+     .ident = "GAC",
+     .control = 'r',
+     .sent = Sent::reply,
+     .header = Header::variable,
+     .order = Order::swapped,
+     .source = Source::field,
+     .evidence = "a Topotek device answered #tpGPCrGACFF36ED5A0048DE to a network client"},
+};
+
+constexpr Trait kTraits[] = {
+    {.kind = TraitKind::yaw_inverted,
+     .dialect = Dialect::skydroid,
+     .models = c12,
+     .source = Source::field,
+     .evidence = "two public C12 clients negate yaw before GAY/GAM; one notes the attitude "
+                 "reports the opposite sign of the GAM input"},
+    {.kind = TraitKind::pitch_inverted,
+     .dialect = Dialect::skydroid,
+     .models = c12,
+     .source = Source::field,
+     .evidence = "one public C12 client negates pitch too before GAM (\"attitude telemetry "
+                 "reports yaw/pitch with opposite signs from GAM input\")"},
+    {.kind = TraitKind::answers_to_source,
+     .dialect = Dialect::skydroid,
+     .models = c10 | c10pro | c12 | c13 | c20,
+     .source = Source::field,
+     .evidence = "C12 clients send from UDP 5000 to 5000 (the vendor's app does) and read "
+                 "the replies on that socket: the device answers the datagram's source"},
+    {.kind = TraitKind::extra_port,
+     .dialect = Dialect::skydroid,
+     .models = c12,
+     .value = 12580,
+     .source = Source::field,
+     .evidence = "some C12 clients also send to UDP 12580"},
+    {.kind = TraitKind::link_by_source,
+     .dialect = Dialect::topotek,
+     .models = sip,
+     .source = Source::document_rule,
+     .evidence = "Topotek 2: the source byte names the interface (P network, U UART); a "
+                 "UDP request with source U gets no answer (public Topotek clients agree)"},
+    {.kind = TraitKind::speed_refresh,
+     .dialect = Dialect::skydroid,
+     .models = c10 | c10pro | c12 | c20,
+     .value = 1000,
+     .source = Source::field,
+     .evidence = "autopilot drivers refresh speed commands at 10-50 Hz: without a refresh "
+                 "the motors stop"},
+};
+
+// SkyDroid 3.1 lists PTZ for C10, C10Pro, C12 and C20, and 0E-13 as trim.
+constexpr std::int64_t kC13Ptz[] = {0x02, 0x05, 0x0E, 0x0F, 0x10, 0x11, 0x12, 0x13};
+constexpr FieldSupport kFieldSupport[] = {
+    {.dialect = Dialect::skydroid,
+     .models = c13,
+     .ident = "PTZ",
+     .values = kC13Ptz,
+     .evidence = "a public C13 SDK (skydroid_c13_miniSDK) reports PTZ 02 (down), 05 "
+                 "(center) and 0E/0F pitch +/-, 10/11 yaw +/-, 12/13 roll +/- working on a "
+                 "real C13"},
+};
+
+bool same(std::string_view a, std::string_view b) noexcept { return a == b; }
+
+bool model_in(ModelSet set, Model m) noexcept {
+  return m == Model::unknown || (set & model_bit(m)) != 0;
+}
+
+}  // namespace
+
+std::string_view to_string(Source s) noexcept {
+  switch (s) {
+    case Source::document_example:
+      return "document example";
+    case Source::document_rule:
+      return "document rule";
+    case Source::field:
+      return "field";
+  }
+  return "?";
+}
+
+std::string_view to_string(Profile p) noexcept {
+  return p == Profile::document ? "document" : "field";
+}
+
+std::optional<Profile> profile_from_string(std::string_view s) noexcept {
+  if (s == "field") return Profile::field;
+  if (s == "document") return Profile::document;
+  return std::nullopt;
+}
+
+std::span<const StreamSpec> streams() noexcept { return kStreams; }
+
+const StreamSpec* stream_enabled_by(Dialect d, std::string_view request) noexcept {
+  for (const StreamSpec& s : kStreams)
+    if (s.dialect == d && same(s.request, request)) return &s;
+  return nullptr;
+}
+
+const StreamSpec* stream_of(Dialect d, std::string_view push) noexcept {
+  for (const StreamSpec& s : kStreams)
+    if (s.dialect == d && same(s.push, push)) return &s;
+  return nullptr;
+}
+
+std::string_view to_string(WriteReply r) noexcept {
+  switch (r) {
+    case WriteReply::echo:
+      return "echo";
+    case WriteReply::data:
+      return "data";
+    case WriteReply::file_index:
+      return "file index";
+    case WriteReply::nothing:
+      return "nothing";
+  }
+  return "?";
+}
+
+WriteReply write_reply(const CommandSpec& cmd) noexcept {
+  const StreamSpec* s = stream_of(cmd.dialect, cmd.ident);
+  if (s && s->sender == Sender::client) return WriteReply::nothing;
+  for (const FormSpec& f : cmd.forms) {
+    if (f.control != 'w' || f.role != Role::response) continue;
+    // Topotek 5.1/5.2: REC and CAP answer with the state and a file index.
+    if (cmd.dialect == Dialect::topotek && (cmd.ident == "REC" || cmd.ident == "CAP"))
+      return WriteReply::file_index;
+    return cmd.ident == "ERE" ? WriteReply::echo : WriteReply::data;
+  }
+  return WriteReply::echo;
+}
+
+std::string_view to_string(Order o) noexcept {
+  return o == Order::swapped ? "swapped" : "request order";
+}
+
+std::span<const DeviceForm> device_forms() noexcept { return kForms; }
+
+DeviceForm device_form(Model model, std::string_view ident, char control, Sent sent,
+                       std::size_t data_length, Profile profile) noexcept {
+  const Dialect d = dialect_of(model);
+  const DeviceForm* example = nullptr;
+  const DeviceForm* field = nullptr;
+  for (const DeviceForm& f : kForms) {
+    if (f.dialect != d || !model_in(f.models, model) || f.ident != ident || f.control != control ||
+        f.sent != sent)
+      continue;
+    if (f.source == Source::field && !field) field = &f;
+    if (f.source == Source::document_example && !example) example = &f;
+  }
+  if (profile == Profile::field && field) return *field;
+  if (example) return *example;
+  const CommandSpec* cmd = find_command(d, ident);
+  DeviceForm rule;
+  rule.dialect = d;
+  rule.models = model == Model::unknown ? 0 : model_bit(model);
+  rule.ident = ident;
+  rule.control = control;
+  rule.sent = sent;
+  rule.header = choose_header(d, cmd ? cmd->address : 'G', data_length);
+  rule.order = Order::swapped;
+  rule.source = Source::document_rule;
+  rule.evidence = d == Dialect::topotek
+                      ? "Topotek 2: the reply swaps the addresses; #TP for 2 data chars, #tp "
+                        "otherwise and for M class"
+                      : "SkyDroid 2.3.1: the reply swaps the addresses; 2.2.2: #TP for G class "
+                        "and 2 data chars, #tp otherwise";
+  return rule;
+}
+
+const DeviceForm* recorded_form(Dialect d, Model model, const Frame& f, Sent sent) noexcept {
+  const Order order = is_client_address(f.src) ? Order::request_order : Order::swapped;
+  const std::string_view ident = f.ident_view();
+  const DeviceForm* best = nullptr;
+  for (const DeviceForm& x : kForms) {
+    if (x.dialect != d || !model_in(x.models, model) || x.ident != ident ||
+        x.control != f.control || x.sent != sent || x.header != f.header || x.order != order)
+      continue;
+    // Field evidence names the firmware; prefer it to an example of the same form.
+    if (!best || x.source == Source::field) best = &x;
+  }
+  return best;
+}
+
+std::string_view to_string(TraitKind k) noexcept {
+  switch (k) {
+    case TraitKind::yaw_inverted:
+      return "yaw-inverted";
+    case TraitKind::pitch_inverted:
+      return "pitch-inverted";
+    case TraitKind::answers_to_source:
+      return "answers-to-source";
+    case TraitKind::extra_port:
+      return "extra-port";
+    case TraitKind::link_by_source:
+      return "link-by-source";
+    case TraitKind::speed_refresh:
+      return "speed-refresh";
+  }
+  return "?";
+}
+
+std::span<const Trait> traits() noexcept { return kTraits; }
+
+const Trait* find_trait(TraitKind kind, Model model, Profile profile) noexcept {
+  for (const Trait& t : kTraits) {
+    if (t.kind != kind || t.dialect != dialect_of(model) || !model_in(t.models, model)) continue;
+    if (t.source == Source::field && profile != Profile::field) continue;
+    return &t;
+  }
+  return nullptr;
+}
+
+std::span<const FieldSupport> field_support() noexcept { return kFieldSupport; }
+
+const FieldSupport* field_supported(Dialect d, Model model, std::string_view ident,
+                                    std::optional<std::int64_t> value) noexcept {
+  for (const FieldSupport& s : kFieldSupport) {
+    if (s.dialect != d || model == Model::unknown || !model_in(s.models, model) ||
+        s.ident != ident)
+      continue;
+    if (!value || s.values.empty()) return &s;
+    for (std::int64_t v : s.values)
+      if (v == *value) return &s;
+  }
+  return nullptr;
+}
+
+}  // namespace top
