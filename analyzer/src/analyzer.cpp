@@ -647,7 +647,7 @@ struct Analyzer::Impl {
     o.detail = A.opts_.detail;
     o.cache = &decode_cache;
     top::decode(f, o, e.decoded);
-    if (role == top::Role::response) note_device_form(f, e.decoded);
+    if (role == top::Role::response) top::note_device_form(f, A.opts_.model, A.opts_.detail, e.decoded);
     e.frame = &f;
     // the worst severity and the bad checksum in one pass
     e.worst = top::Severity::info;
@@ -658,51 +658,6 @@ struct Analyzer::Impl {
     }
     for (const top::Finding& x : e.decoded.findings) e.worst = std::max(e.worst, x.severity);
     return e;
-  }
-
-  // A frame from the device in a form other than the document's rule (the
-  // request's address order, #TP with another length): named with the
-  // source that records the form (top/device.hpp), or as seen in some
-  // simulators when nothing does.
-  void note_device_form(const top::Frame& f, top::Decoded& dec) {
-    const bool unswapped = top::role_from_addresses(f) == top::Role::request;
-    top::Finding* tp = nullptr;
-    top::Finding* un = nullptr;
-    for (top::Finding& x : dec.findings) {
-      if (x.code == top::FindingCode::tp_length && x.severity != top::Severity::info) tp = &x;
-      if (x.code == top::FindingCode::unswapped_addresses) un = &x;
-    }
-    if (!unswapped && !tp) return;
-    const top::StreamSpec* st = top::stream_of(dec.dialect, f.ident_view());
-    const bool push = st && st->sender == top::Sender::device;
-    const top::DeviceForm* rf = top::recorded_form(dec.dialect, A.opts_.model, f,
-                                                   push ? top::Sent::push : top::Sent::reply);
-    auto source = [&] {
-      return "; " + std::string(top::to_string(rf->source)) + ": " + std::string(rf->evidence);
-    };
-    if (unswapped && !un) {
-      dec.findings.push_back(top::make_finding(
-          top::FindingCode::unswapped_addresses, 3, message([&] {
-            if (!rf)
-              return std::string("a response addressed ") + f.src + " to " + f.dst +
-                     " (the request's order; some simulators)";
-            return std::string(f.ident_view()) + (push ? " push" : " reply") + " addressed " +
-                   f.src + " to " + f.dst + " (the request's order)" + source();
-          })));
-      un = &dec.findings.back();
-      if (tp) tp = &*std::find_if(dec.findings.begin(), dec.findings.end(), [](const auto& x) {
-        return x.code == top::FindingCode::tp_length;
-      });
-    } else if (un && rf && A.opts_.detail) {
-      un->message += source();
-    }
-    if (!rf) return;
-    if (un) un->quirk = rf->evidence;
-    if (tp) {
-      tp->severity = top::Severity::info;
-      tp->quirk = rf->evidence;
-      if (A.opts_.detail) tp->message += source();
-    }
   }
 
   static std::uint32_t pack(std::string_view id) {

@@ -2,7 +2,9 @@
 // firmware traits, each with its source. See top/device.hpp.
 #include "top/device.hpp"
 
+#include <algorithm>
 #include <array>
+#include <string>
 
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"
 
@@ -299,6 +301,45 @@ const DeviceForm* recorded_form(Dialect d, Model model, const Frame& f, Sent sen
     if (!best || x.source == Source::field) best = &x;
   }
   return best;
+}
+
+void note_device_form(const Frame& f, Model model, bool detail, Decoded& dec) {
+  const bool unswapped = role_from_addresses(f) == Role::request;
+  Finding* tp = nullptr;
+  Finding* un = nullptr;
+  for (Finding& x : dec.findings) {
+    if (x.code == FindingCode::tp_length && x.severity != Severity::info) tp = &x;
+    if (x.code == FindingCode::unswapped_addresses) un = &x;
+  }
+  if (!unswapped && !tp) return;
+  const StreamSpec* st = stream_of(dec.dialect, f.ident_view());
+  const bool push = st && st->sender == Sender::device;
+  const DeviceForm* rf = recorded_form(dec.dialect, model, f, push ? Sent::push : Sent::reply);
+  auto source = [&] {
+    return "; " + std::string(to_string(rf->source)) + ": " + std::string(rf->evidence);
+  };
+  if (unswapped && !un) {
+    std::string msg;
+    if (detail)
+      msg = rf ? std::string(f.ident_view()) + (push ? " push" : " reply") + " addressed " + f.src +
+                     " to " + f.dst + " (the request's order)" + source()
+               : std::string("a response addressed ") + f.src + " to " + f.dst +
+                     " (the request's order; some simulators)";
+    dec.findings.push_back(make_finding(FindingCode::unswapped_addresses, 3, std::move(msg)));
+    un = &dec.findings.back();
+    tp = nullptr;
+    for (Finding& x : dec.findings)
+      if (x.code == FindingCode::tp_length && x.severity != Severity::info) tp = &x;
+  } else if (un && rf && detail) {
+    un->message += source();
+  }
+  if (!rf) return;
+  if (un) un->quirk = rf->evidence;
+  if (tp) {
+    tp->severity = Severity::info;
+    tp->quirk = rf->evidence;
+    if (detail) tp->message += source();
+  }
 }
 
 std::string_view to_string(TraitKind k) noexcept {

@@ -79,14 +79,145 @@ TEST(Pairing, UnansweredByTimeoutAndAtEnd) {
   o.timeout_us = 100000;
   f.reset(o);
   f.up(0, frame("#TPUD2rVER00"));
-  f.up(500, frame("#TPUG2wPTZ05"));  // expires the VER request
+  f.down(200, frame("#TPGU2wPTZ05"));  // the device speaks after the VER request
+  f.up(500, frame("#TPUG2wPTZ05"));    // expires the VER request
   ASSERT_EQ(f.rec.count_note(ACode::unanswered), 1u);
   EXPECT_NE(f.rec.notes[0].note.message.find("within 100 ms"), std::string::npos);
   EXPECT_EQ(f.rec.notes[0].pos.record, 1u);
   f.a->finish();
   EXPECT_EQ(f.rec.count_note(ACode::unanswered), 2u);
+  EXPECT_NE(f.rec.notes[1].note.message.find("before the end"), std::string::npos);
   EXPECT_EQ(f.a->stats().unanswered, 2u);
   EXPECT_EQ(f.a->worst(), top::Severity::warning);
+}
+
+// --- field fidelity: roles from the conversation, unanswered causes -------
+
+TEST(Field, RealC12AttitudePushIsAStreamNotARequest) {
+  // A real C12 pushes #tpUGCrGAC (client first) from its port 5000: each is
+  // a push of the GAC stream GAA asked for, never an unanswered request.
+  Fixture f;
+  f.up(0, frame("#TPUG2wGAA0A"));
+  f.down(3, frame("#TPGU2wGAA0A"));
+  for (int i = 0; i < 30; ++i) f.down(100 + i * 100, frame("#tpUGCrGAC000000000000"));
+  f.a->finish();
+  const Stats& s = f.a->stats();
+  EXPECT_EQ(s.unanswered, 0u);
+  EXPECT_EQ(s.unsolicited, 0u);
+  EXPECT_FALSE(f.rec.has_note(ACode::unanswered));
+  EXPECT_FALSE(f.rec.has_note(ACode::stream_rate));
+  ASSERT_EQ(s.conversations.at(0).streams.size(), 1u);
+  EXPECT_EQ(s.conversations[0].streams[0].frames, 30u);
+  EXPECT_NEAR(s.conversations[0].streams[0].measured_hz(), 10.0, 1e-9);
+  ASSERT_EQ(f.rec.frames.size(), 32u);
+  EXPECT_EQ(f.rec.frames[2].role, top::Role::response);
+  // The order is named with its source, as info.
+  EXPECT_TRUE(has_code(f.rec.frames[2], "unswapped-addresses"));
+  EXPECT_EQ(f.a->worst(), top::Severity::info);
+}
+
+TEST(Field, RolesFromTheAnswerWhenBothEndsUsePort5000) {
+  // The vendor's app sends from UDP 5000 to 5000: no port tells the device;
+  // the GAA write comes from the client, so the pushes are the device's.
+  Fixture f;
+  f.client = ep4(1, 5000);
+  f.up(0, frame("#TPUG2wGAA0A"));
+  for (int i = 0; i < 10; ++i) f.down(100 + i * 100, frame("#tpUGCrGAC000000000000"));
+  f.a->finish();
+  EXPECT_EQ(f.a->stats().unanswered, 0u);
+  EXPECT_EQ(f.a->stats().conversations.at(0).streams.at(0).frames, 10u);
+}
+
+TEST(Field, RecordedFormsNameTheirSource) {
+  AnalyzerOptions o;
+  o.model = top::Model::c13;
+  Fixture f;
+  f.reset(o);
+  f.up(0, frame("#TPUD2rSLR00"));
+  f.down(5, frame("#TPDU4rSLR0005"));  // what the C13 SDK reads: #TP, length 4
+  f.up(10, frame("#TPUD2rSLR00"));
+  f.down(15, frame("#TPUD4rSLR0005"));  // the document's example: U first
+  f.a->finish();
+  ASSERT_EQ(f.rec.frames.size(), 4u);
+  EXPECT_EQ(f.rec.frames[1].reply_to, 1u);
+  EXPECT_EQ(f.rec.frames[3].reply_to, 3u);
+  EXPECT_EQ(f.a->stats().unanswered, 0u);
+  EXPECT_EQ(f.a->worst(), top::Severity::info);  // tp-length named, not a warning
+  const std::string j1 = f.rec.frames[1].json_fast, j3 = f.rec.frames[3].json_fast;
+  EXPECT_NE(j1.find("field: a public C13 SDK"), std::string::npos) << j1;
+  EXPECT_NE(j3.find("document example: SkyDroid 4.22"), std::string::npos) << j3;
+}
+
+TEST(Field, UnansweredSaysWhyWhenTheCaptureShows) {
+  Fixture f;
+  AnalyzerOptions o;
+  o.timeout_us = 100000;
+  o.model = top::Model::c10;
+  f.reset(o);
+  f.up(0, "#TPUG2wPTZ0500");            // bad checksum: the device drops it
+  f.up(10, frame("#TPUG8wGOT02800168"));  // GOT is C12 only
+  f.down(20, frame("#TPGU2wGAY00"));    // the device is not silent
+  f.a->finish();
+  ASSERT_EQ(f.rec.count_note(ACode::unanswered), 2u);
+  EXPECT_NE(f.rec.notes[0].note.message.find("checksum is bad"), std::string::npos)
+      << f.rec.notes[0].note.message;
+  EXPECT_NE(f.rec.notes[1].note.message.find("not supported on the model"), std::string::npos)
+      << f.rec.notes[1].note.message;
+}
+
+TEST(Field, TopotekUartSourceOverTheNetworkIsNamed) {
+  Fixture f;
+  f.client = ep4(1, 9004);
+  f.device = ep4(2, 9003);
+  f.up(0, frame("#TPUG2rGIC00"));  // source U over UDP: answers go to the UART
+  f.up(5, frame("#TPPG2rGIC00"));
+  f.down(9, frame("#tpGPCrGIC000000000000"));
+  f.a->finish();
+  ASSERT_EQ(f.rec.count_note(ACode::unanswered), 1u);
+  EXPECT_NE(f.rec.notes[0].note.message.find("UART"), std::string::npos);
+}
+
+TEST(Field, CopiesOfAnAnsweredRequestAreNotUnanswered) {
+  // Some senders send each frame three times, 30 ms apart; the device
+  // answers one. The copies are repeats, not unanswered requests.
+  Fixture f;
+  f.up(0, frame("#TPUG6wGAY03E832"));
+  f.up(30, frame("#TPUG6wGAY03E832"));
+  f.up(60, frame("#TPUG6wGAY03E832"));
+  f.down(70, frame("#TPGU6wGAY03E832"));
+  f.a->finish();
+  EXPECT_EQ(f.a->stats().unanswered, 0u);
+  EXPECT_FALSE(f.rec.has_note(ACode::unanswered));
+  EXPECT_EQ(f.rec.count_note(ACode::repeated), 0u);  // notes on frames, not events
+}
+
+TEST(Field, ASilentDeviceIsOneFindingForTheStretch) {
+  Fixture f;
+  AnalyzerOptions o;
+  o.timeout_us = 100000;
+  f.reset(o);
+  for (int i = 0; i < 38; ++i) f.up(i * 500, frame(i % 2 ? "#TPUG6wGAY03E832" : "#TPUD2rVER00"));
+  f.down(30000, frame("#TPGU2wPTZ05"));  // the device is back
+  f.up(30010, frame("#TPUD2rVER00"));
+  f.down(30020, frame("#tpDU6rVERV1.1.5"));
+  f.a->finish();
+  EXPECT_EQ(f.a->stats().unanswered, 38u);
+  ASSERT_EQ(f.rec.count_note(ACode::unanswered), 1u);
+  const std::string& m = f.rec.notes[0].note.message;
+  EXPECT_NE(m.find("silent: 38 requests (VER, GAY)"), std::string::npos) << m;
+  EXPECT_EQ(f.rec.notes[0].note.frame, 1u);
+}
+
+TEST(Field, ClientStreamFramesExpectNoAnswer) {
+  // SkyDroid 3.3.6: after FAE 01 the flight controller sends FAI writes;
+  // the document gives them no reply.
+  Fixture f;
+  f.up(0, frame("#TPUG2wFAE01"));
+  f.down(3, frame("#TPGU2wFAE01"));
+  for (int i = 0; i < 20; ++i) f.up(100 + i * 50, frame("#TPUGCwFAIEC7800000000"));
+  f.a->finish();
+  EXPECT_EQ(f.a->stats().unanswered, 0u);
+  EXPECT_FALSE(f.rec.has_note(ACode::unanswered));
 }
 
 TEST(Pairing, EreAnswersTheRequestToItsSource) {

@@ -195,8 +195,8 @@ json generate_matrix(top::Model model) {
     std::string wdata;
     if (w) {
       wdata = top::example_data(*w);
-      // Attitude pushes are the stream case's business: switch them off.
-      if (id == "GAA" || id == "GIA") wdata = "00";
+      // Pushes are the stream case's business: switch them off.
+      if (top::stream_enabled_by(d, id)) wdata = "00";
       if (!clean_request(d, model, c, 'w', wdata)) w = nullptr;
     }
     // A write with its own reply layout (Topotek REC/CAP: state and file
@@ -341,12 +341,15 @@ json generate_matrix(top::Model model) {
          {"steps", json::array({{{"send", {{"raw", "#TPUM2rZZZ00"}}},
                                  {"expect", json::array({json{{"frame", "#TPMU2wERE!!30"}}})}}})}});
   }
-  // Streaming: GAA (SkyDroid, rate in Hz) and GIA (Topotek, on/off).
-  const top::CommandSpec* gaa = top::find_command(d, sky ? "GAA" : "GIA");
-  if (gaa && gaa->supports(model)) {
-    const std::string on = sky ? "0A" : "01";
+  // Streaming: every device stream of the catalog (top/device.hpp): SkyDroid
+  // GAA (rate in Hz), Topotek GAA and GIA (on/off, the device's rate).
+  for (const top::StreamSpec& st : top::streams()) {
+    if (st.dialect != d || st.sender != top::Sender::device) continue;
+    const top::CommandSpec* gaa = top::find_command(d, st.request);
+    if (!gaa || !gaa->supports(model)) continue;
+    const std::string on = st.rate_in_data ? "0A" : "01";
     const double hz = 10;
-    const std::string push = sky ? "GAC" : "GIC";
+    const std::string push(st.push);
     cases.push_back(
         {{"id",
           dn + "/" + section_number(gaa->section) + "/" + std::string(gaa->ident) + "/stream"},

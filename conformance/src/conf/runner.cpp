@@ -32,6 +32,8 @@ struct Received {
 };
 
 // The runner's side of the link: bytes to frames, with the transcript.
+bool is_push(top::Dialect d, std::string_view ident);
+
 class Wire {
  public:
   Wire(Transport& t, const Matrix& m, const RunOptions& o, std::uint64_t t0)
@@ -107,7 +109,7 @@ class Wire {
     while (n < o_.max_frames_per_step && next(d, r)) {
       ++n;
       const std::string_view id = r.frame.ident_view();
-      if (id != "GAC" && id != "GIC") ++late;  // attitude pushes are expected
+      if (!is_push(m_.dialect, id)) ++late;  // pushes (GAC, GIC) are expected
     }
     frames_.clear();
     if (late > 0)
@@ -145,7 +147,24 @@ struct StepResult {
   std::string reason;
 };
 
-bool is_push(std::string_view ident) { return ident == "GAC" || ident == "GIC"; }
+bool is_push(top::Dialect d, std::string_view ident) {
+  const top::StreamSpec* s = top::stream_of(d, ident);
+  return s && s->sender == top::Sender::device;
+}
+
+// The recorded form (top/device.hpp) a device frame matches where it departs
+// from the document's rule (the request's address order, another header),
+// or nullptr.
+const top::DeviceForm* recorded_departure(const Matrix& m, const top::Frame& f) {
+  const top::Sent sent = is_push(m.dialect, f.ident_view()) ? top::Sent::push : top::Sent::reply;
+  const top::DeviceForm* rf = top::recorded_form(m.dialect, m.model, f, sent);
+  if (!rf) return nullptr;
+  const top::CommandSpec* cmd = top::find_command(m.dialect, f.ident_view());
+  const bool rule = rf->order == top::Order::swapped &&
+                    rf->header == top::choose_header(m.dialect, cmd ? cmd->address : 'G',
+                                                     f.data_length);
+  return rule ? nullptr : rf;
+}
 
 // A deviation that a strict match must not have: a warning or error at the
 // frame level, or a named firmware quirk.
@@ -174,7 +193,10 @@ struct Runner {
 
   bool addresses_ok(const Expectation& e, const top::Frame* req, const top::Frame& f) const {
     if (e.any_addresses || !req) return true;
-    return f.src == req->dst && f.dst == req->src;
+    if (f.src == req->dst && f.dst == req->src) return true;
+    // A recorded form in the request's order (the SkyDroid 4.22 SLR example).
+    const top::DeviceForm* rf = recorded_departure(m, f);
+    return rf && rf->order == top::Order::request_order && f.src == req->src && f.dst == req->dst;
   }
 
   // Does `r` satisfy a frame-type alternative? `why` collects near misses.
@@ -244,7 +266,8 @@ struct Runner {
         dopt.dialect = m.dialect;
         dopt.model = m.model;
         dopt.role = top::Role::response;
-        const top::Decoded dec = top::decode(f, dopt);
+        top::Decoded dec = top::decode(f, dopt);
+        top::note_device_form(f, m.model, true, dec);
         if (dec.command) {
           for (const auto& fd : dec.findings) {
             if (fd.severity != top::Severity::warning) continue;
@@ -358,7 +381,7 @@ struct Runner {
       if (!stream_ident.empty() && id == stream_ident && r.frame.ok() &&
           r.t_us <= start + stream_ms * 1000)
         push_times.push_back(r.t_us);
-      const bool push = is_push(id) && !(rq && rq->ident_view() == id);
+      const bool push = is_push(m.dialect, id) && !(rq && rq->ident_view() == id);
       if (!push && !answered) {
         answered = true;
         first_answer = r.t_us;
@@ -421,6 +444,10 @@ struct Runner {
         default:
           ok = matched[i].has_value();
           if (ok) dev = frame_deviation(*matched[i]);
+          if (ok && dev.empty())
+            if (const top::DeviceForm* rf = recorded_departure(m, matched[i]->frame);
+                rf && rf->source == top::Source::field)
+              dev = "the field's form, not the document's: " + std::string(rf->evidence);
           if (ok && duplicate) dev = "the reply arrived more than once";
           break;
       }

@@ -352,7 +352,7 @@ bool Device::handle_special(const Frame& req, const top::Decoded& dec, std::uint
     std::string v = id == "REC" ? (recording_ ? "01" : "00") : "00";
     if (id != "REC") {
       for (const Stream& s : streams_)
-        if (s.ident == (id == "GIA" ? "GIC" : "GAC") && s.period_us) v = "01";
+        if (s.ident == top::stream_enabled_by(dialect_, id)->push && s.period_us) v = "01";
     }
     out.push_back(make(top::Header::fixed, req, 'r', id, v));
     return true;
@@ -360,7 +360,8 @@ bool Device::handle_special(const Frame& req, const top::Decoded& dec, std::uint
   if (topotek && (id == "GIA" || id == "GAA") && write) {
     const int v = data_byte(data);
     if (v != 0 && v != 1) return false;
-    start_stream(id == "GIA" ? "GIC" : "GAC", v ? opts_.topotek_stream_hz : 0, req.src, now_us);
+    start_stream(top::stream_enabled_by(dialect_, id)->push, v ? opts_.topotek_stream_hz : 0,
+                 req.src, now_us);
     echo();
     return true;
   }
@@ -429,7 +430,8 @@ bool Device::handle_special(const Frame& req, const top::Decoded& dec, std::uint
     }
   } else if (id == "GAA") {
     const auto* r = field(dec, "rate");
-    start_stream("GAC", r ? static_cast<std::uint32_t>(r->integer) : 0, req.src, now_us);
+    start_stream(top::stream_enabled_by(dialect_, id)->push,
+                 r ? static_cast<std::uint32_t>(r->integer) : 0, req.src, now_us);
   } else if (id == "REC") {
     const auto* a = field(dec, "action");
     const int act = a ? static_cast<int>(a->integer) : -1;

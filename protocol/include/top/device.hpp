@@ -16,6 +16,7 @@
 #include <string_view>
 
 #include "top/catalog.hpp"
+#include "top/decode.hpp"
 #include "top/frame.hpp"
 
 namespace top {
@@ -109,6 +110,14 @@ DeviceForm device_form(Model model, std::string_view ident, char control, Sent s
 // or nullptr: for topdump and topconf to name the source of a frame that
 // deviates from the rule. `model` unknown matches every model.
 const DeviceForm* recorded_form(Dialect d, Model model, const Frame& f, Sent sent) noexcept;
+
+// For a frame the device sent, decoded in `dec`: when it deviates from the
+// rule (the request's address order, #TP with another length), adds or
+// completes its `unswapped-addresses` finding and names the recorded form
+// it matches with its source (the finding's quirk and, with `detail`, its
+// message); a `tp-length` warning on a recorded form becomes info. A form
+// nothing records stays as it is ("some simulators").
+void note_device_form(const Frame& f, Model model, bool detail, Decoded& dec);
 
 // A trait of real firmware that is not a frame form.
 enum class TraitKind : std::uint8_t {
