@@ -53,8 +53,8 @@ int main() {
   for (const top::StreamSpec& s : top::streams())
     o += "| " + std::string(top::to_string(s.dialect)) + " | " + std::string(s.request) + " | " +
          std::string(s.push) + " | " + (s.sender == top::Sender::device ? "device" : "client") +
-         " | " + (s.rate_in_data ? "data, Hz" : "on/off") + " | " + std::string(s.section) +
-         " | " + cell(s.note) + " |\n";
+         " | " + (s.rate_in_data ? "data, Hz" : "on/off") + " | " + std::string(s.section) + " | " +
+         cell(s.note) + " |\n";
   o += "\n## What a device answers to a write\n\nEvery write is echoed with the addresses "
        "swapped (SkyDroid 2.3.1) except:\n\n";
   o += "| dialect | command | answer | section |\n|---|---|---|---|\n";
@@ -90,8 +90,7 @@ int main() {
     std::string v;
     for (std::int64_t x : s.values) v += (v.empty() ? "" : " ") + hex2(x);
     o += "| " + std::string(top::to_string(s.dialect)) + " | " + models(s.models) + " | " +
-         std::string(s.ident) + " | " + (v.empty() ? "any" : v) + " | " + cell(s.evidence) +
-         " |\n";
+         std::string(s.ident) + " | " + (v.empty() ? "any" : v) + " | " + cell(s.evidence) + " |\n";
   }
   std::fwrite(o.data(), 1, o.size(), stdout);
   return std::fflush(stdout) == 0 && !std::ferror(stdout) ? 0 : 1;

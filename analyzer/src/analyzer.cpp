@@ -273,6 +273,7 @@ struct Pending {
 struct Answered {
   char ident[3] = {};
   char control = 0;
+  char src = 0, dst = 0;
   std::string data;
   std::int64_t ts = kNoTime;  // of the request
 };
@@ -647,7 +648,8 @@ struct Analyzer::Impl {
     o.detail = A.opts_.detail;
     o.cache = &decode_cache;
     top::decode(f, o, e.decoded);
-    if (role == top::Role::response) top::note_device_form(f, A.opts_.model, A.opts_.detail, e.decoded);
+    if (role == top::Role::response)
+      top::note_device_form(f, A.opts_.model, A.opts_.detail, e.decoded);
     e.frame = &f;
     // the worst severity and the bad checksum in one pass
     e.worst = top::Severity::info;
@@ -706,9 +708,6 @@ struct Analyzer::Impl {
     // requests.
     top::Role role = top::Role::any;
     if (c.device_dir >= 0) role = d == c.device_dir ? top::Role::response : top::Role::request;
-    if (c.silence.count && (d == c.device_dir || d != c.silence.dir)) emit_silence(c);
-    D.last_frame_ts = ts;
-    D.sent_frame = true;
     const DecodedEntry& e = lookup(f, dialect, role);
     const top::Frame& fr = *e.frame;
 
@@ -724,6 +723,11 @@ struct Analyzer::Impl {
     ev.entry = &e;
 
     expire(c, ts);
+    // Requests that expire now were unanswered before this frame: the
+    // silence they belong to ends with it when it comes from the device.
+    if (c.silence.count && d != c.silence.dir) emit_silence(c);
+    D.last_frame_ts = ts;
+    D.sent_frame = true;
     ++c.st.frames;
     if (e.decoded.role == top::Role::request)
       request(c, d, ev);
@@ -784,21 +788,20 @@ struct Analyzer::Impl {
     if (p.ts != kNoTime)
       for (const Answered& a : c.answered)
         if (a.ts != kNoTime && same_ident(p.ident, std::string_view(a.ident, 3)) &&
-            a.control == p.control && a.data == p.data &&
+            a.control == p.control && a.src == p.src && a.dst == p.dst && a.data == p.data &&
             std::llabs(a.ts - p.ts) <= std::max<std::int64_t>(A.opts_.repeat_window_us, 0))
           return;
     ++A.stats_.unanswered;
     const Direction& D = c.dir[p.dir];
     const Direction& other = c.dir[1 - p.dir];
-    const bool silent = p.cause == Cause::none && p.ts != kNoTime &&
-                        (!other.sent_frame || other.last_frame_ts == kNoTime ||
-                         other.last_frame_ts < p.ts);
+    const bool silent =
+        p.cause == Cause::none && p.ts != kNoTime &&
+        (!other.sent_frame || other.last_frame_ts == kNoTime || other.last_frame_ts < p.ts);
     std::string msg = message([&] {
-      std::string m = escape(std::string_view(p.ident, 3)) + " request (frame " +
-                      std::to_string(p.n) + ")" +
-                      (at_end ? std::string(" got no response before the end of the capture")
-                              : " got no response within " +
-                                    std::to_string(A.opts_.timeout_us / 1000) + " ms");
+      std::string m =
+          escape(std::string_view(p.ident, 3)) + " request (frame " + std::to_string(p.n) + ")" +
+          (at_end ? std::string(" got no response before the end of the capture")
+                  : " got no response within " + std::to_string(A.opts_.timeout_us / 1000) + " ms");
       switch (p.cause) {
         case Cause::bad_checksum:
           m += ": its checksum is bad, and devices drop such frames";
@@ -848,12 +851,12 @@ struct Analyzer::Impl {
       char span[32];
       std::snprintf(span, sizeof span, "%.3f", static_cast<double>(s.last_ts - s.first_ts) / 1e6);
       return "the device was silent: " + std::to_string(s.count) + " requests (" + s.idents +
-             ") from frame " + std::to_string(s.first_n) + " to frame " +
-             std::to_string(s.last_n) + " over " + span + " s got no response";
+             ") from frame " + std::to_string(s.first_n) + " to frame " + std::to_string(s.last_n) +
+             " over " + span + " s got no response";
     });
-    note_event(s.first_ts, s.pos, c.transport, &c, &D.from, &D.to,
-               Note{ACode::unanswered, default_severity(ACode::unanswered), std::move(msg),
-                    s.first_n});
+    note_event(
+        s.first_ts, s.pos, c.transport, &c, &D.from, &D.to,
+        Note{ACode::unanswered, default_severity(ACode::unanswered), std::move(msg), s.first_n});
     s = Silence{};
   }
 
@@ -1024,6 +1027,8 @@ struct Analyzer::Impl {
       Answered& a = c.answered[c.answered_next++ % c.answered.size()];
       std::memcpy(a.ident, m->ident, 3);
       a.control = m->control;
+      a.src = m->src;
+      a.dst = m->dst;
       a.data = m->data;
       a.ts = m->ts;
       c.erase_pending(mi);

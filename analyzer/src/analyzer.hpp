@@ -148,8 +148,8 @@ class Latency {
 };
 
 struct StreamStat {
-  std::string ident;    // GAC, GIC (device pushes) or FAI (client stream)
-  double asked_hz = 0;  // 0: enable without a rate (Topotek)
+  std::string ident;         // GAC, GIC (device pushes) or FAI (client stream)
+  double asked_hz = 0;       // 0: enable without a rate (Topotek)
   std::string asked_by;      // the request that switched it on: GAA, GIA, FAE
   bool from_client = false;  // the client sends it (FAI): never a request to answer
   std::uint64_t frames = 0;

@@ -47,7 +47,7 @@ constexpr StreamSpec kStreams[] = {
 };
 
 constexpr DeviceForm kForms[] = {
-    // SkyDroid 3.3.2.2: "接收: #TPUGCrGACY0Y1Y2Y3P0P1P2P3R0R1R2R3CC".
+    // SkyDroid 3.3.2.2, receive example: "#TPUGCrGACY0Y1Y2Y3P0P1P2P3R0R1R2R3CC".
     {.dialect = Dialect::skydroid,
      .models = c10 | c10pro | c12 | c20,
      .ident = "GAC",
@@ -68,7 +68,7 @@ constexpr DeviceForm kForms[] = {
      .source = Source::field,
      .evidence = "real C12s push #tpUGCrGAC<12 hex><cs>: an Android app and two Python "
                  "C12 drivers (one checks the checksum) accept only that prefix"},
-    // SkyDroid 4.22: "接收示例: #TPUD4rSLR0005BC".
+    // SkyDroid 4.22, reply example: "#TPUD4rSLR0005BC".
     {.dialect = Dialect::skydroid,
      .models = c13,
      .ident = "SLR",
@@ -376,8 +376,7 @@ std::span<const FieldSupport> field_support() noexcept { return kFieldSupport; }
 const FieldSupport* field_supported(Dialect d, Model model, std::string_view ident,
                                     std::optional<std::int64_t> value) noexcept {
   for (const FieldSupport& s : kFieldSupport) {
-    if (s.dialect != d || model == Model::unknown || !model_in(s.models, model) ||
-        s.ident != ident)
+    if (s.dialect != d || model == Model::unknown || !model_in(s.models, model) || s.ident != ident)
       continue;
     if (!value || s.values.empty()) return &s;
     for (std::int64_t v : s.values)

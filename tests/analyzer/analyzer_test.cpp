@@ -122,6 +122,7 @@ TEST(Field, RolesFromTheAnswerWhenBothEndsUsePort5000) {
   Fixture f;
   f.client = ep4(1, 5000);
   f.up(0, frame("#TPUG2wGAA0A"));
+  f.down(3, frame("#TPGU2wGAA0A"));
   for (int i = 0; i < 10; ++i) f.down(100 + i * 100, frame("#tpUGCrGAC000000000000"));
   f.a->finish();
   EXPECT_EQ(f.a->stats().unanswered, 0u);
@@ -154,9 +155,9 @@ TEST(Field, UnansweredSaysWhyWhenTheCaptureShows) {
   o.timeout_us = 100000;
   o.model = top::Model::c10;
   f.reset(o);
-  f.up(0, "#TPUG2wPTZ0500");            // bad checksum: the device drops it
+  f.up(0, "#TPUG2wPTZ0500");              // bad checksum: the device drops it
   f.up(10, frame("#TPUG8wGOT02800168"));  // GOT is C12 only
-  f.down(20, frame("#TPGU2wGAY00"));    // the device is not silent
+  f.down(20, frame("#TPGU2wGAY00"));      // the device is not silent
   f.a->finish();
   ASSERT_EQ(f.rec.count_note(ACode::unanswered), 2u);
   EXPECT_NE(f.rec.notes[0].note.message.find("checksum is bad"), std::string::npos)

@@ -136,8 +136,11 @@ TEST(Device, GaaStreamsGacAtTheRequestedRate) {
   ASSERT_FALSE(out.empty());
   auto f = parsed(out[0]);
   EXPECT_EQ(f.ident_view(), "GAC");
-  EXPECT_EQ(f.src, 'G');
-  EXPECT_EQ(f.dst, 'U');
+  // The field profile's C12 form (#tpUGCrGAC, client first: docs/FIELD.md);
+  // field_test.cpp checks every profile's form.
+  EXPECT_EQ(f.header, top::Header::variable);
+  EXPECT_EQ(f.src, 'U');
+  EXPECT_EQ(f.dst, 'G');
   ask(d, "#TPUG2wGAA00", 1000000);
   EXPECT_EQ(d.next_timer(), std::numeric_limits<std::uint64_t>::max());
 }

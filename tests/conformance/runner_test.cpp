@@ -33,12 +33,13 @@ const topconf::Matrix& matrix_of(top::Model m) {
 }
 
 RunResult run(top::Model m, std::string_view faults = {}, std::uint32_t retries = 0,
-              topsim::Link link = topsim::Link::network, std::uint64_t seed = 1) {
+              topsim::Link link = topsim::Link::network, std::uint64_t seed = 1,
+              top::Profile profile = top::Profile::field) {
   const topconf::Matrix& mx = matrix_of(m);
   std::string err;
   auto fc = topsim::parse_faults(faults, err);
   EXPECT_TRUE(fc) << err;
-  topconf::SimTransport t(m, *fc, seed, link);
+  topconf::SimTransport t(m, *fc, seed, link, profile);
   topconf::RunOptions o;
   o.retries = retries;
   return topconf::run_matrix(mx, t, o);
@@ -68,6 +69,23 @@ TEST_P(Models, DefaultMatrixPassesInProcess) {
     RunResult r = run(GetParam(), {}, 0, link);
     EXPECT_EQ(r.exit_code(), 0);
     EXPECT_FALSE(r.cases.empty());
+    for (const auto& c : r.cases) {
+      // A form the field records (docs/FIELD.md) passes as non-strict with
+      // its evidence in the reason; anything else must be a plain pass.
+      if (c.field_form) {
+        EXPECT_EQ(c.verdict, Verdict::non_strict) << c.spec->id;
+        EXPECT_NE(c.reason.find("the field's form"), std::string::npos) << c.reason;
+        continue;
+      }
+      EXPECT_EQ(c.verdict, Verdict::pass) << c.spec->id << ": " << c.reason;
+    }
+  }
+}
+
+TEST_P(Models, DefaultMatrixPassesInProcessUnderTheDocumentProfile) {
+  for (auto link : {topsim::Link::network, topsim::Link::uart}) {
+    RunResult r = run(GetParam(), {}, 0, link, 1, top::Profile::document);
+    EXPECT_EQ(r.exit_code(), 0);
     for (const auto& c : r.cases)
       EXPECT_EQ(c.verdict, Verdict::pass) << c.spec->id << ": " << c.reason;
   }

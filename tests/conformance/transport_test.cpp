@@ -70,7 +70,9 @@ TEST_P(OverTransport, DefaultMatrixPasses) {
   auto r = run_over(GetParam().model, GetParam().kind);
   ASSERT_FALSE(r.unreachable) << r.unreachable_reason;
   for (const auto& c : r.cases)
-    EXPECT_TRUE(c.verdict == Verdict::pass && !c.flaky)
+    EXPECT_TRUE(
+        (c.verdict == Verdict::pass || (c.verdict == Verdict::non_strict && c.field_form)) &&
+        !c.flaky)
         << c.spec->id << ": " << to_string(c.verdict) << " " << c.reason;
   EXPECT_EQ(r.exit_code(), 0);
 }

@@ -32,6 +32,10 @@ struct CaseResult {
   bool flaky = false;  // passed after a failed attempt
   int attempts = 0;
   std::string reason;  // why it is not a plain pass
+  // Non-strict only because the device answered in a form the field
+  // records (top/device.hpp): the reason names the evidence, and the case
+  // counts as passed for the exit status.
+  bool field_form = false;
   std::vector<Exchange> transcript;
   std::uint64_t dropped_exchanges = 0;  // beyond the transcript cap
   std::uint64_t start_us = 0;

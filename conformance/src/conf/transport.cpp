@@ -13,11 +13,12 @@ namespace topconf {
 // In-process simulator
 
 SimTransport::SimTransport(top::Model model, topsim::FaultConfig faults, std::uint64_t seed,
-                           topsim::Link link)
+                           topsim::Link link, top::Profile profile)
     : link_(link),
       device_(model,
               [&] {
                 topsim::DeviceOptions o;
+                o.profile = profile;
                 o.swap_addresses = !faults.no_swap;
                 o.tmp_quirk = faults.tmp_quirk;
                 return o;

@@ -48,7 +48,8 @@ class Transport {
 class SimTransport : public Transport {
  public:
   SimTransport(top::Model model, topsim::FaultConfig faults = {}, std::uint64_t seed = 1,
-               topsim::Link link = topsim::Link::network);
+               topsim::Link link = topsim::Link::network,
+               top::Profile profile = top::Profile::field);
   std::uint64_t now_us() override { return now_; }
   bool datagram() const override { return link_ == topsim::Link::network; }
   char client_address() const override;

@@ -166,8 +166,7 @@ std::string Device::attitude_data() const {
   return hex_s16(yaw) + hex_s16(pitch) + hex_s16(axes_[2].angle);
 }
 
-top::DeviceForm Device::form_of(std::string_view ident, top::Sent sent,
-                                std::size_t length) const {
+top::DeviceForm Device::form_of(std::string_view ident, top::Sent sent, std::size_t length) const {
   top::DeviceForm f = top::device_form(model_, ident, 'r', sent, length, opts_.profile);
   const auto& order = sent == top::Sent::push ? opts_.push_order : opts_.reply_order;
   const auto& header = sent == top::Sent::push ? opts_.push_header : opts_.reply_header;
@@ -231,14 +230,14 @@ std::vector<Device::TraitLine> Device::describe() const {
     const top::DeviceForm p =
         top::device_form(model_, r.ident, r.control, top::Sent::reply, len, opts_.profile);
     const top::DeviceForm f = form_of(r.ident, top::Sent::reply, len);
-    out.push_back({std::string(r.ident) + "-reply", header(f.header) + " " + order(f.order),
-                   opts_.reply_header || opts_.reply_order || !opts_.swap_addresses ? "option"
-                                                                                    : src(p),
-                   std::string(p.evidence)});
+    out.push_back(
+        {std::string(r.ident) + "-reply", header(f.header) + " " + order(f.order),
+         opts_.reply_header || opts_.reply_order || !opts_.swap_addresses ? "option" : src(p),
+         std::string(p.evidence)});
   }
   {
-    const top::DeviceForm rule = top::device_form(model_, "???", 'r', top::Sent::reply, 4,
-                                                  opts_.profile);
+    const top::DeviceForm rule =
+        top::device_form(model_, "???", 'r', top::Sent::reply, 4, opts_.profile);
     out.push_back({"reply", opts_.swap_addresses ? "swapped" : "request-order",
                    opts_.swap_addresses ? "document rule" : "option", std::string(rule.evidence)});
   }
@@ -247,7 +246,7 @@ std::vector<Device::TraitLine> Device::describe() const {
     if (!t && !on) return;
     const bool from_profile = top::find_trait(k, model_, opts_.profile) != nullptr;
     out.push_back({std::string(top::to_string(k)), on ? "on" : "off",
-                   opt ? "option"
+                   opt            ? "option"
                    : from_profile ? std::string(top::to_string(t->source))
                                   : "document rule",
                    t ? std::string(t->evidence) : std::string()});
@@ -257,9 +256,12 @@ std::vector<Device::TraitLine> Device::describe() const {
   for (const top::FieldSupport& fs : top::field_support()) {
     if (fs.dialect != dialect_ || !(fs.models & top::model_bit(model_))) continue;
     std::string v;
-    for (std::int64_t x : fs.values) v += (v.empty() ? "" : ",") + hex_u(static_cast<std::uint64_t>(x), 2);
+    for (std::int64_t x : fs.values)
+      v += (v.empty() ? "" : ",") + hex_u(static_cast<std::uint64_t>(x), 2);
     out.push_back({std::string(fs.ident) + "-field-codes", field_ptz_ ? v : "off",
-                   opts_.field_ptz ? "option" : field_ptz_ ? "field" : "document rule",
+                   opts_.field_ptz ? "option"
+                   : field_ptz_    ? "field"
+                                   : "document rule",
                    std::string(fs.evidence)});
   }
   for (top::TraitKind k : {top::TraitKind::answers_to_source, top::TraitKind::extra_port,

@@ -32,8 +32,8 @@ struct DeviceOptions {
   std::optional<bool> yaw_inverted;    // attitude reports -yaw of the command
   std::optional<bool> pitch_inverted;  // the same for pitch
   std::optional<bool> field_ptz;       // C13: PTZ codes the field says work
-  bool swap_addresses = true;  // false: the no-swap fault (client first)
-  bool tmp_quirk = false;      // answer TMP in the malformed #tpDU16wTMP form
+  bool swap_addresses = true;          // false: the no-swap fault (client first)
+  bool tmp_quirk = false;              // answer TMP in the malformed #tpDU16wTMP form
   // A speed command holds for this long unless refreshed (field notes:
   // motors stop when rate commands are not refreshed).
   std::uint32_t speed_hold_ms = 1000;
@@ -69,8 +69,8 @@ class Device {
   top::Model model() const noexcept { return model_; }
   // One trait as the device applies it, with its source.
   struct TraitLine {
-    std::string name;   // the switch: "push-order"
-    std::string value;  // "request-order"
+    std::string name;    // the switch: "push-order"
+    std::string value;   // "request-order"
     std::string source;  // "field", "document example", "document rule", "option"
     std::string evidence;
   };
