@@ -16,6 +16,18 @@ namespace topfuzz {
   std::abort();
 }
 
+// The size of an input a target looks at: in libFuzzer builds at most the
+// options' max_len (TOPKIT_FUZZ_MAX_LEN, from fuzz_<target>.options), as
+// libFuzzer cuts seeds to -max_len, in case an engine does not read the
+// options; replay builds (ctest) take every input whole.
+inline std::size_t capped(std::size_t size) {
+#ifdef TOPKIT_FUZZ_MAX_LEN
+  return size < std::size_t{TOPKIT_FUZZ_MAX_LEN} ? size : std::size_t{TOPKIT_FUZZ_MAX_LEN};
+#else
+  return size;
+#endif
+}
+
 // Printable rendering of bytes for failure messages: \xNN for the rest.
 inline std::string show(std::string_view s, std::size_t limit = 200) {
   std::string out;
@@ -34,6 +46,17 @@ inline std::string show(std::string_view s, std::size_t limit = 200) {
 }
 
 }  // namespace topfuzz
+
+#ifdef TOPKIT_LIBFUZZER
+// ASan keeps freed blocks out of reuse until 256 MB more have been freed
+// (its quarantine), so for the first 256 MB a target allocates every block
+// is fresh memory and every 4 KiB of it a page fault: most of a 20 s run
+// on the shared VM (a fault costs ~65 us there). Our inputs allocate well
+// under 1 MB each, so 16 MB still keeps every block freed while an input
+// runs out of reuse until it ends. ASAN_OPTIONS in the environment (as
+// ClusterFuzzLite sets) override this.
+extern "C" const char* __asan_default_options() { return "quarantine_size_mb=16"; }
+#endif
 
 // FUZZ_CHECK(cond, detail): abort with `detail` (a std::string expression,
 // evaluated only on failure) when `cond` is false.

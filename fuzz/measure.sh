@@ -1,16 +1,28 @@
 #!/usr/bin/env bash
-# Measures every protocol target for the README table: exec/s and coverage
-# (cov/ft/corpus from libFuzzer's final stats) after a fixed time, with the
-# custom mutator and without it (TOPKIT_FUZZ_NO_MUTATOR=1, same binary).
-# Two runs at a time; the two variants of a target run side by side, so they
-# share whatever load the machine has. Needs the `fuzz` preset built.
+# Measures fuzz targets for the README tables: exec/s (libFuzzer's
+# average_exec_per_sec) and coverage (cov/ft/corpus of the final DONE line)
+# after a fixed time, starting from the checked-in corpus, -seed=1. Targets
+# with the custom mutator run twice, with it and without it
+# (TOPKIT_FUZZ_NO_MUTATOR=1, same binary), unless TOPKIT_MEASURE_PLAIN=0.
+# Needs the `fuzz` preset built.
 #
 #   fuzz/measure.sh [SECONDS] [TARGET...]      # default 300 s, all targets
+#
+# Environment:
+#   TOPKIT_MEASURE_BIN=DIR   binaries (and, if there, <target>.options and
+#                            top.dict) from DIR instead of build/fuzz/fuzz:
+#                            keep a copy of an old build to compare with
+#   TOPKIT_MEASURE_CPUS=1    pin runs with taskset, one run per listed CPU at
+#                            a time (e.g. "1", or "0 1"); default: two runs
+#                            at a time, unpinned
+#   TOPKIT_MEASURE_PLAIN=0   skip the TOPKIT_FUZZ_NO_MUTATOR runs
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-300}
 shift || true
-build=build/fuzz/fuzz
+build=${TOPKIT_MEASURE_BIN:-build/fuzz/fuzz}
+read -r -a cpus <<<"${TOPKIT_MEASURE_CPUS:-}"
+plain=${TOPKIT_MEASURE_PLAIN:-1}
 if [ $# -gt 0 ]; then
   targets=("$@")
 else
@@ -18,19 +30,23 @@ else
 fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
+dict=$build/top.dict
+[ -f "$dict" ] || dict=build/fuzz/fuzz/top.dict
 
 # uses_mutator TARGET: true when the target defines LLVMFuzzerCustomMutator.
 uses_mutator() { [[ $(nm -C "$build/$1" 2>/dev/null) == *' T LLVMFuzzerCustomMutator'* ]]; }
 
-run() {  # run TARGET VARIANT
-  local t=$1 v=$2 name=${1#fuzz_} max_len=4096
-  [ -f "fuzz/$t.options" ] && max_len=$(sed -n 's/^max_len *= *\([0-9]*\).*/\1/p' "fuzz/$t.options")
+run() {  # run SLOT TARGET VARIANT
+  local slot=$1 t=$2 v=$3 name=${2#fuzz_} max_len=4096 opts=fuzz/$2.options
+  [ -f "$build/$t.options" ] && opts=$build/$t.options
+  [ -f "$opts" ] && max_len=$(sed -n 's/^max_len *= *\([0-9]*\).*/\1/p' "$opts")
   local dir=$work/$t.$v
   mkdir -p "$dir/corpus"
-  local env=()
-  [ "$v" = plain ] && env=(env TOPKIT_FUZZ_NO_MUTATOR=1)
-  "${env[@]}" "$build/$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
-    -max_len="$max_len" -dict="$build/top.dict" -print_final_stats=1 -seed=1 \
+  local pre=()
+  [ "$v" = plain ] && pre=(env TOPKIT_FUZZ_NO_MUTATOR=1)
+  [ ${#cpus[@]} -gt 0 ] && pre+=(taskset -c "${cpus[$slot]}")
+  "${pre[@]}" "$build/$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+    -max_len="$max_len" -dict="$dict" -print_final_stats=1 -seed=1 \
     "$dir/corpus" "fuzz/corpus/$name" >"$dir/log" 2>&1 || echo "$t $v: exit $?" >&2
   local last eps
   last=$(grep -E '^#[0-9]+[[:space:]]+DONE' "$dir/log" | tail -n 1)
@@ -40,20 +56,25 @@ run() {  # run TARGET VARIANT
 
 jobs=()
 for t in "${targets[@]}"; do
-  if uses_mutator "$t"; then
+  if [ "$plain" != 0 ] && uses_mutator "$t"; then
     jobs+=("$t custom" "$t plain")
+  elif uses_mutator "$t"; then
+    jobs+=("$t custom")
   else
     jobs+=("$t none")
   fi
 done
-running=0
-for j in "${jobs[@]}"; do
-  run $j &
-  running=$((running + 1))
-  if [ $running -ge 2 ]; then
-    wait -n || true
-    running=$((running - 1))
-  fi
+slots=2
+[ ${#cpus[@]} -gt 0 ] && slots=${#cpus[@]}
+# One background loop per slot, each taking every slots-th job in turn, so a
+# pinned CPU never runs two of ours at once.
+for ((s = 0; s < slots; s++)); do
+  (
+    for ((i = s; i < ${#jobs[@]}; i += slots)); do
+      # shellcheck disable=SC2086
+      run "$s" ${jobs[$i]}
+    done
+  ) &
 done
 wait
 echo "| target | mutator | exec/s | cov | ft | corpus |"
