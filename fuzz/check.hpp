@@ -16,13 +16,21 @@ namespace topfuzz {
   std::abort();
 }
 
-// The size of an input a target looks at: in libFuzzer builds at most the
-// options' max_len (TOPKIT_FUZZ_MAX_LEN, from fuzz_<target>.options), as
-// libFuzzer cuts seeds to -max_len, in case an engine does not read the
-// options; replay builds (ctest) take every input whole.
+// The size of an input a target looks at. libFuzzer builds cut inputs to
+// the -max_len given on the command line, else to the options' max_len
+// (TOPKIT_FUZZ_MAX_LEN, from fuzz_<target>.options): libFuzzer cuts seeds
+// the same way, but another engine may not read the options. Replay builds
+// (ctest) take every input whole.
+#ifdef TOPKIT_FUZZ_MAX_LEN
+inline std::size_t& max_len() {
+  static std::size_t n = TOPKIT_FUZZ_MAX_LEN;
+  return n;
+}
+#endif
+
 inline std::size_t capped(std::size_t size) {
 #ifdef TOPKIT_FUZZ_MAX_LEN
-  return size < std::size_t{TOPKIT_FUZZ_MAX_LEN} ? size : std::size_t{TOPKIT_FUZZ_MAX_LEN};
+  return size < max_len() ? size : max_len();
 #else
   return size;
 #endif
@@ -46,6 +54,20 @@ inline std::string show(std::string_view s, std::size_t limit = 200) {
 }
 
 }  // namespace topfuzz
+
+#ifdef TOPKIT_FUZZ_MAX_LEN
+// Reads -max_len=N from libFuzzer's command line (see capped()); the last
+// one given wins, as in libFuzzer.
+extern "C" int LLVMFuzzerInitialize(int* argc, char*** argv) {
+  for (int i = 1; i < *argc; ++i) {
+    const std::string_view a = (*argv)[i];
+    if (a.substr(0, 9) != "-max_len=") continue;
+    const std::size_t n = std::strtoull(a.data() + 9, nullptr, 10);
+    if (n > 0) topfuzz::max_len() = n;  // 0: libFuzzer picks, the options' cap stays
+  }
+  return 0;
+}
+#endif
 
 #ifdef TOPKIT_LIBFUZZER
 // ASan keeps freed blocks out of reuse until 256 MB more have been freed

@@ -20,7 +20,7 @@
 # fuzz/regressions/<target>/, see README.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-root=$PWD
+root=$(pwd -P)
 
 seconds=${TOPKIT_FUZZ_SECONDS:-5}
 jobs=${TOPKIT_FUZZ_JOBS:-2}
@@ -46,6 +46,11 @@ started=$(date +%s)
 # OSS-Fuzz's environment for an address-sanitizer libFuzzer build
 # (infra/base-images/base-builder: SANITIZER_FLAGS_address, COVERAGE_FLAGS).
 mkdir -p "$tmp/src" "$tmp/out" "$tmp/work"
+# A build directory configured from another source path cannot be reused.
+if [ -f build/oss/CMakeCache.txt ] &&
+  ! grep -qx "CMAKE_HOME_DIRECTORY:INTERNAL=$root" build/oss/CMakeCache.txt; then
+  rm -rf build/oss
+fi
 ln -s "$root" "$tmp/src/topkit"
 sanitizer_flags="-fsanitize=address -fsanitize-address-use-after-scope -fsanitize=fuzzer-no-link"
 flags="-O1 -fno-omit-frame-pointer -gline-tables-only $sanitizer_flags"
