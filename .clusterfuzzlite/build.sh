@@ -5,6 +5,9 @@
 # the fuzz_* binaries, <target>_seed_corpus.zip, <target>.options and the
 # dictionary generated from the catalog (top.dict, also as <target>.dict).
 cd "$SRC/topkit"
+# The physical path: fuzz/run-ci.sh links a temporary $SRC/topkit to the
+# checkout, and the build directory's cache must name the same source each run.
+cd "$(pwd -P)"
 
 # CMAKE_BUILD_TYPE=None: no optimisation flags of our own on top of theirs.
 cmake -S . -B build/oss -G Ninja \

@@ -66,6 +66,7 @@ void check_reencode(const FormSpec& form, const Decoded& d, std::string_view dat
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t size) {
+  size = topfuzz::capped(size);
   const std::span<const CommandSpec> table = commands(kDialect);
   if (size < 3 || table.empty()) return 0;
   const CommandSpec& cmd = table[bytes[1] % table.size()];
@@ -75,9 +76,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
 
   // Byte 0: bits 0-2 model (0 = unknown, else the n-th model of the dialect),
   // bits 3-4 role, bit 5 client address P instead of U.
-  std::vector<Model> models{Model::unknown};
-  for (Model m : all_models())
-    if (dialect_of(m) == kDialect) models.push_back(m);
+  static const std::vector<Model> models = [] {
+    std::vector<Model> v{Model::unknown};
+    for (Model m : all_models())
+      if (dialect_of(m) == kDialect) v.push_back(m);
+    return v;
+  }();
   DecodeOptions opts;
   opts.dialect = kDialect;
   opts.model = models[(bytes[0] & 7u) % models.size()];

@@ -122,6 +122,7 @@ void stream(std::string_view in) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  size = topfuzz::capped(size);
   const std::string_view in(reinterpret_cast<const char*>(data), size);
   single_frame(in);
   stream(in);

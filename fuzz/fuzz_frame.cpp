@@ -65,6 +65,7 @@ void check_decoded(const Frame& f, const Decoded& d) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  size = topfuzz::capped(size);
   const std::string_view in(reinterpret_cast<const char*>(data), size);
   const ParseResult r = parse_exact(in);
   FUZZ_CHECK(r.status != ParseStatus::need_more, "parse_exact asked for more bytes");

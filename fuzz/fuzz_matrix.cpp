@@ -10,6 +10,7 @@
 #include "conf/matrix.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  size = topfuzz::capped(size);
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   const topconf::LoadResult r = topconf::load_matrix(text, "fuzz.json");
   FUZZ_CHECK(r.matrix.has_value() == r.errors.empty(),

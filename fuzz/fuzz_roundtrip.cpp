@@ -91,6 +91,7 @@ void build_then_parse(std::string_view in) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  size = topfuzz::capped(size);
   const std::string_view in(reinterpret_cast<const char*>(data), size);
   parse_then_build(in);
   build_then_parse(in);

@@ -17,6 +17,7 @@
 using topfuzz::show;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  size = topfuzz::capped(size);
   if (size < 2) return 0;
   const auto models = top::all_models();
   const top::Model model = models[data[0] % models.size()];

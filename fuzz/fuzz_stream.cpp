@@ -91,6 +91,7 @@ void check_cover(std::string_view stream, const std::vector<StreamItem>& items, 
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  size = topfuzz::capped(size);
   if (size < 1) return 0;
   const std::size_t k = (data[0] & 7u) + 1;
   if (size < 1 + k) return 0;

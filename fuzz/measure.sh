@@ -1,67 +1,110 @@
 #!/usr/bin/env bash
-# Measures every protocol target for the README table: exec/s and coverage
-# (cov/ft/corpus from libFuzzer's final stats) after a fixed time, with the
-# custom mutator and without it (TOPKIT_FUZZ_NO_MUTATOR=1, same binary).
-# Two runs at a time; the two variants of a target run side by side, so they
-# share whatever load the machine has. Needs the `fuzz` preset built.
+# Measures fuzz targets for the README tables: exec/s (libFuzzer's
+# average_exec_per_sec, wall clock), runs per CPU second (runs / (user +
+# sys) of the process: what the target costs, whatever else the machine
+# runs) and coverage (cov/ft/corpus of the final DONE line) after a fixed
+# time, starting from the checked-in corpus, -seed=1, with the flags of the
+# target's .options ([libfuzzer] section, dictionary from the build).
+# Needs the `fuzz` preset built.
 #
 #   fuzz/measure.sh [SECONDS] [TARGET...]      # default 300 s, all targets
+#
+# Two runs at a time, pinned to CPUs 0 and 1 (taskset), one target at a
+# time. Targets with the custom mutator run with it and without it
+# (TOPKIT_FUZZ_NO_MUTATOR=1, same binary) side by side.
+#
+# Before/after: TOPKIT_MEASURE_BIN="OLD NEW" (two directories, each with the
+# fuzz_* binaries, their .options and top.dict, e.g. a copy of
+# build/fuzz/fuzz plus fuzz/*.options from before a change) runs each
+# target from both side by side instead (the mutator as built), OLD on CPU 0
+# and NEW on CPU 1 for even-numbered targets and the other way round for
+# odd ones, so both share whatever load the machine has.
+#
+# Environment:
+#   TOPKIT_MEASURE_BIN=DIR...  binaries (default build/fuzz/fuzz, options
+#                              then from fuzz/)
+#   TOPKIT_MEASURE_CPUS="0 1"  the two CPUs to pin to
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-300}
 shift || true
-build=build/fuzz/fuzz
+read -r -a bins <<<"${TOPKIT_MEASURE_BIN:-build/fuzz/fuzz}"
+read -r -a cpus <<<"${TOPKIT_MEASURE_CPUS:-0 1}"
 if [ $# -gt 0 ]; then
   targets=("$@")
 else
-  mapfile -t targets < <(find "$build" -maxdepth 1 -type f -name 'fuzz_*' -perm -u+x -printf '%f\n' | sort)
+  mapfile -t targets < <(find "${bins[0]}" -maxdepth 1 -type f -name 'fuzz_*' -perm -u+x -printf '%f\n' | sort)
 fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-# uses_mutator TARGET: true when the target defines LLVMFuzzerCustomMutator.
-uses_mutator() { [[ $(nm -C "$build/$1" 2>/dev/null) == *' T LLVMFuzzerCustomMutator'* ]]; }
+# uses_mutator BIN TARGET: true when the target defines LLVMFuzzerCustomMutator.
+uses_mutator() { [[ $(nm -C "$1/$2" 2>/dev/null) == *' T LLVMFuzzerCustomMutator'* ]]; }
 
-run() {  # run TARGET VARIANT
-  local t=$1 v=$2 name=${1#fuzz_} max_len=4096
-  [ -f "fuzz/$t.options" ] && max_len=$(sed -n 's/^max_len *= *\([0-9]*\).*/\1/p' "fuzz/$t.options")
-  local dir=$work/$t.$v
-  mkdir -p "$dir/corpus"
-  local env=()
-  [ "$v" = plain ] && env=(env TOPKIT_FUZZ_NO_MUTATOR=1)
-  "${env[@]}" "$build/$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
-    -max_len="$max_len" -dict="$build/top.dict" -print_final_stats=1 -seed=1 \
-    "$dir/corpus" "fuzz/corpus/$name" >"$dir/log" 2>&1 || echo "$t $v: exit $?" >&2
-  local last eps
-  last=$(grep -E '^#[0-9]+[[:space:]]+DONE' "$dir/log" | tail -n 1)
-  eps=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$dir/log")
-  echo "$t|$v|$eps|$(echo "$last" | grep -oE 'cov: [0-9]+' | cut -d' ' -f2)|$(echo "$last" | grep -oE 'ft: [0-9]+' | cut -d' ' -f2)|$(echo "$last" | grep -oE 'corp: [0-9]+' | cut -d' ' -f2)" >"$dir.row"
+# flags BIN TARGET: the [libfuzzer] section of the target's options as flags.
+flags() {
+  local opts=$1/$2.options dict=$1/top.dict
+  [ -f "$opts" ] || opts=fuzz/$2.options
+  [ -f "$dict" ] || dict=build/fuzz/fuzz/top.dict
+  awk -v dict="$dict" '
+    /^\[/ { section = $0; next }
+    section == "[libfuzzer]" && /=/ {
+      key = $0; sub(/[ \t]*=.*/, "", key); gsub(/^[ \t]+/, "", key)
+      val = $0; sub(/^[^=]*=[ \t]*/, "", val); sub(/[ \t]+$/, "", val)
+      if (key == "dict") val = dict
+      printf "-%s=%s\n", key, val
+    }' "$opts"
 }
 
-jobs=()
+run() {  # run CPU BIN TARGET VARIANT LABEL
+  local cpu=$1 bin=$2 t=$3 v=$4 label=$5 name=${3#fuzz_}
+  local dir=$work/$t.$label.$v
+  mkdir -p "$dir/corpus"
+  local pre=(taskset -c "$cpu")
+  [ "$v" = plain ] && pre=(env TOPKIT_FUZZ_NO_MUTATOR=1 "${pre[@]}")
+  local f=()
+  mapfile -t f < <(flags "$bin" "$t")
+  /usr/bin/time -f '%U %S' -o "$dir/time" "${pre[@]}" "$bin/$t" "${f[@]}" \
+    -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 -seed=1 \
+    "$dir/corpus" "fuzz/corpus/$name" >"$dir/log" 2>&1 || echo "$t $label $v: exit $?" >&2
+  local last eps runs cpu_s
+  last=$(grep -E '^#[0-9]+[[:space:]]+DONE' "$dir/log" | tail -n 1)
+  eps=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$dir/log")
+  runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$dir/log")
+  cpu_s=$(awk '{print $1 + $2}' "$dir/time")
+  echo "$t|$label|$v|$eps|$(awk -v r="$runs" -v c="$cpu_s" 'BEGIN { printf "%d", c > 0 ? r / c : 0 }')|$(echo "$last" | grep -oE 'cov: [0-9]+' | cut -d' ' -f2)|$(echo "$last" | grep -oE 'ft: [0-9]+' | cut -d' ' -f2)|$(echo "$last" | grep -oE 'corp: [0-9]+' | cut -d' ' -f2)" >"$dir.row"
+}
+
+i=0
+single=0  # targets without a mutator run two at a time
 for t in "${targets[@]}"; do
-  if uses_mutator "$t"; then
-    jobs+=("$t custom" "$t plain")
+  if [ ${#bins[@]} -ge 2 ]; then
+    a=$((i % 2))
+    run "${cpus[0]}" "${bins[$a]}" "$t" built "b$a" &
+    run "${cpus[1]}" "${bins[$((1 - a))]}" "$t" built "b$((1 - a))" &
+    wait
+  elif uses_mutator "${bins[0]}" "$t"; then
+    wait
+    single=0
+    run "${cpus[0]}" "${bins[0]}" "$t" custom b0 &
+    run "${cpus[1]}" "${bins[0]}" "$t" plain b0 &
+    wait
   else
-    jobs+=("$t none")
+    run "${cpus[$single]}" "${bins[0]}" "$t" none b0 &
+    single=$((1 - single))
+    [ $single = 0 ] && wait
   fi
-done
-running=0
-for j in "${jobs[@]}"; do
-  run $j &
-  running=$((running + 1))
-  if [ $running -ge 2 ]; then
-    wait -n || true
-    running=$((running - 1))
-  fi
+  i=$((i + 1))
 done
 wait
-echo "| target | mutator | exec/s | cov | ft | corpus |"
-echo "|---|---|---:|---:|---:|---:|"
+echo "| target | build | mutator | exec/s | runs/CPU-s | cov | ft | corpus |"
+echo "|---|---|---|---:|---:|---:|---:|---:|"
 for t in "${targets[@]}"; do
-  for v in custom plain none; do
-    [ -f "$work/$t.$v.row" ] || continue
-    IFS='|' read -r a b c d e f <"$work/$t.$v.row"
-    echo "| $a | $b | $c | $d | $e | $f |"
+  for b in "${!bins[@]}"; do
+    for v in built custom plain none; do
+      [ -f "$work/$t.b$b.$v.row" ] || continue
+      IFS='|' read -r c1 c2 c3 c4 c5 c6 c7 c8 <"$work/$t.b$b.$v.row"
+      echo "| $c1 | ${bins[$b]} | $c3 | $c4 | $c5 | $c6 | $c7 | $c8 |"
+    done
   done
 done

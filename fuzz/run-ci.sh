@@ -1,111 +1,146 @@
 #!/usr/bin/env bash
-# CI fuzzing: build every target with libFuzzer (the `fuzz` preset) and run
-# each for a fixed time, two at a time. New inputs go to a temporary
-# directory, never into the checked-in corpus. Fails on any crash, leak,
-# timeout (-timeout=10) or out-of-memory (-rss_limit_mb=2048). Prints one
-# summary line per target. Skips, with a message, when clang++ or libFuzzer
-# is missing.
+# CI fuzzing, the way ClusterFuzzLite builds and runs the targets: runs
+# .clusterfuzzlite/build.sh in an OSS-Fuzz-like environment (CC/CXX clang,
+# the address sanitizer's CFLAGS/CXXFLAGS with -fsanitize=fuzzer-no-link,
+# LIB_FUZZING_ENGINE=-fsanitize=fuzzer, SRC and OUT temporary), checks that
+# OUT holds every target with its .options, dictionary and seed corpus zip,
+# then runs each binary from OUT for a few seconds on its unzipped seed
+# corpus with the flags its .options gives (the dictionary taken from OUT),
+# two at a time. New inputs go to a temporary directory. Fails on a build.sh
+# failure, a missing file in OUT, or any crash, leak, timeout (-timeout=10)
+# or out-of-memory (-rss_limit_mb=2560, ClusterFuzzLite's). Prints one line
+# per target. Skips, with a message, when clang++ or libFuzzer is missing.
 #
-#   fuzz/run-ci.sh                   # every target, 60 s each (less when
-#                                    # they would not fit TOPKIT_FUZZ_BUDGET=450 s)
-#   TOPKIT_FUZZ_SECONDS=10 TOPKIT_FUZZ_JOBS=1 fuzz/run-ci.sh fuzz_frame
+#   fuzz/run-ci.sh                   # every target, 5 s each
+#   TOPKIT_FUZZ_SECONDS=60 TOPKIT_FUZZ_JOBS=1 fuzz/run-ci.sh fuzz_frame
 #
-# Crash inputs are kept under build/fuzz/artifacts/<target>/ (turn each
-# into a named regression under fuzz/regressions/<target>/, see README.md).
+# The build goes to build/oss (build.sh's directory, kept between runs, so a
+# second run only rebuilds what changed). Crash inputs are kept under
+# build/oss/artifacts/<target>/ (turn each into a named regression under
+# fuzz/regressions/<target>/, see README.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+root=$(pwd -P)
 
-seconds=${TOPKIT_FUZZ_SECONDS:-60}
+seconds=${TOPKIT_FUZZ_SECONDS:-5}
 jobs=${TOPKIT_FUZZ_JOBS:-2}
-# The whole script (build included) should end within this many seconds:
-# when there are too many targets for $seconds each, each gets less.
-budget=${TOPKIT_FUZZ_BUDGET:-450}
 
 if ! command -v clang++ >/dev/null 2>&1; then
   echo "fuzz/run-ci.sh: SKIPPED: clang++ not found (install clang and libclang-rt-14-dev to fuzz)"
   exit 0
 fi
-probe=$(mktemp -d)
-trap 'rm -rf "$probe"' EXIT
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
 printf 'extern "C" int LLVMFuzzerTestOneInput(const unsigned char*, unsigned long) { return 0; }\n' \
-  > "$probe/probe.cpp"
-if ! clang++ -fsanitize=fuzzer "$probe/probe.cpp" -o "$probe/probe" >/dev/null 2>&1; then
+  >"$tmp/probe.cpp"
+if ! clang++ -fsanitize=fuzzer "$tmp/probe.cpp" -o "$tmp/probe" >/dev/null 2>&1; then
   echo "fuzz/run-ci.sh: SKIPPED: clang++ cannot link -fsanitize=fuzzer (libFuzzer runtime missing: libclang-rt-14-dev)"
   exit 0
 fi
+if ! command -v zip >/dev/null 2>&1; then
+  echo "fuzz/run-ci.sh: zip is needed (build.sh zips the seed corpora; scripts/install-deps.sh installs it)" >&2
+  exit 1
+fi
 
 started=$(date +%s)
-cmake --preset fuzz >/dev/null
-cmake --build --preset fuzz --target topkit_fuzz_all
-build=build/fuzz/fuzz
-dict=$build/top.dict
-artifacts=build/fuzz/artifacts
+# OSS-Fuzz's environment for an address-sanitizer libFuzzer build
+# (infra/base-images/base-builder: SANITIZER_FLAGS_address, COVERAGE_FLAGS).
+mkdir -p "$tmp/src" "$tmp/out" "$tmp/work"
+# A build directory configured from another source path cannot be reused.
+if [ -f build/oss/CMakeCache.txt ] &&
+  ! grep -qx "CMAKE_HOME_DIRECTORY:INTERNAL=$root" build/oss/CMakeCache.txt; then
+  rm -rf build/oss
+fi
+ln -s "$root" "$tmp/src/topkit"
+sanitizer_flags="-fsanitize=address -fsanitize-address-use-after-scope -fsanitize=fuzzer-no-link"
+flags="-O1 -fno-omit-frame-pointer -gline-tables-only $sanitizer_flags"
+echo "fuzz/run-ci.sh: .clusterfuzzlite/build.sh (SANITIZER=address, OUT=$tmp/out)"
+env SRC="$tmp/src" OUT="$tmp/out" WORK="$tmp/work" \
+  CC=clang CXX=clang++ CFLAGS="$flags" CXXFLAGS="$flags" \
+  LIB_FUZZING_ENGINE=-fsanitize=fuzzer SANITIZER=address FUZZING_ENGINE=libfuzzer \
+  ARCHITECTURE=x86_64 \
+  bash -eu "$root/.clusterfuzzlite/build.sh"
+out=$tmp/out
+artifacts=build/oss/artifacts
 rm -rf "$artifacts"
+built=$(($(date +%s) - started))
+
+# Every target (one fuzz/fuzz_<target>.options each) must be in OUT with
+# what ClusterFuzzLite reads next to it.
+missing=0
+all=()
+for o in fuzz/fuzz_*.options; do
+  t=$(basename "$o" .options)
+  all+=("$t")
+  name=${t#fuzz_}
+  need=("$t" "$t.options" "$t.dict")
+  [ -d "fuzz/corpus/$name" ] || [ -d "fuzz/regressions/$name" ] && need+=("${t}_seed_corpus.zip")
+  for f in "${need[@]}"; do
+    if [ ! -s "$out/$f" ]; then
+      echo "fuzz/run-ci.sh: build.sh left no $f in OUT" >&2
+      missing=1
+    fi
+  done
+done
+[ -s "$out/top.dict" ] || { echo "fuzz/run-ci.sh: build.sh left no top.dict in OUT" >&2; missing=1; }
+[ $missing = 0 ] || exit 1
 
 if [ $# -gt 0 ]; then
   targets=("$@")
 else
-  mapfile -t targets < <(find "$build" -maxdepth 1 -type f -name 'fuzz_*' -perm -u+x -printf '%f\n' | sort)
-fi
-if [ ${#targets[@]} -eq 0 ]; then
-  echo "fuzz/run-ci.sh: no fuzz targets were built" >&2
-  exit 1
+  targets=("${all[@]}")
 fi
 
-elapsed=$(( $(date +%s) - started ))
-rounds=$(( (${#targets[@]} + jobs - 1) / jobs ))
-fair=$(( (budget - elapsed) / rounds ))
-if [ "$fair" -lt "$seconds" ]; then
-  [ "$fair" -lt 10 ] && fair=10
-  echo "fuzz/run-ci.sh: ${#targets[@]} targets in a ${budget}s budget (build took ${elapsed}s): ${fair}s each"
-  seconds=$fair
-fi
+# libfuzzer_flags TARGET: the [libfuzzer] section of OUT/TARGET.options as
+# flags, a dictionary named there taken from OUT (as ClusterFuzzLite does).
+libfuzzer_flags() {
+  awk -v out="$out" '
+    /^\[/ { section = $0; next }
+    section == "[libfuzzer]" && /=/ {
+      key = $0; sub(/[ \t]*=.*/, "", key); gsub(/^[ \t]+/, "", key)
+      val = $0; sub(/^[^=]*=[ \t]*/, "", val); sub(/[ \t]+$/, "", val)
+      if (key == "dict") val = out "/" val
+      printf "-%s=%s\n", key, val
+    }' "$out/$1.options"
+}
 
-work=$(mktemp -d)
-trap 'rm -rf "$probe" "$work"' EXIT
-
-# run_one TARGET: fuzz one target; writes $work/TARGET.summary and .rc
+# run_one TARGET: fuzz one target; writes $tmp/TARGET.summary and .rc
 run_one() {
-  local t=$1 name=${1#fuzz_}
-  local dir=$work/$t
-  mkdir -p "$dir/corpus" "$artifacts/$t"
-  local max_len=4096
-  if [ -f "fuzz/$t.options" ]; then
-    max_len=$(sed -n 's/^max_len *= *\([0-9]*\).*/\1/p' "fuzz/$t.options")
-  fi
-  local seeds=()
-  for s in "fuzz/corpus/$name" "fuzz/regressions/$name"; do
-    [ -d "$s" ] && seeds+=("$s")
-  done
+  local t=$1
+  local dir=$tmp/run/$t
+  mkdir -p "$dir/corpus" "$dir/seeds" "$artifacts/$t"
+  # python3's zipfile: unzip is not among scripts/install-deps.sh's packages.
+  [ -f "$out/${t}_seed_corpus.zip" ] && python3 -m zipfile -e "$out/${t}_seed_corpus.zip" "$dir/seeds"
+  local flags=()
+  mapfile -t flags < <(libfuzzer_flags "$t")
   local rc=0
-  "$build/$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
-    -max_len="$max_len" -dict="$dict" -print_final_stats=1 \
-    -artifact_prefix="$artifacts/$t/" "$dir/corpus" "${seeds[@]}" \
-    >"$dir/log" 2>&1 || rc=$?
+  (cd "$dir" && "$out/$t" "${flags[@]}" -max_total_time="$seconds" -timeout=10 \
+    -rss_limit_mb=2560 -print_final_stats=1 -artifact_prefix="$root/$artifacts/$t/" \
+    corpus seeds >log 2>&1) || rc=$?
   local last stats runs eps
   last=$(grep -E '^#[0-9]+[[:space:]]+(DONE|pulse|NEW|REDUCE|INITED)' "$dir/log" | tail -n 1 || true)
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$dir/log")
   eps=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$dir/log")
   stats=$(echo "$last" | grep -oE 'cov: [0-9]+ ft: [0-9]+ corp: [0-9]+' || true)
   if [ $rc -eq 0 ]; then
-    echo "$t: ok, ${runs:-?} runs, ${eps:-?} exec/s, ${stats:-no stats}, ${seconds}s" >"$dir.summary"
+    echo "$t: ok, ${runs:-?} runs, ${eps:-?} exec/s, ${stats:-no stats}, ${seconds}s" >"$tmp/$t.summary"
   else
     local why
     why=$(grep -oE 'ERROR: (libFuzzer|AddressSanitizer|LeakSanitizer|UndefinedBehaviorSanitizer): [a-zA-Z-]+' "$dir/log" | head -n 1 || true)
     [ -z "$why" ] && why=$(grep -m1 -E 'fuzz check failed|runtime error' "$dir/log" || true)
-    echo "$t: FAILED (exit $rc): ${why:-see log}; input kept in $artifacts/$t/" >"$dir.summary"
+    echo "$t: FAILED (exit $rc): ${why:-see log}; input kept in $artifacts/$t/" >"$tmp/$t.summary"
     {
       echo "---- $t log (last 40 lines) ----"
       tail -n 40 "$dir/log"
-    } >"$dir.failure"
+    } >"$tmp/$t.failure"
   fi
-  echo $rc >"$dir.rc"
+  echo $rc >"$tmp/$t.rc"
 }
 
 running=0
 for t in "${targets[@]}"; do
-  if [ ! -x "$build/$t" ]; then
-    echo "fuzz/run-ci.sh: no target $t in $build" >&2
+  if [ ! -x "$out/$t" ]; then
+    echo "fuzz/run-ci.sh: no target $t in OUT" >&2
     exit 1
   fi
   run_one "$t" &
@@ -118,13 +153,13 @@ done
 wait || true
 
 failed=0
-echo "fuzz/run-ci.sh: ${#targets[@]} target(s), ${seconds}s each, $jobs at a time"
+echo "fuzz/run-ci.sh: ${#targets[@]} target(s) from build.sh's OUT, ${seconds}s each, $jobs at a time"
 for t in "${targets[@]}"; do
-  cat "$work/$t.summary"
-  if [ "$(cat "$work/$t.rc")" != 0 ]; then
+  cat "$tmp/$t.summary"
+  if [ "$(cat "$tmp/$t.rc")" != 0 ]; then
     failed=1
-    cat "$work/$t.failure"
+    cat "$tmp/$t.failure"
   fi
 done
-echo "fuzz/run-ci.sh: done in $(( $(date +%s) - started ))s"
+echo "fuzz/run-ci.sh: done in $(($(date +%s) - started))s (build.sh ${built}s)"
 exit $failed

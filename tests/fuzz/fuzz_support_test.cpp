@@ -5,8 +5,12 @@
 
 #include <cctype>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 
+#include "check.hpp"
+#include "json_check.hpp"
 #include "mutator.hpp"
 #include "reference.hpp"
 #include "top/top.hpp"
@@ -173,4 +177,159 @@ TEST(Dictionary, IsGeneratedFromTheCatalogInLibFuzzerSyntax) {
       EXPECT_NE(all.find("=\"" + std::string(c.ident) + "\""), std::string::npos) << c.ident;
   for (const char* h : {"#TP", "#tp", "#tP", "#Tp", "#PDP16TMP"})
     EXPECT_NE(all.find(std::string("=\"") + h + "\""), std::string::npos) << h;
+}
+
+// The capture targets check each JSON line with json_check.hpp instead of
+// nlohmann::json::accept (the old check): it must reject everything
+// nlohmann rejects, and accept what it accepts (else the targets would
+// abort on good output).
+namespace {
+
+std::string json_verdicts(std::string_view text) {
+  const topfuzz::Json v = topfuzz::json_check(text);
+  const bool ours = v == topfuzz::Json::valid;
+  const bool theirs = nlohmann::json::accept(text);
+  if (v == topfuzz::Json::too_deep) return theirs ? "too deep, nlohmann accepts" : "";
+  return ours == theirs ? ""
+                        : std::string(ours ? "json_check accepts" : "json_check rejects") +
+                              ", nlohmann " + (theirs ? "accepts" : "rejects");
+}
+
+}  // namespace
+
+TEST(JsonCheck, AgreesWithNlohmannOnCraftedTexts) {
+  const char* const cases[] = {"",
+                               " ",
+                               "{}",
+                               "[]",
+                               "{ }",
+                               " [ ] ",
+                               "null",
+                               "true",
+                               "false",
+                               "nul",
+                               "truex",
+                               "[true,]",
+                               "[,1]",
+                               "{\"a\":1,}",
+                               "{\"a\" 1}",
+                               "{a:1}",
+                               "{\"a\":1",
+                               "[1 2]",
+                               "\"x\"",
+                               "\"x",
+                               "'x'",
+                               "0",
+                               "-0",
+                               "01",
+                               "-",
+                               "1.",
+                               ".5",
+                               "1e",
+                               "1e+",
+                               "1E-2",
+                               "+1",
+                               "-1.5e300",
+                               "1e309",
+                               "-1e309",
+                               "1e-400",
+                               "123456789012345678901234567890",
+                               "0x10",
+                               "NaN",
+                               "Infinity",
+                               "[1]x",
+                               "{}{}",
+                               "\"\\u0041\"",
+                               "\"\\u00e9\"",
+                               "\"\\uD83D\\uDE00\"",
+                               "\"\\uD83D\"",
+                               "\"\\uDE00\"",
+                               "\"\\uD83D\\u0041\"",
+                               "\"\\uD83Dx\"",
+                               "\"\\u12\"",
+                               "\"\\x41\"",
+                               "\"\\a\"",
+                               "\"\\/\\b\\f\\n\\r\\t\\\\\\\"\"",
+                               "\"tab\there\"",
+                               "\"nl\nhere\"",
+                               "\"\xC3\xA9\"",
+                               "\"\xC3\"",
+                               "\"\xC0\xAF\"",
+                               "\"\xE0\x80\xAF\"",
+                               "\"\xED\xA0\x80\"",
+                               "\"\xF4\x90\x80\x80\"",
+                               "\"\xF0\x9F\x98\x80\"",
+                               "\"\xFF\"",
+                               "\"\x80\"",
+                               "\xEF\xBB\xBF{}",
+                               "\xEF\xBB{}",
+                               "{}\xEF\xBB\xBF",
+                               "\t{\r\n}\n",
+                               "\f{}",
+                               "{\"a\":[1,{\"b\":null}],\"c\":\"d\"}",
+                               "[[[[[[[[[[[[[[[[[[[[]]]]]]]]]]]]]]]]]]]]"};
+  for (const char* c : cases) EXPECT_EQ(json_verdicts(c), "") << topfuzz::show(c);
+  EXPECT_EQ(json_verdicts(std::string(400, '9')), "");
+  EXPECT_EQ(json_verdicts("-" + std::string(308, '9') + ".5"), "");
+  EXPECT_EQ(json_verdicts(std::string_view("\"a\0b\"", 5)), "");
+  EXPECT_EQ(json_verdicts(std::string_view("[1]\0", 4)), "");
+  const std::string deep = std::string(300, '[') + std::string(300, ']');
+  EXPECT_EQ(topfuzz::json_check(deep), topfuzz::Json::too_deep);
+  EXPECT_EQ(json_verdicts(deep), "too deep, nlohmann accepts");
+}
+
+TEST(JsonCheck, AgreesWithNlohmannOnMutatedAnalyzerLikeLines) {
+  // Lines shaped like topdump's JSON, each mutated many times (byte flips,
+  // insertions and deletions of JSON-significant bytes), deterministically.
+  const std::string seeds[] = {
+      R"({"type":"frame","ts":1700000000.123456,"conv":1,"dir":"c2d","raw":"#TPUG2rGAY00","ok":true,"fields":[{"name":"yaw","value":-12.5}],"findings":[]})",
+      R"({"type":"garbage","offset":17,"length":3,"preview":"\u0000\u00ab\\x","note":null})",
+      R"({"type":"note","code":"unsupported_link","message":"link type 147 (\"USER0\") is not dissected","n":-0.0e-5})",
+      R"(["\ud83d\ude00",1e10,-7,true,false,null,{"":[]}])"};
+  static constexpr char kAlphabet[] =
+      "{}[]\",:\\u0123456789abcdefABCDEF.eE+- \t\r\nntrfl\x00\x7F\x80\xBF\xC3\xE0\xED\xF0\xF4\xFF";
+  const std::string_view alphabet(kAlphabet, sizeof kAlphabet - 1);
+  std::uint64_t x = 0x9E3779B97F4A7C15ull;
+  auto next = [&x] {
+    x ^= x << 13;
+    x ^= x >> 7;
+    x ^= x << 17;
+    return x;
+  };
+  int checked = 0;
+  for (const std::string& seed : seeds) {
+    for (int n = 0; n < 5000; ++n) {
+      std::string s = seed;
+      const int edits = 1 + static_cast<int>(next() % 3);
+      for (int e = 0; e < edits; ++e) {
+        const std::size_t at = next() % (s.size() + 1);
+        const char c = alphabet[next() % alphabet.size()];
+        switch (next() % 3) {
+          case 0:
+            if (at < s.size()) s[at] = c;
+            break;
+          case 1:
+            s.insert(at, 1, c);
+            break;
+          default:
+            if (at < s.size()) s.erase(at, 1);
+        }
+      }
+      ASSERT_EQ(json_verdicts(s), "") << topfuzz::show(s, 400);
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 20000);
+}
+
+TEST(JsonCheck, SamplesAboutOneInputInSixteenFromItsBytes) {
+  int hits = 0;
+  for (std::uint32_t i = 0; i < 16000; ++i) {
+    const auto* p = reinterpret_cast<const std::uint8_t*>(&i);
+    const bool s = topfuzz::sampled(p, sizeof i, 4);
+    EXPECT_EQ(s, topfuzz::sampled(p, sizeof i, 4));
+    hits += s;
+  }
+  EXPECT_GT(hits, 800);
+  EXPECT_LT(hits, 1200);
 }
