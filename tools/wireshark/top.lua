@@ -3161,7 +3161,7 @@ local function add_frame(tvb, pinfo, tree, off, item, c, dir, index)
   local memo = seen[key]
   local dialect, role
   if not pinfo.visited and not (memo and memo[index]) then
-    dialect, role = judge_frame(c, dir, f, pinfo.rel_ts)
+    dialect, role = judge_frame(c, dir, f, pinfo.abs_ts)
     memo = memo or {}
     memo[index] = { dialect, role }
     seen[key] = memo
@@ -3173,7 +3173,16 @@ local function add_frame(tvb, pinfo, tree, off, item, c, dir, index)
     role = "any"
   end
   local dec = decode(f, dialect, role == "any" and role_from_addresses(f) or role, pref_model())
-  if not pinfo.visited then after_decode(c, dir, f, dec, pinfo.rel_ts) end
+  if role == "response" and role_from_addresses(f) == "request" then
+    local has = false
+    for _, x in ipairs(dec.findings) do has = has or x.code == "unswapped-addresses" end
+    if not has then
+      dec.findings[#dec.findings + 1] = finding("unswapped-addresses", 3, "a response addressed " ..
+                                                schar(f.src) .. " to " .. schar(f.dst) ..
+                                                " (the request's order; some simulators)")
+    end
+  end
+  if not pinfo.visited then after_decode(c, dir, f, dec, pinfo.abs_ts) end
 
   local total = item.length
   local t = tree:add(top, tvb(off, total))
@@ -3225,9 +3234,10 @@ end
 local function add_garbage(tvb, tree, off, item)
   local len = item.length
   if len <= 0 then return end
-  local g = tree:add(HF.garbage, tvb(off, len))
-  local x = item.finding
-  add_finding(g, tvb, off, x)
+  local t = tree:add(top, tvb(off, len))
+  t:append_text(", " .. len .. " byte(s) outside any frame")
+  local g = t:add(HF.garbage, tvb(off, len))
+  add_finding(g, tvb, off, item.finding)
 end
 
 -- Dissects the bytes of tvb; at_end: a whole datagram or serial record.
