@@ -31,8 +31,8 @@ struct Port {
   const char* transport;
   std::uint16_t port;
 };
-constexpr Port kPorts[] = {{"udp", 5000},  {"udp", 9002}, {"udp", 9003},
-                           {"udp", 9004},  {"udp", 12580}, {"tcp", 5000}};
+constexpr Port kPorts[] = {{"udp", 5000}, {"udp", 9002},  {"udp", 9003},
+                           {"udp", 9004}, {"udp", 12580}, {"tcp", 5000}};
 
 // A Lua string literal: ASCII kept, the rest as decimal escapes.
 std::string lua_str(std::string_view s) {
@@ -166,11 +166,10 @@ void write_fields(std::string& o) {
   o += "-- Every catalog field as top.<ident>.<field>.\nlocal CATALOG_FIELDS = {}\n";
   for (const std::string& ab : order) {
     const FieldDecl& x = decls[ab];
-    std::string type = x.vtype == "uint"  ? "ftypes.UINT32"
-                       : x.vtype == "int" ? "ftypes.INT32"
-                       : x.vtype == "double"
-                           ? "ftypes.DOUBLE"
-                           : "ftypes.STRING";
+    std::string type = x.vtype == "uint"     ? "ftypes.UINT32"
+                       : x.vtype == "int"    ? "ftypes.INT32"
+                       : x.vtype == "double" ? "ftypes.DOUBLE"
+                                             : "ftypes.STRING";
     std::string vs = "nil", base = "nil";
     if (x.vtype == "uint" || x.vtype == "int") {
       base = x.hex ? "base.HEX" : "base.DEC";
@@ -219,10 +218,11 @@ void write_catalog(std::string& o) {
     for (const top::CommandSpec& c : top::commands(d)) {
       std::string models;
       for (top::Model m : top::all_models())
-        if (c.models & top::model_bit(m)) models += " " + std::string(top::to_string(m)) + " = true,";
+        if (c.models & top::model_bit(m))
+          models += " " + std::string(top::to_string(m)) + " = true,";
       o += "CATALOG." + std::string(top::to_string(d)) + "[" + lua_str(c.ident) +
-           "] = {\n  dialect = " + lua_str(top::to_string(d)) + ", address = " +
-           lua_str(std::string(1, c.address)) + ", title = " + lua_str(c.title) +
+           "] = {\n  dialect = " + lua_str(top::to_string(d)) +
+           ", address = " + lua_str(std::string(1, c.address)) + ", title = " + lua_str(c.title) +
            ", section = " + lua_str(c.section) + ",\n  models = {" + models + " },\n  forms = {\n";
       for (const top::FormSpec& f : c.forms) {
         o += "    { control = " + lua_str(std::string(1, f.control)) +

@@ -166,6 +166,10 @@ def main():
     ap.add_argument("--lua", required=True)
     ap.add_argument("--tshark-opt", action="append", default=[])
     ap.add_argument("--topdump-opt", action="append", default=[])
+    ap.add_argument("--reference", help="topdump reads this capture instead (same frames, "
+                    "another link: the DLT_USER0 serial dump)")
+    ap.add_argument("--expect-fields", help="file of '<ident> <field>...' lines, one per frame: "
+                    "tshark must show each top.<ident>.<field>")
     ap.add_argument("captures", nargs="+")
     a = ap.parse_args()
     tshark = shutil.which(a.tshark) if not os.path.isabs(a.tshark) else a.tshark
@@ -176,9 +180,21 @@ def main():
     failed = 0
     for cap in a.captures:
         name = os.path.basename(cap)
-        td = topdump_frames(a.topdump, cap, a.topdump_opt)
+        td = topdump_frames(a.topdump, a.reference or cap, a.topdump_opt)
         ws = tshark_frames(tshark, a.lua, cap, a.tshark_opt)
         bad = 0
+        if a.expect_fields:
+            with open(a.expect_fields, encoding="ascii") as f:
+                expected = [line.split() for line in f if line.strip()]
+            if len(expected) != len(ws):
+                print(f"{name}: {len(expected)} frames built, tshark shows {len(ws)}")
+                bad += 1
+            for i, (want, w) in enumerate(zip(expected, ws)):
+                shown = [n for n, _, _ in w["fields"]]
+                if w["hdr"].get("top.ident") != want[0] or shown != want[1:]:
+                    print(f"{name}: frame {i + 1} (tshark packet {w['packet']}): built {want[0]} "
+                          f"with {want[1:]}, tshark shows {w['hdr'].get('top.ident')} with {shown}")
+                    bad += 1
         for i in range(max(len(td), len(ws))):
             if i >= len(td) or i >= len(ws):
                 extra = ws[i] if i >= len(td) else td[i]

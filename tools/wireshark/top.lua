@@ -3293,10 +3293,12 @@ local function heuristic(tvb, pinfo, tree)
   if not top.prefs.heuristic then return false end
   local len = tvb:len()
   if len < 12 or tvb(0, 1):uint() ~= 35 then return false end
-  local b = tvb:raw(0, math.min(len, 80))
-  local st, _, f = parse_frame(b, 0, len <= 80)
-  if st ~= "frame" or not f.checksum_ok then return false end
   local t = transport_of(pinfo)
+  local b = tvb:raw(0, math.min(len, 80))
+  local st, _, f = parse_frame(b, 0, len <= 80 and t ~= "tcp")
+  -- a TCP segment may hold the start of a frame only: a whole header will do
+  local ok = (st == "frame" and f.checksum_ok) or (st == "need_more" and t == "tcp" and len >= 10)
+  if not ok then return false end
   dissect(tvb, pinfo, tree, t, t ~= "tcp")
   return true
 end
