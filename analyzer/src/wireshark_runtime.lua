@@ -975,6 +975,18 @@ local function add_garbage(tvb, tree, off, item)
   add_finding(g, tvb, off, item.finding)
 end
 
+-- TCP: where the bytes of tvb sit in the direction's stream. Wireshark may
+-- hand a reassembled PDU over again from its start after a frame of it was
+-- shown (a frame that waits for look-ahead, then one cut by the segment's
+-- end); such a frame is not shown twice.
+local tcp_seq = Field.new("tcp.seq")
+local tcp_len = Field.new("tcp.len")
+local function last_value(field)
+  local all = { field() }
+  local x = all[#all]
+  return x and x.value
+end
+
 -- Dissects the bytes of tvb; at_end: a whole datagram or serial record.
 local function dissect(tvb, pinfo, tree, transport, at_end)
   local len = tvb:len()
@@ -997,13 +1009,45 @@ local function dissect(tvb, pinfo, tree, transport, at_end)
   end
   pinfo.cols.protocol = "TOP"
   local c, dir = conversation(pinfo, transport)
+  local base = nil
+  if transport == "tcp" then
+    local seq, seglen = last_value(tcp_seq), last_value(tcp_len)
+    if seq and seglen then base = seq + seglen - len end
+  end
+  local memo = seen[pinfo.number] or {}
+  seen[pinfo.number] = memo
+  memo.shown = memo.shown or {}
   local infos = {}
   local index = 0
   for _, it in ipairs(items) do
-    if it.kind == "frame" then
+    local at = base and (base + start + it.offset)
+    local show
+    if pinfo.visited and memo.shown[start + it.offset] ~= nil then
+      show = memo.shown[start + it.offset]
+    else
+      show = true
+      if at then
+        -- the same bytes at the same stream offset as one of the last frames
+        -- shown in this direction (an offset alone would not do: with
+        -- out-of-order segments the PDU may not end where this segment does)
+        c.recent = c.recent or {}
+        local r = c.recent[dir] or { keys = {}, set = {} }
+        c.recent[dir] = r
+        local key = at .. ":" .. (it.frame and it.frame.raw or it.length)
+        if r.set[key] then
+          show = false
+        else
+          r.set[key] = true
+          r.keys[#r.keys + 1] = key
+          if #r.keys > 64 then r.set[table.remove(r.keys, 1)] = nil end
+        end
+      end
+      memo.shown[start + it.offset] = show
+    end
+    if show and it.kind == "frame" then
       infos[#infos + 1] = add_frame(tvb, pinfo, tree, start + it.offset, it, c, dir, index)
       index = index + 1
-    else
+    elseif show then
       add_garbage(tvb, tree, start + it.offset, it)
     end
   end

@@ -13,6 +13,8 @@
 //   vectors.pcap         every frame of tests/vectors/*.json, one datagram
 //                        each, on its dialect's port (lying lengths, header
 //                        case errata, TMP, lowercase hex, CR/LF, ...)
+//   tcp.pcap             TCP 5000: a frame that fails its checksum before a frame
+//                        split over two segments; CR/LF in the next segment
 //   heuristic.pcap       TOP on ports nobody registered (UDP 40001/40002, TCP
 //                        40003/40004 with a frame split over two segments and
 //                        two frames in one datagram)
@@ -162,6 +164,43 @@ int write_heuristic(const std::string& dir) {
   return 0;
 }
 
+// TCP 5000 edge cases: a frame that fails its checksum (so it waits for the
+// look-ahead that could show another length) followed by a frame cut by the
+// segment's end, which makes Wireshark hand the first frame over again; CR/LF
+// at the start of the next segment.
+int write_tcp(const std::string& dir) {
+  using topdump::pcapw::frame;
+  namespace w = topdump::pcapw;
+  PcapWriter out(dir + "/tcp.pcap", DLT_EN10MB);
+  if (!out.ok()) return 2;
+  std::int64_t ts = 1714564800000000;
+  std::uint32_t cs = 1000, ds = 5000;
+  auto tcp = [&](bool up, std::uint8_t flags, const std::string& payload) {
+    if (up) {
+      out.write(ts, w::eth(w::tcp4(kClient, kDevice, 40000, 5000, cs, ds, flags, payload)));
+      cs += static_cast<std::uint32_t>(payload.size()) + ((flags & w::kSyn) ? 1 : 0);
+    } else {
+      out.write(ts, w::eth(w::tcp4(kDevice, kClient, 5000, 40000, ds, cs, flags, payload)));
+      ds += static_cast<std::uint32_t>(payload.size()) + ((flags & w::kSyn) ? 1 : 0);
+    }
+    ts += 10000;
+  };
+  tcp(true, w::kSyn, "");
+  tcp(false, w::kSyn | w::kAck, "");
+  tcp(true, w::kAck, "");
+  tcp(true, w::kAck | w::kPsh, frame("#tpUG6wGAP112F32"));
+  std::string bad = frame("#tpGU6wGAP112F32");
+  bad.back() = bad.back() == '0' ? '1' : '0';  // a wrong checksum
+  tcp(false, w::kAck | w::kPsh, bad);
+  const std::string gac = frame("#TPGUCrGACBF33FE070049");
+  tcp(false, w::kAck | w::kPsh, gac.substr(0, 20));
+  tcp(false, w::kAck | w::kPsh, gac.substr(20) + frame("#TPGU2wPTZ07"));
+  const std::string gay = frame("#tpGU6wGAY083732");
+  tcp(false, w::kAck | w::kPsh, "\r\n" + gay.substr(0, 16));
+  tcp(false, w::kAck | w::kPsh, gay.substr(16));
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -172,5 +211,6 @@ int main(int argc, char** argv) {
   const std::string dir = argv[1];
   if (int rc = write_forms(dir)) return rc;
   if (int rc = write_vectors(dir, argv[2])) return rc;
+  if (int rc = write_tcp(dir)) return rc;
   return write_heuristic(dir);
 }
