@@ -14,6 +14,7 @@ packages=(
   libspdlog-dev nlohmann-json3-dev libcli11-dev
   tcpdump socat                     # capture floor for bench/, pty peers for tests
   time                              # /usr/bin/time -v: peak RSS in bench/run.sh
+  tshark                            # the generated Wireshark dissector's tests (tests/wireshark)
 )
 
 missing=()
@@ -28,5 +29,7 @@ SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
+# tshark: answer "no" to letting non-root users capture (wireshark-common)
+echo "wireshark-common wireshark-common/install-setuid boolean false" | $SUDO debconf-set-selections
 $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
 echo "install-deps: installed ${missing[*]}"

@@ -16,7 +16,7 @@ TEST(Sources, AsciiOnly) {
     for (const auto& e : fs::recursive_directory_iterator(root)) {
       if (!e.is_regular_file()) continue;
       auto ext = e.path().extension().string();
-      if (ext != ".cpp" && ext != ".hpp" && ext != ".h" && ext != ".txt") continue;
+      if (ext != ".cpp" && ext != ".hpp" && ext != ".h" && ext != ".txt" && ext != ".lua") continue;
       std::ifstream in(e.path(), std::ios::binary);
       std::string line;
       int n = 0;

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "wireshark.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"topdump: decode and diagnose TOP (SkyDroid/Topotek gimbal camera) traffic"};
@@ -13,6 +14,7 @@ int main(int argc, char** argv) {
   runs.push_back(topdump::add_frame_command(app));
   runs.push_back(topdump::add_live_command(app));
   runs.push_back(topdump::add_serial_command(app));
+  runs.push_back(topdump::add_wireshark_command(app));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,216 @@
+// Writes the captures tests/wireshark compares tshark (with the generated
+// top.lua) and topdump on, into the directory given:
+//   forms.pcap           every form of every catalog command, built with
+//                        top::build_frame and top::example_data, one per UDP
+//                        datagram (SkyDroid on 5000, Topotek 9004 -> 9003)
+//   forms.fields         per frame of forms.pcap: the identifier and the
+//                        fields its form has (what tshark must show)
+//   forms-skydroid.pcap  the SkyDroid frames of forms.pcap alone
+//   forms-user0.pcap     the same frames as a serial dump: DLT_USER0, one
+//                        frame per record (as `topdump -w` or topsim would
+//                        write the serial line; topdump does not read it, so
+//                        it is compared with forms-skydroid.pcap)
+//   vectors.pcap         every frame of tests/vectors/*.json, one datagram
+//                        each, on its dialect's port (lying lengths, header
+//                        case errata, TMP, lowercase hex, CR/LF, ...)
+//   tcp.pcap             TCP 5000: a frame that fails its checksum before a frame
+//                        split over two segments; CR/LF in the next segment
+//   heuristic.pcap       TOP on ports nobody registered (UDP 40001/40002, TCP
+//                        40003/40004 with a frame split over two segments and
+//                        two frames in one datagram)
+#include <pcap/pcap.h>
+
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "pcapw.hpp"
+#include "top/top.hpp"
+
+namespace {
+
+using topdump::pcapw::Ip4;
+using topdump::pcapw::PcapWriter;
+
+constexpr Ip4 kClient{192, 168, 144, 10};
+constexpr Ip4 kDevice{192, 168, 144, 108};
+constexpr int kDltUser0 = 147;
+
+// The bytes of a vector: each UTF-8 char is one byte (tests/vectors/README.md).
+std::string bytes_of(const std::string& utf8) {
+  std::string out;
+  for (std::size_t i = 0; i < utf8.size();) {
+    auto c = static_cast<unsigned char>(utf8[i]);
+    if ((c & 0xE0) == 0xC0 && i + 1 < utf8.size()) {
+      out += static_cast<char>(
+          (((c & 0x1Fu) << 6) | (static_cast<unsigned char>(utf8[i + 1]) & 0x3Fu)) & 0xFF);
+      i += 2;
+    } else {
+      out += static_cast<char>(c);
+      ++i;
+    }
+  }
+  return out;
+}
+
+struct Built {
+  bool skydroid = false;
+  bool from_client = true;
+  std::string bytes;
+};
+
+int write_forms(const std::string& dir) {
+  std::vector<Built> frames;
+  std::ofstream fields(dir + "/forms.fields");
+  for (top::Dialect d : {top::Dialect::skydroid, top::Dialect::topotek}) {
+    const char client = d == top::Dialect::skydroid ? 'U' : 'P';
+    for (const top::CommandSpec& c : top::commands(d))
+      for (const top::FormSpec& f : c.forms) {
+        std::string data = top::example_data(f);
+        // the form's "no value" data (SDC all zero: no card) shows no field values
+        if (!f.none.empty() && data == f.none && !data.empty()) data.back() = '1';
+        const bool request = f.role != top::Role::response;
+        top::BuildSpec b;
+        b.header = top::choose_header(d, c.address, data.size());
+        b.src = request ? client : c.address;
+        b.dst = request ? c.address : client;
+        b.control = f.control;
+        b.ident = c.ident;
+        b.data = data;
+        frames.push_back({d == top::Dialect::skydroid, request, top::build_frame(b)});
+        fields << c.ident;
+        for (const top::FieldSpec& s : f.fields) fields << ' ' << s.name;
+        fields << '\n';
+      }
+  }
+  PcapWriter all(dir + "/forms.pcap", DLT_EN10MB), sky(dir + "/forms-skydroid.pcap", DLT_EN10MB),
+      user0(dir + "/forms-user0.pcap", kDltUser0);
+  if (!all.ok() || !sky.ok() || !user0.ok()) return 2;
+  std::int64_t ts = 1714564800000000;
+  for (const Built& x : frames) {
+    const std::uint16_t device = x.skydroid ? 5000 : 9003, client = x.skydroid ? 40000 : 9004;
+    const std::string pkt =
+        x.from_client
+            ? topdump::pcapw::eth(topdump::pcapw::udp4(kClient, kDevice, client, device, x.bytes))
+            : topdump::pcapw::eth(topdump::pcapw::udp4(kDevice, kClient, device, client, x.bytes));
+    all.write(ts, pkt);
+    if (x.skydroid) {
+      sky.write(ts, pkt);
+      user0.write(ts, x.bytes);
+    }
+    ts += 10000;
+  }
+  return 0;
+}
+
+int write_vectors(const std::string& dir, const std::string& source) {
+  PcapWriter out(dir + "/vectors.pcap", DLT_EN10MB);
+  if (!out.ok()) return 2;
+  std::int64_t ts = 1714564800000000;
+  std::uint16_t client = 41000;
+  for (const char* file : {"skydroid", "topotek", "extra"}) {
+    std::ifstream in(source + "/tests/vectors/" + file + ".json");
+    if (!in) return 2;
+    const nlohmann::json j = nlohmann::json::parse(in);
+    for (const auto& v : j.at("vectors")) {
+      const std::string bytes = bytes_of(v.at("bytes").get<std::string>());
+      const std::string dialect = v.value("dialect", "skydroid");
+      const std::uint16_t port = dialect == "topotek" ? 9003 : 5000;
+      // one conversation per vector: each is judged alone, as topdump frame does
+      out.write(ts,
+                topdump::pcapw::eth(topdump::pcapw::udp4(kClient, kDevice, client++, port, bytes)));
+      ts += 10000;
+    }
+  }
+  return 0;
+}
+
+int write_heuristic(const std::string& dir) {
+  using topdump::pcapw::frame;
+  namespace w = topdump::pcapw;
+  PcapWriter out(dir + "/heuristic.pcap", DLT_EN10MB);
+  if (!out.ok()) return 2;
+  std::int64_t ts = 1714564800000000;
+  auto udp = [&](bool up, const std::string& payload) {
+    out.write(ts, w::eth(up ? w::udp4(kClient, kDevice, 40001, 40002, payload)
+                            : w::udp4(kDevice, kClient, 40002, 40001, payload)));
+    ts += 10000;
+  };
+  udp(true, frame("#tpUG6wGAYEC7832"));
+  udp(false, frame("#tpGU6wGAYEC7832"));
+  udp(true, frame("#TPUG2wPTZ05") + frame("#TPUD2rVER00"));
+  udp(false, frame("#TPGU2wPTZ05") + "\r\n" + frame("#tpDU6rVER010502"));
+  std::uint32_t cs = 1000, ds = 5000;
+  auto tcp = [&](bool up, std::uint8_t flags, const std::string& payload) {
+    if (up) {
+      out.write(ts, w::eth(w::tcp4(kClient, kDevice, 40003, 40004, cs, ds, flags, payload)));
+      cs += static_cast<std::uint32_t>(payload.size()) + ((flags & w::kSyn) ? 1 : 0);
+    } else {
+      out.write(ts, w::eth(w::tcp4(kDevice, kClient, 40004, 40003, ds, cs, flags, payload)));
+      ds += static_cast<std::uint32_t>(payload.size()) + ((flags & w::kSyn) ? 1 : 0);
+    }
+    ts += 10000;
+  };
+  tcp(true, w::kSyn, "");
+  tcp(false, w::kSyn | w::kAck, "");
+  tcp(true, w::kAck, "");
+  const std::string gay = frame("#tpUG6wGAYEC7832");
+  tcp(true, w::kAck | w::kPsh, gay.substr(0, 12));
+  tcp(true, w::kAck | w::kPsh, gay.substr(12));
+  tcp(false, w::kAck | w::kPsh, frame("#tpGU6wGAYEC7832") + frame("#TPGU2wPTZ05"));
+  tcp(true, w::kAck | w::kPsh, frame("#TPUG2wPTZ05") + "\r\n");
+  return 0;
+}
+
+// TCP 5000 edge cases: a frame that fails its checksum (so it waits for the
+// look-ahead that could show another length) followed by a frame cut by the
+// segment's end, which makes Wireshark hand the first frame over again; CR/LF
+// at the start of the next segment.
+int write_tcp(const std::string& dir) {
+  using topdump::pcapw::frame;
+  namespace w = topdump::pcapw;
+  PcapWriter out(dir + "/tcp.pcap", DLT_EN10MB);
+  if (!out.ok()) return 2;
+  std::int64_t ts = 1714564800000000;
+  std::uint32_t cs = 1000, ds = 5000;
+  auto tcp = [&](bool up, std::uint8_t flags, const std::string& payload) {
+    if (up) {
+      out.write(ts, w::eth(w::tcp4(kClient, kDevice, 40000, 5000, cs, ds, flags, payload)));
+      cs += static_cast<std::uint32_t>(payload.size()) + ((flags & w::kSyn) ? 1 : 0);
+    } else {
+      out.write(ts, w::eth(w::tcp4(kDevice, kClient, 5000, 40000, ds, cs, flags, payload)));
+      ds += static_cast<std::uint32_t>(payload.size()) + ((flags & w::kSyn) ? 1 : 0);
+    }
+    ts += 10000;
+  };
+  tcp(true, w::kSyn, "");
+  tcp(false, w::kSyn | w::kAck, "");
+  tcp(true, w::kAck, "");
+  tcp(true, w::kAck | w::kPsh, frame("#tpUG6wGAP112F32"));
+  std::string bad = frame("#tpGU6wGAP112F32");
+  bad.back() = bad.back() == '0' ? '1' : '0';  // a wrong checksum
+  tcp(false, w::kAck | w::kPsh, bad);
+  const std::string gac = frame("#TPGUCrGACBF33FE070049");
+  tcp(false, w::kAck | w::kPsh, gac.substr(0, 20));
+  tcp(false, w::kAck | w::kPsh, gac.substr(20) + frame("#TPGU2wPTZ07"));
+  const std::string gay = frame("#tpGU6wGAY083732");
+  tcp(false, w::kAck | w::kPsh, "\r\n" + gay.substr(0, 16));
+  tcp(false, w::kAck | w::kPsh, gay.substr(16));
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 3) {
+    std::fprintf(stderr, "usage: ws_captures OUTDIR SOURCE_DIR\n");
+    return 2;
+  }
+  const std::string dir = argv[1];
+  if (int rc = write_forms(dir)) return rc;
+  if (int rc = write_vectors(dir, argv[2])) return rc;
+  if (int rc = write_tcp(dir)) return rc;
+  return write_heuristic(dir);
+}
