@@ -254,7 +254,8 @@ enum class Cause : std::uint8_t {
   none,
   bad_checksum,  // devices drop frames they cannot trust
   uart_source,   // Topotek: source U over the network, answers go to the UART
-  unsupported    // not in the catalog, or not on the model
+  unsupported,   // not in the catalog, or not on the model
+  invalid        // a wrong length or value: Topotek ignores it, SkyDroid answers ERE
 };
 
 struct Pending {
@@ -760,6 +761,8 @@ struct Analyzer::Impl {
   // answers a pending request of the other direction, comes from the
   // device; a stream switch (GAA, GIA, FAE write) comes from a client.
   void learn_device(Conversation& c, int d, const top::Frame& f, top::Dialect dialect) {
+    // Both ends the same (a recording without ports): the addresses decide.
+    if (c.dir[0].src == c.dir[0].dst) return;
     if (top::role_from_addresses(f) == top::Role::response) {
       c.device_dir = d;
       return;
@@ -812,6 +815,10 @@ struct Analyzer::Impl {
           break;
         case Cause::unsupported:
           m += ": the identifier is not supported on the model";
+          break;
+        case Cause::invalid:
+          m += ": the request is invalid (its length or a value), which devices ignore or "
+               "answer with ERE";
           break;
         case Cause::none:
           break;
@@ -954,11 +961,21 @@ struct Analyzer::Impl {
                c.transport != Transport::serial) {
       p.cause = Cause::uart_source;
     } else {
-      for (const top::Finding& x : ev.entry->decoded.findings)
+      // A request laid out as a reply (a one-char VSN read) is invalid too.
+      const top::FormSpec* form = ev.entry->decoded.form;
+      if (form && form->role == top::Role::response) p.cause = Cause::invalid;
+      for (const top::Finding& x : ev.entry->decoded.findings) {
         if (x.code == top::FindingCode::unknown_ident ||
             (x.code == top::FindingCode::unsupported_on_model &&
-             x.severity == top::Severity::error))
+             x.severity == top::Severity::error)) {
           p.cause = Cause::unsupported;
+          break;
+        }
+        if (x.code == top::FindingCode::data_length || x.code == top::FindingCode::bad_field ||
+            x.code == top::FindingCode::value_out_of_range ||
+            x.code == top::FindingCode::unsupported_control)
+          p.cause = Cause::invalid;
+      }
     }
     c.count_pending(p, true);
     c.pending_changed();

@@ -144,11 +144,11 @@ EXPERTS["unknown-ident"] = {
   ["warning"] = ProtoExpert.new("top.finding.unknown-ident", "unknown-ident: the identifier is not in the catalog of the dialect", expert.group.PROTOCOL, expert.severity.WARN),
   ["error"] = ProtoExpert.new("top.finding.unknown-ident.error", "unknown-ident: the identifier is not in the catalog of the dialect", expert.group.PROTOCOL, expert.severity.ERROR),
 }
-FINDINGS["unsupported-on-model"] = "warning"
+FINDINGS["unsupported-on-model"] = "error"
 EXPERTS["unsupported-on-model"] = {
-  ["info"] = ProtoExpert.new("top.finding.unsupported-on-model.info", "unsupported-on-model: the command exists but the document does not list it for the model", expert.group.PROTOCOL, expert.severity.NOTE),
-  ["warning"] = ProtoExpert.new("top.finding.unsupported-on-model", "unsupported-on-model: the command exists but the document does not list it for the model", expert.group.PROTOCOL, expert.severity.WARN),
-  ["error"] = ProtoExpert.new("top.finding.unsupported-on-model.error", "unsupported-on-model: the command exists but the document does not list it for the model", expert.group.PROTOCOL, expert.severity.ERROR),
+  ["info"] = ProtoExpert.new("top.finding.unsupported-on-model.info", "unsupported-on-model: the command exists but neither the document nor field evidence lists it for the model; a warning naming the evidence when the field says the firmware takes it (C13 PTZ)", expert.group.PROTOCOL, expert.severity.NOTE),
+  ["warning"] = ProtoExpert.new("top.finding.unsupported-on-model.warning", "unsupported-on-model: the command exists but neither the document nor field evidence lists it for the model; a warning naming the evidence when the field says the firmware takes it (C13 PTZ)", expert.group.PROTOCOL, expert.severity.WARN),
+  ["error"] = ProtoExpert.new("top.finding.unsupported-on-model", "unsupported-on-model: the command exists but neither the document nor field evidence lists it for the model; a warning naming the evidence when the field says the firmware takes it (C13 PTZ)", expert.group.PROTOCOL, expert.severity.ERROR),
 }
 FINDINGS["unsupported-control"] = "warning"
 EXPERTS["unsupported-control"] = {
