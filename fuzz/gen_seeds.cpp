@@ -45,13 +45,6 @@ bool write(const fs::path& dir, const std::string& bytes) {
   return static_cast<bool>(out);
 }
 
-// A frame with its checksum appended.
-std::string with_checksum(std::string s) {
-  char cs[2];
-  put_hex2(checksum(s), cs);
-  return s.append(cs, 2);
-}
-
 std::string bytes_of(const std::string& utf8) {
   std::string out;
   for (std::size_t i = 0; i < utf8.size();) {

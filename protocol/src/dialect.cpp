@@ -2,24 +2,6 @@
 
 namespace top {
 
-Dialect dialect_from_port(std::uint16_t port) noexcept {
-  switch (port) {
-    case 5000:
-    case 9002:
-    case 12580:
-      return Dialect::skydroid;
-    case 9003:
-    case 9004:
-      return Dialect::topotek;
-    default:
-      return Dialect::unknown;
-  }
-}
-
-bool is_top_port(std::uint16_t port) noexcept {
-  return dialect_from_port(port) != Dialect::unknown;
-}
-
 Dialect dialect_from_frame(const Frame& f) noexcept {
   if (f.src == 'P' || f.dst == 'P') return Dialect::topotek;
   if (f.header == Header::ext8 || f.header == Header::ext16 || f.header == Header::tmp_quirk)

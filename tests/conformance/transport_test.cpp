@@ -130,7 +130,7 @@ TEST(Record, TopsimRecordsWhatItReceivesAndSends) {
 TEST(Record, TopconfWritesThePcapOfTheRun) {
   const std::string path = std::string(TOPKIT_BINARY_DIR) + "/topconf_record_test.pcap";
   {
-    topkit::PcapWriter w(path, true);
+    pcapio::Recorder w(path, true);
     topconf::SimTransport t(top::Model::c12);
     topconf::RunOptions o;
     o.pcap = &w;

@@ -79,12 +79,11 @@ bool get_uint(const Ctx& c, const json& o, const std::string& where, const char*
   return true;
 }
 
+// A header a step can build (not the TMP form).
 std::optional<top::Header> header_from(std::string_view s) {
-  if (s == "#TP") return top::Header::fixed;
-  if (s == "#tp") return top::Header::variable;
-  if (s == "#tP") return top::Header::ext8;
-  if (s == "#Tp") return top::Header::ext16;
-  return std::nullopt;
+  const auto h = top::header_from_string(s);
+  if (h == top::Header::tmp_quirk) return std::nullopt;
+  return h;
 }
 
 bool is_hex(std::string_view s) {
@@ -475,7 +474,7 @@ LoadResult load_matrix(std::string_view text, std::string_view file) {
   if (get_string(c, doc, "", "model", model, true)) {
     auto mm = top::model_from_string(model);
     if (!mm || *mm == top::Model::unknown)
-      c.err("model", "must be one of c10 c10pro c12 c13 c20 sip");
+      c.err("model", "must be one of " + top::model_list());
     else {
       m.model = *mm;
       m.dialect = top::dialect_of(*mm);
@@ -578,9 +577,7 @@ bool resolve_send(const SendSpec& s, top::Dialect dialect, char client, std::str
       bytes = t;
       return true;
     }
-    char cs[2];
-    top::put_hex2(top::checksum(t), cs);
-    std::string with = t + std::string(cs, 2);
+    std::string with = top::with_checksum(t);
     auto r2 = top::parse_exact(with);
     if (r2.status == top::ParseStatus::frame) {
       bytes = with;

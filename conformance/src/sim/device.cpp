@@ -41,17 +41,10 @@ const top::FieldValue* field(const top::Decoded& d, std::string_view name) {
   return nullptr;
 }
 
-int hex_digit(char c) noexcept {
-  if (c >= '0' && c <= '9') return c - '0';
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  return -1;
-}
-
 // Two hex digits of data as a number, -1 when they are not.
 int data_byte(std::string_view data) noexcept {
   if (data.size() != 2) return -1;
-  int hi = hex_digit(data[0]), lo = hex_digit(data[1]);
+  int hi = top::hex_value(data[0]), lo = top::hex_value(data[1]);
   if (hi < 0 || lo < 0) return -1;
   return hi * 16 + lo;
 }
@@ -383,10 +376,7 @@ void Device::handle(const Frame& req, Link link, std::uint64_t now_us,
     f += opts_.swap_addresses ? req.src : req.dst;
     f += "16wTMP";
     f += data;
-    char cs[2];
-    top::put_hex2(top::checksum(f), cs);
-    f.append(cs, 2);
-    out.push_back(std::move(f));
+    out.push_back(top::with_checksum(f));
     return;
   }
   out.push_back(make(top::choose_header(dialect_, cmd.address, data.size()), req, 'r', id, data));

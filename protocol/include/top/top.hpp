@@ -7,3 +7,4 @@
 #include "top/findings.hpp"
 #include "top/frame.hpp"
 #include "top/stream.hpp"
+#include "top/text.hpp"

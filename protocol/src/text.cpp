@@ -1,23 +1,14 @@
-#include "escape.hpp"
+#include "top/text.hpp"
 
-#include <cstdio>
-
-namespace topdump {
+namespace top {
 
 namespace {
-int hexv(char c) {
-  if (c >= '0' && c <= '9') return c - '0';
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-  return -1;
-}
 // "\xNN", uppercase hex.
 void put_hex_escape(std::string& out, unsigned char c) {
   static constexpr char kHex[] = "0123456789ABCDEF";
   const char b[4] = {'\\', 'x', kHex[c >> 4], kHex[c & 15]};
   out.append(b, 4);
 }
-
 }  // namespace
 
 std::optional<std::string> unescape(std::string_view arg, std::string& error) {
@@ -51,8 +42,8 @@ std::optional<std::string> unescape(std::string_view arg, std::string& error) {
         out += '\\';
         break;
       case 'x': {
-        int hi = i + 1 < arg.size() ? hexv(arg[i + 1]) : -1;
-        int lo = i + 2 < arg.size() ? hexv(arg[i + 2]) : -1;
+        int hi = i + 1 < arg.size() ? hex_value(arg[i + 1]) : -1;
+        int lo = i + 2 < arg.size() ? hex_value(arg[i + 2]) : -1;
         if (hi < 0 || lo < 0) {
           error = "\\x at position " + std::to_string(i - 1) + " needs two hex digits";
           return std::nullopt;
@@ -100,4 +91,4 @@ std::string ascii_text(std::string_view message) {
   return out;
 }
 
-}  // namespace topdump
+}  // namespace top
