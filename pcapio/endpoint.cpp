@@ -9,15 +9,16 @@ namespace pcapio {
 Endpoint Endpoint::ipv4(std::uint32_t ip, std::uint16_t port) {
   Endpoint e;
   e.family = 4;
-  for (int i = 0; i < 4; ++i) e.addr[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(ip >> (24 - 8 * i));
+  for (int i = 0; i < 4; ++i)
+    e.addr[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(ip >> (24 - 8 * i));
   e.port = port;
   return e;
 }
 
 std::uint32_t Endpoint::ipv4() const noexcept {
   if (family != 4) return 0;
-  return std::uint32_t{addr[0]} << 24 | std::uint32_t{addr[1]} << 16 |
-         std::uint32_t{addr[2]} << 8 | addr[3];
+  return std::uint32_t{addr[0]} << 24 | std::uint32_t{addr[1]} << 16 | std::uint32_t{addr[2]} << 8 |
+         addr[3];
 }
 
 std::string Endpoint::text() const {

@@ -71,7 +71,8 @@ std::uint16_t ip_checksum(std::string_view bytes) noexcept {
   for (std::size_t i = 0; i + 1 < bytes.size(); i += 2)
     sum += static_cast<std::uint32_t>(static_cast<std::uint8_t>(bytes[i]) << 8 |
                                       static_cast<std::uint8_t>(bytes[i + 1]));
-  if (bytes.size() % 2) sum += static_cast<std::uint32_t>(static_cast<std::uint8_t>(bytes.back()) << 8);
+  if (bytes.size() % 2)
+    sum += static_cast<std::uint32_t>(static_cast<std::uint8_t>(bytes.back()) << 8);
   while (sum >> 16) sum = (sum & 0xFFFF) + (sum >> 16);
   return static_cast<std::uint16_t>(~sum & 0xFFFF);
 }

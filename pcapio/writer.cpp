@@ -117,7 +117,11 @@ void Recorder::packet(const Endpoint& from, const Endpoint& to, std::string_view
   };
   // locally administered MACs derived from the ports
   auto mac = [](const Endpoint& e) {
-    return Mac{0x02, 0, 0, 0, static_cast<std::uint8_t>(e.port >> 8),
+    return Mac{0x02,
+               0,
+               0,
+               0,
+               static_cast<std::uint8_t>(e.port >> 8),
                static_cast<std::uint8_t>(e.port & 0xFF)};
   };
   const Ip4Options o{ip_id_++, true};

@@ -52,7 +52,8 @@ int main() {
       std::printf("\n\n");
       for (const top::FormSpec& f : c.forms) {
         std::printf(
-            "- `%c` %s, data length %u%s%s%s\n", f.control, std::string(top::to_string(f.role)).c_str(), f.min_length,
+            "- `%c` %s, data length %u%s%s%s\n", f.control,
+            std::string(top::to_string(f.role)).c_str(), f.min_length,
             f.min_length == f.max_length ? "" : ("-" + std::to_string(f.max_length)).c_str(),
             f.note.empty() ? "" : ": ", std::string(f.note).c_str());
         for (const top::FieldSpec& s : f.fields) {

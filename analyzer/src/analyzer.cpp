@@ -15,16 +15,12 @@
 
 namespace topdump {
 
+constexpr std::string_view kTransport[] = {"udp", "tcp", "serial"};
+static_assert(std::size(kTransport) == static_cast<std::size_t>(Transport::serial) + 1);
+
 std::string_view to_string(Transport t) noexcept {
-  switch (t) {
-    case Transport::udp:
-      return "udp";
-    case Transport::tcp:
-      return "tcp";
-    case Transport::serial:
-      return "serial";
-  }
-  return "?";
+  const auto i = static_cast<std::size_t>(t);
+  return i < std::size(kTransport) ? kTransport[i] : "?";
 }
 
 bool looks_like_top(std::string_view p) noexcept {

@@ -48,5 +48,4 @@ using top::ascii_text;
 using top::escape;
 using top::unescape;
 
-
 }  // namespace topdump

@@ -1,9 +1,8 @@
 // topdump's JSON documents, each key written here once
 // (docs/topdump-json.md): the events of read --json (one line each) and the
 // frames and garbage of frame --json.
-#include "output.hpp"
-
 #include "json_writer.hpp"
+#include "output.hpp"
 
 namespace topdump {
 
@@ -193,7 +192,6 @@ void frame_body(O& o, const top::Frame& f, const top::Decoded& d) {
   o += w != top::Severity::error ? "true" : "false";
 }
 
-
 // The keys of a run of bytes that belong to no frame.
 template <class O>
 void garbage_body(O& o, const top::StreamItem& g) {
@@ -218,14 +216,10 @@ void put_seconds(O& o, std::int64_t ts) {
     put_double(o, static_cast<double>(ts) / 1e6);
 }
 
-}  // namespace
-
-void write_frame_json(std::string& out, const FrameEvent& e) {
-  W o(out);
-  app(o, "{\"type\":\"frame\",\"n\":");
-  put_u(o, e.n);
-  app(o, ",\"time\":");
-  put_time(o, e.ts);
+// Where a frame or garbage event is: ,"transport":...,"from":...,"to":...,
+// "conversation":N,"record":N,"index":N,"offset":N
+template <class O, class Event>
+void put_place(O& o, const Event& e) {
   put_endpoints(o, e.transport, *e.from, *e.to);
   app(o, ",\"conversation\":");
   put_u(o, e.conv ? e.conv_id() : 0);
@@ -235,6 +229,27 @@ void write_frame_json(std::string& out, const FrameEvent& e) {
   put_u(o, e.pos.index);
   app(o, ",\"offset\":");
   put_u(o, e.pos.offset);
+}
+
+// {"arg":N,"offset":N, of frame --json
+template <class O>
+void put_arg(O& o, std::size_t arg, std::size_t offset) {
+  app(o, "{\"arg\":");
+  put_u(o, arg);
+  app(o, ",\"offset\":");
+  put_u(o, offset);
+  o += ',';
+}
+
+}  // namespace
+
+void write_frame_json(std::string& out, const FrameEvent& e) {
+  W o(out);
+  app(o, "{\"type\":\"frame\",\"n\":");
+  put_u(o, e.n);
+  app(o, ",\"time\":");
+  put_time(o, e.ts);
+  put_place(o, e);
   app(o, ",\"stream_offset\":");
   put_u(o, e.stream_offset);
   o += ',';
@@ -269,15 +284,7 @@ void write_garbage_json(std::string& out, const GarbageEvent& e) {
   W o(out);
   app(o, "{\"type\":\"garbage\",\"time\":");
   put_seconds(o, e.ts);
-  put_endpoints(o, e.transport, *e.from, *e.to);
-  app(o, ",\"conversation\":");
-  put_u(o, e.conv ? e.conv_id() : 0);
-  app(o, ",\"record\":");
-  put_u(o, e.pos.record);
-  app(o, ",\"index\":");
-  put_u(o, e.pos.index);
-  app(o, ",\"offset\":");
-  put_u(o, e.pos.offset);
+  put_place(o, e);
   o += ',';
   garbage_body(o, *e.item);
   app(o, "}\n");
@@ -318,22 +325,14 @@ void write_note_json(std::string& out, const NoteEvent& e) {
 void write_frame_json(std::string& out, std::size_t arg, std::size_t offset, const top::Frame& f,
                       const top::Decoded& d) {
   W o(out);
-  app(o, "{\"arg\":");
-  put_u(o, arg);
-  app(o, ",\"offset\":");
-  put_u(o, offset);
-  o += ',';
+  put_arg(o, arg, offset);
   frame_body(o, f, d);
   app(o, "}\n");
 }
 
 void write_garbage_json(std::string& out, std::size_t arg, const top::StreamItem& g) {
   W o(out);
-  app(o, "{\"arg\":");
-  put_u(o, arg);
-  app(o, ",\"offset\":");
-  put_u(o, g.offset);
-  o += ',';
+  put_arg(o, arg, g.offset);
   garbage_body(o, g);
   app(o, "}\n");
 }

@@ -329,6 +329,20 @@ class Doc {
     else
       o_ += ':';
   }
+  // A member that is an object or an array, opened; an element of the open
+  // array that is an object, opened.
+  void key_object(std::string_view k) {
+    key(k);
+    open_object();
+  }
+  void key_array(std::string_view k) {
+    key(k);
+    open_array();
+  }
+  void item_object() {
+    item();
+    open_object();
+  }
   // Starts an element of the open array.
   void item() {
     if (!first_.back()) o_ += ',';

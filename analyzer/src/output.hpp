@@ -81,7 +81,7 @@ class CsvSink : public Sink {
 
  private:
   Out& out_;
-  std::vector<int> cols_;          // index into the column table, -1: a field
+  std::vector<int> cols_;            // index into the column table, -1: a field
   std::vector<std::string> fields_;  // the field's name where cols_ is -1
 };
 

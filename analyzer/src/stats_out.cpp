@@ -38,8 +38,7 @@ void write_stats_json(std::string& out, const Stats& s, top::Severity worst, int
     put_str(o, v);
   };
   auto table = [&](std::string_view k, const std::map<std::string, std::uint64_t>& m) {
-    j.key(k);
-    j.open_object();
+    j.key_object(k);
     for (const auto& [name, v] : m) count(name, v);
     j.close_object();
   };
@@ -58,19 +57,16 @@ void write_stats_json(std::string& out, const Stats& s, top::Severity worst, int
   text("worst", top::to_string(worst));
   table("per_ident", s.per_ident);
   table("per_finding", s.per_code);
-  j.key("pairing");
-  j.open_object();
+  j.key_object("pairing");
   count("requests", s.requests);
   count("responses", s.responses);
   count("paired", s.paired);
   count("unanswered", s.unanswered);
   count("unsolicited", s.unsolicited);
   j.close_object();
-  j.key("latency");
-  j.open_object();
+  j.key_object("latency");
   for (const auto& [k, l] : s.latency) {
-    j.key(k);
-    j.open_object();
+    j.key_object(k);
     count("count", l.count());
     j.key("min_ms");
     put_ms(o, l.min());
@@ -83,11 +79,9 @@ void write_stats_json(std::string& out, const Stats& s, top::Severity worst, int
     j.close_object();
   }
   j.close_object();
-  j.key("conversations");
-  j.open_array();
+  j.key_array("conversations");
   for (const ConvStats& c : s.conversations) {
-    j.item();
-    j.open_object();
+    j.item_object();
     count("id", c.id);
     text("transport", to_string(c.transport));
     text("a", c.a);
@@ -97,11 +91,9 @@ void write_stats_json(std::string& out, const Stats& s, top::Severity worst, int
     count("requests", c.requests);
     count("responses", c.responses);
     count("paired", c.paired);
-    j.key("streams");
-    j.open_array();
+    j.key_array("streams");
     for (const StreamStat& t : c.streams) {
-      j.item();
-      j.open_object();
+      j.item_object();
       text("ident", t.ident);
       j.key("asked_hz");
       if (t.asked_hz > 0)

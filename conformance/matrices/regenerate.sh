@@ -5,7 +5,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 topconf=${1:-build/default}/conformance/topconf
-for m in c10 c10pro c12 c13 c20 sip; do
+for m in $("$topconf" models); do
   "$topconf" generate --model "$m" -o "conformance/matrices/$m.json"
   "$topconf" validate "conformance/matrices/$m.json"
 done

@@ -97,6 +97,9 @@ int main(int argc, char** argv) {
   gen->add_option("--model", gen_model, top::model_list("|", "|"))->required();
   gen->add_option("-o,--output", gen_out, "output file (default: stdout)");
 
+  // models
+  auto* models = app.add_subcommand("models", "list the models, one per line (the catalog's)");
+
   // validate
   auto* val = app.add_subcommand("validate", "check matrix files against the schema rules");
   std::vector<std::string> val_files;
@@ -107,6 +110,11 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     const int rc = app.exit(e);
     return rc == 0 ? 0 : 2;
+  }
+
+  if (*models) {
+    for (top::Model m : top::all_models()) std::cout << top::to_string(m) << "\n";
+    return 0;
   }
 
   if (*gen) {

@@ -1,7 +1,7 @@
+#include "decode_cache.hpp"
+
 #include <algorithm>
 #include <bit>
-
-#include "decode_cache.hpp"
 
 namespace top {
 

@@ -1,4 +1,6 @@
 // A decoded field as text, and the exact decimal behind it.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "numbers.hpp"

@@ -1,4 +1,6 @@
 // Field values back into the data of a form, and example data.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "numbers.hpp"

@@ -29,9 +29,9 @@ constexpr std::string_view kHeaderDescription[] = {
     "extended, two raw length bytes", "malformed Topotek TMP form"};
 static_assert(std::size(kHeaderDescription) == std::size(kHeader));
 
-constexpr std::string_view kFieldKind[] = {"hex_u",     "hex_s", "dec_u",  "enum_hex",
-                                           "enum_char", "text",  "number", "le_i16",
-                                           "le_u16",    "le_i32", "nmea",  "raw"};
+constexpr std::string_view kFieldKind[] = {"hex_u",     "hex_s",  "dec_u",  "enum_hex",
+                                           "enum_char", "text",   "number", "le_i16",
+                                           "le_u16",    "le_i32", "nmea",   "raw"};
 static_assert(std::size(kFieldKind) == static_cast<std::size_t>(FieldKind::raw) + 1);
 
 template <class E, std::size_t N>
@@ -67,9 +67,7 @@ std::optional<Model> model_from_string(std::string_view s) noexcept {
   return lookup<Model>(kModel, s);
 }
 
-std::optional<Role> role_from_string(std::string_view s) noexcept {
-  return lookup<Role>(kRole, s);
-}
+std::optional<Role> role_from_string(std::string_view s) noexcept { return lookup<Role>(kRole, s); }
 
 std::optional<Header> header_from_string(std::string_view s) noexcept {
   return lookup<Header>(kHeader, s);

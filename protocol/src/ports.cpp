@@ -11,8 +11,7 @@ constexpr ModelSet kC10 = model_bit(Model::c10), kC20 = model_bit(Model::c20);
 constexpr ModelSet kUdpSkydroid = skydroid_models & ~kC20;
 
 constexpr PortSpec kPorts[] = {
-    {5000, false, Dialect::skydroid, kUdpSkydroid, kUdpSkydroid, false,
-     "SkyDroid 2.1.1: UDP 5000"},
+    {5000, false, Dialect::skydroid, kUdpSkydroid, kUdpSkydroid, false, "SkyDroid 2.1.1: UDP 5000"},
     {5000, true, Dialect::skydroid, kC10 | kC20, kC20, false,
      "SkyDroid 2.1.1: the C10 also on TCP 5000, the C20 on TCP 5000 only"},
     {9002, false, Dialect::skydroid, kC10, kC10, false,

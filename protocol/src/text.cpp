@@ -79,6 +79,25 @@ std::string escape(std::string_view bytes) {
   return out;
 }
 
+std::optional<std::string> bytes_from_utf8(std::string_view utf8) {
+  std::string out;
+  for (std::size_t i = 0; i < utf8.size();) {
+    auto c = static_cast<unsigned char>(utf8[i]);
+    if (c < 0x80) {
+      out += static_cast<char>(c);
+      ++i;
+    } else if ((c & 0xFE) == 0xC2 && i + 1 < utf8.size() &&
+               (static_cast<unsigned char>(utf8[i + 1]) & 0xC0) == 0x80) {
+      const unsigned cp = ((c & 0x1Fu) << 6) | (static_cast<unsigned char>(utf8[i + 1]) & 0x3Fu);
+      out += static_cast<char>(cp);
+      i += 2;
+    } else {
+      return std::nullopt;  // past U+00FF, or not UTF-8
+    }
+  }
+  return out;
+}
+
 std::string ascii_text(std::string_view message) {
   std::string out;
   out.reserve(message.size());

@@ -14,13 +14,12 @@
 #include "escape.hpp"
 #include "pcapio/packet.hpp"
 #include "pcapio/writer.hpp"
-#include "top/frame.hpp"
 #include "ring.hpp"
 #include "test_support.hpp"
+#include "top/frame.hpp"
 
 namespace topdump::test {
 namespace {
-
 
 Endpoint ep4(std::uint8_t last, std::uint16_t port) {
   Endpoint e;
@@ -132,7 +131,8 @@ TEST(Pairing, ManyIdentifiersInFlightEachPairsWithItsOwn) {
     return std::string{static_cast<char>('A' + i % 26), static_cast<char>('A' + i / 26 % 26), 'Q'};
   };
   for (int i = 0; i < 200; ++i) f.up(i, top::with_checksum("#TPUG2w" + ident(i) + "01"));
-  for (int i = 199; i >= 0; i -= 2) f.down(300 + i, top::with_checksum("#TPGU2w" + ident(i) + "01"));
+  for (int i = 199; i >= 0; i -= 2)
+    f.down(300 + i, top::with_checksum("#TPGU2w" + ident(i) + "01"));
   for (int i = 200; i < 260; ++i) f.down(600 + i, top::with_checksum("#TPGU2w" + ident(i) + "01"));
   for (int i = 0; i < 200; i += 2) f.down(900 + i, top::with_checksum("#TPUG2w" + ident(i) + "01"));
   f.a->finish();
@@ -191,7 +191,8 @@ TEST(Streams, RateMeasuredAgainstAsked) {
   Fixture f;
   f.up(0, top::with_checksum("#TPUG2wGAA0A"));  // 10 Hz
   f.down(2, top::with_checksum("#TPGU2wGAA0A"));
-  for (int i = 0; i < 11; ++i) f.down(100 + i * 200, top::with_checksum("#TPGUCrGAC000000000000"));  // 5 Hz
+  for (int i = 0; i < 11; ++i)
+    f.down(100 + i * 200, top::with_checksum("#TPGUCrGAC000000000000"));  // 5 Hz
   f.a->finish();
   EXPECT_EQ(f.a->stats().unsolicited, 0u);
   ASSERT_EQ(f.rec.count_note(ACode::stream_rate), 1u);
@@ -305,7 +306,8 @@ TEST(Tcp, OverlapThatDisagreesIsReported) {
 TEST(Tcp, MissingSegmentIsAGapAndDecodingGoesOn) {
   Recorder r;
   Analyzer a(AnalyzerOptions{}, r);
-  std::string x = top::with_checksum("#TPUG2wPTZ05"), y = top::with_checksum("#TPUG2wPTZ01"), z = top::with_checksum("#TPUG2wPTZ00");
+  std::string x = top::with_checksum("#TPUG2wPTZ05"), y = top::with_checksum("#TPUG2wPTZ01"),
+              z = top::with_checksum("#TPUG2wPTZ00");
   a.segment(T, ep4(1, 50000), ep4(2, 5000), 0, false, x, 1, 54);
   // y never captured
   a.segment(T, ep4(1, 50000), ep4(2, 5000), static_cast<std::uint32_t>(x.size() + y.size()), false,
@@ -526,10 +528,12 @@ TEST(Json, FastWriterEqualsReferenceOnHostileBytes) {
     int n = static_cast<int>(rng() % 24);
     for (int k = 0; k < n; ++k) p += static_cast<char>(rng() & 0xFF);
     if (i % 3 == 0)
-      p = top::with_checksum("#tpUG6wGAY" + std::string(1, static_cast<char>(rng() & 0xFF)) + "00032");
+      p = top::with_checksum("#tpUG6wGAY" + std::string(1, static_cast<char>(rng() & 0xFF)) +
+                             "00032");
     if (i % 7 == 0)
-      p = top::with_checksum("#tPUDEwGPS" + std::string(1, '\x0e') +
-                std::string("\"\\\x00\x7f\x80\xfe#\x0d\x0a\x01\x02\x03\x04\x05\x06", 15));
+      p = top::with_checksum(
+          "#tPUDEwGPS" + std::string(1, '\x0e') +
+          std::string("\"\\\x00\x7f\x80\xfe#\x0d\x0a\x01\x02\x03\x04\x05\x06", 15));
     a.chunk(T + i, Transport::serial, i % 2 ? s : d, i % 2 ? d : s, p,
             static_cast<std::uint64_t>(i + 1), 0);
   }
@@ -550,8 +554,10 @@ Endpoint named_ep(const char* n) {
 TEST(Json, NegativeTimesAreNumbers) {
   Recorder r;
   Analyzer a(AnalyzerOptions{}, r);
-  a.chunk(-1, Transport::serial, named_ep("a"), named_ep("b"), top::with_checksum("#TPUG2wPTZ05"), 1, 0);
-  a.chunk(-2500001, Transport::serial, named_ep("b"), named_ep("a"), top::with_checksum("#TPGU2wPTZ05"), 2, 0);
+  a.chunk(-1, Transport::serial, named_ep("a"), named_ep("b"), top::with_checksum("#TPUG2wPTZ05"),
+          1, 0);
+  a.chunk(-2500001, Transport::serial, named_ep("b"), named_ep("a"),
+          top::with_checksum("#TPGU2wPTZ05"), 2, 0);
   a.source_note(-7, ACode::log_syntax, "a note", 3, 0);
   a.finish();
   ASSERT_EQ(r.frames.size(), 2u);

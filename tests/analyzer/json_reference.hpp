@@ -139,11 +139,8 @@ inline json time_json(std::int64_t ts) {
   return static_cast<double>(ts) / 1e6;
 }
 
-inline json frame_event_json(const FrameEvent& e) {
-  json j;
-  j["type"] = "frame";
-  j["n"] = e.n;
-  j["time"] = time_json(e.ts);
+template <class Event>
+void place_json(json& j, const Event& e) {
   j["transport"] = to_string(e.transport);
   j["from"] = *e.from;
   j["to"] = *e.to;
@@ -151,6 +148,14 @@ inline json frame_event_json(const FrameEvent& e) {
   j["record"] = e.pos.record;
   j["index"] = e.pos.index;
   j["offset"] = e.pos.offset;
+}
+
+inline json frame_event_json(const FrameEvent& e) {
+  json j;
+  j["type"] = "frame";
+  j["n"] = e.n;
+  j["time"] = time_json(e.ts);
+  place_json(j, e);
   j["stream_offset"] = e.stream_offset;
   j.update(frame_json(*e.entry->frame, e.entry->decoded));
   if (e.reply_to)
@@ -171,13 +176,7 @@ inline json garbage_event_json(const GarbageEvent& e) {
   json j;
   j["type"] = "garbage";
   j["time"] = time_json(e.ts);
-  j["transport"] = to_string(e.transport);
-  j["from"] = *e.from;
-  j["to"] = *e.to;
-  j["conversation"] = e.conv ? e.conv_id() : 0;
-  j["record"] = e.pos.record;
-  j["index"] = e.pos.index;
-  j["offset"] = e.pos.offset;
+  place_json(j, e);
   j.update(garbage_json(*e.item));
   return j;
 }

@@ -21,11 +21,36 @@ std::string written(double v) {
 }
 
 TEST(JsonWriter, DoublesAsNlohmannWritesThem) {
-  std::vector<double> values = {0.0,    -0.0,   1.0,      -1.0,    0.5,     12.5,   100.0,
-                                1e-3,   1e-4,   1e-5,     1.5e-5,  1e15,    1e16,   1.25e16,
-                                1e21,   1e100,  1e-100,   2.5e-300, 0.1,    0.2,    1.0 / 3,
-                                123456789012345.6,  999999999999999.9,  1714564800.123456,
-                                -2.95,  1e308,  5e-324,   std::nan(""), HUGE_VAL, -HUGE_VAL};
+  std::vector<double> values = {0.0,
+                                -0.0,
+                                1.0,
+                                -1.0,
+                                0.5,
+                                12.5,
+                                100.0,
+                                1e-3,
+                                1e-4,
+                                1e-5,
+                                1.5e-5,
+                                1e15,
+                                1e16,
+                                1.25e16,
+                                1e21,
+                                1e100,
+                                1e-100,
+                                2.5e-300,
+                                0.1,
+                                0.2,
+                                1.0 / 3,
+                                123456789012345.6,
+                                999999999999999.9,
+                                1714564800.123456,
+                                -2.95,
+                                1e308,
+                                5e-324,
+                                std::nan(""),
+                                HUGE_VAL,
+                                -HUGE_VAL};
   std::mt19937_64 rng(17);
   for (int i = 0; i < 20000; ++i) {
     // what topdump writes: microseconds as seconds, as milliseconds, rates

@@ -17,8 +17,8 @@
 
 #include "pcapio/packet.hpp"
 #include "pcapio/writer.hpp"
-#include "top/frame.hpp"
 #include "test_support.hpp"
+#include "top/frame.hpp"
 
 namespace topdump::test {
 namespace {
@@ -61,7 +61,8 @@ TEST(Live, SerialOverAPseudoTerminalEndsCleanlyOnSigint) {
   close(out[1]);
   std::string acc;
   // write until topdump has opened the port and decoded a frame
-  std::string f1 = top::with_checksum("#TPGUCrGAC0000FED40000"), f2 = top::with_checksum("#TPGU2wPTZ05");
+  std::string f1 = top::with_checksum("#TPGUCrGAC0000FED40000"),
+              f2 = top::with_checksum("#TPGU2wPTZ05");
   bool seen = false;
   for (int i = 0; i < 40 && !seen; ++i) {
     ASSERT_EQ(::write(master, f1.data(), f1.size()), static_cast<ssize_t>(f1.size()));

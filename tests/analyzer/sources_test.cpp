@@ -8,8 +8,8 @@
 
 #include "pcapio/packet.hpp"
 #include "pcapio/writer.hpp"
-#include "top/frame.hpp"
 #include "test_support.hpp"
+#include "top/frame.hpp"
 
 namespace topdump::test {
 namespace {
@@ -46,14 +46,16 @@ class Links : public ::testing::TestWithParam<LinkCase> {};
 TEST_P(Links, Ipv4AndIpv6UdpWithPositions) {
   const LinkCase& c = GetParam();
   TempDir tmp;
-  std::string req = top::with_checksum("#tpUG6wGAYEC7832"), resp = top::with_checksum("#tpGU6wGAYEC7832");
+  std::string req = top::with_checksum("#tpUG6wGAYEC7832"),
+              resp = top::with_checksum("#tpGU6wGAYEC7832");
   {
     PcapWriter w(tmp.file("x.pcap"), c.dlt);
     ASSERT_TRUE(w.ok());
     w.write(T, c.wrap(udp4(A, B, 40000, 5000, req)));
     w.write(T + 5000, c.wrap(udp4(B, A, 5000, 40000, resp)));
     w.write(T + 6000,
-            c.wrap(udp6(A6, B6, 40000, 9003, top::with_checksum("#TPPG2wGIA01") + top::with_checksum("#TPPG2wGIA00"))));
+            c.wrap(udp6(A6, B6, 40000, 9003,
+                        top::with_checksum("#TPPG2wGIA01") + top::with_checksum("#TPPG2wGIA00"))));
   }
   Recorder r = read(tmp.file("x.pcap"));
   ASSERT_EQ(r.frames.size(), 4u);
@@ -84,8 +86,8 @@ TEST(Pcap, ContentRecognitionAndExtraPorts) {
   {
     PcapWriter w(tmp.file("x.pcap"), 1);
     w.write(T, eth(udp4(A, B, 1111, 2222, top::with_checksum("#TPUG2wPTZ05"))));  // TOP by content
-    w.write(T + 1, eth(udp4(A, B, 1111, 3333, "hello, not TOP")));   // skipped
-    w.write(T + 2, eth(udp4(A, B, 1111, 4444, "ab#")));              // only with --port
+    w.write(T + 1, eth(udp4(A, B, 1111, 3333, "hello, not TOP")));                // skipped
+    w.write(T + 2, eth(udp4(A, B, 1111, 4444, "ab#")));  // only with --port
   }
   Recorder r = read(tmp.file("x.pcap"));
   EXPECT_EQ(r.frames.size(), 1u);
@@ -115,7 +117,8 @@ TEST(Pcap, TruncatedFileKeepsEarlierRecords) {
   TempDir tmp;
   {
     PcapWriter w(tmp.file("x.pcap"), 1);
-    for (int i = 0; i < 3; ++i) w.write(T + i, eth(udp4(A, B, 40000, 5000, top::with_checksum("#TPUG2wPTZ05"))));
+    for (int i = 0; i < 3; ++i)
+      w.write(T + i, eth(udp4(A, B, 40000, 5000, top::with_checksum("#TPUG2wPTZ05"))));
   }
   std::string all = slurp(tmp.file("x.pcap"));
   write_file(tmp.file("x.pcap"), all.substr(0, all.size() - 10));
@@ -303,8 +306,8 @@ TEST(SerialLogs, SaleaeCsvHugeTimeIsNoTime) {
 TEST(SerialLogs, LineLogWithEscapesAndBadLines) {
   TempDir tmp;
   std::string log = "2024-05-01T12:00:00.5Z TX " + top::with_checksum("#TPUG2wPTZ05") + "\\r\\n\n" +
-                    "not a line\n" + "2024-05-01T12:00:00.52+00:00 RX " + top::with_checksum("#TPGU2wPTZ05") +
-                    "\n";
+                    "not a line\n" + "2024-05-01T12:00:00.52+00:00 RX " +
+                    top::with_checksum("#TPGU2wPTZ05") + "\n";
   write_file(tmp.file("l.log"), log);
   Recorder r = read(tmp.file("l.log"));
   ASSERT_EQ(r.frames.size(), 2u);

@@ -77,8 +77,7 @@ TEST_P(OverTransport, DefaultMatrixPasses) {
 
 std::vector<Param> params() {
   std::vector<Param> p;
-  for (auto m : {top::Model::c10, top::Model::c10pro, top::Model::c12, top::Model::c13,
-                 top::Model::c20, top::Model::sip})
+  for (auto m : top::all_models())
     for (auto k :
          {topsim::TransportKind::udp, topsim::TransportKind::tcp, topsim::TransportKind::pty})
       p.push_back({m, k});

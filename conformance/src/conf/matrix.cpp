@@ -404,22 +404,19 @@ void parse_steps(const Ctx& c, const json& o, const char* key, std::vector<Step>
 
 }  // namespace
 
+namespace {
+constexpr std::string_view kLevel[] = {"must", "should", "may"};
+static_assert(std::size(kLevel) == static_cast<std::size_t>(Level::may) + 1);
+}  // namespace
+
 std::string_view to_string(Level l) noexcept {
-  switch (l) {
-    case Level::must:
-      return "must";
-    case Level::should:
-      return "should";
-    case Level::may:
-      return "may";
-  }
-  return "?";
+  const auto i = static_cast<std::size_t>(l);
+  return i < std::size(kLevel) ? kLevel[i] : "?";
 }
 
 std::optional<Level> level_from_string(std::string_view s) noexcept {
-  if (s == "must") return Level::must;
-  if (s == "should") return Level::should;
-  if (s == "may") return Level::may;
+  for (std::size_t i = 0; i < std::size(kLevel); ++i)
+    if (kLevel[i] == s) return static_cast<Level>(i);
   return std::nullopt;
 }
 

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "pcapio/writer.hpp"
 #include "conf/matrix.hpp"
 #include "conf/transport.hpp"
+#include "pcapio/writer.hpp"
 
 namespace topconf {
 

@@ -229,8 +229,8 @@ class UdpTransport : public Transport {
     return pcapio::Endpoint::ipv4(0x7F000001u, ec ? std::uint16_t{0} : e.port());
   }
   pcapio::Endpoint remote() const override {
-    return pcapio::Endpoint::ipv4(peer_.address().is_v4() ? peer_.address().to_v4().to_uint() : 0x7F000001u,
-            peer_.port());
+    return pcapio::Endpoint::ipv4(
+        peer_.address().is_v4() ? peer_.address().to_v4().to_uint() : 0x7F000001u, peer_.port());
   }
   std::string describe() const override {
     return "udp://" + peer_.address().to_string() + ":" + std::to_string(peer_.port());
@@ -284,8 +284,8 @@ class TcpTransport : public Transport {
     return pcapio::Endpoint::ipv4(0x7F000001u, ec ? std::uint16_t{0} : e.port());
   }
   pcapio::Endpoint remote() const override {
-    return pcapio::Endpoint::ipv4(peer_.address().is_v4() ? peer_.address().to_v4().to_uint() : 0x7F000001u,
-            peer_.port());
+    return pcapio::Endpoint::ipv4(
+        peer_.address().is_v4() ? peer_.address().to_v4().to_uint() : 0x7F000001u, peer_.port());
   }
   bool tcp() const override { return true; }
   std::string describe() const override {

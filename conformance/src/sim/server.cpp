@@ -225,8 +225,8 @@ struct Server::Impl {
             asio::ip::udp::endpoint to = u.from;
             if (cfg.reply_port) to.port(cfg.reply_port);
             Peer p;
-            p.remote = pcapio::Endpoint::ipv4(to.address().is_v4() ? to.address().to_v4().to_uint() : 0x7F000001u,
-                        to.port());
+            p.remote = pcapio::Endpoint::ipv4(
+                to.address().is_v4() ? to.address().to_v4().to_uint() : 0x7F000001u, to.port());
             std::error_code e;
             const auto local = u.sock.local_endpoint(e);
             p.local = pcapio::Endpoint::ipv4(
@@ -272,8 +272,9 @@ struct Server::Impl {
           auto le = sock.local_endpoint(e2);
           Peer p;
           p.remote = pcapio::Endpoint::ipv4(e1 ? 0x7F000001u : re.address().to_v4().to_uint(),
-                      e1 ? std::uint16_t{0} : re.port());
-          p.local = pcapio::Endpoint::ipv4(e2 ? 0x7F000001u : le.address().to_v4().to_uint(), bound_port);
+                                            e1 ? std::uint16_t{0} : re.port());
+          p.local =
+              pcapio::Endpoint::ipv4(e2 ? 0x7F000001u : le.address().to_v4().to_uint(), bound_port);
           std::weak_ptr<TcpLine> w = c->line;
           p.send = [w](std::string b) {
             if (auto l = w.lock(); l && l->open) l->write(std::move(b));

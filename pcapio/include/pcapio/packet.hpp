@@ -39,8 +39,8 @@ std::string tcp6(const Ip6& src, const Ip6& dst, std::uint16_t sport, std::uint1
 
 // Link layers around an IP packet (ethertype from the IP version).
 inline constexpr Mac kEthDst = {0x02, 0, 0, 0, 0, 0x02}, kEthSrc = {0x02, 0, 0, 0, 0, 0x01};
-std::string eth(std::string_view ip, std::vector<std::uint16_t> vlans = {}, const Mac& dst = kEthDst,
-                const Mac& src = kEthSrc);
+std::string eth(std::string_view ip, std::vector<std::uint16_t> vlans = {},
+                const Mac& dst = kEthDst, const Mac& src = kEthSrc);
 std::string sll(std::string_view ip);
 std::string sll2(std::string_view ip);
 std::string null_lo(std::string_view ip);  // DLT_NULL, host (little-endian) AF

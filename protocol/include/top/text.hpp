@@ -36,6 +36,11 @@ std::string escape(std::string_view bytes);
 // sets `error` (with the position) on a malformed escape.
 std::optional<std::string> unescape(std::string_view arg, std::string& error);
 
+// The bytes a JSON string of tests/vectors stands for: each code point
+// U+0000-U+00FF (one or two UTF-8 bytes) is one byte; nullopt for anything
+// else.
+std::optional<std::string> bytes_from_utf8(std::string_view utf8);
+
 // A message as text that is valid UTF-8 (ASCII): bytes 0x80-0xFF as \xNN,
 // everything else as it is (messages quote input through escape(); this
 // keeps a byte that slipped through from breaking a JSON line).
