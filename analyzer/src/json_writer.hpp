@@ -178,10 +178,15 @@ void put_i(O& o, std::int64_t v) {
   o.append(b, static_cast<std::size_t>(r.ptr - b));
 }
 
-// A double as nlohmann writes it: its shortest round-trip digits in fixed
-// notation while the point falls within 15 digits left of them and 4
-// zeros right ("12.5", "100.0", "0.0001"), else d.ddde+XX with at least two
-// exponent digits; "-0.0" and "0.0" for zeros, null for NaN and infinities.
+// A double laid out as nlohmann lays it out: fixed notation while the point
+// falls within 15 digits left of the digits and 4 zeros right ("12.5",
+// "100.0", "0.0001"), else d.ddde+XX with at least two exponent digits;
+// "-0.0" and "0.0" for zeros, null for NaN and infinities. The digits are the
+// shortest that read back as the same double (std::to_chars). nlohmann's
+// Grisu2 gives the same digits for the times, latencies and rates topdump
+// writes from the bundled captures and the benchmark's (compared byte by
+// byte in tests), and for some other doubles one or two digits more: the
+// number read back is the same either way.
 template <class O>
 void put_double(O& o, double v) {
   if (!std::isfinite(v)) {
@@ -195,7 +200,10 @@ void put_double(O& o, double v) {
     v = -v;
   }
   if (v == 0) {
-    app(o, "0.0");
+    *p++ = '0';
+    *p++ = '.';
+    *p++ = '0';
+    o.append(b, static_cast<std::size_t>(p - b));
     return;
   }
   char sci[40];  // "d.ddde+XX", the shortest digits

@@ -86,6 +86,17 @@ std::span<const Model> all_models() noexcept {
   return kAll;
 }
 
+Dialect dialect_of(Model m) noexcept {
+  switch (m) {
+    case Model::sip:
+      return Dialect::topotek;
+    case Model::unknown:
+      return Dialect::unknown;
+    default:
+      return Dialect::skydroid;
+  }
+}
+
 std::string model_list(std::string_view separator, std::string_view last) {
   std::string s;
   const auto all = all_models();

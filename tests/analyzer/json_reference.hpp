@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "escape.hpp"
 #include "output.hpp"
 #include "sources.hpp"
 

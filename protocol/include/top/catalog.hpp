@@ -122,13 +122,13 @@ struct CommandSpec {
 // significant), -1 for anything else; ident_chars[d] is digit d.
 inline constexpr char ident_chars[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
 inline constexpr int ident_base = 36;
-inline constexpr std::size_t ident_slots = 36 * 36 * 36;
+inline constexpr std::size_t ident_slots = std::size_t{36} * 36 * 36;
 namespace detail {
-inline constexpr std::array<std::int8_t, 256> kIdentDigit = [] {
-  std::array<std::int8_t, 256> t{};
+inline constexpr std::array<std::int16_t, 256> kIdentDigit = [] {
+  std::array<std::int16_t, 256> t{};
   for (auto& v : t) v = -1;
   for (int d = 0; d < ident_base; ++d)
-    t[static_cast<unsigned char>(ident_chars[d])] = static_cast<std::int8_t>(d);
+    t[static_cast<unsigned char>(ident_chars[d])] = static_cast<std::int16_t>(d);
   return t;
 }();
 }  // namespace detail
