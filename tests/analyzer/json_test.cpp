@@ -71,23 +71,22 @@ TEST(JsonWriter, DoublesAsNlohmannWritesThem) {
       EXPECT_EQ(w, "null");
       continue;
     }
-    // the same double, never more characters, and nlohmann's text whenever
-    // its digits are the shortest too
+    // the same double in nlohmann's layout, never more characters
     const double back = nlohmann::json::parse(w).get<double>();
     EXPECT_TRUE(back == v && std::signbit(back) == std::signbit(v)) << w;
     EXPECT_LE(w.size(), n.size()) << w << " " << n;
-    if (w.size() == n.size()) EXPECT_EQ(w, n);
+    EXPECT_EQ(w.find('e') == std::string::npos, n.find('e') == std::string::npos) << w << " " << n;
     same += w == n;
   }
   EXPECT_GT(same, values.size() * 9 / 10);
 }
 
 TEST(JsonWriter, DoublesOfFixedDecimalsAsNlohmannWritesThem) {
-  // latencies (us / 1000), rates rounded to 0.01 and small times: the
-  // values whose text is byte-identical to the nlohmann output before
-  for (std::int64_t k = -200000; k <= 200000; k += 7) {
-    for (double v : {static_cast<double>(k) / 1000.0, static_cast<double>(k) / 100.0,
-                     static_cast<double>(k) / 1e6})
+  // latencies (us / 1000) and rates rounded to 0.01: byte-identical to
+  // nlohmann's text (times in seconds, us / 1e6, are not always: Grisu2 gives
+  // 0.19323100000000001 where the shortest digits are 0.193231)
+  for (std::int64_t k = -2000000; k <= 2000000; k += 7) {
+    for (double v : {static_cast<double>(k) / 1000.0, static_cast<double>(k) / 100.0})
       EXPECT_EQ(written(v), nlohmann::json(v).dump()) << v;
   }
 }
