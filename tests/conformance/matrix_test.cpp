@@ -166,4 +166,14 @@ TEST(Matrix, SchemaFileIsValidJson) {
   EXPECT_EQ(j.at("properties").at("format").at("const"), "topconf-matrix-1");
 }
 
+// The schema's model list is the library's (regenerate.sh writes it from
+// `topconf models`).
+TEST(Matrix, SchemaListsTheLibrarysModels) {
+  const auto j = nlohmann::json::parse(
+      read_text(std::string(TOPKIT_SOURCE_DIR) + "/conformance/matrix.schema.json"));
+  std::vector<std::string> models;
+  for (top::Model m : top::all_models()) models.emplace_back(top::to_string(m));
+  EXPECT_EQ(j.at("$defs").at("model").at("enum").get<std::vector<std::string>>(), models);
+}
+
 }  // namespace
