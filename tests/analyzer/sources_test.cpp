@@ -494,3 +494,52 @@ TEST(Binary, ListOptionsDoNotSwallowFiles) {
 
 }  // namespace
 }  // namespace topdump::test
+
+namespace topdump {
+namespace {
+
+// pcapio: one IPv4 checksum (RFC 1071 example header), one Endpoint.
+TEST(Pcapio, Ipv4ChecksumAndEndpoints) {
+  const std::string h(
+      "\x45\x00\x00\x73\x00\x00\x40\x00\x40\x11\x00\x00\xc0\xa8\x00\x01\xc0\xa8\x00\xc7", 20);
+  EXPECT_EQ(pcapio::ip_checksum(h), 0xB861);
+  const std::string ip = pcapio::udp4({10, 0, 0, 1}, {10, 0, 0, 2}, 1, 2, "x", {7, true});
+  EXPECT_EQ(pcapio::ip_checksum(std::string_view(ip).substr(0, 20)),
+            0);                                       // a valid header sums to 0
+  EXPECT_EQ(static_cast<std::uint8_t>(ip[5]), 7);     // id
+  EXPECT_EQ(static_cast<std::uint8_t>(ip[6]), 0x40);  // DF
+  const auto e = pcapio::Endpoint::ipv4(0x7F000001u, 5000);
+  EXPECT_EQ(e.text(), "127.0.0.1:5000");
+  EXPECT_EQ(e.ipv4(), 0x7F000001u);
+  EXPECT_EQ(e, pcapio::Endpoint::ipv4(0x7F000001u, 5000));
+  pcapio::Endpoint named;
+  named.name = "tty\r";
+  EXPECT_EQ(named.text(), "tty\\r");
+}
+
+// The recorder of topsim and topconf writes through the same builder: the
+// packets read back with their endpoints and payloads.
+TEST(Pcapio, RecorderWritesWhatTopdumpReads) {
+  test::TempDir tmp;
+  const std::string path = tmp.file("r.pcap");
+  {
+    pcapio::Recorder r(path, false);
+    r.write(pcapio::Endpoint::ipv4(0x7F000001u, 40000), pcapio::Endpoint::ipv4(0x7F000001u, 5000),
+            top::with_checksum("#TPUG2wPTZ05"));
+    r.write(pcapio::Endpoint::ipv4(0x7F000001u, 5000), pcapio::Endpoint::ipv4(0x7F000001u, 40000),
+            top::with_checksum("#TPGU2wPTZ05"));
+    EXPECT_EQ(r.packets(), 2u);
+  }
+  EXPECT_THROW(pcapio::Recorder(tmp.file("no/such/dir.pcap"), false), std::runtime_error);
+  test::Recorder rec;
+  Analyzer a(AnalyzerOptions{}, rec);
+  std::string err;
+  ASSERT_TRUE(read_file(path, Format::automatic, a, SourceOptions{}, err)) << err;
+  a.finish();
+  ASSERT_EQ(rec.frames.size(), 2u);
+  EXPECT_EQ(rec.frames[0].from, "127.0.0.1:40000");
+  EXPECT_EQ(rec.frames[1].reply_to, 1u);
+}
+
+}  // namespace
+}  // namespace topdump

@@ -112,6 +112,18 @@ std::vector<std::string> payloads(const std::string& path, int& linktype) {
   return out;
 }
 
+// topsim serves the ports of top::known_ports(): the C10 also UDP 9002
+// (was a special case in topsim_main), the C20 TCP 5000.
+TEST(Ports, TopsimServesTheLibrarysPorts) {
+  EXPECT_EQ(topsim::extra_udp_ports(top::Model::c10), std::vector<std::uint16_t>{9002});
+  EXPECT_TRUE(topsim::extra_udp_ports(top::Model::c12).empty());
+  EXPECT_TRUE(topsim::extra_udp_ports(top::Model::sip).empty());
+  EXPECT_EQ(topsim::default_port(top::Model::c12), 5000);
+  EXPECT_EQ(topsim::default_port(top::Model::sip), 9003);
+  EXPECT_EQ(topsim::default_transport(top::Model::c20), topsim::TransportKind::tcp);
+  EXPECT_EQ(topsim::default_transport(top::Model::c10), topsim::TransportKind::udp);
+}
+
 TEST(Record, TopsimRecordsWhatItReceivesAndSends) {
   const std::string path = std::string(TOPKIT_BINARY_DIR) + "/topsim_record_test.pcap";
   auto r = run_over(top::Model::c12, topsim::TransportKind::udp, path);
