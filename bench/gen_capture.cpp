@@ -19,9 +19,11 @@
 #include <string>
 #include <string_view>
 
-#include "pcapw.hpp"
+#include "pcapio/packet.hpp"
+#include "pcapio/writer.hpp"
+#include "top/frame.hpp"
 
-using namespace topdump::pcapw;
+using namespace pcapio;
 
 namespace {
 
@@ -59,7 +61,7 @@ struct Gen {
   }
   std::string make(const std::string& body) {
     ++frames;
-    std::string f = frame(body);
+    std::string f = top::with_checksum(body);
     if (pick(100) < 3) f[f.size() - 1] = f[f.size() - 1] == '0' ? '1' : '0';  // bad checksum
     if (pick(100) < 4) f += "\r\n";
     return f;

@@ -9,12 +9,14 @@
 
 #include "analyzer.hpp"
 #include "output.hpp"
-#include "pcapw.hpp"
+#include "pcapio/packet.hpp"
+#include "pcapio/writer.hpp"
+#include "top/frame.hpp"
 #include "top/top.hpp"
 
 namespace {
 
-const std::string kFrame = topdump::pcapw::frame("#tpUG6wGAYEC7832");
+const std::string kFrame = top::with_checksum("#tpUG6wGAYEC7832");
 
 void BM_parse_frame(benchmark::State& s) {
   for (auto _ : s) {
@@ -114,7 +116,7 @@ void analyzer_datagrams(benchmark::State& s) {
   c.port = 40000;
   d.port = 5000;
   d.addr[3] = 1;
-  std::string req = kFrame, resp = topdump::pcapw::frame("#tpGU6wGAYEC7832");
+  std::string req = kFrame, resp = top::with_checksum("#tpGU6wGAYEC7832");
   std::int64_t t = 1714564800LL * 1000000;
   std::uint64_t rec = 0;
   for (auto _ : s) {

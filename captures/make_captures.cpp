@@ -5,9 +5,11 @@
 #include <string>
 #include <vector>
 
-#include "pcapw.hpp"
+#include "pcapio/packet.hpp"
+#include "pcapio/writer.hpp"
+#include "top/frame.hpp"
 
-using namespace topdump::pcapw;
+using namespace pcapio;
 
 namespace {
 
@@ -19,7 +21,7 @@ const Ip4 kCamera{192, 168, 144, 108};
 const Ip6 kClient6{0xfd, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0x10};
 const Ip6 kCamera6{0xfd, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0x6c};
 
-std::string F(const std::string& s) { return frame(s); }
+std::string F(const std::string& s) { return top::with_checksum(s); }
 
 std::string dir;
 std::string path(const char* name) { return dir + "/" + name; }

@@ -49,7 +49,8 @@ class CheckingSink : public topdump::Sink {
   }
   void garbage(const topdump::GarbageEvent& e) override {
     ++garbage_runs;
-    line = topdump::garbage_event_json(e).dump() + "\n";
+    line.clear();
+    topdump::write_garbage_json(line, e);
     check();
   }
   void note(const topdump::NoteEvent& e) override {

@@ -45,30 +45,6 @@ bool write(const fs::path& dir, const std::string& bytes) {
   return static_cast<bool>(out);
 }
 
-// A frame with its checksum appended.
-std::string with_checksum(std::string s) {
-  char cs[2];
-  put_hex2(checksum(s), cs);
-  return s.append(cs, 2);
-}
-
-std::string bytes_of(const std::string& utf8) {
-  std::string out;
-  for (std::size_t i = 0; i < utf8.size();) {
-    auto c = static_cast<unsigned char>(utf8[i]);
-    if (c < 0x80) {
-      out += static_cast<char>(c);
-      ++i;
-    } else {
-      unsigned cp = ((c & 0x1Fu) << 6) |
-                    (i + 1 < utf8.size() ? static_cast<unsigned char>(utf8[i + 1]) & 0x3Fu : 0);
-      out += static_cast<char>(cp & 0xFF);
-      i += 2;
-    }
-  }
-  return out;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -142,7 +118,7 @@ int main(int argc, char** argv) {
       }
       for (const auto& v : doc["vectors"])
         if (v.contains("bytes") && v["bytes"].is_string())
-          frames.push_back(bytes_of(v["bytes"].get<std::string>()));
+          frames.push_back(top::bytes_from_utf8(v["bytes"].get<std::string>()).value_or(""));
     }
   }
 

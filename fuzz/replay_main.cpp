@@ -21,8 +21,11 @@
 #include <iterator>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "top/text.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size);
 extern "C" __attribute__((weak)) int LLVMFuzzerInitialize(int* argc, char*** argv);
@@ -54,25 +57,6 @@ std::vector<fs::path> files_under(const fs::path& p) {
     files.push_back(p);
   }
   return files;
-}
-
-// JSON strings are UTF-8; each code point <= 0xFF stands for one byte.
-bool bytes_of(const std::string& utf8, std::string& out) {
-  out.clear();
-  for (std::size_t i = 0; i < utf8.size();) {
-    auto c = static_cast<unsigned char>(utf8[i]);
-    if (c < 0x80) {
-      out += static_cast<char>(c);
-      ++i;
-    } else if ((c & 0xE0) == 0xC0 && i + 1 < utf8.size()) {
-      unsigned cp = ((c & 0x1Fu) << 6) | (static_cast<unsigned char>(utf8[i + 1]) & 0x3Fu);
-      out += static_cast<char>(cp & 0xFF);
-      i += 2;
-    } else {
-      return false;  // a code point above 0xFF is not a byte
-    }
-  }
-  return true;
 }
 
 bool unhex(const std::string& hex, std::string& out) {
@@ -107,13 +91,13 @@ int replay_vectors(const fs::path& p, const std::string& prefix, std::size_t& co
     }
     std::size_t index = 0;
     for (const auto& v : doc["vectors"]) {
-      std::string bytes;
+      std::optional<std::string> bytes;
       if (!v.contains("bytes") || !v["bytes"].is_string() ||
-          !bytes_of(v["bytes"].get<std::string>(), bytes)) {
+          !(bytes = top::bytes_from_utf8(v["bytes"].get<std::string>()))) {
         std::fprintf(stderr, "replay: %s: vector %zu has no byte string\n", f.c_str(), index);
         return 2;
       }
-      run_one(prefix + bytes);
+      run_one(prefix + *bytes);
       ++count;
       ++index;
     }

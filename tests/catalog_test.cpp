@@ -174,3 +174,52 @@ TEST(Catalog, PtzCodeTablesDisagreePerVendor) {
   EXPECT_EQ(name(t, 6), "lock");
   EXPECT_EQ(name(t, 7), "follow");
 }
+
+// Every enum's names come from one table each (src/names.cpp): both ways,
+// for every enumerator, and nothing else reads as one.
+template <class E, class From>
+void expect_names_round_trip(E last, From from) {
+  std::set<std::string_view> names;
+  for (int i = 0; i <= static_cast<int>(last); ++i) {
+    const auto e = static_cast<E>(i);
+    const std::string_view n = to_string(e);
+    EXPECT_TRUE(names.insert(n).second) << n;
+    EXPECT_EQ(from(n), e) << n;
+  }
+  EXPECT_FALSE(from("nonsense").has_value());
+}
+
+TEST(Catalog, EveryEnumNameReadsBack) {
+  expect_names_round_trip(Dialect::topotek, dialect_from_string);
+  expect_names_round_trip(Model::sip, model_from_string);
+  expect_names_round_trip(Role::any, role_from_string);
+  expect_names_round_trip(FieldKind::raw, field_kind_from_string);
+  expect_names_round_trip(Header::tmp_quirk, header_from_string);
+  EXPECT_EQ(to_string(Role::response), "response");
+  EXPECT_EQ(to_string(Header::ext8), "#tP");
+  EXPECT_EQ(describe(Header::fixed), "fixed, length 2");
+  EXPECT_EQ(dialect_from_string("auto"), Dialect::unknown);
+  EXPECT_EQ(model_from_string("auto"), Model::unknown);
+  EXPECT_EQ(model_list(", ", " or "), "c10, c10pro, c12, c13, c20 or sip");
+  EXPECT_EQ(all_models().size(), static_cast<std::size_t>(Model::sip));
+}
+
+// The identifier index topdump counts frames by and the catalog finds
+// commands by: one numbering, read back by ident_of.
+TEST(Catalog, IdentIndexReadsBack) {
+  std::set<int> seen;
+  for (char a : std::string_view(ident_chars))
+    for (char b : {'A', 'Z', '0', '9'})
+      for (char c : {'A', 'Y', '1', '8'}) {
+        const char id[3] = {a, b, c};
+        const int i = ident_index(id);
+        ASSERT_GE(i, 0);
+        ASSERT_LT(static_cast<std::size_t>(i), ident_slots);
+        EXPECT_TRUE(seen.insert(i).second);
+        EXPECT_EQ(ident_of(static_cast<std::size_t>(i)), std::string(id, 3));
+      }
+  EXPECT_EQ(ident_index("GAY"), ident_index(std::string_view("GAY")));
+  EXPECT_EQ(ident_index("gay"), -1);
+  EXPECT_EQ(ident_index(std::string_view("GA")), -1);
+  EXPECT_EQ(ident_index("G#Y"), -1);
+}

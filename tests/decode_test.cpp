@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "test_util.hpp"
+#include "top/detail/decimal.hpp"
 
 using namespace top;
 
@@ -307,7 +308,7 @@ TEST(Decode, ScaledValuesAreTheNearestDoubleToTheirDecimal) {
   EXPECT_EQ(field(d, "roll").value, 0.83);
   std::int64_t mant = 0;
   int dec = 0;
-  ASSERT_TRUE(exact_decimal(field(d, "pitch"), mant, dec));
+  ASSERT_TRUE(detail::exact_decimal(field(d, "pitch"), mant, dec));
   EXPECT_EQ(mant, -83);
   EXPECT_EQ(dec, 2);
   EXPECT_EQ(format_value(field(d, "pitch")), "-0.83 deg");

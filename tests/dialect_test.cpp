@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
+
 using namespace top;
 
 namespace {
@@ -35,4 +37,33 @@ TEST(Dialect, DetectorVotesPortsAndOverride) {
   EXPECT_EQ(d.current(), Dialect::skydroid);  // frames outweigh the port
   d.force(Dialect::topotek);
   EXPECT_EQ(d.current(), Dialect::topotek);
+}
+
+// The ports table: each port once per transport, each with its source, and
+// what the simulator and the runner read from it.
+TEST(Dialect, KnownPortsSayWhereEachIsWritten) {
+  std::set<std::pair<std::uint16_t, bool>> seen;
+  for (const PortSpec& p : known_ports()) {
+    EXPECT_TRUE(seen.insert({p.port, p.tcp}).second) << p.port;
+    EXPECT_FALSE(p.source.empty()) << p.port;
+    EXPECT_NE(p.dialect, Dialect::unknown);
+    EXPECT_EQ(p.served & ~p.models, 0) << p.port;  // served only by models that use it
+    EXPECT_EQ(dialect_from_port(p.port), p.dialect);
+    EXPECT_TRUE(is_top_port(p.port));
+  }
+  EXPECT_EQ(seen.size(), 6u);
+  for (Model m : all_models()) {
+    const PortSpec* d = default_port(m);
+    ASSERT_NE(d, nullptr) << to_string(m);
+    EXPECT_EQ(d->dialect, dialect_of(m));
+  }
+  EXPECT_EQ(default_port(Model::unknown), nullptr);
+  EXPECT_EQ(default_port(Model::c12)->port, 5000);
+  EXPECT_FALSE(default_port(Model::c12)->tcp);
+  EXPECT_EQ(default_port(Model::c20)->port, 5000);
+  EXPECT_TRUE(default_port(Model::c20)->tcp);
+  EXPECT_EQ(default_port(Model::sip)->port, 9003);
+  EXPECT_EQ(client_port(Model::sip), 9004);
+  EXPECT_EQ(client_port(Model::c10), 0);
+  EXPECT_FALSE(is_top_port(5001));
 }

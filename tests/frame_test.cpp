@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "test_util.hpp"
+#include "top/text.hpp"
 
 using namespace top;
 using toptest::ExactBuffer;
@@ -379,4 +380,31 @@ TEST(Build, LowercaseChecksumOption) {
                                .data = "00",
                                .lowercase_checksum = true});
   EXPECT_EQ(s, "#tpUM2rZOM00a3");
+}
+
+// One helper appends the checksum (the fuzz seeds, the matrices, the faults
+// and the device used to write it each).
+TEST(Frame, WithChecksumAppendsTheSum) {
+  EXPECT_EQ(with_checksum("#TPUG2wGAA01"), "#TPUG2wGAA0136");
+  const std::string f = with_checksum("#tpUG6wGAYEF0732");
+  const ParseResult r = parse_exact(f);
+  ASSERT_EQ(r.status, ParseStatus::frame);
+  EXPECT_TRUE(r.frame.checksum_ok);
+}
+
+// Bytes as text: one escape for every tool, and the bytes of a vector's
+// JSON string.
+TEST(Text, EscapesRoundTripAndVectorStringsAreBytes) {
+  std::string all;
+  for (int c = 0; c < 256; ++c) all += static_cast<char>(c);
+  std::string err;
+  EXPECT_EQ(unescape(escape(all), err), all);
+  EXPECT_EQ(escape("#\r\n\\\x7f"), "#\\r\\n\\\\\\x7F");
+  EXPECT_EQ(hex_value('a'), 10);
+  EXPECT_EQ(hex_value('F'), 15);
+  EXPECT_EQ(hex_value('g'), -1);
+  EXPECT_EQ(bytes_from_utf8("a\xc3\xbf\xc2\x80"), std::string("a\xff\x80"));
+  EXPECT_FALSE(bytes_from_utf8("\xe2\x82\xac").has_value());  // U+20AC is no byte
+  EXPECT_FALSE(bytes_from_utf8("\xc3").has_value());
+  EXPECT_EQ(ascii_text("a\xe9"), "a\\xE9");
 }

@@ -22,24 +22,7 @@ struct Vector {
 };
 
 // JSON strings are UTF-8; each code point <= 0xFF stands for one byte.
-std::string bytes_of(const std::string& utf8) {
-  std::string out;
-  for (std::size_t i = 0; i < utf8.size();) {
-    auto c = static_cast<unsigned char>(utf8[i]);
-    if (c < 0x80) {
-      out += static_cast<char>(c);
-      ++i;
-    } else if ((c & 0xE0) == 0xC0 && i + 1 < utf8.size()) {
-      unsigned cp = ((c & 0x1Fu) << 6) | (static_cast<unsigned char>(utf8[i + 1]) & 0x3Fu);
-      out += static_cast<char>(cp & 0xFF);
-      i += 2;
-    } else {
-      out += '?';
-      ++i;
-    }
-  }
-  return out;
-}
+std::string bytes_of(const std::string& utf8) { return top::bytes_from_utf8(utf8).value(); }
 
 std::vector<Vector> load() {
   std::vector<Vector> all;

@@ -19,18 +19,6 @@ std::string models(top::ModelSet m) {
   return s;
 }
 
-std::string role(top::Role r) {
-  switch (r) {
-    case top::Role::request:
-      return "request";
-    case top::Role::response:
-      return "response";
-    case top::Role::any:
-      break;
-  }
-  return "any";
-}
-
 std::string num(double v) {
   char b[32];
   std::snprintf(b, sizeof b, "%g", v);
@@ -64,7 +52,8 @@ int main() {
       std::printf("\n\n");
       for (const top::FormSpec& f : c.forms) {
         std::printf(
-            "- `%c` %s, data length %u%s%s%s\n", f.control, role(f.role).c_str(), f.min_length,
+            "- `%c` %s, data length %u%s%s%s\n", f.control,
+            std::string(top::to_string(f.role)).c_str(), f.min_length,
             f.min_length == f.max_length ? "" : ("-" + std::to_string(f.max_length)).c_str(),
             f.note.empty() ? "" : ": ", std::string(f.note).c_str());
         for (const top::FieldSpec& s : f.fields) {

@@ -16,55 +16,12 @@
 
 namespace topdump {
 
-std::string_view to_string(Transport t) noexcept {
-  switch (t) {
-    case Transport::udp:
-      return "udp";
-    case Transport::tcp:
-      return "tcp";
-    case Transport::serial:
-      return "serial";
-  }
-  return "?";
-}
+constexpr std::string_view kTransport[] = {"udp", "tcp", "serial"};
+static_assert(std::size(kTransport) == static_cast<std::size_t>(Transport::serial) + 1);
 
-std::string Endpoint::text() const {
-  char b[64];
-  if (family == 4) {
-    std::snprintf(b, sizeof b, "%u.%u.%u.%u:%u", addr[0], addr[1], addr[2], addr[3], port);
-    return b;
-  }
-  if (family == 6) {
-    // RFC 5952 style: longest run of zero groups as "::".
-    std::uint16_t g[8];
-    for (int i = 0; i < 8; ++i)
-      g[i] = static_cast<std::uint16_t>(addr[2 * i] << 8 | addr[2 * i + 1]);
-    int best = -1, best_len = 0;
-    for (int i = 0; i < 8;) {
-      if (g[i] != 0) {
-        ++i;
-        continue;
-      }
-      int j = i;
-      while (j < 8 && g[j] == 0) ++j;
-      if (j - i > best_len && j - i >= 2) best = i, best_len = j - i;
-      i = j;
-    }
-    std::string s = "[";
-    for (int i = 0; i < 8; ++i) {
-      if (i == best) {
-        s += "::";
-        i += best_len - 1;
-        continue;
-      }
-      if (!s.empty() && s.back() != ':' && s.back() != '[') s += ':';
-      std::snprintf(b, sizeof b, "%x", g[i]);
-      s += b;
-    }
-    s += "]:" + std::to_string(port);
-    return s;
-  }
-  return escape(name);
+std::string_view to_string(Transport t) noexcept {
+  const auto i = static_cast<std::size_t>(t);
+  return i < std::size(kTransport) ? kTransport[i] : "?";
 }
 
 bool looks_like_top(std::string_view p) noexcept {
@@ -413,25 +370,12 @@ struct Analyzer::Impl {
   top::ParseResult scratch;       // the one-frame datagram path parses into this
   std::unordered_map<std::uint32_t, std::uint64_t> idents;  // other identifiers
   // Frames per identifier of three [0-9A-Z] characters (every valid one): a
-  // flat table indexed in base 36.
-  std::vector<std::uint64_t> ident_table = std::vector<std::uint64_t>(36 * 36 * 36);
+  // flat table indexed by top::ident_index.
+  std::vector<std::uint64_t> ident_table = std::vector<std::uint64_t>(top::ident_slots);
 
-  // [0-9] -> 0-9, [A-Z] -> 10-35, anything else -> -1.
-  static constexpr std::array<std::int8_t, 256> kB36 = [] {
-    std::array<std::int8_t, 256> t{};
-    for (auto& v : t) v = -1;
-    for (int ch = '0'; ch <= '9'; ++ch)
-      t[static_cast<std::size_t>(ch)] = static_cast<std::int8_t>(ch - '0');
-    for (int ch = 'A'; ch <= 'Z'; ++ch)
-      t[static_cast<std::size_t>(ch)] = static_cast<std::int8_t>(ch - 'A' + 10);
-    return t;
-  }();
   void count_ident(const char id[3]) {
-    const int a = kB36[static_cast<unsigned char>(id[0])],
-              b = kB36[static_cast<unsigned char>(id[1])],
-              c = kB36[static_cast<unsigned char>(id[2])];
-    if ((a | b | c) >= 0)
-      ++ident_table[static_cast<std::size_t>((a * 36 + b) * 36 + c)];
+    if (const int i = top::ident_index(id); i >= 0)
+      ++ident_table[static_cast<std::size_t>(i)];
     else
       ++idents[pack(std::string_view(id, 3))];
   }
@@ -678,11 +622,8 @@ struct Analyzer::Impl {
   void materialize(Stats& s) const {
     s.per_ident.clear();
     for (const auto& [k, v] : idents) s.per_ident[unpack(k)] += v;
-    static constexpr char kDigits[] = "0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZ";
     for (std::size_t i = 0; i < ident_table.size(); ++i)
-      if (ident_table[i])
-        s.per_ident[std::string{kDigits[i / 1296], kDigits[i / 36 % 36], kDigits[i % 36]}] +=
-            ident_table[i];
+      if (ident_table[i]) s.per_ident[top::ident_of(i)] += ident_table[i];
     s.per_code.clear();
     for (std::size_t i = 0; i < codes.size(); ++i)
       if (codes[i])
@@ -908,10 +849,7 @@ struct Analyzer::Impl {
       unsigned v = 0;
       bool ok = !f.data().empty();
       for (char ch : f.data()) {
-        int x = (ch >= '0' && ch <= '9')   ? ch - '0'
-                : (ch >= 'A' && ch <= 'F') ? ch - 'A' + 10
-                : (ch >= 'a' && ch <= 'f') ? ch - 'a' + 10
-                                           : -1;
+        const int x = top::hex_value(ch);
         if (x < 0)
           ok = false;
         else

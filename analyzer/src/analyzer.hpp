@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "afindings.hpp"
+#include "pcapio/endpoint.hpp"
 #include "top/top.hpp"
 
 namespace topdump {
@@ -35,23 +36,7 @@ enum class Transport : std::uint8_t { udp, tcp, serial };
 std::string_view to_string(Transport t) noexcept;
 
 // One end of a conversation: an IP address and port, or a name (serial).
-struct Endpoint {
-  std::uint8_t family = 0;  // 4, 6, or 0 for a named end
-  std::array<std::uint8_t, 16> addr{};
-  std::uint16_t port = 0;
-  std::string name;  // family 0
-  // Compared on every packet (the conversation cache): ports and family
-  // first, the address as one block, the name last.
-  // The address is compared as two eight-byte words, as the dissector
-  // writes it.
-  bool operator==(const Endpoint& o) const noexcept {
-    std::uint64_t a[2], b[2];
-    std::memcpy(a, addr.data(), 16);
-    std::memcpy(b, o.addr.data(), 16);
-    return port == o.port && family == o.family && a[0] == b[0] && a[1] == b[1] && name == o.name;
-  }
-  std::string text() const;  // "10.0.0.1:5000", "[::1]:5000", "host"
-};
+using Endpoint = pcapio::Endpoint;
 
 // Where a frame sits in the capture.
 struct Position {
@@ -207,8 +192,6 @@ struct Filter {
   bool selects_time(std::int64_t ts) const;
   bool active() const;
 };
-
-struct Conversation;
 
 class Analyzer {
  public:

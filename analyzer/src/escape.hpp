@@ -1,4 +1,5 @@
-// C escapes for bytes given on a command line, and back for display.
+// Strings for JSON and messages; the escapes of bytes are the library's
+// (top/text.hpp).
 #pragma once
 
 #include <array>
@@ -7,6 +8,8 @@
 #include <optional>
 #include <string>
 #include <string_view>
+
+#include "top/text.hpp"
 
 namespace topdump {
 
@@ -41,17 +44,8 @@ inline bool json_plain(std::string_view s) noexcept {
   return true;
 }
 
-// Turns "\x23", "\r", "\n", "\t", "\0", "\\" into bytes. Returns nullopt and
-// sets `error` (with the position) on a malformed escape.
-std::optional<std::string> unescape(std::string_view arg, std::string& error);
-
-// Printable ASCII as is; anything else as \xNN (and \r \n \\), so the
-// result round-trips through unescape().
-std::string escape(std::string_view bytes);
-
-// A message as text that is valid UTF-8 (ASCII): bytes 0x80-0xFF as \xNN,
-// everything else as it is. Messages quote input through escape(); this
-// keeps a byte that slipped through from breaking a JSON line.
-std::string ascii_text(std::string_view message);
+using top::ascii_text;
+using top::escape;
+using top::unescape;
 
 }  // namespace topdump

@@ -6,6 +6,7 @@
 
 #include "commands.hpp"
 #include "escape.hpp"
+#include "output.hpp"
 #include "render.hpp"
 
 namespace topdump {
@@ -70,11 +71,9 @@ int run_frame(const FrameOptions& o) {
       const auto& g = x.item;
       if (g.finding.severity == top::Severity::error) status = 1;
       if (o.json) {
-        json j;
-        j["arg"] = x.arg + 1;
-        j["offset"] = g.offset;
-        j.update(garbage_json(g));
-        std::cout << j.dump() << "\n";
+        std::string j;
+        write_garbage_json(j, x.arg + 1, g);
+        std::cout << j;
       } else {
         std::cout << "garbage (argument " << x.arg + 1 << ", bytes " << g.offset << "-"
                   << g.offset + g.length - 1 << "): \"" << escape(g.preview)
@@ -92,11 +91,9 @@ int run_frame(const FrameOptions& o) {
     if (worst(f, d) == top::Severity::error) status = 1;
     ++n;
     if (o.json) {
-      json j;
-      j["arg"] = x.arg + 1;
-      j["offset"] = x.item.offset;
-      j.update(frame_json(f, d));
-      std::cout << j.dump() << "\n";
+      std::string j;
+      write_frame_json(j, x.arg + 1, x.item.offset, f, d);
+      std::cout << j;
     } else {
       std::cout << "frame " << n << " (argument " << x.arg + 1 << ", byte " << x.item.offset
                 << "): " << escape(f.raw) << "\n"
@@ -120,8 +117,7 @@ Run add_frame_command(CLI::App& app) {
       "frame", "Decode frames given as arguments (C escapes \\xNN \\r \\n \\\\ give raw bytes)");
   sub->add_option("--dialect", o->dialect, "auto, skydroid or topotek")
       ->check(CLI::IsMember({"auto", "skydroid", "topotek"}));
-  sub->add_option("--model", o->model, "c10, c10pro, c12, c13, c20 or sip")
-      ->check(CLI::IsMember({"auto", "c10", "c10pro", "c12", "c13", "c20", "sip"}));
+  sub->add_option("--model", o->model, top::model_list(", ", " or "))->check(model_check());
   sub->add_flag("--json", o->json, "one JSON object per frame found");
   sub->add_option("FRAME", o->frames, "byte streams holding frames")->required();
   return [o, sub]() { return sub->parsed() ? run_frame(*o) : -1; };

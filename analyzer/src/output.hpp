@@ -1,6 +1,7 @@
-// topdump outputs: one line per frame, the -V field tree, JSON Lines (a fast
-// writer proven equal to the nlohmann reference by tests), CSV, and the
-// statistics as text or JSON. Schema: docs/topdump-json.md.
+// topdump outputs: one line per frame and the -V field tree (text_out.cpp),
+// JSON Lines (json_events.cpp, through the one JSON writer of
+// json_writer.hpp; schema: docs/topdump-json.md), CSV (csv_out.cpp), and
+// the statistics as text or JSON (stats_out.cpp).
 #pragma once
 
 #include <cstdio>
@@ -29,16 +30,17 @@ class Out {
   std::string buf_;
 };
 
-// Reference JSON of each event, built with nlohmann.
-json frame_event_json(const FrameEvent& e);
-json garbage_event_json(const GarbageEvent& e);
-json note_event_json(const NoteEvent& e);
-// The keys of frame_json(), written without nlohmann (no braces).
-void write_frame_body(std::string& out, const top::Frame& f, const top::Decoded& d);
-// The fast writer of a frame event: appends one line (with '\n').
+// Each event of read --json as one line (with '\n') appended to `out`.
 void write_frame_json(std::string& out, const FrameEvent& e);
-// note_event_json(e).dump() plus a newline, written directly.
+void write_garbage_json(std::string& out, const GarbageEvent& e);
 void write_note_json(std::string& out, const NoteEvent& e);
+// A frame and a run of garbage of topdump frame --json (one line each):
+// the argument they came from (1-based), their byte offset in it, then the
+// keys of a frame event's frame, or "garbage", "length", "preview",
+// "findings" and "ok".
+void write_frame_json(std::string& out, std::size_t arg, std::size_t offset, const top::Frame& f,
+                      const top::Decoded& d);
+void write_garbage_json(std::string& out, std::size_t arg, const top::StreamItem& g);
 
 // "2 udp 10.0.0.1:40000 > 10.0.0.2:5000 ..." (no newline)
 std::string frame_line(const FrameEvent& e);
@@ -74,16 +76,20 @@ bool csv_column_ok(const std::string& c);
 
 class CsvSink : public Sink {
  public:
-  CsvSink(Out& out, std::vector<std::string> columns);
+  CsvSink(Out& out, const std::vector<std::string>& columns);
   void frame(const FrameEvent& e) override;
 
  private:
   Out& out_;
-  std::vector<std::string> cols_;
+  std::vector<int> cols_;            // index into the column table, -1: a field
+  std::vector<std::string> fields_;  // the field's name where cols_ is -1
 };
 
-// Forwards to a sink and prints source findings to stderr with the file name.
-json stats_json(const Stats& s, top::Severity worst);
+// The statistics as JSON appended to `out`: indented by `indent` spaces per
+// level (stats --json: 2), or on one line with indent < 0 and, when `type`
+// is given, a leading "type" key (the last line of live and serial --json).
+void write_stats_json(std::string& out, const Stats& s, top::Severity worst, int indent,
+                      std::string_view type = {});
 std::string stats_text(const Stats& s, top::Severity worst);
 
 }  // namespace topdump

@@ -294,6 +294,13 @@ bool Dissector::ip(std::int64_t ts, const std::uint8_t* p, std::size_t n, std::s
 bool read_serial_log(const std::string& path, Format f, Analyzer& a, const SourceOptions& o,
                      std::string& error);
 
+std::set<std::uint16_t> known_ports(bool tcp) {
+  std::set<std::uint16_t> s;
+  for (const top::PortSpec& p : top::known_ports())
+    if (p.tcp == tcp) s.insert(p.port);
+  return s;
+}
+
 bool read_file(const std::string& path, Format format, Analyzer& a, const SourceOptions& o,
                std::string& error) {
   if (format == Format::automatic) {

@@ -41,8 +41,8 @@ void add_common(CLI::App* sub, Common& o, bool outputs) {
   sub->add_option("--dialect", o.dialect, "auto, skydroid or topotek (forces every conversation)")
       ->check(CLI::IsMember({"auto", "skydroid", "topotek"}));
   sub->add_option("--model", o.model,
-                  "c10, c10pro, c12, c13, c20 or sip (unsupported-on-model checks)")
-      ->check(CLI::IsMember({"auto", "c10", "c10pro", "c12", "c13", "c20", "sip"}));
+                  top::model_list(", ", " or ") + " (unsupported-on-model checks)")
+      ->check(model_check());
   sub->add_option("--port", o.ports, "another UDP/TCP port that carries TOP (repeatable)")
       ->allow_extra_args(false);
   sub->add_option("--ident", o.idents,
@@ -242,10 +242,13 @@ int run_stats(const StatsOptions& o) {
     a.finish();
   }
   if (a.frames_seen() == 0) a.source_note(kNoTime, ACode::no_frames, "no TOP frame found", 0, 0);
-  if (o.c.json)
-    std::cout << stats_json(a.stats(), a.worst()).dump(2) << "\n";
-  else
+  if (o.c.json) {
+    std::string j;
+    write_stats_json(j, a.stats(), a.worst(), 2);
+    std::cout << j << "\n";
+  } else {
     std::cout << stats_text(a.stats(), a.worst());
+  }
   return status_of(a);
 }
 
@@ -260,11 +263,9 @@ void install_signals() {
 
 void print_final_stats(const Common& c, const Analyzer& a) {
   if (c.json) {
-    json j = stats_json(a.stats(), a.worst());
-    json k;
-    k["type"] = "stats";
-    k.update(j);
-    std::cout << k.dump() << "\n";
+    std::string j;
+    write_stats_json(j, a.stats(), a.worst(), -1, "stats");
+    std::cout << j << "\n";
   } else {
     std::cout << "-- statistics\n" << stats_text(a.stats(), a.worst());
   }

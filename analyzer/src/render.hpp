@@ -1,16 +1,13 @@
-// How topdump shows a frame: a field tree for people, JSON for programs.
+// How topdump shows a frame to people: the field tree and finding lines.
 #pragma once
 
 #include <cstdint>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "top/top.hpp"
 
 namespace topdump {
-
-using json = nlohmann::ordered_json;
 
 // Frame-level and catalog-level findings together, ordered by offset.
 std::vector<const top::Finding*> all_findings(const top::Frame& f, const top::Decoded& d);
@@ -19,11 +16,6 @@ top::Severity worst(const top::Frame& f, const top::Decoded& d);
 
 // Human name of an address char: "U (UART/UDP client)".
 std::string address_name(char a);
-
-// The JSON object of one frame with the documented keys (docs/topdump-json.md).
-json frame_json(const top::Frame& f, const top::Decoded& d);
-// The JSON object of a run of bytes that belong to no frame.
-json garbage_json(const top::StreamItem& g);
 
 // The field tree: header, addresses, command, each field with its value,
 // unit and byte offset, the checksum, each finding with code and offset.

@@ -14,32 +14,21 @@
 
 namespace topdump {
 
+namespace {
+constexpr std::string_view kFormat[] = {"auto", "pcap", "raw", "socat", "saleae", "lines"};
+static_assert(std::size(kFormat) == static_cast<std::size_t>(Format::lines) + 1);
+}  // namespace
+
 std::optional<Format> format_from_string(std::string_view s) {
-  if (s == "auto") return Format::automatic;
-  if (s == "pcap" || s == "pcapng") return Format::pcap;
-  if (s == "raw") return Format::raw;
-  if (s == "socat") return Format::socat;
-  if (s == "saleae") return Format::saleae;
-  if (s == "lines") return Format::lines;
+  if (s == "pcapng") return Format::pcap;
+  for (std::size_t i = 0; i < std::size(kFormat); ++i)
+    if (kFormat[i] == s) return static_cast<Format>(i);
   return std::nullopt;
 }
 
 std::string_view to_string(Format f) noexcept {
-  switch (f) {
-    case Format::automatic:
-      return "auto";
-    case Format::pcap:
-      return "pcap";
-    case Format::raw:
-      return "raw";
-    case Format::socat:
-      return "socat";
-    case Format::saleae:
-      return "saleae";
-    case Format::lines:
-      return "lines";
-  }
-  return "?";
+  const auto i = static_cast<std::size_t>(f);
+  return i < std::size(kFormat) ? kFormat[i] : "?";
 }
 
 namespace {
@@ -259,10 +248,7 @@ std::optional<int> csv_byte(std::string_view v) {
   if (v.size() >= 3 && v[0] == '0' && (v[1] == 'x' || v[1] == 'X')) {
     int x = 0;
     for (char c : v.substr(2)) {
-      int d = std::isdigit(static_cast<unsigned char>(c)) ? c - '0'
-              : (c >= 'a' && c <= 'f')                    ? c - 'a' + 10
-              : (c >= 'A' && c <= 'F')                    ? c - 'A' + 10
-                                                          : -1;
+      const int d = top::hex_value(c);
       if (d < 0) return std::nullopt;
       x = x * 16 + d;
       if (x > 255) return std::nullopt;

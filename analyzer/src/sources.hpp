@@ -23,9 +23,12 @@ std::string_view to_string(Format f) noexcept;
 // Picks the format from the first bytes of a file.
 Format detect_format(std::string_view head);
 
+// The ports of top::known_ports() of one transport.
+std::set<std::uint16_t> known_ports(bool tcp);
+
 struct SourceOptions {
-  std::set<std::uint16_t> udp_ports{5000, 9002, 9003, 9004, 12580};
-  std::set<std::uint16_t> tcp_ports{5000};
+  std::set<std::uint16_t> udp_ports = known_ports(false);
+  std::set<std::uint16_t> tcp_ports = known_ports(true);
   // Called now and then with (bytes read, total bytes) for a progress bar.
   std::function<void(std::uint64_t, std::uint64_t)> progress;
 };

@@ -19,7 +19,7 @@ done
 echo
 echo "== default matrix wall time (target < 10 s)"
 printf '%-8s %-12s %8s %s\n' model target seconds result
-for m in c10 c10pro c12 c13 c20 sip; do
+for m in $("$B/topconf" models); do
   t0=$(date +%s.%N)
   rc=0; "$B/topconf" run --model "$m" -q >/dev/null || rc=$?
   t1=$(date +%s.%N)

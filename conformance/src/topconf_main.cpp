@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
   int bind_port = -1;
   bool no_color = false, quiet = false;
   run->add_option("--target", target, "udp://HOST:PORT, tcp://HOST:PORT or serial:DEVICE[@BAUD]");
-  run->add_option("--model", model_name, "c10|c10pro|c12|c13|c20|sip")->required();
+  run->add_option("--model", model_name, top::model_list("|", "|"))->required();
   run->add_option("--matrix", matrix_path,
                   "matrix JSON (default: conformance/matrices/<model>.json)");
   run->add_option("--case", case_ids, "run only these case ids (globs with * and ?)");
@@ -94,8 +94,11 @@ int main(int argc, char** argv) {
   auto* gen =
       app.add_subcommand("generate", "write a model's default matrix generated from the catalog");
   std::string gen_model, gen_out;
-  gen->add_option("--model", gen_model, "c10|c10pro|c12|c13|c20|sip")->required();
+  gen->add_option("--model", gen_model, top::model_list("|", "|"))->required();
   gen->add_option("-o,--output", gen_out, "output file (default: stdout)");
+
+  // models
+  auto* models = app.add_subcommand("models", "list the models, one per line (the catalog's)");
 
   // validate
   auto* val = app.add_subcommand("validate", "check matrix files against the schema rules");
@@ -109,10 +112,15 @@ int main(int argc, char** argv) {
     return rc == 0 ? 0 : 2;
   }
 
+  if (*models) {
+    for (top::Model m : top::all_models()) std::cout << top::to_string(m) << "\n";
+    return 0;
+  }
+
   if (*gen) {
     auto m = top::model_from_string(gen_model);
     if (!m || *m == top::Model::unknown) {
-      spdlog::error("--model {}: not one of c10 c10pro c12 c13 c20 sip", gen_model);
+      spdlog::error("--model {}: not one of {}", gen_model, top::model_list());
       return 2;
     }
     const std::string text = topconf::generate_matrix(*m).dump(2) + "\n";
@@ -145,7 +153,7 @@ int main(int argc, char** argv) {
 
   auto model = top::model_from_string(model_name);
   if (!model || *model == top::Model::unknown) {
-    spdlog::error("--model {}: not one of c10 c10pro c12 c13 c20 sip", model_name);
+    spdlog::error("--model {}: not one of {}", model_name, top::model_list());
     return 2;
   }
   std::vector<topconf::Level> lv;
@@ -203,9 +211,8 @@ int main(int argc, char** argv) {
         return 2;
       }
       int local = bind_port;
-      if (local < 0 && top::dialect_of(*model) == top::Dialect::topotek &&
-          target.rfind("udp://", 0) == 0)
-        local = 9004;
+      if (local < 0 && top::client_port(*model) && target.rfind("udp://", 0) == 0)
+        local = top::client_port(*model);
       transport = topconf::open_transport(target, *model, local);
     }
   } catch (const topconf::TransportError& e) {
@@ -213,10 +220,10 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  std::unique_ptr<topkit::PcapWriter> pcap;
+  std::unique_ptr<pcapio::Recorder> pcap;
   if (!pcap_out.empty()) {
     try {
-      pcap = std::make_unique<topkit::PcapWriter>(pcap_out, transport->tcp());
+      pcap = std::make_unique<pcapio::Recorder>(pcap_out, transport->tcp());
     } catch (const std::exception& e) {
       spdlog::error("{}", e.what());
       return 2;

@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
   std::uint64_t seed = 1;
   int reply_port = -1;
   unsigned baud = 115200;
-  app.add_option("--model", model_name, "c10|c10pro|c12|c13|c20|sip")->capture_default_str();
+  app.add_option("--model", model_name, top::model_list("|", "|"))->capture_default_str();
   app.add_option("--udp", udp,
                  "serve UDP on HOST:PORT (default 127.0.0.1 and the model's port; the default "
                  "transport but for the C20)")
@@ -92,7 +92,7 @@ int main(int argc, char** argv) {
 
   auto model = top::model_from_string(model_name);
   if (!model || *model == top::Model::unknown) {
-    spdlog::error("--model {}: not one of c10 c10pro c12 c13 c20 sip", model_name);
+    spdlog::error("--model {}: not one of {}", model_name, top::model_list());
     return 2;
   }
   const int chosen = static_cast<int>(app.count("--udp") > 0) +
@@ -145,17 +145,11 @@ int main(int argc, char** argv) {
       spdlog::error("{}: expected HOST:PORT", spec);
       return 2;
     }
-    // SkyDroid 2.1.1: the C10 also answers on UDP 9002.
-    if (cfg.kind == topsim::TransportKind::udp && spec.empty() && *model == top::Model::c10)
-      cfg.extra_udp_ports.push_back(9002);
-    // Field: some C12 clients also send to UDP 12580 (top/device.hpp).
-    if (const top::Trait* t = top::find_trait(top::TraitKind::extra_port, *model, dopt.profile);
-        t && cfg.kind == topsim::TransportKind::udp && spec.empty())
-      cfg.extra_udp_ports.push_back(static_cast<std::uint16_t>(t->value));
+    if (cfg.kind == topsim::TransportKind::udp && spec.empty())
+      cfg.extra_udp_ports = topsim::extra_udp_ports(*model);
   }
-  cfg.reply_port = reply_port >= 0 ? static_cast<std::uint16_t>(reply_port)
-                   : top::dialect_of(*model) == top::Dialect::topotek ? std::uint16_t{9004}
-                                                                      : std::uint16_t{0};
+  cfg.reply_port =
+      reply_port >= 0 ? static_cast<std::uint16_t>(reply_port) : top::client_port(*model);
   std::string err;
   if (!faults.empty()) {
     auto f = topsim::parse_faults(faults, err);

@@ -7,99 +7,6 @@
 
 namespace top {
 
-std::string_view to_string(Dialect d) noexcept {
-  switch (d) {
-    case Dialect::skydroid:
-      return "skydroid";
-    case Dialect::topotek:
-      return "topotek";
-    case Dialect::unknown:
-      break;
-  }
-  return "unknown";
-}
-
-std::string_view to_string(Model m) noexcept {
-  switch (m) {
-    case Model::c10:
-      return "c10";
-    case Model::c10pro:
-      return "c10pro";
-    case Model::c12:
-      return "c12";
-    case Model::c13:
-      return "c13";
-    case Model::c20:
-      return "c20";
-    case Model::sip:
-      return "sip";
-    case Model::unknown:
-      break;
-  }
-  return "unknown";
-}
-
-std::optional<Dialect> dialect_from_string(std::string_view s) noexcept {
-  if (s == "skydroid") return Dialect::skydroid;
-  if (s == "topotek") return Dialect::topotek;
-  if (s == "auto" || s == "unknown") return Dialect::unknown;
-  return std::nullopt;
-}
-
-std::optional<Model> model_from_string(std::string_view s) noexcept {
-  for (Model m : all_models())
-    if (to_string(m) == s) return m;
-  if (s == "auto" || s == "unknown") return Model::unknown;
-  return std::nullopt;
-}
-
-Dialect dialect_of(Model m) noexcept {
-  switch (m) {
-    case Model::sip:
-      return Dialect::topotek;
-    case Model::unknown:
-      return Dialect::unknown;
-    default:
-      return Dialect::skydroid;
-  }
-}
-
-std::span<const Model> all_models() noexcept {
-  static constexpr Model kModels[] = {Model::c10, Model::c10pro, Model::c12,
-                                      Model::c13, Model::c20,    Model::sip};
-  return kModels;
-}
-
-std::string_view to_string(FieldKind k) noexcept {
-  switch (k) {
-    case FieldKind::hex_u:
-      return "hex_u";
-    case FieldKind::hex_s:
-      return "hex_s";
-    case FieldKind::dec_u:
-      return "dec_u";
-    case FieldKind::enum_hex:
-      return "enum_hex";
-    case FieldKind::enum_char:
-      return "enum_char";
-    case FieldKind::text:
-      return "text";
-    case FieldKind::number:
-      return "number";
-    case FieldKind::le_i16:
-      return "le_i16";
-    case FieldKind::le_u16:
-      return "le_u16";
-    case FieldKind::le_i32:
-      return "le_i32";
-    case FieldKind::nmea:
-      return "nmea";
-    case FieldKind::raw:
-      return "raw";
-  }
-  return "?";
-}
-
 bool CommandSpec::has_control(char control) const noexcept {
   for (const FormSpec& f : forms)
     if (f.control == control) return true;
@@ -120,30 +27,7 @@ std::span<const CommandSpec> commands(Dialect d) noexcept {
 
 namespace {
 
-// Identifiers are three chars of [A-Z0-9]: a direct index of 36^3 slots
-// per dialect, built once.
-constexpr int kAlphabet = 36;
-constexpr int kSlots = kAlphabet * kAlphabet * kAlphabet;
-
-// [A-Z] -> 0-25, [0-9] -> 26-35, anything else -> -1.
-constexpr std::array<std::int16_t, 256> kCharIndex = [] {
-  std::array<std::int16_t, 256> t{};
-  for (auto& v : t) v = -1;
-  for (int c = 'A'; c <= 'Z'; ++c)
-    t[static_cast<std::size_t>(c)] = static_cast<std::int16_t>(c - 'A');
-  for (int c = '0'; c <= '9'; ++c)
-    t[static_cast<std::size_t>(c)] = static_cast<std::int16_t>(26 + c - '0');
-  return t;
-}();
-
-int ident_index(std::string_view ident) noexcept {
-  if (ident.size() != 3) return -1;
-  int a = kCharIndex[static_cast<unsigned char>(ident[0])];
-  int b = kCharIndex[static_cast<unsigned char>(ident[1])];
-  int c = kCharIndex[static_cast<unsigned char>(ident[2])];
-  if ((a | b | c) < 0) return -1;
-  return (a * kAlphabet + b) * kAlphabet + c;
-}
+constexpr std::size_t kSlots = ident_slots;
 
 struct Index {
   std::array<const CommandSpec*, kSlots> slot[2];

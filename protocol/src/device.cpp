@@ -147,12 +147,6 @@ constexpr Trait kTraits[] = {
      .source = Source::field,
      .evidence = "C12 clients send from UDP 5000 to 5000 (the vendor's app does) and read "
                  "the replies on that socket: the device answers the datagram's source"},
-    {.kind = TraitKind::extra_port,
-     .dialect = Dialect::skydroid,
-     .models = c12,
-     .value = 12580,
-     .source = Source::field,
-     .evidence = "some C12 clients also send to UDP 12580"},
     {.kind = TraitKind::link_by_source,
      .dialect = Dialect::topotek,
      .models = sip,
@@ -350,8 +344,6 @@ std::string_view to_string(TraitKind k) noexcept {
       return "pitch-inverted";
     case TraitKind::answers_to_source:
       return "answers-to-source";
-    case TraitKind::extra_port:
-      return "extra-port";
     case TraitKind::link_by_source:
       return "link-by-source";
     case TraitKind::speed_refresh:

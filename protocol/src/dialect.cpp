@@ -2,29 +2,6 @@
 
 namespace top {
 
-Dialect dialect_from_port(std::uint16_t port) noexcept {
-  switch (port) {
-    case 5000:
-    case 9002:
-    case 12580:
-      return Dialect::skydroid;
-    case 9003:
-    case 9004:
-      return Dialect::topotek;
-    default:
-      return Dialect::unknown;
-  }
-}
-
-bool is_top_port(std::uint16_t port) noexcept {
-  return dialect_from_port(port) != Dialect::unknown;
-}
-
-PortRole port_role(std::uint16_t port) noexcept {
-  if (port == 9004) return PortRole::client;  // Topotek: the client's port
-  return is_top_port(port) ? PortRole::device : PortRole::unknown;
-}
-
 Dialect dialect_from_frame(const Frame& f) noexcept {
   if (f.src == 'P' || f.dst == 'P') return Dialect::topotek;
   if (f.header == Header::ext8 || f.header == Header::ext16 || f.header == Header::tmp_quirk)

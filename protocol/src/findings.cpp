@@ -20,16 +20,12 @@ constexpr std::array<Row, finding_code_count> kRows = {{
 
 }  // namespace
 
+constexpr std::string_view kSeverity[] = {"info", "warning", "error"};
+static_assert(std::size(kSeverity) == static_cast<std::size_t>(Severity::error) + 1);
+
 std::string_view to_string(Severity s) noexcept {
-  switch (s) {
-    case Severity::info:
-      return "info";
-    case Severity::warning:
-      return "warning";
-    case Severity::error:
-      return "error";
-  }
-  return "?";
+  const auto i = static_cast<std::size_t>(s);
+  return i < std::size(kSeverity) ? kSeverity[i] : "?";
 }
 
 std::string_view to_string(FindingCode c) noexcept {

@@ -15,22 +15,6 @@ using detail::hex_value;
 using detail::is_hex;
 using detail::is_lower_hex;
 
-std::string_view to_string(Header h) noexcept {
-  switch (h) {
-    case Header::fixed:
-      return "#TP";
-    case Header::variable:
-      return "#tp";
-    case Header::ext8:
-      return "#tP";
-    case Header::ext16:
-      return "#Tp";
-    case Header::tmp_quirk:
-      return "#P";
-  }
-  return "?";
-}
-
 std::string_view Frame::checksum_text() const noexcept {
   if (!checksum_present) return {};
   std::size_t at = data_offset + data_length;
@@ -118,6 +102,14 @@ void put_hex2(std::uint8_t v, char out[2]) noexcept {
   static constexpr char kDigits[] = "0123456789ABCDEF";
   out[0] = kDigits[v >> 4];
   out[1] = kDigits[v & 0x0F];
+}
+
+std::string with_checksum(std::string_view s) {
+  std::string out(s);
+  char c[2];
+  put_hex2(checksum(s), c);
+  out.append(c, 2);
+  return out;
 }
 
 namespace {

@@ -15,8 +15,10 @@
 #include <chrono>
 #include <thread>
 
-#include "pcapw.hpp"
+#include "pcapio/packet.hpp"
+#include "pcapio/writer.hpp"
 #include "test_support.hpp"
+#include "top/frame.hpp"
 
 namespace topdump::test {
 namespace {
@@ -59,7 +61,8 @@ TEST(Live, SerialOverAPseudoTerminalEndsCleanlyOnSigint) {
   close(out[1]);
   std::string acc;
   // write until topdump has opened the port and decoded a frame
-  std::string f1 = pcapw::frame("#TPGUCrGAC0000FED40000"), f2 = pcapw::frame("#TPGU2wPTZ05");
+  std::string f1 = top::with_checksum("#TPGUCrGAC0000FED40000"),
+              f2 = top::with_checksum("#TPGU2wPTZ05");
   bool seen = false;
   for (int i = 0; i < 40 && !seen; ++i) {
     ASSERT_EQ(::write(master, f1.data(), f1.size()), static_cast<ssize_t>(f1.size()));
@@ -124,7 +127,7 @@ TEST(Live, CaptureOnLoopback) {
     perm = p;
     done = true;
   });
-  std::string f = pcapw::frame("#TPUG2wPTZ05");
+  std::string f = top::with_checksum("#TPUG2wPTZ05");
   for (int i = 0; i < 60 && !done && sink.frames == 0; ++i) {
     sendto(s, f.data(), f.size(), 0, reinterpret_cast<sockaddr*>(&addr), sizeof addr);
     std::this_thread::sleep_for(std::chrono::milliseconds(50));

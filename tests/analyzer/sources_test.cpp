@@ -6,13 +6,15 @@
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
-#include "pcapw.hpp"
+#include "pcapio/packet.hpp"
+#include "pcapio/writer.hpp"
 #include "test_support.hpp"
+#include "top/frame.hpp"
 
 namespace topdump::test {
 namespace {
 
-using namespace pcapw;
+using namespace pcapio;
 
 constexpr std::int64_t T = 1714564800LL * 1000000;
 const Ip4 A{10, 1, 0, 1}, B{10, 1, 0, 2};
@@ -44,14 +46,16 @@ class Links : public ::testing::TestWithParam<LinkCase> {};
 TEST_P(Links, Ipv4AndIpv6UdpWithPositions) {
   const LinkCase& c = GetParam();
   TempDir tmp;
-  std::string req = frame("#tpUG6wGAYEC7832"), resp = frame("#tpGU6wGAYEC7832");
+  std::string req = top::with_checksum("#tpUG6wGAYEC7832"),
+              resp = top::with_checksum("#tpGU6wGAYEC7832");
   {
     PcapWriter w(tmp.file("x.pcap"), c.dlt);
     ASSERT_TRUE(w.ok());
     w.write(T, c.wrap(udp4(A, B, 40000, 5000, req)));
     w.write(T + 5000, c.wrap(udp4(B, A, 5000, 40000, resp)));
     w.write(T + 6000,
-            c.wrap(udp6(A6, B6, 40000, 9003, frame("#TPPG2wGIA01") + frame("#TPPG2wGIA00"))));
+            c.wrap(udp6(A6, B6, 40000, 9003,
+                        top::with_checksum("#TPPG2wGIA01") + top::with_checksum("#TPPG2wGIA00"))));
   }
   Recorder r = read(tmp.file("x.pcap"));
   ASSERT_EQ(r.frames.size(), 4u);
@@ -81,9 +85,9 @@ TEST(Pcap, ContentRecognitionAndExtraPorts) {
   TempDir tmp;
   {
     PcapWriter w(tmp.file("x.pcap"), 1);
-    w.write(T, eth(udp4(A, B, 1111, 2222, frame("#TPUG2wPTZ05"))));  // TOP by content
-    w.write(T + 1, eth(udp4(A, B, 1111, 3333, "hello, not TOP")));   // skipped
-    w.write(T + 2, eth(udp4(A, B, 1111, 4444, "ab#")));              // only with --port
+    w.write(T, eth(udp4(A, B, 1111, 2222, top::with_checksum("#TPUG2wPTZ05"))));  // TOP by content
+    w.write(T + 1, eth(udp4(A, B, 1111, 3333, "hello, not TOP")));                // skipped
+    w.write(T + 2, eth(udp4(A, B, 1111, 4444, "ab#")));  // only with --port
   }
   Recorder r = read(tmp.file("x.pcap"));
   EXPECT_EQ(r.frames.size(), 1u);
@@ -97,9 +101,9 @@ TEST(Pcap, ContentRecognitionAndExtraPorts) {
 TEST(Pcap, MultiInterfacePcapng) {
   TempDir tmp;
   std::vector<NgPacket> pk = {
-      {0, T, eth(udp4(A, B, 40000, 5000, frame("#TPUG2wPTZ05")))},
-      {1, T + 1000, eth(udp4(B, A, 9003, 9004, frame("#TPGP2wGIA01")))},
-      {0, T + 2000, eth(udp4(B, A, 5000, 40000, frame("#TPGU2wPTZ05")))},
+      {0, T, eth(udp4(A, B, 40000, 5000, top::with_checksum("#TPUG2wPTZ05")))},
+      {1, T + 1000, eth(udp4(B, A, 9003, 9004, top::with_checksum("#TPGP2wGIA01")))},
+      {0, T + 2000, eth(udp4(B, A, 5000, 40000, top::with_checksum("#TPGU2wPTZ05")))},
   };
   write_file(tmp.file("x.pcapng"), pcapng({1, 1}, pk));
   Recorder r = read(tmp.file("x.pcapng"));
@@ -113,7 +117,8 @@ TEST(Pcap, TruncatedFileKeepsEarlierRecords) {
   TempDir tmp;
   {
     PcapWriter w(tmp.file("x.pcap"), 1);
-    for (int i = 0; i < 3; ++i) w.write(T + i, eth(udp4(A, B, 40000, 5000, frame("#TPUG2wPTZ05"))));
+    for (int i = 0; i < 3; ++i)
+      w.write(T + i, eth(udp4(A, B, 40000, 5000, top::with_checksum("#TPUG2wPTZ05"))));
   }
   std::string all = slurp(tmp.file("x.pcap"));
   write_file(tmp.file("x.pcap"), all.substr(0, all.size() - 10));
@@ -129,11 +134,11 @@ TEST(Pcap, TruncatedFileKeepsEarlierRecords) {
 
 TEST(Pcap, SnapLengthCutIsAFindingAndTheRestIsDecoded) {
   TempDir tmp;
-  std::string p = eth(udp4(A, B, 40000, 5000, frame("#tpUG6wGAYEC7832")));
+  std::string p = eth(udp4(A, B, 40000, 5000, top::with_checksum("#tpUG6wGAYEC7832")));
   {
     PcapWriter w(tmp.file("x.pcap"), 1);
     w.write(T, p, 50);
-    w.write(T + 1, eth(udp4(A, B, 40000, 5000, frame("#TPUG2wPTZ05"))));
+    w.write(T + 1, eth(udp4(A, B, 40000, 5000, top::with_checksum("#TPUG2wPTZ05"))));
   }
   Recorder r = read(tmp.file("x.pcap"));
   EXPECT_TRUE(r.has_note(ACode::snaplen_cut));
@@ -148,7 +153,7 @@ TEST(Pcap, MalformedHeadersAreFindingsNotCrashes) {
   TempDir tmp;
   {
     PcapWriter w(tmp.file("x.pcap"), 1);
-    std::string ip = udp4(A, B, 40000, 5000, frame("#TPUG2wPTZ05"));
+    std::string ip = udp4(A, B, 40000, 5000, top::with_checksum("#TPUG2wPTZ05"));
     w.write(T, eth(ip).substr(0, 20));  // IP cut short
     std::string bad = eth(ip);
     bad[14] = 0x41;  // IHL 4
@@ -176,7 +181,7 @@ TEST(SerialLogs, FormatDetection) {
 
 TEST(SerialLogs, SocatTextWithGluedHeaderAndCr) {
   TempDir tmp;
-  std::string f1 = frame("#TPUG2wPTZ05"), f2 = frame("#TPGU2wPTZ05");
+  std::string f1 = top::with_checksum("#TPUG2wPTZ05"), f2 = top::with_checksum("#TPGU2wPTZ05");
   std::string log = "> 2024/05/01 12:00:00.000100000  length=" + std::to_string(f1.size() + 2) +
                     " from=0 to=15\n" + f1 + "\\r\n" +
                     "< 2024/05/01 12:00:00.005100000  length=" + std::to_string(f2.size()) +
@@ -216,8 +221,8 @@ TEST(SerialLogs, SaleaeCsvTwoChannels) {
       csv += b;
     }
   };
-  add("TX", 1.0, frame("#TPUG2wPTZ05"));
-  add("RX", 1.01, frame("#TPGU2wPTZ05"));
+  add("TX", 1.0, top::with_checksum("#TPUG2wPTZ05"));
+  add("RX", 1.01, top::with_checksum("#TPGU2wPTZ05"));
   csv += "RX,data,2.0,8.68e-05,0xZZ,\n";
   write_file(tmp.file("s.csv"), csv);
   Recorder r = read(tmp.file("s.csv"));
@@ -247,7 +252,7 @@ TEST(FuzzRegression, SaleaeCsvWithADuplicatedColumnReadsTheFirst) {
   // The same header shape, well-formed rows: the first columns are read.
   TempDir tmp;
   std::string csv = "name,type,start_time,duration,data,error,name\n";
-  for (char c : frame("#TPUG2wPTZ05"))
+  for (char c : top::with_checksum("#TPUG2wPTZ05"))
     csv += "TX,data,1.0,8.68e-05,0x" + std::string(1, "0123456789ABCDEF"[(c >> 4) & 15]) +
            std::string(1, "0123456789ABCDEF"[c & 15]) + ",\n";
   csv += "TX,data,1.0\n";  // short: too few columns, not a crash
@@ -289,7 +294,7 @@ TEST(FuzzRegression, SaleaeCsvNonUtf8BytesInMessagesAreEscapedInJson) {
 TEST(SerialLogs, SaleaeCsvHugeTimeIsNoTime) {
   TempDir tmp;
   std::string csv = "name,type,start_time,duration,data,error\n";
-  for (char c : frame("#TPUG2wPTZ05"))
+  for (char c : top::with_checksum("#TPUG2wPTZ05"))
     csv += "TX,data,1e300,8.68e-05,0x" + std::string(1, "0123456789ABCDEF"[(c >> 4) & 15]) +
            std::string(1, "0123456789ABCDEF"[c & 15]) + ",\n";
   write_file(tmp.file("h.csv"), csv);
@@ -300,9 +305,9 @@ TEST(SerialLogs, SaleaeCsvHugeTimeIsNoTime) {
 
 TEST(SerialLogs, LineLogWithEscapesAndBadLines) {
   TempDir tmp;
-  std::string log = "2024-05-01T12:00:00.5Z TX " + frame("#TPUG2wPTZ05") + "\\r\\n\n" +
-                    "not a line\n" + "2024-05-01T12:00:00.52+00:00 RX " + frame("#TPGU2wPTZ05") +
-                    "\n";
+  std::string log = "2024-05-01T12:00:00.5Z TX " + top::with_checksum("#TPUG2wPTZ05") + "\\r\\n\n" +
+                    "not a line\n" + "2024-05-01T12:00:00.52+00:00 RX " +
+                    top::with_checksum("#TPGU2wPTZ05") + "\n";
   write_file(tmp.file("l.log"), log);
   Recorder r = read(tmp.file("l.log"));
   ASSERT_EQ(r.frames.size(), 2u);
@@ -314,7 +319,7 @@ TEST(SerialLogs, LineLogWithEscapesAndBadLines) {
 
 TEST(SerialLogs, RawBinaryGpsWithHashBytes) {
   TempDir tmp;
-  std::string gps = frame(
+  std::string gps = top::with_checksum(
       "#tpPDEwGPS" + std::string("\x23\x23\x40\x23\x5e\x45\x11\xe4\x23\x0d\xe8\x03\x00\x00", 14));
   write_file(tmp.file("r.bin"), gps + gps);
   Recorder r = read(tmp.file("r.bin"));
@@ -491,3 +496,52 @@ TEST(Binary, ListOptionsDoNotSwallowFiles) {
 
 }  // namespace
 }  // namespace topdump::test
+
+namespace topdump {
+namespace {
+
+// pcapio: one IPv4 checksum (RFC 1071 example header), one Endpoint.
+TEST(Pcapio, Ipv4ChecksumAndEndpoints) {
+  const std::string h(
+      "\x45\x00\x00\x73\x00\x00\x40\x00\x40\x11\x00\x00\xc0\xa8\x00\x01\xc0\xa8\x00\xc7", 20);
+  EXPECT_EQ(pcapio::ip_checksum(h), 0xB861);
+  const std::string ip = pcapio::udp4({10, 0, 0, 1}, {10, 0, 0, 2}, 1, 2, "x", {7, true});
+  EXPECT_EQ(pcapio::ip_checksum(std::string_view(ip).substr(0, 20)),
+            0);                                       // a valid header sums to 0
+  EXPECT_EQ(static_cast<std::uint8_t>(ip[5]), 7);     // id
+  EXPECT_EQ(static_cast<std::uint8_t>(ip[6]), 0x40);  // DF
+  const auto e = pcapio::Endpoint::ipv4(0x7F000001u, 5000);
+  EXPECT_EQ(e.text(), "127.0.0.1:5000");
+  EXPECT_EQ(e.ipv4(), 0x7F000001u);
+  EXPECT_EQ(e, pcapio::Endpoint::ipv4(0x7F000001u, 5000));
+  pcapio::Endpoint named;
+  named.name = "tty\r";
+  EXPECT_EQ(named.text(), "tty\\r");
+}
+
+// The recorder of topsim and topconf writes through the same builder: the
+// packets read back with their endpoints and payloads.
+TEST(Pcapio, RecorderWritesWhatTopdumpReads) {
+  test::TempDir tmp;
+  const std::string path = tmp.file("r.pcap");
+  {
+    pcapio::Recorder r(path, false);
+    r.write(pcapio::Endpoint::ipv4(0x7F000001u, 40000), pcapio::Endpoint::ipv4(0x7F000001u, 5000),
+            top::with_checksum("#TPUG2wPTZ05"));
+    r.write(pcapio::Endpoint::ipv4(0x7F000001u, 5000), pcapio::Endpoint::ipv4(0x7F000001u, 40000),
+            top::with_checksum("#TPGU2wPTZ05"));
+    EXPECT_EQ(r.packets(), 2u);
+  }
+  EXPECT_THROW(pcapio::Recorder(tmp.file("no/such/dir.pcap"), false), std::runtime_error);
+  test::Recorder rec;
+  Analyzer a(AnalyzerOptions{}, rec);
+  std::string err;
+  ASSERT_TRUE(read_file(path, Format::automatic, a, SourceOptions{}, err)) << err;
+  a.finish();
+  ASSERT_EQ(rec.frames.size(), 2u);
+  EXPECT_EQ(rec.frames[0].from, "127.0.0.1:40000");
+  EXPECT_EQ(rec.frames[1].reply_to, 1u);
+}
+
+}  // namespace
+}  // namespace topdump

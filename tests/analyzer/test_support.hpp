@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "analyzer.hpp"
+#include "json_reference.hpp"
 #include "output.hpp"
 #include "sources.hpp"
 
@@ -99,12 +100,17 @@ struct Recorder : Sink {
       f.codes.emplace_back(top::to_string(x->code));
     for (const Note& n : e.notes) f.codes.emplace_back(to_string(n.code));
     write_frame_json(f.json_fast, e);
-    f.json_ref = frame_event_json(e).dump();
+    f.json_ref = reference::frame_event_json(e).dump();
     frames.push_back(std::move(f));
   }
+  // the JSON of each garbage event, the writer's and nlohmann's dump()
+  std::vector<std::pair<std::string, std::string>> garbage_json;
   void garbage(const GarbageEvent& e) override {
     garbage_codes.emplace_back(top::to_string(e.item->finding.code));
     garbage_pos.push_back(e.pos);
+    std::string line;
+    write_garbage_json(line, e);
+    garbage_json.emplace_back(std::move(line), reference::garbage_event_json(e).dump() + "\n");
   }
   // the JSON of each note, fast writer and reference, written while its
   // endpoint strings live (the conversation may be gone after finish())
@@ -113,7 +119,7 @@ struct Recorder : Sink {
     notes.push_back(e);
     std::string fast;
     write_note_json(fast, e);
-    note_json.emplace_back(std::move(fast), note_event_json(e).dump());
+    note_json.emplace_back(std::move(fast), reference::note_event_json(e).dump());
   }
   bool has_note(ACode c) const {
     for (const auto& n : notes)

@@ -91,9 +91,7 @@ TEST_P(Models, DefaultMatrixPassesInProcessUnderTheDocumentProfile) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(All, Models,
-                         ::testing::Values(top::Model::c10, top::Model::c10pro, top::Model::c12,
-                                           top::Model::c13, top::Model::c20, top::Model::sip),
+INSTANTIATE_TEST_SUITE_P(All, Models, ::testing::ValuesIn(top::all_models()),
                          [](const auto& i) { return std::string(top::to_string(i.param)); });
 
 // ---- faults: each must break exactly what it should, with the right class.
@@ -374,3 +372,16 @@ TEST(Runner, NeverHangsOnAFloodingDeviceAndMemoryStaysBounded) {
 }
 
 }  // namespace
+
+// Reports show bytes as topdump does: one escape for the same byte in every
+// tool (CR was \x0D here and \r in topdump).
+TEST(Report, ShowsBytesAsTopdumpDoes) {
+  EXPECT_EQ(topconf::printable("#TPUG2wPTZ05\r\n"), "#TPUG2wPTZ05\\r\\n");
+  EXPECT_EQ(topconf::printable(std::string("a\\b\x01\xff", 5)), "a\\\\b\\x01\\xFF");
+  const std::string all = [] {
+    std::string s;
+    for (int c = 0; c < 256; ++c) s += static_cast<char>(c);
+    return s;
+  }();
+  EXPECT_EQ(topconf::printable(all), top::escape(all));
+}

@@ -81,8 +81,7 @@ TEST_P(OverTransport, DefaultMatrixPasses) {
 
 std::vector<Param> params() {
   std::vector<Param> p;
-  for (auto m : {top::Model::c10, top::Model::c10pro, top::Model::c12, top::Model::c13,
-                 top::Model::c20, top::Model::sip})
+  for (auto m : top::all_models())
     for (auto k :
          {topsim::TransportKind::udp, topsim::TransportKind::tcp, topsim::TransportKind::pty})
       p.push_back({m, k});
@@ -117,6 +116,18 @@ std::vector<std::string> payloads(const std::string& path, int& linktype) {
   return out;
 }
 
+// topsim serves the ports of top::known_ports(): the C10 also UDP 9002
+// (was a special case in topsim_main), the C20 TCP 5000.
+TEST(Ports, TopsimServesTheLibrarysPorts) {
+  EXPECT_EQ(topsim::extra_udp_ports(top::Model::c10), std::vector<std::uint16_t>{9002});
+  EXPECT_TRUE(topsim::extra_udp_ports(top::Model::c12).empty());
+  EXPECT_TRUE(topsim::extra_udp_ports(top::Model::sip).empty());
+  EXPECT_EQ(topsim::default_port(top::Model::c12), 5000);
+  EXPECT_EQ(topsim::default_port(top::Model::sip), 9003);
+  EXPECT_EQ(topsim::default_transport(top::Model::c20), topsim::TransportKind::tcp);
+  EXPECT_EQ(topsim::default_transport(top::Model::c10), topsim::TransportKind::udp);
+}
+
 TEST(Record, TopsimRecordsWhatItReceivesAndSends) {
   const std::string path = std::string(TOPKIT_BINARY_DIR) + "/topsim_record_test.pcap";
   auto r = run_over(top::Model::c12, topsim::TransportKind::udp, path);
@@ -134,7 +145,7 @@ TEST(Record, TopsimRecordsWhatItReceivesAndSends) {
 TEST(Record, TopconfWritesThePcapOfTheRun) {
   const std::string path = std::string(TOPKIT_BINARY_DIR) + "/topconf_record_test.pcap";
   {
-    topkit::PcapWriter w(path, true);
+    pcapio::Recorder w(path, true);
     topconf::SimTransport t(top::Model::c12);
     topconf::RunOptions o;
     o.pcap = &w;

@@ -79,12 +79,11 @@ bool get_uint(const Ctx& c, const json& o, const std::string& where, const char*
   return true;
 }
 
+// A header a step can build (not the TMP form).
 std::optional<top::Header> header_from(std::string_view s) {
-  if (s == "#TP") return top::Header::fixed;
-  if (s == "#tp") return top::Header::variable;
-  if (s == "#tP") return top::Header::ext8;
-  if (s == "#Tp") return top::Header::ext16;
-  return std::nullopt;
+  const auto h = top::header_from_string(s);
+  if (h == top::Header::tmp_quirk) return std::nullopt;
+  return h;
 }
 
 bool is_hex(std::string_view s) {
@@ -405,22 +404,19 @@ void parse_steps(const Ctx& c, const json& o, const char* key, std::vector<Step>
 
 }  // namespace
 
+namespace {
+constexpr std::string_view kLevel[] = {"must", "should", "may"};
+static_assert(std::size(kLevel) == static_cast<std::size_t>(Level::may) + 1);
+}  // namespace
+
 std::string_view to_string(Level l) noexcept {
-  switch (l) {
-    case Level::must:
-      return "must";
-    case Level::should:
-      return "should";
-    case Level::may:
-      return "may";
-  }
-  return "?";
+  const auto i = static_cast<std::size_t>(l);
+  return i < std::size(kLevel) ? kLevel[i] : "?";
 }
 
 std::optional<Level> level_from_string(std::string_view s) noexcept {
-  if (s == "must") return Level::must;
-  if (s == "should") return Level::should;
-  if (s == "may") return Level::may;
+  for (std::size_t i = 0; i < std::size(kLevel); ++i)
+    if (kLevel[i] == s) return static_cast<Level>(i);
   return std::nullopt;
 }
 
@@ -475,7 +471,7 @@ LoadResult load_matrix(std::string_view text, std::string_view file) {
   if (get_string(c, doc, "", "model", model, true)) {
     auto mm = top::model_from_string(model);
     if (!mm || *mm == top::Model::unknown)
-      c.err("model", "must be one of c10 c10pro c12 c13 c20 sip");
+      c.err("model", "must be one of " + top::model_list());
     else {
       m.model = *mm;
       m.dialect = top::dialect_of(*mm);
@@ -578,9 +574,7 @@ bool resolve_send(const SendSpec& s, top::Dialect dialect, char client, std::str
       bytes = t;
       return true;
     }
-    char cs[2];
-    top::put_hex2(top::checksum(t), cs);
-    std::string with = t + std::string(cs, 2);
+    std::string with = top::with_checksum(t);
     auto r2 = top::parse_exact(with);
     if (r2.status == top::ParseStatus::frame) {
       bytes = with;

@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <iomanip>
 
+#include "top/text.hpp"
+
 namespace topconf {
 namespace {
 
@@ -45,38 +47,20 @@ std::string ms(std::uint64_t us) {
   return b;
 }
 
+// ANSI colours by verdict: pass green, non-strict yellow, fail red, n/a
+// dim, inconclusive cyan, error magenta.
+constexpr const char* kColor[] = {"\x1b[32m", "\x1b[33m", "\x1b[31m",
+                                  "\x1b[2m",  "\x1b[36m", "\x1b[35m"};
+static_assert(std::size(kColor) == static_cast<std::size_t>(Verdict::error) + 1);
+
 const char* color_of(Verdict v) {
-  switch (v) {
-    case Verdict::pass:
-      return "\x1b[32m";
-    case Verdict::non_strict:
-      return "\x1b[33m";
-    case Verdict::fail:
-      return "\x1b[31m";
-    case Verdict::error:
-      return "\x1b[35m";
-    case Verdict::inconclusive:
-      return "\x1b[36m";
-    default:
-      return "\x1b[2m";
-  }
+  const auto i = static_cast<std::size_t>(v);
+  return i < std::size(kColor) ? kColor[i] : "\x1b[2m";
 }
 
 }  // namespace
 
-std::string printable(std::string_view bytes) {
-  std::string o;
-  for (unsigned char c : bytes) {
-    if (c >= 0x20 && c < 0x7F && c != '\\') {
-      o += static_cast<char>(c);
-    } else {
-      char b[8];
-      std::snprintf(b, sizeof b, "\\x%02X", static_cast<unsigned>(c));
-      o += b;
-    }
-  }
-  return o;
-}
+std::string printable(std::string_view bytes) { return top::escape(bytes); }
 
 void write_console(std::ostream& os, const RunResult& r, bool color) {
   if (r.unreachable) {

@@ -14,7 +14,8 @@ void write_console(std::ostream& os, const RunResult& r, bool color);
 nlohmann::json to_json(const RunResult& r);
 void write_junit(std::ostream& os, const RunResult& r);
 void write_html(std::ostream& os, const RunResult& r);
-// Printable form of frame bytes: non-printables as \xHH.
+// Printable form of frame bytes, as topdump shows them (top::escape): \r,
+// \n and \\, other non-printables as \xHH.
 std::string printable(std::string_view bytes);
 
 }  // namespace topconf

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "common/pcap_writer.hpp"
 #include "conf/matrix.hpp"
 #include "conf/transport.hpp"
+#include "pcapio/writer.hpp"
 
 namespace topconf {
 
@@ -51,7 +51,7 @@ struct RunOptions {
   std::optional<std::uint32_t> retries;     // overrides the matrix
   std::optional<std::uint32_t> timeout_ms;  // overrides the matrix
   std::optional<std::uint32_t> settle_ms;   // overrides the matrix
-  topkit::PcapWriter* pcap = nullptr;
+  pcapio::Recorder* pcap = nullptr;
   std::function<void(const CaseResult&)> on_case;
   std::size_t max_transcript = 400;        // exchanges kept per case
   std::size_t max_frames_per_step = 4096;  // a flooding device is cut here

@@ -224,14 +224,14 @@ class UdpTransport : public Transport {
       return true;
     }
   }
-  topkit::Endpoint local() const override {
+  pcapio::Endpoint local() const override {
     std::error_code ec;
     auto e = sock_.local_endpoint(ec);
-    return {0x7F000001u, ec ? std::uint16_t{0} : e.port()};
+    return pcapio::Endpoint::ipv4(0x7F000001u, ec ? std::uint16_t{0} : e.port());
   }
-  topkit::Endpoint remote() const override {
-    return {peer_.address().is_v4() ? peer_.address().to_v4().to_uint() : 0x7F000001u,
-            peer_.port()};
+  pcapio::Endpoint remote() const override {
+    return pcapio::Endpoint::ipv4(
+        peer_.address().is_v4() ? peer_.address().to_v4().to_uint() : 0x7F000001u, peer_.port());
   }
   std::string describe() const override {
     return "udp://" + peer_.address().to_string() + ":" + std::to_string(peer_.port());
@@ -279,14 +279,14 @@ class TcpTransport : public Transport {
     out.assign(buf, n);
     return true;
   }
-  topkit::Endpoint local() const override {
+  pcapio::Endpoint local() const override {
     std::error_code ec;
     auto e = sock_.local_endpoint(ec);
-    return {0x7F000001u, ec ? std::uint16_t{0} : e.port()};
+    return pcapio::Endpoint::ipv4(0x7F000001u, ec ? std::uint16_t{0} : e.port());
   }
-  topkit::Endpoint remote() const override {
-    return {peer_.address().is_v4() ? peer_.address().to_v4().to_uint() : 0x7F000001u,
-            peer_.port()};
+  pcapio::Endpoint remote() const override {
+    return pcapio::Endpoint::ipv4(
+        peer_.address().is_v4() ? peer_.address().to_v4().to_uint() : 0x7F000001u, peer_.port());
   }
   bool tcp() const override { return true; }
   std::string describe() const override {
@@ -336,8 +336,8 @@ class SerialTransport : public Transport {
     out.assign(buf, static_cast<std::size_t>(n));
     return true;
   }
-  topkit::Endpoint local() const override { return {0x7F000001u, 9001}; }
-  topkit::Endpoint remote() const override { return {0x7F000001u, 9000}; }
+  pcapio::Endpoint local() const override { return pcapio::Endpoint::ipv4(0x7F000001u, 9001); }
+  pcapio::Endpoint remote() const override { return pcapio::Endpoint::ipv4(0x7F000001u, 9000); }
   std::string describe() const override { return "serial:" + dev_; }
 
  private:

@@ -10,7 +10,7 @@
 #include <string>
 #include <string_view>
 
-#include "common/pcap_writer.hpp"
+#include "pcapio/writer.hpp"
 #include "sim/device.hpp"
 #include "sim/faults.hpp"
 
@@ -36,8 +36,8 @@ class Transport {
   // passes (false). Throws TransportError.
   virtual bool receive(std::uint64_t deadline_us, std::string& out) = 0;
   // For the pcap of the run.
-  virtual topkit::Endpoint local() const { return {}; }
-  virtual topkit::Endpoint remote() const { return {}; }
+  virtual pcapio::Endpoint local() const { return {}; }
+  virtual pcapio::Endpoint remote() const { return {}; }
   virtual bool tcp() const { return false; }
   virtual std::string describe() const = 0;
 };

@@ -41,17 +41,10 @@ const top::FieldValue* field(const top::Decoded& d, std::string_view name) {
   return nullptr;
 }
 
-int hex_digit(char c) noexcept {
-  if (c >= '0' && c <= '9') return c - '0';
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  return -1;
-}
-
 // Two hex digits of data as a number, -1 when they are not.
 int data_byte(std::string_view data) noexcept {
   if (data.size() != 2) return -1;
-  int hi = hex_digit(data[0]), lo = hex_digit(data[1]);
+  int hi = top::hex_value(data[0]), lo = top::hex_value(data[1]);
   if (hi < 0 || lo < 0) return -1;
   return hi * 16 + lo;
 }
@@ -264,8 +257,7 @@ std::vector<Device::TraitLine> Device::describe() const {
                                    : "document rule",
                    std::string(fs.evidence)});
   }
-  for (top::TraitKind k : {top::TraitKind::answers_to_source, top::TraitKind::extra_port,
-                           top::TraitKind::link_by_source, top::TraitKind::speed_refresh}) {
+  for (top::TraitKind k : {top::TraitKind::answers_to_source,                            top::TraitKind::link_by_source, top::TraitKind::speed_refresh}) {
     const top::Trait* t = top::find_trait(k, model_, opts_.profile);
     if (!t) continue;
     std::string value = t->value ? std::to_string(t->value) : "on";
@@ -518,10 +510,7 @@ void Device::handle(const Frame& req, Link link, std::uint64_t now_us,
     f += opts_.swap_addresses ? req.src : req.dst;
     f += "16wTMP";
     f += data;
-    char cs[2];
-    top::put_hex2(top::checksum(f), cs);
-    f.append(cs, 2);
-    out.push_back(std::move(f));
+    out.push_back(top::with_checksum(f));
     return;
   }
   const top::DeviceForm form = form_of(id, top::Sent::reply, data.size());

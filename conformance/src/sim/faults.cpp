@@ -112,9 +112,7 @@ void FaultInjector::apply(const std::string& frame, bool stream_link, std::vecto
         const std::size_t lie = data_len - 1;
         f[5] = "0123456789ABCDEF"[lie];
         f.resize(f.size() - 2);
-        char cs[2];
-        top::put_hex2(top::checksum(f), cs);
-        f.append(cs, 2);
+        f = top::with_checksum(f);
       }
     }
   }

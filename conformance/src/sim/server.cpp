@@ -14,7 +14,8 @@
 #include <optional>
 #include <stdexcept>
 
-#include "common/pcap_writer.hpp"
+#include "pcapio/writer.hpp"
+#include "top/dialect.hpp"
 
 namespace topsim {
 namespace {
@@ -57,11 +58,22 @@ class Line : public std::enable_shared_from_this<Line<S>> {
 }  // namespace
 
 std::uint16_t default_port(top::Model m) noexcept {
-  return top::dialect_of(m) == top::Dialect::topotek ? 9003 : 5000;
+  const top::PortSpec* p = top::default_port(m);
+  return p ? p->port : 0;
 }
 
 TransportKind default_transport(top::Model m) noexcept {
-  return m == top::Model::c20 ? TransportKind::tcp : TransportKind::udp;
+  const top::PortSpec* p = top::default_port(m);
+  return p && p->tcp ? TransportKind::tcp : TransportKind::udp;
+}
+
+std::vector<std::uint16_t> extra_udp_ports(top::Model m) {
+  std::vector<std::uint16_t> v;
+  const top::PortSpec* first = top::default_port(m);
+  for (const top::PortSpec& p : top::known_ports())
+    if (&p != first && !p.tcp && m != top::Model::unknown && (p.served & top::model_bit(m)))
+      v.push_back(p.port);
+  return v;
 }
 
 struct Server::Impl {
@@ -71,7 +83,7 @@ struct Server::Impl {
   FaultInjector faults;
   Clock::time_point start = Clock::now();
   ServerStats stats;
-  std::unique_ptr<topkit::PcapWriter> pcap;
+  std::unique_ptr<pcapio::Recorder> pcap;
   asio::steady_timer stream_timer{io};
 
   struct UdpPort {
@@ -91,7 +103,7 @@ struct Server::Impl {
   // Where the device's frames go, and how to record them.
   struct Peer {
     std::function<void(std::string)> send;
-    topkit::Endpoint remote, local;
+    pcapio::Endpoint remote, local;
     bool stream_link = false;
   };
   Peer stream_peer;  // the last peer that sent a request (receives pushes)
@@ -213,13 +225,13 @@ struct Server::Impl {
             asio::ip::udp::endpoint to = u.from;
             if (cfg.reply_port) to.port(cfg.reply_port);
             Peer p;
-            p.remote = {to.address().is_v4() ? to.address().to_v4().to_uint() : 0x7F000001u,
-                        to.port()};
+            p.remote = pcapio::Endpoint::ipv4(
+                to.address().is_v4() ? to.address().to_v4().to_uint() : 0x7F000001u, to.port());
             std::error_code e;
             const auto local = u.sock.local_endpoint(e);
-            p.local = {
+            p.local = pcapio::Endpoint::ipv4(
                 e || !local.address().is_v4() ? 0x7F000001u : local.address().to_v4().to_uint(),
-                u.port};
+                u.port);
             p.send = [&u, to](std::string b) {
               std::error_code se;
               u.sock.send_to(asio::buffer(b), to, 0, se);
@@ -259,9 +271,10 @@ struct Server::Impl {
           auto re = sock.remote_endpoint(e1);
           auto le = sock.local_endpoint(e2);
           Peer p;
-          p.remote = {e1 ? 0x7F000001u : re.address().to_v4().to_uint(),
-                      e1 ? std::uint16_t{0} : re.port()};
-          p.local = {e2 ? 0x7F000001u : le.address().to_v4().to_uint(), bound_port};
+          p.remote = pcapio::Endpoint::ipv4(e1 ? 0x7F000001u : re.address().to_v4().to_uint(),
+                                            e1 ? std::uint16_t{0} : re.port());
+          p.local =
+              pcapio::Endpoint::ipv4(e2 ? 0x7F000001u : le.address().to_v4().to_uint(), bound_port);
           std::weak_ptr<TcpLine> w = c->line;
           p.send = [w](std::string b) {
             if (auto l = w.lock(); l && l->open) l->write(std::move(b));
@@ -283,8 +296,8 @@ struct Server::Impl {
   Peer line_peer() {
     Peer p;
     // Serial and pty traffic is recorded as UDP 127.0.0.1:9000 <-> :9001.
-    p.remote = {0x7F000001u, 9001};
-    p.local = {0x7F000001u, 9000};
+    p.remote = pcapio::Endpoint::ipv4(0x7F000001u, 9001);
+    p.local = pcapio::Endpoint::ipv4(0x7F000001u, 9000);
     p.stream_link = true;
     if (pty_line)
       p.send = [l = pty_line](std::string b) { l->write(std::move(b)); };
@@ -314,7 +327,7 @@ struct Server::Impl {
 Server::Server(ServerConfig cfg) : impl_(std::make_unique<Impl>(std::move(cfg))) {
   Impl& m = *impl_;
   if (!m.cfg.record.empty())
-    m.pcap = std::make_unique<topkit::PcapWriter>(m.cfg.record, m.cfg.kind == TransportKind::tcp);
+    m.pcap = std::make_unique<pcapio::Recorder>(m.cfg.record, m.cfg.kind == TransportKind::tcp);
   std::error_code ec;
   switch (m.cfg.kind) {
     case TransportKind::udp: {

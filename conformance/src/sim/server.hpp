@@ -36,6 +36,9 @@ std::uint16_t default_port(top::Model m) noexcept;
 // The network transport a model speaks when none is chosen: TCP for the
 // C20 (SkyDroid 2.1: TCP 5000 only), UDP for the others.
 TransportKind default_transport(top::Model m) noexcept;
+// The other UDP ports a model serves by default (C10: 9002); from
+// top::known_ports().
+std::vector<std::uint16_t> extra_udp_ports(top::Model m);
 
 struct ServerStats {
   std::atomic<std::uint64_t> bytes_in{0};

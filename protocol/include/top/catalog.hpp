@@ -8,9 +8,11 @@
 // these tables.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -22,14 +24,18 @@ enum class Dialect : std::uint8_t { unknown, skydroid, topotek };
 
 enum class Model : std::uint8_t { unknown, c10, c10pro, c12, c13, c20, sip };
 
-std::string_view to_string(Dialect d) noexcept;  // "skydroid", "topotek"
-std::string_view to_string(Model m) noexcept;    // "c10", ..., "sip"
+// Names (src/names.cpp holds each enum's table): to_string gives the name,
+// *_from_string the enumerator or nullopt. "auto" also reads as unknown.
+std::string_view to_string(Dialect d) noexcept;  // "unknown", "skydroid", "topotek"
+std::string_view to_string(Model m) noexcept;    // "unknown", "c10", ..., "sip"
 std::optional<Dialect> dialect_from_string(std::string_view s) noexcept;
 std::optional<Model> model_from_string(std::string_view s) noexcept;
 // The dialect a model speaks (sip -> topotek, the C series -> skydroid).
 Dialect dialect_of(Model m) noexcept;
-// Every real model, in documentation order.
+// Every real model, in documentation order (every enumerator but unknown).
 std::span<const Model> all_models() noexcept;
+// Their names joined: model_list(", ", " or ") == "c10, c10pro, ... or sip".
+std::string model_list(std::string_view separator = " ", std::string_view last = " ");
 
 // A set of models as a bit mask.
 using ModelSet = std::uint8_t;
@@ -57,7 +63,8 @@ enum class FieldKind : std::uint8_t {
   raw         // bytes shown as they are; no value
 };
 
-std::string_view to_string(FieldKind k) noexcept;
+std::string_view to_string(FieldKind k) noexcept;  // "hex_u", ...
+std::optional<FieldKind> field_kind_from_string(std::string_view s) noexcept;
 
 struct EnumValue {
   std::int64_t value;  // numeric value (enum_hex) or first char (enum_char)
@@ -76,8 +83,11 @@ struct FieldSpec {
   std::string_view note;             // one line from the document
 };
 
-// Who sends a form.
+// Who sends a form. A new role goes before `any` (kept last), with its name
+// in names.cpp, which a static_assert checks.
 enum class Role : std::uint8_t { request, response, any };
+std::string_view to_string(Role r) noexcept;  // "request", "response", "any"
+std::optional<Role> role_from_string(std::string_view s) noexcept;
 
 struct FormSpec {
   char control = 'w';  // 'r' or 'w'
@@ -106,6 +116,37 @@ struct CommandSpec {
   }
   bool has_control(char control) const noexcept;
 };
+
+// Identifiers are three chars of [A-Z0-9]: ident_index() gives each one a
+// slot in [0, ident_slots) (base 36, digits A-Z then 0-9, first char most
+// significant), -1 for anything else; ident_chars[d] is digit d.
+inline constexpr char ident_chars[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
+inline constexpr int ident_base = 36;
+inline constexpr std::size_t ident_slots = std::size_t{36} * 36 * 36;
+namespace detail {
+inline constexpr std::array<std::int16_t, 256> kIdentDigit = [] {
+  std::array<std::int16_t, 256> t{};
+  for (auto& v : t) v = -1;
+  for (int d = 0; d < ident_base; ++d)
+    t[static_cast<unsigned char>(ident_chars[d])] = static_cast<std::int16_t>(d);
+  return t;
+}();
+}  // namespace detail
+// Asked for every frame (topdump counts identifiers by it), so inline.
+inline int ident_index(const char ident[3]) noexcept {
+  const int a = detail::kIdentDigit[static_cast<unsigned char>(ident[0])];
+  const int b = detail::kIdentDigit[static_cast<unsigned char>(ident[1])];
+  const int c = detail::kIdentDigit[static_cast<unsigned char>(ident[2])];
+  if ((a | b | c) < 0) return -1;
+  return (a * ident_base + b) * ident_base + c;
+}
+inline int ident_index(std::string_view ident) noexcept {
+  return ident.size() == 3 ? ident_index(ident.data()) : -1;
+}
+// The identifier of a slot: ident_of(ident_index("GAY")) == "GAY".
+inline std::string ident_of(std::size_t slot) {
+  return {ident_chars[slot / 1296 % 36], ident_chars[slot / 36 % 36], ident_chars[slot % 36]};
+}
 
 // Every command of a dialect, in document order.
 std::span<const CommandSpec> commands(Dialect d) noexcept;

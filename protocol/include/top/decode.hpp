@@ -13,6 +13,11 @@
 
 namespace top {
 
+namespace detail {
+struct ShapeSlot;
+struct CacheAccess;
+}  // namespace detail
+
 struct FieldValue {
   const FieldSpec* spec = nullptr;
   std::uint32_t offset = 0;    // first byte of the field in the frame
@@ -33,13 +38,6 @@ std::string format_value(const FieldValue& f);
 // The same text appended to `out` (for writers that reuse one buffer).
 void append_value(const FieldValue& f, std::string& out);
 
-// The decimal a numeric field stands for, exactly: its value is the double
-// nearest to mantissa / 10^decimals, and `decimals` is the number of digits
-// format_value shows. For the integer kinds (hex, decimal, little-endian)
-// whose scale is a decimal fraction (1, 0.5, 0.01); false for the others and
-// past 15 digits.
-bool exact_decimal(const FieldValue& f, std::int64_t& mantissa, int& decimals) noexcept;
-
 // Remembers what decode() without detail found for a frame's shape: its
 // dialect, role, identifier, header, lengths and control decide the command,
 // the form and the findings that follow from them, so a frame of a shape
@@ -54,13 +52,12 @@ class DecodeCache {
   DecodeCache(const DecodeCache&) = delete;
   DecodeCache& operator=(const DecodeCache&) = delete;
 
-  struct Slot;  // decode.cpp
-  Slot& slot(std::uint64_t key) noexcept;
   // Shapes looked up that their slot did not hold (first sight or evicted).
   std::uint64_t misses() const noexcept { return misses_; }
 
  private:
-  std::unique_ptr<Slot[]> slots_;
+  friend struct detail::CacheAccess;  // decode_cache.hpp
+  std::unique_ptr<detail::ShapeSlot[]> slots_;
   std::uint64_t misses_ = 0;
   unsigned shift_ = 32;  // a slot is the top log2(slots) bits of a 32-bit hash
 };

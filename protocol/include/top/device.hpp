@@ -124,7 +124,6 @@ enum class TraitKind : std::uint8_t {
   yaw_inverted,       // the attitude reports the opposite sign of the yaw commanded
   pitch_inverted,     // the same for pitch
   answers_to_source,  // the reply goes to the datagram's source address and port
-  extra_port,         // the device also listens on this UDP port
   link_by_source,     // Topotek: answers only the link the source byte names
   speed_refresh       // a speed command must be refreshed or the motors stop
 };
@@ -134,7 +133,7 @@ struct Trait {
   TraitKind kind{};
   Dialect dialect = Dialect::unknown;
   ModelSet models = 0;
-  std::uint32_t value = 0;  // extra_port: the port; speed_refresh: ms
+  std::uint32_t value = 0;  // speed_refresh: ms (ports: top/dialect.hpp known_ports())
   Source source = Source::field;
   std::string_view evidence;
 };

@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -25,7 +26,10 @@ enum class Header : std::uint8_t {
   tmp_quirk  // #PDP16TMP... the malformed Topotek TMP form (no 'tp', no ctl)
 };
 
-std::string_view to_string(Header h) noexcept;  // "#TP", "#tp", ...
+std::string_view to_string(Header h) noexcept;  // "#TP", "#tp", "#tP", "#Tp", "#P"
+std::optional<Header> header_from_string(std::string_view s) noexcept;
+// What the header means: "fixed, length 2", "variable, one hex length char", ...
+std::string_view describe(Header h) noexcept;
 
 // Hard limits of the format.
 inline constexpr std::size_t max_data_hex = 0x0F;
@@ -80,6 +84,9 @@ struct Frame {
 std::uint8_t checksum(std::string_view bytes) noexcept;
 // Two uppercase hex digits.
 void put_hex2(std::uint8_t v, char out[2]) noexcept;
+// The frame with its checksum appended: with_checksum("#TPUG2wGAA01") ==
+// "#TPUG2wGAA0136".
+std::string with_checksum(std::string_view without_checksum);
 
 enum class ParseStatus : std::uint8_t {
   frame,      // a frame (possibly with findings) of `consumed` bytes

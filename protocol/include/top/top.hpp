@@ -8,3 +8,4 @@
 #include "top/findings.hpp"
 #include "top/frame.hpp"
 #include "top/stream.hpp"
+#include "top/text.hpp"

@@ -1,23 +1,14 @@
-#include "escape.hpp"
+#include "top/text.hpp"
 
-#include <cstdio>
-
-namespace topdump {
+namespace top {
 
 namespace {
-int hexv(char c) {
-  if (c >= '0' && c <= '9') return c - '0';
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-  return -1;
-}
 // "\xNN", uppercase hex.
 void put_hex_escape(std::string& out, unsigned char c) {
   static constexpr char kHex[] = "0123456789ABCDEF";
   const char b[4] = {'\\', 'x', kHex[c >> 4], kHex[c & 15]};
   out.append(b, 4);
 }
-
 }  // namespace
 
 std::optional<std::string> unescape(std::string_view arg, std::string& error) {
@@ -51,8 +42,8 @@ std::optional<std::string> unescape(std::string_view arg, std::string& error) {
         out += '\\';
         break;
       case 'x': {
-        int hi = i + 1 < arg.size() ? hexv(arg[i + 1]) : -1;
-        int lo = i + 2 < arg.size() ? hexv(arg[i + 2]) : -1;
+        int hi = i + 1 < arg.size() ? hex_value(arg[i + 1]) : -1;
+        int lo = i + 2 < arg.size() ? hex_value(arg[i + 2]) : -1;
         if (hi < 0 || lo < 0) {
           error = "\\x at position " + std::to_string(i - 1) + " needs two hex digits";
           return std::nullopt;
@@ -88,6 +79,25 @@ std::string escape(std::string_view bytes) {
   return out;
 }
 
+std::optional<std::string> bytes_from_utf8(std::string_view utf8) {
+  std::string out;
+  for (std::size_t i = 0; i < utf8.size();) {
+    auto c = static_cast<unsigned char>(utf8[i]);
+    if (c < 0x80) {
+      out += static_cast<char>(c);
+      ++i;
+    } else if ((c & 0xFE) == 0xC2 && i + 1 < utf8.size() &&
+               (static_cast<unsigned char>(utf8[i + 1]) & 0xC0) == 0x80) {
+      const unsigned cp = ((c & 0x1Fu) << 6) | (static_cast<unsigned char>(utf8[i + 1]) & 0x3Fu);
+      out += static_cast<char>(cp);
+      i += 2;
+    } else {
+      return std::nullopt;  // past U+00FF, or not UTF-8
+    }
+  }
+  return out;
+}
+
 std::string ascii_text(std::string_view message) {
   std::string out;
   out.reserve(message.size());
@@ -100,4 +110,4 @@ std::string ascii_text(std::string_view message) {
   return out;
 }
 
-}  // namespace topdump
+}  // namespace top

@@ -1,0 +1,114 @@
+// Internal: what DecodeCache keeps per frame shape, and the key of a shape.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string_view>
+
+#include "decode_plan.hpp"
+#include "top/decode.hpp"
+
+namespace top::detail {
+
+// What decode() without detail found for one shape.
+struct ShapeSlot {
+  static constexpr std::size_t kFindings = 3;  // a shape with more is not remembered
+  std::uint64_t key = 0;
+  bool known = false;  // the members below are the key's
+  Dialect dialect = Dialect::unknown;
+  Role role = Role::any;
+  std::uint8_t count = 0;
+  const CommandSpec* command = nullptr;
+  const FormSpec* form = nullptr;
+  const FormPlan* plan = nullptr;
+  struct Seen {
+    FindingCode code{};
+    Severity severity{};
+    std::uint32_t offset = 0;
+    std::string_view quirk;
+  };
+  std::array<Seen, kFindings> findings{};
+};
+
+// The key of a shape: everything decode_shape reads of the frame and the
+// options (messages aside), each in its own bits of one word:
+//
+//   bit 63     1 (a key is never 0, the empty slot's)
+//   54-55      dialect          (3 values)
+//   52-53      role             (3 values)
+//   44-51      identifier char 0 (a byte)
+//   36-43      identifier char 1
+//   28-35      identifier char 2
+//   25-27      header           (5 values)
+//   17-24      declared length  (0-255; longer: no key)
+//   15-16      control          (none, r, w; any other: no key)
+//    7-14      data length      (0-255; longer: no key)
+//    3-6       data offset      (0-15; past it: no key)
+//    0-2       model            (7 values)
+struct ShapeBits {
+  unsigned shift, width;
+  constexpr std::uint64_t mask() const { return ((std::uint64_t{1} << width) - 1) << shift; }
+  constexpr std::uint64_t put(std::uint64_t v) const { return v << shift; }
+  constexpr bool holds(std::uint64_t max) const { return max < (std::uint64_t{1} << width); }
+};
+inline constexpr ShapeBits kKeyModel{0, 3}, kKeyDataOffset{3, 4}, kKeyDataLength{7, 8},
+    kKeyControl{15, 2}, kKeyDeclared{17, 8}, kKeyHeader{25, 3}, kKeyIdent2{28, 8},
+    kKeyIdent1{36, 8}, kKeyIdent0{44, 8}, kKeyRole{52, 2}, kKeyDialect{54, 2}, kKeyMark{63, 1};
+inline constexpr ShapeBits kKeyFields[] = {
+    kKeyModel,  kKeyDataOffset, kKeyDataLength, kKeyControl, kKeyDeclared, kKeyHeader,
+    kKeyIdent2, kKeyIdent1,     kKeyIdent0,     kKeyRole,    kKeyDialect,  kKeyMark};
+
+// No two fields share a bit, and every enum fits its field.
+static_assert([] {
+  std::uint64_t seen = 0;
+  for (const ShapeBits& b : kKeyFields) {
+    if (b.shift + b.width > 64 || (seen & b.mask()) != 0) return false;
+    seen |= b.mask();
+  }
+  return true;
+}());
+static_assert(kKeyModel.holds(static_cast<std::uint64_t>(Model::sip)));
+static_assert(kKeyHeader.holds(static_cast<std::uint64_t>(Header::tmp_quirk)));
+static_assert(kKeyRole.holds(static_cast<std::uint64_t>(Role::any)));
+static_assert(kKeyDialect.holds(static_cast<std::uint64_t>(Dialect::topotek)));
+static_assert(kKeyControl.holds(2) && kKeyIdent0.holds(0xFF) && kKeyDeclared.holds(0xFF) &&
+              kKeyDataLength.holds(0xFF) && kKeyDataOffset.holds(0xF));
+
+// 0 when a length, the data offset or the control does not fit (those frames
+// are decoded without the cache).
+inline std::uint64_t shape_key(const Frame& f, Dialect d, Role role, Model model) noexcept {
+  if (f.declared_length > 0xFF || f.data_length > 0xFF || f.data_offset > 0xF) return 0;
+  const std::uint64_t control = f.control == 0     ? 0
+                                : f.control == 'r' ? 1
+                                : f.control == 'w' ? 2
+                                                   : 3;
+  if (control == 3) return 0;
+  const auto byte = [](char c) { return std::uint64_t{static_cast<unsigned char>(c)}; };
+  return kKeyMark.put(1) | kKeyDialect.put(static_cast<std::uint64_t>(d)) |
+         kKeyRole.put(static_cast<std::uint64_t>(role)) | kKeyIdent0.put(byte(f.ident[0])) |
+         kKeyIdent1.put(byte(f.ident[1])) | kKeyIdent2.put(byte(f.ident[2])) |
+         kKeyHeader.put(static_cast<std::uint64_t>(f.header)) |
+         kKeyDeclared.put(f.declared_length) | kKeyControl.put(control) |
+         kKeyDataLength.put(f.data_length) | kKeyDataOffset.put(f.data_offset) |
+         kKeyModel.put(static_cast<std::uint64_t>(model));
+}
+
+struct CacheAccess {
+  // The slot of a key, emptied when it held another shape. A slot is the top
+  // bits of the key's product with a 64-bit odd constant: every bit of the
+  // key reaches them (the low bits of a product see only the key's low bits,
+  // where shapes of different identifiers look alike).
+  static ShapeSlot& slot(DecodeCache& c, std::uint64_t key) noexcept {
+    ShapeSlot& s =
+        c.slots_[static_cast<std::size_t>(((key * 0x9E3779B97F4A7C15ull) >> 32) >> c.shift_)];
+    if (s.key != key) {  // another shape's: forget it all
+      ++c.misses_;
+      s.key = key;
+      s.known = false;
+      s.plan = nullptr;
+    }
+    return s;
+  }
+};
+
+}  // namespace top::detail
