@@ -84,6 +84,13 @@ int main() {
          std::string(top::to_string(t.dialect)) + " | " + models(t.models) + " | " +
          (t.value ? std::to_string(t.value) : std::string("on")) + " | " +
          std::string(top::to_string(t.source)) + " | " + cell(t.evidence) + " |\n";
+  o += "\n## Ports\n\nFrom `top::known_ports()` (src/ports.cpp); topsim serves a port for the "
+       "models marked served, topdump takes the device to be the end on a device port.\n\n";
+  o += "| port | transport | dialect | end | served for | source |\n|---|---|---|---|---|---|\n";
+  for (const top::PortSpec& p : top::known_ports())
+    o += "| " + std::to_string(p.port) + " | " + (p.tcp ? "TCP" : "UDP") + " | " +
+         std::string(top::to_string(p.dialect)) + " | " + (p.client ? "client" : "device") + " | " +
+         models(p.served) + " | " + cell(p.source) + " |\n";
   o += "\n## Commands the field says a model takes\n\n";
   o += "| dialect | models | command | values | evidence |\n|---|---|---|---|---|\n";
   for (const top::FieldSupport& s : top::field_support()) {

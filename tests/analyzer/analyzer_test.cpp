@@ -155,7 +155,7 @@ TEST(Field, UnansweredSaysWhyWhenTheCaptureShows) {
   o.timeout_us = 100000;
   o.model = top::Model::c10;
   f.reset(o);
-  f.up(0, "#TPUG2wPTZ0500");              // bad checksum: the device drops it
+  f.up(0, "#TPUG2wPTZ0500");                           // bad checksum: the device drops it
   f.up(10, top::with_checksum("#TPUG8wGOT02800168"));  // GOT is C12 only
   f.down(20, top::with_checksum("#TPGU2wGAY00"));      // the device is not silent
   f.a->finish();
@@ -197,7 +197,8 @@ TEST(Field, ASilentDeviceIsOneFindingForTheStretch) {
   AnalyzerOptions o;
   o.timeout_us = 100000;
   f.reset(o);
-  for (int i = 0; i < 38; ++i) f.up(i * 500, top::with_checksum(i % 2 ? "#TPUG6wGAY03E832" : "#TPUD2rVER00"));
+  for (int i = 0; i < 38; ++i)
+    f.up(i * 500, top::with_checksum(i % 2 ? "#TPUG6wGAY03E832" : "#TPUD2rVER00"));
   f.down(30000, top::with_checksum("#TPGU2wPTZ05"));  // the device is back
   f.up(30010, top::with_checksum("#TPUD2rVER00"));
   f.down(30020, top::with_checksum("#tpDU6rVERV1.1.5"));

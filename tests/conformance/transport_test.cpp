@@ -117,10 +117,11 @@ std::vector<std::string> payloads(const std::string& path, int& linktype) {
 }
 
 // topsim serves the ports of top::known_ports(): the C10 also UDP 9002
-// (was a special case in topsim_main), the C20 TCP 5000.
+// (was a special case in topsim_main), the C12 also UDP 12580 (field: some
+// C12 clients send every frame to 5000 and 12580), the C20 TCP 5000.
 TEST(Ports, TopsimServesTheLibrarysPorts) {
   EXPECT_EQ(topsim::extra_udp_ports(top::Model::c10), std::vector<std::uint16_t>{9002});
-  EXPECT_TRUE(topsim::extra_udp_ports(top::Model::c12).empty());
+  EXPECT_EQ(topsim::extra_udp_ports(top::Model::c12), std::vector<std::uint16_t>{12580});
   EXPECT_TRUE(topsim::extra_udp_ports(top::Model::sip).empty());
   EXPECT_EQ(topsim::default_port(top::Model::c12), 5000);
   EXPECT_EQ(topsim::default_port(top::Model::sip), 9003);

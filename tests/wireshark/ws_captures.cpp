@@ -26,13 +26,14 @@
 #include <string>
 #include <vector>
 
-#include "pcapw.hpp"
+#include "pcapio/packet.hpp"
+#include "pcapio/writer.hpp"
 #include "top/top.hpp"
 
 namespace {
 
-using topdump::pcapw::Ip4;
-using topdump::pcapw::PcapWriter;
+using pcapio::Ip4;
+using pcapio::PcapWriter;
 
 constexpr Ip4 kClient{192, 168, 144, 10};
 constexpr Ip4 kDevice{192, 168, 144, 108};
@@ -92,9 +93,8 @@ int write_forms(const std::string& dir) {
   for (const Built& x : frames) {
     const std::uint16_t device = x.skydroid ? 5000 : 9003, client = x.skydroid ? 40000 : 9004;
     const std::string pkt =
-        x.from_client
-            ? topdump::pcapw::eth(topdump::pcapw::udp4(kClient, kDevice, client, device, x.bytes))
-            : topdump::pcapw::eth(topdump::pcapw::udp4(kDevice, kClient, device, client, x.bytes));
+        x.from_client ? pcapio::eth(pcapio::udp4(kClient, kDevice, client, device, x.bytes))
+                      : pcapio::eth(pcapio::udp4(kDevice, kClient, device, client, x.bytes));
     all.write(ts, pkt);
     if (x.skydroid) {
       sky.write(ts, pkt);
@@ -119,8 +119,7 @@ int write_vectors(const std::string& dir, const std::string& source) {
       const std::string dialect = v.value("dialect", "skydroid");
       const std::uint16_t port = dialect == "topotek" ? 9003 : 5000;
       // one conversation per vector: each is judged alone, as topdump frame does
-      out.write(ts,
-                topdump::pcapw::eth(topdump::pcapw::udp4(kClient, kDevice, client++, port, bytes)));
+      out.write(ts, pcapio::eth(pcapio::udp4(kClient, kDevice, client++, port, bytes)));
       ts += 10000;
     }
   }
@@ -128,8 +127,7 @@ int write_vectors(const std::string& dir, const std::string& source) {
 }
 
 int write_heuristic(const std::string& dir) {
-  using topdump::pcapw::frame;
-  namespace w = topdump::pcapw;
+  namespace w = pcapio;
   PcapWriter out(dir + "/heuristic.pcap", DLT_EN10MB);
   if (!out.ok()) return 2;
   std::int64_t ts = 1714564800000000;
@@ -138,10 +136,10 @@ int write_heuristic(const std::string& dir) {
                             : w::udp4(kDevice, kClient, 40002, 40001, payload)));
     ts += 10000;
   };
-  udp(true, frame("#tpUG6wGAYEC7832"));
-  udp(false, frame("#tpGU6wGAYEC7832"));
-  udp(true, frame("#TPUG2wPTZ05") + frame("#TPUD2rVER00"));
-  udp(false, frame("#TPGU2wPTZ05") + "\r\n" + frame("#tpDU6rVER010502"));
+  udp(true, top::with_checksum("#tpUG6wGAYEC7832"));
+  udp(false, top::with_checksum("#tpGU6wGAYEC7832"));
+  udp(true, top::with_checksum("#TPUG2wPTZ05") + top::with_checksum("#TPUD2rVER00"));
+  udp(false, top::with_checksum("#TPGU2wPTZ05") + "\r\n" + top::with_checksum("#tpDU6rVER010502"));
   std::uint32_t cs = 1000, ds = 5000;
   auto tcp = [&](bool up, std::uint8_t flags, const std::string& payload) {
     if (up) {
@@ -156,11 +154,12 @@ int write_heuristic(const std::string& dir) {
   tcp(true, w::kSyn, "");
   tcp(false, w::kSyn | w::kAck, "");
   tcp(true, w::kAck, "");
-  const std::string gay = frame("#tpUG6wGAYEC7832");
+  const std::string gay = top::with_checksum("#tpUG6wGAYEC7832");
   tcp(true, w::kAck | w::kPsh, gay.substr(0, 12));
   tcp(true, w::kAck | w::kPsh, gay.substr(12));
-  tcp(false, w::kAck | w::kPsh, frame("#tpGU6wGAYEC7832") + frame("#TPGU2wPTZ05"));
-  tcp(true, w::kAck | w::kPsh, frame("#TPUG2wPTZ05") + "\r\n");
+  tcp(false, w::kAck | w::kPsh,
+      top::with_checksum("#tpGU6wGAYEC7832") + top::with_checksum("#TPGU2wPTZ05"));
+  tcp(true, w::kAck | w::kPsh, top::with_checksum("#TPUG2wPTZ05") + "\r\n");
   return 0;
 }
 
@@ -169,8 +168,7 @@ int write_heuristic(const std::string& dir) {
 // segment's end, which makes Wireshark hand the first frame over again; CR/LF
 // at the start of the next segment.
 int write_tcp(const std::string& dir) {
-  using topdump::pcapw::frame;
-  namespace w = topdump::pcapw;
+  namespace w = pcapio;
   PcapWriter out(dir + "/tcp.pcap", DLT_EN10MB);
   if (!out.ok()) return 2;
   std::int64_t ts = 1714564800000000;
@@ -188,14 +186,14 @@ int write_tcp(const std::string& dir) {
   tcp(true, w::kSyn, "");
   tcp(false, w::kSyn | w::kAck, "");
   tcp(true, w::kAck, "");
-  tcp(true, w::kAck | w::kPsh, frame("#tpUG6wGAP112F32"));
-  std::string bad = frame("#tpGU6wGAP112F32");
+  tcp(true, w::kAck | w::kPsh, top::with_checksum("#tpUG6wGAP112F32"));
+  std::string bad = top::with_checksum("#tpGU6wGAP112F32");
   bad.back() = bad.back() == '0' ? '1' : '0';  // a wrong checksum
   tcp(false, w::kAck | w::kPsh, bad);
-  const std::string gac = frame("#TPGUCrGACBF33FE070049");
+  const std::string gac = top::with_checksum("#TPGUCrGACBF33FE070049");
   tcp(false, w::kAck | w::kPsh, gac.substr(0, 20));
-  tcp(false, w::kAck | w::kPsh, gac.substr(20) + frame("#TPGU2wPTZ07"));
-  const std::string gay = frame("#tpGU6wGAY083732");
+  tcp(false, w::kAck | w::kPsh, gac.substr(20) + top::with_checksum("#TPGU2wPTZ07"));
+  const std::string gay = top::with_checksum("#tpGU6wGAY083732");
   tcp(false, w::kAck | w::kPsh, "\r\n" + gay.substr(0, 16));
   tcp(false, w::kAck | w::kPsh, gay.substr(16));
   return 0;

@@ -257,7 +257,8 @@ std::vector<Device::TraitLine> Device::describe() const {
                                    : "document rule",
                    std::string(fs.evidence)});
   }
-  for (top::TraitKind k : {top::TraitKind::answers_to_source,                            top::TraitKind::link_by_source, top::TraitKind::speed_refresh}) {
+  for (top::TraitKind k : {top::TraitKind::answers_to_source, top::TraitKind::link_by_source,
+                           top::TraitKind::speed_refresh}) {
     const top::Trait* t = top::find_trait(k, model_, opts_.profile);
     if (!t) continue;
     std::string value = t->value ? std::to_string(t->value) : "on";
