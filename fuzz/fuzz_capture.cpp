@@ -10,9 +10,9 @@
 // Speed (see README.md, "Speed"): the libFuzzer build reads at most
 // max_len bytes of an input (as libFuzzer cuts seeds to -max_len); each
 // line is checked by json_check.hpp's validator, and on a sample of inputs
-// (one in 16, chosen from the bytes) also by nlohmann::json::accept, which
-// must agree; big_blocks.hpp keeps the Analyzer's 373 KB table from costing
-// a fresh mmap per input.
+// (one in 16, chosen from the bytes; every input in replay builds) also by
+// nlohmann::json::accept, which must agree; big_blocks.hpp keeps the
+// Analyzer's 373 KB table from costing a fresh mmap per input.
 #include <sys/mman.h>
 #include <unistd.h>
 
@@ -104,7 +104,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   const std::string path = "/proc/self/fd/" + std::to_string(fd);
 
-  CheckingSink sink(topfuzz::sampled(data, size, 4));
+#ifdef TOPKIT_LIBFUZZER
+  const bool cross_check = topfuzz::sampled(data, size, 4);
+#else
+  const bool cross_check = true;  // replays are few: every line both ways
+#endif
+  CheckingSink sink(cross_check);
   topdump::AnalyzerOptions opts;
   topdump::Analyzer a(opts, sink);
   topdump::SourceOptions so;

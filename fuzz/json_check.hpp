@@ -216,8 +216,9 @@ inline bool value(Cursor& c) {
 
 enum class Json { valid, invalid, too_deep };
 
-// Whether `text` is one JSON value (what nlohmann::json::accept accepts; a
-// leading UTF-8 byte order mark is skipped, as nlohmann does); too_deep when
+// Whether `text` is one JSON value (what nlohmann::json::accept accepts; as
+// there, a leading UTF-8 byte order mark is skipped and a NUL byte after the
+// value ends the text); too_deep when
 // it nests more than 256 levels before the verdict (ask nlohmann then).
 inline Json json_check(std::string_view text) {
   json_detail::Cursor c{text};
@@ -229,7 +230,9 @@ inline Json json_check(std::string_view text) {
   if (c.too_deep) return Json::too_deep;
   if (!ok) return Json::invalid;
   c.skip_space();
-  return c.i == text.size() ? Json::valid : Json::invalid;
+  // nlohmann's lexer takes a NUL byte for the end of input (for C strings):
+  // whatever follows one after the value is not read.
+  return c.i == text.size() || text[c.i] == '\0' ? Json::valid : Json::invalid;
 }
 
 // A deterministic sample of inputs: true for about one input in 2^bits,

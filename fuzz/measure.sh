@@ -72,7 +72,7 @@ run() {  # run CPU BIN TARGET VARIANT LABEL
   eps=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$dir/log")
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$dir/log")
   cpu_s=$(awk '{print $1 + $2}' "$dir/time")
-  echo "$t|$label|$v|$eps|$(awk -v r="$runs" -v c="$cpu_s" 'BEGIN { printf "%d", c > 0 ? r / c : 0 }')|$(echo "$last" | grep -oE 'cov: [0-9]+' | cut -d' ' -f2)|$(echo "$last" | grep -oE 'ft: [0-9]+' | cut -d' ' -f2)|$(echo "$last" | grep -oE 'corp: [0-9]+' | cut -d' ' -f2)" >"$dir.row"
+  echo "$t|$label|$v|$eps|$(awk -v r="$runs" -v c="$cpu_s" 'BEGIN { printf "%d", (c > 0 ? r / c : 0) }')|$(echo "$last" | grep -oE 'cov: [0-9]+' | cut -d' ' -f2)|$(echo "$last" | grep -oE 'ft: [0-9]+' | cut -d' ' -f2)|$(echo "$last" | grep -oE 'corp: [0-9]+' | cut -d' ' -f2)" >"$dir.row"
 }
 
 i=0

@@ -273,6 +273,9 @@ TEST(JsonCheck, AgreesWithNlohmannOnCraftedTexts) {
   EXPECT_EQ(json_verdicts("-" + std::string(308, '9') + ".5"), "");
   EXPECT_EQ(json_verdicts(std::string_view("\"a\0b\"", 5)), "");
   EXPECT_EQ(json_verdicts(std::string_view("[1]\0", 4)), "");
+  EXPECT_EQ(json_verdicts(std::string_view("[1] \0x]", 7)), "");
+  EXPECT_EQ(json_verdicts(std::string_view("[1,\0]", 5)), "");
+  EXPECT_EQ(json_verdicts(std::string_view("\0", 1)), "");
   const std::string deep = std::string(300, '[') + std::string(300, ']');
   EXPECT_EQ(topfuzz::json_check(deep), topfuzz::Json::too_deep);
   EXPECT_EQ(json_verdicts(deep), "too deep, nlohmann accepts");
