@@ -118,8 +118,16 @@ int write_vectors(const std::string& dir, const std::string& source) {
       const std::string bytes = bytes_of(v.at("bytes").get<std::string>());
       const std::string dialect = v.value("dialect", "skydroid");
       const std::uint16_t port = dialect == "topotek" ? 9003 : 5000;
-      // one conversation per vector: each is judged alone, as topdump frame does
-      out.write(ts, pcapio::eth(pcapio::udp4(kClient, kDevice, client++, port, bytes)));
+      // one conversation per vector: each is judged alone, as topdump frame
+      // does; a frame addressed to a client travels from the device (topdump
+      // takes the role from the conversation, the dissector from addresses)
+      const auto r = top::parse_exact(bytes);
+      const bool from_device = r.status == top::ParseStatus::frame &&
+                               top::is_client_address(r.frame.dst) &&
+                               !top::is_client_address(r.frame.src);
+      out.write(ts, from_device
+                        ? pcapio::eth(pcapio::udp4(kDevice, kClient, port, client++, bytes))
+                        : pcapio::eth(pcapio::udp4(kClient, kDevice, client++, port, bytes)));
       ts += 10000;
     }
   }
