@@ -3155,24 +3155,21 @@ end
 local function letter(c) return c and schar(c) or "" end
 
 -- Adds one TOP frame at tvb offset `off` to the tree; returns the Info text.
-local function add_frame(tvb, pinfo, tree, off, item, c, dir, index)
+local function add_frame(tvb, pk, tree, off, item, c, dir, index)
   local f = item.frame
-  local key = pinfo.number
-  local memo = seen[key]
+  local memo = pk.memo
   local dialect, role
-  if not pinfo.visited and not (memo and memo[index]) then
-    dialect, role = judge_frame(c, dir, f, pinfo.abs_ts)
-    memo = memo or {}
+  if not pk.visited and not memo[index] then
+    dialect, role = judge_frame(c, dir, f, pk.ts)
     memo[index] = { dialect, role }
-    seen[key] = memo
-  elseif memo and memo[index] then
+  elseif memo[index] then
     dialect, role = memo[index][1], memo[index][2]
   else
     dialect = pref_dialect()
     if dialect == "unknown" then dialect = dialect_from_frame(f) end
     role = "any"
   end
-  local dec = decode(f, dialect, role == "any" and role_from_addresses(f) or role, pref_model())
+  local dec = decode(f, dialect, role == "any" and role_from_addresses(f) or role, pk.model)
   if role == "response" and role_from_addresses(f) == "request" then
     local has = false
     for _, x in ipairs(dec.findings) do has = has or x.code == "unswapped-addresses" end
@@ -3182,7 +3179,7 @@ local function add_frame(tvb, pinfo, tree, off, item, c, dir, index)
                                                 " (the request's order; some simulators)")
     end
   end
-  if not pinfo.visited then after_decode(c, dir, f, dec, pinfo.abs_ts) end
+  if not pk.visited then after_decode(c, dir, f, dec, pk.ts) end
 
   local total = item.length
   local t = tree:add(top, tvb(off, total))
@@ -3218,8 +3215,9 @@ local function add_frame(tvb, pinfo, tree, off, item, c, dir, index)
     t:add(HF.checksum_expected, tvb(cs_at - 1, 1), f.expected)
     t:add(HF.checksum_status, tvb(cs_at - 1, 1), 3)
   end
-  t:add(HF.role, tvb(off, total), dec.role)
-  t:add(HF.dialect, tvb(off, total), dec.dialect)
+  local whole = tvb(off, total)
+  t:add(HF.role, whole, dec.role)
+  t:add(HF.dialect, whole, dec.dialect)
   if sum ~= "" then t:add(HF.summary, tvb(off + f.data_offset, f.data_length), sum) end
   if #dec.fields > 0 then
     local sub = t:add(tvb(off + f.data_offset, f.data_length),
@@ -3279,15 +3277,17 @@ local function dissect(tvb, pinfo, tree, transport, at_end)
     local seq, seglen = last_value(tcp_seq), last_value(tcp_len)
     if seq and seglen then base = seq + seglen - len end
   end
-  local memo = seen[pinfo.number] or {}
-  seen[pinfo.number] = memo
+  local number, visited = pinfo.number, pinfo.visited
+  local memo = seen[number] or {}
+  seen[number] = memo
   memo.shown = memo.shown or {}
+  local pk = { memo = memo, visited = visited, ts = pinfo.abs_ts, model = pref_model() }
   local infos = {}
   local index = 0
   for _, it in ipairs(items) do
     local at = base and (base + start + it.offset)
     local show
-    if pinfo.visited and memo.shown[start + it.offset] ~= nil then
+    if visited and memo.shown[start + it.offset] ~= nil then
       show = memo.shown[start + it.offset]
     else
       show = true
@@ -3310,7 +3310,7 @@ local function dissect(tvb, pinfo, tree, transport, at_end)
       memo.shown[start + it.offset] = show
     end
     if show and it.kind == "frame" then
-      infos[#infos + 1] = add_frame(tvb, pinfo, tree, start + it.offset, it, c, dir, index)
+      infos[#infos + 1] = add_frame(tvb, pk, tree, start + it.offset, it, c, dir, index)
       index = index + 1
     elseif show then
       add_garbage(tvb, tree, start + it.offset, it)
