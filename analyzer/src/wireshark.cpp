@@ -26,14 +26,6 @@ extern const std::string_view kWiresharkRuntime;  // wireshark_runtime.lua, embe
 
 namespace {
 
-// TODO(#17): read from the library's ports table
-struct Port {
-  const char* transport;
-  std::uint16_t port;
-};
-constexpr Port kPorts[] = {{"udp", 5000}, {"udp", 9002},  {"udp", 9003},
-                           {"udp", 9004}, {"udp", 12580}, {"tcp", 5000}};
-
 // A Lua string literal: ASCII kept, the rest as decimal escapes.
 std::string lua_str(std::string_view s) {
   std::string out = "\"";
@@ -270,8 +262,8 @@ void write_ports(std::string& o) {
   o += "\n-- The known ports and the dialect each implies (top::dialect_from_port).\n";
   std::string udp, tcp, dialect;
   std::map<std::uint16_t, bool> done;
-  for (const Port& p : kPorts) {
-    (std::string_view(p.transport) == "udp" ? udp : tcp) += " " + std::to_string(p.port) + ",";
+  for (const top::PortSpec& p : top::known_ports()) {  // the library's one table
+    (p.tcp ? tcp : udp) += " " + std::to_string(p.port) + ",";
     if (done[p.port]) continue;
     done[p.port] = true;
     const top::Dialect d = top::dialect_from_port(p.port);

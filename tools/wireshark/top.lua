@@ -9,8 +9,8 @@
 local top = Proto("top", "TOP gimbal-camera protocol")
 
 -- The known ports and the dialect each implies (top::dialect_from_port).
-local PORTS = { udp = { 5000, 9002, 9003, 9004, 12580, }, tcp = { 5000, } }
-local PORT_DIALECT = { [5000] = "skydroid", [9002] = "skydroid", [9003] = "topotek", [9004] = "topotek", [12580] = "skydroid", }
+local PORTS = { udp = { 5000, 9002, 12580, 9003, 9004, }, tcp = { 5000, } }
+local PORT_DIALECT = { [5000] = "skydroid", [9002] = "skydroid", [12580] = "skydroid", [9003] = "topotek", [9004] = "topotek", }
 local MODELS = { "c10", "c10pro", "c12", "c13", "c20", "sip", }
 local MODEL_DIALECT = { c10 = "skydroid", c10pro = "skydroid", c12 = "skydroid", c13 = "skydroid", c20 = "skydroid", sip = "topotek", }
 
