@@ -8,16 +8,9 @@ namespace {
 using topsim::Device;
 using topsim::Link;
 
-std::string frame(std::string_view body) {
-  std::string f(body);
-  char cs[2];
-  top::put_hex2(top::checksum(f), cs);
-  return f + std::string(cs, 2);
-}
-
 std::vector<std::string> ask(Device& d, std::string_view body, std::uint64_t t = 0,
                              Link link = Link::network) {
-  return topsim::handle_datagram(d, frame(body), link, t);
+  return topsim::handle_datagram(d, top::with_checksum(body), link, t);
 }
 
 top::Frame parsed(const std::string& s) {
@@ -30,7 +23,7 @@ TEST(Device, WriteIsEchoedWithSwappedAddresses) {
   Device d(top::Model::c12);
   auto out = ask(d, "#TPUG6wGAYEF0732");
   ASSERT_EQ(out.size(), 1u);
-  EXPECT_EQ(out[0], frame("#TPGU6wGAYEF0732"));
+  EXPECT_EQ(out[0], top::with_checksum("#TPGU6wGAYEF0732"));
 }
 
 TEST(Device, ReadIsAnsweredWithData) {
@@ -80,13 +73,13 @@ TEST(Device, TopotekRecAndCapReplyWithFileIndex) {
   Device d(top::Model::sip);
   auto start = ask(d, "#TPPD2wREC01");
   ASSERT_EQ(start.size(), 1u);
-  EXPECT_EQ(start[0], frame("#tpDPAwREC1100000001"));
+  EXPECT_EQ(start[0], top::with_checksum("#tpDPAwREC1100000001"));
   EXPECT_TRUE(d.recording());
   EXPECT_EQ(parsed(ask(d, "#TPPD2rREC00").at(0)).data(), "01");
   auto stop = ask(d, "#TPPD2wREC0A");  // toggle
-  EXPECT_EQ(stop.at(0), frame("#tpDPAwREC0000000001"));
+  EXPECT_EQ(stop.at(0), top::with_checksum("#tpDPAwREC0000000001"));
   EXPECT_FALSE(d.recording());
-  EXPECT_EQ(ask(d, "#TPPD2wCAP01").at(0), frame("#tpDPAwCAP1100000002"));
+  EXPECT_EQ(ask(d, "#TPPD2wCAP01").at(0), top::with_checksum("#tpDPAwCAP1100000002"));
   EXPECT_EQ(d.file_index(), 2u);
 }
 
@@ -171,7 +164,7 @@ TEST(Device, NoSwapAndTmpQuirkOptions) {
   o.swap_addresses = false;
   o.tmp_quirk = true;
   Device d(top::Model::c12, o);
-  EXPECT_EQ(ask(d, "#TPUG2wGAA00").at(0), frame("#TPUG2wGAA00"));
+  EXPECT_EQ(ask(d, "#TPUG2wGAA00").at(0), top::with_checksum("#TPUG2wGAA00"));
   auto tmp = parsed(ask(d, "#tpUD0rTMP").at(0));
   EXPECT_TRUE(tmp.has(top::FindingCode::tmp_quirk));
 }
@@ -184,7 +177,7 @@ TEST(Device, HandlerSurvivesHostileBytes) {
   EXPECT_NO_THROW(topsim::handle_datagram(d, junk, Link::network, 0));
   topsim::Session s(d, Link::uart, false);
   std::vector<std::string> out;
-  const std::string f = frame("#TPUG2wGAA00");
+  const std::string f = top::with_checksum("#TPUG2wGAA00");
   for (char c : f) s.feed(std::string_view(&c, 1), 0, out);  // split at every byte
   EXPECT_EQ(out.size(), 1u);
 }

@@ -14,6 +14,7 @@
 #include <optional>
 #include <thread>
 
+#include "running_server.hpp"
 #include "sim/device.hpp"
 #include "sim/server.hpp"
 
@@ -23,15 +24,8 @@ using topsim::Device;
 using topsim::DeviceOptions;
 using topsim::Link;
 
-std::string frame(std::string_view body) {
-  std::string f(body);
-  char cs[2];
-  top::put_hex2(top::checksum(f), cs);
-  return f + std::string(cs, 2);
-}
-
 std::vector<std::string> ask(Device& d, std::string_view body, std::uint64_t t = 0) {
-  return topsim::handle_datagram(d, frame(body), Link::network, t);
+  return topsim::handle_datagram(d, top::with_checksum(body), Link::network, t);
 }
 
 DeviceOptions profile(top::Profile p) {
@@ -145,7 +139,7 @@ TEST(FieldProfile, C13TakesThePtzCodesTheFieldReports) {
   Device field(top::Model::c13);
   auto out = ask(field, "#TPUG2wPTZ0E");
   ASSERT_EQ(out.size(), 1u);
-  EXPECT_EQ(out[0], frame("#TPGU2wPTZ0E"));
+  EXPECT_EQ(out[0], top::with_checksum("#TPGU2wPTZ0E"));
   field.advance(500'000);
   EXPECT_GT(field.pitch().angle, 1.0);  // 0E: pitch +
   out = ask(field, "#TPUG2wPTZ10", 500'000);
@@ -204,18 +198,6 @@ TEST(FieldProfile, DescribeNamesEverySourceOfTheModel) {
 
 // --- a strict client over real UDP --------------------------------------
 
-struct RunningServer {
-  explicit RunningServer(topsim::ServerConfig cfg) : server(std::move(cfg)) {
-    thread = std::thread([this] { server.run(); });
-  }
-  ~RunningServer() {
-    server.stop();
-    thread.join();
-  }
-  topsim::Server server;
-  std::thread thread;
-};
-
 struct Udp {
   int fd = -1;
   Udp(const char* host, std::uint16_t port) {
@@ -265,18 +247,18 @@ void strict_client_session(const char* server_host, std::uint16_t server_port,
   const std::uint16_t port = s.server.port();
   Udp c(client_host, client_port);
   ASSERT_TRUE(c.ok) << client_host << ":" << client_port;
-  c.send(frame("#TPUG2wGAA0A"), server_host, port);
+  c.send(top::with_checksum("#TPUG2wGAA0A"), server_host, port);
   auto att = c.wait_for("#tpUGCrGAC", 2000);
   ASSERT_TRUE(att) << "no attitude push a C12 client accepts";
-  c.send(frame("#TPUD2rIMG00"), server_host, port);
+  c.send(top::with_checksum("#TPUD2rIMG00"), server_host, port);
   EXPECT_TRUE(c.wait_for("#TPDU2rIMG", 2000)) << "no palette reply a C12 client accepts";
-  c.send(frame("#TPUG2wGAA00"), server_host, port);
+  c.send(top::with_checksum("#TPUG2wGAA00"), server_host, port);
 
   topsim::ServerConfig c13 = cfg;
   c13.model = top::Model::c13;
   c13.port = 0;
   RunningServer s13(c13);
-  c.send(frame("#TPUD2rSLR00"), server_host, s13.server.port());
+  c.send(top::with_checksum("#TPUD2rSLR00"), server_host, s13.server.port());
   EXPECT_TRUE(c.wait_for("#TPDU4rSLR", 2000)) << "no range reply the C13 SDK accepts";
 }
 

@@ -15,24 +15,13 @@
 #include <thread>
 
 #include "conf/runner.hpp"
+#include "running_server.hpp"
 #include "sim/server.hpp"
 #include "test_matrix_util.hpp"
 
 namespace {
 
 using topconf::Verdict;
-
-struct RunningServer {
-  explicit RunningServer(topsim::ServerConfig cfg) : server(std::move(cfg)) {
-    thread = std::thread([this] { server.run(); });
-  }
-  ~RunningServer() {
-    server.stop();
-    thread.join();
-  }
-  topsim::Server server;
-  std::thread thread;
-};
 
 topconf::RunResult run_over(top::Model m, topsim::TransportKind kind,
                             const std::string& record = {},
