@@ -309,9 +309,9 @@ void note_device_form(const Frame& f, Model model, bool detail, Decoded& dec) {
   const StreamSpec* st = stream_of(dec.dialect, f.ident_view());
   const bool push = st && st->sender == Sender::device;
   const DeviceForm* rf = recorded_form(dec.dialect, model, f, push ? Sent::push : Sent::reply);
-  auto source = [&] {
-    return "; " + std::string(to_string(rf->source)) + ": " + std::string(rf->evidence);
-  };
+  // The evidence itself goes in the finding's quirk; the message says
+  // which kind of source records the form.
+  auto source = [&] { return "; as recorded (" + std::string(to_string(rf->source)) + ")"; };
   if (unswapped && !un) {
     std::string msg;
     if (detail)

@@ -145,8 +145,10 @@ TEST(Field, RecordedFormsNameTheirSource) {
   EXPECT_EQ(f.a->stats().unanswered, 0u);
   EXPECT_EQ(f.a->worst(), top::Severity::info);  // tp-length named, not a warning
   const std::string j1 = f.rec.frames[1].json_fast, j3 = f.rec.frames[3].json_fast;
-  EXPECT_NE(j1.find("field: a public C13 SDK"), std::string::npos) << j1;
-  EXPECT_NE(j3.find("document example: SkyDroid 4.22"), std::string::npos) << j3;
+  EXPECT_NE(j1.find("as recorded (field)"), std::string::npos) << j1;
+  EXPECT_NE(j1.find("\"quirk\":\"a public C13 SDK"), std::string::npos) << j1;
+  EXPECT_NE(j3.find("as recorded (document example)"), std::string::npos) << j3;
+  EXPECT_NE(j3.find("\"quirk\":\"SkyDroid 4.22 reply example"), std::string::npos) << j3;
 }
 
 TEST(Field, UnansweredSaysWhyWhenTheCaptureShows) {

@@ -114,8 +114,9 @@ const DeviceForm* recorded_form(Dialect d, Model model, const Frame& f, Sent sen
 // For a frame the device sent, decoded in `dec`: when it deviates from the
 // rule (the request's address order, #TP with another length), adds or
 // completes its `unswapped-addresses` finding and names the recorded form
-// it matches with its source (the finding's quirk and, with `detail`, its
-// message); a `tp-length` warning on a recorded form becomes info. A form
+// it matches: the evidence as the finding's quirk and, with `detail`, the
+// kind of source in its message; a `tp-length` warning on a recorded form
+// becomes info. A form
 // nothing records stays as it is ("some simulators").
 void note_device_form(const Frame& f, Model model, bool detail, Decoded& dec);
 
