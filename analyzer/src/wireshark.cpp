@@ -18,6 +18,7 @@
 #include <string_view>
 #include <vector>
 
+#include "top/detail/decimal.hpp"
 #include "top/top.hpp"
 
 namespace topdump {
@@ -67,18 +68,6 @@ std::string role_name(top::Role r) {
       break;
   }
   return "any";
-}
-
-// Digits after the point of a scale (decode.cpp decimals_of).
-int decimals_of(double scale) {
-  if (scale <= 0) return 0;
-  int d = 0;
-  double s = scale;
-  while (d < 9 && std::fabs(s - std::round(s)) > 1e-9) {
-    s *= 10;
-    ++d;
-  }
-  return d;
 }
 
 // How a field's value is carried in Wireshark: "uint", "int", "double" or
@@ -185,7 +174,7 @@ std::string field_spec(const top::CommandSpec& c, const top::FieldSpec& s) {
                   ", width = " + std::to_string(s.width) + ", scale = " + lua_num(s.scale);
   // The scale as m / 10^d when it is a decimal fraction, so Lua computes the
   // same correctly rounded value as decode.cpp's scaled().
-  const int d = decimals_of(s.scale);
+  const int d = top::detail::decimals_of(s.scale);
   const double m = s.scale * std::pow(10.0, d);
   if (s.scale > 0 && std::fabs(m - std::round(m)) <= 1e-9 && m <= 1e9)
     o += ", mul = " + lua_num(std::round(m));

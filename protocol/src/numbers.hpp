@@ -5,10 +5,9 @@
 #include <cstdint>
 #include <string>
 
-namespace top::detail {
+#include "top/detail/decimal.hpp"
 
-// The decimals a scale shows: 0.01 -> 2, 0.5 -> 1, 1 -> 0 (at most 9).
-int decimals_of(double scale) noexcept;
+namespace top::detail {
 
 // printf("%.*f") (std::to_chars promises the same text, several times
 // faster); past 64 characters (a huge decimal number field) snprintf sizes it.

@@ -15,4 +15,8 @@ namespace top::detail {
 // past 15 digits.
 bool exact_decimal(const FieldValue& f, std::int64_t& mantissa, int& decimals) noexcept;
 
+// The digits after the point format_value shows for a field of `scale`
+// (0.01 -> 2, 0.5 -> 1, 1 -> 0); topdump wireshark labels fields with it.
+int decimals_of(double scale) noexcept;
+
 }  // namespace top::detail
