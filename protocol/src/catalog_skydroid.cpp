@@ -9,11 +9,6 @@
 namespace top::detail {
 namespace {
 
-constexpr ModelSet c10 = model_bit(Model::c10);
-constexpr ModelSet c10pro = model_bit(Model::c10pro);
-constexpr ModelSet c12 = model_bit(Model::c12);
-constexpr ModelSet c13 = model_bit(Model::c13);
-constexpr ModelSet c20 = model_bit(Model::c20);
 // Sections without a "supported models" line: every model of the document.
 constexpr ModelSet all = c10 | c10pro | c12 | c13 | c20;
 

@@ -9,8 +9,6 @@
 namespace top::detail {
 namespace {
 
-constexpr ModelSet sip = model_bit(Model::sip);
-
 // ---------------------------------------------------------------------------
 // Shared pieces
 

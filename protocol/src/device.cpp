@@ -6,17 +6,19 @@
 #include <array>
 #include <string>
 
+#include "catalog_data.hpp"
+
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"
 
 namespace top {
 namespace {
 
-constexpr ModelSet c10 = model_bit(Model::c10);
-constexpr ModelSet c10pro = model_bit(Model::c10pro);
-constexpr ModelSet c12 = model_bit(Model::c12);
-constexpr ModelSet c13 = model_bit(Model::c13);
-constexpr ModelSet c20 = model_bit(Model::c20);
-constexpr ModelSet sip = model_bit(Model::sip);
+using detail::c10;
+using detail::c10pro;
+using detail::c12;
+using detail::c13;
+using detail::c20;
+using detail::sip;
 
 constexpr StreamSpec kStreams[] = {
     {.dialect = Dialect::skydroid,
