@@ -6,12 +6,14 @@
 // and the decode cache all have named limits.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstring>
 #include <deque>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -53,6 +55,10 @@ struct Note {
   top::Severity severity{};
   std::string message;
   std::uint64_t frame = 0;  // the frame it is about (0: none)
+  // The identifier and TOP addresses of what it is about (a request, a
+  // stream), for the filter; zero when it is about no frame (TCP, files).
+  char ident[3] = {};
+  char src = 0, dst = 0;
 };
 
 // A decoded frame with its findings summarised.
@@ -181,17 +187,52 @@ struct AnalyzerOptions {
   bool detail = true;
 };
 
-// A filter over frame events (set by the command line).
+// The command line's selection. It applies to everything reported alike:
+// frames, garbage, findings (session notes about a request or stream), the
+// statistics and the exit status; pairing and timeouts still see every
+// frame. Findings about the capture file itself (no conversation) are kept
+// whatever the identifier, address and time selection.
 struct Filter {
-  std::vector<std::string> idents;  // empty: all
+  std::vector<std::string> idents;  // empty: all (matched case-insensitively)
   std::vector<std::string> addrs;   // TOP address letters or network hosts
   top::Severity min_severity = top::Severity::info;
   bool severity_set = false;
   std::int64_t from = kNoTime, to = kNoTime;
+  // --from +1.5s: microseconds after the first timestamp of the input,
+  // resolved into from/to when the analyzer sees it.
+  std::int64_t from_rel = kNoTime, to_rel = kNoTime;
+  // --finding: only frames and events that carry one of these codes.
+  std::vector<top::FindingCode> findings;
+  std::vector<ACode> afindings;
+  // --mute: these findings are dropped wherever they appear (not shown, not
+  // counted, not in the exit status).
+  std::vector<top::FindingCode> mute;
+  std::vector<ACode> amute;
+  // -c: the input ends after this many selected frames (0: no limit).
+  std::uint64_t max_frames = 0;
+
   bool selects(const FrameEvent& e) const;
+  bool selects(const NoteEvent& e) const;
+  bool selects(const GarbageEvent& e) const;
   bool selects_time(std::int64_t ts) const;
+  bool selects_ident(std::string_view ident) const;
+  bool mutes(top::FindingCode c) const {
+    return !mute.empty() && std::find(mute.begin(), mute.end(), c) != mute.end();
+  }
+  bool mutes(ACode c) const {
+    return !amute.empty() && std::find(amute.begin(), amute.end(), c) != amute.end();
+  }
   bool active() const;
+  // Resolves relative times against the input's first timestamp.
+  void start_at(std::int64_t first);
+  // Parses a code for --finding/--mute (a frame, catalog or analyzer code);
+  // false when there is none of that name.
+  bool add_code(std::string_view name, bool muted);
 };
+
+// "1.5", "1.5s", "200ms", "250us": a duration in microseconds (relative
+// --from/--to); nullopt when it is none of these or negative.
+std::optional<std::int64_t> parse_duration(std::string_view s);
 
 class Analyzer {
  public:
@@ -204,6 +245,9 @@ class Analyzer {
     filter_ = std::move(f);
     filtering_ = filter_.active();
   }
+  // -c reached: the selected frames are all there; the rest of the input
+  // is skipped (callers may stop reading).
+  bool done() const noexcept { return done_; }
   // A record was read (counts records; call once per packet/line/chunk).
   void record(bool top_traffic);
   // A UDP payload: decoded on its own (frames never span datagrams).
@@ -232,6 +276,16 @@ class Analyzer {
   std::uint64_t frames_seen() const noexcept { return frame_no_; }
 
  private:
+  // With a filter: false once -c is reached (the record is skipped); the
+  // first timestamp resolves relative times.
+  bool take(std::int64_t ts) {
+    if (done_) return false;
+    if (!started_ && ts != kNoTime) {
+      started_ = true;
+      filter_.start_at(ts);
+    }
+    return true;
+  }
   struct Impl;
   std::unique_ptr<Impl> impl_;
   AnalyzerOptions opts_;
@@ -241,6 +295,9 @@ class Analyzer {
   mutable Stats stats_;
   top::Severity worst_ = top::Severity::info;
   std::uint64_t frame_no_ = 0;
+  std::uint64_t selected_ = 0;  // frames the filter selected
+  bool done_ = false;
+  bool started_ = false;  // the first timestamp seen (relative filter times)
   friend struct Impl;
 };
 

@@ -8,6 +8,8 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "commands.hpp"
@@ -30,6 +32,8 @@ struct Common {
   std::vector<std::string> addrs;
   std::string severity;
   std::string from, to;
+  std::vector<std::string> findings, mute;
+  std::uint64_t count = 0;
   double timeout_ms = 2000;
   bool json = false;
   bool verbose = false;
@@ -56,8 +60,20 @@ void add_common(CLI::App* sub, Common& o, bool outputs) {
   sub->add_option("--severity", o.severity, "only frames whose worst finding is at least this")
       ->check(CLI::IsMember({"info", "warning", "error"}));
   sub->add_option("--from", o.from,
-                  "only frames at or after this time (ISO-8601 or epoch seconds)");
-  sub->add_option("--to", o.to, "only frames at or before this time (ISO-8601 or epoch seconds)");
+                  "only frames at or after this time (ISO-8601, epoch seconds, or +SECONDS after "
+                  "the input's first timestamp: +1.5, +1.5s, +200ms)");
+  sub->add_option("--to", o.to, "only frames at or before this time (as --from)");
+  sub->add_option("--finding", o.findings,
+                  "only frames and events with this finding code (comma list, repeatable; "
+                  "docs/FINDINGS.md)")
+      ->delimiter(',')
+      ->allow_extra_args(false);
+  sub->add_option("--mute", o.mute,
+                  "drop this finding code everywhere: not shown, counted or in the exit status "
+                  "(comma list, repeatable)")
+      ->delimiter(',')
+      ->allow_extra_args(false);
+  sub->add_option("-c,--count", o.count, "stop after this many selected frames (0: all)");
   sub->add_option("--timeout-ms", o.timeout_ms, "a request is unanswered after this long")
       ->check(CLI::PositiveNumber);
   if (outputs) {
@@ -99,8 +115,16 @@ bool setup(const Common& o, Setup& s, std::string& err) {
       err = "--ident " + i + ": an identifier has three characters";
       return false;
     }
-    s.filter.idents.push_back(i);
+    s.filter.idents.push_back(i);  // matched case-insensitively
   }
+  for (const auto& [names, muted] : {std::pair{&o.findings, false}, std::pair{&o.mute, true}})
+    for (const auto& n : *names)
+      if (!s.filter.add_code(n, muted)) {
+        err = std::string(muted ? "--mute " : "--finding ") + n +
+              ": no such finding code (docs/FINDINGS.md lists them)";
+        return false;
+      }
+  s.filter.max_frames = o.count;
   s.filter.addrs = o.addrs;
   if (!o.severity.empty()) {
     s.filter.severity_set = true;
@@ -108,21 +132,26 @@ bool setup(const Common& o, Setup& s, std::string& err) {
                             : o.severity == "warning" ? top::Severity::warning
                                                       : top::Severity::info;
   }
-  if (!o.from.empty()) {
-    auto t = parse_time(o.from);
+  for (const auto& [name, text, at, rel] :
+       {std::tuple{"--from", &o.from, &s.filter.from, &s.filter.from_rel},
+        std::tuple{"--to", &o.to, &s.filter.to, &s.filter.to_rel}}) {
+    if (text->empty()) continue;
+    if (text->front() == '+') {
+      auto d = parse_duration(std::string_view(*text).substr(1));
+      if (!d) {
+        err = std::string(name) + " " + *text + ": not +SECONDS (+1.5, +1.5s, +200ms)";
+        return false;
+      }
+      *rel = *d;
+      continue;
+    }
+    auto t = parse_time(*text);
     if (!t) {
-      err = "--from " + o.from + ": not an ISO-8601 time or epoch seconds";
+      err = std::string(name) + " " + *text +
+            ": not an ISO-8601 time, epoch seconds or +SECONDS after the start";
       return false;
     }
-    s.filter.from = *t;
-  }
-  if (!o.to.empty()) {
-    auto t = parse_time(o.to);
-    if (!t) {
-      err = "--to " + o.to + ": not an ISO-8601 time or epoch seconds";
-      return false;
-    }
-    s.filter.to = *t;
+    *at = *t;
   }
   return true;
 }

@@ -12,6 +12,7 @@
 #include "chars.hpp"
 #include "decode_cache.hpp"
 #include "decode_plan.hpp"
+#include "device_form.hpp"
 #include "numbers.hpp"
 #include "top/device.hpp"
 #include "top/dialect.hpp"
@@ -462,7 +463,8 @@ void replay(const detail::ShapeSlot& s, Decoded& out) {
 
 }  // namespace
 
-void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
+// The frame's command, form and findings, and its fields with detail.
+static void decode_frame(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
   out.fields.clear();
   out.findings.clear();
   out.command = nullptr;
@@ -525,6 +527,13 @@ void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
     pos += w;
   }
   return;
+}
+
+void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
+  decode_frame(frame, opts, out);
+  // The caller knows the device sent it: a recorded form of real firmware
+  // (top/device.hpp) completes its findings.
+  if (opts.role == Role::response) detail::note_device_form(frame, opts.model, opts.detail, out);
 }
 
 Decoded decode(const Frame& frame, const DecodeOptions& opts) {

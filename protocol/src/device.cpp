@@ -7,6 +7,8 @@
 #include <string>
 
 #include "catalog_data.hpp"
+#include "device_form.hpp"
+#include "top/text.hpp"
 
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"
 
@@ -208,6 +210,17 @@ std::optional<Profile> profile_from_string(std::string_view s) noexcept {
 
 std::span<const StreamSpec> streams() noexcept { return kStreams; }
 
+std::optional<unsigned> switch_value(std::string_view data) noexcept {
+  if (data.empty() || data.size() > 8) return std::nullopt;
+  unsigned v = 0;
+  for (char ch : data) {
+    const int x = hex_value(ch);
+    if (x < 0) return std::nullopt;
+    v = v * 16 + static_cast<unsigned>(x);
+  }
+  return v;
+}
+
 const StreamSpec* stream_enabled_by(Dialect d, std::string_view request) noexcept {
   for (const StreamSpec& s : kStreams)
     if (s.dialect == d && same(s.request, request)) return &s;
@@ -299,7 +312,7 @@ const DeviceForm* recorded_form(Dialect d, Model model, const Frame& f, Sent sen
   return best;
 }
 
-void note_device_form(const Frame& f, Model model, bool detail, Decoded& dec) {
+void detail::note_device_form(const Frame& f, Model model, bool detail, Decoded& dec) {
   const bool unswapped = role_from_addresses(f) == Role::request;
   Finding* tp = nullptr;
   Finding* un = nullptr;

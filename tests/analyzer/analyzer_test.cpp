@@ -1,5 +1,5 @@
-// The session layer: pairing, latency, streams, repeats, limits, TCP
-// reassembly, and the fast JSON writer proven equal to the nlohmann one.
+// The session layer: pairing, latency, streams, repeats, limits and TCP
+// reassembly (the JSON writer's tests are in json_writer_test.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -480,58 +480,6 @@ TEST(Tcp, SequenceWrapAround) {
   EXPECT_FALSE(r.has_note(ACode::tcp_gap));
 }
 
-// --- JSON fast path vs nlohmann reference ------------------------------------------
-
-// Parses with nlohmann and fails on a key that repeats inside an object.
-nlohmann::json parse_unique(const std::string& line) {
-  std::vector<std::set<std::string>> stack;
-  bool dup = false;
-  auto cb = [&](int, nlohmann::json::parse_event_t ev, nlohmann::json& j) {
-    using E = nlohmann::json::parse_event_t;
-    if (ev == E::object_start)
-      stack.emplace_back();
-    else if (ev == E::object_end)
-      stack.pop_back();
-    else if (ev == E::key)
-      dup |= !stack.back().insert(j.get<std::string>()).second;
-    return true;
-  };
-  auto j = nlohmann::json::parse(line, cb);
-  EXPECT_FALSE(dup) << "duplicate key in " << line;
-  return j;
-}
-
-void expect_fast_equals_reference(const Recorder& r) {
-  for (const auto& [line, ref] : r.garbage_json) EXPECT_EQ(line, ref);
-  for (const auto& [line, ref] : r.note_json) {
-    ASSERT_EQ(line.back(), '\n');
-    EXPECT_EQ(std::count(line.begin(), line.end(), '\n'), 1);
-    EXPECT_EQ(parse_unique(line), parse_unique(ref)) << line;
-  }
-  for (const auto& f : r.frames) {
-    ASSERT_FALSE(f.json_fast.empty());
-    ASSERT_EQ(f.json_fast.back(), '\n');
-    EXPECT_EQ(std::count(f.json_fast.begin(), f.json_fast.end(), '\n'), 1);
-    nlohmann::json fast = parse_unique(f.json_fast);
-    nlohmann::json ref = parse_unique(f.json_ref);
-    EXPECT_EQ(fast, ref) << f.json_fast << "\n" << f.json_ref;
-  }
-}
-
-TEST(Json, FastWriterEqualsReferenceOverTheCaptures) {
-  for (const char* cap : {"sample.pcap", "topotek-vlan.pcap", "tcp-c10.pcap", "serial-raw.bin",
-                          "serial-lines.log", "serial-saleae.csv", "truncated.pcap"}) {
-    Recorder r;
-    Analyzer a(AnalyzerOptions{}, r);
-    std::string err;
-    ASSERT_TRUE(read_file(captures_dir() + "/" + cap, Format::automatic, a, SourceOptions{}, err))
-        << err;
-    a.finish();
-    ASSERT_FALSE(r.frames.empty()) << cap;
-    expect_fast_equals_reference(r);
-  }
-}
-
 // Counts what stats needs of each event: codes and severities, no text.
 struct VerdictSink : Sink {
   std::vector<std::string> seen;
@@ -586,30 +534,6 @@ TEST(Stats, WithoutDetailEqualsWithDetail) {
   }
 }
 
-// json_plain reads eight bytes at a time: every byte value at every
-// position of strings of every length up to 24, against the byte table,
-// from exact-size buffers (ASan sees a read past the end).
-TEST(Json, PlainCheckAgreesWithTheByteTable) {
-  std::size_t checked = 0;
-  for (std::size_t n = 1; n <= 24; ++n)
-    for (std::size_t at = 0; at < n; ++at)
-      for (int v = 0; v < 256; ++v) {
-        std::string s(n, 'A');
-        s[at] = static_cast<char>(v);
-        const std::unique_ptr<char[]> exact(new char[n]);
-        std::memcpy(exact.get(), s.data(), n);
-        const bool want = detail::kJsonPlain[static_cast<std::size_t>(v)];
-        ASSERT_EQ(json_plain(std::string_view(exact.get(), n)), want) << n << " " << at << " " << v;
-        ++checked;
-      }
-  EXPECT_EQ(checked, 256u * 300u);
-  EXPECT_TRUE(json_plain(""));
-  EXPECT_FALSE(detail::kJsonPlain['"']);
-  EXPECT_FALSE(detail::kJsonPlain['\\']);
-  EXPECT_FALSE(detail::kJsonPlain[0x7F]);
-  EXPECT_TRUE(detail::kJsonPlain['~']);
-}
-
 // The pending-request ring against a std::deque, through random pushes,
 // pops and erasures anywhere, across growth and wrap-around; a slot handed
 // back by push_back is reused, so the test assigns all of it as the
@@ -648,89 +572,6 @@ TEST(Ring, BehavesAsADequeThroughGrowthWrapAndErase) {
   EXPECT_GT(max_size, 40u);  // grew several times past its first 8 slots
   EXPECT_GT(erased_inside, 1000u);
   EXPECT_GT(erased_newest, 1000u);
-}
-
-TEST(Json, FastWriterEqualsReferenceOnHostileBytes) {
-  // random bytes around frame starts, names with quotes and control bytes
-  std::mt19937 rng(11);
-  Recorder r;
-  Analyzer a(AnalyzerOptions{}, r);
-  Endpoint s, d;
-  s.name = std::string("tty\"\\\x01\xff", 6);
-  d.name = "host";
-  for (int i = 0; i < 300; ++i) {
-    std::string p = "#tp";
-    int n = static_cast<int>(rng() % 24);
-    for (int k = 0; k < n; ++k) p += static_cast<char>(rng() & 0xFF);
-    if (i % 3 == 0)
-      p = top::with_checksum("#tpUG6wGAY" + std::string(1, static_cast<char>(rng() & 0xFF)) +
-                             "00032");
-    if (i % 7 == 0)
-      p = top::with_checksum(
-          "#tPUDEwGPS" + std::string(1, '\x0e') +
-          std::string("\"\\\x00\x7f\x80\xfe#\x0d\x0a\x01\x02\x03\x04\x05\x06", 15));
-    a.chunk(T + i, Transport::serial, i % 2 ? s : d, i % 2 ? d : s, p,
-            static_cast<std::uint64_t>(i + 1), 0);
-  }
-  a.finish();
-  ASSERT_GT(r.frames.size(), 50u);
-  ASSERT_FALSE(r.notes.empty());
-  expect_fast_equals_reference(r);
-}
-
-Endpoint named_ep(const char* n) {
-  Endpoint e;
-  e.name = n;
-  return e;
-}
-
-// Times before 1970 (a serial log's negative seconds) are written with their
-// sign; the writer used to put '0' minus a digit in the fraction ("0.00000/").
-TEST(Json, NegativeTimesAreNumbers) {
-  Recorder r;
-  Analyzer a(AnalyzerOptions{}, r);
-  a.chunk(-1, Transport::serial, named_ep("a"), named_ep("b"), top::with_checksum("#TPUG2wPTZ05"),
-          1, 0);
-  a.chunk(-2500001, Transport::serial, named_ep("b"), named_ep("a"),
-          top::with_checksum("#TPGU2wPTZ05"), 2, 0);
-  a.source_note(-7, ACode::log_syntax, "a note", 3, 0);
-  a.finish();
-  ASSERT_EQ(r.frames.size(), 2u);
-  EXPECT_EQ(nlohmann::json::parse(r.frames[0].json_fast)["time"].get<double>(), -1e-6);
-  EXPECT_EQ(nlohmann::json::parse(r.frames[1].json_fast)["time"].get<double>(), -2.500001);
-  expect_fast_equals_reference(r);
-}
-
-// The JSON writer puts the catalog's strings between quotes as they are: none
-// may need escaping.
-TEST(Json, CatalogStringsNeedNoEscaping) {
-  auto plain = [](std::string_view s) {
-    for (unsigned char c : s)
-      if (c < 0x20 || c >= 0x7F || c == '"' || c == '\\') return false;
-    return true;
-  };
-  std::size_t n = 0;
-  for (top::Dialect dl : {top::Dialect::skydroid, top::Dialect::topotek}) {
-    EXPECT_TRUE(plain(top::to_string(dl)));
-    for (const top::CommandSpec& c : top::commands(dl)) {
-      EXPECT_TRUE(plain(c.ident) && plain(c.title) && plain(c.section) &&
-                  plain(std::string_view(&c.address, 1)))
-          << c.ident;
-      for (const top::FormSpec& f : c.forms)
-        for (const top::FieldSpec& fs : f.fields) {
-          EXPECT_TRUE(plain(fs.name) && plain(fs.unit) && plain(top::to_string(fs.kind)))
-              << c.ident << " " << fs.name;
-          for (const top::EnumValue& e : fs.enums) EXPECT_TRUE(plain(e.name)) << e.name;
-          ++n;
-        }
-    }
-  }
-  EXPECT_GT(n, 200u);
-  for (std::size_t i = 0; i < top::finding_code_count; ++i)
-    EXPECT_TRUE(plain(top::to_string(static_cast<top::FindingCode>(i))));
-  for (top::Header h : {top::Header::fixed, top::Header::variable, top::Header::ext8,
-                        top::Header::ext16, top::Header::tmp_quirk})
-    EXPECT_TRUE(plain(top::to_string(h)));
 }
 
 // The bucket of a latency comes from small tables up to 65.536 ms (each

@@ -270,7 +270,6 @@ struct Runner {
         dopt.model = m.model;
         dopt.role = top::Role::response;
         top::Decoded dec = top::decode(f, dopt);
-        top::note_device_form(f, m.model, true, dec);
         if (dec.command) {
           for (const auto& fd : dec.findings) {
             if (fd.severity != top::Severity::warning) continue;

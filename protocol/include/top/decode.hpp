@@ -65,7 +65,11 @@ class DecodeCache {
 struct DecodeOptions {
   Dialect dialect = Dialect::unknown;  // unknown: detect from the frame
   Model model = Model::unknown;        // unknown: no model checks
-  Role role = Role::any;               // any: from the addresses
+  // The role as the caller knows it from the conversation (any: judged from
+  // the addresses). Response says the device sent the frame: the forms
+  // real firmware is recorded sending (top/device.hpp, recorded_form) then
+  // name their evidence in its findings, whatever its address order.
+  Role role = Role::any;
   // false: the verdict only (dialect, role, command, form, and findings with
   // codes, severities and offsets but empty messages); no field values. For
   // callers that count rather than show (topdump stats).

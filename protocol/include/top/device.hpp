@@ -55,6 +55,10 @@ struct StreamSpec {
 std::span<const StreamSpec> streams() noexcept;
 // The stream a write of `request` switches, or nullptr.
 const StreamSpec* stream_enabled_by(Dialect d, std::string_view request) noexcept;
+// What a stream switch's write carries (the hex data: the rate in Hz with
+// rate_in_data, else 00 off / 01 on), read from the frame without a
+// detailed decode; nullopt when the data is empty or not hex.
+std::optional<unsigned> switch_value(std::string_view data) noexcept;
 // The stream whose frames carry `push`, or nullptr.
 const StreamSpec* stream_of(Dialect d, std::string_view push) noexcept;
 
@@ -110,15 +114,6 @@ DeviceForm device_form(Model model, std::string_view ident, char control, Sent s
 // or nullptr: for topdump and topconf to name the source of a frame that
 // deviates from the rule. `model` unknown matches every model.
 const DeviceForm* recorded_form(Dialect d, Model model, const Frame& f, Sent sent) noexcept;
-
-// For a frame the device sent, decoded in `dec`: when it deviates from the
-// rule (the request's address order, #TP with another length), adds or
-// completes its `unswapped-addresses` finding and names the recorded form
-// it matches: the evidence as the finding's quirk and, with `detail`, the
-// kind of source in its message; a `tp-length` warning on a recorded form
-// becomes info. A form
-// nothing records stays as it is ("some simulators").
-void note_device_form(const Frame& f, Model model, bool detail, Decoded& dec);
 
 // A trait of real firmware that is not a frame form.
 enum class TraitKind : std::uint8_t {
