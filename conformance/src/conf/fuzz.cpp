@@ -138,7 +138,11 @@ struct Session {
     }
     const char client = t.client_address();
     const bool push = is_push(m.dialect, f.ident_view());
+    // To the client, or to whoever the request came from (the reply swaps
+    // the request's addresses, SkyDroid 2.3.1).
     bool addressed = f.dst == client && f.src != client;
+    for (std::size_t i = 0; !addressed && i + 1 < c.addresses.size(); i += 2)
+      addressed = f.src == c.addresses[i + 1] && f.dst == c.addresses[i];
     if (!addressed && f.src == client) {
       const top::DeviceForm* rf = top::recorded_form(m.dialect, m.model, f,
                                                      push ? top::Sent::push : top::Sent::reply);
@@ -205,7 +209,9 @@ struct Session {
       ++probes;
       link.send(p.bytes);
       synced = false;
-      const std::uint64_t deadline = link.now() + probe_timeout_us();
+      // Long enough to tell a slow answer from none.
+      const std::uint64_t deadline =
+          link.now() + std::max(probe_timeout_us(), std::uint64_t{o.slow_ms} * 1000 + 100000);
       while (link.next(deadline, rx)) {
         if (rx.frame.ident_view() == p.ident && rx.frame.ok() && rx.frame.control == 'r') {
           synced = true;
@@ -287,9 +293,8 @@ struct Session {
                  " ms after the case, then it answered again" + why;
     } else {
       dead = true;
-      r.reason = "the device stopped answering after this case (" +
-                 std::to_string(3 + 1) + " probes of " + std::to_string(m.probe_timeout_ms) +
-                 " ms unanswered)" + why;
+      r.reason = "the device stopped answering after this case (the sync probe and 3 more of " +
+                 std::to_string(m.probe_timeout_ms) + " ms unanswered)" + why;
     }
   }
 
@@ -544,6 +549,10 @@ FuzzResult run_fuzz(const Matrix& m, Transport& t, const FuzzOptions& o) {
         break;
       }
       recent.clear();
+      if (o.max_failures && res.failures.size() >= o.max_failures) {
+        if (o.only.empty()) ++index;
+        break;
+      }
     } else {
       recent.push_back(r.spec);
       if (recent.size() > o.window) recent.pop_front();

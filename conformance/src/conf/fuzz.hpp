@@ -76,6 +76,7 @@ struct FuzzOptions {
   std::uint32_t recover_ms = 3000;      // wait this long for the device to answer again
   std::function<bool()> restart;        // null: no restart (no --restart-cmd)
   bool minimise = true;
+  std::size_t max_failures = 0;  // stop after this many (0: never)
   std::size_t window = 8;  // cases kept before a failure
   pcapio::Recorder* pcap = nullptr;
   std::function<void(const FuzzCaseResult&)> on_case;

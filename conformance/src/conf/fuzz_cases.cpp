@@ -357,6 +357,8 @@ void CaseSource::judge(FuzzCase& c) const {
   dec.finish();
   drain();
   c.frames = frames.size();
+  c.addresses.clear();
+  for (const auto& f : frames) c.addresses += std::string{f.src, f.dst};
   c.ident = frames.empty() ? "" : std::string(frames[0].ident_view());
   c.promise = Promise::none;
   c.level = Level::may;

@@ -33,6 +33,7 @@ struct FuzzCase {
   Level level = Level::may;  // the matrix's level of the promise
   std::string ident;         // the identifier of its first frame ("" if none)
   std::size_t frames = 0;    // frames the library's stream decoder finds
+  std::string addresses;     // source and destination of each frame ("UGUD")
   bool open_end = false;     // ends inside a frame: a stream link waits for
                              // the device to give up on it (20 ms quiet)
   bool mutated = false;

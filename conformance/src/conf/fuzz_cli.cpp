@@ -50,6 +50,10 @@ FuzzCommand::FuzzCommand(CLI::App& app, std::string& model_name, std::string& ma
                    "shell command that restarts the device (topsim: kill -HUP PID)");
   sub_->add_option("--window", window_, "cases kept before a failure, replayed to minimise it")
       ->capture_default_str();
+  sub_->add_option("--max-failures", max_failures_, "stop after this many failures (0: never)")
+      ->capture_default_str();
+  sub_->add_option("--probe-timeout-ms", probe_timeout_ms_,
+                   "wait this long for the probe's answer (default: the matrix's)");
   sub_->add_flag("--no-minimise", no_minimise_, "report failures without replaying them");
   sub_->add_option("--json", json_, "write JSON Lines: every case with its bytes and verdict");
   sub_->add_option("--junit", junit_, "write JUnit XML, one testcase per failure class");
@@ -61,7 +65,9 @@ FuzzCommand::FuzzCommand(CLI::App& app, std::string& model_name, std::string& ma
   sub_->add_flag("-q,--quiet", quiet_, "no progress lines");
 }
 
-int FuzzCommand::run(const Matrix& matrix) {
+int FuzzCommand::run(const Matrix& loaded) {
+  Matrix matrix = loaded;
+  if (probe_timeout_ms_) matrix.probe_timeout_ms = probe_timeout_ms_;
   const top::Model model = matrix.model;
   FuzzOptions o;
   o.seed = seed_;
@@ -75,6 +81,7 @@ int FuzzCommand::run(const Matrix& matrix) {
   o.recover_ms = recover_ms_;
   o.window = window_;
   o.minimise = !no_minimise_;
+  o.max_failures = max_failures_;
 
   // --resume: the seed and the next index from the file's session.
   bool append = false;

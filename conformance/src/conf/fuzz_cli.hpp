@@ -26,7 +26,8 @@ class FuzzCommand {
   std::vector<std::uint64_t> only_;
   double duration_ = 0, rate_ = 0;
   std::uint32_t probe_every_ = 1, timeout_ms_ = 300, slow_ms_ = 1000, recover_ms_ = 3000;
-  std::size_t window_ = 8;
+  std::size_t window_ = 8, max_failures_ = 0;
+  std::uint32_t probe_timeout_ms_ = 0;
   int bind_port_ = -1;
   bool no_minimise_ = false, quiet_ = false;
   CLI::Option *seed_opt_ = nullptr, *cases_opt_ = nullptr, *start_opt_ = nullptr,
