@@ -24,11 +24,12 @@ topconf::Matrix c12_matrix() {
 }
 
 struct Sim {
-  Sim() : server([] {
-      topsim::ServerConfig c;
-      c.model = top::Model::c12;
-      return c;
-    }()) {
+  Sim()
+      : server([] {
+          topsim::ServerConfig c;
+          c.model = top::Model::c12;
+          return c;
+        }()) {
     thread = std::thread([this] { server.run(); });
   }
   ~Sim() {

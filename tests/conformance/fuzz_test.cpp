@@ -1,6 +1,8 @@
 // topconf fuzz: the cases (reproducible by index and seed), the runner
 // against topsim with each firmware fault (in process, on a virtual clock)
 // and against a healthy topsim over UDP loopback, and the CLI end to end.
+#include "conf/fuzz.hpp"
+
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -9,7 +11,6 @@
 #include <thread>
 
 #include "binaries.hpp"
-#include "conf/fuzz.hpp"
 #include "conf/fuzz_report.hpp"
 #include "running_server.hpp"
 #include "sim/faults.hpp"
@@ -49,7 +50,7 @@ TEST(FuzzCases, TheSameSeedGivesTheSameCasesByteForByte) {
   }
   // Generating out of order changes nothing: the case is its index.
   EXPECT_EQ(a.at(5999).bytes, b.at(5999).bytes);
-  EXPECT_GT(differ, 1000u);  // mutations follow the seed
+  EXPECT_GT(differ, 1000u);                     // mutations follow the seed
   EXPECT_EQ(a.at(3).bytes, other.at(3).bytes);  // catalog cases do not
 }
 
@@ -112,7 +113,8 @@ TEST(Fuzz, AHealthyDeviceHasNoFailureAndTheReportsSaySo) {
   for (top::Model m : top::all_models()) {
     const auto r = fuzz_sim(m, "", 3000, 7);
     EXPECT_EQ(r.exit_code(), 0) << top::to_string(m);
-    for (const auto& f : r.failures) ADD_FAILURE() << top::to_string(m) << ": " << topconf::failure_line(f);
+    for (const auto& f : r.failures)
+      ADD_FAILURE() << top::to_string(m) << ": " << topconf::failure_line(f);
   }
 }
 
@@ -145,18 +147,17 @@ TEST(Fuzz, AnUnusableTargetIsExit2) {
 
 TEST(FuzzCli, FindsACrashOverUdpRestartsWithSighupAndWritesEveryReport) {
   std::string line;
-  const pid_t pid =
-      start_topsim({"--model", "c12", "--udp", "127.0.0.1:0", "--fault", "crash-on=ident:GAY"},
-                   line);
+  const pid_t pid = start_topsim(
+      {"--model", "c12", "--udp", "127.0.0.1:0", "--fault", "crash-on=ident:GAY"}, line);
   ASSERT_GT(pid, 0);
   ASSERT_EQ(line.rfind("udp 127.0.0.1:", 0), 0u) << line;
   const std::string dir = std::string(TOPKIT_BINARY_DIR) + "/topconf_fuzz_cli";
   run_cmd("mkdir -p " + dir);
   const int rc = run_cmd(bin("topconf") + " fuzz --model c12 --target udp://" + line.substr(4) +
                          " --cases 3000 --max-failures 1 --probe-timeout-ms 150 --slow-ms 200 "
-                         "--restart-cmd 'kill -HUP " + std::to_string(pid) +
-                         "' --json " + dir + "/f.jsonl --junit " + dir + "/f.xml --html " + dir +
-                         "/f.html --pcap " + dir + "/f.pcap -q");
+                         "--restart-cmd 'kill -HUP " +
+                         std::to_string(pid) + "' --json " + dir + "/f.jsonl --junit " + dir +
+                         "/f.xml --html " + dir + "/f.html --pcap " + dir + "/f.pcap -q");
   kill(pid, SIGTERM);
   waitpid(pid, nullptr, 0);
   EXPECT_EQ(rc, 1);
@@ -183,8 +184,8 @@ TEST(FuzzCli, FindsACrashOverUdpRestartsWithSighupAndWritesEveryReport) {
   EXPECT_NE(read_text(dir + "/f.html").find("<h1>topconf fuzz report: c12</h1>"),
             std::string::npos);
   // topdump reads the session's pcap.
-  const int td = run_cmd(std::string(TOPKIT_BINARY_DIR) + "/analyzer/topdump stats " + dir +
-                         "/f.pcap");
+  const int td =
+      run_cmd(std::string(TOPKIT_BINARY_DIR) + "/analyzer/topdump stats " + dir + "/f.pcap");
   EXPECT_TRUE(td == 0 || td == 1) << td;
 }
 
@@ -198,12 +199,11 @@ TEST(FuzzCli, ADeviceKilledMidRunIsReportedWithItsCase) {
     kill(pid, SIGKILL);
   });
   const auto t0 = std::chrono::steady_clock::now();
-  const int rc = std::system((bin("topconf") + " fuzz --model c12 --target udp://" +
-                              line.substr(4) + " --cases 1000000 -q --recover-ms 500 > " + out +
-                              " 2>&1")
-                                 .c_str());
-  const double secs =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const int rc =
+      std::system((bin("topconf") + " fuzz --model c12 --target udp://" + line.substr(4) +
+                   " --cases 1000000 -q --recover-ms 500 > " + out + " 2>&1")
+                      .c_str());
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   killer.join();
   waitpid(pid, nullptr, 0);
   EXPECT_EQ(WEXITSTATUS(rc), 1);
@@ -212,8 +212,7 @@ TEST(FuzzCli, ADeviceKilledMidRunIsReportedWithItsCase) {
   EXPECT_NE(text.find("stopped-answering: the device stopped answering after this case"),
             std::string::npos)
       << text;
-  EXPECT_NE(text.find("aborted: the device stopped answering at case "), std::string::npos)
-      << text;
+  EXPECT_NE(text.find("aborted: the device stopped answering at case "), std::string::npos) << text;
 }
 
 TEST(FuzzCli, TwoRunsWithTheSameSeedSendTheSameBytesAndResumeGoesOn) {
@@ -225,8 +224,9 @@ TEST(FuzzCli, TwoRunsWithTheSameSeedSendTheSameBytesAndResumeGoesOn) {
     std::string l;
     while (std::getline(in, l)) {
       auto j = nlohmann::json::parse(l);
-      if (j.contains("verdict")) v.push_back(std::to_string(j["index"].get<std::uint64_t>()) +
-                                             " " + j["bytes"].get<std::string>());
+      if (j.contains("verdict"))
+        v.push_back(std::to_string(j["index"].get<std::uint64_t>()) + " " +
+                    j["bytes"].get<std::string>());
     }
     return v;
   };

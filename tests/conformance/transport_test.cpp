@@ -14,8 +14,8 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "conf/runner.hpp"
 #include "binaries.hpp"
+#include "conf/runner.hpp"
 #include "running_server.hpp"
 #include "sim/server.hpp"
 #include "test_matrix_util.hpp"

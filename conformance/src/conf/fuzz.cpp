@@ -144,8 +144,8 @@ struct Session {
     for (std::size_t i = 0; !addressed && i + 1 < c.addresses.size(); i += 2)
       addressed = f.src == c.addresses[i + 1] && f.dst == c.addresses[i];
     if (!addressed && f.src == client) {
-      const top::DeviceForm* rf = top::recorded_form(m.dialect, m.model, f,
-                                                     push ? top::Sent::push : top::Sent::reply);
+      const top::DeviceForm* rf =
+          top::recorded_form(m.dialect, m.model, f, push ? top::Sent::push : top::Sent::reply);
       addressed = rf && rf->order == top::Order::request_order;
     }
     if (!addressed)
@@ -164,8 +164,8 @@ struct Session {
     for (const auto& fd : dec.findings)
       if (fd.code == top::FindingCode::value_out_of_range ||
           fd.code == top::FindingCode::bad_field || fd.code == top::FindingCode::data_length)
-        return "reply " + top::escape(f.raw) + ": " + std::string(top::to_string(fd.code)) +
-               ": " + fd.message;
+        return "reply " + top::escape(f.raw) + ": " + std::string(top::to_string(fd.code)) + ": " +
+               fd.message;
     return {};
   }
 
@@ -235,8 +235,7 @@ struct Session {
     }
     if (c.promise == Promise::silence && promised && (answered_ident || answered_ere)) {
       r.failure = FailureClass::accepted_corrupt;
-      r.reason = "answered a frame with a bad checksum: " +
-                 top::escape(got.front().frame.raw);
+      r.reason = "answered a frame with a bad checksum: " + top::escape(got.front().frame.raw);
       return true;
     }
     if (promised && c.promise == Promise::answer && !answered_ident) {
@@ -249,8 +248,8 @@ struct Session {
     }
     if (promised && c.promise == Promise::error && answered_ident) {
       r.failure = FailureClass::wrong_answer;
-      r.reason = "an answer where the document promises ERE (" +
-                 std::string(to_string(c.level)) + ")";
+      r.reason =
+          "an answer where the document promises ERE (" + std::string(to_string(c.level)) + ")";
       return true;
     }
     for (const Rx& x : got) {
@@ -289,7 +288,8 @@ struct Session {
     r.failure = FailureClass::stopped;
     const std::string why = r.reason.empty() ? "" : " (" + r.reason + ")";
     if (back) {
-      r.reason = "no answer for " + std::to_string((link.now() - lost) / 1000 + m.probe_timeout_ms) +
+      r.reason = "no answer for " +
+                 std::to_string((link.now() - lost) / 1000 + m.probe_timeout_ms) +
                  " ms after the case, then it answered again" + why;
     } else {
       dead = true;
@@ -560,10 +560,11 @@ FuzzResult run_fuzz(const Matrix& m, Transport& t, const FuzzOptions& o) {
     if (o.only.empty()) ++index;
     if (o.on_progress && WallClock::now() - last_progress >= std::chrono::seconds(1)) {
       last_progress = WallClock::now();
-      o.on_progress(n, std::chrono::duration<double>(last_progress - wall0).count() > 0
-                           ? static_cast<double>(n) /
-                                 std::chrono::duration<double>(last_progress - wall0).count()
-                           : 0,
+      o.on_progress(n,
+                    std::chrono::duration<double>(last_progress - wall0).count() > 0
+                        ? static_cast<double>(n) /
+                              std::chrono::duration<double>(last_progress - wall0).count()
+                        : 0,
                     res.failures.size());
     }
   }

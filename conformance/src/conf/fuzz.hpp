@@ -73,11 +73,11 @@ struct FuzzOptions {
   std::uint32_t probe_every = 1;     // liveness probe every N cases
   std::uint32_t timeout_ms = 300;    // wait for a promised answer
   std::uint32_t slow_ms = 1000;
-  std::uint32_t recover_ms = 3000;      // wait this long for the device to answer again
-  std::function<bool()> restart;        // null: no restart (no --restart-cmd)
+  std::uint32_t recover_ms = 3000;  // wait this long for the device to answer again
+  std::function<bool()> restart;    // null: no restart (no --restart-cmd)
   bool minimise = true;
   std::size_t max_failures = 0;  // stop after this many (0: never)
-  std::size_t window = 8;  // cases kept before a failure
+  std::size_t window = 8;        // cases kept before a failure
   pcapio::Recorder* pcap = nullptr;
   std::function<void(const FuzzCaseResult&)> on_case;
   std::function<void(const FuzzFailure&)> on_failure;
@@ -100,7 +100,9 @@ struct FuzzResult {
   std::string unusable_reason;
   bool aborted = false;  // the device stopped and could not be brought back
   std::string aborted_reason;
-  double rate() const noexcept { return seconds > 0 ? static_cast<double>(cases_run) / seconds : 0; }
+  double rate() const noexcept {
+    return seconds > 0 ? static_cast<double>(cases_run) / seconds : 0;
+  }
   // 0 no failure, 1 failures, 2 target unusable from the start.
   int exit_code() const noexcept;
 };

@@ -86,8 +86,8 @@ std::string_view to_string(Promise p) noexcept {
 }
 
 std::string mutate(std::string b, std::uint64_t s, bool repair) {
-  static constexpr std::string_view kTokens[] = {"#",  "\r\n", "#TP", "#tp", "#tP",
-                                                 "#Tp", "\n",  "ERE", "!!",  "\xFF"};
+  static constexpr std::string_view kTokens[] = {"#",   "\r\n", "#TP", "#tp", "#tP",
+                                                 "#Tp", "\n",   "ERE", "!!",  "\xFF"};
   const int edits = 1 + static_cast<int>(splitmix(s) % 4);
   for (int e = 0; e < edits; ++e) {
     const std::uint64_t r = splitmix(s);
@@ -149,8 +149,7 @@ CaseSource::CaseSource(top::Model model, char client, std::uint64_t seed, const 
   // A command every device answers, for the framing and address cases.
   const std::string probe_ident = sky ? "AWB" : "VER";
   const char probe_dst = sky ? 'D' : 'G';
-  const std::string probe =
-      frame(top::Header::fixed, client_, probe_dst, 'r', probe_ident, "00");
+  const std::string probe = frame(top::Header::fixed, client_, probe_dst, 'r', probe_ident, "00");
 
   // Global families first: short, and they reach the parser's corners.
   add("oversized", "#tP 255 data bytes",
@@ -171,7 +170,8 @@ CaseSource::CaseSource(top::Model model, char client, std::uint64_t seed, const 
     data += "#\x00\x23#";
     data.push_back('\0');
     data += static_cast<char>(c);
-    add("binary", std::string("#tP binary data with '#' and ") + hex_byte(static_cast<unsigned char>(c)),
+    add("binary",
+        std::string("#tP binary data with '#' and ") + hex_byte(static_cast<unsigned char>(c)),
         frame(top::Header::ext8, client_, 'G', 'w', sky ? "GAY" : "GPS", data));
   }
   for (const char* id : {"ZZZ", "AAA", "999", "A0Z", "QQQ"})
@@ -227,12 +227,11 @@ CaseSource::CaseSource(top::Model model, char client, std::uint64_t seed, const 
       // Fields: boundaries, one step out, enum values and the one past.
       std::size_t off = 0;
       for (const top::FieldSpec& f : form.fields) {
-        const std::size_t w =
-            f.kind == FieldKind::le_i32   ? 4
-            : f.kind == FieldKind::le_i16 ? 2
-            : f.kind == FieldKind::le_u16 ? 2
-            : f.width == 0                ? ex.size() - std::min(off, ex.size())
-                                          : f.width;
+        const std::size_t w = f.kind == FieldKind::le_i32   ? 4
+                              : f.kind == FieldKind::le_i16 ? 2
+                              : f.kind == FieldKind::le_u16 ? 2
+                              : f.width == 0                ? ex.size() - std::min(off, ex.size())
+                                                            : f.width;
         if (off + w > ex.size()) break;
         auto with_raw = [&](std::int64_t raw, const std::string& what) {
           const std::string text = encode_raw(f, raw);
@@ -260,11 +259,14 @@ CaseSource::CaseSource(top::Model model, char client, std::uint64_t seed, const 
         if (f.kind == FieldKind::hex_u || f.kind == FieldKind::hex_s) {
           std::string d = ex;
           d.replace(off, w, std::string(w, 'F'));
-          add("value", tag + std::string(f.name) + " all F", frame(h, client_, c.address, ctl, id, d));
+          add("value", tag + std::string(f.name) + " all F",
+              frame(h, client_, c.address, ctl, id, d));
           d.replace(off, w, std::string(w, 'f'));
-          add("value", tag + std::string(f.name) + " lowercase", frame(h, client_, c.address, ctl, id, d));
+          add("value", tag + std::string(f.name) + " lowercase",
+              frame(h, client_, c.address, ctl, id, d));
           d.replace(off, w, std::string(w, 'G'));
-          add("value", tag + std::string(f.name) + " not hex", frame(h, client_, c.address, ctl, id, d));
+          add("value", tag + std::string(f.name) + " not hex",
+              frame(h, client_, c.address, ctl, id, d));
         }
         off += w;
       }
@@ -288,7 +290,8 @@ CaseSource::CaseSource(top::Model model, char client, std::uint64_t seed, const 
       // The four headers, whatever the length.
       for (top::Header hh :
            {top::Header::fixed, top::Header::variable, top::Header::ext8, top::Header::ext16})
-        if (hh != h && !(ex.size() > 15 && (hh == top::Header::fixed || hh == top::Header::variable)))
+        if (hh != h &&
+            !(ex.size() > 15 && (hh == top::Header::fixed || hh == top::Header::variable)))
           add("header", tag + "under " + std::string(top::to_string(hh)),
               frame(hh, client_, c.address, ctl, id, ex));
       // Checksum variants.
@@ -377,8 +380,7 @@ void CaseSource::judge(FuzzCase& c) const {
   // promises an answer, or ERE for what it does not define.
   if (frames.size() != 1 || c.bytes.size() != frames[0].raw.size()) return;
   const top::Frame& f = frames[0];
-  if (!f.ok() || f.src != client_ || (f.control != 'r' && f.control != 'w') ||
-      !f.findings.empty())
+  if (!f.ok() || f.src != client_ || (f.control != 'r' && f.control != 'w') || !f.findings.empty())
     return;
   const top::CommandSpec* cmd = top::find_command(dialect_, f.ident_view());
   if (!cmd) {

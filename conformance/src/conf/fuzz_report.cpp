@@ -112,8 +112,8 @@ void write_junit(std::ostream& os, const FuzzResult& r) {
                            [c](const FuzzFailure& f) { return f.cls == c; });
   os << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   os << "<testsuites>\n<testsuite name=\"topconf.fuzz." << xml_escape(top::to_string(r.model))
-     << "\" tests=\"" << std::size(kFailureClasses) << "\" failures=\"" << failing
-     << "\" errors=\"" << (r.unusable ? 1 : 0) << "\" time=\"" << r.seconds << "\" timestamp=\""
+     << "\" tests=\"" << std::size(kFailureClasses) << "\" failures=\"" << failing << "\" errors=\""
+     << (r.unusable ? 1 : 0) << "\" time=\"" << r.seconds << "\" timestamp=\""
      << xml_escape(r.started_at) << "\">\n";
   for (FailureClass c : kFailureClasses) {
     os << "  <testcase classname=\"topconf.fuzz\" name=\"" << to_string(c) << "\" time=\"0\">";
@@ -141,11 +141,10 @@ void write_html(std::ostream& os, const FuzzResult& r) {
   os << "<h1>topconf fuzz report: " << xml_escape(top::to_string(r.model)) << "</h1>\n";
   os << "<p>Target <b>" << xml_escape(r.target) << "</b>, seed " << r.seed << ", started "
      << xml_escape(r.started_at) << ", " << r.seconds << " s, " << r.cases_run << " case(s) ("
-     << static_cast<long>(r.rate()) << " cases/s), " << r.probes << " probes, "
-     << r.catalog_cases << " catalog cases before the mutations.</p>\n";
+     << static_cast<long>(r.rate()) << " cases/s), " << r.probes << " probes, " << r.catalog_cases
+     << " catalog cases before the mutations.</p>\n";
   if (r.unusable)
-    os << "<p class=\"fail\"><b>Target unusable:</b> " << xml_escape(r.unusable_reason)
-       << "</p>\n";
+    os << "<p class=\"fail\"><b>Target unusable:</b> " << xml_escape(r.unusable_reason) << "</p>\n";
   if (r.aborted)
     os << "<p class=\"fail\"><b>Aborted:</b> " << xml_escape(r.aborted_reason) << "</p>\n";
   os << "<p class=\"sum\">";

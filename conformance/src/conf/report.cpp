@@ -42,7 +42,6 @@ std::string xml_escape(std::string_view s) {
 
 namespace {
 
-
 std::string ms(std::uint64_t us) {
   char b[32];
   std::snprintf(b, sizeof b, "%.1f", static_cast<double>(us) / 1000.0);

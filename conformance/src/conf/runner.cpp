@@ -26,7 +26,6 @@ std::string iso_now() {
 
 namespace {
 
-
 struct Received {
   top::Frame frame;
   std::uint64_t t_us = 0;

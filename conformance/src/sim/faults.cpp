@@ -26,9 +26,9 @@ bool FaultConfig::any() const noexcept {
 
 const std::vector<std::string_view>& fault_names() {
   static const std::vector<std::string_view> names = {
-      "drop",         "delay",     "duplicate", "bad-checksum", "header-case", "no-swap",
-      "lying-length", "tmp-quirk", "split",     "garbage",      "hang-on",
-      "crash-on",     "hang-s",    "slow-on",   "slow-ms",      "answer-corrupt"};
+      "drop",         "delay",     "duplicate", "bad-checksum",  "header-case", "no-swap",
+      "lying-length", "tmp-quirk", "split",     "garbage",       "hang-on",     "crash-on",
+      "hang-s",       "slow-on",   "slow-ms",   "answer-corrupt"};
   return names;
 }
 

@@ -94,8 +94,8 @@ bool FaultInjector::admit(top::Frame& request, std::uint64_t now_us) {
   if (cfg_.answer_corrupt && request.checksum_present && !request.checksum_ok &&
       request.raw.size() >= 2) {
     // The firmware skips the check: the frame as if its checksum were right.
-    auto p = top::parse_exact(top::with_checksum(std::string_view(request.raw).substr(
-        0, request.raw.size() - 2)));
+    auto p = top::parse_exact(
+        top::with_checksum(std::string_view(request.raw).substr(0, request.raw.size() - 2)));
     if (p.status == top::ParseStatus::frame) request = std::move(p.frame);
   }
   return true;

@@ -110,9 +110,7 @@ struct Server::Impl {
   bool have_stream_peer = false;
 
   explicit Impl(ServerConfig c)
-      : cfg(std::move(c)),
-        device(cfg.model, device_options()),
-        faults(cfg.faults, cfg.seed) {}
+      : cfg(std::move(c)), device(cfg.model, device_options()), faults(cfg.faults, cfg.seed) {}
 
   DeviceOptions device_options() const {
     DeviceOptions o = cfg.device_options;
