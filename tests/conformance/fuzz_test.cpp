@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <chrono>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -107,7 +108,13 @@ INSTANTIATE_TEST_SUITE_P(
                       FaultCase{"crash-on=byte:FF", FailureClass::stopped},
                       FaultCase{"hang-on=ident:ZMC,hang-s=5", FailureClass::stopped},
                       FaultCase{"slow-on=ident:PTZ,slow-ms=450", FailureClass::slow},
-                      FaultCase{"answer-corrupt", FailureClass::accepted_corrupt}));
+                      FaultCase{"answer-corrupt", FailureClass::accepted_corrupt}),
+    [](const ::testing::TestParamInfo<FaultCase>& p) {
+      std::string name = p.param.faults;
+      for (char& c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+      return name;
+    });
 
 TEST(Fuzz, AHealthyDeviceHasNoFailureAndTheReportsSaySo) {
   for (top::Model m : top::all_models()) {
@@ -254,6 +261,25 @@ TEST(FuzzCli, TwoRunsWithTheSameSeedSendTheSameBytesAndResumeGoesOn) {
   EXPECT_EQ(run_cmd(bin("topconf") + " fuzz --model sip --target sim --resume /nonexistent"), 2);
   EXPECT_EQ(run_cmd(bin("topconf") + " fuzz --model sip --target bogus://x"), 2);
   EXPECT_EQ(run_cmd(bin("topconf") + " fuzz --model sip --target sim --sim-fault crash-on=x"), 2);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(FuzzCli, DurationAndRateBoundTheRun) {
+  const std::string out = std::string(TOPKIT_BINARY_DIR) + "/topconf_fuzz_bounds.txt";
+  auto timed = [&](const std::string& args) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const int rc = std::system(
+        (bin("topconf") + " fuzz --model c12 --target sim -q " + args + " > " + out).c_str());
+    EXPECT_EQ(WEXITSTATUS(rc), 0) << args;
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  EXPECT_LT(timed("--cases 100000000 --duration 0.5"), 5.0);
+  EXPECT_NE(read_text(out).find("next index"), std::string::npos);
+  EXPECT_GE(timed("--cases 60 --rate 200"), 0.25);
+  EXPECT_EQ(read_text(out).rfind("60 case(s)", 0), 0u) << read_text(out);
 }
 
 }  // namespace
