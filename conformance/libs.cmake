@@ -10,7 +10,8 @@ if(NOT TARGET topsim_core)
   set(_topkit_conf_src ${CMAKE_CURRENT_LIST_DIR}/src)
 
 # Device model and fault injection: pure, fuzzable.
-add_library(topsim_core STATIC ${_topkit_conf_src}/sim/device.cpp ${_topkit_conf_src}/sim/faults.cpp)
+add_library(topsim_core STATIC ${_topkit_conf_src}/sim/device.cpp ${_topkit_conf_src}/sim/faults.cpp
+  ${_topkit_conf_src}/sim/firmware_faults.cpp)
 target_include_directories(topsim_core PUBLIC ${_topkit_conf_src})
 target_link_libraries(topsim_core PUBLIC topkit::protocol)
 target_compile_features(topsim_core PUBLIC cxx_std_20)

@@ -10,6 +10,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "conf/fuzz_cli.hpp"
 #include "conf/generate.hpp"
 #include "conf/matrix.hpp"
 #include "conf/report.hpp"
@@ -89,6 +90,9 @@ int main(int argc, char** argv) {
                   "UDP: local port to receive on (default: 9004 for sip, ephemeral otherwise)");
   run->add_flag("--no-color", no_color, "no ANSI colours in the table");
   run->add_flag("-q,--quiet", quiet, "print the summary only");
+
+  // fuzz (conf/fuzz_cli.cpp): --model and --matrix are run's variables.
+  topconf::FuzzCommand fuzz(app, model_name, matrix_path);
 
   // generate
   auto* gen =
@@ -189,6 +193,8 @@ int main(int argc, char** argv) {
                  model_name);
   matrix.model = *model;
   matrix.dialect = top::dialect_of(*model);
+
+  if (fuzz.selected()) return fuzz.run(matrix);
 
   // The target.
   std::unique_ptr<topconf::Transport> transport;

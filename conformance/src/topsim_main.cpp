@@ -55,7 +55,9 @@ int main(int argc, char** argv) {
   app.add_option("--baud", baud, "serial baud rate")->capture_default_str();
   app.add_option("--fault", faults,
                  "faults: drop=P,delay=MS,duplicate=P,bad-checksum=P,header-case=P,no-swap,"
-                 "lying-length=P,tmp-quirk,split,garbage=P,hang-on=IDENT");
+                 "lying-length=P,tmp-quirk,split,garbage=P,hang-on=IDENT; firmware faults (SIGHUP "
+                 "restarts the device): crash-on=CLASS,hang-on=CLASS,hang-s=S,slow-on=CLASS,"
+                 "slow-ms=MS,answer-corrupt, CLASS = ident:ID|len:N|byte:HH");
   app.add_option("--seed", seed, "seed of the fault injection")->capture_default_str();
   app.add_option("--record", record, "write every frame received and sent to FILE.pcap");
   app.add_option("--reply-port", reply_port,
@@ -163,6 +165,7 @@ int main(int argc, char** argv) {
   try {
     topsim::Server server(cfg);
     server.stop_on_signals();
+    server.restart_on_hangup();
     switch (cfg.kind) {
       case topsim::TransportKind::pty:
         std::printf("%s\n", server.pty_path().c_str());

@@ -38,7 +38,7 @@ TEST(Faults, ParsesEveryNameAndRejectsBadOnes) {
   EXPECT_FALSE(topsim::parse_faults("delay=x", err).has_value());
   EXPECT_FALSE(topsim::parse_faults("no-swap=1", err).has_value());
   EXPECT_FALSE(topsim::parse_faults("hang-on=GA", err).has_value());
-  EXPECT_EQ(topsim::fault_names().size(), 11u);
+  EXPECT_EQ(topsim::fault_names().size(), 16u);
 }
 
 TEST(Faults, EachFaultChangesTheFrameAsNamed) {
@@ -92,6 +92,82 @@ TEST(Faults, SeededProbabilitiesRepeat) {
   const auto ones = std::count(p.begin(), p.end(), '1');
   EXPECT_GT(ones, 16);
   EXPECT_LT(ones, 48);
+}
+
+}  // namespace
+
+namespace {
+
+top::Frame frame_of(const std::string& text) { return top::parse_exact(text).frame; }
+
+TEST(FirmwareFaults, InputClassesParseAndMatch) {
+  auto id = topsim::parse_input_class("ident:GAY");
+  auto bare = topsim::parse_input_class("GAY");
+  auto len = topsim::parse_input_class("len:6");
+  auto byte = topsim::parse_input_class("byte:FF");
+  ASSERT_TRUE(id && bare && len && byte);
+  EXPECT_EQ(id->to_string(), "ident:GAY");
+  EXPECT_EQ(bare->to_string(), "ident:GAY");
+  EXPECT_EQ(len->to_string(), "len:6");
+  EXPECT_EQ(byte->to_string(), "byte:FF");
+  const top::Frame gay = frame_of(top::with_checksum("#TPUG6wGAYEF0732"));
+  EXPECT_TRUE(id->matches(gay));
+  EXPECT_TRUE(len->matches(gay));
+  EXPECT_FALSE(byte->matches(gay));
+  EXPECT_FALSE(len->matches(frame_of(top::with_checksum("#TPUD2rAWB00"))));
+  for (const char* bad : {"", "len:", "len:x", "byte:FFF", "byte:GG", "ident:GA", "size:3", "GA"})
+    EXPECT_FALSE(topsim::parse_input_class(bad).has_value()) << bad;
+  std::string err;
+  EXPECT_FALSE(topsim::parse_faults("crash-on=len:x", err).has_value());
+  EXPECT_NE(err.find("crash-on=len:x"), std::string::npos);
+  EXPECT_FALSE(topsim::parse_faults("answer-corrupt=1", err).has_value());
+  auto c =
+      topsim::parse_faults("crash-on=byte:23,hang-on=len:4,hang-s=2,slow-on=VER,slow-ms=50", err);
+  ASSERT_TRUE(c.has_value()) << err;
+  EXPECT_TRUE(c->any());
+  EXPECT_EQ(c->hang_s, 2u);
+  EXPECT_EQ(c->slow_ms, 50u);
+  EXPECT_EQ(c->hang_on, "");
+}
+
+TEST(FirmwareFaults, CrashUntilRestartHangForSecondsSlowAndAnswerCorrupt) {
+  std::string err;
+  top::Frame gay = frame_of(top::with_checksum("#TPUG6wGAYEF0732"));
+  top::Frame awb = frame_of(top::with_checksum("#TPUD2rAWB00"));
+  {
+    FaultInjector fi(*topsim::parse_faults("crash-on=ident:GAY", err), 1);
+    EXPECT_TRUE(fi.admit(awb, 0));
+    EXPECT_FALSE(fi.admit(gay, 10));
+    EXPECT_TRUE(fi.crashed());
+    EXPECT_FALSE(fi.admit(awb, 10000000));  // still down, however long
+    fi.restart();
+    EXPECT_TRUE(fi.admit(awb, 10000001));
+  }
+  {
+    FaultInjector fi(*topsim::parse_faults("hang-on=ident:GAY,hang-s=2", err), 1);
+    EXPECT_FALSE(fi.admit(gay, 1000000));
+    EXPECT_FALSE(fi.admit(awb, 2999999));
+    EXPECT_TRUE(fi.admit(awb, 3000000));  // two seconds later it answers again
+  }
+  {
+    FaultInjector fi(*topsim::parse_faults("slow-on=ident:GAY,slow-ms=40", err), 1);
+    std::vector<topsim::Emission> out;
+    EXPECT_TRUE(fi.admit(gay, 0));
+    fi.apply("#TPGU6wGAYEF073248", false, out);
+    ASSERT_EQ(out.size(), 1u);
+    EXPECT_EQ(out[0].delay_us, 40000u);
+  }
+  {
+    top::Frame bad = frame_of("#TPUD2rAWB0000");
+    ASSERT_FALSE(bad.ok());
+    FaultInjector strict(topsim::FaultConfig{}, 1);
+    top::Frame copy = bad;
+    EXPECT_TRUE(strict.admit(copy, 0));
+    EXPECT_FALSE(copy.ok());  // the device model drops it
+    FaultInjector lax(*topsim::parse_faults("answer-corrupt", err), 1);
+    EXPECT_TRUE(lax.admit(bad, 0));
+    EXPECT_TRUE(bad.ok());  // repaired: the device answers it
+  }
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "binaries.hpp"
 #include "conf/runner.hpp"
 #include "running_server.hpp"
 #include "sim/server.hpp"
@@ -280,40 +281,6 @@ TEST(Server, ServesASerialDevice) {
 }
 
 // ---- the binaries
-
-std::string bin(const char* name) {
-  return std::string(TOPKIT_BINARY_DIR) + "/conformance/" + name;
-}
-
-// Starts topsim and returns its pid and the first line it prints.
-pid_t start_topsim(const std::vector<std::string>& args, std::string& line) {
-  int fds[2];
-  if (pipe(fds) != 0) return -1;
-  const pid_t pid = fork();
-  if (pid == 0) {
-    dup2(fds[1], 1);
-    close(fds[0]);
-    std::vector<char*> argv;
-    std::string exe = bin("topsim");
-    argv.push_back(exe.data());
-    std::vector<std::string> copy = args;
-    for (auto& a : copy) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    execv(exe.c_str(), argv.data());
-    _exit(127);
-  }
-  close(fds[1]);
-  char c;
-  line.clear();
-  while (read(fds[0], &c, 1) == 1 && c != '\n') line.push_back(c);
-  close(fds[0]);
-  return pid;
-}
-
-int run_cmd(const std::string& cmd) {
-  const int rc = std::system((cmd + " >/dev/null 2>&1").c_str());
-  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-}
 
 TEST(Binaries, TopconfAgainstTopsimOverUdpAndExitCodes) {
   std::string line;

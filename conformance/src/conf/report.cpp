@@ -6,7 +6,6 @@
 #include "top/text.hpp"
 
 namespace topconf {
-namespace {
 
 std::string xml_escape(std::string_view s) {
   std::string o;
@@ -40,6 +39,8 @@ std::string xml_escape(std::string_view s) {
   }
   return o;
 }
+
+namespace {
 
 std::string ms(std::uint64_t us) {
   char b[32];
@@ -186,9 +187,9 @@ void write_junit(std::ostream& os, const RunResult& r) {
   os << "</testsuite>\n</testsuites>\n";
 }
 
-void write_html(std::ostream& os, const RunResult& r) {
-  os << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>topconf "
-     << xml_escape(top::to_string(r.model)) << " report</title>\n<style>\n"
+void write_html_head(std::ostream& os, std::string_view title) {
+  os << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>"
+     << xml_escape(title) << "</title>\n<style>\n"
      << "body{font-family:system-ui,sans-serif;margin:2em;color:#222}"
      << "table{border-collapse:collapse;width:100%}td,th{border:1px solid #ccc;padding:4px "
         "8px;text-align:left;vertical-align:top}"
@@ -198,6 +199,10 @@ void write_html(std::ostream& os, const RunResult& r) {
      << "pre{margin:0;font-size:12px;white-space:pre-wrap}details summary{cursor:pointer}"
      << ".sum span{display:inline-block;margin-right:1em;padding:2px "
         "8px;border-radius:4px}\n</style></head><body>\n";
+}
+
+void write_html(std::ostream& os, const RunResult& r) {
+  write_html_head(os, "topconf " + std::string(top::to_string(r.model)) + " report");
   os << "<h1>topconf report: " << xml_escape(top::to_string(r.model)) << "</h1>\n";
   os << "<p>Target <b>" << xml_escape(r.target) << "</b>, matrix <code>"
      << xml_escape(r.matrix_file) << "</code>, started " << xml_escape(r.started_at) << ", "

@@ -9,7 +9,6 @@
 #include <regex>
 
 namespace topconf {
-namespace {
 
 std::string iso_now() {
   const auto now = std::chrono::system_clock::now();
@@ -24,6 +23,8 @@ std::string iso_now() {
   std::snprintf(out, sizeof out, "%s.%03dZ", buf, static_cast<int>(ms));
   return out;
 }
+
+namespace {
 
 struct Received {
   top::Frame frame;

@@ -76,6 +76,9 @@ struct RunResult {
 
 RunResult run_matrix(const Matrix& m, Transport& t, const RunOptions& opts);
 
+// The wall clock as ISO 8601 UTC with milliseconds ("2026-11-23T23:10:43.123Z").
+std::string iso_now();
+
 // Glob match for --case (* and ?).
 bool glob_match(std::string_view pattern, std::string_view text) noexcept;
 

@@ -15,15 +15,23 @@ namespace topconf {
 SimTransport::SimTransport(top::Model model, topsim::FaultConfig faults, std::uint64_t seed,
                            topsim::Link link, top::Profile profile)
     : link_(link),
-      device_(model,
-              [&] {
-                topsim::DeviceOptions o;
-                o.profile = profile;
-                o.swap_addresses = !faults.no_swap;
-                o.tmp_quirk = faults.tmp_quirk;
-                return o;
-              }()),
+      options_([&] {
+        topsim::DeviceOptions o;
+        o.profile = profile;
+        o.swap_addresses = !faults.no_swap;
+        o.tmp_quirk = faults.tmp_quirk;
+        return o;
+      }()),
+      device_(model, options_),
       faults_(faults, seed) {}
+
+bool SimTransport::restart() {
+  device_ = topsim::Device(device_.model(), options_);
+  faults_.restart();
+  queue_.clear();
+  decoder_.reset();
+  return true;
+}
 
 char SimTransport::client_address() const {
   return device_.dialect() == top::Dialect::topotek && link_ == topsim::Link::network ? 'P' : 'U';
@@ -72,7 +80,7 @@ void SimTransport::handle_items(std::vector<std::string>& replies) {
   top::StreamItem item;
   while (decoder_.next(item)) {
     if (item.kind != top::ItemKind::frame) continue;
-    if (!faults_.on_request(item.frame)) continue;
+    if (!faults_.admit(item.frame, now_)) continue;
     device_.handle(item.frame, link_, now_, replies);
   }
 }

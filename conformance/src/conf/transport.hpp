@@ -40,6 +40,9 @@ class Transport {
   virtual pcapio::Endpoint remote() const { return {}; }
   virtual bool tcp() const { return false; }
   virtual std::string describe() const = 0;
+  // Restarts the device when the transport can (the in-process topsim);
+  // false when it cannot (a real device: topconf fuzz --restart-cmd).
+  virtual bool restart() { return false; }
 };
 
 // An in-process topsim on a virtual clock: time advances only while the
@@ -56,11 +59,14 @@ class SimTransport : public Transport {
   void send(std::string_view bytes) override;
   bool receive(std::uint64_t deadline_us, std::string& out) override;
   std::string describe() const override;
+  // A power cycle: the device's state as at start, crash and hang cleared.
+  bool restart() override;
   topsim::Device& device() noexcept { return device_; }
 
  private:
   void schedule(const std::vector<std::string>& frames);
   topsim::Link link_;
+  topsim::DeviceOptions options_;
   topsim::Device device_;
   topsim::FaultInjector faults_;
   top::StreamDecoder decoder_;

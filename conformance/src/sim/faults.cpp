@@ -20,13 +20,15 @@ bool is_hex_upper(char c) noexcept { return (c >= '0' && c <= '9') || (c >= 'A' 
 
 bool FaultConfig::any() const noexcept {
   return drop > 0 || delay_ms > 0 || duplicate > 0 || bad_checksum > 0 || header_case > 0 ||
-         no_swap || lying_length > 0 || tmp_quirk || split || garbage > 0 || !hang_on.empty();
+         no_swap || lying_length > 0 || tmp_quirk || split || garbage > 0 || !hang_on.empty() ||
+         crash_on || hang_class || slow_on || answer_corrupt;
 }
 
 const std::vector<std::string_view>& fault_names() {
   static const std::vector<std::string_view> names = {
-      "drop",         "delay",     "duplicate", "bad-checksum", "header-case", "no-swap",
-      "lying-length", "tmp-quirk", "split",     "garbage",      "hang-on"};
+      "drop",         "delay",     "duplicate", "bad-checksum",  "header-case", "no-swap",
+      "lying-length", "tmp-quirk", "split",     "garbage",       "hang-on",     "crash-on",
+      "hang-s",       "slow-on",   "slow-ms",   "answer-corrupt"};
   return names;
 }
 
@@ -69,12 +71,31 @@ std::optional<FaultConfig> parse_faults(std::string_view spec, std::string& erro
       if (has_value) return bad("takes no value");
       (name == "no-swap" ? cfg.no_swap : name == "tmp-quirk" ? cfg.tmp_quirk : cfg.split) = true;
     } else if (name == "hang-on") {
-      if (value.size() != 3) return bad("hang-on needs a three-character identifier");
-      cfg.hang_on = std::string(value);
+      if (value.size() == 3) {
+        cfg.hang_on = std::string(value);
+        continue;
+      }
+      auto c = parse_input_class(value);
+      if (!c) return bad("hang-on needs a three-character identifier or ident:ID, len:N, byte:HH");
+      cfg.hang_class = *c;
+    } else if (name == "crash-on" || name == "slow-on") {
+      auto c = parse_input_class(value);
+      if (!c) return bad("needs ident:ID, len:N or byte:HH");
+      (name == "crash-on" ? cfg.crash_on : cfg.slow_on) = *c;
+    } else if (name == "hang-s" || name == "slow-ms") {
+      unsigned n = 0;
+      auto [p, ec] = std::from_chars(value.data(), value.data() + value.size(), n);
+      if (!has_value || ec != std::errc{} || p != value.data() + value.size() || n > 600000)
+        return bad("needs a whole number, 0-600000");
+      (name == "hang-s" ? cfg.hang_s : cfg.slow_ms) = n;
+    } else if (name == "answer-corrupt") {
+      if (has_value) return bad("takes no value");
+      cfg.answer_corrupt = true;
     } else {
       return bad(
           "unknown fault (known: drop delay duplicate bad-checksum "
-          "header-case no-swap lying-length tmp-quirk split garbage hang-on)");
+          "header-case no-swap lying-length tmp-quirk split garbage hang-on crash-on hang-s "
+          "slow-on slow-ms answer-corrupt)");
     }
   }
   return cfg;
@@ -99,7 +120,7 @@ bool FaultInjector::on_request(const top::Frame& request) {
 }
 
 void FaultInjector::apply(const std::string& frame, bool stream_link, std::vector<Emission>& out) {
-  if (hung_ || chance(cfg_.drop)) return;
+  if (hung() || chance(cfg_.drop)) return;
   std::string f = frame;
   const bool plain = f.size() >= top::prefix_size + 2 && f[0] == '#' &&
                      (f[1] == 't' || f[1] == 'T') && (f[2] == 'p' || f[2] == 'P');
@@ -128,7 +149,8 @@ void FaultInjector::apply(const std::string& frame, bool stream_link, std::vecto
     c = c == '0' ? '1' : '0';
   }
   if (chance(cfg_.garbage)) f.insert(0, "\x01\xFFzz%");
-  const std::uint64_t delay = std::uint64_t{cfg_.delay_ms} * 1000;
+  std::uint64_t delay = std::uint64_t{cfg_.delay_ms} * 1000;
+  if (slow_until_ > now_us_) delay += slow_until_ - now_us_;
   const int copies = chance(cfg_.duplicate) ? 2 : 1;
   for (int i = 0; i < copies; ++i) {
     const std::uint64_t d = delay + static_cast<std::uint64_t>(i) * 1000;

@@ -2,7 +2,13 @@
 // the frames the device model produces. Pure; no I/O.
 //
 //   drop=P  delay=MS  duplicate=P  bad-checksum=P  header-case=P  no-swap
-//   lying-length=P  tmp-quirk  split  garbage=P  hang-on=IDENT
+//   lying-length=P  tmp-quirk  split  garbage=P  hang-on=IDENT|CLASS
+//
+// Firmware faults (sim/firmware_faults.cpp; what `topconf fuzz` hunts):
+//   crash-on=CLASS  hang-on=CLASS hang-s=S  slow-on=CLASS slow-ms=MS
+//   answer-corrupt
+// where CLASS is ident:GAY, len:N (data length) or byte:HH (a byte value
+// anywhere in the frame).
 #pragma once
 
 #include <cstdint>
@@ -15,6 +21,21 @@
 #include "top/frame.hpp"
 
 namespace topsim {
+
+// A class of request a firmware fault fires on.
+struct InputClass {
+  enum class Kind : std::uint8_t { none, ident, length, byte };
+  Kind kind = Kind::none;
+  std::string ident;         // ident: the three characters
+  std::uint32_t length = 0;  // length: the frame's data length
+  std::uint8_t byte = 0;     // byte: a byte value anywhere in the frame
+  bool matches(const top::Frame& f) const noexcept;
+  explicit operator bool() const noexcept { return kind != Kind::none; }
+  std::string to_string() const;  // "ident:GAY", "len:20", "byte:FF"
+};
+// Parses "ident:GAY", "len:20" (decimal), "byte:FF" (hex) or a bare
+// three-character identifier; nullopt for anything else.
+std::optional<InputClass> parse_input_class(std::string_view s);
 
 struct FaultConfig {
   double drop = 0;             // probability a frame is not sent
@@ -30,6 +51,13 @@ struct FaultConfig {
   bool split = false;          // frames cut in two writes (streams only)
   double garbage = 0;          // probability junk bytes precede a frame
   std::string hang_on;         // after this identifier, the device goes silent
+  // Firmware faults (docs/TOPCONF-FUZZ.md).
+  InputClass crash_on;           // silent until restarted (SIGHUP, restart())
+  InputClass hang_class;         // hang-on=CLASS: silent for hang_s seconds
+  std::uint32_t hang_s = 0;      // 0: the hang lasts until a restart
+  InputClass slow_on;            // answers (and all after) wait slow_ms
+  std::uint32_t slow_ms = 1000;  //
+  bool answer_corrupt = false;   // a frame failing its checksum is answered
 
   bool any() const noexcept;
 };
@@ -55,7 +83,14 @@ class FaultInjector {
   // Sees every request frame; returns false once the device has hung (the
   // request must then get no answer and streams stop).
   bool on_request(const top::Frame& request);
-  bool hung() const noexcept { return hung_; }
+  // The firmware faults as well (sim/firmware_faults.cpp), at `now_us` on
+  // the device's clock: false when the request gets no answer (hung,
+  // crashed); answer-corrupt repairs `request` so the device answers it.
+  bool admit(top::Frame& request, std::uint64_t now_us);
+  // What a restart does: the device answers again (crash and hang cleared).
+  void restart() noexcept;
+  bool hung() const noexcept { return hung_ || crashed_ || now_us_ < hang_until_; }
+  bool crashed() const noexcept { return crashed_; }
   // Turns one frame of the device into the writes that go on the link.
   // `stream_link`: a TCP connection or serial line (split applies).
   void apply(const std::string& frame, bool stream_link, std::vector<Emission>& out);
@@ -65,6 +100,10 @@ class FaultInjector {
   FaultConfig cfg_;
   std::mt19937_64 rng_;
   bool hung_ = false;
+  bool crashed_ = false;
+  std::uint64_t now_us_ = 0;
+  std::uint64_t hang_until_ = 0;
+  std::uint64_t slow_until_ = 0;
 };
 
 }  // namespace topsim

@@ -110,15 +110,28 @@ struct Server::Impl {
   bool have_stream_peer = false;
 
   explicit Impl(ServerConfig c)
-      : cfg(std::move(c)),
-        device(cfg.model,
-               [&] {
-                 DeviceOptions o = cfg.device_options;
-                 o.swap_addresses = !cfg.faults.no_swap;
-                 o.tmp_quirk = o.tmp_quirk || cfg.faults.tmp_quirk;
-                 return o;
-               }()),
-        faults(cfg.faults, cfg.seed) {}
+      : cfg(std::move(c)), device(cfg.model, device_options()), faults(cfg.faults, cfg.seed) {}
+
+  DeviceOptions device_options() const {
+    DeviceOptions o = cfg.device_options;
+    o.swap_addresses = !cfg.faults.no_swap;
+    o.tmp_quirk = o.tmp_quirk || cfg.faults.tmp_quirk;
+    return o;
+  }
+
+  // A power cycle: the device's state as at start, crash and hang cleared.
+  void restart() {
+    device = Device(cfg.model, device_options());
+    faults.restart();
+    stream_timer.cancel();
+  }
+  void wait_hangup(std::shared_ptr<asio::signal_set> sig) {
+    sig->async_wait([this, sig](std::error_code ec, int) {
+      if (ec) return;
+      restart();
+      wait_hangup(sig);
+    });
+  }
 
   std::uint64_t now_us() const {
     return static_cast<std::uint64_t>(
@@ -169,7 +182,7 @@ struct Server::Impl {
     while (dec.next(item)) {
       if (item.kind != top::ItemKind::frame) continue;
       stats.frames_in.fetch_add(1, std::memory_order_relaxed);
-      if (!faults.on_request(item.frame)) continue;
+      if (!faults.admit(item.frame, now)) continue;
       device.handle(item.frame, link, now, out);
     }
     if (datagram)
@@ -195,7 +208,7 @@ struct Server::Impl {
       while (dec.next(item)) {
         if (item.kind != top::ItemKind::frame) continue;
         stats.frames_in.fetch_add(1, std::memory_order_relaxed);
-        if (!faults.on_request(item.frame)) continue;
+        if (!faults.admit(item.frame, now_us())) continue;
         device.handle(item.frame, link, now_us(), out);
       }
       dec.reset();
@@ -416,6 +429,14 @@ void Server::stop_on_signals() {
     if (!ec) impl_->io.stop();
   });
 }
+void Server::restart_on_hangup() {
+  impl_->wait_hangup(std::make_shared<asio::signal_set>(impl_->io, SIGHUP));
+}
+
+void Server::restart() {
+  asio::post(impl_->io, [this] { impl_->restart(); });
+}
+
 std::string Server::pty_path() const { return impl_->pty_path; }
 const ServerStats& Server::stats() const noexcept { return impl_->stats; }
 

@@ -59,6 +59,12 @@ class Server {
   std::vector<std::uint16_t> udp_ports() const;  // every bound UDP port
   // Stops run() on SIGINT/SIGTERM (asio::signal_set; for the CLI).
   void stop_on_signals();
+  // Restarts the device on SIGHUP, as restart() does (for `topconf fuzz
+  // --restart-cmd 'kill -HUP PID'`; the CLI).
+  void restart_on_hangup();
+  // A power cycle of the device (callable from any thread): its state as at
+  // start, firmware faults (crash-on, hang-on) cleared; sockets stay open.
+  void restart();
   std::string pty_path() const;  // slave path for --pty
   // Serves until stop() (callable from any thread).
   void run();

@@ -1,0 +1,576 @@
+#include "conf/fuzz.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <deque>
+#include <thread>
+
+#include "conf/runner.hpp"
+#include "top/device.hpp"
+
+namespace topconf {
+namespace {
+
+using WallClock = std::chrono::steady_clock;
+
+struct Rx {
+  top::Frame frame;
+  std::uint64_t t_us = 0;
+  bool after_garbage = false;
+};
+
+// The fuzzer's side of the link: bytes to frames, and the pcap.
+class Link {
+ public:
+  Link(Transport& t, pcapio::Recorder* pcap) : t_(t), pcap_(pcap) {}
+  std::uint64_t now() { return t_.now_us(); }
+  void send(std::string_view bytes) {
+    if (pcap_) pcap_->write(t_.local(), t_.remote(), bytes);
+    t_.send(bytes);
+  }
+  bool next(std::uint64_t deadline, Rx& out) {
+    for (;;) {
+      if (!q_.empty()) {
+        out = std::move(q_.front());
+        q_.pop_front();
+        return true;
+      }
+      std::string chunk;
+      if (!t_.receive(deadline, chunk)) {
+        if (!t_.datagram() && dec_.buffered() > 0) {
+          dec_.settle();
+          collect();
+          if (!q_.empty()) continue;
+        }
+        return false;
+      }
+      if (pcap_) pcap_->write(t_.remote(), t_.local(), chunk);
+      dec_.feed(chunk);
+      if (t_.datagram())
+        dec_.finish();
+      else
+        dec_.flush();
+      collect();
+      if (t_.datagram()) dec_.reset();
+    }
+  }
+  void clear() { q_.clear(); }
+
+ private:
+  void collect() {
+    top::StreamItem item;
+    const std::uint64_t at = now();
+    while (dec_.next(item)) {
+      if (item.kind == top::ItemKind::garbage) {
+        garbage_ = true;
+        continue;
+      }
+      if (q_.size() >= 4096) q_.pop_front();
+      q_.push_back(Rx{std::move(item.frame), at, garbage_});
+      garbage_ = false;
+    }
+  }
+  Transport& t_;
+  pcapio::Recorder* pcap_;
+  top::StreamDecoder dec_;
+  std::deque<Rx> q_;
+  bool garbage_ = false;
+};
+
+struct Probe {
+  std::string bytes;
+  std::string ident;
+};
+
+bool is_push(top::Dialect d, std::string_view ident) {
+  const top::StreamSpec* s = top::stream_of(d, ident);
+  return s && s->sender == top::Sender::device;
+}
+
+struct Session {
+  const Matrix& m;
+  Transport& t;
+  const FuzzOptions& o;
+  const CaseSource& src;
+  Link link;
+  Probe probe, alt;  // the liveness probe, and a second sync frame
+  std::uint64_t probes = 0;
+  std::uint64_t t0 = 0;
+
+  std::uint64_t probe_timeout_us() const { return std::uint64_t{m.probe_timeout_ms} * 1000; }
+
+  // One probe (up to `tries` times): any answer with its identifier, or
+  // ERE, is life. Pushes do not count: a hung device may still stream.
+  bool alive(int tries) {
+    for (int i = 0; i < tries; ++i) {
+      ++probes;
+      link.send(probe.bytes);
+      const std::uint64_t deadline = link.now() + probe_timeout_us();
+      Rx r;
+      while (link.next(deadline, r)) {
+        const std::string_view id = r.frame.ident_view();
+        if (id == probe.ident || id == "ERE") return true;
+      }
+    }
+    return false;
+  }
+
+  // Restart (when possible) and wait until the probe is answered again.
+  bool revive(bool& restarted) {
+    restarted = false;
+    if (o.restart) restarted = o.restart();
+    link.clear();
+    const std::uint64_t deadline = link.now() + std::uint64_t{o.recover_ms} * 1000;
+    do {
+      if (alive(1)) return true;
+    } while (link.now() < deadline);
+    return false;
+  }
+
+  std::string check_reply(const FuzzCase& c, const Rx& r) const {
+    const top::Frame& f = r.frame;
+    if (r.after_garbage) return "bytes that belong to no frame came before " + top::escape(f.raw);
+    if (!f.ok()) {
+      for (const auto& fd : f.findings)
+        if (fd.severity == top::Severity::error)
+          return "malformed reply " + top::escape(f.raw) + ": " +
+                 std::string(top::to_string(fd.code)) + ": " + fd.message;
+    }
+    const char client = t.client_address();
+    const bool push = is_push(m.dialect, f.ident_view());
+    // To the client, or to whoever the request came from (the reply swaps
+    // the request's addresses, SkyDroid 2.3.1).
+    bool addressed = f.dst == client && f.src != client;
+    for (std::size_t i = 0; !addressed && i + 1 < c.addresses.size(); i += 2)
+      addressed = f.src == c.addresses[i + 1] && f.dst == c.addresses[i];
+    if (!addressed && f.src == client) {
+      const top::DeviceForm* rf =
+          top::recorded_form(m.dialect, m.model, f, push ? top::Sent::push : top::Sent::reply);
+      addressed = rf && rf->order == top::Order::request_order;
+    }
+    if (!addressed)
+      return "reply " + top::escape(f.raw) + " is addressed " + std::string(1, f.src) + " -> " +
+             std::string(1, f.dst) + ", not to the client " + std::string(1, client);
+    // An echo carries what the case sent: its values are the client's.
+    const bool echo = f.ident_view() == c.ident && f.data_length > 0 &&
+                      c.bytes.find(f.data()) != std::string::npos;
+    if (echo || f.ident_view() == "ERE") return {};
+    top::DecodeOptions dopt;
+    dopt.dialect = m.dialect;
+    dopt.model = m.model;
+    dopt.role = top::Role::response;
+    const top::Decoded dec = top::decode(f, dopt);
+    if (!dec.command) return {};
+    for (const auto& fd : dec.findings)
+      if (fd.code == top::FindingCode::value_out_of_range ||
+          fd.code == top::FindingCode::bad_field || fd.code == top::FindingCode::data_length)
+        return "reply " + top::escape(f.raw) + ": " + std::string(top::to_string(fd.code)) + ": " +
+               fd.message;
+    return {};
+  }
+
+  // Sends one case and classifies what comes back. False when the device
+  // did not answer the sync probe after it (the caller checks liveness).
+  bool run_one(const FuzzCase& c, FuzzCaseResult& r) {
+    const bool sky = m.dialect == top::Dialect::skydroid;
+    const std::uint64_t sent_at = link.now();
+    r.start_us = sent_at - t0;
+    link.send(c.bytes);
+    std::vector<Rx> got;
+    Rx rx;
+    auto own = [&](const top::Frame& f) {
+      return (!c.ident.empty() && f.ident_view() == c.ident) || f.ident_view() == "ERE";
+    };
+    auto keep = [&](Rx&& x) {
+      if (is_push(m.dialect, x.frame.ident_view()) && x.frame.ident_view() != c.ident) return;
+      got.push_back(std::move(x));
+    };
+    if (!t.datagram() && c.open_end) {
+      // The device holds the cut frame until its line is quiet (20 ms).
+      const std::uint64_t quiet = link.now() + 30000;
+      while (link.next(quiet, rx)) keep(std::move(rx));
+    }
+    bool found = false;
+    std::uint64_t answered_at = 0;
+    if (c.promise == Promise::answer || (c.promise == Promise::error && sky)) {
+      const std::uint64_t deadline = sent_at + std::uint64_t{o.timeout_ms} * 1000;
+      while (!found && link.next(deadline, rx)) {
+        const bool mine = own(rx.frame);
+        if (mine && !answered_at) answered_at = rx.t_us;
+        keep(std::move(rx));
+        found = mine;
+      }
+    }
+    bool synced = true;
+    if (!found) {
+      // Sync: a probe the case does not contain; everything before its
+      // answer belongs to the case.
+      const Probe& p = c.bytes.find(probe.ident) == std::string::npos ? probe : alt;
+      ++probes;
+      link.send(p.bytes);
+      synced = false;
+      // Long enough to tell a slow answer from none.
+      const std::uint64_t deadline =
+          link.now() + std::max(probe_timeout_us(), std::uint64_t{o.slow_ms} * 1000 + 100000);
+      while (link.next(deadline, rx)) {
+        if (rx.frame.ident_view() == p.ident && rx.frame.ok() && rx.frame.control == 'r') {
+          synced = true;
+          if (!answered_at) answered_at = rx.t_us;
+          break;
+        }
+        if (own(rx.frame) && !answered_at) answered_at = rx.t_us;
+        keep(std::move(rx));
+      }
+    }
+    r.latency_us = answered_at ? answered_at - sent_at : 0;
+    for (const Rx& x : got) r.answers.push_back(x.frame.raw);
+    if (!synced) return false;
+
+    // Classify: the first class found wins, in the order of the enum.
+    const bool promised = c.level != Level::may;
+    bool answered_ident = false, answered_ere = false;
+    for (const Rx& x : got) {
+      answered_ident |= !c.ident.empty() && x.frame.ident_view() == c.ident;
+      answered_ere |= x.frame.ident_view() == "ERE";
+    }
+    if (c.promise == Promise::silence && promised && (answered_ident || answered_ere)) {
+      r.failure = FailureClass::accepted_corrupt;
+      r.reason = "answered a frame with a bad checksum: " + top::escape(got.front().frame.raw);
+      return true;
+    }
+    if (promised && c.promise == Promise::answer && !answered_ident) {
+      r.failure = FailureClass::wrong_answer;
+      r.reason = answered_ere ? "ERE where the document promises an answer (" +
+                                    std::string(to_string(c.level)) + ")"
+                              : "no answer where the document promises one (" +
+                                    std::string(to_string(c.level)) + ")";
+      return true;
+    }
+    if (promised && c.promise == Promise::error && answered_ident) {
+      r.failure = FailureClass::wrong_answer;
+      r.reason =
+          "an answer where the document promises ERE (" + std::string(to_string(c.level)) + ")";
+      return true;
+    }
+    for (const Rx& x : got) {
+      std::string why = check_reply(c, x);
+      if (!why.empty()) {
+        r.failure = FailureClass::bad_reply;
+        r.reason = std::move(why);
+        return true;
+      }
+    }
+    if (r.latency_us > std::uint64_t{o.slow_ms} * 1000) {
+      r.failure = FailureClass::slow;
+      r.reason = "the first answer after the case took " + std::to_string(r.latency_us / 1000) +
+                 " ms (--slow-ms " + std::to_string(o.slow_ms) + ")";
+    }
+    return true;
+  }
+
+  // Runs a case and the liveness check; sets a stopped failure.
+  void run_checked(const FuzzCase& c, FuzzCaseResult& r, bool probe_now, bool& dead) {
+    dead = false;
+    bool ok = false;
+    try {
+      ok = run_one(c, r);
+      if (ok && probe_now) ok = alive(1) || alive(2);
+    } catch (const TransportError& e) {
+      r.reason = e.what();
+    }
+    if (ok) return;
+    const std::uint64_t lost = link.now();
+    bool back = false;
+    try {
+      back = alive(3);
+    } catch (const TransportError&) {
+    }
+    r.failure = FailureClass::stopped;
+    const std::string why = r.reason.empty() ? "" : " (" + r.reason + ")";
+    if (back) {
+      r.reason = "no answer for " +
+                 std::to_string((link.now() - lost) / 1000 + m.probe_timeout_ms) +
+                 " ms after the case, then it answered again" + why;
+    } else {
+      dead = true;
+      r.reason = "the device stopped answering after this case (the sync probe and 3 more of " +
+                 std::to_string(m.probe_timeout_ms) + " ms unanswered)" + why;
+    }
+  }
+
+  // Replays `cases` (after a restart when there is one): does the last one
+  // fail with `cls` again?
+  bool reproduces(const std::vector<FuzzCase>& cases, FailureClass cls) {
+    bool restarted = false;
+    if (o.restart || cls == FailureClass::stopped) {
+      if (!revive(restarted)) return false;
+    }
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      FuzzCaseResult r;
+      r.spec = cases[i];
+      bool dead = false;
+      run_checked(cases[i], r, true, dead);
+      if (i + 1 == cases.size()) return r.failure == cls;
+      if (dead) return false;
+    }
+    return false;
+  }
+
+  void minimise(FuzzFailure& f, const std::vector<FuzzCase>& window) {
+    if (!o.restart && f.cls == FailureClass::stopped) {
+      f.how = MinimiseHow::skipped;
+      f.note = "not minimised: no --restart-cmd to bring the device back between replays";
+      return;
+    }
+    if (reproduces({f.spec}, f.cls)) {
+      f.how = MinimiseHow::alone;
+      f.cases = {f.index};
+      // One frame of the case that alone fails the same way.
+      top::StreamDecoder dec;
+      dec.feed(f.spec.bytes);
+      dec.finish();
+      std::vector<std::string> frames;
+      top::StreamItem item;
+      while (dec.next(item))
+        if (item.kind == top::ItemKind::frame) frames.push_back(item.frame.raw);
+      if (frames.size() == 1 && frames[0] == f.spec.bytes) {
+        f.frame = frames[0];
+        f.note = "reproduces alone after a restart; the case is one frame";
+        return;
+      }
+      for (const std::string& fr : frames) {
+        FuzzCase one = f.spec;
+        one.bytes = fr;
+        src.judge(one);
+        if (f.spec.mutated && one.promise != Promise::silence) one.promise = Promise::none;
+        if (reproduces({one}, f.cls)) {
+          f.frame = fr;
+          f.note = "reproduces alone after a restart; shrunk to one frame of the case";
+          return;
+        }
+      }
+      f.note = "reproduces alone after a restart; no single frame of it does";
+      return;
+    }
+    std::vector<FuzzCase> w = window;
+    w.push_back(f.spec);
+    if (w.size() > 1 && reproduces(w, f.cls)) {
+      // Drop every earlier case the failure does not need.
+      for (std::size_t i = 0; i + 1 < w.size();) {
+        std::vector<FuzzCase> less = w;
+        less.erase(less.begin() + static_cast<std::ptrdiff_t>(i));
+        if (reproduces(less, f.cls))
+          w = std::move(less);
+        else
+          ++i;
+      }
+      f.how = MinimiseHow::window;
+      f.cases.clear();
+      for (const auto& c : w) f.cases.push_back(c.index);
+      f.note = "does not fail alone; fails after " + std::to_string(w.size() - 1) +
+               " earlier case(s) of the window";
+      return;
+    }
+    f.how = MinimiseHow::not_reproduced;
+    f.note = "did not fail again, alone or after the " + std::to_string(window.size()) +
+             " case(s) before it";
+  }
+};
+
+}  // namespace
+
+std::string_view to_string(FailureClass c) noexcept {
+  switch (c) {
+    case FailureClass::stopped:
+      return "stopped-answering";
+    case FailureClass::accepted_corrupt:
+      return "answered-corrupt-frame";
+    case FailureClass::bad_reply:
+      return "bad-reply";
+    case FailureClass::slow:
+      return "slow-answer";
+    case FailureClass::wrong_answer:
+      return "wrong-answer";
+  }
+  return "?";
+}
+
+std::string_view describe(FailureClass c) noexcept {
+  switch (c) {
+    case FailureClass::stopped:
+      return "the device stopped answering the liveness probe";
+    case FailureClass::accepted_corrupt:
+      return "the device answered a frame whose checksum is wrong";
+    case FailureClass::bad_reply:
+      return "a malformed, wrongly addressed or out-of-range reply";
+    case FailureClass::slow:
+      return "an answer later than --slow-ms after a case";
+    case FailureClass::wrong_answer:
+      return "ERE or silence where the document promises an answer, or an answer where it "
+             "promises ERE (must and should levels)";
+  }
+  return "?";
+}
+
+std::string_view to_string(MinimiseHow h) noexcept {
+  switch (h) {
+    case MinimiseHow::alone:
+      return "alone";
+    case MinimiseHow::window:
+      return "window";
+    case MinimiseHow::not_reproduced:
+      return "not-reproduced";
+    case MinimiseHow::skipped:
+      return "skipped";
+  }
+  return "?";
+}
+
+int FuzzResult::exit_code() const noexcept {
+  if (unusable) return 2;
+  return failures.empty() && !aborted ? 0 : 1;
+}
+
+FuzzResult run_fuzz(const Matrix& m, Transport& t, const FuzzOptions& o) {
+  FuzzResult res;
+  res.target = t.describe();
+  res.model = m.model;
+  res.seed = o.seed;
+  res.started_at = iso_now();
+  const auto wall0 = WallClock::now();
+  auto finish = [&] {
+    res.seconds = std::chrono::duration<double>(WallClock::now() - wall0).count();
+  };
+  const CaseSource src(m.model, t.client_address(), o.seed, &m);
+  res.catalog_cases = src.catalog_cases();
+  Session s{m, t, o, src, Link(t, o.pcap), {}, {}, 0, t.now_us()};
+
+  // The probe, and a second sync frame for cases that contain the probe's
+  // identifier: the first must-level read of the matrix with another one.
+  const bool sky = m.dialect == top::Dialect::skydroid;
+  const SendSpec fallback = [&] {
+    SendSpec p;
+    p.command = sky ? "AWB" : "VER";
+    p.control = 'r';
+    p.data = "00";
+    if (!sky) p.dst = 'G';
+    return p;
+  }();
+  std::string err;
+  resolve_send(m.probe ? *m.probe : fallback, m.dialect, t.client_address(), s.probe.bytes, err);
+  s.probe.ident = s.probe.bytes.size() >= top::prefix_size ? s.probe.bytes.substr(7, 3) : "";
+  s.alt = s.probe;
+  for (const Case& k : m.cases) {
+    if (k.level != Level::must || !k.applies_to(m.model) || k.steps.size() != 1 ||
+        !k.steps[0].send || k.steps[0].send->raw || k.steps[0].send->control != 'r' ||
+        k.steps[0].send->command == s.probe.ident ||
+        std::find(k.tags.begin(), k.tags.end(), "read") == k.tags.end())
+      continue;
+    std::string b;
+    if (resolve_send(*k.steps[0].send, m.dialect, t.client_address(), b, err) &&
+        b.size() > top::prefix_size) {
+      s.alt = Probe{b, b.substr(7, 3)};
+      break;
+    }
+  }
+
+  try {
+    if (!s.alive(3)) {
+      res.unusable = true;
+      res.unusable_reason = t.describe() + ": no answer to the liveness probe " +
+                            top::escape(s.probe.bytes) + " (3 tries, " +
+                            std::to_string(m.probe_timeout_ms) + " ms each)";
+    }
+  } catch (const TransportError& e) {
+    res.unusable = true;
+    res.unusable_reason = e.what();
+  }
+  if (res.unusable) {
+    finish();
+    return res;
+  }
+
+  std::deque<FuzzCase> recent;
+  std::uint64_t n = 0, index = o.start;
+  std::size_t next_only = 0;
+  auto last_progress = wall0;
+  res.next_index = o.start;
+  for (;;) {
+    if (!o.only.empty()) {
+      if (next_only >= o.only.size()) break;
+      index = o.only[next_only++];
+    } else if (o.end && index >= *o.end) {
+      break;
+    }
+    const auto now = WallClock::now();
+    if (o.duration_s > 0 && std::chrono::duration<double>(now - wall0).count() >= o.duration_s)
+      break;
+    if (o.rate > 0) {
+      const auto due = wall0 + std::chrono::duration_cast<WallClock::duration>(
+                                   std::chrono::duration<double>(static_cast<double>(n) / o.rate));
+      if (due > now) std::this_thread::sleep_until(due);
+    }
+    FuzzCaseResult r;
+    r.spec = src.at(index);
+    bool dead = false;
+    const bool probe_now = o.probe_every <= 1 || (n + 1) % o.probe_every == 0;
+    s.run_checked(r.spec, r, probe_now, dead);
+    ++n;
+    res.cases_run = n;
+    res.next_index = index + 1;
+    if (o.on_case) o.on_case(r);
+    if (r.failure) {
+      FuzzFailure f;
+      f.index = index;
+      f.cls = *r.failure;
+      f.reason = r.reason;
+      f.spec = r.spec;
+      for (const auto& c : recent) f.before.push_back(c.index);
+      bool alive_again = !dead;
+      if (dead) alive_again = s.revive(f.restarted);
+      if (alive_again && o.minimise) {
+        s.minimise(f, std::vector<FuzzCase>(recent.begin(), recent.end()));
+        bool restarted = false;
+        // Leave the device answering for the cases that follow.
+        if (!s.alive(1)) alive_again = s.revive(restarted);
+      } else if (!alive_again) {
+        f.how = MinimiseHow::skipped;
+        f.note = o.restart ? "not minimised: the device did not answer again after the restart"
+                           : "not minimised: no --restart-cmd, and the device did not answer "
+                             "again";
+      }
+      if (o.on_failure) o.on_failure(f);
+      res.failures.push_back(std::move(f));
+      if (!alive_again) {
+        res.aborted = true;
+        res.aborted_reason = "the device stopped answering at case " + std::to_string(index) +
+                             " and did not answer again within " + std::to_string(o.recover_ms) +
+                             " ms";
+        break;
+      }
+      recent.clear();
+      if (o.max_failures && res.failures.size() >= o.max_failures) {
+        if (o.only.empty()) ++index;
+        break;
+      }
+    } else {
+      recent.push_back(r.spec);
+      if (recent.size() > o.window) recent.pop_front();
+    }
+    if (o.only.empty()) ++index;
+    if (o.on_progress && WallClock::now() - last_progress >= std::chrono::seconds(1)) {
+      last_progress = WallClock::now();
+      o.on_progress(n,
+                    std::chrono::duration<double>(last_progress - wall0).count() > 0
+                        ? static_cast<double>(n) /
+                              std::chrono::duration<double>(last_progress - wall0).count()
+                        : 0,
+                    res.failures.size());
+    }
+  }
+  res.probes = s.probes;
+  finish();
+  return res;
+}
+
+}  // namespace topconf
