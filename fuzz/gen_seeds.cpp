@@ -125,10 +125,11 @@ int main(int argc, char** argv) {
   bool ok = true;
   for (const char* t : {"frame", "roundtrip", "differential"})
     for (const std::string& f : frames) ok &= write(out / t, f);
-  // Streams: groups of four frames, joined three ways, behind chunk sizes.
+  // Streams: groups of four frames, joined three ways, behind chunk sizes
+  // (byte 0 bit 3: flush() after every chunk, the third way).
   static const std::string kJoin[] = {"", "\r\n", "zz#"};
   static const std::string kPrefix[] = {std::string("\x02\x01\x07\x0D", 4),
-                                        std::string("\x00\x01", 2), std::string("\x01\x20\x03", 3)};
+                                        std::string("\x00\x01", 2), std::string("\x09\x20\x03", 3)};
   for (std::size_t i = 0; i < frames.size(); i += 4) {
     const std::size_t v = (i / 4) % 3;
     std::string s = kPrefix[v];

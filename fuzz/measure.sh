@@ -35,7 +35,9 @@ if [ $# -gt 0 ]; then
 else
   mapfile -t targets < <(find "${bins[0]}" -maxdepth 1 -type f -name 'fuzz_*' -perm -u+x -printf '%f\n' | sort)
 fi
-work=$(mktemp -d)
+# On tmpfs when there is one, as fuzz/run-ci.sh: creating a file for each
+# new input on the VM's ext4 /tmp is a measurable part of a run.
+work=$(mktemp -d -p /dev/shm topkit-measure.XXXXXX 2>/dev/null || mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 # uses_mutator BIN TARGET: true when the target defines LLVMFuzzerCustomMutator.
