@@ -40,20 +40,31 @@ std::size_t count(const std::string& hay, const std::string& needle) {
 
 // --- 1. pipes ---------------------------------------------------------------
 
+// `out` with every `name` written as "@" (messages name the input).
+std::string unnamed(std::string out, const std::string& name) {
+  for (auto at = out.find(name); at != std::string::npos; at = out.find(name, at + 1))
+    out.replace(at, name.size(), "@");
+  return out;
+}
+
 TEST(Input, StdinPipesAndFifosReadLikeFiles) {
   std::string file, piped;
   for (const char* c : {"sample.pcap", "multi-if.pcapng", "serial-lines.log", "serial-socat-xv.log",
                         "serial-saleae.csv"}) {
     const int rc = run(bin() + " read " + cap(c) + " 2>/dev/null", file);
+    file = unnamed(file, captures_dir() + "/" + c);
     EXPECT_FALSE(file.empty()) << c;
     EXPECT_EQ(run("cat " + cap(c) + " | " + bin() + " read - 2>/dev/null", piped), rc) << c;
-    EXPECT_EQ(piped, file) << c << " through read -";
+    EXPECT_EQ(unnamed(piped, "stdin"), file) << c << " through read -";
     EXPECT_EQ(run("cat " + cap(c) + " | " + bin() + " read /dev/stdin 2>/dev/null", piped), rc)
         << c;
-    EXPECT_EQ(piped, file) << c << " through /dev/stdin";
-    EXPECT_EQ(run("bash -c \"" + bin() + " read <(cat " + cap(c) + ") 2>/dev/null\"", piped), rc)
+    EXPECT_EQ(unnamed(piped, "/dev/stdin"), file) << c << " through /dev/stdin";
+    EXPECT_EQ(
+        run("bash -c \"exec 7< <(cat " + cap(c) + "); " + bin() + " read /dev/fd/7 2>/dev/null\"",
+            piped),
+        rc)
         << c;
-    EXPECT_EQ(piped, file) << c << " through a process substitution";
+    EXPECT_EQ(unnamed(piped, "/dev/fd/7"), file) << c << " through a process substitution";
   }
   TempDir tmp;
   const std::string fifo = tmp.file("fifo");
@@ -66,7 +77,7 @@ TEST(Input, StdinPipesAndFifosReadLikeFiles) {
   EXPECT_EQ(piped, file) << "through a FIFO";
   // a pipe that holds less than a pcap file header
   std::string err;
-  EXPECT_EQ(run("printf '\\xd4\\xc3\\xb2\\xa1' | " + bin() + " read - 2>&1", err), 2);
+  EXPECT_EQ(run("printf '\\324\\303\\262\\241' | " + bin() + " read - 2>&1", err), 2);
   EXPECT_NE(err.find("stdin: offset 0: the pcap file header is cut short (4 of 24 bytes)"),
             std::string::npos)
       << err;
@@ -85,7 +96,7 @@ TEST(Input, DamagedMagicIsADamagedCaptureNotASerialDump) {
     EXPECT_EQ(run(bin() + " read " + q(f) + " 2>&1", out), 2) << c;
     EXPECT_NE(out.find(f + ": offset 0: magic number"), std::string::npos) << out;
     EXPECT_NE(out.find("a damaged capture"), std::string::npos) << out;
-    EXPECT_EQ(out.find("serial"), std::string::npos) << out;
+    EXPECT_EQ(out.find("#1 "), std::string::npos) << out;
     // asked for, it is still read as a raw dump
     EXPECT_NE(run(bin() + " read --format raw " + q(f) + " 2>&1", out), 2) << out;
   }
@@ -337,11 +348,15 @@ TEST(Input, FileFindingsArePrintedOnceNamingTheFileOnce) {
   run(bin() + " read " + cap("truncated.pcap") + " 2>&1", out);
   EXPECT_EQ(count(out, "truncated-file"), 1u) << out;
   // stderr alone: the copy names the file once
-  run(bin() + " read " + cap("truncated.pcap") + " 2>&1 >/dev/null", out);
-  ASSERT_EQ(count(out, "truncated-file"), 1u) << out;
-  EXPECT_EQ(count(out, "truncated.pcap"), 1u) << out;
-  run(bin() + " stats " + cap("truncated.pcap") + " 2>&1 >/dev/null", out);
-  EXPECT_EQ(count(out, "truncated.pcap"), 1u) << out;
+  for (const char* cmd : {" read ", " stats "}) {
+    run(bin() + cmd + cap("truncated.pcap") + " 2>&1 >/dev/null", out);
+    ASSERT_EQ(count(out, "truncated-file"), 1u) << out;
+    const std::size_t at = out.find("truncated-file");
+    const std::size_t begin =
+        out.rfind('\n', at) == std::string::npos ? 0 : out.rfind('\n', at) + 1;
+    const std::string line = out.substr(begin, out.find('\n', at) - begin);
+    EXPECT_EQ(count(line, "truncated.pcap"), 1u) << line;
+  }
 }
 
 // --- 17. messages -------------------------------------------------------------
