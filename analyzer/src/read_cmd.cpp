@@ -142,6 +142,10 @@ bool setup(const Common& o, Setup& s, std::string& err) {
 // the message without its own "FILE: ".
 void source_note_to_stderr(const std::string& file, const NoteEvent& e) {
   std::string line = note_line(e);
+  if (file.empty()) {  // two inputs: the message names its own
+    std::fprintf(stderr, "topdump: %s\n", line.c_str());
+    return;
+  }
   const std::string named = ": " + file + ": ";
   if (auto at = line.find(named); at != std::string::npos) line.erase(at + 2, file.size() + 2);
   std::fprintf(stderr, "topdump: %s: %s\n", file.c_str(), line.c_str());
@@ -226,7 +230,7 @@ int run_read(const ReadOptions& o) {
     return 2;
   }
   const std::string name = o.files.size() == 1 && o.files[0] == "-" ? "stdin" : o.files[0];
-  Tee tee(*sink, name);
+  Tee tee(*sink, o.files.size() == 1 ? name : std::string());
   s.aopts.stats = false;
   Analyzer a(s.aopts, tee);
   a.set_filter(s.filter);
@@ -247,7 +251,9 @@ int run_read(const ReadOptions& o) {
   }
   a.finish();
   if (a.frames_seen() == 0)
-    a.source_note(kNoTime, ACode::no_frames, name + ": no TOP frame found", 0, 0);
+    a.source_note(kNoTime, ACode::no_frames,
+                  (o.files.size() == 1 ? name : name + ", " + o.files[1]) + ": no TOP frame found",
+                  0, 0);
   out.flush();
   return status_of(a);
 }

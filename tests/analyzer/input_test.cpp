@@ -173,6 +173,16 @@ TEST(Input, TwoTimedLogsMergeIntoOneConversation) {
   EXPECT_DOUBLE_EQ(frames[1]["latency_ms"].get<double>(), 12.0);
   EXPECT_EQ(frames[3]["reply_to"], 3);
   for (const auto& f : frames) EXPECT_EQ(f["conversation"], frames[0]["conversation"]);
+  // a bad line of the second log: named once, by its own file
+  write_file(tmp.file("bad.log"), "2024-05-01T12:00:00.012Z RX " +
+                                      top::with_checksum("#tpGU6wGAYEC7832") + "\nnot a line\n");
+  EXPECT_EQ(run(bin() + " read " + q(tmp.file("autopilot.log")) + " " + q(tmp.file("bad.log")) +
+                    " 2>&1 >/dev/null",
+                out),
+            1);
+  EXPECT_EQ(count(out, "bad.log"), 1u) << out;
+  EXPECT_EQ(count(out, "autopilot.log"), 0u) << out;
+  EXPECT_NE(out.find("line 2: expected"), std::string::npos) << out;
   // a raw dump has no times to merge by
   EXPECT_EQ(
       run(bin() + " read " + q(tmp.file("gimbal.log")) + " " + cap("serial-raw.bin") + " 2>&1",
