@@ -25,20 +25,28 @@ void put_ms(std::string& o, std::int64_t us) { put_double(o, static_cast<double>
 
 }  // namespace
 
+namespace {
+// The keys of an input: file, format, link (null for serial logs).
+void input_members(Doc& j, const InputInfo& i) {
+  std::string& o = j.out();
+  j.key("file");
+  put_text(o, i.file);
+  j.key("format");
+  put_str(o, to_string(i.format));
+  j.key("link");
+  if (i.link.empty())
+    app(o, "null");
+  else
+    put_str(o, i.link);
+}
+}  // namespace
+
 void write_input_json(std::string& out, const InputInfo& i) {
   Doc j(out, -1);
   j.open_object();
   j.key("type");
   put_str(out, "input");
-  j.key("file");
-  put_text(out, i.file);
-  j.key("format");
-  put_str(out, to_string(i.format));
-  j.key("link");
-  if (i.link.empty())
-    app(out, "null");
-  else
-    put_str(out, i.link);
+  input_members(j, i);
   j.close_object();
   out += '\n';
 }
@@ -72,14 +80,7 @@ void write_stats_json(std::string& out, const Stats& s, top::Severity worst, int
     j.key_array("inputs");
     for (const InputInfo& i : *inputs) {
       j.item_object();
-      j.key("file");
-      put_text(o, i.file);
-      text("format", to_string(i.format));
-      j.key("link");
-      if (i.link.empty())
-        app(o, "null");
-      else
-        put_str(o, i.link);
+      input_members(j, i);
       j.close_object();
     }
     j.close_array();

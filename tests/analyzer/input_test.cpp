@@ -191,24 +191,6 @@ TEST(Input, TwoTimedLogsMergeIntoOneConversation) {
   EXPECT_NE(out.find("serial-raw.bin: a raw input cannot be merged"), std::string::npos) << out;
 }
 
-// Reads what is available from fd for up to `ms`, until `want` appears.
-bool read_until(int fd, std::string& acc, const std::string& want, int ms) {
-  auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(ms);
-  while (acc.find(want) == std::string::npos) {
-    auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-                    end - std::chrono::steady_clock::now())
-                    .count();
-    if (left <= 0) return false;
-    pollfd p{fd, POLLIN, 0};
-    if (poll(&p, 1, static_cast<int>(left)) <= 0) continue;
-    char buf[4096];
-    ssize_t n = ::read(fd, buf, sizeof buf);
-    if (n <= 0) return acc.find(want) != std::string::npos;
-    acc.append(buf, static_cast<std::size_t>(n));
-  }
-  return true;
-}
-
 // `topdump serial` on pseudo-terminals, stdout into a pipe.
 struct SerialRun {
   struct Pty {
@@ -235,9 +217,8 @@ struct SerialRun {
     if (pid == 0) {
       dup2(fds[1], 1);
       close(fds[0]);
-      std::vector<const char*> argv = {topdump_bin().c_str(), "serial", "--json"};
-      std::string b = topdump_bin();
-      argv[0] = b.c_str();
+      const std::string b = topdump_bin();
+      std::vector<const char*> argv = {b.c_str(), "serial", "--json"};
       for (auto& p : ptys) argv.push_back(p.name);
       argv.push_back(nullptr);
       execv(b.c_str(), const_cast<char* const*>(argv.data()));
