@@ -302,24 +302,33 @@ TEST(Input, LiveCrlfWithinTheQuietTimeBelongsToItsFrame) {
     up = read_until(r.out, r.acc, "\"PTZ\"", 250);
   }
   ASSERT_TRUE(up) << r.acc;
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  read_until(r.out, r.acc, "never", 50);
   r.acc.clear();
   // an FTDI adapter hands over the CR/LF with the next 16 ms latency tick;
-  // eight times, so a periodic flush would fall in one of the gaps
+  // eight times, so a periodic flush would fall in one of the gaps. A gap
+  // this test stretched past the quiet time (a loaded machine) may give
+  // garbage: such gaps are counted, not judged.
+  int late = 0;
   for (int i = 0; i < 8; ++i) {
     r.send(0, f);
+    const auto sent = std::chrono::steady_clock::now();
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
     r.send(0, "\r\n");
+    if (std::chrono::steady_clock::now() - sent >= kSerialQuiet - std::chrono::milliseconds(10))
+      ++late;
     std::this_thread::sleep_for(std::chrono::milliseconds(150));
   }
   EXPECT_EQ(r.stop(), 0) << r.acc;
-  auto frames = r.frames();
-  ASSERT_EQ(frames.size(), 8u) << r.acc;
-  for (const auto& j : frames) {
-    EXPECT_EQ(j["type"], "frame") << j.dump();
-    bool crlf = false;
-    for (const auto& x : j["findings"]) crlf = crlf || x["code"] == "crlf";
-    EXPECT_TRUE(crlf) << j.dump();
+  ASSERT_LE(late, 2) << "the machine is too loaded to time a 20 ms gap";
+  int crlf = 0, garbage = 0;
+  for (const auto& j : r.frames()) {
+    if (j["type"] == "garbage") ++garbage;
+    if (j["type"] != "frame") continue;
+    for (const auto& x : j["findings"]) crlf += x["code"] == "crlf";
   }
+  EXPECT_LE(garbage, late) << r.acc;
+  EXPECT_GE(crlf, 8 - late) << r.acc;
 }
 
 // --- 5. raw serial dumps ------------------------------------------------------
