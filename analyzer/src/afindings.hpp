@@ -16,6 +16,18 @@ namespace topdump {
 #define TOPDUMP_FINDINGS(X)                                                                       \
   X(truncated_file, "truncated-file", error,                                                      \
     "the capture file ends inside a record; records before it are decoded")                       \
+  X(bad_caplen, "bad-caplen", error,                                                              \
+    "a pcap record's captured length exceeds the snap length or libpcap's limit; reading stops "  \
+    "there, records before it are decoded")                                                       \
+  X(bad_block_length, "bad-block-length", error,                                                  \
+    "a pcapng block length is below 12, not a multiple of 4 or differs from its trailer; "        \
+    "reading stops there")                                                                        \
+  X(unknown_interface, "unknown-interface", error,                                                \
+    "a pcapng packet names an interface no Interface Description Block described; reading "       \
+    "stops there")                                                                                \
+  X(bad_block, "bad-block", error,                                                                \
+    "a pcapng block is malformed otherwise (a bad option, a second section's link type); "        \
+    "reading stops there")                                                                        \
   X(snaplen_cut, "snaplen-cut", warning,                                                          \
     "a packet was cut by the snap length; its TOP bytes may be incomplete")                       \
   X(bad_packet, "bad-packet", warning, "a link, IP, UDP or TCP header is malformed or cut short") \

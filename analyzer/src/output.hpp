@@ -10,6 +10,7 @@
 
 #include "analyzer.hpp"
 #include "render.hpp"
+#include "sources.hpp"
 
 namespace topdump {
 
@@ -88,8 +89,13 @@ class CsvSink : public Sink {
 // The statistics as JSON appended to `out`: indented by `indent` spaces per
 // level (stats --json: 2), or on one line with indent < 0 and, when `type`
 // is given, a leading "type" key (the last line of live and serial --json).
+// `inputs`, when given, is written first: what each file was read as.
 void write_stats_json(std::string& out, const Stats& s, top::Severity worst, int indent,
-                      std::string_view type = {});
+                      std::string_view type = {}, const std::vector<InputInfo>* inputs = nullptr);
+// {"type":"input","file":..,"format":..,"link":..} and a newline.
+void write_input_json(std::string& out, const InputInfo& i);
+// "sample.pcap: pcap, link type EN10MB"
+std::string input_text(const InputInfo& i);
 std::string stats_text(const Stats& s, top::Severity worst);
 
 }  // namespace topdump

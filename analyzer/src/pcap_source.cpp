@@ -1,13 +1,15 @@
 // libpcap sources: files (pcap and pcapng) and live interfaces.
+#include <fcntl.h>
 #include <pcap/pcap.h>
 #include <poll.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <ctime>
-#include <fstream>
 #include <memory>
 
 #include "sources.hpp"
@@ -291,8 +293,7 @@ bool Dissector::ip(std::int64_t ts, const std::uint8_t* p, std::size_t n, std::s
 // ---------------------------------------------------------------------------
 // Files
 
-bool read_serial_log(const std::string& path, Format f, Analyzer& a, const SourceOptions& o,
-                     std::string& error);
+bool read_serial_log(Input& in, Format f, Analyzer& a, const SourceOptions& o, std::string& error);
 
 std::set<std::uint16_t> known_ports(bool tcp) {
   std::set<std::uint16_t> s;
@@ -301,68 +302,284 @@ std::set<std::uint16_t> known_ports(bool tcp) {
   return s;
 }
 
-bool read_file(const std::string& path, Format format, Analyzer& a, const SourceOptions& o,
-               std::string& error) {
-  if (format == Format::automatic) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-      error = path + ": cannot open: " + std::strerror(errno);
+namespace {
+
+// A pipe, FIFO or terminal as a FILE: the bytes read for detection first,
+// then the rest of the descriptor.
+struct PipeCookie {
+  int fd;
+  std::string head;
+  std::size_t at = 0;
+};
+ssize_t pipe_read(void* c, char* buf, std::size_t n) {
+  auto& k = *static_cast<PipeCookie*>(c);
+  if (k.at < k.head.size()) {
+    std::size_t m = std::min(n, k.head.size() - k.at);
+    std::memcpy(buf, k.head.data() + k.at, m);
+    k.at += m;
+    if (k.at == k.head.size()) std::string().swap(k.head), k.at = 0;
+    return static_cast<ssize_t>(m);
+  }
+  for (;;) {
+    ssize_t r = ::read(k.fd, buf, n);
+    if (r >= 0 || errno != EINTR) return r;
+  }
+}
+int pipe_close(void* c) {
+  auto* k = static_cast<PipeCookie*>(c);
+  int r = ::close(k->fd);
+  delete k;
+  return r;
+}
+
+constexpr std::size_t kHead = 4096;
+// Our own FILE buffer: libpcap reads each record with two freads, and
+// stdio's default 4 KiB buffer costs a read(2) every ~50 records (5% of
+// topdump stats; 64 KiB to 1 MiB measure alike).
+constexpr std::size_t kReadBuffer = std::size_t{1} << 16;
+
+std::string hex32(std::string_view b) {
+  char t[9];
+  std::snprintf(t, sizeof t, "%02x%02x%02x%02x", static_cast<unsigned char>(b[0]),
+                static_cast<unsigned char>(b[1]), static_cast<unsigned char>(b[2]),
+                static_cast<unsigned char>(b[3]));
+  return t;
+}
+
+bool is_pcap_magic(std::string_view h) {
+  if (h.size() < 4) return false;
+  std::uint32_t m;
+  std::memcpy(&m, h.data(), 4);
+  return m == 0xa1b2c3d4 || m == 0xd4c3b2a1 || m == 0xa1b23c4d || m == 0x4d3cb2a1;
+}
+
+}  // namespace
+
+bool open_input(const std::string& path, Input& in, std::string& error) {
+  in.name = path == "-" ? "stdin" : path;
+  int fd = path == "-" ? ::dup(0) : ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) {
+    error = in.name + ": cannot open: " + std::strerror(errno);
+    return false;
+  }
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || S_ISDIR(st.st_mode)) {
+    error = in.name + (S_ISDIR(st.st_mode) ? ": is a directory, not a capture file"
+                                           : ": cannot open: " + std::string(std::strerror(errno)));
+    ::close(fd);
+    return false;
+  }
+  in.regular = S_ISREG(st.st_mode);
+  in.size = in.regular ? static_cast<std::uint64_t>(st.st_size) : 0;
+  in.buffer.reset(new char[kReadBuffer]);
+  if (in.regular) {
+    in.file = ::fdopen(fd, "rb");
+    if (!in.file) {
+      error = in.name + ": cannot open: " + std::strerror(errno);
+      ::close(fd);
       return false;
     }
-    std::string head(4096, '\0');
-    in.read(head.data(), static_cast<std::streamsize>(head.size()));
-    head.resize(static_cast<std::size_t>(in.gcount()));
-    format = detect_format(head);
+    std::setvbuf(in.file, in.buffer.get(), _IOFBF, kReadBuffer);
+    in.head.resize(kHead);
+    in.head.resize(std::fread(in.head.data(), 1, kHead, in.file));
+    if (std::ferror(in.file) || std::fseek(in.file, 0, SEEK_SET) != 0) {
+      error = in.name + ": cannot read: " + std::strerror(errno);
+      return false;
+    }
+    return true;
   }
-  if (format != Format::pcap) return read_serial_log(path, format, a, o, error);
-
-  char errbuf[PCAP_ERRBUF_SIZE] = {0};
-  // Our own FILE with a 64 KiB buffer: libpcap reads each record with two
-  // freads, and stdio's default 4 KiB buffer costs a read(2) every ~50
-  // records (5% of topdump stats; 64 KiB to 1 MiB measure alike).
-  // pcap_close() closes the file; setvbuf's buffer outlives it.
-  std::FILE* file = std::fopen(path.c_str(), "rb");
-  if (!file) {
-    error = path + ": cannot open: " + std::strerror(errno);
+  // Not seekable: keep what detection reads and hand it out again first.
+  std::string head(kHead, '\0');
+  std::size_t got = 0;
+  while (got < kHead) {
+    ssize_t r = ::read(fd, head.data() + got, kHead - got);
+    if (r < 0 && errno == EINTR) continue;
+    if (r < 0) {
+      error = in.name + ": cannot read: " + std::strerror(errno);
+      ::close(fd);
+      return false;
+    }
+    if (r == 0) break;
+    got += static_cast<std::size_t>(r);
+  }
+  head.resize(got);
+  in.head = head;
+  auto* cookie = new PipeCookie{fd, std::move(head)};
+  in.file =
+      ::fopencookie(cookie, "rb", cookie_io_functions_t{pipe_read, nullptr, nullptr, pipe_close});
+  if (!in.file) {
+    error = in.name + ": cannot open: " + std::strerror(errno);
+    pipe_close(cookie);
     return false;
   }
-  static constexpr std::size_t kReadBuffer = std::size_t{1} << 16;
-  std::unique_ptr<char[]> buffer(new char[kReadBuffer]);
-  std::setvbuf(file, buffer.get(), _IOFBF, kReadBuffer);
+  std::setvbuf(in.file, in.buffer.get(), _IOFBF, kReadBuffer);
+  return true;
+}
+
+bool make_seekable(Input& in, std::string& error) {
+  if (in.regular) return true;
+  std::FILE* t = std::tmpfile();
+  if (!t) {
+    error = in.name + ": cannot spool to a temporary file: " + std::strerror(errno);
+    return false;
+  }
+  std::vector<char> b(kReadBuffer);
+  std::size_t n;
+  while ((n = std::fread(b.data(), 1, b.size(), in.file)) > 0) {
+    if (std::fwrite(b.data(), 1, n, t) != n) {
+      error = in.name + ": cannot spool to a temporary file: " + std::strerror(errno);
+      std::fclose(t);
+      return false;
+    }
+  }
+  const bool bad = std::ferror(in.file) != 0;
+  std::fclose(in.file);
+  in.file = t;
+  if (bad) {
+    error = in.name + ": read error: " + std::strerror(errno);
+    return false;
+  }
+  in.regular = true;
+  in.size = static_cast<std::uint64_t>(std::ftell(t));
+  std::rewind(t);
+  return true;
+}
+
+std::optional<std::string> damaged_capture(std::string_view head) {
+  if (head.size() < 12 || is_pcap_magic(head) || head.substr(0, 4) == "\x0a\x0d\x0d\x0a")
+    return std::nullopt;
+  auto at = [&](std::size_t i) { return static_cast<unsigned char>(head[i]); };
+  // pcap: version 2.4 after the magic, in either byte order
+  const bool pcap_version = (at(4) == 2 && at(5) == 0 && at(6) == 4 && at(7) == 0) ||
+                            (at(4) == 0 && at(5) == 2 && at(6) == 0 && at(7) == 4);
+  // pcapng: the section header's byte-order magic after the block length
+  const bool ng_order =
+      head.substr(8, 4) == "\x4d\x3c\x2b\x1a" || head.substr(8, 4) == "\x1a\x2b\x3c\x4d";
+  if (!pcap_version && !ng_order) return std::nullopt;
+  return "offset 0: magic number " + hex32(head) + " is not a pcap or pcapng magic, but " +
+         (pcap_version ? "bytes 4-7 are a pcap file header's version 2.4"
+                       : "bytes 8-11 are a pcapng section header's byte-order magic") +
+         ": a damaged capture (--format raw reads it as a raw serial dump)";
+}
+
+namespace {
+
+// The offset of the `record`-th packet block of a pcapng file (blocks of
+// type 2, 3 and 6), walking the block lengths; or the file size when the
+// walk ends first.
+std::uint64_t pcapng_block_offset(std::FILE* f, std::uint64_t record) {
+  if (std::fseek(f, 0, SEEK_SET) != 0) return 0;
+  std::uint64_t at = 0, packets = 0;
+  bool big = false;
+  unsigned char h[12];
+  while (std::fread(h, 1, 8, f) == 8) {
+    auto u32 = [&](const unsigned char* p) {
+      return big ? std::uint32_t{p[0]} << 24 | std::uint32_t{p[1]} << 16 |
+                       std::uint32_t{p[2]} << 8 | p[3]
+                 : std::uint32_t{p[3]} << 24 | std::uint32_t{p[2]} << 16 |
+                       std::uint32_t{p[1]} << 8 | p[0];
+    };
+    if (std::memcmp(h, "\x0a\x0d\x0d\x0a", 4) == 0) {
+      if (std::fread(h + 8, 1, 4, f) != 4) break;
+      big = h[8] == 0x1a;
+    }
+    std::uint32_t type = u32(h), len = u32(h + 4);
+    if (type == 2 || type == 3 || type == 6) {
+      if (++packets == record) return at;
+    }
+    if (len < 12 || len % 4 != 0) return at;
+    at += len;
+    if (std::fseek(f, static_cast<long>(at), SEEK_SET) != 0) break;
+  }
+  return at;
+}
+
+// The finding a libpcap read error stands for.
+ACode code_of_pcap_error(std::string_view e) {
+  if (e.find("invalid packet capture length") != std::string_view::npos) return ACode::bad_caplen;
+  if (e.find("has a length of") != std::string_view::npos ||
+      e.find("total length in header and trailer") != std::string_view::npos)
+    return ACode::bad_block_length;
+  if (e.find("a packet arrived on interface") != std::string_view::npos)
+    return ACode::unknown_interface;
+  if (e.find("truncated") != std::string_view::npos) return ACode::truncated_file;
+  return ACode::bad_block;
+}
+
+}  // namespace
+
+bool read_file(const std::string& path, Format format, Analyzer& a, const SourceOptions& o,
+               std::string& error, InputInfo* info) {
+  Input in;
+  if (!open_input(path, in, error)) return false;
+  return read_input(in, format, a, o, error, info);
+}
+
+bool read_input(Input& in, Format format, Analyzer& a, const SourceOptions& o, std::string& error,
+                InputInfo* info) {
+  const std::string& path = in.name;
+  const bool ng_magic = in.head.size() >= 4 && in.head.compare(0, 4, "\x0a\x0d\x0d\x0a", 4) == 0;
+  const bool pcap_magic = is_pcap_magic(in.head);
+  if (format == Format::automatic) {
+    if (auto why = damaged_capture(in.head)) {
+      error = path + ": " + *why;
+      return false;
+    }
+    format = detect_format(in.head);
+  } else if ((format == Format::pcap || format == Format::pcapng) && !pcap_magic && !ng_magic) {
+    error = path + ": offset 0: " +
+            (in.head.size() < 4 ? "the file holds " + std::to_string(in.head.size()) + " bytes"
+                                : "magic number " + hex32(in.head)) +
+            ", not a " + std::string(to_string(format)) + " file";
+    return false;
+  } else if ((format == Format::pcap && ng_magic) || (format == Format::pcapng && pcap_magic)) {
+    error = path + ": offset 0: --format " + std::string(to_string(format)) + " but this is a " +
+            (ng_magic ? "pcapng" : "pcap") + " file";
+    return false;
+  }
+  InputInfo what{path, format, {}};
+  if (format != Format::pcap && format != Format::pcapng) {
+    if (info) *info = what;
+    if (o.on_input) o.on_input(what);
+    return read_serial_log(in, format, a, o, error);
+  }
+
+  const std::size_t header = format == Format::pcapng ? 28 : 24;
+  if (in.head.size() < header) {
+    error = path + ": offset 0: the " + std::string(to_string(format)) +
+            " file header is cut short (" + std::to_string(in.head.size()) + " of " +
+            std::to_string(header) + " bytes)";
+    return false;
+  }
+  char errbuf[PCAP_ERRBUF_SIZE] = {0};
+  // pcap_close() closes the file; the Input's buffer outlives it.
+  std::FILE* file = in.file;
   pcap_t* p = pcap_fopen_offline_with_tstamp_precision(file, PCAP_TSTAMP_PRECISION_MICRO, errbuf);
   if (!p) {
-    std::fclose(file);
-    error = path + ": " + errbuf;
+    error = path + ": offset 0: " + errbuf;
     return false;
   }
+  in.file = nullptr;
   int dlt = pcap_datalink(p);
+  const char* dlt_name = pcap_datalink_val_to_name(dlt);
+  what.link = dlt_name ? dlt_name : std::to_string(dlt);
+  if (info) *info = what;
+  if (o.on_input) o.on_input(what);
   if (!Dissector::supported(dlt)) {
     a.source_note(kNoTime, ACode::unsupported_link,
-                  path + ": link type " + std::to_string(dlt) + " (" +
-                      (pcap_datalink_val_to_name(dlt) ? pcap_datalink_val_to_name(dlt) : "?") +
+                  path + ": link type " + std::to_string(dlt) + " (" + (dlt_name ? dlt_name : "?") +
                       ") is not dissected",
                   0, 0);
     pcap_close(p);
     return true;
   }
-  std::uint64_t total = 0;
-  if (o.progress) {
-    std::ifstream in(path, std::ios::binary | std::ios::ate);
-    total = static_cast<std::uint64_t>(in.tellg());
-  }
-  FILE* fp = pcap_file(p);
-  // pcap: records follow a 24-byte header, each with a 16-byte header, so the
-  // file offset of a record is known without asking the stream (an lseek per
-  // record). pcapng: only known after a failure (ftell).
-  bool ng = false;
-  {
-    std::ifstream in(path, std::ios::binary);
-    char m[4] = {0, 0, 0, 0};
-    in.read(m, 4);
-    ng = std::memcmp(m, "\x0a\x0d\x0d\x0a", 4) == 0;
-  }
+  const std::uint64_t total = in.size;
+  const bool ng = format == Format::pcapng;
   // pcap_loop hands each record to the callback from inside libpcap's read
-  // loop (pcap_next_ex costs a call chain per record).
+  // loop (pcap_next_ex costs a call chain per record). pcap: records follow
+  // a 24-byte header, each with a 16-byte header, so the file offset of a
+  // record is known without asking the stream (an lseek per record).
+  // pcapng: found by walking the blocks after a failure.
   struct Reader {
     Dissector dis;
     Analyzer& a;
@@ -372,7 +589,7 @@ bool read_file(const std::string& path, Format format, Analyzer& a, const Source
     std::uint64_t total;
     std::uint64_t at = 24;
     std::uint64_t record = 0;
-  } rd{Dissector(a, o), a, o, dlt, fp, total};
+  } rd{Dissector(a, o), a, o, dlt, in.regular ? file : nullptr, total};
   const int rc = pcap_loop(
       p, -1,
       [](u_char* user, const pcap_pkthdr* h, const u_char* data) {
@@ -386,12 +603,21 @@ bool read_file(const std::string& path, Format format, Analyzer& a, const Source
       },
       reinterpret_cast<u_char*>(&rd));
   if (rc == PCAP_ERROR) {
-    std::string where = ng ? "near file offset " + std::to_string(fp ? std::ftell(fp) : 0)
-                           : "at file offset " + std::to_string(rd.at);
-    a.source_note(
-        kNoTime, ACode::truncated_file,
-        path + ": record " + std::to_string(rd.record + 1) + " " + where + ": " + pcap_geterr(p),
-        rd.record + 1, ng ? 0 : rd.at);
+    const std::string why = pcap_geterr(p);
+    std::uint64_t at = rd.at;
+    std::string where;
+    if (!ng) {
+      where = "at file offset " + std::to_string(at);
+    } else if (in.regular) {
+      at = pcapng_block_offset(file, rd.record + 1);
+      where = "in the block at file offset " + std::to_string(at);
+    } else {
+      at = 0;
+      where = "(a pipe: offset unknown)";
+    }
+    a.source_note(kNoTime, code_of_pcap_error(why),
+                  path + ": record " + std::to_string(rd.record + 1) + " " + where + ": " + why,
+                  rd.record + 1, at);
   }
   pcap_close(p);
   if (o.progress) o.progress(total, total);

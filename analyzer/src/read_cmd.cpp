@@ -1,9 +1,11 @@
 // topdump read / stats / live / serial.
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -75,7 +77,16 @@ void add_common(CLI::App* sub, Common& o, bool outputs) {
       ->allow_extra_args(false);
   sub->add_option("-c,--count", o.count, "stop after this many selected frames (0: all)");
   sub->add_option("--timeout-ms", o.timeout_ms, "a request is unanswered after this long")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Validator(
+          [](std::string& v) -> std::string {
+            char* end = nullptr;
+            const double ms = std::strtod(v.c_str(), &end);
+            // at most ten years: microseconds stay well inside 64 bits
+            if (end == v.c_str() || *end != 0 || !(ms > 0) || ms > 3.2e11)
+              return "--timeout-ms " + v + ": give a number of milliseconds above 0";
+            return {};
+          },
+          "MS"));
   if (outputs) {
     sub->add_flag("--json", o.json, "JSON Lines (docs/topdump-json.md)");
     sub->add_flag("-V,--verbose", o.verbose, "the field tree of every frame");
@@ -156,18 +167,43 @@ bool setup(const Common& o, Setup& s, std::string& err) {
   return true;
 }
 
-// Source findings also go to stderr, naming the file.
+// A source finding on stderr, naming the file once: "topdump: FILE: !! ...",
+// the message without its own "FILE: ".
+void source_note_to_stderr(const std::string& file, const NoteEvent& e) {
+  std::string line = note_line(e);
+  if (file.empty()) {  // two inputs: the message names its own
+    std::fprintf(stderr, "topdump: %s\n", line.c_str());
+    return;
+  }
+  const std::string named = ": " + file + ": ";
+  if (auto at = line.find(named); at != std::string::npos) line.erase(at + 2, file.size() + 2);
+  std::fprintf(stderr, "topdump: %s: %s\n", file.c_str(), line.c_str());
+}
+
+// True when stdout and stderr are the same file or terminal (a copy on
+// stderr would print each line twice).
+bool stderr_is_stdout() {
+  struct stat a {
+  }, b{};
+  return fstat(1, &a) == 0 && fstat(2, &b) == 0 && a.st_dev == b.st_dev && a.st_ino == b.st_ino &&
+         a.st_rdev == b.st_rdev;
+}
+
+// Source findings also go to stderr, naming the file, unless stderr is
+// where stdout goes.
 class Tee : public Sink {
  public:
-  Tee(Sink& inner, std::string file) : inner_(inner), file_(std::move(file)) {}
+  Tee(Sink& inner, std::string file)
+      : inner_(inner), file_(std::move(file)), copy_(!stderr_is_stdout()) {}
   void frame(const FrameEvent& e) override { inner_.frame(e); }
   void garbage(const GarbageEvent& e) override { inner_.garbage(e); }
   void note(const NoteEvent& e) override {
-    if (!e.conv) std::fprintf(stderr, "topdump: %s: %s\n", file_.c_str(), note_line(e).c_str());
+    if (!e.conv && copy_) source_note_to_stderr(file_, e);
     inner_.note(e);
   }
   Sink& inner_;
   std::string file_;
+  bool copy_;
 };
 
 std::unique_ptr<Sink> make_sink(const Common& o, Out& out, std::string& err) {
@@ -204,7 +240,8 @@ int status_of(const Analyzer& a) { return a.worst() == top::Severity::error ? 1 
 
 struct ReadOptions {
   Common c;
-  std::string file;
+  std::vector<std::string> files;
+  bool say_input = false;
 };
 
 int run_read(const ReadOptions& o) {
@@ -221,18 +258,31 @@ int run_read(const ReadOptions& o) {
     std::cerr << "topdump read: " << err << "\n";
     return 2;
   }
-  Tee tee(*sink, o.file);
+  const std::string name = o.files.size() == 1 && o.files[0] == "-" ? "stdin" : o.files[0];
+  Tee tee(*sink, o.files.size() == 1 ? name : std::string());
   s.aopts.stats = false;
   Analyzer a(s.aopts, tee);
   a.set_filter(s.filter);
   if (o.c.progress && isatty(2)) s.sopts.progress = progress_bar;
-  if (!read_file(o.file, *fmt, a, s.sopts, err)) {
+  s.sopts.on_input = [&](const InputInfo& i) {
+    if (o.say_input) std::fprintf(stderr, "topdump: %s\n", input_text(i).c_str());
+    if (o.c.json && o.c.csv.empty()) {
+      write_input_json(out.buf(), i);
+      out.done();
+    }
+  };
+  const bool ok = o.files.size() == 2 ? read_merged(o.files, *fmt, a, s.sopts, err, nullptr)
+                                      : read_file(o.files[0], *fmt, a, s.sopts, err);
+  if (!ok) {
+    out.flush();
     std::cerr << "topdump read: " << err << "\n";
     return 2;
   }
   a.finish();
   if (a.frames_seen() == 0)
-    a.source_note(kNoTime, ACode::no_frames, o.file + ": no TOP frame found", 0, 0);
+    a.source_note(kNoTime, ACode::no_frames,
+                  (o.files.size() == 1 ? name : name + ", " + o.files[1]) + ": no TOP frame found",
+                  0, 0);
   out.flush();
   return status_of(a);
 }
@@ -254,7 +304,7 @@ int run_stats(const StatsOptions& o) {
   // notes (one virtual call per frame, to the empty Sink::frame).
   struct SourceNotes : Sink {
     void note(const NoteEvent& e) override {
-      if (!e.conv) std::fprintf(stderr, "topdump: %s: %s\n", file_.c_str(), note_line(e).c_str());
+      if (!e.conv) source_note_to_stderr(file_, e);
     }
     std::string file_;
   } tee;
@@ -262,8 +312,10 @@ int run_stats(const StatsOptions& o) {
   Analyzer a(s.aopts, tee);
   a.set_filter(s.filter);
   if (o.c.progress && isatty(2)) s.sopts.progress = progress_bar;
+  std::vector<InputInfo> inputs;
+  s.sopts.on_input = [&](const InputInfo& i) { inputs.push_back(i); };
   for (const auto& f : o.files) {
-    tee.file_ = f;
+    tee.file_ = f == "-" ? "stdin" : f;
     if (!read_file(f, *fmt, a, s.sopts, err)) {
       std::cerr << "topdump stats: " << err << "\n";
       return 2;
@@ -273,9 +325,10 @@ int run_stats(const StatsOptions& o) {
   if (a.frames_seen() == 0) a.source_note(kNoTime, ACode::no_frames, "no TOP frame found", 0, 0);
   if (o.c.json) {
     std::string j;
-    write_stats_json(j, a.stats(), a.worst(), 2);
+    write_stats_json(j, a.stats(), a.worst(), 2, {}, &inputs);
     std::cout << j << "\n";
   } else {
+    for (const InputInfo& i : inputs) std::cout << "input: " << input_text(i) << "\n";
     std::cout << stats_text(a.stats(), a.worst());
   }
   return status_of(a);
@@ -340,7 +393,7 @@ int run_live(const LiveOptions& o) {
 
 struct SerialOptions {
   Common c;
-  std::string device;
+  std::vector<std::string> devices;
   unsigned baud = 115200;
 };
 
@@ -357,11 +410,11 @@ int run_serial(const SerialOptions& o) {
     std::cerr << "topdump serial: " << err << "\n";
     return 2;
   }
-  Tee tee(*sink, o.device);
+  Tee tee(*sink, o.devices[0]);
   Analyzer a(s.aopts, tee);
   a.set_filter(s.filter);
   install_signals();
-  if (!read_serial_port(o.device, o.baud, a, g_stop, err)) {
+  if (!read_serial_ports(o.devices, o.baud, a, g_stop, err)) {
     std::cerr << "topdump serial: " << err << "\n";
     return 2;
   }
@@ -378,10 +431,15 @@ Run add_read_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "read", "Decode a capture: pcap, pcapng, or a serial log (raw, socat, saleae, lines)");
   add_common(sub, o->c, true);
-  sub->add_option("--format", o->c.format, "auto, pcap, raw, socat, saleae or lines")
+  sub->add_option("--format", o->c.format, "auto, pcap, pcapng, raw, socat, saleae or lines")
       ->check(CLI::IsMember({"auto", "pcap", "pcapng", "raw", "socat", "saleae", "lines"}));
   sub->add_flag("!--no-progress", o->c.progress, "no progress bar on stderr");
-  sub->add_option("FILE", o->file, "capture file")->required();
+  sub->add_flag("-v", o->say_input, "say on stderr what the input was read as (format, link type)");
+  sub->add_option("FILE", o->files,
+                  "capture file, - for stdin; two serial logs with times (one tap per "
+                  "direction) are merged by time into one conversation")
+      ->required()
+      ->expected(1, 2);
   return [o, sub]() { return sub->parsed() ? run_read(*o) : -1; };
 }
 
@@ -390,7 +448,7 @@ Run add_stats_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("stats", "Statistics of one or more captures");
   add_common(sub, o->c, false);
   sub->add_flag("--json", o->c.json, "one JSON object (docs/topdump-json.md)");
-  sub->add_option("--format", o->c.format, "auto, pcap, raw, socat, saleae or lines")
+  sub->add_option("--format", o->c.format, "auto, pcap, pcapng, raw, socat, saleae or lines")
       ->check(CLI::IsMember({"auto", "pcap", "pcapng", "raw", "socat", "saleae", "lines"}));
   sub->add_flag("!--no-progress", o->c.progress, "no progress bar on stderr");
   sub->add_option("FILE", o->files, "capture files")->required();
@@ -413,7 +471,11 @@ Run add_serial_command(CLI::App& app) {
       app.add_subcommand("serial", "Decode a serial port as bytes arrive (8N1); Ctrl-C ends");
   add_common(sub, o->c, true);
   sub->add_option("--baud", o->baud, "baud rate")->check(CLI::Range(50u, 4000000u));
-  sub->add_option("DEVICE", o->device, "serial device, e.g. /dev/ttyUSB0")->required();
+  sub->add_option("DEVICE", o->devices,
+                  "serial device, e.g. /dev/ttyUSB0; two devices are two taps of one UART, one "
+                  "per direction, read as one conversation")
+      ->required()
+      ->expected(1, 2);
   return [o, sub]() { return sub->parsed() ? run_serial(*o) : -1; };
 }
 

@@ -4,9 +4,12 @@
 #include <asio.hpp>
 #include <cctype>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstring>
-#include <fstream>
+#include <functional>
+#include <istream>
+#include <memory>
 #include <vector>
 
 #include "escape.hpp"
@@ -15,12 +18,12 @@
 namespace topdump {
 
 namespace {
-constexpr std::string_view kFormat[] = {"auto", "pcap", "raw", "socat", "saleae", "lines"};
-static_assert(std::size(kFormat) == static_cast<std::size_t>(Format::lines) + 1);
+constexpr std::string_view kFormat[] = {"auto",   "pcap",  "raw",   "socat",
+                                        "saleae", "lines", "pcapng"};
+static_assert(std::size(kFormat) == static_cast<std::size_t>(Format::pcapng) + 1);
 }  // namespace
 
 std::optional<Format> format_from_string(std::string_view s) {
-  if (s == "pcapng") return Format::pcap;
   for (std::size_t i = 0; i < std::size(kFormat); ++i)
     if (kFormat[i] == s) return static_cast<Format>(i);
   return std::nullopt;
@@ -65,8 +68,9 @@ Format detect_format(std::string_view head) {
   if (head.size() >= 4) {
     std::uint32_t m;
     std::memcpy(&m, head.data(), 4);
-    if (m == 0xa1b2c3d4 || m == 0xd4c3b2a1 || m == 0xa1b23c4d || m == 0x4d3cb2a1 || m == 0x0a0d0d0a)
+    if (m == 0xa1b2c3d4 || m == 0xd4c3b2a1 || m == 0xa1b23c4d || m == 0x4d3cb2a1)
       return Format::pcap;
+    if (m == 0x0a0d0d0a) return Format::pcapng;
   }
   std::string_view l = first_line(head);
   // a line log may open with "# " comment lines
@@ -95,8 +99,26 @@ Endpoint named(std::string n) {
   return e;
 }
 
+// A streambuf over a FILE (an Input's, which may be a pipe).
+class FileBuf : public std::streambuf {
+ public:
+  explicit FileBuf(std::FILE* f) : f_(f) {}
+
+ private:
+  int_type underflow() override {
+    const std::size_t n = std::fread(buf_.data(), 1, buf_.size(), f_);
+    if (n == 0) return traits_type::eof();
+    setg(buf_.data(), buf_.data(), buf_.data() + n);
+    return traits_type::to_int_type(buf_[0]);
+  }
+  std::FILE* f_;
+  std::array<char, 1 << 16> buf_{};
+};
+
 struct LineReader {
-  std::ifstream in;
+  explicit LineReader(std::FILE* f) : buf(f), in(&buf) {}
+  FileBuf buf;
+  std::istream in;
   std::string line;
   std::uint64_t number = 0;
   std::uint64_t offset = 0;  // file offset of the current line
@@ -111,8 +133,11 @@ struct LineReader {
   }
 };
 
-void raw_log(std::ifstream& in, Analyzer& a) {
-  Endpoint src = named("log"), dst = named("line");
+// A raw dump holds the bytes one tap received: one direction, named for
+// the file, to the end that was not tapped ("peer").
+template <class A>
+void raw_log(const std::string& path, std::istream& in, A& a) {
+  Endpoint src = named(path), dst = named("peer");
   std::vector<char> buf(1 << 16);
   std::uint64_t off = 0;
   a.record(true);
@@ -128,7 +153,8 @@ void raw_log(std::ifstream& in, Analyzer& a) {
 // socat -v (text) and socat -x -v (hex) dumps. In text mode socat writes
 // CR as "\r", LF as a line break and every other non-printable byte as '.',
 // so text dumps of binary frames are lossy; -x -v dumps are exact.
-void socat_log(const std::string& path, LineReader& r, Analyzer& a) {
+template <class A>
+void socat_log(const std::string& path, LineReader& r, A& a) {
   Endpoint left = named("left"), right = named("right");
   std::uint64_t chunk_no = 0;
   std::string pending;  // text after the data of a chunk (next header glued on)
@@ -274,7 +300,8 @@ std::optional<int> csv_byte(std::string_view v) {
 // Saleae Logic 2 Async Serial export: name,type,start_time,duration,data[,error]
 // (times in seconds from the start of the capture; read as seconds after the
 // epoch). Each analyzer name is one direction.
-void saleae_log(const std::string& path, LineReader& r, Analyzer& a) {
+template <class A>
+void saleae_log(const std::string& path, std::FILE* file, LineReader& r, A& a) {
   if (!r.get()) return;
   auto head = csv_split(r.line);
   int c_name = -1, c_type = -1, c_time = -1, c_data = -1, c_err = -1;
@@ -303,16 +330,20 @@ void saleae_log(const std::string& path, LineReader& r, Analyzer& a) {
   // first pass: the first two analyzer names are the two directions
   std::vector<std::string> names;
   {
-    std::ifstream scan(path, std::ios::binary);
+    // the header line is read: scan from where the reader's FILE stands
+    // (it read ahead) after the header, then go back
+    const long back = std::ftell(file);
+    std::fseek(file, static_cast<long>(r.next), SEEK_SET);
+    LineReader scan(file);
     std::string l;
-    std::getline(scan, l);
-    while (names.size() < 2 && std::getline(scan, l)) {
+    while (names.size() < 2 && std::getline(scan.in, l)) {
       if (!l.empty() && l.back() == '\r') l.pop_back();
       auto cols = csv_split(l);
       if (c_name < 0 || static_cast<int>(cols.size()) <= c_name) break;
       const std::string& n = cols[static_cast<std::size_t>(c_name)];
       if (std::find(names.begin(), names.end(), n) == names.end()) names.push_back(n);
     }
+    std::fseek(file, back, SEEK_SET);
   }
   while (r.get()) {
     if (r.line.empty()) continue;
@@ -361,7 +392,8 @@ void saleae_log(const std::string& path, LineReader& r, Analyzer& a) {
   }
 }
 
-void lines_log(const std::string& path, LineReader& r, Analyzer& a) {
+template <class A>
+void lines_log(const std::string& path, LineReader& r, A& a) {
   Endpoint host = named("host"), device = named("device");
   while (r.get()) {
     if (r.line.empty() || (r.line.size() > 1 && r.line[0] == '#' && r.line[1] == ' ')) continue;
@@ -394,23 +426,22 @@ void lines_log(const std::string& path, LineReader& r, Analyzer& a) {
 
 }  // namespace
 
-bool read_serial_log(const std::string& path, Format f, Analyzer& a, const SourceOptions&,
-                     std::string& error) {
-  LineReader r;
-  r.in.open(path, std::ios::binary);
-  if (!r.in) {
-    error = path + ": cannot open: " + std::strerror(errno);
-    return false;
-  }
+namespace {
+
+template <class A>
+bool serial_log(Input& input, Format f, A& a, std::string& error) {
+  const std::string& path = input.name;
+  if (f == Format::saleae && !make_seekable(input, error)) return false;
+  LineReader r(input.file);
   switch (f) {
     case Format::raw:
-      raw_log(r.in, a);
+      raw_log(path, r.in, a);
       break;
     case Format::socat:
       socat_log(path, r, a);
       break;
     case Format::saleae:
-      saleae_log(path, r, a);
+      saleae_log(path, input.file, r, a);
       break;
     case Format::lines:
       lines_log(path, r, a);
@@ -419,9 +450,97 @@ bool read_serial_log(const std::string& path, Format f, Analyzer& a, const Sourc
       error = path + ": not a serial log format";
       return false;
   }
-  if (r.in.bad()) {
-    error = path + ": read error";
+  if (std::ferror(input.file)) {
+    error = path + ": read error: " + std::strerror(errno);
     return false;
+  }
+  return true;
+}
+
+// Holds the chunks of one log for merging; source notes go through.
+struct Collector {
+  struct Chunk {
+    std::int64_t ts;
+    std::uint64_t record, offset;
+    std::string bytes;
+  };
+  Analyzer& a;
+  std::vector<Chunk> chunks;
+  std::size_t held = 0;
+  bool untimed = false;
+  void record(bool) {}
+  void source_note(std::int64_t ts, ACode code, std::string message, std::uint64_t record,
+                   std::uint64_t offset) {
+    a.source_note(ts, code, std::move(message), record, offset);
+  }
+  void chunk(std::int64_t ts, Transport, const Endpoint&, const Endpoint&, std::string_view bytes,
+             std::uint64_t record, std::uint64_t offset) {
+    if (ts == kNoTime) untimed = true;
+    held += bytes.size() + sizeof(Chunk);
+    chunks.push_back(Chunk{ts, record, offset, std::string(bytes)});
+  }
+};
+
+}  // namespace
+
+bool read_serial_log(Input& input, Format f, Analyzer& a, const SourceOptions&,
+                     std::string& error) {
+  return serial_log(input, f, a, error);
+}
+
+bool read_merged(const std::vector<std::string>& paths, Format format, Analyzer& a,
+                 const SourceOptions& o, std::string& error, std::vector<InputInfo>* infos) {
+  if (paths.size() != 2) {
+    error = "two inputs are merged, not " + std::to_string(paths.size());
+    return false;
+  }
+  std::vector<Collector> logs;
+  std::vector<std::string> names;
+  std::size_t held = 0;
+  for (const std::string& p : paths) {
+    Input in;
+    if (!open_input(p, in, error)) return false;
+    Format f = format;
+    if (f == Format::automatic) {
+      if (auto why = damaged_capture(in.head)) {
+        error = in.name + ": " + *why;
+        return false;
+      }
+      f = detect_format(in.head);
+    }
+    if (f == Format::pcap || f == Format::pcapng || f == Format::raw) {
+      error = in.name + ": a " + std::string(to_string(f)) +
+              " input cannot be merged: two inputs are two serial taps, each a log with times "
+              "(socat, saleae, lines)";
+      return false;
+    }
+    if (infos) infos->push_back(InputInfo{in.name, f, {}});
+    if (o.on_input) o.on_input(InputInfo{in.name, f, {}});
+    names.push_back(in.name);
+    logs.push_back(Collector{a, {}, 0, false});
+    if (!serial_log(in, f, logs.back(), error)) return false;
+    held += logs.back().held;
+    if (logs.back().untimed) {
+      error = in.name + ": a chunk without a time: two taps are merged by time";
+      return false;
+    }
+    if (held > kMaxMergeBytes) {
+      error = in.name + ": the two logs hold more than " + std::to_string(kMaxMergeBytes >> 20) +
+              " MiB; merge them with fewer bytes";
+      return false;
+    }
+  }
+  // each log is one tap, one direction: merged by time, the first log first
+  // on equal times
+  const Endpoint e0 = named(names[0]), e1 = named(names[1]);
+  std::size_t i = 0, j = 0;
+  const auto& x = logs[0].chunks;
+  const auto& y = logs[1].chunks;
+  while (i < x.size() || j < y.size()) {
+    const bool first = j == y.size() || (i < x.size() && x[i].ts <= y[j].ts);
+    const Collector::Chunk& c = first ? x[i++] : y[j++];
+    a.record(true);
+    a.chunk(c.ts, Transport::serial, first ? e0 : e1, first ? e1 : e0, c.bytes, c.record, c.offset);
   }
   return true;
 }
@@ -429,66 +548,95 @@ bool read_serial_log(const std::string& path, Format f, Analyzer& a, const Sourc
 // ---------------------------------------------------------------------------
 // Live serial port
 
-bool read_serial_port(const std::string& device, unsigned baud, Analyzer& a,
-                      const std::atomic<bool>& stop, std::string& error) {
+bool read_serial_ports(const std::vector<std::string>& devices, unsigned baud, Analyzer& a,
+                       const std::atomic<bool>& stop, std::string& error) {
   asio::io_context io;
-  asio::serial_port port(io);
-  asio::error_code ec;
-  port.open(device, ec);
-  if (ec) {
-    error = device + ": " + ec.message();
-    return false;
+  struct Tap {
+    asio::serial_port port;
+    Endpoint src, dst;
+    std::array<char, 4096> buf{};
+    std::uint64_t chunk_no = 0, offset = 0;
+  };
+  std::vector<std::unique_ptr<Tap>> taps;
+  for (std::size_t i = 0; i < devices.size(); ++i) {
+    const std::string& device = devices[i];
+    auto t = std::make_unique<Tap>(Tap{asio::serial_port(io), named(device),
+                                       named(devices.size() == 2 ? devices[1 - i] : "peer")});
+    asio::serial_port& port = t->port;
+    asio::error_code ec;
+    port.open(device, ec);
+    if (ec) {
+      error = device + ": " + ec.message();
+      return false;
+    }
+    port.set_option(asio::serial_port_base::baud_rate(baud), ec);
+    if (!ec) port.set_option(asio::serial_port_base::character_size(8), ec);
+    if (!ec)
+      port.set_option(asio::serial_port_base::parity(asio::serial_port_base::parity::none), ec);
+    if (!ec)
+      port.set_option(asio::serial_port_base::stop_bits(asio::serial_port_base::stop_bits::one),
+                      ec);
+    if (!ec)
+      port.set_option(
+          asio::serial_port_base::flow_control(asio::serial_port_base::flow_control::none), ec);
+    if (ec) {
+      error = device + ": cannot configure " + std::to_string(baud) + " 8N1: " + ec.message();
+      return false;
+    }
+    taps.push_back(std::move(t));
   }
-  port.set_option(asio::serial_port_base::baud_rate(baud), ec);
-  if (!ec) port.set_option(asio::serial_port_base::character_size(8), ec);
-  if (!ec)
-    port.set_option(asio::serial_port_base::parity(asio::serial_port_base::parity::none), ec);
-  if (!ec)
-    port.set_option(asio::serial_port_base::stop_bits(asio::serial_port_base::stop_bits::one), ec);
-  if (!ec)
-    port.set_option(
-        asio::serial_port_base::flow_control(asio::serial_port_base::flow_control::none), ec);
-  if (ec) {
-    error = device + ": cannot configure " + std::to_string(baud) + " 8N1: " + ec.message();
-    return false;
-  }
-  Endpoint src = named(device), dst = named("host");
-  std::array<char, 4096> buf;
-  std::uint64_t chunk_no = 0, offset = 0;
+  // A frame is held until the line has been quiet for kSerialQuiet: a CR/LF
+  // that follows within it belongs to the frame (an FTDI adapter delivers
+  // what it has every 16 ms, its default latency timer).
+  using clock = std::chrono::steady_clock;
+  clock::time_point last_rx = clock::now();
+  bool held = false;  // bytes arrived since the last flush
   asio::steady_timer tick(io);
   bool failed = false;
+  std::size_t open = taps.size();
   std::function<void()> arm_tick = [&]() {
-    tick.expires_after(std::chrono::milliseconds(50));
+    tick.expires_after(std::chrono::milliseconds(10));
     tick.async_wait([&](const asio::error_code& e) {
       if (e) return;
       if (stop.load()) {
-        asio::error_code ignored;
-        port.cancel(ignored);
+        for (auto& t : taps) {
+          asio::error_code ignored;
+          t->port.cancel(ignored);
+        }
         return;
       }
-      a.flush_streams();
+      if (held && clock::now() - last_rx >= kSerialQuiet) {
+        a.flush_streams();
+        held = false;
+      }
       arm_tick();
     });
   };
-  std::function<void()> arm_read = [&]() {
-    port.async_read_some(asio::buffer(buf), [&](const asio::error_code& e, std::size_t n) {
+  std::function<void(Tap&)> arm_read = [&](Tap& t) {
+    t.port.async_read_some(asio::buffer(t.buf), [&](const asio::error_code& e, std::size_t n) {
       if (e) {
         if (e != asio::error::operation_aborted && !stop.load()) {
-          error = device + ": " + e.message();
+          error = t.src.name + ": " + e.message();
           failed = true;
+          for (auto& u : taps) {
+            asio::error_code ignored;
+            u->port.cancel(ignored);
+          }
         }
-        tick.cancel();
+        if (--open == 0) tick.cancel();
         return;
       }
-      ++chunk_no;
+      ++t.chunk_no;
+      last_rx = clock::now();
+      held = true;
       a.record(true);
-      a.chunk(now_us(), Transport::serial, src, dst, std::string_view(buf.data(), n), chunk_no,
-              offset);
-      offset += n;
-      arm_read();
+      a.chunk(now_us(), Transport::serial, t.src, t.dst, std::string_view(t.buf.data(), n),
+              t.chunk_no, t.offset);
+      t.offset += n;
+      arm_read(t);
     });
   };
-  arm_read();
+  for (auto& t : taps) arm_read(*t);
   arm_tick();
   io.run();
   return !failed;

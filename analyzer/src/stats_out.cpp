@@ -25,8 +25,40 @@ void put_ms(std::string& o, std::int64_t us) { put_double(o, static_cast<double>
 
 }  // namespace
 
+namespace {
+// The keys of an input: file, format, link (null for serial logs).
+void input_members(Doc& j, const InputInfo& i) {
+  std::string& o = j.out();
+  j.key("file");
+  put_text(o, i.file);
+  j.key("format");
+  put_str(o, to_string(i.format));
+  j.key("link");
+  if (i.link.empty())
+    app(o, "null");
+  else
+    put_str(o, i.link);
+}
+}  // namespace
+
+void write_input_json(std::string& out, const InputInfo& i) {
+  Doc j(out, -1);
+  j.open_object();
+  j.key("type");
+  put_str(out, "input");
+  input_members(j, i);
+  j.close_object();
+  out += '\n';
+}
+
+std::string input_text(const InputInfo& i) {
+  std::string s = i.file + ": " + std::string(to_string(i.format));
+  if (!i.link.empty()) s += ", link type " + i.link;
+  return s;
+}
+
 void write_stats_json(std::string& out, const Stats& s, top::Severity worst, int indent,
-                      std::string_view type) {
+                      std::string_view type, const std::vector<InputInfo>* inputs) {
   Doc j(out, indent);
   std::string& o = j.out();
   auto count = [&](std::string_view k, std::uint64_t v) {
@@ -44,6 +76,15 @@ void write_stats_json(std::string& out, const Stats& s, top::Severity worst, int
   };
   j.open_object();
   if (!type.empty()) text("type", type);
+  if (inputs) {
+    j.key_array("inputs");
+    for (const InputInfo& i : *inputs) {
+      j.item_object();
+      input_members(j, i);
+      j.close_object();
+    }
+    j.close_array();
+  }
   count("frames", s.frames);
   count("bad_checksum", s.bad_checksum);
   count("error_frames", s.error_frames);

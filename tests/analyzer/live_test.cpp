@@ -23,24 +23,6 @@
 namespace topdump::test {
 namespace {
 
-// Reads what is available from fd for up to `ms`, until `want` appears.
-bool read_until(int fd, std::string& acc, const std::string& want, int ms) {
-  auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(ms);
-  while (acc.find(want) == std::string::npos) {
-    auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-                    end - std::chrono::steady_clock::now())
-                    .count();
-    if (left <= 0) return false;
-    pollfd p{fd, POLLIN, 0};
-    if (poll(&p, 1, static_cast<int>(left)) <= 0) continue;
-    char buf[4096];
-    ssize_t n = ::read(fd, buf, sizeof buf);
-    if (n <= 0) return acc.find(want) != std::string::npos;
-    acc.append(buf, static_cast<std::size_t>(n));
-  }
-  return true;
-}
-
 TEST(Live, SerialOverAPseudoTerminalEndsCleanlyOnSigint) {
   int master = -1, slave = -1;
   char name[128] = {0};

@@ -170,7 +170,7 @@ TEST(Pcap, MalformedHeadersAreFindingsNotCrashes) {
 
 TEST(SerialLogs, FormatDetection) {
   EXPECT_EQ(detect_format(std::string("\xd4\xc3\xb2\xa1", 4)), Format::pcap);
-  EXPECT_EQ(detect_format(std::string("\x0a\x0d\x0d\x0a", 4)), Format::pcap);
+  EXPECT_EQ(detect_format(std::string("\x0a\x0d\x0d\x0a", 4)), Format::pcapng);
   EXPECT_EQ(detect_format("> 2024/05/01 12:00:00.000000000  length=3 from=0 to=2\nabc"),
             Format::socat);
   EXPECT_EQ(detect_format("name,type,start_time,duration,data\n"), Format::saleae);

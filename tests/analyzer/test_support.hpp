@@ -1,9 +1,11 @@
 // Helpers shared by the topdump tests.
 #pragma once
 
+#include <poll.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -48,6 +50,24 @@ inline int run(const std::string& cmd, std::string& out) {
   while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
   int st = pclose(p);
   return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+// Reads what is available from fd for up to `ms`, until `want` appears.
+inline bool read_until(int fd, std::string& acc, const std::string& want, int ms) {
+  auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(ms);
+  while (acc.find(want) == std::string::npos) {
+    auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+                    end - std::chrono::steady_clock::now())
+                    .count();
+    if (left <= 0) return false;
+    pollfd p{fd, POLLIN, 0};
+    if (poll(&p, 1, static_cast<int>(left)) <= 0) continue;
+    char buf[4096];
+    ssize_t n = ::read(fd, buf, sizeof buf);
+    if (n <= 0) return acc.find(want) != std::string::npos;
+    acc.append(buf, static_cast<std::size_t>(n));
+  }
+  return true;
 }
 
 // Writes a capture of `frames` frames with the bench generator
