@@ -54,6 +54,7 @@ void Analyzer::Impl::learn_device(Conversation& c, int d, const top::Frame& f,
 }
 
 void Analyzer::Impl::unanswered(Conversation& c, const Pending& p, bool at_end) {
+  if (one_way(c)) return;  // the answers are on a line nobody recorded
   // A copy of a request that was answered (senders that send each frame
   // several times) is not unanswered: the device answered one of them.
   if (p.ts != kNoTime)
@@ -319,6 +320,7 @@ void Analyzer::Impl::response(Conversation& c, int d, FrameEvent& ev) {
       return;
     }
   }
+  if (one_way(c)) return;  // the requests are on a line nobody recorded
   ev.notes.push_back(Note{
       ACode::unsolicited, default_severity(ACode::unsolicited),
       message([&] { return escape(id) + " response that no pending request asked for"; }), ev.n});

@@ -589,7 +589,9 @@ bool read_input(Input& in, Format format, Analyzer& a, const SourceOptions& o, s
     std::uint64_t total;
     std::uint64_t at = 24;
     std::uint64_t record = 0;
+    pcap_t* pcap = nullptr;
   } rd{Dissector(a, o), a, o, dlt, in.regular ? file : nullptr, total};
+  rd.pcap = p;
   const int rc = pcap_loop(
       p, -1,
       [](u_char* user, const pcap_pkthdr* h, const u_char* data) {
@@ -598,6 +600,7 @@ bool read_input(Input& in, Format format, Analyzer& a, const SourceOptions& o, s
         r.at += 16 + h->caplen;
         const std::int64_t ts = static_cast<std::int64_t>(h->ts.tv_sec) * 1000000 + h->ts.tv_usec;
         r.a.record(r.dis.packet(r.dlt, ts, data, h->caplen, h->len, r.record));
+        if (r.a.done()) pcap_breakloop(r.pcap);  // -c: the frames asked for are in
         if (r.o.progress && (r.record & 0xFFFF) == 0 && r.fp)
           r.o.progress(static_cast<std::uint64_t>(std::ftell(r.fp)), r.total);
       },

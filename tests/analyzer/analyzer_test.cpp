@@ -224,6 +224,38 @@ TEST(Field, ClientStreamFramesExpectNoAnswer) {
   EXPECT_FALSE(f.rec.has_note(ACode::unanswered));
 }
 
+// A serial line recorded in one direction (a raw dump, one tap) shows
+// replies without their requests and requests without their replies: none
+// is unsolicited or unanswered. Once the other direction carries bytes,
+// pairing judges as usual.
+TEST(Field, OneWaySerialLineHasNoUnsolicitedOrUnanswered) {
+  Recorder rec;
+  Analyzer a(AnalyzerOptions{}, rec);
+  Endpoint dump, peer;
+  dump.name = "dump.bin";
+  peer.name = "peer";
+  const std::string reply = top::with_checksum("#TPGU2wGAA0A");
+  const std::string request = top::with_checksum("#TPUD2rVER00");
+  for (int i = 0; i < 3; ++i)
+    a.chunk(T + i * 1000, Transport::serial, dump, peer, reply + request, i + 1, 0);
+  a.finish();
+  ASSERT_EQ(rec.frames.size(), 6u);
+  for (const auto& f : rec.frames)
+    for (const auto& c : f.codes) EXPECT_NE(c, "unsolicited") << f.raw;
+  for (const auto& n : rec.notes) EXPECT_NE(n.note.code, ACode::unanswered) << n.note.message;
+
+  // Both directions recorded: a request nobody answers is unanswered.
+  Recorder rec2;
+  Analyzer b(AnalyzerOptions{}, rec2);
+  b.chunk(T, Transport::serial, dump, peer, request, 1, 0);
+  b.chunk(T + 1000, Transport::serial, peer, dump, top::with_checksum("#TPDU2rVER00"), 2, 0);
+  b.chunk(T + 2000, Transport::serial, dump, peer, request, 3, 0);
+  b.finish();
+  bool unanswered = false;
+  for (const auto& n : rec2.notes) unanswered |= n.note.code == ACode::unanswered;
+  EXPECT_TRUE(unanswered);
+}
+
 TEST(Pairing, EreAnswersTheRequestToItsSource) {
   Fixture f;
   f.up(0, top::with_checksum("#tpUG6wGAYEC7832"));

@@ -162,6 +162,17 @@ TEST(Filter, CountStopsAfterNSelectedFrames) {
   for (const auto& j : g) EXPECT_EQ(j["ident"], "GAY");
 }
 
+TEST(Filter, CountStopsReadingTheCapture) {
+  TempDir tmp;
+  const std::string capture = generated_capture(tmp, "c.pcap", 5000, 3);
+  ASSERT_FALSE(capture.empty());
+  std::string out;
+  run(td() + "stats --json -c 10 '" + capture + "' 2>/dev/null", out);
+  auto j = nlohmann::json::parse(out);
+  EXPECT_EQ(j["frames"], 10);
+  EXPECT_LT(j["records"].get<int>(), 100);  // not the 5,000 records of the file
+}
+
 TEST(Filter, Ipv6HostWithoutBrackets) {
   std::string bare, bracketed;
   run(td() + "read --csv n --addr fd00::10" + cap("ipv6.pcap") + " 2>/dev/null", bare);
