@@ -159,11 +159,14 @@ void ReportSink::motion(const FrameEvent& e, ConvData& c) {
   const top::Frame& f = *e.entry->frame;
   const top::Decoded& d = e.entry->decoded;
   const std::string_view id = f.ident_view();
-  if (id == "GAC" || id == "GIC") {
-    const auto* y = field(d, "yaw");
-    const auto* p = field(d, "pitch");
-    const auto* r = field(d, "roll");
-    if (!y || !p || !r || e.entry->bad_checksum || e.ts == kNoTime) return;
+  if (id[0] != 'G' && id != "PTZ" && id != "YPR" && id != "RPS") return;
+  if (id[0] == 'G' && (id[1] == 'A' || id[1] == 'I') && id[2] == 'C') {  // GAC, GIC
+    // the attitude forms of both dialects: yaw, pitch, roll
+    if (d.fields.size() != 3 || e.entry->bad_checksum || e.ts == kNoTime) return;
+    const top::FieldValue *y = &d.fields[0], *p = &d.fields[1], *r = &d.fields[2];
+    if (!y->valid || !p->valid || !r->valid || y->name() != "yaw" || p->name() != "pitch" ||
+        r->name() != "roll")
+      return;
     Attitude& a = c.attitude[std::string(id)];
     a.t.push_back(e.ts);
     a.v[0].push_back(static_cast<float>(y->value));
@@ -173,9 +176,11 @@ void ReportSink::motion(const FrameEvent& e, ConvData& c) {
     return;
   }
   if (d.role != top::Role::request || f.control != 'w' || e.ts == kNoTime) return;
+  if (!d.command) return;
+  const std::string_view cid = d.command->ident;  // static, unlike the frame's
   if (e.entry->bad_checksum) {
     if (id[0] == 'G' || id == "PTZ" || id == "YPR" || id == "RPS")
-      c.marks.push_back({e.n, e.ts, std::string(id) + " with a bad checksum (dropped)"});
+      c.marks.push_back({e.n, e.ts, cid, "bad checksum (dropped)"});
     return;
   }
   auto axis_of = [](char ch) { return ch == 'Y' ? 0 : ch == 'P' ? 1 : ch == 'R' ? 2 : -1; };
@@ -183,15 +188,18 @@ void ReportSink::motion(const FrameEvent& e, ConvData& c) {
     const auto* v = field(d, name);
     if (!v || axis < 0) return;
     const auto* s = field(d, speed);
-    AngleCommand a{e.n, e.ts, std::string(id), axis, v->value, s ? s->value : 0, 0, -1};
-    if (v->spec) a.min = v->spec->min, a.max = v->spec->max;
-    c.angles.push_back(std::move(a));
+    AngleCommand a{
+        e.n, e.ts, cid, axis, static_cast<float>(v->value), s ? static_cast<float>(s->value) : 0.f,
+        0,   -1};
+    if (v->spec) a.min = static_cast<float>(v->spec->min), a.max = static_cast<float>(v->spec->max);
+    c.angles.push_back(a);
   };
   auto rate = [&](int axis, const char* name) {
     const auto* v = field(d, name);
     if (!v || axis < 0) return;
-    c.rates.push_back({e.n, e.ts, std::string(id), axis, v->integer, v->value,
-                       v->spec ? v->spec->scale : 1.0});
+    c.rates.push_back({e.n, e.ts, cid, axis, static_cast<std::int32_t>(v->integer),
+                       static_cast<float>(v->value),
+                       v->spec ? static_cast<float>(v->spec->scale) : 1.f});
   };
   if (id == "GAY" || id == "GAP" || id == "GAR" || id == "GIY" || id == "GIP" || id == "GIR") {
     angle(axis_of(id[2]), "angle", "speed");
@@ -206,9 +214,7 @@ void ReportSink::motion(const FrameEvent& e, ConvData& c) {
     rate(2, "roll_speed");
   } else if (id == "PTZ") {
     const auto* a = field(d, "action");
-    std::string t = "PTZ";
-    if (a) t += " " + (a->enum_name.empty() ? std::to_string(a->integer) : std::string(a->enum_name));
-    c.marks.push_back({e.n, e.ts, std::move(t)});
+    c.marks.push_back({e.n, e.ts, cid, a ? a->enum_name : std::string_view()});
   }
 }
 
@@ -294,14 +300,14 @@ std::int64_t next_on_axis(const AxisTimes& times, int axis, std::int64_t t) {
 }
 
 AngleResult angle_result(const ConvData& c, const AxisTimes& times, const AngleCommand& cmd,
-                         double tol) {
+                         const Series& s, double tol) {
   AngleResult r;
   r.cmd = &cmd;
   r.conv = c.id;
-  const double eff = cmd.min <= cmd.max ? std::clamp(cmd.target, cmd.min, cmd.max) : cmd.target;
+  const double eff =
+      cmd.min <= cmd.max ? std::clamp<double>(cmd.target, cmd.min, cmd.max) : cmd.target;
   r.effective = static_cast<float>(eff);
   r.out_of_range = eff != cmd.target;
-  const Series s = series_for(c, cmd.ident, cmd.axis);
   const std::int64_t end = next_on_axis(times, cmd.axis, cmd.t);
   if (!s.t) {
     r.no_attitude = true;
@@ -404,7 +410,7 @@ void rate_runs(const ConvData& c, const AxisTimes& times, Report& rep, std::int6
       if (trait && cmds[i]->steps != 0 && (other == kNoTime || other == next)) {
         const std::int64_t until = next != kNoTime ? next : capture_end;
         if (until != kNoTime && until - cmds[i]->t > limit_us)
-          rep.gaps.push_back({c.id, cmds[i]->frame, cmds[i]->ident, cmds[i]->t,
+          rep.gaps.push_back({c.id, cmds[i]->frame, std::string(cmds[i]->ident), cmds[i]->t,
                               static_cast<double>(until - cmds[i]->t) / 1000.0});
       }
     }
@@ -420,7 +426,7 @@ void rate_runs(const ConvData& c, const AxisTimes& times, Report& rep, std::int6
       RateRun run;
       run.conv = c.id;
       run.first_frame = cmds[i]->frame;
-      run.ident = cmds[i]->ident;
+      run.ident = std::string(cmds[i]->ident);
       run.axis = axis;
       run.start = cmds[i]->t;
       run.commands = j - i;
@@ -430,9 +436,8 @@ void rate_runs(const ConvData& c, const AxisTimes& times, Report& rep, std::int6
       run.median_interval_ms = median(intervals);
       run.max_interval_ms =
           intervals.empty() ? 0 : *std::max_element(intervals.begin(), intervals.end());
-      const std::int64_t hold = intervals.empty()
-                                    ? limit_us
-                                    : static_cast<std::int64_t>(run.median_interval_ms * 1000);
+      const std::int64_t hold =
+          intervals.empty() ? limit_us : static_cast<std::int64_t>(run.median_interval_ms * 1000);
       run.end = cmds[j - 1]->t + hold;
       const std::int64_t other = next_on_axis(times, axis, cmds[j - 1]->t);
       if (other != kNoTime) run.end = std::min(run.end, other);
@@ -467,7 +472,8 @@ void streams(const ReportSink& d, const Stats& st, Report& rep) {
       }
       if (t && t->size() >= 2) {
         const std::int64_t span = t->back() - t->front();
-        r.bucket_us = std::max<std::int64_t>(1'000'000, (span / 300 + 999'999) / 1'000'000 * 1'000'000);
+        r.bucket_us =
+            std::max<std::int64_t>(1'000'000, (span / 300 + 999'999) / 1'000'000 * 1'000'000);
         r.rate.assign(static_cast<std::size_t>(span / r.bucket_us + 1), 0.f);
         for (std::int64_t x : *t)
           r.rate[static_cast<std::size_t>((x - t->front()) / r.bucket_us)] += 1.f;
@@ -520,8 +526,7 @@ void facts(const ReportSink& d, Report& rep) {
   for (const auto& u : d.unanswered) {
     const std::string cause = cause_of(u.message);
     if (cause == "the device was silent") {
-      add(85, top::Severity::warning, u.message + " (from " + clock_text(u.ts) + ")",
-          "unanswered");
+      add(85, top::Severity::warning, u.message + " (from " + clock_text(u.ts) + ")", "unanswered");
       continue;
     }
     Group& g = groups[u.message.substr(0, 3) + "\x01" + cause];
@@ -543,9 +548,8 @@ void facts(const ReportSink& d, Report& rep) {
     const double m = s.stat.measured_hz();
     if (s.stat.asked_hz > 0 && m > 0 && std::fabs(m - s.stat.asked_hz) > 0.25 * s.stat.asked_hz)
       add(75, top::Severity::warning,
-          s.stat.ident + " push at " + fmt("%.1f", m) + " Hz, asked " +
-              fmt("%g", s.stat.asked_hz) + " Hz (" + s.stat.asked_by + ", conversation " +
-              std::to_string(s.conv) + ")",
+          s.stat.ident + " push at " + fmt("%.1f", m) + " Hz, asked " + fmt("%g", s.stat.asked_hz) +
+              " Hz (" + s.stat.asked_by + ", conversation " + std::to_string(s.conv) + ")",
           "streams");
     if (s.gap_count)
       add(55, top::Severity::warning,
@@ -555,19 +559,33 @@ void facts(const ReportSink& d, Report& rep) {
           "streams");
   }
   // Response flags, grouped by identifier.
-  std::map<std::string, std::array<std::uint64_t, 4>> flags;  // other way, never, range, superseded
-  std::map<std::string, std::int64_t> first_flag;
+  // per identifier: other way, never, range, superseded; the first flagged
+  struct Flags {
+    std::string_view id;
+    std::array<std::uint64_t, 4> n{};
+    std::int64_t first = kNoTime;
+  };
+  std::vector<Flags> all;  // a handful of identifiers: a linear search
   for (const auto& a : rep.angles) {
-    auto& f = flags[a.cmd->ident];
+    auto it =
+        std::find_if(all.begin(), all.end(), [&](const Flags& f) { return f.id == a.cmd->ident; });
+    if (it == all.end()) it = all.insert(all.end(), Flags{a.cmd->ident});
+    auto& f = it->n;
     if (a.other_way) ++f[0];
     if (a.never_reached && !a.other_way && !a.no_attitude) ++f[1];
     if (a.out_of_range) ++f[2];
     if (a.superseded && !a.other_way) ++f[3];
-    if ((a.other_way || a.never_reached) && !first_flag.count(a.cmd->ident))
-      first_flag[a.cmd->ident] = a.cmd->t;
+    if ((a.other_way || a.never_reached) && it->first == kNoTime) it->first = a.cmd->t;
   }
-  auto plural = [](std::uint64_t n, const std::string& id) {
-    return std::to_string(n) + " " + id + (n == 1 ? " command" : " commands");
+  std::sort(all.begin(), all.end(), [](const Flags& a, const Flags& b) { return a.id < b.id; });
+  std::map<std::string_view, std::array<std::uint64_t, 4>> flags;
+  std::map<std::string_view, std::int64_t> first_flag;
+  for (const auto& f : all) {
+    flags[f.id] = f.n;
+    first_flag[f.id] = f.first;
+  }
+  auto plural = [](std::uint64_t n, std::string_view id) {
+    return std::to_string(n) + " " + std::string(id) + (n == 1 ? " command" : " commands");
   };
   for (const auto& [id, f] : flags) {
     if (f[0]) {
@@ -584,20 +602,21 @@ void facts(const ReportSink& d, Report& rep) {
     }
     if (f[1])
       add(70, top::Severity::warning,
-          plural(f[1], id) + " never brought the gimbal within " + fmt("%g", rep.opts.tolerance_deg) +
-              " deg of the target (first at " + clock_text(first_flag[id]) + ")",
+          plural(f[1], id) + " never brought the gimbal within " +
+              fmt("%g", rep.opts.tolerance_deg) + " deg of the target (first at " +
+              clock_text(first_flag[id]) + ")",
           "response");
     if (f[2])
       add(50, top::Severity::warning,
-          plural(f[2], id) + " asked for an angle outside the model's range (clamped)",
-          "response");
+          plural(f[2], id) + " asked for an angle outside the model's range (clamped)", "response");
     if (f[3])
       add(15, top::Severity::info, plural(f[3], id) + " superseded before the gimbal settled",
           "response");
   }
   if (!rep.gaps.empty()) {
-    const auto& g = *std::max_element(rep.gaps.begin(), rep.gaps.end(),
-                                      [](const auto& a, const auto& b) { return a.gap_ms < b.gap_ms; });
+    const auto& g =
+        *std::max_element(rep.gaps.begin(), rep.gaps.end(),
+                          [](const auto& a, const auto& b) { return a.gap_ms < b.gap_ms; });
     add(65, top::Severity::warning,
         std::to_string(rep.gaps.size()) + " rate command" + (rep.gaps.size() == 1 ? "" : "s") +
             " not refreshed within " + std::to_string(rep.refresh_limit_ms) + " ms (longest " +
@@ -616,7 +635,8 @@ void facts(const ReportSink& d, Report& rep) {
         "rates");
   // Frame findings: errors and warnings by code, with who sent them.
   for (const auto& [code, c] : d.codes) {
-    if (c.severity == top::Severity::info || code == "unanswered" || code == "stream-rate") continue;
+    if (c.severity == top::Severity::info || code == "unanswered" || code == "stream-rate")
+      continue;
     std::string t = code + ": " + std::to_string(c.count) + (c.count == 1 ? " time" : " times");
     if (c.senders.size() == 1)
       t += (c.count == 1 ? ", from " : ", all from ") + c.senders.begin()->first;
@@ -644,8 +664,18 @@ Report analyze(const ReportSink& data, const Stats& stats, top::Severity worst, 
   rep.angles.reserve(n);
   for (const auto& [id, c] : data.convs) {
     const AxisTimes times = axis_times(c);
-    for (const auto& a : c.angles)
-      rep.angles.push_back(angle_result(c, times, a, opts.tolerance_deg));
+    // the attitude of each axis for GA* and GI* commands
+    std::array<std::array<Series, kAxes>, 2> series;
+    for (int ax = 0; ax < kAxes; ++ax) {
+      series[0][static_cast<std::size_t>(ax)] = series_for(c, "GAY", ax);
+      series[1][static_cast<std::size_t>(ax)] = series_for(c, "GIY", ax);
+    }
+    for (const auto& a : c.angles) {
+      const bool earth = a.ident.size() == 3 && a.ident[1] == 'I';
+      rep.angles.push_back(angle_result(c, times, a,
+                                        series[earth ? 1 : 0][static_cast<std::size_t>(a.axis)],
+                                        opts.tolerance_deg));
+    }
     if (!c.rates.empty()) rate_runs(c, times, rep, stats.last);
   }
   std::vector<double> per_step;

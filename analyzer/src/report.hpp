@@ -10,8 +10,10 @@
 
 #include <array>
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "analyzer.hpp"
@@ -23,10 +25,10 @@ struct Options {
   std::vector<std::string> files;
 };
 
-inline constexpr int kAxes = 3;                 // yaw, pitch, roll
-const char* axis_name(int axis) noexcept;       // "yaw", "pitch", "roll"
-inline constexpr std::size_t kExamples = 3;     // example frames per finding code
-inline constexpr std::size_t kSlowest = 10;     // slowest exchanges kept
+inline constexpr int kAxes = 3;                  // yaw, pitch, roll
+const char* axis_name(int axis) noexcept;        // "yaw", "pitch", "roll"
+inline constexpr std::size_t kExamples = 3;      // example frames per finding code
+inline constexpr std::size_t kSlowest = 10;      // slowest exchanges kept
 inline constexpr std::size_t kLatencyBins = 26;  // 0.1 ms .. 10 s, five per decade
 // The lower edge of latency bin b in milliseconds (bin 0 also takes less).
 double latency_bin_ms(std::size_t b) noexcept;
@@ -38,30 +40,32 @@ struct Attitude {
   std::vector<std::int64_t> push_t;         // frames that answered no request
 };
 
+// Identifiers and enum names are the catalog's (static) strings.
 struct AngleCommand {
   std::uint64_t frame = 0;
   std::int64_t t = 0;
-  std::string ident;  // GAY, GAP, GAR, GAM, GIY...
+  std::string_view ident;  // GAY, GAP, GAR, GAM, GIY...
   int axis = 0;
-  double target = 0;        // deg, as commanded
-  double speed = 0;         // deg/s from the command (0: none given)
-  double min = 0, max = -1;  // the catalog's range for the dialect
+  float target = 0;         // deg, as commanded
+  float speed = 0;          // deg/s from the command (0: none given)
+  float min = 0, max = -1;  // the catalog's range for the dialect
 };
 
 struct RateCommand {
   std::uint64_t frame = 0;
   std::int64_t t = 0;
-  std::string ident;
+  std::string_view ident;
   int axis = 0;
-  std::int64_t steps = 0;  // raw value
-  double rate = 0;         // deg/s by the catalog's scale
-  double scale = 1;        // the catalog's deg/s per step
+  std::int32_t steps = 0;  // raw value
+  float rate = 0;          // deg/s by the catalog's scale
+  float scale = 1;         // the catalog's deg/s per step
 };
 
 struct Mark {  // a command shown on the plot without a value (PTZ)
   std::uint64_t frame = 0;
   std::int64_t t = 0;
-  std::string text;
+  std::string_view ident;
+  std::string_view what;  // the PTZ action's name, or "bad checksum (dropped)"
 };
 
 struct ConvData {
@@ -71,9 +75,10 @@ struct ConvData {
   top::Dialect dialect = top::Dialect::unknown;
   std::uint64_t frames = 0;
   std::map<std::string, Attitude> attitude;  // "GAC", "GIC"
-  std::vector<AngleCommand> angles;
-  std::vector<RateCommand> rates;
-  std::vector<Mark> marks;
+  // deques: no copy as they grow, and stable addresses (AngleResult::cmd)
+  std::deque<AngleCommand> angles;
+  std::deque<RateCommand> rates;
+  std::deque<Mark> marks;
 };
 
 struct Example {
@@ -158,14 +163,14 @@ class ReportSink : public Sink {
 struct AngleResult {
   const AngleCommand* cmd = nullptr;  // in the sink's conversation
   std::uint64_t conv = 0;
-  const char* attitude = "";  // the attitude compared with: "GAC", "GIC", "" none
-  float start = 0;            // attitude when the command came, deg
-  float effective = 0;        // the target clamped to the model's range
-  float expected_s = -1;      // |effective - start| / speed, when a speed was given
-  float settling_s = -1;      // -1: never settled
-  float overshoot_deg = 0;    // past the target, in the direction of motion
-  float overshoot_pct = 0;    // of the step
-  float final_error = 0;      // last attitude - target (steady-state error)
+  const char* attitude = "";       // the attitude compared with: "GAC", "GIC", "" none
+  float start = 0;                 // attitude when the command came, deg
+  float effective = 0;             // the target clamped to the model's range
+  float expected_s = -1;           // |effective - start| / speed, when a speed was given
+  float settling_s = -1;           // -1: never settled
+  float overshoot_deg = 0;         // past the target, in the direction of motion
+  float overshoot_pct = 0;         // of the step
+  float final_error = 0;           // last attitude - target (steady-state error)
   float mirrored_settling_s = -1;  // other_way: settling against -target
   std::uint32_t samples = 0;
   bool no_attitude = false;
@@ -184,14 +189,14 @@ struct RateRun {
   std::int64_t start = 0, end = 0;  // first command, and the end of the last one's effect
   std::uint64_t commands = 0;
   std::int64_t steps = 0;
-  double commanded = 0;          // deg/s by the catalog's scale
-  double scale = 1;              // catalog deg/s per step
-  double max_interval_ms = 0;    // longest refresh interval inside the run
+  double commanded = 0;        // deg/s by the catalog's scale
+  double scale = 1;            // catalog deg/s per step
+  double max_interval_ms = 0;  // longest refresh interval inside the run
   double median_interval_ms = 0;
-  double measured = 0;           // deg/s, least squares over the run's samples
+  double measured = 0;  // deg/s, least squares over the run's samples
   std::size_t samples = 0;
   bool measured_ok = false;
-  double per_step = 0;           // measured / steps
+  double per_step = 0;  // measured / steps
 };
 
 struct RefreshGap {

@@ -103,9 +103,8 @@ void Page::overview() {
     o += (i ? "<br/>" : "") + ("<code>" + esc(r.opts.files[i]) + "</code>");
   o += "</td></tr><tr><th>time span</th><td>" +
        (s.first == kNoTime ? std::string("no time stamps")
-                           : esc(format_time(s.first)) + " to " + esc(format_time(s.last)) +
-                                 " (" + fmt("%.3f", static_cast<double>(s.last - s.first) / 1e6) +
-                                 " s)") +
+                           : esc(format_time(s.first)) + " to " + esc(format_time(s.last)) + " (" +
+                                 fmt("%.3f", static_cast<double>(s.last - s.first) / 1e6) + " s)") +
        "</td></tr>";
   o += "<tr><th>frames</th><td>" + std::to_string(s.frames) + " (" +
        std::to_string(s.bad_checksum) + " with a bad checksum, " + std::to_string(s.error_frames) +
@@ -187,45 +186,61 @@ void Page::motion() {
       cmd.dashed = true;
       // One mark per pixel column and shape: the first, with a count (the
       // title of each is only built for the ones drawn).
-      std::map<std::pair<long, char>, std::size_t> at;
+      // (commands come in time order: the last column of each shape is enough)
+      std::map<char, std::pair<long, std::size_t>> last;
       auto mark = [&](std::int64_t t, char shape, auto make) {
-        auto [it, fresh] = at.try_emplace({svg::column(p, t), shape}, p.markers.size());
-        if (fresh)
-          p.markers.push_back(make());
-        else
-          ++p.markers[it->second].count;
+        const long col = svg::column(p, t);
+        auto [it, fresh] = last.try_emplace(shape, col, p.markers.size());
+        if (!fresh && it->second.first == col) {
+          ++p.markers[it->second.second].count;
+          return;
+        }
+        it->second = {col, p.markers.size()};
+        p.markers.push_back(make());
       };
       for (const auto& a : c.angles) {
         if (a.axis != axis) continue;
         cmd.t.push_back(a.t);
         cmd.v.push_back(static_cast<float>(a.target));
         mark(a.t, 'd', [&] {
-          return svg::Marker{a.t, a.target, false, 'd', kCmdColor[axis],
-                             a.ident + " " + fmt("%.2f", a.target) + " deg, speed " +
-                                 fmt("%.1f", a.speed) + " deg/s (frame " +
-                                 std::to_string(a.frame) + ", " + clock_text(a.t) + ")"};
+          return svg::Marker{a.t,
+                             a.target,
+                             false,
+                             'd',
+                             kCmdColor[axis],
+                             std::string(a.ident) + " " + fmt("%.2f", a.target) + " deg, speed " +
+                                 fmt("%.1f", a.speed) + " deg/s (frame " + std::to_string(a.frame) +
+                                 ", " + clock_text(a.t) + ")"};
         });
       }
       for (const auto& x : c.rates) {
         if (x.axis != axis) continue;
         const char shape = x.steps > 0 ? '^' : x.steps < 0 ? 'v' : 'o';
         mark(x.t, shape, [&] {
-          return svg::Marker{x.t, 0, true, shape, kCmdColor[axis],
-                             x.ident + " " + std::to_string(x.steps) + " steps (" +
+          return svg::Marker{x.t,
+                             0,
+                             true,
+                             shape,
+                             kCmdColor[axis],
+                             std::string(x.ident) + " " + std::to_string(x.steps) + " steps (" +
                                  fmt("%.1f", x.rate) + " deg/s by the catalog, frame " +
                                  std::to_string(x.frame) + ", " + clock_text(x.t) + ")"};
         });
       }
       for (const auto& m : c.marks)
         mark(m.t, '|', [&] {
-          return svg::Marker{m.t, 0, false, '|', "#777",
-                             m.text + " (frame " + std::to_string(m.frame) + ", " +
-                                 clock_text(m.t) + ")"};
+          return svg::Marker{m.t,
+                             0,
+                             false,
+                             '|',
+                             "#777",
+                             std::string(m.ident) + " " + std::string(m.what) + " (frame " +
+                                 std::to_string(m.frame) + ", " + clock_text(m.t) + ")"};
         });
-      const bool has_cmd = !cmd.t.empty() ||
-                           std::any_of(c.rates.begin(), c.rates.end(),
-                                       [&](const RateCommand& x) { return x.axis == axis; });
-      if (!has_cmd && !has_motion && !(axis == 0 && c.attitude.empty())) continue;
+      const bool has_cmd =
+          !cmd.t.empty() || std::any_of(c.rates.begin(), c.rates.end(),
+                                        [&](const RateCommand& x) { return x.axis == axis; });
+      if (!has_cmd && !has_motion && axis != 0) continue;  // yaw always: even a still gimbal
       if (!cmd.t.empty()) p.series.push_back(std::move(cmd));
       svg::time_plot(o, p);
     }
@@ -251,7 +266,8 @@ void Page::response() {
       const AngleResult& a = r.angles[i];
       std::string flags;
       auto flag = [&](bool on, const std::string& t, bool info = false) {
-        if (on) flags += "<span class=\"flag" + std::string(info ? " info" : "") + "\">" + t + "</span>";
+        if (on)
+          flags += "<span class=\"flag" + std::string(info ? " info" : "") + "\">" + t + "</span>";
       };
       flag(a.no_attitude, "no attitude", true);
       flag(a.never_reached, "never reached");
@@ -260,11 +276,13 @@ void Page::response() {
                                  ? ", at -target after " + fmt("%.3f", a.mirrored_settling_s) + " s"
                                  : std::string()) +
                             ")");
-      flag(a.out_of_range, "outside the range " + fmt("%g", a.cmd->min) + ".." + fmt("%g", a.cmd->max) + ": clamped");
+      flag(a.out_of_range, "outside the range " + fmt("%g", a.cmd->min) + ".." +
+                               fmt("%g", a.cmd->max) + ": clamped");
       flag(a.superseded, "superseded", true);
       o += "<tr>" + tdn(frame_ref(a.cmd->frame)) + td(clock_text(a.cmd->t)) +
-           tdn(std::to_string(a.conv)) + td(a.cmd->ident) + td(axis_name(a.cmd->axis)) +
-           tdn(fmt("%.2f", a.cmd->target)) + tdn(a.no_attitude ? "-" : fmt("%.2f", a.start)) +
+           tdn(std::to_string(a.conv)) + td(std::string(a.cmd->ident)) +
+           td(axis_name(a.cmd->axis)) + tdn(fmt("%.2f", a.cmd->target)) +
+           tdn(a.no_attitude ? "-" : fmt("%.2f", a.start)) +
            tdn(a.cmd->speed > 0 ? fmt("%.1f", a.cmd->speed) : "-") +
            tdn(a.expected_s >= 0 ? fmt("%.3f s", a.expected_s) : "-") +
            tdn(a.settling_s >= 0 ? fmt("%.3f s", a.settling_s) : "-") +
@@ -304,21 +322,22 @@ void Page::response() {
            tdn(std::to_string(x.conv)) + td(x.ident) + td(axis_name(x.axis)) +
            tdn(std::to_string(x.commands)) + tdn(std::to_string(x.steps)) +
            tdn(fmt("%.1f deg/s", x.commanded)) +
-           tdn(x.commands > 1 ? fmt("%.0f", x.median_interval_ms) + " / " +
-                                    fmt("%.0f ms", x.max_interval_ms)
-                              : "-") +
+           tdn(x.commands > 1
+                   ? fmt("%.0f", x.median_interval_ms) + " / " + fmt("%.0f ms", x.max_interval_ms)
+                   : "-") +
            tdn(x.measured_ok ? fmt("%.2f deg/s", x.measured) : "-") +
            tdn(x.measured_ok ? fmt("%.3f", x.per_step) : "-") + "</tr>";
     }
     o += "</table>" + more_rows(r.runs.size());
     if (!r.gaps.empty()) {
       o += "<h3>Refresh gaps</h3><p>Rate commands not followed by another on the axis within " +
-           std::to_string(r.refresh_limit_ms) + " ms: the motors stop.</p><table><tr><th>frame"
+           std::to_string(r.refresh_limit_ms) +
+           " ms: the motors stop.</p><table><tr><th>frame"
            "</th><th>time</th><th>conv</th><th>command</th><th>gap</th></tr>";
       for (std::size_t i = 0; i < r.gaps.size() && i < kMaxRows; ++i) {
         const RefreshGap& g = r.gaps[i];
-        o += "<tr>" + tdn(frame_ref(g.frame)) + td(clock_text(g.t)) +
-             tdn(std::to_string(g.conv)) + td(g.ident) + tdn(fmt("%.0f ms", g.gap_ms)) + "</tr>";
+        o += "<tr>" + tdn(frame_ref(g.frame)) + td(clock_text(g.t)) + tdn(std::to_string(g.conv)) +
+             td(g.ident) + tdn(fmt("%.0f ms", g.gap_ms)) + "</tr>";
       }
       o += "</table>" + more_rows(r.gaps.size());
     }
@@ -354,8 +373,8 @@ void Page::latency() {
       counts.push_back(bins[b]);
     }
     o += "<div class=\"hist\"><b>" + esc(k) + "</b>";
-    svg::bars(o, labels, counts, "#4c78a8", std::min(kWidth, 40 + 36 * static_cast<int>(counts.size())),
-              90);
+    svg::bars(o, labels, counts, "#4c78a8",
+              std::min(kWidth, 40 + 36 * static_cast<int>(counts.size())), 90);
     o += "</div>";
   }
   std::vector<Slow> slow = r.data->slowest;
@@ -411,8 +430,7 @@ void Page::streams() {
     svg::time_plot(o, p);
     if (!x.gaps.empty()) {
       o += "<p>Longest gaps:";
-      for (const auto& g : x.gaps)
-        o += " " + fmt("%.0f ms", g.ms) + " at " + clock_text(g.t) + ";";
+      for (const auto& g : x.gaps) o += " " + fmt("%.0f ms", g.ms) + " at " + clock_text(g.t) + ";";
       o += "</p>";
     }
   }
@@ -458,10 +476,10 @@ void Page::findings() {
       o += "<tr>" + tdn(frame_ref(x.frame)) +
            td("<code>" + esc(x.file) + "</code> record " + std::to_string(x.record) + " @" +
               std::to_string(x.offset) + (x.at ? ", byte " + std::to_string(x.at) : "") +
-              (x.from.empty() ? "" : "<br/><code>" + esc(x.from) + "</code> to <code>" +
-                                         esc(x.to) + "</code>")) +
-           td(clock_text(x.ts)) +
-           td("<span class=\"raw\">" + esc(top::escape(x.raw)) + "</span>") +
+              (x.from.empty()
+                   ? ""
+                   : "<br/><code>" + esc(x.from) + "</code> to <code>" + esc(x.to) + "</code>")) +
+           td(clock_text(x.ts)) + td("<span class=\"raw\">" + esc(top::escape(x.raw)) + "</span>") +
            td(esc(top::ascii_text(x.decoded))) + td(esc(top::ascii_text(x.message))) + "</tr>";
     o += "</table></details>";
   }
@@ -496,8 +514,7 @@ void write_html(std::string& o, const Report& r) {
        "<title>topdump report</title><style>";
   o += kCss;
   o += "</style></head><body><header><h1>topdump report</h1><p>";
-  for (std::size_t i = 0; i < r.opts.files.size(); ++i)
-    o += (i ? ", " : "") + esc(r.opts.files[i]);
+  for (std::size_t i = 0; i < r.opts.files.size(); ++i) o += (i ? ", " : "") + esc(r.opts.files[i]);
   o += " - " + std::to_string(r.stats->frames) + " frames, worst finding " +
        std::string(top::to_string(r.worst)) + "</p></header>";
   o += "<nav><a href=\"#overview\">Overview</a><a href=\"#motion\">Motion</a>"

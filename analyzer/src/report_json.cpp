@@ -188,8 +188,8 @@ void write_json(std::string& out, const Report& r) {
   for (const auto& [ident, l] : s.latency) {
     j.key_object(ident);
     u("count", l.count());
-    for (auto [k, q] : {std::pair{"p50_ms", 0.5}, {"p90_ms", 0.9}, {"p95_ms", 0.95},
-                        {"p99_ms", 0.99}}) {
+    for (auto [k, q] :
+         {std::pair{"p50_ms", 0.5}, {"p90_ms", 0.9}, {"p95_ms", 0.95}, {"p99_ms", 0.99}}) {
       j.key(k);
       put_measure(o, static_cast<double>(l.quantile(q)) / 1000.0, false);
     }

@@ -107,9 +107,7 @@ void polyline(std::string& o, const Frame& f, const Series& s) {
   std::size_t lo_i = 0, hi_i = 0;
   double last_y = 0;
   auto x_of = [&](std::int64_t t) { return (static_cast<double>(t) / 1e6 - f.x0) / (f.x1 - f.x0); };
-  auto point = [&](double x, double y) {
-    pts += num(x) + "," + num(f.py(y)) + " ";
-  };
+  auto point = [&](double x, double y) { pts += num(x) + "," + num(f.py(y)) + " "; };
   auto flush = [&]() {
     if (col < 0) return;
     const double x = kLeft + static_cast<double>(col) + 0.5;
@@ -127,8 +125,8 @@ void polyline(std::string& o, const Frame& f, const Series& s) {
     pts.clear();
   };
   for (std::size_t i = 0; i < n; ++i) {
-    const long c = std::clamp(static_cast<long>(x_of(s.t[i]) * cols), 0L,
-                              static_cast<long>(cols) - 1);
+    const long c =
+        std::clamp(static_cast<long>(x_of(s.t[i]) * cols), 0L, static_cast<long>(cols) - 1);
     const bool brk = s.break_us > 0 && i > 0 && s.t[i] - s.t[i - 1] > s.break_us;
     if (c != col || brk) {
       flush();
@@ -164,12 +162,12 @@ void marker(std::string& o, double x, double y, const Marker& m, int count) {
   const std::string fill = " fill=\"" + m.color + "\" stroke=\"#222\" stroke-width=\"0.5\"";
   switch (m.shape) {
     case '^':
-      o += "<path d=\"M" + num(x) + " " + num(y - 5) + " L" + num(x - 4) + " " + num(y + 3) +
-           " L" + num(x + 4) + " " + num(y + 3) + " Z\"" + fill + ">" + title + "</path>";
+      o += "<path d=\"M" + num(x) + " " + num(y - 5) + " L" + num(x - 4) + " " + num(y + 3) + " L" +
+           num(x + 4) + " " + num(y + 3) + " Z\"" + fill + ">" + title + "</path>";
       break;
     case 'v':
-      o += "<path d=\"M" + num(x) + " " + num(y + 5) + " L" + num(x - 4) + " " + num(y - 3) +
-           " L" + num(x + 4) + " " + num(y - 3) + " Z\"" + fill + ">" + title + "</path>";
+      o += "<path d=\"M" + num(x) + " " + num(y + 5) + " L" + num(x - 4) + " " + num(y - 3) + " L" +
+           num(x + 4) + " " + num(y - 3) + " Z\"" + fill + ">" + title + "</path>";
       break;
     case 'd':
       o += "<path d=\"M" + num(x) + " " + num(y - 5) + " L" + num(x + 5) + " " + num(y) + " L" +
@@ -194,7 +192,8 @@ void time_plot(std::string& o, const TimePlot& p) {
   if (f.x1 <= 0) f.x1 = 1;
   double lo = INFINITY, hi = -INFINITY;
   for (const auto& s : p.series)
-    for (float v : s.v) lo = std::min(lo, static_cast<double>(v)), hi = std::max(hi, static_cast<double>(v));
+    for (float v : s.v)
+      lo = std::min(lo, static_cast<double>(v)), hi = std::max(hi, static_cast<double>(v));
   for (const auto& m : p.markers)
     if (!m.top && m.shape != '|') lo = std::min(lo, m.v), hi = std::max(hi, m.v);
   for (const auto& h : p.hlines) lo = std::min(lo, h.first), hi = std::max(hi, h.first);
@@ -206,9 +205,9 @@ void time_plot(std::string& o, const TimePlot& p) {
   const double pad = (hi - lo) * 0.08;
   f.y0 = lo - pad;
   f.y1 = hi + pad;
-  o += "<svg width=\"" + std::to_string(p.width) +
-       "\" height=\"" + std::to_string(p.height) + "\" viewBox=\"0 0 " + std::to_string(p.width) +
-       " " + std::to_string(p.height) + "\" class=\"plot\">";
+  o += "<svg width=\"" + std::to_string(p.width) + "\" height=\"" + std::to_string(p.height) +
+       "\" viewBox=\"0 0 " + std::to_string(p.width) + " " + std::to_string(p.height) +
+       "\" class=\"plot\">";
   axes(o, f, p.title, p.unit, "s from the first frame");
   for (const auto& h : p.hlines) {
     const std::string y = num(f.py(h.first));
@@ -248,8 +247,7 @@ void time_plot(std::string& o, const TimePlot& p) {
     lx -= 8.0 + 6.5 * static_cast<double>(it->label.size()) + 18;
     o += "<line x1=\"" + num(lx) + "\" x2=\"" + num(lx + 14) + "\" y1=\"10\" y2=\"10\" stroke=\"" +
          it->color + "\" stroke-width=\"2\"" + (it->dashed ? " stroke-dasharray=\"4,2\"" : "") +
-         "/><text x=\"" + num(lx + 18) + "\" y=\"14\" class=\"tick\">" + esc(it->label) +
-         "</text>";
+         "/><text x=\"" + num(lx + 18) + "\" y=\"14\" class=\"tick\">" + esc(it->label) + "</text>";
   }
   o += "</svg>";
 }
@@ -257,11 +255,12 @@ void time_plot(std::string& o, const TimePlot& p) {
 void bars(std::string& o, const std::vector<std::string>& labels,
           const std::vector<std::uint64_t>& counts, const std::string& color, int width,
           int height) {
-  const std::uint64_t top = counts.empty() ? 1 : std::max<std::uint64_t>(
-                                                     1, *std::max_element(counts.begin(), counts.end()));
-  o += "<svg width=\"" + std::to_string(width) +
-       "\" height=\"" + std::to_string(height) + "\" viewBox=\"0 0 " + std::to_string(width) +
-       " " + std::to_string(height) + "\" class=\"plot\">";
+  const std::uint64_t top =
+      counts.empty() ? 1
+                     : std::max<std::uint64_t>(1, *std::max_element(counts.begin(), counts.end()));
+  o += "<svg width=\"" + std::to_string(width) + "\" height=\"" + std::to_string(height) +
+       "\" viewBox=\"0 0 " + std::to_string(width) + " " + std::to_string(height) +
+       "\" class=\"plot\">";
   const double n = static_cast<double>(std::max<std::size_t>(1, counts.size()));
   const double bw = (width - 20) / n, base = height - 18;
   for (std::size_t i = 0; i < counts.size(); ++i) {
@@ -285,9 +284,9 @@ void lanes(std::string& o, const std::vector<Lane>& ls, std::int64_t t0, std::in
   const int row = 22, height = row * static_cast<int>(ls.size()) + kBottom + 4;
   const double cols = width - kLeft - kRight;
   const double span = std::max<double>(1, static_cast<double>(t1 - t0));
-  o += "<svg width=\"" + std::to_string(width) +
-       "\" height=\"" + std::to_string(height) + "\" viewBox=\"0 0 " + std::to_string(width) +
-       " " + std::to_string(height) + "\" class=\"plot\">";
+  o += "<svg width=\"" + std::to_string(width) + "\" height=\"" + std::to_string(height) +
+       "\" viewBox=\"0 0 " + std::to_string(width) + " " + std::to_string(height) +
+       "\" class=\"plot\">";
   Frame f{width, height, 0, span / 1e6, 0, 1};
   const double xs = nice_step(f.x1, 8);
   for (double x = 0; x <= f.x1 + xs * 1e-9; x += xs) {

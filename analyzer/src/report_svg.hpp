@@ -20,16 +20,16 @@ struct Series {
   std::string label, color;
   std::vector<std::int64_t> t;  // microseconds
   std::vector<float> v;
-  bool step = false;    // held until the next point (a commanded value)
+  bool step = false;  // held until the next point (a commanded value)
   bool dashed = false;
   std::int64_t break_us = 0;  // no line across a gap longer than this (0: never)
 };
 
 struct Marker {
   std::int64_t t = 0;
-  double v = 0;        // plotted at this value (ignored when `top`)
-  bool top = false;    // on the band above the plot instead
-  char shape = 'o';    // 'o' circle, '^' up, 'v' down, 'd' diamond, '|' vertical line
+  double v = 0;      // plotted at this value (ignored when `top`)
+  bool top = false;  // on the band above the plot instead
+  char shape = 'o';  // 'o' circle, '^' up, 'v' down, 'd' diamond, '|' vertical line
   std::string color, title;
   int count = 1;  // marks merged into this one
 };

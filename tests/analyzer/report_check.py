@@ -12,6 +12,7 @@ off: no console message may appear, and the screenshot must not be blank
 --chromium is given and /usr/bin/chromium is absent.
 """
 import argparse
+import concurrent.futures
 import os
 import re
 import shutil
@@ -90,63 +91,71 @@ def main():
         print("chromium not installed: skipped")
         return 77
     os.makedirs(a.out, exist_ok=True)
-    errors = []
-    for cap in a.captures:
-        name = os.path.basename(cap)
-        page = os.path.join(a.out, name + ".html")
-        r = subprocess.run([a.topdump, "report", cap, "-o", page], capture_output=True)
-        if r.returncode not in (0, 1) or not os.path.exists(page):
-            errors.append("%s: topdump report exit %d: %s" % (name, r.returncode, r.stderr))
-            continue
-        size = os.path.getsize(page)
-        if size > 5 * 1024 * 1024:
-            errors.append("%s: %d bytes, over 5 MB" % (name, size))
-        text = open(page, encoding="ascii").read()
-        errors += check_offline(name, text)
-        try:
-            root = ET.parse(page).getroot()
-            if root.tag != "html" or root.find("body") is None:
-                errors.append("%s: no html/body" % name)
-            if len(root.findall(".//section")) != 7:
-                errors.append("%s: not seven sections" % name)
-        except ET.ParseError as e:
-            errors.append("%s: not well-formed: %s" % (name, e))
-        if not a.chromium:
-            continue
-        shot = os.path.join(a.out, name + ".png")
-        if os.path.exists(shot):
-            os.remove(shot)
-        profile = os.path.join(a.out, "chromium-profile")
-        r = subprocess.run(
-            [chromium, "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
-             "--user-data-dir=" + profile, "--host-resolver-rules=MAP * ~NOTFOUND",
-             "--enable-logging=stderr", "--v=0", "--hide-scrollbars",
-             "--window-size=1200,1600", "--screenshot=" + shot, "file://" + os.path.abspath(page)],
-            capture_output=True, text=True, timeout=120)
-        console = [l for l in r.stderr.splitlines() if "CONSOLE" in l]
-        if console:
-            errors.append("%s: console messages in Chromium: %s" % (name, console[:3]))
-        if r.returncode != 0 or not os.path.exists(shot):
-            errors.append("%s: chromium exit %d, no screenshot: %s" %
-                          (name, r.returncode, r.stderr[-500:]))
-            continue
-        w, h, bpp, rows = png_pixels(shot)
-        colours, ink = set(), 0
-        for row in rows[::4]:
-            for x in range(0, w * bpp, bpp * 4):
-                px = row[x:x + 3]
-                colours.add(px)
-                if px != b"\xff\xff\xff":
-                    ink += 1
-        total = len(rows[::4]) * len(range(0, w * bpp, bpp * 4))
-        if len(colours) < 3 or ink < total // 50:
-            errors.append("%s: blank screenshot (%d colours, %d of %d sampled pixels not white)" %
-                          (name, len(colours), ink, total))
-        print("%s: %d bytes, screenshot %dx%d, %d colours" % (name, size, w, h, len(colours)))
+    # two pages at a time (the machine has two cores; Chromium waits a lot)
+    with concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
+        results = list(pool.map(lambda cap: check(a, chromium, cap), a.captures))
+    errors = [e for r in results for e in r]
     for e in errors:
         print("FAIL " + e)
     print("%d captures, %d problems" % (len(a.captures), len(errors)))
     return 1 if errors else 0
+
+
+def check(a, chromium, cap):
+    """The problems of one capture's page."""
+    errors = []
+    name = os.path.basename(cap)
+    page = os.path.join(a.out, name + ".html")
+    r = subprocess.run([a.topdump, "report", cap, "-o", page], capture_output=True)
+    if r.returncode not in (0, 1) or not os.path.exists(page):
+        errors.append("%s: topdump report exit %d: %s" % (name, r.returncode, r.stderr))
+        return errors
+    size = os.path.getsize(page)
+    if size > 5 * 1024 * 1024:
+        errors.append("%s: %d bytes, over 5 MB" % (name, size))
+    text = open(page, encoding="ascii").read()
+    errors += check_offline(name, text)
+    try:
+        root = ET.parse(page).getroot()
+        if root.tag != "html" or root.find("body") is None:
+            errors.append("%s: no html/body" % name)
+        if len(root.findall(".//section")) != 7:
+            errors.append("%s: not seven sections" % name)
+    except ET.ParseError as e:
+        errors.append("%s: not well-formed: %s" % (name, e))
+    if not a.chromium:
+        return errors
+    shot = os.path.join(a.out, name + ".png")
+    if os.path.exists(shot):
+        os.remove(shot)
+    profile = os.path.join(a.out, "chromium-profile-" + name)
+    r = subprocess.run(
+        [chromium, "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
+         "--user-data-dir=" + profile, "--host-resolver-rules=MAP * ~NOTFOUND",
+         "--enable-logging=stderr", "--v=0", "--hide-scrollbars",
+         "--window-size=1200,1600", "--screenshot=" + shot, "file://" + os.path.abspath(page)],
+        capture_output=True, text=True, timeout=120)
+    console = [l for l in r.stderr.splitlines() if "CONSOLE" in l]
+    if console:
+        errors.append("%s: console messages in Chromium: %s" % (name, console[:3]))
+    if r.returncode != 0 or not os.path.exists(shot):
+        errors.append("%s: chromium exit %d, no screenshot: %s" %
+                      (name, r.returncode, r.stderr[-500:]))
+        return errors
+    w, h, bpp, rows = png_pixels(shot)
+    colours, ink = set(), 0
+    for row in rows[::4]:
+        for x in range(0, w * bpp, bpp * 4):
+            px = row[x:x + 3]
+            colours.add(px)
+            if px != b"\xff\xff\xff":
+                ink += 1
+    total = len(rows[::4]) * len(range(0, w * bpp, bpp * 4))
+    if len(colours) < 3 or ink < total // 50:
+        errors.append("%s: blank screenshot (%d colours, %d of %d sampled pixels not white)" %
+                      (name, len(colours), ink, total))
+    print("%s: %d bytes, screenshot %dx%d, %d colours" % (name, size, w, h, len(colours)))
+    return errors
 
 
 if __name__ == "__main__":
