@@ -184,12 +184,12 @@ void Page::motion() {
       cmd.color = kCmdColor[axis];
       cmd.step = true;
       cmd.dashed = true;
-      // One mark per pixel column and shape: the first, with a count (the
-      // title of each is only built for the ones drawn).
+      // One mark per three pixel columns and shape: the first, with a count
+      // (the title of each is only built for the ones drawn).
       // (commands come in time order: the last column of each shape is enough)
       std::map<char, std::pair<long, std::size_t>> last;
       auto mark = [&](std::int64_t t, char shape, auto make) {
-        const long col = svg::column(p, t);
+        const long col = svg::column(p, t) / 3;  // a mark is about 8 px wide
         auto [it, fresh] = last.try_emplace(shape, col, p.markers.size());
         if (!fresh && it->second.first == col) {
           ++p.markers[it->second.second].count;
