@@ -651,6 +651,16 @@ void facts(const ReportSink& d, Report& rep) {
 
 }  // namespace
 
+std::string model_text(top::Model given, top::Dialect d) {
+  if (given != top::Model::unknown) return std::string(top::to_string(given)) + " (given)";
+  std::vector<top::Model> of;
+  for (top::Model m : top::all_models())
+    if (top::dialect_of(m) == d) of.push_back(m);
+  if (of.size() == 1)
+    return std::string(top::to_string(of[0])) + " (guessed: the only model of the dialect)";
+  return "";
+}
+
 Report analyze(const ReportSink& data, const Stats& stats, top::Severity worst, top::Model model,
                const Options& opts) {
   Report rep;

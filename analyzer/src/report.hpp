@@ -248,6 +248,10 @@ struct Report {
 Report analyze(const ReportSink& data, const Stats& stats, top::Severity worst, top::Model model,
                const Options& opts);
 
+// The model of a conversation: the one given, else guessed where the dialect
+// leaves one (Topotek: sip), with how it was decided; "" when unknown.
+std::string model_text(top::Model given, top::Dialect d);
+
 // The report as JSON (2-space indent) appended to `out`.
 void write_json(std::string& out, const Report& r);
 // The report as one self-contained HTML page appended to `out`.

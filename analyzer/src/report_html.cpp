@@ -120,14 +120,16 @@ void Page::overview() {
        "</td></tr>";
   o += "<tr><th>worst finding</th><td>" + sev_span(r.worst) + "</td></tr></table>";
   o += "<h3>Conversations</h3><table><tr><th>id</th><th>transport</th><th>first sender</th>"
-       "<th>peer</th><th>dialect</th><th>frames</th><th>requests</th><th>responses</th>"
+       "<th>peer</th><th>dialect</th><th>model</th><th>frames</th><th>requests</th><th>responses</"
+       "th>"
        "<th>paired</th></tr>";
   for (const ConvStats& c : s.conversations)
     o += "<tr>" + tdn(std::to_string(c.id)) + td(std::string(to_string(c.transport))) +
          td("<code>" + esc(c.a) + "</code>") + td("<code>" + esc(c.b) + "</code>") +
-         td(std::string(top::to_string(c.dialect))) + tdn(std::to_string(c.frames)) +
-         tdn(std::to_string(c.requests)) + tdn(std::to_string(c.responses)) +
-         tdn(std::to_string(c.paired)) + "</tr>";
+         td(std::string(top::to_string(c.dialect))) +
+         td(esc(model_text(r.model, c.dialect).empty() ? "-" : model_text(r.model, c.dialect))) +
+         tdn(std::to_string(c.frames)) + tdn(std::to_string(c.requests)) +
+         tdn(std::to_string(c.responses)) + tdn(std::to_string(c.paired)) + "</tr>";
   o += "</table>";
   if (s.conversations_dropped)
     o += "<p class=\"muted\">" + std::to_string(s.conversations_dropped) +
@@ -137,11 +139,21 @@ void Page::overview() {
     o += "<p class=\"ok\">Nothing: every request was answered, every stream ran at its rate, "
          "and no frame has an error or a warning.</p>";
   } else {
-    o += "<ol class=\"facts\">";
-    for (const Fact& f : r.facts)
+    // the first twelve at once, the rest a click away
+    auto item = [&](const Fact& f) {
       o += "<li>" + sev_span(f.severity) + " " + esc(f.text) + " <a href=\"#" + esc(f.anchor) +
            "\">details</a></li>";
+    };
+    constexpr std::size_t kShown = 12;
+    o += "<ol class=\"facts\">";
+    for (std::size_t i = 0; i < r.facts.size() && i < kShown; ++i) item(r.facts[i]);
     o += "</ol>";
+    if (r.facts.size() > kShown) {
+      o += "<details><summary>" + std::to_string(r.facts.size() - kShown) +
+           " more</summary><ol class=\"facts\" start=\"" + std::to_string(kShown + 1) + "\">";
+      for (std::size_t i = kShown; i < r.facts.size(); ++i) item(r.facts[i]);
+      o += "</ol></details>";
+    }
   }
   o += "</section>";
 }

@@ -68,6 +68,7 @@ void write_json(std::string& out, const Report& r) {
     text("a", c.a);
     text("b", c.b);
     text("dialect", top::to_string(c.dialect));
+    text("model", model_text(r.model, c.dialect));
     u("frames", c.frames);
     j.close_object();
   }
