@@ -651,6 +651,12 @@ void facts(const ReportSink& d, Report& rep) {
 
 }  // namespace
 
+top::Dialect dialect_of(const Report& r, const ConvStats& c) {
+  if (c.dialect != top::Dialect::unknown) return c.dialect;
+  auto it = r.data->convs.find(c.id);
+  return it == r.data->convs.end() ? c.dialect : it->second.dialect;
+}
+
 std::string model_text(top::Model given, top::Dialect d) {
   if (given != top::Model::unknown) return std::string(top::to_string(given)) + " (given)";
   std::vector<top::Model> of;

@@ -248,6 +248,10 @@ struct Report {
 Report analyze(const ReportSink& data, const Stats& stats, top::Severity worst, top::Model model,
                const Options& opts);
 
+// The dialect of a conversation: the statistics', else the one its frames
+// were decoded with (a conversation on an unknown port).
+top::Dialect dialect_of(const Report& r, const ConvStats& c);
+
 // The model of a conversation: the one given, else guessed where the dialect
 // leaves one (Topotek: sip), with how it was decided; "" when unknown.
 std::string model_text(top::Model given, top::Dialect d);

@@ -67,8 +67,8 @@ void write_json(std::string& out, const Report& r) {
     text("transport", to_string(c.transport));
     text("a", c.a);
     text("b", c.b);
-    text("dialect", top::to_string(c.dialect));
-    text("model", model_text(r.model, c.dialect));
+    text("dialect", top::to_string(dialect_of(r, c)));
+    text("model", model_text(r.model, dialect_of(r, c)));
     u("frames", c.frames);
     j.close_object();
   }
