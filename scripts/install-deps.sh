@@ -15,6 +15,7 @@ packages=(
   tcpdump socat                     # capture floor for bench/, pty peers for tests
   time                              # /usr/bin/time -v: peak RSS in bench/run.sh
   tshark                            # the generated Wireshark dissector's tests (tests/wireshark)
+  chromium                          # topdump report pages load in headless Chromium (tests/analyzer)
 )
 
 missing=()

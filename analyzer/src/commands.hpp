@@ -26,5 +26,6 @@ Run add_read_command(CLI::App& app);
 Run add_stats_command(CLI::App& app);
 Run add_live_command(CLI::App& app);
 Run add_serial_command(CLI::App& app);
+Run add_report_command(CLI::App& app);
 
 }  // namespace topdump

@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   runs.push_back(topdump::add_frame_command(app));
   runs.push_back(topdump::add_live_command(app));
   runs.push_back(topdump::add_serial_command(app));
+  runs.push_back(topdump::add_report_command(app));
   runs.push_back(topdump::add_wireshark_command(app));
   try {
     app.parse(argc, argv);

@@ -1,0 +1,125 @@
+// topdump report CAPTURE... -o report.html | --json
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include "commands.hpp"
+#include "output.hpp"
+#include "report.hpp"
+#include "sources.hpp"
+
+namespace topdump {
+
+namespace {
+
+struct ReportOptions {
+  std::vector<std::string> files;
+  std::string output;
+  bool json = false;
+  std::string dialect = "auto", model = "auto", format = "auto";
+  std::vector<std::uint16_t> ports;
+  double timeout_ms = 2000;
+  double tolerance = 0.5;
+};
+
+// Writes `text` to `path` ("-": stdout); false on any failed write.
+bool write_out(const std::string& path, const std::string& text) {
+  std::FILE* f = path == "-" ? stdout : std::fopen(path.c_str(), "wb");
+  if (!f) return false;
+  bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  ok = (path == "-" ? std::fflush(f) : std::fclose(f)) == 0 && ok;
+  return ok;
+}
+
+int run_report(const ReportOptions& o) {
+  auto dialect = top::dialect_from_string(o.dialect);
+  auto model = top::model_from_string(o.model);
+  auto fmt = format_from_string(o.format);
+  if (!dialect || !model || !fmt) {
+    std::cerr << "topdump report: bad --dialect, --model or --format\n";
+    return 2;
+  }
+  if (*model != top::Model::unknown && *dialect != top::Dialect::unknown &&
+      top::dialect_of(*model) != *dialect) {
+    std::cerr << "topdump report: model " << o.model << " speaks "
+              << top::to_string(top::dialect_of(*model)) << ", not " << o.dialect << "\n";
+    return 2;
+  }
+  if (o.output.empty() && !o.json) {
+    std::cerr << "topdump report: give -o FILE.html (or --json)\n";
+    return 2;
+  }
+  AnalyzerOptions aopts;
+  aopts.dialect = *dialect;
+  aopts.model = *model;
+  aopts.timeout_us = static_cast<std::int64_t>(o.timeout_ms * 1000);
+  SourceOptions sopts;
+  for (auto p : o.ports) {
+    sopts.udp_ports.insert(p);
+    sopts.tcp_ports.insert(p);
+  }
+  // Source notes also go to stderr, naming the file.
+  struct Sink : report::ReportSink {
+    void note(const NoteEvent& e) override {
+      if (!e.conv) std::fprintf(stderr, "topdump: %s: %s\n", file.c_str(), note_line(e).c_str());
+      report::ReportSink::note(e);
+    }
+  } sink;
+  Analyzer a(aopts, sink);
+  std::string err;
+  for (const auto& f : o.files) {
+    sink.file = f;
+    if (!read_file(f, *fmt, a, sopts, err)) {
+      std::cerr << "topdump report: " << err << "\n";
+      return 2;
+    }
+    a.finish();
+  }
+  if (a.frames_seen() == 0) a.source_note(kNoTime, ACode::no_frames, "no TOP frame found", 0, 0);
+  report::Options ropts;
+  ropts.tolerance_deg = o.tolerance;
+  ropts.files = o.files;
+  const report::Report r = report::analyze(sink, a.stats(), a.worst(), *model, ropts);
+  std::string text;
+  if (o.json)
+    report::write_json(text, r);
+  else
+    report::write_html(text, r);
+  const std::string path = o.output.empty() ? "-" : o.output;
+  if (!write_out(path, text)) {
+    std::cerr << "topdump report: cannot write " << path << "\n";
+    return 2;
+  }
+  return a.worst() == top::Severity::error ? 1 : 0;
+}
+
+}  // namespace
+
+Run add_report_command(CLI::App& app) {
+  auto o = std::make_shared<ReportOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "report",
+      "A self-contained HTML diagnosis of captures: what went wrong, the gimbal's response to "
+      "its commands, latency, streams, findings (docs/REPORT.md)");
+  sub->add_option("FILE", o->files, "capture files (pcap, pcapng, serial logs)")->required();
+  sub->add_option("-o,--output", o->output, "write the report here (- for stdout)");
+  sub->add_flag("--json", o->json, "the same analysis as one JSON document");
+  sub->add_option("--tolerance", o->tolerance,
+                  "an angle command has settled when the attitude stays within this many "
+                  "degrees of the target")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  sub->add_option("--dialect", o->dialect, "auto, skydroid or topotek (forces every conversation)")
+      ->check(CLI::IsMember({"auto", "skydroid", "topotek"}));
+  sub->add_option("--model", o->model, top::model_list(", ", " or ") + " (ranges and traits)")
+      ->check(model_check());
+  sub->add_option("--format", o->format, "auto, pcap, raw, socat, saleae or lines")
+      ->check(CLI::IsMember({"auto", "pcap", "pcapng", "raw", "socat", "saleae", "lines"}));
+  sub->add_option("--port", o->ports, "another UDP/TCP port that carries TOP (repeatable)")
+      ->allow_extra_args(false);
+  sub->add_option("--timeout-ms", o->timeout_ms, "a request is unanswered after this long")
+      ->check(CLI::PositiveNumber);
+  return [o, sub]() { return sub->parsed() ? run_report(*o) : -1; };
+}
+
+}  // namespace topdump
