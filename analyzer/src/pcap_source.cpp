@@ -380,6 +380,9 @@ bool read_file(const std::string& path, Format format, Analyzer& a, const Source
         ++r.record;
         r.at += 16 + h->caplen;
         const std::int64_t ts = static_cast<std::int64_t>(h->ts.tv_sec) * 1000000 + h->ts.tv_usec;
+        if (r.o.packet)
+          r.o.packet(r.dlt, ts, std::string_view(reinterpret_cast<const char*>(data), h->caplen),
+                     h->len, r.record);
         r.a.record(r.dis.packet(r.dlt, ts, data, h->caplen, h->len, r.record));
         if (r.o.progress && (r.record & 0xFFFF) == 0 && r.fp)
           r.o.progress(static_cast<std::uint64_t>(std::ftell(r.fp)), r.total);

@@ -31,6 +31,9 @@ struct SourceOptions {
   std::set<std::uint16_t> tcp_ports = known_ports(true);
   // Called now and then with (bytes read, total bytes) for a progress bar.
   std::function<void(std::uint64_t, std::uint64_t)> progress;
+  // Called with each packet of a pcap/pcapng source before it is dissected:
+  // (link type, time, captured bytes, length on the wire, record); read -w.
+  std::function<void(int, std::int64_t, std::string_view, std::uint32_t, std::uint64_t)> packet;
 };
 
 // Dissects one captured packet of link type `dlt` (Ethernet with VLAN tags,

@@ -1,5 +1,6 @@
 // The text outputs: one line per frame, garbage run and finding, and the
 // -V field tree under each frame.
+#include <algorithm>
 #include <cstdio>
 
 #include "escape.hpp"
@@ -8,12 +9,88 @@
 
 namespace topdump {
 
+void Out::write(const char* p, std::size_t n) {
+  if (n && std::fwrite(p, 1, n, f_) != n) failed_ = true;
+}
+
 void Out::flush() {
-  if (!buf_.empty()) {
-    std::fwrite(buf_.data(), 1, buf_.size(), f_);
+  if (window_ > 0) {
+    release(true);
+    buf_.clear();
+    mark_ = dead_ = 0;
+  } else {
+    write(buf_.data(), buf_.size());
     buf_.clear();
   }
-  std::fflush(f_);
+  if (std::fflush(f_) != 0 || std::ferror(f_)) failed_ = true;
+}
+
+void Out::hold(std::int64_t ts, std::uint64_t record, bool first) {
+  const std::size_t len = buf_.size() - mark_;
+  if (ts != kNoTime && pending_ > 0) {
+    for (Span& s : spans_)
+      if (s.pending && s.record < record) {
+        s.key = ts;
+        s.pending = false;
+        --pending_;
+        sorted_ = false;
+      }
+  }
+  const std::int64_t key = first ? INT64_MIN : ts == kNoTime ? INT64_MAX : ts;
+  if (!spans_.empty() && key < spans_.back().key) sorted_ = false;
+  spans_.push_back(Span{key, record, mark_, len, !first && ts == kNoTime});
+  if (spans_.back().pending) ++pending_;
+  mark_ = buf_.size();
+  if (ts != kNoTime && (newest_ == kNoTime || ts > newest_)) newest_ = ts;
+  if (buf_.size() - dead_ >= (1u << 16) || spans_.size() > kMaxHeldEvents) release(false);
+}
+
+void Out::release(bool all) {
+  if (spans_.empty()) return;
+  if (!sorted_) {
+    std::stable_sort(spans_.begin(), spans_.end(),
+                     [](const Span& a, const Span& b) { return a.key < b.key; });
+    sorted_ = true;
+  }
+  std::size_t k = spans_.size();
+  if (!all) {
+    const std::int64_t horizon = newest_ == kNoTime ? INT64_MIN : newest_ - window_;
+    k = 0;
+    while (k < spans_.size() && spans_[k].key <= horizon) ++k;
+    // over the limits: the oldest go out whatever their time
+    std::size_t held = buf_.size() - dead_;
+    for (std::size_t i = 0; i < k; ++i) held -= spans_[i].len;
+    while (k < spans_.size() && (spans_.size() - k > kMaxHeldEvents || held > kMaxHeldBytes)) {
+      held -= spans_[k].len;
+      ++k;
+    }
+    if (k == 0) return;
+  }
+  std::size_t i = 0;
+  while (i < k) {
+    std::size_t b = spans_[i].begin, e = b + spans_[i].len;
+    for (++i; i < k && spans_[i].begin == e; ++i) e += spans_[i].len;
+    write(buf_.data() + b, e - b);
+    dead_ += e - b;
+  }
+  for (std::size_t j = 0; j < k; ++j)
+    if (spans_[j].pending) --pending_;
+  spans_.erase(spans_.begin(), spans_.begin() + static_cast<std::ptrdiff_t>(k));
+  if (spans_.empty()) {
+    buf_.clear();
+    mark_ = dead_ = 0;
+  } else if (dead_ > (1u << 16) && dead_ * 2 > buf_.size()) {
+    std::string live;
+    live.reserve(std::max<std::size_t>(buf_.capacity(), 1 << 17));
+    for (Span& s : spans_) {
+      const std::size_t b = live.size();
+      live.append(buf_, s.begin, s.len);
+      s.begin = b;
+    }
+    buf_.swap(live);
+    mark_ = buf_.size();
+    dead_ = 0;
+  }
 }
 
 namespace {
@@ -88,15 +165,53 @@ void TextSink::frame(const FrameEvent& e) {
       o += "  " + std::string(top::to_string(n.severity)) + " " + std::string(to_string(n.code)) +
            ": " + n.message + "\n";
   }
-  out_.done();
+  out_.done(e.ts, e.pos.record);
 }
 void TextSink::garbage(const GarbageEvent& e) {
   out_.buf() += garbage_line(e) + "\n";
-  out_.done();
+  out_.done(e.ts, e.pos.record);
 }
 void TextSink::note(const NoteEvent& e) {
   out_.buf() += note_line(e) + "\n";
-  out_.done();
+  out_.done(e.ts, e.pos.record);
+}
+
+void SummarySink::frame(const FrameEvent& e) {
+  ++frames_;
+  at(e.ts);
+  for (const top::Finding* x : all_findings(*e.entry->frame, e.entry->decoded)) count(x->severity);
+  for (const Note& n : e.notes) count(n.severity);
+  inner_.frame(e);
+}
+void SummarySink::garbage(const GarbageEvent& e) {
+  ++garbage_;
+  at(e.ts);
+  count(e.item->finding.severity);
+  inner_.garbage(e);
+}
+void SummarySink::note(const NoteEvent& e) {
+  at(e.ts);
+  count(e.note.severity);
+  if (e.note.code == ACode::unanswered) ++unanswered_;
+  inner_.note(e);
+}
+
+std::string SummarySink::text() const {
+  auto n = [](std::uint64_t v, const char* one, const char* many) {
+    return std::to_string(v) + " " + (v == 1 ? one : many);
+  };
+  std::string s = "-- summary: " + n(frames_, "frame", "frames") + ", " +
+                  n(errors_, "error", "errors") + ", " + n(warnings_, "warning", "warnings") +
+                  ", " + std::to_string(unanswered_) + " unanswered, " + std::to_string(garbage_) +
+                  " garbage";
+  if (first_ != kNoTime) {
+    char b[48];
+    std::snprintf(b, sizeof b, " (%.3f s)", static_cast<double>(last_ - first_) / 1e6);
+    s += ", " + format_time(first_) + " to " + format_time(last_) + b;
+  } else {
+    s += ", no timestamps";
+  }
+  return s;
 }
 
 }  // namespace topdump
