@@ -64,9 +64,9 @@ class Out {
   std::string buf_;
   // window_ > 0: the held events, their bytes in buf_ from mark_ back;
   // dead_ bytes of buf_ were written already
-  std::vector<Span> spans_;
-  std::size_t mark_ = 0, dead_ = 0, pending_ = 0;
-  bool sorted_ = true;
+  std::vector<Span> spans_;  // sorted by key from head_ on (stable)
+  std::size_t head_ = 0;     // spans_ before it were written
+  std::size_t mark_ = 0, dead_ = 0, pending_ = 0, since_ = 0;
   std::int64_t newest_ = kNoTime;
 };
 

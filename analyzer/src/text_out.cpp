@@ -2,6 +2,7 @@
 // -V field tree under each frame.
 #include <algorithm>
 #include <cstdio>
+#include <cstring>
 
 #include "escape.hpp"
 #include "output.hpp"
@@ -16,8 +17,6 @@ void Out::write(const char* p, std::size_t n) {
 void Out::flush() {
   if (window_ > 0) {
     release(true);
-    buf_.clear();
-    mark_ = dead_ = 0;
   } else {
     write(buf_.data(), buf_.size());
     buf_.clear();
@@ -27,68 +26,88 @@ void Out::flush() {
 
 void Out::hold(std::int64_t ts, std::uint64_t record, bool first) {
   const std::size_t len = buf_.size() - mark_;
+  bool resort = false;
   if (ts != kNoTime && pending_ > 0) {
-    for (Span& s : spans_)
-      if (s.pending && s.record < record) {
-        s.key = ts;
-        s.pending = false;
+    for (std::size_t i = head_; i < spans_.size(); ++i)
+      if (Span& x = spans_[i]; x.pending && x.record < record) {
+        x.key = ts;
+        x.pending = false;
         --pending_;
-        sorted_ = false;
+        resort = true;
       }
   }
   const std::int64_t key = first ? INT64_MIN : ts == kNoTime ? INT64_MAX : ts;
-  if (!spans_.empty() && key < spans_.back().key) sorted_ = false;
-  spans_.push_back(Span{key, record, mark_, len, !first && ts == kNoTime});
-  if (spans_.back().pending) ++pending_;
+  const Span span{key, record, mark_, len, !first && ts == kNoTime};
+  if (spans_.size() == head_ || spans_.back().key <= key) {
+    spans_.push_back(span);
+  } else {  // a late event: after the held ones of the same time or earlier
+    auto at = std::upper_bound(spans_.begin() + static_cast<std::ptrdiff_t>(head_), spans_.end(),
+                               key, [](std::int64_t k, const Span& x) { return k < x.key; });
+    spans_.insert(at, span);
+  }
+  if (resort)
+    std::stable_sort(spans_.begin() + static_cast<std::ptrdiff_t>(head_), spans_.end(),
+                     [](const Span& x, const Span& y) { return x.key < y.key; });
+  if (span.pending) ++pending_;
+  since_ += len;
   mark_ = buf_.size();
   if (ts != kNoTime && (newest_ == kNoTime || ts > newest_)) newest_ = ts;
-  if (buf_.size() - dead_ >= (1u << 16) || spans_.size() > kMaxHeldEvents) release(false);
+  if (since_ >= (1u << 16) || spans_.size() - head_ > kMaxHeldEvents) release(false);
 }
 
 void Out::release(bool all) {
-  if (spans_.empty()) return;
-  if (!sorted_) {
-    std::stable_sort(spans_.begin(), spans_.end(),
-                     [](const Span& a, const Span& b) { return a.key < b.key; });
-    sorted_ = true;
-  }
-  std::size_t k = spans_.size();
+  since_ = 0;
+  const std::size_t n = spans_.size();
+  std::size_t k = all ? n : head_;
   if (!all) {
     const std::int64_t horizon = newest_ == kNoTime ? INT64_MIN : newest_ - window_;
-    k = 0;
-    while (k < spans_.size() && spans_[k].key <= horizon) ++k;
-    // over the limits: the oldest go out whatever their time
+    while (k < n && spans_[k].key <= horizon) ++k;
+    // over the limits: the oldest go out whatever their time, down to 7/8
     std::size_t held = buf_.size() - dead_;
-    for (std::size_t i = 0; i < k; ++i) held -= spans_[i].len;
-    while (k < spans_.size() && (spans_.size() - k > kMaxHeldEvents || held > kMaxHeldBytes)) {
+    for (std::size_t i = head_; i < k; ++i) held -= spans_[i].len;
+    while (k < n && (n - k > kMaxHeldEvents - kMaxHeldEvents / 8 ||
+                     (held > kMaxHeldBytes - kMaxHeldBytes / 8 && held > spans_[k].len))) {
       held -= spans_[k].len;
       ++k;
     }
-    if (k == 0) return;
   }
-  std::size_t i = 0;
+  std::size_t i = head_;
   while (i < k) {
     std::size_t b = spans_[i].begin, e = b + spans_[i].len;
     for (++i; i < k && spans_[i].begin == e; ++i) e += spans_[i].len;
     write(buf_.data() + b, e - b);
     dead_ += e - b;
   }
-  for (std::size_t j = 0; j < k; ++j)
+  for (std::size_t j = head_; j < k; ++j)
     if (spans_[j].pending) --pending_;
-  spans_.erase(spans_.begin(), spans_.begin() + static_cast<std::ptrdiff_t>(k));
-  if (spans_.empty()) {
+  head_ = k;
+  if (head_ == n) {
+    spans_.clear();
+    head_ = 0;
     buf_.clear();
     mark_ = dead_ = 0;
-  } else if (dead_ > (1u << 16) && dead_ * 2 > buf_.size()) {
-    std::string live;
-    live.reserve(std::max<std::size_t>(buf_.capacity(), 1 << 17));
-    for (Span& s : spans_) {
-      const std::size_t b = live.size();
-      live.append(buf_, s.begin, s.len);
-      s.begin = b;
+    return;
+  }
+  if (head_ * 2 > n) {
+    spans_.erase(spans_.begin(), spans_.begin() + static_cast<std::ptrdiff_t>(head_));
+    head_ = 0;
+  }
+  if (dead_ > (1u << 18) && dead_ * 2 > buf_.size()) {
+    // move the held bytes to the front, in buffer order (each goes to a
+    // lower offset, so in place), keeping the buffer's allocation
+    std::vector<std::size_t> order(spans_.size() - head_);
+    for (std::size_t j = 0; j < order.size(); ++j) order[j] = head_ + j;
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t x, std::size_t y) { return spans_[x].begin < spans_[y].begin; });
+    std::size_t to = 0;
+    for (std::size_t j : order) {
+      Span& x = spans_[j];
+      std::memmove(buf_.data() + to, buf_.data() + x.begin, x.len);
+      x.begin = to;
+      to += x.len;
     }
-    buf_.swap(live);
-    mark_ = buf_.size();
+    buf_.resize(to);
+    mark_ = to;
     dead_ = 0;
   }
 }
