@@ -4,7 +4,11 @@
 #include <sys/time.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <fstream>
+#include <memory>
 #include <stdexcept>
 
 #include "pcapio/packet.hpp"
@@ -30,12 +34,23 @@ void PcapWriter::close() {
 void PcapWriter::flush() {
   if (dumper_) pcap_dump_flush(dumper_);
 }
-void PcapWriter::write(std::int64_t ts, std::string_view bytes, std::size_t caplen) {
+bool PcapWriter::finish() {
+  if (!dumper_) return false;
+  bool ok = pcap_dump_flush(dumper_) == 0 && !std::ferror(pcap_dump_file(dumper_));
+  // pcap_dump_close() is fclose() of this stream and returns nothing: close
+  // it here to see its status
+  ok = std::fclose(pcap_dump_file(dumper_)) == 0 && ok;
+  dumper_ = nullptr;
+  close();
+  return ok;
+}
+void PcapWriter::write(std::int64_t ts, std::string_view bytes, std::size_t caplen,
+                       std::size_t len) {
   if (!dumper_) return;
   pcap_pkthdr h{};
   h.ts.tv_sec = static_cast<time_t>(ts / 1000000);
   h.ts.tv_usec = static_cast<suseconds_t>(ts % 1000000);
-  h.len = static_cast<bpf_u_int32>(bytes.size());
+  h.len = static_cast<bpf_u_int32>(std::max(len, bytes.size()));
   h.caplen = static_cast<bpf_u_int32>(std::min(caplen, bytes.size()));
   pcap_dump(reinterpret_cast<u_char*>(dumper_), &h, reinterpret_cast<const u_char*>(bytes.data()));
 }
@@ -51,43 +66,106 @@ void le32a(std::string& s, std::uint32_t v) {
 }
 }  // namespace
 
-std::string pcapng(const std::vector<std::uint16_t>& linktypes,
-                   const std::vector<NgPacket>& packets) {
+namespace {
+
+void ng_block(std::string& out, std::uint32_t type, const std::string& body) {
+  const auto len = static_cast<std::uint32_t>(12 + body.size());
+  le32a(out, type);
+  le32a(out, len);
+  out += body;
+  le32a(out, len);
+}
+
+// The section header and one interface block per link type.
+std::string ng_head(const std::vector<std::uint16_t>& linktypes) {
   std::string out;
-  auto block = [&](std::uint32_t type, const std::string& body) {
-    const auto len = static_cast<std::uint32_t>(12 + body.size());
-    le32a(out, type);
-    le32a(out, len);
-    out += body;
-    le32a(out, len);
-  };
   std::string shb;
   le32a(shb, 0x1A2B3C4D);  // byte-order magic
   le16a(shb, 1);           // version 1.0
   le16a(shb, 0);
   le32a(shb, 0xFFFFFFFF);  // section length: not given
   le32a(shb, 0xFFFFFFFF);
-  block(0x0A0D0D0A, shb);
+  ng_block(out, 0x0A0D0D0A, shb);
   for (std::uint16_t lt : linktypes) {
     std::string idb;
     le16a(idb, lt);
     le16a(idb, 0);
     le32a(idb, 65535);  // snap length
-    block(1, idb);
-  }
-  for (const NgPacket& p : packets) {
-    std::string epb;
-    le32a(epb, p.interface);
-    const auto ts = static_cast<std::uint64_t>(p.ts_us);
-    le32a(epb, static_cast<std::uint32_t>(ts >> 32));
-    le32a(epb, static_cast<std::uint32_t>(ts & 0xFFFFFFFF));
-    le32a(epb, static_cast<std::uint32_t>(p.bytes.size()));
-    le32a(epb, static_cast<std::uint32_t>(p.bytes.size()));
-    epb += p.bytes;
-    while (epb.size() % 4) epb += '\0';
-    block(6, epb);
+    ng_block(out, 1, idb);
   }
   return out;
+}
+
+// An enhanced packet block; `len` is the length on the wire.
+void ng_packet(std::string& out, std::uint32_t interface, std::int64_t ts_us,
+               std::string_view bytes, std::size_t len) {
+  std::string epb;
+  le32a(epb, interface);
+  const auto ts = static_cast<std::uint64_t>(ts_us);
+  le32a(epb, static_cast<std::uint32_t>(ts >> 32));
+  le32a(epb, static_cast<std::uint32_t>(ts & 0xFFFFFFFF));
+  le32a(epb, static_cast<std::uint32_t>(bytes.size()));
+  le32a(epb, static_cast<std::uint32_t>(std::max(len, bytes.size())));
+  epb += bytes;
+  while (epb.size() % 4) epb += '\0';
+  ng_block(out, 6, epb);
+}
+
+}  // namespace
+
+std::string pcapng(const std::vector<std::uint16_t>& linktypes,
+                   const std::vector<NgPacket>& packets) {
+  std::string out = ng_head(linktypes);
+  for (const NgPacket& p : packets) ng_packet(out, p.interface, p.ts_us, p.bytes, p.bytes.size());
+  return out;
+}
+
+bool CaptureWriter::is_pcapng(const std::string& path) {
+  constexpr std::string_view ext = ".pcapng";
+  return path.size() >= ext.size() && path.compare(path.size() - ext.size(), ext.size(), ext) == 0;
+}
+
+CaptureWriter::CaptureWriter(const std::string& path, int dlt) : path_(path) {
+  if (is_pcapng(path)) {
+    ng_ = std::fopen(path.c_str(), "wb");
+    if (!ng_) {
+      error_ = path + ": " + std::strerror(errno);
+      return;
+    }
+    const std::string head = ng_head({static_cast<std::uint16_t>(dlt)});
+    if (std::fwrite(head.data(), 1, head.size(), ng_) != head.size()) failed_ = errno ? errno : EIO;
+  } else {
+    pcap_ = std::make_unique<PcapWriter>(path, dlt);
+    if (!pcap_->ok()) error_ = path + ": " + pcap_->error();
+  }
+}
+
+CaptureWriter::~CaptureWriter() { close(); }
+
+void CaptureWriter::write(std::int64_t ts_us, std::string_view bytes, std::size_t len) {
+  if (ng_) {
+    buf_.clear();
+    ng_packet(buf_, 0, ts_us, bytes, len);
+    if (std::fwrite(buf_.data(), 1, buf_.size(), ng_) != buf_.size() && !failed_)
+      failed_ = errno ? errno : EIO;
+  } else if (pcap_ && pcap_->ok()) {
+    pcap_->write(ts_us, bytes, SIZE_MAX, len);
+  }
+}
+
+bool CaptureWriter::close() {
+  if (ng_) {
+    if (std::fflush(ng_) != 0 && !failed_) failed_ = errno ? errno : EIO;
+    if (std::ferror(ng_) && !failed_) failed_ = EIO;
+    if (std::fclose(ng_) != 0 && !failed_) failed_ = errno ? errno : EIO;
+    ng_ = nullptr;
+  }
+  if (pcap_) {
+    if (!pcap_->finish() && !failed_) failed_ = errno ? errno : EIO;
+    pcap_.reset();
+  }
+  if (failed_ && error_.empty()) error_ = path_ + ": write error: " + std::strerror(failed_);
+  return error_.empty();
 }
 
 bool write_file(const std::string& path, std::string_view bytes) {

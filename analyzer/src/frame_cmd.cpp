@@ -117,9 +117,15 @@ Run add_frame_command(CLI::App& app) {
       "frame", "Decode frames given as arguments (C escapes \\xNN \\r \\n \\\\ give raw bytes)");
   sub->add_option("--dialect", o->dialect, "auto, skydroid or topotek")
       ->check(CLI::IsMember({"auto", "skydroid", "topotek"}));
-  sub->add_option("--model", o->model, top::model_list(", ", " or "))->check(model_check());
-  sub->add_flag("--json", o->json, "one JSON object per frame found");
+  sub->add_option("--model", o->model, "auto, " + top::model_list(", ", " or "))
+      ->check(model_check());
+  sub->add_flag("--json", o->json, "one JSON object per frame found")->default_str("");
   sub->add_option("FRAME", o->frames, "byte streams holding frames")->required();
+  sub->footer(
+      "Examples:\n"
+      "  topdump frame '#tpUG6wGAYEC78328D'\n"
+      "  topdump frame --json '#TPUD2rVER0051\\r\\n#tpDU6rVER0105025D'\n"
+      "  topdump frame --dialect topotek '#TPPG2rGIC0040'");
   return [o, sub]() { return sub->parsed() ? run_frame(*o) : -1; };
 }
 

@@ -339,15 +339,15 @@ void write_garbage_json(std::string& out, std::size_t arg, const top::StreamItem
 
 void JsonSink::frame(const FrameEvent& e) {
   write_frame_json(out_.buf(), e);
-  out_.done();
+  out_.done(e.ts, e.pos.record);
 }
 void JsonSink::garbage(const GarbageEvent& e) {
   write_garbage_json(out_.buf(), e);
-  out_.done();
+  out_.done(e.ts, e.pos.record);
 }
 void JsonSink::note(const NoteEvent& e) {
   write_note_json(out_.buf(), e);
-  out_.done();
+  out_.done(e.ts, e.pos.record);
 }
 
 }  // namespace topdump

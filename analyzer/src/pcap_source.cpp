@@ -599,6 +599,9 @@ bool read_input(Input& in, Format format, Analyzer& a, const SourceOptions& o, s
         ++r.record;
         r.at += 16 + h->caplen;
         const std::int64_t ts = static_cast<std::int64_t>(h->ts.tv_sec) * 1000000 + h->ts.tv_usec;
+        if (r.o.packet)
+          r.o.packet(r.dlt, ts, std::string_view(reinterpret_cast<const char*>(data), h->caplen),
+                     h->len, r.record);
         r.a.record(r.dis.packet(r.dlt, ts, data, h->caplen, h->len, r.record));
         if (r.a.done()) pcap_breakloop(r.pcap);  // -c: the frames asked for are in
         if (r.o.progress && (r.record & 0xFFFF) == 0 && r.fp)

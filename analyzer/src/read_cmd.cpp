@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <set>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -15,6 +17,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "cut.hpp"
 #include "output.hpp"
 #include "sources.hpp"
 
@@ -40,27 +43,55 @@ struct Common {
   bool json = false;
   bool verbose = false;
   std::string csv;
-  bool progress = true;
+  bool no_progress = false;
 };
 
-void add_common(CLI::App* sub, Common& o, bool outputs) {
+// "UDP 5000, 9002, ...; TCP 5000": the ports every source scans.
+std::string scanned_ports() {
+  auto list = [](const std::set<std::uint16_t>& ports) {
+    std::string v;
+    for (auto p : ports) v += (v.empty() ? "" : ", ") + std::to_string(p);
+    return v;
+  };
+  return "UDP " + list(known_ports(false)) + "; TCP " + list(known_ports(true));
+}
+
+// The reorder window of read (--help, docs/topdump-json.md): one second of
+// capture time covers TCP reassembly and serial CR/LF holds; a wider one
+// costs read --json a fifth of its speed (the held output leaves the
+// cache), so an unanswered finding found at the timeout (2 s after its
+// request) is beyond its reach.
+constexpr std::int64_t kReorderWindowUs = 1'000'000;
+
+void add_common(CLI::App* sub, Common& o, bool outputs, bool ports = true) {
   sub->add_option("--dialect", o.dialect, "auto, skydroid or topotek (forces every conversation)")
       ->check(CLI::IsMember({"auto", "skydroid", "topotek"}));
   sub->add_option("--model", o.model,
-                  top::model_list(", ", " or ") + " (unsupported-on-model checks)")
+                  "auto, " + top::model_list(", ", " or ") + " (unsupported-on-model checks)")
       ->check(model_check());
-  sub->add_option("--port", o.ports, "another UDP/TCP port that carries TOP (repeatable)")
-      ->allow_extra_args(false);
+  if (ports)
+    sub->add_option("--port", o.ports,
+                    "another UDP/TCP port that carries TOP (repeatable); always scanned: " +
+                        scanned_ports() +
+                        "; TCP and UDP on other ports when the payload starts "
+                        "like a TOP frame")
+        ->allow_extra_args(false)
+        ->default_str("");
   sub->add_option("--ident", o.idents,
                   "only frames with these identifiers (comma list, repeatable)")
       ->delimiter(',')
-      ->allow_extra_args(false);
+      ->allow_extra_args(false)
+      ->default_str("");
   sub->add_option("--addr", o.addrs,
                   "only frames from/to this TOP address letter (U M D E P G) or host / host:port")
       ->delimiter(',')
-      ->allow_extra_args(false);
-  sub->add_option("--severity", o.severity, "only frames whose worst finding is at least this")
-      ->check(CLI::IsMember({"info", "warning", "error"}));
+      ->allow_extra_args(false)
+      ->default_str("");
+  sub->add_option("--severity", o.severity,
+                  "only frames whose worst finding is at least this: info (every frame; a frame "
+                  "without findings counts as info), warning or error")
+      ->check(CLI::IsMember({"info", "warning", "error"}))
+      ->default_str("info");
   sub->add_option("--from", o.from,
                   "only frames at or after this time (ISO-8601, epoch seconds, or +SECONDS after "
                   "the input's first timestamp: +1.5, +1.5s, +200ms)");
@@ -88,9 +119,16 @@ void add_common(CLI::App* sub, Common& o, bool outputs) {
           },
           "MS"));
   if (outputs) {
-    sub->add_flag("--json", o.json, "JSON Lines (docs/topdump-json.md)");
-    sub->add_flag("-V,--verbose", o.verbose, "the field tree of every frame");
-    sub->add_option("--csv", o.csv, "CSV with these columns (comma list; field.NAME for a field)");
+    auto* json = sub->add_flag("--json", o.json, "JSON Lines (docs/topdump-json.md)");
+    auto* verbose = sub->add_flag("-V,--verbose", o.verbose, "the field tree of every frame");
+    auto* csv = sub->add_option(
+        "--csv", o.csv,
+        "CSV with these columns (comma list; field.NAME for a field; the columns are listed "
+        "below and in docs/topdump-csv.md)");
+    // one output mode: asking for two is a usage error, not a silent choice
+    json->excludes(verbose)->excludes(csv);
+    verbose->excludes(csv);
+    for (auto* f : {json, verbose}) f->default_str("");
   }
 }
 
@@ -212,8 +250,8 @@ std::unique_ptr<Sink> make_sink(const Common& o, Out& out, std::string& err) {
     std::stringstream ss(o.csv);
     std::string c;
     while (std::getline(ss, c, ',')) {
-      if (!csv_column_ok(c)) {
-        err = "--csv: unknown column \"" + c + "\"";
+      if (std::string why = csv_column_error(c); !why.empty()) {
+        err = "--csv: " + why;
         return nullptr;
       }
       cols.push_back(c);
@@ -242,7 +280,12 @@ struct ReadOptions {
   Common c;
   std::vector<std::string> files;
   bool say_input = false;
+  std::string write;  // -w
 };
+
+// The progress bar goes to stderr when it is a terminal and stdout is not
+// one: on the same terminal it would mix with the output lines.
+bool show_progress(const Common& c) { return !c.no_progress && isatty(2) && !isatty(1); }
 
 int run_read(const ReadOptions& o) {
   Setup s;
@@ -252,18 +295,29 @@ int run_read(const ReadOptions& o) {
     return 2;
   }
   auto fmt = format_from_string(o.c.format);
-  Out out(stdout);
+  Out out(stdout, false, kReorderWindowUs);
   auto sink = make_sink(o.c, out, err);
   if (!sink) {
     std::cerr << "topdump read: " << err << "\n";
     return 2;
   }
   const std::string name = o.files.size() == 1 && o.files[0] == "-" ? "stdin" : o.files[0];
-  Tee tee(*sink, o.files.size() == 1 ? name : std::string());
+  // the summary line on a terminal: stderr, or stdout when only it is one
+  std::FILE* summary_to = isatty(2) ? stderr : isatty(1) ? stdout : nullptr;
+  std::optional<SummarySink> summary;
+  Sink* inner = sink.get();
+  if (summary_to) inner = &summary.emplace(*sink);
+  std::optional<Cutter> cut;
+  if (!o.write.empty()) {
+    inner = &cut.emplace(*inner, o.write);
+    s.sopts.packet = [&cut](int dlt, std::int64_t ts, std::string_view bytes, std::uint32_t len,
+                            std::uint64_t record) { cut->packet(dlt, ts, bytes, len, record); };
+  }
+  Tee tee(*inner, o.files.size() == 1 ? name : std::string());
   s.aopts.stats = false;
   Analyzer a(s.aopts, tee);
   a.set_filter(s.filter);
-  if (o.c.progress && isatty(2)) s.sopts.progress = progress_bar;
+  if (show_progress(o.c)) s.sopts.progress = progress_bar;
   s.sopts.on_input = [&](const InputInfo& i) {
     if (o.say_input) std::fprintf(stderr, "topdump: %s\n", input_text(i).c_str());
     if (o.c.json && o.c.csv.empty()) {
@@ -284,6 +338,16 @@ int run_read(const ReadOptions& o) {
                   (o.files.size() == 1 ? name : name + ", " + o.files[1]) + ": no TOP frame found",
                   0, 0);
   out.flush();
+  if (out.failed()) return 2;  // main names the write error
+  if (cut && !cut->finish(err)) {
+    std::cerr << "topdump read: -w " << err << "\n";
+    return 2;
+  }
+  if (cut && cut->lost())
+    std::cerr << "topdump read: -w " << o.write << ": the first packet of " << cut->lost()
+              << " frame(s) had left the hold (" << Cutter::kHeldPackets
+              << " packets) before the frame was decoded and is not in the file\n";
+  if (summary) std::fprintf(summary_to, "%s\n", summary->text().c_str());
   return status_of(a);
 }
 
@@ -311,7 +375,7 @@ int run_stats(const StatsOptions& o) {
   s.aopts.detail = false;
   Analyzer a(s.aopts, tee);
   a.set_filter(s.filter);
-  if (o.c.progress && isatty(2)) s.sopts.progress = progress_bar;
+  if (show_progress(o.c)) s.sopts.progress = progress_bar;
   std::vector<InputInfo> inputs;
   s.sopts.on_input = [&](const InputInfo& i) { inputs.push_back(i); };
   for (const auto& f : o.files) {
@@ -331,7 +395,7 @@ int run_stats(const StatsOptions& o) {
     for (const InputInfo& i : inputs) std::cout << "input: " << input_text(i) << "\n";
     std::cout << stats_text(a.stats(), a.worst());
   }
-  return status_of(a);
+  return status_of(a);  // main checks that stdout took it all
 }
 
 void install_signals() {
@@ -426,20 +490,74 @@ int run_serial(const SerialOptions& o) {
 
 }  // namespace
 
+namespace {
+
+constexpr const char* kFormats = "auto, pcap, pcapng, raw, socat, saleae or lines";
+
+// How read, live and serial print: the text line format, the order, and the
+// CSV columns (one list, from the column table).
+std::string output_help() {
+  std::string cols;
+  for (const auto& c : csv_columns()) cols += (cols.empty() ? "" : ", ") + c;
+  return "Text output, one line per event:\n"
+         "  #N TIME TRANSPORT FROM > TO rec R.I@O \"RAW\" IDENT ROLE (TITLE): FIELDS"
+         " | reply to #M after X ms | SEVERITY CODE@B: MESSAGE\n"
+         "      a frame: N its number; rec R.I@O: record R of the capture (packet, log chunk, "
+         "line or CSV row, 1-based), item I in the record (0-based), byte offset O in it; "
+         "CODE@B: a finding at byte B of the frame (docs/FINDINGS.md)\n"
+         "  -- TIME ... rec R.I@O N bytes \"PREVIEW\" | SEVERITY CODE@B: MESSAGE\n"
+         "      bytes that are no frame (garbage), with the finding that says why\n"
+         "  !! TIME ... rec R@O SEVERITY CODE: MESSAGE\n"
+         "      a finding of the capture, a conversation or a request, not on a frame "
+         "(unanswered, tcp-out-of-order, log-syntax, truncated-file, ...); \"-\": no time\n"
+         "CSV columns: " +
+         cols +
+         ", and field.NAME (a decoded field's value without its unit) and field.NAME.unit "
+         "(docs/topdump-csv.md).\n";
+}
+
+}  // namespace
+
 Run add_read_command(CLI::App& app) {
   auto o = std::make_shared<ReadOptions>();
   CLI::App* sub = app.add_subcommand(
       "read", "Decode a capture: pcap, pcapng, or a serial log (raw, socat, saleae, lines)");
   add_common(sub, o->c, true);
-  sub->add_option("--format", o->c.format, "auto, pcap, pcapng, raw, socat, saleae or lines")
+  sub->add_option("--format", o->c.format, kFormats)
       ->check(CLI::IsMember({"auto", "pcap", "pcapng", "raw", "socat", "saleae", "lines"}));
-  sub->add_flag("!--no-progress", o->c.progress, "no progress bar on stderr");
-  sub->add_flag("-v", o->say_input, "say on stderr what the input was read as (format, link type)");
+  sub->add_flag("--no-progress", o->c.no_progress,
+                "no progress bar (drawn on stderr when it is a terminal and stdout is not)")
+      ->default_str("");
+  sub->add_flag("-v", o->say_input, "say on stderr what the input was read as (format, link type)")
+      ->default_str("");
+  sub->add_option("-w,--write", o->write,
+                  "also write the packets that carry the selected frames to this capture: "
+                  "pcapng when it ends in .pcapng, else pcap; frames of a serial log as "
+                  "Ethernet/IPv4/UDP between 127.0.0.1 ports 40001, 40002, ... (one per "
+                  "endpoint)");
   sub->add_option("FILE", o->files,
                   "capture file, - for stdin; two serial logs with times (one tap per "
                   "direction) are merged by time into one conversation")
       ->required()
       ->expected(1, 2);
+  sub->footer(output_help() +
+              "Order: events are printed in capture-time order, across TCP connections and "
+              "serial lines, within a reorder window of 1 s of capture time and at most "
+              "131072 events; an event that arrives later (an unanswered finding found at "
+              "the timeout) is printed ahead of those still held.\n"
+              "On a terminal, a summary line (frames, errors, warnings, unanswered, garbage, "
+              "time span) ends the output, on stderr.\n"
+              "Examples:\n"
+              "  topdump read captures/sample.pcap\n"
+              "  topdump read -V --ident GAY,ERE captures/sample.pcap\n"
+              "  topdump read --json captures/tcp-c10.pcap | jq -r .ident\n"
+              "  topdump read --csv n,time,ident,field.pitch,field.pitch.unit "
+              "captures/serial-lines.log\n"
+              "  topdump read --severity error --from 2024-05-01T12:00:00.5Z capture.pcapng\n"
+              "  topdump read --ident gay --from +1.5s -c 20 --mute tp-length capture.pcap\n"
+              "  cat capture.pcap | topdump read -\n"
+              "  topdump read tx.log rx.log   # two taps of one UART, merged by time\n"
+              "  topdump read --ident GAY -w gay.pcap big-capture.pcapng");
   return [o, sub]() { return sub->parsed() ? run_read(*o) : -1; };
 }
 
@@ -447,11 +565,17 @@ Run add_stats_command(CLI::App& app) {
   auto o = std::make_shared<StatsOptions>();
   CLI::App* sub = app.add_subcommand("stats", "Statistics of one or more captures");
   add_common(sub, o->c, false);
-  sub->add_flag("--json", o->c.json, "one JSON object (docs/topdump-json.md)");
-  sub->add_option("--format", o->c.format, "auto, pcap, pcapng, raw, socat, saleae or lines")
+  sub->add_flag("--json", o->c.json, "one JSON object (docs/topdump-json.md)")->default_str("");
+  sub->add_option("--format", o->c.format, kFormats)
       ->check(CLI::IsMember({"auto", "pcap", "pcapng", "raw", "socat", "saleae", "lines"}));
-  sub->add_flag("!--no-progress", o->c.progress, "no progress bar on stderr");
+  sub->add_flag("--no-progress", o->c.no_progress,
+                "no progress bar (drawn on stderr when it is a terminal and stdout is not)")
+      ->default_str("");
   sub->add_option("FILE", o->files, "capture files")->required();
+  sub->footer(
+      "Examples:\n"
+      "  topdump stats captures/sample.pcap\n"
+      "  topdump stats --json --ident GAY captures/sample.pcap captures/tcp-c10.pcap");
   return [o, sub]() { return sub->parsed() ? run_stats(*o) : -1; };
 }
 
@@ -461,7 +585,12 @@ Run add_live_command(CLI::App& app) {
       app.add_subcommand("live", "Decode live traffic on an interface (libpcap); Ctrl-C ends");
   add_common(sub, o->c, true);
   sub->add_option("-i,--interface", o->iface, "interface, e.g. eth0 or lo")->required();
-  sub->add_option("BPF", o->bpf, "capture filter, e.g. udp port 5000");
+  sub->add_option("BPF", o->bpf, "capture filter, e.g. udp port 5000")->default_str("");
+  sub->footer(output_help() +
+              "Events are printed as they are decoded; Ctrl-C prints the statistics and ends.\n"
+              "Examples:\n"
+              "  sudo topdump live -i eth0\n"
+              "  sudo topdump live -i lo --json udp port 5000");
   return [o, sub]() { return sub->parsed() ? run_live(*o) : -1; };
 }
 
@@ -469,13 +598,19 @@ Run add_serial_command(CLI::App& app) {
   auto o = std::make_shared<SerialOptions>();
   CLI::App* sub =
       app.add_subcommand("serial", "Decode a serial port as bytes arrive (8N1); Ctrl-C ends");
-  add_common(sub, o->c, true);
+  add_common(sub, o->c, true, false);
   sub->add_option("--baud", o->baud, "baud rate")->check(CLI::Range(50u, 4000000u));
   sub->add_option("DEVICE", o->devices,
                   "serial device, e.g. /dev/ttyUSB0; two devices are two taps of one UART, one "
                   "per direction, read as one conversation")
       ->required()
       ->expected(1, 2);
+  sub->footer(output_help() +
+              "Events are printed as they are decoded; Ctrl-C prints the statistics and ends.\n"
+              "Examples:\n"
+              "  topdump serial /dev/ttyUSB0\n"
+              "  topdump serial --baud 57600 --model c12 /dev/ttyUSB0\n"
+              "  topdump serial /dev/ttyUSB0 /dev/ttyUSB1   # one tap per direction");
   return [o, sub]() { return sub->parsed() ? run_serial(*o) : -1; };
 }
 

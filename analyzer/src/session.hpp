@@ -311,8 +311,8 @@ struct Analyzer::Impl {
   // A serial line recorded in one direction only (a raw dump, one tap): its
   // frames are neither unsolicited nor unanswered, as far as it shows.
   static bool one_way(const Conversation& c) noexcept {
-    return c.transport == Transport::serial && (c.dir[0].dec.fed() == 0 && c.dir[0].base == 0 ||
-                                                c.dir[1].dec.fed() == 0 && c.dir[1].base == 0);
+    auto silent = [](const Direction& D) { return D.dec.fed() == 0 && D.base == 0; };
+    return c.transport == Transport::serial && (silent(c.dir[0]) || silent(c.dir[1]));
   }
   void emit_silence(Conversation& c);
   void check_stream(Conversation& c, const StreamStat& s);

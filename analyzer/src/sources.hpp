@@ -72,6 +72,9 @@ struct SourceOptions {
   // Called once per input when its format (and link type) is known, before
   // its first record.
   std::function<void(const InputInfo&)> on_input;
+  // Called with each packet of a pcap/pcapng source before it is dissected:
+  // (link type, time, captured bytes, length on the wire, record); read -w.
+  std::function<void(int, std::int64_t, std::string_view, std::uint32_t, std::uint64_t)> packet;
 };
 
 // Dissects one captured packet of link type `dlt` (Ethernet with VLAN tags,

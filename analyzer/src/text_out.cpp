@@ -1,6 +1,8 @@
 // The text outputs: one line per frame, garbage run and finding, and the
 // -V field tree under each frame.
+#include <algorithm>
 #include <cstdio>
+#include <cstring>
 
 #include "escape.hpp"
 #include "output.hpp"
@@ -8,12 +10,106 @@
 
 namespace topdump {
 
+void Out::write(const char* p, std::size_t n) {
+  if (n && std::fwrite(p, 1, n, f_) != n) failed_ = true;
+}
+
 void Out::flush() {
-  if (!buf_.empty()) {
-    std::fwrite(buf_.data(), 1, buf_.size(), f_);
+  if (window_ > 0) {
+    release(true);
+  } else {
+    write(buf_.data(), buf_.size());
     buf_.clear();
   }
-  std::fflush(f_);
+  if (std::fflush(f_) != 0 || std::ferror(f_)) failed_ = true;
+}
+
+void Out::hold(std::int64_t ts, std::uint64_t record, bool first) {
+  const std::size_t len = buf_.size() - mark_;
+  bool resort = false;
+  if (ts != kNoTime && pending_ > 0) {
+    for (std::size_t i = head_; i < spans_.size(); ++i)
+      if (Span& x = spans_[i]; x.pending && x.record < record) {
+        x.key = ts;
+        x.pending = false;
+        --pending_;
+        resort = true;
+      }
+  }
+  const std::int64_t key = first ? INT64_MIN : ts == kNoTime ? INT64_MAX : ts;
+  const Span span{key, record, mark_, len, !first && ts == kNoTime};
+  if (spans_.size() == head_ || spans_.back().key <= key) {
+    spans_.push_back(span);
+  } else {  // a late event: after the held ones of the same time or earlier
+    auto at = std::upper_bound(spans_.begin() + static_cast<std::ptrdiff_t>(head_), spans_.end(),
+                               key, [](std::int64_t k, const Span& x) { return k < x.key; });
+    spans_.insert(at, span);
+  }
+  if (resort)
+    std::stable_sort(spans_.begin() + static_cast<std::ptrdiff_t>(head_), spans_.end(),
+                     [](const Span& x, const Span& y) { return x.key < y.key; });
+  if (span.pending) ++pending_;
+  since_ += len;
+  mark_ = buf_.size();
+  if (ts != kNoTime && (newest_ == kNoTime || ts > newest_)) newest_ = ts;
+  if (since_ >= (1u << 16) || spans_.size() - head_ > kMaxHeldEvents) release(false);
+}
+
+void Out::release(bool all) {
+  since_ = 0;
+  const std::size_t n = spans_.size();
+  std::size_t k = all ? n : head_;
+  if (!all) {
+    const std::int64_t horizon = newest_ == kNoTime ? INT64_MIN : newest_ - window_;
+    while (k < n && spans_[k].key <= horizon) ++k;
+    // over the limits: the oldest go out whatever their time, down to 7/8
+    std::size_t held = buf_.size() - dead_;
+    for (std::size_t i = head_; i < k; ++i) held -= spans_[i].len;
+    while (k < n && (n - k > kMaxHeldEvents - kMaxHeldEvents / 8 ||
+                     (held > kMaxHeldBytes - kMaxHeldBytes / 8 && held > spans_[k].len))) {
+      held -= spans_[k].len;
+      ++k;
+    }
+  }
+  std::size_t i = head_;
+  while (i < k) {
+    std::size_t b = spans_[i].begin, e = b + spans_[i].len;
+    for (++i; i < k && spans_[i].begin == e; ++i) e += spans_[i].len;
+    write(buf_.data() + b, e - b);
+    dead_ += e - b;
+  }
+  for (std::size_t j = head_; j < k; ++j)
+    if (spans_[j].pending) --pending_;
+  head_ = k;
+  if (head_ == n) {
+    spans_.clear();
+    head_ = 0;
+    buf_.clear();
+    mark_ = dead_ = 0;
+    return;
+  }
+  if (head_ * 2 > n) {
+    spans_.erase(spans_.begin(), spans_.begin() + static_cast<std::ptrdiff_t>(head_));
+    head_ = 0;
+  }
+  if (dead_ > (1u << 18) && dead_ * 2 > buf_.size()) {
+    // move the held bytes to the front, in buffer order (each goes to a
+    // lower offset, so in place), keeping the buffer's allocation
+    std::vector<std::size_t> order(spans_.size() - head_);
+    for (std::size_t j = 0; j < order.size(); ++j) order[j] = head_ + j;
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t x, std::size_t y) { return spans_[x].begin < spans_[y].begin; });
+    std::size_t to = 0;
+    for (std::size_t j : order) {
+      Span& x = spans_[j];
+      std::memmove(buf_.data() + to, buf_.data() + x.begin, x.len);
+      x.begin = to;
+      to += x.len;
+    }
+    buf_.resize(to);
+    mark_ = to;
+    dead_ = 0;
+  }
 }
 
 namespace {
@@ -88,15 +184,53 @@ void TextSink::frame(const FrameEvent& e) {
       o += "  " + std::string(top::to_string(n.severity)) + " " + std::string(to_string(n.code)) +
            ": " + n.message + "\n";
   }
-  out_.done();
+  out_.done(e.ts, e.pos.record);
 }
 void TextSink::garbage(const GarbageEvent& e) {
   out_.buf() += garbage_line(e) + "\n";
-  out_.done();
+  out_.done(e.ts, e.pos.record);
 }
 void TextSink::note(const NoteEvent& e) {
   out_.buf() += note_line(e) + "\n";
-  out_.done();
+  out_.done(e.ts, e.pos.record);
+}
+
+void SummarySink::frame(const FrameEvent& e) {
+  ++frames_;
+  at(e.ts);
+  for (const top::Finding* x : all_findings(*e.entry->frame, e.entry->decoded)) count(x->severity);
+  for (const Note& n : e.notes) count(n.severity);
+  inner_.frame(e);
+}
+void SummarySink::garbage(const GarbageEvent& e) {
+  ++garbage_;
+  at(e.ts);
+  count(e.item->finding.severity);
+  inner_.garbage(e);
+}
+void SummarySink::note(const NoteEvent& e) {
+  at(e.ts);
+  count(e.note.severity);
+  if (e.note.code == ACode::unanswered) ++unanswered_;
+  inner_.note(e);
+}
+
+std::string SummarySink::text() const {
+  auto n = [](std::uint64_t v, const char* one, const char* many) {
+    return std::to_string(v) + " " + (v == 1 ? one : many);
+  };
+  std::string s = "-- summary: " + n(frames_, "frame", "frames") + ", " +
+                  n(errors_, "error", "errors") + ", " + n(warnings_, "warning", "warnings") +
+                  ", " + std::to_string(unanswered_) + " unanswered, " + std::to_string(garbage_) +
+                  " garbage";
+  if (first_ != kNoTime) {
+    char b[48];
+    std::snprintf(b, sizeof b, " (%.3f s)", static_cast<double>(last_ - first_) / 1e6);
+    s += ", " + format_time(first_) + " to " + format_time(last_) + b;
+  } else {
+    s += ", no timestamps";
+  }
+  return s;
 }
 
 }  // namespace topdump

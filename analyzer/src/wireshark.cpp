@@ -296,6 +296,10 @@ std::string wireshark_lua() {
 Run add_wireshark_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "wireshark", "write top.lua, a Wireshark dissector generated from the catalog, to stdout");
+  sub->footer(
+      "Examples:\n"
+      "  topdump wireshark > ~/.local/lib/wireshark/plugins/top.lua\n"
+      "  tshark -X lua_script:top.lua -r captures/sample.pcap -V -Y top (docs/WIRESHARK.md)");
   return [sub]() -> int {
     if (!sub->parsed()) return -1;
     const std::string lua = wireshark_lua();

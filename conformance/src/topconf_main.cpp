@@ -16,6 +16,7 @@
 #include "conf/report.hpp"
 #include "conf/runner.hpp"
 #include "conf/transport.hpp"
+#include "topkit/cli.hpp"
 
 #ifndef TOPKIT_MATRIX_DIR
 #define TOPKIT_MATRIX_DIR "conformance/matrices"
@@ -40,7 +41,9 @@ bool write_output(const std::string& path, F&& f) {
     return false;
   }
   f(out);
-  return static_cast<bool>(out);
+  out.close();
+  if (out.fail()) spdlog::error("{}: write error", path);
+  return !out.fail();
 }
 
 std::string matrix_dir() {
@@ -54,6 +57,7 @@ int main(int argc, char** argv) {
   // Logs go to stderr; stdout carries results (topsim: the address it serves).
   spdlog::set_default_logger(spdlog::stderr_color_mt("topconf"));
   CLI::App app{"topconf: conformance runner for the TOP gimbal-camera protocol"};
+  topkit::cli::setup_app(app, "topconf");
   app.require_subcommand(1);
 
   // run
@@ -109,16 +113,11 @@ int main(int argc, char** argv) {
   std::vector<std::string> val_files;
   val->add_option("files", val_files, "matrix files")->required();
 
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int rc = app.exit(e);
-    return rc == 0 ? 0 : 2;
-  }
+  if (int rc = topkit::cli::parse_or_exit(app, argc, argv); rc >= 0) return rc;
 
   if (*models) {
     for (top::Model m : top::all_models()) std::cout << top::to_string(m) << "\n";
-    return 0;
+    return topkit::cli::close_stdout("topconf", 0);
   }
 
   if (*gen) {
@@ -266,5 +265,5 @@ int main(int argc, char** argv) {
   if (!html_out.empty())
     ok &= write_output(html_out, [&](std::ostream& o) { topconf::write_html(o, result); });
   if (!ok) return 2;
-  return result.exit_code();
+  return topkit::cli::close_stdout("topconf", result.exit_code());
 }

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "sim/server.hpp"
+#include "topkit/cli.hpp"
 
 namespace {
 
@@ -35,6 +36,7 @@ int main(int argc, char** argv) {
   spdlog::set_default_logger(spdlog::stderr_color_mt("topsim"));
   CLI::App app{
       "topsim: a TOP gimbal camera simulator (SkyDroid C10/C10Pro/C12/C13/C20, Topotek SIP)"};
+  topkit::cli::setup_app(app, "topsim");
   std::string model_name = "c12";
   std::string udp, tcp, serial, faults, record;
   bool pty = false, verbose = false;
@@ -90,7 +92,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"on", "off"}));
   app.add_flag("--describe", describe,
                "print the device's traits with their sources (profile, options) and exit");
-  CLI11_PARSE(app, argc, argv);
+  if (int rc = topkit::cli::parse_or_exit(app, argc, argv); rc >= 0) return rc;
 
   auto model = top::model_from_string(model_name);
   if (!model || *model == top::Model::unknown) {

@@ -64,9 +64,13 @@ void append_fixed(std::string& out, std::int64_t mantissa, int decimals) {
 
 }  // namespace
 
-void append_value(const FieldValue& f, std::string& out) {
+namespace {
+
+// plain: the value alone (append_plain_value), else as a person reads it.
+[[gnu::always_inline]] inline void put_value(const FieldValue& f, std::string& out, bool plain) {
   if (!f.spec) return;
   const FieldSpec& s = *f.spec;
+  if (plain && (f.none || !f.valid)) return;
   if (f.none) {
     out += "none (";
     out += f.text;
@@ -80,7 +84,7 @@ void append_value(const FieldValue& f, std::string& out) {
     return;
   }
   auto unit = [&] {
-    if (!s.unit.empty()) {
+    if (!plain && !s.unit.empty()) {
       out += ' ';
       out += s.unit;
     }
@@ -109,7 +113,9 @@ void append_value(const FieldValue& f, std::string& out) {
         }
         code = std::string_view(b, static_cast<std::size_t>(n));
       }
-      if (!f.enum_name.empty()) {
+      if (plain) {
+        out += f.enum_name.empty() ? code : f.enum_name;
+      } else if (!f.enum_name.empty()) {
         out += f.enum_name;
         out += " (";
         out += code;
@@ -126,6 +132,7 @@ void append_value(const FieldValue& f, std::string& out) {
       return;
     case FieldKind::nmea:
       out += fmt_number(f.value, 7);
+      if (plain) return;
       unit();
       out += " (";
       out += f.text;
@@ -143,7 +150,7 @@ void append_value(const FieldValue& f, std::string& out) {
       else
         out += fmt_number(f.value, decimals_of(s.scale));
       unit();
-      if (!f.enum_name.empty()) {
+      if (!plain && !f.enum_name.empty()) {
         out += " (";
         out += f.enum_name;
         out += ')';
@@ -152,6 +159,11 @@ void append_value(const FieldValue& f, std::string& out) {
     }
   }
 }
+
+}  // namespace
+
+void append_value(const FieldValue& f, std::string& out) { put_value(f, out, false); }
+void append_plain_value(const FieldValue& f, std::string& out) { put_value(f, out, true); }
 
 std::string format_value(const FieldValue& f) {
   std::string s;

@@ -5,6 +5,8 @@
 #pragma once
 
 #include <cstdint>
+#include <cstdio>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -26,9 +28,13 @@ class PcapWriter {
   bool ok() const { return dumper_ != nullptr; }
   // Why the file did not open ("" when it did).
   const std::string& error() const { return error_; }
-  // Writes a packet; caplen < bytes.size() cuts it (as a snap length would).
-  void write(std::int64_t ts_us, std::string_view bytes, std::size_t caplen = SIZE_MAX);
+  // Writes a packet; caplen < bytes.size() cuts it (as a snap length would);
+  // `len`, when more than the bytes, is its length on the wire.
+  void write(std::int64_t ts_us, std::string_view bytes, std::size_t caplen = SIZE_MAX,
+             std::size_t len = 0);
   void flush();
+  // Flushes and closes; false when a write or the close failed.
+  bool finish();
   void close();
 
  private:
@@ -48,6 +54,35 @@ std::string pcapng(const std::vector<std::uint16_t>& linktypes,
                    const std::vector<NgPacket>& packets);
 
 bool write_file(const std::string& path, std::string_view bytes);
+
+// A capture file of one link type whose format follows its name: pcapng
+// for "*.pcapng" (one interface, built here), pcap through libpcap (the
+// PcapWriter above) for any other. topdump read -w writes through it.
+class CaptureWriter {
+ public:
+  static bool is_pcapng(const std::string& path);
+  CaptureWriter(const std::string& path, int dlt);
+  ~CaptureWriter();
+  CaptureWriter(const CaptureWriter&) = delete;
+  CaptureWriter& operator=(const CaptureWriter&) = delete;
+  // Whether the file opened (error() says why not).
+  bool ok() const { return error_.empty() && (ng_ || pcap_); }
+  const std::string& error() const { return error_; }
+  // A packet of `bytes` captured at `ts_us`; `len` (when more) its length
+  // on the wire.
+  void write(std::int64_t ts_us, std::string_view bytes, std::size_t len = 0);
+  // Flushes and closes; false, with error() naming the file and the cause,
+  // when the file did not open or a write or the close failed.
+  bool close();
+
+ private:
+  std::string path_;
+  std::string error_;
+  std::FILE* ng_ = nullptr;
+  std::unique_ptr<PcapWriter> pcap_;
+  std::string buf_;
+  int failed_ = 0;  // errno of the first failed write
+};
 
 // What topsim and topconf send and receive, as Ethernet/IPv4/UDP (or TCP)
 // packets between IPv4 endpoints with the real ports, stamped with the wall

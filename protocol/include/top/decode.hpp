@@ -37,6 +37,11 @@ struct FieldValue {
 std::string format_value(const FieldValue& f);
 // The same text appended to `out` (for writers that reuse one buffer).
 void append_value(const FieldValue& f, std::string& out);
+// The value alone, for tables (topdump --csv): the number without its unit
+// or label ("-50.00"), an enum's label (or its code when undocumented), the
+// text of text fields; nothing for the "no value" placeholder or an invalid
+// field. The unit is FieldValue::unit().
+void append_plain_value(const FieldValue& f, std::string& out);
 
 // Remembers what decode() without detail found for a frame's shape: its
 // dialect, role, identifier, header, lengths and control decide the command,
