@@ -119,6 +119,11 @@ Run add_report_command(CLI::App& app) {
       ->allow_extra_args(false);
   sub->add_option("--timeout-ms", o->timeout_ms, "a request is unanswered after this long")
       ->check(CLI::PositiveNumber);
+  sub->footer(
+      "Examples:\n"
+      "  topdump report captures/sample.pcap -o sample.html\n"
+      "  topdump report --model c12 --tolerance 0.2 flight.pcapng -o flight.html\n"
+      "  topdump report --json captures/tcp-c10.pcap | jq .overview");
   return [o, sub]() { return sub->parsed() ? run_report(*o) : -1; };
 }
 

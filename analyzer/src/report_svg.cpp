@@ -2,6 +2,7 @@
 #include "report_svg.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -37,10 +38,16 @@ namespace {
 
 constexpr int kLeft = 58, kRight = 12, kTop = 22, kBottom = 26;
 
+// printf's "%.1f", through to_chars (a plot writes thousands of these).
+void put_num(std::string& o, double v) {
+  char b[64];
+  const auto r = std::to_chars(b, b + sizeof b, v, std::chars_format::fixed, 1);
+  o.append(b, r.ec == std::errc() ? r.ptr : b);
+}
 std::string num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.1f", v);
-  return b;
+  std::string s;
+  put_num(s, v);
+  return s;
 }
 
 // A "nice" tick step covering `span` in about `n` steps.
@@ -107,7 +114,12 @@ void polyline(std::string& o, const Frame& f, const Series& s) {
   std::size_t lo_i = 0, hi_i = 0;
   double last_y = 0;
   auto x_of = [&](std::int64_t t) { return (static_cast<double>(t) / 1e6 - f.x0) / (f.x1 - f.x0); };
-  auto point = [&](double x, double y) { pts += num(x) + "," + num(f.py(y)) + " "; };
+  auto point = [&](double x, double y) {
+    put_num(pts, x);
+    pts += ',';
+    put_num(pts, f.py(y));
+    pts += ' ';
+  };
   auto flush = [&]() {
     if (col < 0) return;
     const double x = kLeft + static_cast<double>(col) + 0.5;

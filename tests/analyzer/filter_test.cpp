@@ -22,7 +22,10 @@ std::vector<nlohmann::json> lines(const std::string& args, int& rc) {
   rc = run(td() + "read --json " + args + " 2>/dev/null", out);
   std::vector<nlohmann::json> v;
   std::istringstream in(out);
-  for (std::string l; std::getline(in, l);) v.push_back(nlohmann::json::parse(l));
+  for (std::string l; std::getline(in, l);) {
+    auto j = nlohmann::json::parse(l);
+    if (j["type"] != "input") v.push_back(std::move(j));  // what the input was read as
+  }
   return v;
 }
 
