@@ -50,14 +50,13 @@ std::string unpack_ident(std::uint32_t k) {
 
 void Analyzer::Impl::note_event(std::int64_t ts, Position pos, Transport t, const Conversation* c,
                                 const std::string* from, const std::string* to, Note n, bool emit) {
-  NoteEvent e;
-  e.ts = ts;
-  e.pos = pos;
-  e.transport = t;
-  e.conv = c;
-  e.from = from;
-  e.to = to;
-  e.note = std::move(n);
+  NoteEvent e{.ts = ts,
+              .pos = pos,
+              .transport = t,
+              .conv = c,
+              .from = from,
+              .to = to,
+              .note = std::move(n)};
   // What the filter leaves out is neither counted nor in the exit status.
   if (A.filtering_ && !A.filter_.selects(e)) return;
   ++acodes[static_cast<std::size_t>(e.note.code)];
@@ -69,14 +68,13 @@ void Analyzer::Impl::item(Conversation& c, int d, top::StreamItem& it, Position 
                           std::int64_t ts, std::uint64_t stream_off) {
   Direction& D = c.dir[d];
   if (it.kind == top::ItemKind::garbage) {
-    GarbageEvent g;
-    g.ts = ts;
-    g.pos = pos;
-    g.transport = c.transport;
-    g.conv = &c;
-    g.from = &D.from;
-    g.to = &D.to;
-    g.item = &it;
+    const GarbageEvent g{.ts = ts,
+                         .pos = pos,
+                         .transport = c.transport,
+                         .conv = &c,
+                         .from = &D.from,
+                         .to = &D.to,
+                         .item = &it};
     if (A.filtering_ && !A.filter_.selects(g)) return;
     ++A.stats_.garbage;
     ++codes[static_cast<std::size_t>(it.finding.code)];
@@ -100,15 +98,19 @@ const DecodedEntry& Analyzer::Impl::lookup(top::Frame& f, top::Dialect dialect, 
   o.cache = &decode_cache;
   top::decode(f, o, e.decoded);
   e.frame = &f;
-  // the worst severity and the bad checksum in one pass
+  summarise(e);
+  return e;
+}
+
+// The worst severity and the bad checksum in one pass.
+void Analyzer::Impl::summarise(DecodedEntry& e) {
   e.worst = top::Severity::info;
   e.bad_checksum = false;
-  for (const top::Finding& x : f.findings) {
+  for (const top::Finding& x : e.frame->findings) {
     e.worst = std::max(e.worst, x.severity);
     e.bad_checksum |= x.code == top::FindingCode::bad_checksum;
   }
   for (const top::Finding& x : e.decoded.findings) e.worst = std::max(e.worst, x.severity);
-  return e;
 }
 
 void Analyzer::Impl::mute(top::Frame& f, FrameEvent& ev) {
@@ -118,13 +120,7 @@ void Analyzer::Impl::mute(top::Frame& f, FrameEvent& ev) {
   std::erase_if(f.findings, muted);
   std::erase_if(e.decoded.findings, muted);
   std::erase_if(ev.notes, [&](const Note& n) { return F.mutes(n.code); });
-  e.worst = top::Severity::info;
-  e.bad_checksum = false;
-  for (const top::Finding& x : f.findings) {
-    e.worst = std::max(e.worst, x.severity);
-    e.bad_checksum |= x.code == top::FindingCode::bad_checksum;
-  }
-  for (const top::Finding& x : e.decoded.findings) e.worst = std::max(e.worst, x.severity);
+  summarise(e);
 }
 
 void Analyzer::Impl::materialize(Stats& s) const {
@@ -162,16 +158,15 @@ void Analyzer::Impl::frame(Conversation& c, int d, top::Frame& f, Position pos, 
   const DecodedEntry& e = lookup(f, dialect, role);
   const top::Frame& fr = *e.frame;
 
-  FrameEvent ev;
-  ev.n = ++A.frame_no_;
-  ev.ts = ts;
-  ev.pos = pos;
-  ev.stream_offset = stream_off;
-  ev.transport = c.transport;
-  ev.conv = &c;
-  ev.from = &D.from;
-  ev.to = &D.to;
-  ev.entry = &e;
+  FrameEvent ev{.n = ++A.frame_no_,
+                .ts = ts,
+                .pos = pos,
+                .stream_offset = stream_off,
+                .transport = c.transport,
+                .conv = &c,
+                .from = &D.from,
+                .to = &D.to,
+                .entry = &e};
 
   expire(c, ts);
   // Requests that expire now were unanswered before this frame: the

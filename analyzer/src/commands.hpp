@@ -21,6 +21,26 @@ inline CLI::IsMember model_check() {
   return CLI::IsMember(v);
 }
 
+// --dialect and --model ("auto" or a name) as one setting; false, with a
+// message, when either is unknown or the model speaks the other dialect.
+inline bool dialect_and_model(const std::string& dialect, const std::string& model, top::Dialect& d,
+                              top::Model& m, std::string& err) {
+  auto dd = top::dialect_from_string(dialect);
+  auto mm = top::model_from_string(model);
+  if (!dd || !mm) {
+    err = "bad --dialect or --model";
+    return false;
+  }
+  if (*mm != top::Model::unknown && *dd != top::Dialect::unknown && top::dialect_of(*mm) != *dd) {
+    err = "model " + model + " speaks " + std::string(top::to_string(top::dialect_of(*mm))) +
+          ", not " + dialect;
+    return false;
+  }
+  d = *dd;
+  m = *mm;
+  return true;
+}
+
 Run add_frame_command(CLI::App& app);
 Run add_read_command(CLI::App& app);
 Run add_stats_command(CLI::App& app);

@@ -26,23 +26,17 @@ struct Found {
 };
 
 int run_frame(const FrameOptions& o) {
-  auto dialect = top::dialect_from_string(o.dialect);
-  auto model = top::model_from_string(o.model);
-  if (!dialect || !model) {
-    std::cerr << "topdump frame: bad --dialect or --model\n";
-    return 2;
-  }
-  if (*model != top::Model::unknown && *dialect != top::Dialect::unknown &&
-      top::dialect_of(*model) != *dialect) {
-    std::cerr << "topdump frame: model " << o.model << " speaks "
-              << top::to_string(top::dialect_of(*model)) << ", not " << o.dialect << "\n";
+  top::Dialect dialect{};
+  top::Model model{};
+  if (std::string why; !dialect_and_model(o.dialect, o.model, dialect, model, why)) {
+    std::cerr << "topdump frame: " << why << "\n";
     return 2;
   }
   std::vector<Found> found;
   std::vector<std::size_t> frames_per_arg(o.frames.size(), 0);
   top::DialectDetector detector;
-  if (*dialect != top::Dialect::unknown) detector.force(*dialect);
-  if (*model != top::Model::unknown) detector.force(top::dialect_of(*model));
+  if (dialect != top::Dialect::unknown) detector.force(dialect);
+  if (model != top::Model::unknown) detector.force(top::dialect_of(model));
   for (std::size_t a = 0; a < o.frames.size(); ++a) {
     std::string err;
     auto bytes = unescape(o.frames[a], err);
@@ -65,7 +59,7 @@ int run_frame(const FrameOptions& o) {
   int status = 0;
   std::size_t n = 0;
   top::DecodeOptions dopts;
-  dopts.model = *model;
+  dopts.model = model;
   for (const Found& x : found) {
     if (x.item.kind == top::ItemKind::garbage) {
       const auto& g = x.item;
@@ -84,8 +78,8 @@ int run_frame(const FrameOptions& o) {
     }
     const top::Frame& f = x.item.frame;
     dopts.dialect = top::dialect_from_frame(f);
-    if (dopts.dialect == top::Dialect::unknown || *dialect != top::Dialect::unknown ||
-        *model != top::Model::unknown)
+    if (dopts.dialect == top::Dialect::unknown || dialect != top::Dialect::unknown ||
+        model != top::Model::unknown)
       dopts.dialect = detector.current();
     top::Decoded d = top::decode(f, dopts);
     if (worst(f, d) == top::Severity::error) status = 1;

@@ -14,6 +14,20 @@
 
 namespace topdump {
 
+namespace {
+// What the capture shows of why a request went unanswered (Cause).
+constexpr std::string_view kCauseText[] = {
+    "",
+    ": its checksum is bad, and devices drop such frames",
+    ": a Topotek request with source U over the network; the device answers U requests on its "
+    "UART only (the network client is P)",
+    ": the identifier is not supported on the model",
+    ": the request is invalid (its length or a value), which devices ignore or answer with ERE",
+};
+static_assert(std::size(kCauseText) == static_cast<std::size_t>(Cause::invalid) + 1);
+std::string_view cause_text(Cause c) { return kCauseText[static_cast<std::size_t>(c)]; }
+}  // namespace
+
 Latency& Analyzer::Impl::latency_of(std::uint32_t key) {
   std::uint32_t& hint = latency_hint[(key * 0x9E3779B1u) >> 26];
   if (hint != 0 && latency_keys[hint - 1] == key) return latency[hint - 1];
@@ -88,25 +102,7 @@ void Analyzer::Impl::unanswered(Conversation& c, const Pending& p, bool at_end) 
         escape(std::string_view(p.ident, 3)) + " request (frame " + std::to_string(p.n) + ")" +
         (at_end ? std::string(" got no response before the end of the capture")
                 : " got no response within " + std::to_string(A.opts_.timeout_us / 1000) + " ms");
-    switch (p.cause) {
-      case Cause::bad_checksum:
-        m += ": its checksum is bad, and devices drop such frames";
-        break;
-      case Cause::uart_source:
-        m += ": a Topotek request with source U over the network; the device answers U "
-             "requests on its UART only (the network client is P)";
-        break;
-      case Cause::unsupported:
-        m += ": the identifier is not supported on the model";
-        break;
-      case Cause::invalid:
-        m += ": the request is invalid (its length or a value), which devices ignore or "
-             "answer with ERE";
-        break;
-      case Cause::none:
-        break;
-    }
-    return m;
+    return m + std::string(cause_text(p.cause));
   });
   if (silent) {
     Silence& s = c.silence;

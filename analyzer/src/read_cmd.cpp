@@ -140,20 +140,7 @@ struct Setup {
 
 // Turns the options into analyzer settings; false (with a message) on bad usage.
 bool setup(const Common& o, Setup& s, std::string& err) {
-  auto dialect = top::dialect_from_string(o.dialect);
-  auto model = top::model_from_string(o.model);
-  if (!dialect || !model) {
-    err = "bad --dialect or --model";
-    return false;
-  }
-  if (*model != top::Model::unknown && *dialect != top::Dialect::unknown &&
-      top::dialect_of(*model) != *dialect) {
-    err = "model " + o.model + " speaks " + std::string(top::to_string(top::dialect_of(*model))) +
-          ", not " + o.dialect;
-    return false;
-  }
-  s.aopts.dialect = *dialect;
-  s.aopts.model = *model;
+  if (!dialect_and_model(o.dialect, o.model, s.aopts.dialect, s.aopts.model, err)) return false;
   s.aopts.timeout_us = static_cast<std::int64_t>(o.timeout_ms * 1000);
   for (auto p : o.ports) {
     s.sopts.udp_ports.insert(p);

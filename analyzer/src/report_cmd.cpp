@@ -32,17 +32,15 @@ bool write_out(const std::string& path, const std::string& text) {
 }
 
 int run_report(const ReportOptions& o) {
-  auto dialect = top::dialect_from_string(o.dialect);
-  auto model = top::model_from_string(o.model);
-  auto fmt = format_from_string(o.format);
-  if (!dialect || !model || !fmt) {
-    std::cerr << "topdump report: bad --dialect, --model or --format\n";
+  top::Dialect dialect{};
+  top::Model model{};
+  if (std::string why; !dialect_and_model(o.dialect, o.model, dialect, model, why)) {
+    std::cerr << "topdump report: " << why << "\n";
     return 2;
   }
-  if (*model != top::Model::unknown && *dialect != top::Dialect::unknown &&
-      top::dialect_of(*model) != *dialect) {
-    std::cerr << "topdump report: model " << o.model << " speaks "
-              << top::to_string(top::dialect_of(*model)) << ", not " << o.dialect << "\n";
+  auto fmt = format_from_string(o.format);
+  if (!fmt) {
+    std::cerr << "topdump report: bad --format\n";
     return 2;
   }
   if (o.output.empty() && !o.json) {
@@ -50,8 +48,8 @@ int run_report(const ReportOptions& o) {
     return 2;
   }
   AnalyzerOptions aopts;
-  aopts.dialect = *dialect;
-  aopts.model = *model;
+  aopts.dialect = dialect;
+  aopts.model = model;
   aopts.timeout_us = static_cast<std::int64_t>(o.timeout_ms * 1000);
   SourceOptions sopts;
   for (auto p : o.ports) {
@@ -79,7 +77,7 @@ int run_report(const ReportOptions& o) {
   report::Options ropts;
   ropts.tolerance_deg = o.tolerance;
   ropts.files = o.files;
-  const report::Report r = report::analyze(sink, a.stats(), a.worst(), *model, ropts);
+  const report::Report r = report::analyze(sink, a.stats(), a.worst(), model, ropts);
   std::string text;
   if (o.json)
     report::write_json(text, r);

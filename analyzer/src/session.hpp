@@ -274,6 +274,7 @@ struct Analyzer::Impl {
   void item(Conversation& c, int d, top::StreamItem& it, Position pos, std::int64_t ts,
             std::uint64_t stream_off);
   const DecodedEntry& lookup(top::Frame& f, top::Dialect dialect, top::Role role);
+  static void summarise(DecodedEntry& e);
   // Drops the findings the filter mutes from a frame and its notes.
   void mute(top::Frame& f, FrameEvent& ev);
   void frame(Conversation& c, int d, top::Frame& f, Position pos, std::int64_t ts,
