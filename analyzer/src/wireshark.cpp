@@ -4,7 +4,7 @@
 // The output is the catalog's tables as Lua (commands, forms, fields with
 // kinds, widths, scales, units, ranges and enum labels; the finding codes as
 // expert infos; the ports) followed by the fixed dissector of
-// wireshark_runtime.lua, which reads them. tools/wireshark/top.lua is the
+// analyzer/src/wireshark_runtime/*.lua, which reads them. tools/wireshark/top.lua is the
 // checked-in copy; ctest regenerates and compares it, and compares tshark
 // running it with `topdump read --json` on every bundled capture.
 #include "wireshark.hpp"
@@ -23,7 +23,7 @@
 
 namespace topdump {
 
-extern const std::string_view kWiresharkRuntime;  // wireshark_runtime.lua, embedded by CMake
+extern const std::string_view kWiresharkRuntime;  // wireshark_runtime/*.lua, embedded by CMake
 
 namespace {
 
