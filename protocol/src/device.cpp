@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <array>
+#include <iterator>
 #include <string>
 
 #include "catalog_data.hpp"
 #include "device_form.hpp"
+#include "top/enum_names.hpp"
 #include "top/text.hpp"
 
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"
@@ -21,6 +23,18 @@ using detail::c12;
 using detail::c13;
 using detail::c20;
 using detail::sip;
+
+constexpr std::string_view kSource[] = {"document example", "document rule", "field"};
+static_assert(std::size(kSource) == static_cast<std::size_t>(Source::field) + 1);
+constexpr std::string_view kProfile[] = {"field", "document"};
+static_assert(std::size(kProfile) == static_cast<std::size_t>(Profile::document) + 1);
+constexpr std::string_view kWriteReply[] = {"echo", "data", "file index", "nothing"};
+static_assert(std::size(kWriteReply) == static_cast<std::size_t>(WriteReply::nothing) + 1);
+constexpr std::string_view kOrder[] = {"swapped", "request order"};
+static_assert(std::size(kOrder) == static_cast<std::size_t>(Order::request_order) + 1);
+constexpr std::string_view kTraitKind[] = {"yaw-inverted", "pitch-inverted", "answers-to-source",
+                                           "link-by-source", "speed-refresh"};
+static_assert(std::size(kTraitKind) == static_cast<std::size_t>(TraitKind::speed_refresh) + 1);
 
 constexpr StreamSpec kStreams[] = {
     {.dialect = Dialect::skydroid,
@@ -186,26 +200,11 @@ bool model_in(ModelSet set, Model m) noexcept {
 
 }  // namespace
 
-std::string_view to_string(Source s) noexcept {
-  switch (s) {
-    case Source::document_example:
-      return "document example";
-    case Source::document_rule:
-      return "document rule";
-    case Source::field:
-      return "field";
-  }
-  return "?";
-}
-
-std::string_view to_string(Profile p) noexcept {
-  return p == Profile::document ? "document" : "field";
-}
+std::string_view to_string(Source s) noexcept { return enum_name(kSource, s); }
+std::string_view to_string(Profile p) noexcept { return enum_name(kProfile, p); }
 
 std::optional<Profile> profile_from_string(std::string_view s) noexcept {
-  if (s == "field") return Profile::field;
-  if (s == "document") return Profile::document;
-  return std::nullopt;
+  return enum_from_name<Profile>(kProfile, s);
 }
 
 std::span<const StreamSpec> streams() noexcept { return kStreams; }
@@ -233,19 +232,7 @@ const StreamSpec* stream_of(Dialect d, std::string_view push) noexcept {
   return nullptr;
 }
 
-std::string_view to_string(WriteReply r) noexcept {
-  switch (r) {
-    case WriteReply::echo:
-      return "echo";
-    case WriteReply::data:
-      return "data";
-    case WriteReply::file_index:
-      return "file index";
-    case WriteReply::nothing:
-      return "nothing";
-  }
-  return "?";
-}
+std::string_view to_string(WriteReply r) noexcept { return enum_name(kWriteReply, r); }
 
 WriteReply write_reply(const CommandSpec& cmd) noexcept {
   const StreamSpec* s = stream_of(cmd.dialect, cmd.ident);
@@ -260,9 +247,7 @@ WriteReply write_reply(const CommandSpec& cmd) noexcept {
   return WriteReply::echo;
 }
 
-std::string_view to_string(Order o) noexcept {
-  return o == Order::swapped ? "swapped" : "request order";
-}
+std::string_view to_string(Order o) noexcept { return enum_name(kOrder, o); }
 
 std::span<const DeviceForm> device_forms() noexcept { return kForms; }
 
@@ -351,21 +336,7 @@ void detail::note_device_form(const Frame& f, Model model, bool detail, Decoded&
   }
 }
 
-std::string_view to_string(TraitKind k) noexcept {
-  switch (k) {
-    case TraitKind::yaw_inverted:
-      return "yaw-inverted";
-    case TraitKind::pitch_inverted:
-      return "pitch-inverted";
-    case TraitKind::answers_to_source:
-      return "answers-to-source";
-    case TraitKind::link_by_source:
-      return "link-by-source";
-    case TraitKind::speed_refresh:
-      return "speed-refresh";
-  }
-  return "?";
-}
+std::string_view to_string(TraitKind k) noexcept { return enum_name(kTraitKind, k); }
 
 std::span<const Trait> traits() noexcept { return kTraits; }
 

@@ -5,6 +5,7 @@
 #include <iterator>
 
 #include "top/catalog.hpp"
+#include "top/enum_names.hpp"
 #include "top/frame.hpp"
 
 namespace top {
@@ -34,47 +35,35 @@ constexpr std::string_view kFieldKind[] = {"hex_u",     "hex_s",  "dec_u",  "enu
                                            "le_u16",    "le_i32", "nmea",   "raw"};
 static_assert(std::size(kFieldKind) == static_cast<std::size_t>(FieldKind::raw) + 1);
 
-template <class E, std::size_t N>
-constexpr std::string_view name(const std::string_view (&t)[N], E e,
-                                std::string_view other) noexcept {
-  const auto i = static_cast<std::size_t>(e);
-  return i < N ? t[i] : other;
-}
-
-template <class E, std::size_t N>
-constexpr std::optional<E> lookup(const std::string_view (&t)[N], std::string_view s) noexcept {
-  for (std::size_t i = 0; i < N; ++i)
-    if (t[i] == s) return static_cast<E>(i);
-  return std::nullopt;
-}
-
 }  // namespace
 
-std::string_view to_string(Dialect d) noexcept { return name(kDialect, d, "unknown"); }
-std::string_view to_string(Model m) noexcept { return name(kModel, m, "unknown"); }
-std::string_view to_string(Role r) noexcept { return name(kRole, r, "any"); }
-std::string_view to_string(Header h) noexcept { return name(kHeader, h, "?"); }
-std::string_view describe(Header h) noexcept { return name(kHeaderDescription, h, "?"); }
-std::string_view to_string(FieldKind k) noexcept { return name(kFieldKind, k, "?"); }
+std::string_view to_string(Dialect d) noexcept { return enum_name(kDialect, d, "unknown"); }
+std::string_view to_string(Model m) noexcept { return enum_name(kModel, m, "unknown"); }
+std::string_view to_string(Role r) noexcept { return enum_name(kRole, r, "any"); }
+std::string_view to_string(Header h) noexcept { return enum_name(kHeader, h, "?"); }
+std::string_view describe(Header h) noexcept { return enum_name(kHeaderDescription, h, "?"); }
+std::string_view to_string(FieldKind k) noexcept { return enum_name(kFieldKind, k, "?"); }
 
 std::optional<Dialect> dialect_from_string(std::string_view s) noexcept {
   if (s == "auto") return Dialect::unknown;
-  return lookup<Dialect>(kDialect, s);
+  return enum_from_name<Dialect>(kDialect, s);
 }
 
 std::optional<Model> model_from_string(std::string_view s) noexcept {
   if (s == "auto") return Model::unknown;
-  return lookup<Model>(kModel, s);
+  return enum_from_name<Model>(kModel, s);
 }
 
-std::optional<Role> role_from_string(std::string_view s) noexcept { return lookup<Role>(kRole, s); }
+std::optional<Role> role_from_string(std::string_view s) noexcept {
+  return enum_from_name<Role>(kRole, s);
+}
 
 std::optional<Header> header_from_string(std::string_view s) noexcept {
-  return lookup<Header>(kHeader, s);
+  return enum_from_name<Header>(kHeader, s);
 }
 
 std::optional<FieldKind> field_kind_from_string(std::string_view s) noexcept {
-  return lookup<FieldKind>(kFieldKind, s);
+  return enum_from_name<FieldKind>(kFieldKind, s);
 }
 
 std::span<const Model> all_models() noexcept {

@@ -3,96 +3,30 @@
 #include <algorithm>
 #include <chrono>
 #include <deque>
+#include <iterator>
 #include <thread>
 
+#include "conf/link.hpp"
 #include "conf/runner.hpp"
 #include "top/device.hpp"
+#include "top/enum_names.hpp"
 
 namespace topconf {
 namespace {
 
 using WallClock = std::chrono::steady_clock;
 
-struct Rx {
-  top::Frame frame;
-  std::uint64_t t_us = 0;
-  bool after_garbage = false;
-};
-
-// The fuzzer's side of the link: bytes to frames, and the pcap.
-class Link {
- public:
-  Link(Transport& t, pcapio::Recorder* pcap) : t_(t), pcap_(pcap) {}
-  std::uint64_t now() { return t_.now_us(); }
-  void send(std::string_view bytes) {
-    if (pcap_) pcap_->write(t_.local(), t_.remote(), bytes);
-    t_.send(bytes);
-  }
-  bool next(std::uint64_t deadline, Rx& out) {
-    for (;;) {
-      if (!q_.empty()) {
-        out = std::move(q_.front());
-        q_.pop_front();
-        return true;
-      }
-      std::string chunk;
-      if (!t_.receive(deadline, chunk)) {
-        if (!t_.datagram() && dec_.buffered() > 0) {
-          dec_.settle();
-          collect();
-          if (!q_.empty()) continue;
-        }
-        return false;
-      }
-      if (pcap_) pcap_->write(t_.remote(), t_.local(), chunk);
-      dec_.feed(chunk);
-      if (t_.datagram())
-        dec_.finish();
-      else
-        dec_.flush();
-      collect();
-      if (t_.datagram()) dec_.reset();
-    }
-  }
-  void clear() { q_.clear(); }
-
- private:
-  void collect() {
-    top::StreamItem item;
-    const std::uint64_t at = now();
-    while (dec_.next(item)) {
-      if (item.kind == top::ItemKind::garbage) {
-        garbage_ = true;
-        continue;
-      }
-      if (q_.size() >= 4096) q_.pop_front();
-      q_.push_back(Rx{std::move(item.frame), at, garbage_});
-      garbage_ = false;
-    }
-  }
-  Transport& t_;
-  pcapio::Recorder* pcap_;
-  top::StreamDecoder dec_;
-  std::deque<Rx> q_;
-  bool garbage_ = false;
-};
-
 struct Probe {
   std::string bytes;
   std::string ident;
 };
-
-bool is_push(top::Dialect d, std::string_view ident) {
-  const top::StreamSpec* s = top::stream_of(d, ident);
-  return s && s->sender == top::Sender::device;
-}
 
 struct Session {
   const Matrix& m;
   Transport& t;
   const FuzzOptions& o;
   const CaseSource& src;
-  Link link;
+  FrameLink link;
   Probe probe, alt;  // the liveness probe, and a second sync frame
   std::uint64_t probes = 0;
   std::uint64_t t0 = 0;
@@ -106,7 +40,7 @@ struct Session {
       ++probes;
       link.send(probe.bytes);
       const std::uint64_t deadline = link.now() + probe_timeout_us();
-      Rx r;
+      Received r;
       while (link.next(deadline, r)) {
         const std::string_view id = r.frame.ident_view();
         if (id == probe.ident || id == "ERE") return true;
@@ -127,7 +61,7 @@ struct Session {
     return false;
   }
 
-  std::string check_reply(const FuzzCase& c, const Rx& r) const {
+  std::string check_reply(const FuzzCase& c, const Received& r) const {
     const top::Frame& f = r.frame;
     if (r.after_garbage) return "bytes that belong to no frame came before " + top::escape(f.raw);
     if (!f.ok()) {
@@ -176,12 +110,12 @@ struct Session {
     const std::uint64_t sent_at = link.now();
     r.start_us = sent_at - t0;
     link.send(c.bytes);
-    std::vector<Rx> got;
-    Rx rx;
+    std::vector<Received> got;
+    Received rx;
     auto own = [&](const top::Frame& f) {
       return (!c.ident.empty() && f.ident_view() == c.ident) || f.ident_view() == "ERE";
     };
-    auto keep = [&](Rx&& x) {
+    auto keep = [&](Received&& x) {
       if (is_push(m.dialect, x.frame.ident_view()) && x.frame.ident_view() != c.ident) return;
       got.push_back(std::move(x));
     };
@@ -223,13 +157,13 @@ struct Session {
       }
     }
     r.latency_us = answered_at ? answered_at - sent_at : 0;
-    for (const Rx& x : got) r.answers.push_back(x.frame.raw);
+    for (const Received& x : got) r.answers.push_back(x.frame.raw);
     if (!synced) return false;
 
     // Classify: the first class found wins, in the order of the enum.
     const bool promised = c.level != Level::may;
     bool answered_ident = false, answered_ere = false;
-    for (const Rx& x : got) {
+    for (const Received& x : got) {
       answered_ident |= !c.ident.empty() && x.frame.ident_view() == c.ident;
       answered_ere |= x.frame.ident_view() == "ERE";
     }
@@ -252,7 +186,7 @@ struct Session {
           "an answer where the document promises ERE (" + std::string(to_string(c.level)) + ")";
       return true;
     }
-    for (const Rx& x : got) {
+    for (const Received& x : got) {
       std::string why = check_reply(c, x);
       if (!why.empty()) {
         r.failure = FailureClass::bad_reply;
@@ -379,52 +313,27 @@ struct Session {
 
 }  // namespace
 
-std::string_view to_string(FailureClass c) noexcept {
-  switch (c) {
-    case FailureClass::stopped:
-      return "stopped-answering";
-    case FailureClass::accepted_corrupt:
-      return "answered-corrupt-frame";
-    case FailureClass::bad_reply:
-      return "bad-reply";
-    case FailureClass::slow:
-      return "slow-answer";
-    case FailureClass::wrong_answer:
-      return "wrong-answer";
-  }
-  return "?";
-}
+namespace {
+constexpr std::string_view kFailureClass[] = {"stopped-answering", "answered-corrupt-frame",
+                                              "bad-reply", "slow-answer", "wrong-answer"};
+constexpr std::string_view kFailureDescription[] = {
+    "the device stopped answering the liveness probe",
+    "the device answered a frame whose checksum is wrong",
+    "a malformed, wrongly addressed or out-of-range reply",
+    "an answer later than --slow-ms after a case",
+    "ERE or silence where the document promises an answer, or an answer where it "
+    "promises ERE (must and should levels)"};
+static_assert(std::size(kFailureClass) == static_cast<std::size_t>(FailureClass::wrong_answer) + 1);
+static_assert(std::size(kFailureDescription) == std::size(kFailureClass));
+constexpr std::string_view kMinimiseHow[] = {"alone", "window", "not-reproduced", "skipped"};
+static_assert(std::size(kMinimiseHow) == static_cast<std::size_t>(MinimiseHow::skipped) + 1);
+}  // namespace
 
+std::string_view to_string(FailureClass c) noexcept { return top::enum_name(kFailureClass, c); }
 std::string_view describe(FailureClass c) noexcept {
-  switch (c) {
-    case FailureClass::stopped:
-      return "the device stopped answering the liveness probe";
-    case FailureClass::accepted_corrupt:
-      return "the device answered a frame whose checksum is wrong";
-    case FailureClass::bad_reply:
-      return "a malformed, wrongly addressed or out-of-range reply";
-    case FailureClass::slow:
-      return "an answer later than --slow-ms after a case";
-    case FailureClass::wrong_answer:
-      return "ERE or silence where the document promises an answer, or an answer where it "
-             "promises ERE (must and should levels)";
-  }
-  return "?";
+  return top::enum_name(kFailureDescription, c);
 }
-
-std::string_view to_string(MinimiseHow h) noexcept {
-  switch (h) {
-    case MinimiseHow::alone:
-      return "alone";
-    case MinimiseHow::window:
-      return "window";
-    case MinimiseHow::not_reproduced:
-      return "not-reproduced";
-    case MinimiseHow::skipped:
-      return "skipped";
-  }
-  return "?";
-}
+std::string_view to_string(MinimiseHow h) noexcept { return top::enum_name(kMinimiseHow, h); }
 
 int FuzzResult::exit_code() const noexcept {
   if (unusable) return 2;
@@ -443,7 +352,7 @@ FuzzResult run_fuzz(const Matrix& m, Transport& t, const FuzzOptions& o) {
   };
   const CaseSource src(m.model, t.client_address(), o.seed, &m);
   res.catalog_cases = src.catalog_cases();
-  Session s{m, t, o, src, Link(t, o.pcap), {}, {}, 0, t.now_us()};
+  Session s{m, t, o, src, FrameLink(t, o.pcap, 4096), {}, {}, 0, t.now_us()};
 
   // The probe, and a second sync frame for cases that contain the probe's
   // identifier: the first must-level read of the matrix with another one.

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 
 #include "fuzz/mutator.hpp"
 #include "top/device.hpp"
+#include "top/enum_names.hpp"
 
 namespace topconf {
 namespace {
@@ -63,6 +65,9 @@ std::string encode_raw(const top::FieldSpec& f, std::int64_t raw) {
   }
 }
 
+constexpr std::string_view kPromise[] = {"none", "answer", "error", "silence"};
+static_assert(std::size(kPromise) == static_cast<std::size_t>(Promise::silence) + 1);
+
 const char* hex_byte(unsigned char c) {
   static char b[4];
   std::snprintf(b, sizeof b, "%02X", static_cast<unsigned>(c));
@@ -71,19 +76,7 @@ const char* hex_byte(unsigned char c) {
 
 }  // namespace
 
-std::string_view to_string(Promise p) noexcept {
-  switch (p) {
-    case Promise::none:
-      return "none";
-    case Promise::answer:
-      return "answer";
-    case Promise::error:
-      return "error";
-    case Promise::silence:
-      return "silence";
-  }
-  return "?";
-}
+std::string_view to_string(Promise p) noexcept { return top::enum_name(kPromise, p); }
 
 std::string mutate(std::string b, std::uint64_t s, bool repair) {
   static constexpr std::string_view kTokens[] = {"#",   "\r\n", "#TP", "#tp", "#tP",

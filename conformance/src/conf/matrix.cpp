@@ -1,8 +1,11 @@
 #include "conf/matrix.hpp"
 
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
+
+#include "top/enum_names.hpp"
 
 namespace topconf {
 namespace {
@@ -18,6 +21,13 @@ struct Ctx {
     if (!case_id.empty()) s += "case " + case_id + ": ";
     s += key + ": " + msg;
     if (errors->size() < 200) errors->push_back(std::move(s));
+  }
+  // Whether `o` is a JSON object; an error at `key` if not (`msg`: what it
+  // must be).
+  bool object(const json& o, const std::string& key,
+              const std::string& msg = "must be an object") const {
+    if (!o.is_object()) err(key, msg);
+    return o.is_object();
   }
 };
 
@@ -94,10 +104,9 @@ bool is_hex(std::string_view s) {
 }
 
 std::optional<SendSpec> parse_send(const Ctx& c, const json& o, const std::string& where) {
-  if (!o.is_object()) {
-    c.err(where, "must be an object ({\"raw\": ...}, {\"hex\": ...} or {\"command\": ...})");
+  if (!c.object(o, where,
+                "must be an object ({\"raw\": ...}, {\"hex\": ...} or {\"command\": ...})"))
     return std::nullopt;
-  }
   SendSpec s;
   const std::string w = where + ".";
   if (o.contains("raw") || o.contains("hex")) {
@@ -170,10 +179,7 @@ std::optional<SendSpec> parse_send(const Ctx& c, const json& o, const std::strin
 }
 
 std::optional<Expectation> parse_expect(const Ctx& c, const json& o, const std::string& where) {
-  if (!o.is_object()) {
-    c.err(where, "must be an object");
-    return std::nullopt;
-  }
+  if (!c.object(o, where)) return std::nullopt;
   Expectation e;
   const std::string w = where + ".";
   int kinds = 0;
@@ -226,10 +232,7 @@ std::optional<Expectation> parse_expect(const Ctx& c, const json& o, const std::
     e.kind = ExpectKind::reply;
     const json& r = o["reply"];
     const std::string rw = w + "reply.";
-    if (!r.is_object()) {
-      c.err(w + "reply", "must be an object");
-      return std::nullopt;
-    }
+    if (!c.object(r, w + "reply")) return std::nullopt;
     only_keys(c, r, w + "reply", {"ident", "control", "fields", "data_pattern", "data"});
     get_string(c, r, rw, "ident", e.ident, false);
     if (!e.ident.empty() && e.ident.size() != 3) c.err(rw + "ident", "must be three characters");
@@ -250,18 +253,12 @@ std::optional<Expectation> parse_expect(const Ctx& c, const json& o, const std::
       }
     }
     if (auto it = r.find("fields"); it != r.end()) {
-      if (!it->is_object()) {
-        c.err(rw + "fields", "must be an object of field checks");
-        return std::nullopt;
-      }
+      if (!c.object(*it, rw + "fields", "must be an object of field checks")) return std::nullopt;
       for (auto f = it->begin(); f != it->end(); ++f) {
         const std::string fw = rw + "fields." + f.key();
         FieldCheck fc;
         fc.name = f.key();
-        if (!f->is_object()) {
-          c.err(fw, "must be an object (min, max, enum, pattern, equals)");
-          continue;
-        }
+        if (!c.object(*f, fw, "must be an object (min, max, enum, pattern, equals)")) continue;
         only_keys(c, *f, fw, {"min", "max", "enum", "pattern", "equals"});
         for (const char* k : {"min", "max"}) {
           if (auto v = f->find(k); v != f->end()) {
@@ -307,10 +304,7 @@ std::optional<Expectation> parse_expect(const Ctx& c, const json& o, const std::
     e.kind = ExpectKind::stream;
     const json& s = o["stream"];
     const std::string sw = w + "stream.";
-    if (!s.is_object()) {
-      c.err(w + "stream", "must be an object");
-      return std::nullopt;
-    }
+    if (!c.object(s, w + "stream")) return std::nullopt;
     only_keys(c, s, w + "stream", {"ident", "rate_hz", "tolerance", "duration_ms"});
     if (!get_string(c, s, sw, "ident", e.ident, true)) return std::nullopt;
     auto rate = s.find("rate_hz");
@@ -334,10 +328,7 @@ std::optional<Expectation> parse_expect(const Ctx& c, const json& o, const std::
   } else {
     e.kind = ExpectKind::readback;
     const json& r = o["readback"];
-    if (!r.is_object()) {
-      c.err(w + "readback", "must be an object");
-      return std::nullopt;
-    }
+    if (!c.object(r, w + "readback")) return std::nullopt;
     only_keys(c, r, w + "readback", {"send", "data"});
     if (!r.contains("send")) {
       c.err(w + "readback.send", "missing");
@@ -353,10 +344,7 @@ std::optional<Expectation> parse_expect(const Ctx& c, const json& o, const std::
 }
 
 std::optional<Step> parse_step(const Ctx& c, const json& o, const std::string& where) {
-  if (!o.is_object()) {
-    c.err(where, "must be an object");
-    return std::nullopt;
-  }
+  if (!c.object(o, where)) return std::nullopt;
   only_keys(c, o, where, {"send", "expect", "timeout_ms"});
   Step s;
   const std::string w = where + ".";
@@ -407,38 +395,18 @@ void parse_steps(const Ctx& c, const json& o, const char* key, std::vector<Step>
 namespace {
 constexpr std::string_view kLevel[] = {"must", "should", "may"};
 static_assert(std::size(kLevel) == static_cast<std::size_t>(Level::may) + 1);
+constexpr std::string_view kExpectKind[] = {"frame",   "echo",   "reply",   "error",
+                                            "silence", "stream", "readback"};
+static_assert(std::size(kExpectKind) == static_cast<std::size_t>(ExpectKind::readback) + 1);
 }  // namespace
 
-std::string_view to_string(Level l) noexcept {
-  const auto i = static_cast<std::size_t>(l);
-  return i < std::size(kLevel) ? kLevel[i] : "?";
-}
+std::string_view to_string(Level l) noexcept { return top::enum_name(kLevel, l); }
 
 std::optional<Level> level_from_string(std::string_view s) noexcept {
-  for (std::size_t i = 0; i < std::size(kLevel); ++i)
-    if (kLevel[i] == s) return static_cast<Level>(i);
-  return std::nullopt;
+  return top::enum_from_name<Level>(kLevel, s);
 }
 
-std::string_view to_string(ExpectKind k) noexcept {
-  switch (k) {
-    case ExpectKind::frame:
-      return "frame";
-    case ExpectKind::echo:
-      return "echo";
-    case ExpectKind::reply:
-      return "reply";
-    case ExpectKind::error:
-      return "error";
-    case ExpectKind::silence:
-      return "silence";
-    case ExpectKind::stream:
-      return "stream";
-    case ExpectKind::readback:
-      return "readback";
-  }
-  return "?";
-}
+std::string_view to_string(ExpectKind k) noexcept { return top::enum_name(kExpectKind, k); }
 
 bool Case::applies_to(top::Model m) const noexcept {
   if (models.empty()) return true;
@@ -455,10 +423,7 @@ LoadResult load_matrix(std::string_view text, std::string_view file) {
     c.err("(json)", *bad);
     return res;
   }
-  if (!doc.is_object()) {
-    c.err("(root)", "must be an object");
-    return res;
-  }
+  if (!c.object(doc, "(root)")) return res;
   only_keys(c, doc, "",
             {"$schema", "format", "title", "model", "document", "defaults", "probe", "cases"});
   Matrix m;
@@ -499,10 +464,7 @@ LoadResult load_matrix(std::string_view text, std::string_view file) {
     const json& o = (*cases)[i];
     Ctx cc = c;
     cc.case_id = "#" + std::to_string(i);
-    if (!o.is_object()) {
-      cc.err("(case)", "must be an object");
-      continue;
-    }
+    if (!cc.object(o, "(case)")) continue;
     Case k;
     if (get_string(cc, o, "", "id", k.id, true)) {
       cc.case_id = k.id;

@@ -5,8 +5,12 @@
 #include <cmath>
 #include <ctime>
 #include <deque>
+#include <iterator>
 #include <random>
 #include <regex>
+
+#include "conf/link.hpp"
+#include "top/enum_names.hpp"
 
 namespace topconf {
 
@@ -26,81 +30,32 @@ std::string iso_now() {
 
 namespace {
 
-struct Received {
-  top::Frame frame;
-  std::uint64_t t_us = 0;
-  bool after_garbage = false;
-};
-
-// The runner's side of the link: bytes to frames, with the transcript.
-bool is_push(top::Dialect d, std::string_view ident);
-
+// The runner's side of the link: frames, and the case's transcript.
 class Wire {
  public:
   Wire(Transport& t, const Matrix& m, const RunOptions& o, std::uint64_t t0)
-      : t_(t), m_(m), o_(o), t0_(t0) {}
+      : link_(t, o.pcap, o.max_frames_per_step), m_(m), o_(o), t0_(t0) {
+    link_.on_chunk = [this](std::string_view chunk) { log('<', std::string(chunk)); };
+    link_.on_garbage = [this](std::size_t n) {
+      note("garbage: " + std::to_string(n) + " byte(s) that belong to no frame");
+    };
+  }
+
+  Wire(const Wire&) = delete;  // the link calls back into this one
+  Wire& operator=(const Wire&) = delete;
 
   void begin_case(CaseResult* r) { rec_ = r; }
-  std::uint64_t now() { return t_.now_us(); }
+  std::uint64_t now() { return link_.now(); }
 
   void note(std::string s) { log('!', std::move(s)); }
 
   void send(std::string_view bytes) {
     log('>', std::string(bytes));
-    if (o_.pcap) o_.pcap->write(t_.local(), t_.remote(), bytes);
-    t_.send(bytes);
+    link_.send(bytes);
   }
 
   // Next frame before `deadline`; false on timeout. Garbage is noted.
-  bool next(std::uint64_t deadline, Received& out) {
-    std::size_t late = 0;
-    for (;;) {
-      if (!frames_.empty()) {
-        out = std::move(frames_.front());
-        frames_.pop_front();
-        return true;
-      }
-      // Past the deadline only what is already there is read, and a
-      // flooding peer cannot keep us here.
-      if (now() >= deadline && ++late > 64) return false;
-      std::string chunk;
-      if (!t_.receive(deadline, chunk)) {
-        // A quiet stream with bytes held (a frame failing its checksum waits
-        // for look-ahead): the link went quiet, so decide now.
-        if (!t_.datagram() && dec_.buffered() > 0) {
-          dec_.settle();
-          collect();
-          if (!frames_.empty()) continue;
-        }
-        return false;
-      }
-      ++chunks_;
-      log('<', chunk);
-      if (o_.pcap) o_.pcap->write(t_.remote(), t_.local(), chunk);
-      dec_.feed(chunk);
-      if (t_.datagram())
-        dec_.finish();
-      else
-        dec_.flush();
-      collect();
-      if (t_.datagram()) dec_.reset();
-    }
-  }
-
-  void collect() {
-    top::StreamItem item;
-    const std::uint64_t at = now();
-    while (dec_.next(item)) {
-      if (item.kind == top::ItemKind::garbage) {
-        garbage_ = true;
-        note("garbage: " + std::to_string(item.length) + " byte(s) that belong to no frame");
-        continue;
-      }
-      if (frames_.size() >= o_.max_frames_per_step) frames_.pop_front();
-      frames_.push_back(Received{std::move(item.frame), at, garbage_});
-      garbage_ = false;
-    }
-  }
+  bool next(std::uint64_t deadline, Received& out) { return link_.next(deadline, out); }
 
   // Discards whatever already arrived (late answers of a previous step).
   void drain() {
@@ -112,12 +67,10 @@ class Wire {
       const std::string_view id = r.frame.ident_view();
       if (!is_push(m_.dialect, id)) ++late;  // pushes (GAC, GIC) are expected
     }
-    frames_.clear();
+    link_.clear();
     if (late > 0)
       note("discarded " + std::to_string(late) + " late frame(s) before the next exchange");
   }
-
-  std::uint64_t chunks() const noexcept { return chunks_; }
 
  private:
   void log(char dir, std::string bytes) {
@@ -130,15 +83,11 @@ class Wire {
     rec_->transcript.push_back(Exchange{now() - t0_, dir, std::move(bytes)});
   }
 
-  Transport& t_;
+  FrameLink link_;
   const Matrix& m_;
   const RunOptions& o_;
   std::uint64_t t0_;
   CaseResult* rec_ = nullptr;
-  top::StreamDecoder dec_;
-  std::deque<Received> frames_;
-  bool garbage_ = false;
-  std::uint64_t chunks_ = 0;
 };
 
 enum class Outcome : std::uint8_t { strict, tolerated, fail, error };
@@ -150,11 +99,6 @@ struct StepResult {
 };
 
 constexpr std::string_view kFieldForm = "the field's form, not the document's: ";
-
-bool is_push(top::Dialect d, std::string_view ident) {
-  const top::StreamSpec* s = top::stream_of(d, ident);
-  return s && s->sender == top::Sender::device;
-}
 
 // The recorded form (top/device.hpp) a device frame matches where it departs
 // from the document's rule (the request's address order, another header),
@@ -600,23 +544,13 @@ struct Runner {
 
 }  // namespace
 
-std::string_view to_string(Verdict v) noexcept {
-  switch (v) {
-    case Verdict::pass:
-      return "pass";
-    case Verdict::non_strict:
-      return "non-strict";
-    case Verdict::fail:
-      return "fail";
-    case Verdict::not_applicable:
-      return "n/a";
-    case Verdict::inconclusive:
-      return "inconclusive";
-    case Verdict::error:
-      return "error";
-  }
-  return "?";
-}
+namespace {
+constexpr std::string_view kVerdict[] = {"pass", "non-strict",   "fail",
+                                         "n/a",  "inconclusive", "error"};
+static_assert(std::size(kVerdict) == static_cast<std::size_t>(Verdict::error) + 1);
+}  // namespace
+
+std::string_view to_string(Verdict v) noexcept { return top::enum_name(kVerdict, v); }
 
 bool glob_match(std::string_view p, std::string_view s) noexcept {
   std::size_t pi = 0, si = 0, star = std::string_view::npos, mark = 0;
