@@ -9,12 +9,13 @@
 #include "report.hpp"
 #include "report_svg.hpp"
 #include "sources.hpp"
+#include "top/text.hpp"
 
 namespace topdump::report {
 
 namespace {
 
-using svg::esc;
+using top::markup_escape;
 
 constexpr std::size_t kMaxRows = 300;  // table rows per table (the JSON has all)
 constexpr int kWidth = 960;
@@ -100,11 +101,12 @@ void Page::overview() {
   o += "<section id=\"overview\"><h2>1. Overview</h2><table>";
   o += "<tr><th>captures</th><td>";
   for (std::size_t i = 0; i < r.opts.files.size(); ++i)
-    o += (i ? "<br/>" : "") + ("<code>" + esc(r.opts.files[i]) + "</code>");
+    o += (i ? "<br/>" : "") + ("<code>" + markup_escape(r.opts.files[i]) + "</code>");
   o += "</td></tr><tr><th>time span</th><td>" +
-       (s.first == kNoTime ? std::string("no time stamps")
-                           : esc(format_time(s.first)) + " to " + esc(format_time(s.last)) + " (" +
-                                 fmt("%.3f", static_cast<double>(s.last - s.first) / 1e6) + " s)") +
+       (s.first == kNoTime
+            ? std::string("no time stamps")
+            : markup_escape(format_time(s.first)) + " to " + markup_escape(format_time(s.last)) +
+                  " (" + fmt("%.3f", static_cast<double>(s.last - s.first) / 1e6) + " s)") +
        "</td></tr>";
   o += "<tr><th>frames</th><td>" + std::to_string(s.frames) + " (" +
        std::to_string(s.bad_checksum) + " with a bad checksum, " + std::to_string(s.error_frames) +
@@ -125,11 +127,12 @@ void Page::overview() {
        "<th>paired</th></tr>";
   for (const ConvStats& c : s.conversations)
     o += "<tr>" + tdn(std::to_string(c.id)) + td(std::string(to_string(c.transport))) +
-         td("<code>" + esc(c.a) + "</code>") + td("<code>" + esc(c.b) + "</code>") +
+         td("<code>" + markup_escape(c.a) + "</code>") +
+         td("<code>" + markup_escape(c.b) + "</code>") +
          td(std::string(top::to_string(dialect_of(r, c)))) +
-         td(esc(model_text(r.model, dialect_of(r, c)).empty()
-                    ? "-"
-                    : model_text(r.model, dialect_of(r, c)))) +
+         td(markup_escape(model_text(r.model, dialect_of(r, c)).empty()
+                              ? "-"
+                              : model_text(r.model, dialect_of(r, c)))) +
          tdn(std::to_string(c.frames)) + tdn(std::to_string(c.requests)) +
          tdn(std::to_string(c.responses)) + tdn(std::to_string(c.paired)) + "</tr>";
   o += "</table>";
@@ -143,8 +146,8 @@ void Page::overview() {
   } else {
     // the first twelve at once, the rest a click away
     auto item = [&](const Fact& f) {
-      o += "<li>" + sev_span(f.severity) + " " + esc(f.text) + " <a href=\"#" + esc(f.anchor) +
-           "\">details</a></li>";
+      o += "<li>" + sev_span(f.severity) + " " + markup_escape(f.text) + " <a href=\"#" +
+           markup_escape(f.anchor) + "\">details</a></li>";
     };
     constexpr std::size_t kShown = 12;
     o += "<ol class=\"facts\">";
@@ -171,8 +174,9 @@ void Page::motion() {
   for (const auto& [id, c] : r.data->convs) {
     if (c.attitude.empty() && c.angles.empty() && c.rates.empty() && c.marks.empty()) continue;
     any = true;
-    o += "<h3>Conversation " + std::to_string(id) + ": <code>" + esc(c.a) + "</code> and <code>" +
-         esc(c.b) + "</code> (" + esc(std::string(top::to_string(c.dialect))) + ")</h3>";
+    o += "<h3>Conversation " + std::to_string(id) + ": <code>" + markup_escape(c.a) +
+         "</code> and <code>" + markup_escape(c.b) + "</code> (" +
+         markup_escape(std::string(top::to_string(c.dialect))) + ")</h3>";
     for (int axis = 0; axis < kAxes; ++axis) {
       svg::TimePlot p;
       p.width = kWidth;
@@ -313,7 +317,7 @@ void Page::response() {
          "Measured rate: least squares over the attitude during the run.";
     if (r.refresh_limit_ms)
       o += " Refresh limit " + std::to_string(r.refresh_limit_ms) +
-           " ms (field: " + esc(r.refresh_evidence) + ").";
+           " ms (field: " + markup_escape(r.refresh_evidence) + ").";
     o += "</p>";
     if (!r.scale_verdict.empty()) {
       o += "<p><b>Speed unit:</b> the gimbal moved " + fmt("%.3f", r.scale_measured) +
@@ -370,7 +374,7 @@ void Page::latency() {
        "<th>p95</th><th>p99</th><th>max</th></tr>";
   auto ms = [](std::int64_t us) { return fmt("%.3f ms", static_cast<double>(us) / 1000.0); };
   for (const auto& [k, l] : s.latency)
-    o += "<tr>" + td(esc(k)) + tdn(std::to_string(l.count())) + tdn(ms(l.min())) +
+    o += "<tr>" + td(markup_escape(k)) + tdn(std::to_string(l.count())) + tdn(ms(l.min())) +
          tdn(ms(l.quantile(0.5))) + tdn(ms(l.quantile(0.9))) + tdn(ms(l.quantile(0.95))) +
          tdn(ms(l.quantile(0.99))) + tdn(ms(l.max())) + "</tr>";
   o += "</table><h3>Histograms (ms, five bins per decade)</h3>";
@@ -386,7 +390,7 @@ void Page::latency() {
       labels.push_back(v < 1 ? fmt("%.2g", v) : fmt("%.0f", v));
       counts.push_back(bins[b]);
     }
-    o += "<div class=\"hist\"><b>" + esc(k) + "</b>";
+    o += "<div class=\"hist\"><b>" + markup_escape(k) + "</b>";
     svg::bars(o, labels, counts, "#4c78a8",
               std::min(kWidth, 40 + 36 * static_cast<int>(counts.size())), 90);
     o += "</div>";
@@ -397,9 +401,10 @@ void Page::latency() {
   o += "<h3>Slowest exchanges</h3><table><tr><th>latency</th><th>identifier</th><th>request"
        "</th><th>response</th><th>time</th><th>conv</th><th>response bytes</th></tr>";
   for (const Slow& x : slow)
-    o += "<tr>" + tdn(ms(x.latency_us)) + td(esc(x.ident)) + tdn(frame_ref(x.request)) +
+    o += "<tr>" + tdn(ms(x.latency_us)) + td(markup_escape(x.ident)) + tdn(frame_ref(x.request)) +
          tdn(frame_ref(x.response)) + td(clock_text(x.ts)) + tdn(std::to_string(x.conv)) +
-         td("<span class=\"raw\">" + esc(top::escape(x.response_raw)) + "</span>") + "</tr>";
+         td("<span class=\"raw\">" + markup_escape(top::escape(x.response_raw)) + "</span>") +
+         "</tr>";
   o += "</table></section>";
 }
 
@@ -474,27 +479,32 @@ void Page::findings() {
   for (const CodeStat* c : sorted) {
     std::string who;
     for (const auto& [w, n] : c->senders)
-      who += (who.empty() ? "" : ", ") + ("<code>" + esc(w) + "</code> " + std::to_string(n));
-    o += "<tr>" + td("<a href=\"#code-" + esc(c->code) + "\">" + esc(c->code) + "</a>") +
+      who += (who.empty() ? "" : ", ") +
+             ("<code>" + markup_escape(w) + "</code> " + std::to_string(n));
+    o += "<tr>" +
+         td("<a href=\"#code-" + markup_escape(c->code) + "\">" + markup_escape(c->code) + "</a>") +
          td(sev_span(c->severity)) + tdn(std::to_string(c->count)) + td(clock_text(c->first)) +
          td(clock_text(c->last)) + td(who) + "</tr>";
   }
   o += "</table><h3>Examples</h3>";
   for (const CodeStat* c : sorted) {
-    o += "<details id=\"code-" + esc(c->code) + "\"" +
+    o += "<details id=\"code-" + markup_escape(c->code) + "\"" +
          (c->severity == top::Severity::info ? "" : " open=\"open\"") + "><summary>" +
-         sev_span(c->severity) + " <b>" + esc(c->code) + "</b> (" + std::to_string(c->count) +
+         sev_span(c->severity) + " <b>" + markup_escape(c->code) + "</b> (" +
+         std::to_string(c->count) +
          ")</summary><table><tr><th>frame</th><th>where</th><th>time</th><th>bytes</th>"
          "<th>decoded</th><th>finding</th></tr>";
     for (const Example& x : c->examples)
       o += "<tr>" + tdn(frame_ref(x.frame)) +
-           td("<code>" + esc(x.file) + "</code> record " + std::to_string(x.record) + " @" +
-              std::to_string(x.offset) + (x.at ? ", byte " + std::to_string(x.at) : "") +
-              (x.from.empty()
-                   ? ""
-                   : "<br/><code>" + esc(x.from) + "</code> to <code>" + esc(x.to) + "</code>")) +
-           td(clock_text(x.ts)) + td("<span class=\"raw\">" + esc(top::escape(x.raw)) + "</span>") +
-           td(esc(top::ascii_text(x.decoded))) + td(esc(top::ascii_text(x.message))) + "</tr>";
+           td("<code>" + markup_escape(x.file) + "</code> record " + std::to_string(x.record) +
+              " @" + std::to_string(x.offset) + (x.at ? ", byte " + std::to_string(x.at) : "") +
+              (x.from.empty() ? ""
+                              : "<br/><code>" + markup_escape(x.from) + "</code> to <code>" +
+                                    markup_escape(x.to) + "</code>")) +
+           td(clock_text(x.ts)) +
+           td("<span class=\"raw\">" + markup_escape(top::escape(x.raw)) + "</span>") +
+           td(markup_escape(top::ascii_text(x.decoded))) +
+           td(markup_escape(top::ascii_text(x.message))) + "</tr>";
     o += "</table></details>";
   }
   o += "</section>";
@@ -511,8 +521,8 @@ void Page::unanswered() {
        "frame</th><th>time</th><th>conv</th><th>file</th><th>finding</th></tr>";
   for (std::size_t i = 0; i < u.size() && i < kMaxRows; ++i)
     o += "<tr>" + tdn(frame_ref(u[i].frame)) + td(clock_text(u[i].ts)) +
-         tdn(std::to_string(u[i].conv)) + td("<code>" + esc(u[i].file) + "</code>") +
-         td(esc(top::ascii_text(u[i].message))) + "</tr>";
+         tdn(std::to_string(u[i].conv)) + td("<code>" + markup_escape(u[i].file) + "</code>") +
+         td(markup_escape(top::ascii_text(u[i].message))) + "</tr>";
   o += "</table>" + more_rows(u.size()) + "</section>";
 }
 
@@ -528,7 +538,8 @@ void write_html(std::string& o, const Report& r) {
        "<title>topdump report</title><style>";
   o += kCss;
   o += "</style></head><body><header><h1>topdump report</h1><p>";
-  for (std::size_t i = 0; i < r.opts.files.size(); ++i) o += (i ? ", " : "") + esc(r.opts.files[i]);
+  for (std::size_t i = 0; i < r.opts.files.size(); ++i)
+    o += (i ? ", " : "") + markup_escape(r.opts.files[i]);
   o += " - " + std::to_string(r.stats->frames) + " frames, worst finding " +
        std::string(top::to_string(r.worst)) + "</p></header>";
   o += "<nav><a href=\"#overview\">Overview</a><a href=\"#motion\">Motion</a>"

@@ -7,32 +7,11 @@
 #include <cstdio>
 #include <map>
 
+#include "top/text.hpp"
+
 namespace topdump::report::svg {
 
-std::string esc(std::string_view s) {
-  std::string o;
-  o.reserve(s.size());
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        o += "&amp;";
-        break;
-      case '<':
-        o += "&lt;";
-        break;
-      case '>':
-        o += "&gt;";
-        break;
-      case '"':
-        o += "&quot;";
-        break;
-      default:
-        // control bytes are not allowed in XML 1.0
-        o += (static_cast<unsigned char>(c) < 0x20 && c != '\n' && c != '\t') ? '.' : c;
-    }
-  }
-  return o;
-}
+using top::markup_escape;
 
 namespace {
 
@@ -96,9 +75,9 @@ void axes(std::string& o, const Frame& f, const std::string& title, const std::s
          "\" class=\"tick\" text-anchor=\"middle\">" + tick_text(x, xs) + "</text>";
   }
   o += "<text x=\"" + num(f.w - kRight) + "\" y=\"" + num(f.h - 2) +
-       "\" class=\"tick\" text-anchor=\"end\">" + esc(xunit) + "</text>";
-  o += "<text x=\"4\" y=\"14\" class=\"ptitle\">" + esc(title) +
-       (unit.empty() ? "" : " (" + esc(unit) + ")") + "</text>";
+       "\" class=\"tick\" text-anchor=\"end\">" + markup_escape(xunit) + "</text>";
+  o += "<text x=\"4\" y=\"14\" class=\"ptitle\">" + markup_escape(title) +
+       (unit.empty() ? "" : " (" + markup_escape(unit) + ")") + "</text>";
 }
 
 // Decimates a series to at most two points per pixel column (its min and
@@ -163,12 +142,12 @@ void polyline(std::string& o, const Frame& f, const Series& s) {
   for (const auto& p : parts) {
     o += "<polyline fill=\"none\" stroke=\"" + s.color + "\" stroke-width=\"1.5\"" +
          (s.dashed ? " stroke-dasharray=\"5,3\"" : "") + " points=\"" + p + "\"><title>" +
-         esc(s.label) + "</title></polyline>";
+         markup_escape(s.label) + "</title></polyline>";
   }
 }
 
 void marker(std::string& o, double x, double y, const Marker& m, int count) {
-  const std::string title = "<title>" + esc(m.title) +
+  const std::string title = "<title>" + markup_escape(m.title) +
                             (count > 1 ? " (+" + std::to_string(count - 1) + " more)" : "") +
                             "</title>";
   const std::string fill = " fill=\"" + m.color + "\" stroke=\"#222\" stroke-width=\"0.5\"";
@@ -224,7 +203,7 @@ void time_plot(std::string& o, const TimePlot& p) {
   for (const auto& h : p.hlines) {
     const std::string y = num(f.py(h.first));
     o += "<line x1=\"" + num(kLeft) + "\" x2=\"" + num(p.width - kRight) + "\" y1=\"" + y +
-         "\" y2=\"" + y + "\" class=\"ref\"><title>" + esc(h.second) + "</title></line>";
+         "\" y2=\"" + y + "\" class=\"ref\"><title>" + markup_escape(h.second) + "</title></line>";
   }
   // shift the series to the plot's origin
   for (const auto& s : p.series) {
@@ -246,7 +225,7 @@ void time_plot(std::string& o, const TimePlot& p) {
     if (m.shape == '|') {
       o += "<line x1=\"" + num(x) + "\" x2=\"" + num(x) + "\" y1=\"" + num(kTop) + "\" y2=\"" +
            num(p.height - kBottom) + "\" stroke=\"" + m.color +
-           "\" stroke-width=\"1\" stroke-dasharray=\"2,2\"><title>" + esc(m.title) +
+           "\" stroke-width=\"1\" stroke-dasharray=\"2,2\"><title>" + markup_escape(m.title) +
            (e.second > 1 ? " (+" + std::to_string(e.second - 1) + " more)" : "") +
            "</title></line>";
       continue;
@@ -259,7 +238,8 @@ void time_plot(std::string& o, const TimePlot& p) {
     lx -= 8.0 + 6.5 * static_cast<double>(it->label.size()) + 18;
     o += "<line x1=\"" + num(lx) + "\" x2=\"" + num(lx + 14) + "\" y1=\"10\" y2=\"10\" stroke=\"" +
          it->color + "\" stroke-width=\"2\"" + (it->dashed ? " stroke-dasharray=\"4,2\"" : "") +
-         "/><text x=\"" + num(lx + 18) + "\" y=\"14\" class=\"tick\">" + esc(it->label) + "</text>";
+         "/><text x=\"" + num(lx + 18) + "\" y=\"14\" class=\"tick\">" + markup_escape(it->label) +
+         "</text>";
   }
   o += "</svg>";
 }
@@ -280,10 +260,11 @@ void bars(std::string& o, const std::vector<std::string>& labels,
     const double x = 10 + bw * static_cast<double>(i);
     o += "<rect x=\"" + num(x + 1) + "\" y=\"" + num(base - h) + "\" width=\"" +
          num(std::max(1.0, bw - 2)) + "\" height=\"" + num(h) + "\" fill=\"" + color +
-         "\"><title>" + esc(labels[i]) + ": " + std::to_string(counts[i]) + "</title></rect>";
+         "\"><title>" + markup_escape(labels[i]) + ": " + std::to_string(counts[i]) +
+         "</title></rect>";
     if (counts.size() <= 12 || i % 2 == 0)
       o += "<text x=\"" + num(x + bw / 2) + "\" y=\"" + num(height - 4) +
-           "\" class=\"tick\" text-anchor=\"middle\">" + esc(labels[i]) + "</text>";
+           "\" class=\"tick\" text-anchor=\"middle\">" + markup_escape(labels[i]) + "</text>";
     if (counts[i])
       o += "<text x=\"" + num(x + bw / 2) + "\" y=\"" + num(base - h - 3) +
            "\" class=\"tick\" text-anchor=\"middle\">" + std::to_string(counts[i]) + "</text>";
@@ -310,7 +291,7 @@ void lanes(std::string& o, const std::vector<Lane>& ls, std::int64_t t0, std::in
   for (std::size_t r = 0; r < ls.size(); ++r) {
     const double y = 4 + row * static_cast<double>(r);
     o += "<text x=\"" + num(kLeft - 4) + "\" y=\"" + num(y + 14) +
-         "\" class=\"tick\" text-anchor=\"end\">" + esc(ls[r].label) + "</text>";
+         "\" class=\"tick\" text-anchor=\"end\">" + markup_escape(ls[r].label) + "</text>";
     std::vector<std::uint32_t> per(static_cast<std::size_t>(cols), 0);
     const TimeHist& th = *ls[r].counts;
     for (std::size_t b = 0; b < th.counts().size(); ++b) {
@@ -327,7 +308,7 @@ void lanes(std::string& o, const std::vector<Lane>& ls, std::int64_t t0, std::in
       const double h = 4 + 14 * std::log1p(per[c]) / std::log1p(top);
       o += "<rect x=\"" + num(kLeft + static_cast<double>(c)) + "\" y=\"" + num(y + 18 - h) +
            "\" width=\"1.6\" height=\"" + num(h) + "\" fill=\"" + ls[r].color + "\"><title>" +
-           std::to_string(per[c]) + " " + esc(ls[r].label) + "</title></rect>";
+           std::to_string(per[c]) + " " + markup_escape(ls[r].label) + "</title></rect>";
     }
   }
   o += "<text x=\"" + num(width - kRight) + "\" y=\"" + num(height - 2) +

@@ -13,9 +13,6 @@
 
 namespace topdump::report::svg {
 
-// Text with & < > " escaped for XML.
-std::string esc(std::string_view s);
-
 struct Series {
   std::string label, color;
   std::vector<std::int64_t> t;  // microseconds

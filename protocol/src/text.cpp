@@ -79,6 +79,36 @@ std::string escape(std::string_view bytes) {
   return out;
 }
 
+std::string markup_escape(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (char c : text) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&#39;";
+        break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n')
+          out += escape(std::string_view(&c, 1));
+        else
+          out += c;
+    }
+  }
+  return out;
+}
+
 std::optional<std::string> bytes_from_utf8(std::string_view utf8) {
   std::string out;
   for (std::size_t i = 0; i < utf8.size();) {

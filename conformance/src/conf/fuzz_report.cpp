@@ -6,6 +6,8 @@
 namespace topconf {
 namespace {
 
+using top::markup_escape;
+
 std::string index_list(const std::vector<std::uint64_t>& v) {
   std::string s;
   for (auto i : v) s += (s.empty() ? "" : " ") + std::to_string(i);
@@ -111,14 +113,14 @@ void write_junit(std::ostream& os, const FuzzResult& r) {
     failing += std::any_of(r.failures.begin(), r.failures.end(),
                            [c](const FuzzFailure& f) { return f.cls == c; });
   os << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  os << "<testsuites>\n<testsuite name=\"topconf.fuzz." << xml_escape(top::to_string(r.model))
+  os << "<testsuites>\n<testsuite name=\"topconf.fuzz." << markup_escape(top::to_string(r.model))
      << "\" tests=\"" << std::size(kFailureClasses) << "\" failures=\"" << failing << "\" errors=\""
      << (r.unusable ? 1 : 0) << "\" time=\"" << r.seconds << "\" timestamp=\""
-     << xml_escape(r.started_at) << "\">\n";
+     << markup_escape(r.started_at) << "\">\n";
   for (FailureClass c : kFailureClasses) {
     os << "  <testcase classname=\"topconf.fuzz\" name=\"" << to_string(c) << "\" time=\"0\">";
     if (r.unusable) {
-      os << "<error message=\"" << xml_escape(r.unusable_reason) << "\"/>";
+      os << "<error message=\"" << markup_escape(r.unusable_reason) << "\"/>";
     } else {
       std::string text;
       std::size_t n = 0;
@@ -128,8 +130,8 @@ void write_junit(std::ostream& os, const FuzzResult& r) {
           text += failure_line(f) + "\n";
         }
       if (n)
-        os << "<failure message=\"" << n << " case(s): " << xml_escape(describe(c)) << "\">"
-           << xml_escape(text) << "</failure>";
+        os << "<failure message=\"" << n << " case(s): " << markup_escape(describe(c)) << "\">"
+           << markup_escape(text) << "</failure>";
     }
     os << "</testcase>\n";
   }
@@ -138,15 +140,16 @@ void write_junit(std::ostream& os, const FuzzResult& r) {
 
 void write_html(std::ostream& os, const FuzzResult& r) {
   write_html_head(os, "topconf fuzz " + std::string(top::to_string(r.model)) + " report");
-  os << "<h1>topconf fuzz report: " << xml_escape(top::to_string(r.model)) << "</h1>\n";
-  os << "<p>Target <b>" << xml_escape(r.target) << "</b>, seed " << r.seed << ", started "
-     << xml_escape(r.started_at) << ", " << r.seconds << " s, " << r.cases_run << " case(s) ("
+  os << "<h1>topconf fuzz report: " << markup_escape(top::to_string(r.model)) << "</h1>\n";
+  os << "<p>Target <b>" << markup_escape(r.target) << "</b>, seed " << r.seed << ", started "
+     << markup_escape(r.started_at) << ", " << r.seconds << " s, " << r.cases_run << " case(s) ("
      << static_cast<long>(r.rate()) << " cases/s), " << r.probes << " probes, " << r.catalog_cases
      << " catalog cases before the mutations.</p>\n";
   if (r.unusable)
-    os << "<p class=\"fail\"><b>Target unusable:</b> " << xml_escape(r.unusable_reason) << "</p>\n";
+    os << "<p class=\"fail\"><b>Target unusable:</b> " << markup_escape(r.unusable_reason)
+       << "</p>\n";
   if (r.aborted)
-    os << "<p class=\"fail\"><b>Aborted:</b> " << xml_escape(r.aborted_reason) << "</p>\n";
+    os << "<p class=\"fail\"><b>Aborted:</b> " << markup_escape(r.aborted_reason) << "</p>\n";
   os << "<p class=\"sum\">";
   for (FailureClass c : kFailureClasses) {
     std::size_t n = 0;
@@ -159,16 +162,16 @@ void write_html(std::ostream& os, const FuzzResult& r) {
   os << "<table><tr><th>case</th><th>class</th><th>reason</th><th>sent</th><th>minimised</th></"
         "tr>\n";
   for (const auto& f : r.failures) {
-    os << "<tr class=\"fail\"><td><code>" << f.index << "</code><br>" << xml_escape(f.spec.family)
-       << ": " << xml_escape(top::ascii_text(f.spec.name)) << "</td><td>" << to_string(f.cls)
-       << "</td><td>" << xml_escape(top::ascii_text(f.reason)) << "</td><td><pre>"
-       << xml_escape(printable(f.spec.bytes)) << "</pre>";
+    os << "<tr class=\"fail\"><td><code>" << f.index << "</code><br>"
+       << markup_escape(f.spec.family) << ": " << markup_escape(top::ascii_text(f.spec.name))
+       << "</td><td>" << to_string(f.cls) << "</td><td>" << markup_escape(top::ascii_text(f.reason))
+       << "</td><td><pre>" << markup_escape(printable(f.spec.bytes)) << "</pre>";
     if (!f.before.empty())
       os << "<details><summary>cases before it</summary>" << index_list(f.before) << "</details>";
     os << "</td><td>" << to_string(f.how);
     if (!f.cases.empty()) os << ": cases " << index_list(f.cases);
-    if (!f.frame.empty()) os << "<pre>" << xml_escape(printable(f.frame)) << "</pre>";
-    os << xml_escape(f.note) << "</td></tr>\n";
+    if (!f.frame.empty()) os << "<pre>" << markup_escape(printable(f.frame)) << "</pre>";
+    os << markup_escape(f.note) << "</td></tr>\n";
   }
   os << "</table>\n</body></html>\n";
 }

@@ -7,38 +7,7 @@
 
 namespace topconf {
 
-std::string xml_escape(std::string_view s) {
-  std::string o;
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        o += "&amp;";
-        break;
-      case '<':
-        o += "&lt;";
-        break;
-      case '>':
-        o += "&gt;";
-        break;
-      case '"':
-        o += "&quot;";
-        break;
-      case '\'':
-        o += "&#39;";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20 && c != '\n' && c != '\t') {
-          char b[8];
-          std::snprintf(b, sizeof b, "\\x%02X",
-                        static_cast<unsigned>(static_cast<unsigned char>(c)));
-          o += b;
-        } else {
-          o += c;
-        }
-    }
-  }
-  return o;
-}
+using top::markup_escape;
 
 namespace {
 
@@ -150,19 +119,19 @@ void write_junit(std::ostream& os, const RunResult& r) {
   std::size_t failures =
       r.count(Verdict::fail) + r.count(Verdict::non_strict) + r.count(Verdict::inconclusive);
   os << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  os << "<testsuites>\n<testsuite name=\"topconf." << xml_escape(top::to_string(r.model))
+  os << "<testsuites>\n<testsuite name=\"topconf." << markup_escape(top::to_string(r.model))
      << "\" tests=\"" << r.cases.size() << "\" failures=\"" << failures << "\" errors=\""
      << (r.count(Verdict::error) + (r.unreachable ? 1 : 0)) << "\" skipped=\""
      << r.count(Verdict::not_applicable) << "\" time=\"" << r.seconds << "\" timestamp=\""
-     << xml_escape(r.started_at) << "\">\n";
+     << markup_escape(r.started_at) << "\">\n";
   if (r.unreachable)
     os << "  <testcase classname=\"topconf\" name=\"liveness\"><error message=\""
-       << xml_escape(r.unreachable_reason) << "\"/></testcase>\n";
+       << markup_escape(r.unreachable_reason) << "\"/></testcase>\n";
   for (const auto& c : r.cases) {
-    os << "  <testcase classname=\"" << xml_escape(c.spec->section) << "\" name=\""
-       << xml_escape(c.spec->id) << "\" time=\"" << static_cast<double>(c.duration_us) / 1e6
+    os << "  <testcase classname=\"" << markup_escape(c.spec->section) << "\" name=\""
+       << markup_escape(c.spec->id) << "\" time=\"" << static_cast<double>(c.duration_us) / 1e6
        << "\">";
-    const std::string msg = xml_escape(std::string(to_string(c.verdict)) + ": " + c.reason);
+    const std::string msg = markup_escape(std::string(to_string(c.verdict)) + ": " + c.reason);
     switch (c.verdict) {
       case Verdict::pass:
         break;
@@ -181,7 +150,8 @@ void write_junit(std::ostream& os, const RunResult& r) {
     }
     os << "<system-out>";
     for (const auto& e : c.transcript)
-      os << xml_escape(ms(e.t_us) + " " + std::string(1, e.dir) + " " + printable(e.bytes)) << "\n";
+      os << markup_escape(ms(e.t_us) + " " + std::string(1, e.dir) + " " + printable(e.bytes))
+         << "\n";
     os << "</system-out></testcase>\n";
   }
   os << "</testsuite>\n</testsuites>\n";
@@ -189,7 +159,7 @@ void write_junit(std::ostream& os, const RunResult& r) {
 
 void write_html_head(std::ostream& os, std::string_view title) {
   os << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>"
-     << xml_escape(title) << "</title>\n<style>\n"
+     << markup_escape(title) << "</title>\n<style>\n"
      << "body{font-family:system-ui,sans-serif;margin:2em;color:#222}"
      << "table{border-collapse:collapse;width:100%}td,th{border:1px solid #ccc;padding:4px "
         "8px;text-align:left;vertical-align:top}"
@@ -203,14 +173,14 @@ void write_html_head(std::ostream& os, std::string_view title) {
 
 void write_html(std::ostream& os, const RunResult& r) {
   write_html_head(os, "topconf " + std::string(top::to_string(r.model)) + " report");
-  os << "<h1>topconf report: " << xml_escape(top::to_string(r.model)) << "</h1>\n";
-  os << "<p>Target <b>" << xml_escape(r.target) << "</b>, matrix <code>"
-     << xml_escape(r.matrix_file) << "</code>, started " << xml_escape(r.started_at) << ", "
+  os << "<h1>topconf report: " << markup_escape(top::to_string(r.model)) << "</h1>\n";
+  os << "<p>Target <b>" << markup_escape(r.target) << "</b>, matrix <code>"
+     << markup_escape(r.matrix_file) << "</code>, started " << markup_escape(r.started_at) << ", "
      << r.seconds << " s";
   if (r.seeded) os << ", seed " << r.seed;
   os << ".</p>\n";
   if (r.unreachable)
-    os << "<p class=\"fail\"><b>Target unreachable:</b> " << xml_escape(r.unreachable_reason)
+    os << "<p class=\"fail\"><b>Target unreachable:</b> " << markup_escape(r.unreachable_reason)
        << "</p>\n";
   os << "<p class=\"sum\">";
   for (Verdict v : {Verdict::pass, Verdict::non_strict, Verdict::fail, Verdict::not_applicable,
@@ -225,19 +195,19 @@ void write_html(std::ostream& os, const RunResult& r) {
   for (const auto& c : r.cases) {
     const std::string cls =
         c.verdict == Verdict::not_applicable ? "na" : std::string(to_string(c.verdict));
-    os << "<tr class=\"" << cls << "\"><td><code>" << xml_escape(c.spec->id) << "</code><br>"
-       << xml_escape(c.spec->title) << "</td><td>" << xml_escape(c.spec->section) << "</td><td>"
-       << to_string(c.spec->level) << "</td><td>" << to_string(c.verdict)
+    os << "<tr class=\"" << cls << "\"><td><code>" << markup_escape(c.spec->id) << "</code><br>"
+       << markup_escape(c.spec->title) << "</td><td>" << markup_escape(c.spec->section)
+       << "</td><td>" << to_string(c.spec->level) << "</td><td>" << to_string(c.verdict)
        << (c.flaky ? " (flaky)" : "") << "</td><td>" << ms(c.duration_us) << "</td><td>"
-       << xml_escape(c.reason);
+       << markup_escape(c.reason);
     if (!c.transcript.empty()) {
       os << "<details><summary>transcript (" << c.transcript.size() << ")</summary><pre>";
       for (const auto& e : c.transcript)
-        os << xml_escape(ms(e.t_us) + " ms " +
-                         (e.dir == '>'   ? "sent     "
-                          : e.dir == '<' ? "received "
-                                         : "note     ") +
-                         printable(e.bytes))
+        os << markup_escape(ms(e.t_us) + " ms " +
+                            (e.dir == '>'   ? "sent     "
+                             : e.dir == '<' ? "received "
+                                            : "note     ") +
+                            printable(e.bytes))
            << "\n";
       if (c.dropped_exchanges) os << "... " << c.dropped_exchanges << " more not kept\n";
       os << "</pre></details>";

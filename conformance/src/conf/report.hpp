@@ -18,7 +18,6 @@ void write_html(std::ostream& os, const RunResult& r);
 // classes pass, non-strict, fail, error, inconclusive, na and sum), up to
 // and including <body>.
 void write_html_head(std::ostream& os, std::string_view title);
-std::string xml_escape(std::string_view s);
 // Printable form of frame bytes, as topdump shows them (top::escape): \r,
 // \n and \\, other non-printables as \xHH.
 std::string printable(std::string_view bytes);
