@@ -196,30 +196,14 @@ int main(int argc, char** argv) {
   if (fuzz.selected()) return fuzz.run(matrix);
 
   // The target.
+  if (!target.empty() && !sim_faults.empty()) {
+    spdlog::error("--sim-fault applies to the in-process topsim only (no --target)");
+    return 2;
+  }
   std::unique_ptr<topconf::Transport> transport;
   try {
-    if (target.empty()) {
-      topsim::FaultConfig fc;
-      if (!sim_faults.empty()) {
-        std::string err;
-        auto f = topsim::parse_faults(sim_faults, err);
-        if (!f) {
-          spdlog::error("--sim-fault: {}", err);
-          return 2;
-        }
-        fc = *f;
-      }
-      transport = std::make_unique<topconf::SimTransport>(*model, fc, sim_seed);
-    } else {
-      if (!sim_faults.empty()) {
-        spdlog::error("--sim-fault applies to the in-process topsim only (no --target)");
-        return 2;
-      }
-      int local = bind_port;
-      if (local < 0 && top::client_port(*model) && target.rfind("udp://", 0) == 0)
-        local = top::client_port(*model);
-      transport = topconf::open_transport(target, *model, local);
-    }
+    transport =
+        topconf::open_target(target.empty(), target, *model, sim_faults, sim_seed, bind_port);
   } catch (const topconf::TransportError& e) {
     spdlog::error("{}", e.what());
     return 2;

@@ -74,22 +74,26 @@ int main(int argc, char** argv) {
                  "document: the document's examples, then its rules")
       ->check(CLI::IsMember({"field", "document"}))
       ->capture_default_str();
-  app.add_option("--push-order", push_order, "attitude push addresses: swapped|request-order")
-      ->check(CLI::IsMember({"swapped", "request-order"}));
-  app.add_option("--push-header", push_header, "attitude push header: TP|tp")
-      ->check(CLI::IsMember({"TP", "tp"}));
-  app.add_option("--reply-order", reply_order, "read reply addresses: swapped|request-order")
-      ->check(CLI::IsMember({"swapped", "request-order"}));
-  app.add_option("--reply-header", reply_header, "read reply header (2-15 data chars): TP|tp")
-      ->check(CLI::IsMember({"TP", "tp"}));
-  app.add_option("--yaw-sign", yaw_sign, "attitude yaw against the command: normal|inverted")
-      ->check(CLI::IsMember({"normal", "inverted"}));
-  app.add_option("--pitch-sign", pitch_sign, "attitude pitch against the command: normal|inverted")
-      ->check(CLI::IsMember({"normal", "inverted"}));
-  app.add_option("--field-codes", field_codes,
-                 "accept the command values field evidence says the model takes (C13 PTZ): "
-                 "on|off")
-      ->check(CLI::IsMember({"on", "off"}));
+  // An option whose value is one of `values`.
+  auto choice = [&](const char* name, std::string& value, const char* help,
+                    std::vector<std::string> values) {
+    app.add_option(name, value, help)->check(CLI::IsMember(std::move(values)));
+  };
+  choice("--push-order", push_order, "attitude push addresses: swapped|request-order",
+         {"swapped", "request-order"});
+  choice("--push-header", push_header, "attitude push header: TP|tp", {"TP", "tp"});
+  choice("--reply-order", reply_order, "read reply addresses: swapped|request-order",
+         {"swapped", "request-order"});
+  choice("--reply-header", reply_header, "read reply header (2-15 data chars): TP|tp",
+         {"TP", "tp"});
+  choice("--yaw-sign", yaw_sign, "attitude yaw against the command: normal|inverted",
+         {"normal", "inverted"});
+  choice("--pitch-sign", pitch_sign, "attitude pitch against the command: normal|inverted",
+         {"normal", "inverted"});
+  choice("--field-codes", field_codes,
+         "accept the command values field evidence says the model takes (C13 PTZ): "
+         "on|off",
+         {"on", "off"});
   app.add_flag("--describe", describe,
                "print the device's traits with their sources (profile, options) and exit");
   if (int rc = topkit::cli::parse_or_exit(app, argc, argv); rc >= 0) return rc;

@@ -129,30 +129,14 @@ int FuzzCommand::run(const Matrix& loaded) {
   if (cases_opt_->count()) o.end = o.start + cases_;
   if (!o.end && o.only.empty() && duration_ <= 0) o.end = o.start + 10000;
 
+  const bool sim = target_ == "sim";
+  if (!sim && !sim_faults_.empty()) {
+    spdlog::error("--sim-fault applies to --target sim only");
+    return 2;
+  }
   std::unique_ptr<Transport> transport;
   try {
-    if (target_ == "sim") {
-      topsim::FaultConfig fc;
-      if (!sim_faults_.empty()) {
-        std::string err;
-        auto f = topsim::parse_faults(sim_faults_, err);
-        if (!f) {
-          spdlog::error("--sim-fault: {}", err);
-          return 2;
-        }
-        fc = *f;
-      }
-      transport = std::make_unique<SimTransport>(model, fc, sim_seed_);
-    } else {
-      if (!sim_faults_.empty()) {
-        spdlog::error("--sim-fault applies to --target sim only");
-        return 2;
-      }
-      int local = bind_port_;
-      if (local < 0 && top::client_port(model) && target_.rfind("udp://", 0) == 0)
-        local = top::client_port(model);
-      transport = open_transport(target_, model, local);
-    }
+    transport = open_target(sim, target_, model, sim_faults_, sim_seed_, bind_port_);
   } catch (const TransportError& e) {
     spdlog::error("{}", e.what());
     return 2;

@@ -6,6 +6,9 @@
 #include <algorithm>
 #include <asio.hpp>
 #include <chrono>
+#include <type_traits>
+
+#include "top/dialect.hpp"
 
 namespace topconf {
 
@@ -170,56 +173,94 @@ char client_for(top::Model m, bool network) {
   return top::dialect_of(m) == top::Dialect::topotek && network ? 'P' : 'U';
 }
 
-class UdpTransport : public Transport {
+// The endpoints a pcap names for a socket: loopback with the socket's own
+// port, and the peer (loopback for one that is not IPv4).
+template <class Socket>
+pcapio::Endpoint local_of(const Socket& sock) {
+  std::error_code ec;
+  auto e = sock.local_endpoint(ec);
+  return pcapio::Endpoint::ipv4(0x7F000001u, ec ? std::uint16_t{0} : e.port());
+}
+
+template <class Peer>
+pcapio::Endpoint remote_of(const Peer& peer) {
+  return pcapio::Endpoint::ipv4(
+      peer.address().is_v4() ? peer.address().to_v4().to_uint() : 0x7F000001u, peer.port());
+}
+
+// What the transports to a real device share: an asio object (socket,
+// serial port) on an io_context of its own, the wall clock, and the client
+// address the model's dialect uses on a network or a serial link.
+template <class Handle>
+class AsioTransport : public Transport {
+ public:
+  std::uint64_t now_us() override { return steady_us(); }
+  char client_address() const override { return client_for(model_, network_); }
+  bool datagram() const override { return std::is_same_v<Handle, asio::ip::udp::socket>; }
+
+ protected:
+  AsioTransport(top::Model model, bool network) : handle_(io_), model_(model), network_(network) {}
+  // Writes all of `b` to a byte stream (TCP, serial); TransportError
+  // "`what`: ..." on failure.
+  void write_all(std::string_view b, const char* what) {
+    std::error_code ec;
+    asio::write(handle_, asio::buffer(b.data(), b.size()), ec);
+    if (ec) throw TransportError(std::string(what) + ": " + ec.message());
+  }
+
+  asio::io_context io_;
+  Handle handle_;
+  top::Model model_;
+  bool network_;
+};
+
+class UdpTransport : public AsioTransport<asio::ip::udp::socket> {
  public:
   UdpTransport(const std::string& host, std::uint16_t port, top::Model model, int local_port)
-      : sock_(io_), model_(model) {
+      : AsioTransport(model, true) {
     std::error_code ec;
     auto addr = asio::ip::make_address(host, ec);
     if (ec) throw TransportError("udp://" + host + ": not an IP address");
     peer_ = asio::ip::udp::endpoint(addr, port);
-    sock_.open(peer_.protocol(), ec);
+    handle_.open(peer_.protocol(), ec);
     if (!ec)
-      sock_.bind(asio::ip::udp::endpoint(addr.is_loopback() ? addr : asio::ip::address_v4::any(),
-                                         static_cast<std::uint16_t>(std::max(local_port, 0))),
-                 ec);
-    if (!ec) sock_.connect(peer_, ec);
+      handle_.bind(asio::ip::udp::endpoint(addr.is_loopback() ? addr : asio::ip::address_v4::any(),
+                                           static_cast<std::uint16_t>(std::max(local_port, 0))),
+                   ec);
+    if (!ec) handle_.connect(peer_, ec);
     if (ec)
       throw TransportError("udp://" + host + ":" + std::to_string(port) + ": " + ec.message());
     if (local_port > 0) {
       // The device answers to a fixed port (Topotek 9004), not to our
       // source port: do not filter on the peer's port.
-      sock_.close();
-      sock_.open(peer_.protocol(), ec);
-      sock_.set_option(asio::socket_base::reuse_address(true), ec);
-      sock_.bind(asio::ip::udp::endpoint(asio::ip::address_v4::any(),
-                                         static_cast<std::uint16_t>(local_port)),
-                 ec);
+      handle_.close();
+      handle_.open(peer_.protocol(), ec);
+      handle_.set_option(asio::socket_base::reuse_address(true), ec);
+      handle_.bind(asio::ip::udp::endpoint(asio::ip::address_v4::any(),
+                                           static_cast<std::uint16_t>(local_port)),
+                   ec);
       if (ec)
         throw TransportError("udp bind port " + std::to_string(local_port) + ": " + ec.message());
       connected_ = false;
     }
-    sock_.non_blocking(true, ec);
+    handle_.non_blocking(true, ec);
   }
-  std::uint64_t now_us() override { return steady_us(); }
-  bool datagram() const override { return true; }
-  char client_address() const override { return client_for(model_, true); }
   void send(std::string_view b) override {
     std::error_code ec;
     if (connected_)
-      sock_.send(asio::buffer(b.data(), b.size()), 0, ec);
+      handle_.send(asio::buffer(b.data(), b.size()), 0, ec);
     else
-      sock_.send_to(asio::buffer(b.data(), b.size()), peer_, 0, ec);
+      handle_.send_to(asio::buffer(b.data(), b.size()), peer_, 0, ec);
     if (ec && ec != asio::error::connection_refused)
       throw TransportError("udp send: " + ec.message());
   }
   bool receive(std::uint64_t deadline_us, std::string& out) override {
     char buf[65536];
     for (;;) {
-      if (!wait_readable(sock_.native_handle(), deadline_us)) return false;
+      if (!wait_readable(handle_.native_handle(), deadline_us)) return false;
       std::error_code ec;
       asio::ip::udp::endpoint from;
-      const std::size_t n = sock_.receive_from(asio::buffer(buf), from, 0, ec);
+      const std::size_t n = handle_.receive_from(asio::buffer(buf), from, 0, ec);
       if (ec == asio::error::would_block || ec == asio::error::try_again) continue;
       // ICMP port unreachable: nobody listens yet; keep waiting until the deadline.
       if (ec == asio::error::connection_refused) {
@@ -232,54 +273,37 @@ class UdpTransport : public Transport {
       return true;
     }
   }
-  pcapio::Endpoint local() const override {
-    std::error_code ec;
-    auto e = sock_.local_endpoint(ec);
-    return pcapio::Endpoint::ipv4(0x7F000001u, ec ? std::uint16_t{0} : e.port());
-  }
-  pcapio::Endpoint remote() const override {
-    return pcapio::Endpoint::ipv4(
-        peer_.address().is_v4() ? peer_.address().to_v4().to_uint() : 0x7F000001u, peer_.port());
-  }
+  pcapio::Endpoint local() const override { return local_of(handle_); }
+  pcapio::Endpoint remote() const override { return remote_of(peer_); }
   std::string describe() const override {
     return "udp://" + peer_.address().to_string() + ":" + std::to_string(peer_.port());
   }
 
  private:
-  asio::io_context io_;
-  asio::ip::udp::socket sock_;
   asio::ip::udp::endpoint peer_;
-  top::Model model_;
   bool connected_ = true;
   bool refused_ = false;
 };
 
-class TcpTransport : public Transport {
+class TcpTransport : public AsioTransport<asio::ip::tcp::socket> {
  public:
   TcpTransport(const std::string& host, std::uint16_t port, top::Model model)
-      : sock_(io_), model_(model) {
+      : AsioTransport(model, true) {
     std::error_code ec;
     auto addr = asio::ip::make_address(host, ec);
     if (ec) throw TransportError("tcp://" + host + ": not an IP address");
     peer_ = asio::ip::tcp::endpoint(addr, port);
-    sock_.connect(peer_, ec);
+    handle_.connect(peer_, ec);
     if (ec)
       throw TransportError("tcp://" + host + ":" + std::to_string(port) + ": " + ec.message());
-    sock_.set_option(asio::ip::tcp::no_delay(true), ec);
+    handle_.set_option(asio::ip::tcp::no_delay(true), ec);
   }
-  std::uint64_t now_us() override { return steady_us(); }
-  bool datagram() const override { return false; }
-  char client_address() const override { return client_for(model_, true); }
-  void send(std::string_view b) override {
-    std::error_code ec;
-    asio::write(sock_, asio::buffer(b.data(), b.size()), ec);
-    if (ec) throw TransportError("tcp send: " + ec.message());
-  }
+  void send(std::string_view b) override { write_all(b, "tcp send"); }
   bool receive(std::uint64_t deadline_us, std::string& out) override {
-    if (!wait_readable(sock_.native_handle(), deadline_us)) return false;
+    if (!wait_readable(handle_.native_handle(), deadline_us)) return false;
     char buf[4096];
     std::error_code ec;
-    const std::size_t n = sock_.read_some(asio::buffer(buf), ec);
+    const std::size_t n = handle_.read_some(asio::buffer(buf), ec);
     if (ec)
       throw TransportError("tcp receive: " + (ec == asio::error::eof
                                                   ? std::string("connection closed by the device")
@@ -287,55 +311,38 @@ class TcpTransport : public Transport {
     out.assign(buf, n);
     return true;
   }
-  pcapio::Endpoint local() const override {
-    std::error_code ec;
-    auto e = sock_.local_endpoint(ec);
-    return pcapio::Endpoint::ipv4(0x7F000001u, ec ? std::uint16_t{0} : e.port());
-  }
-  pcapio::Endpoint remote() const override {
-    return pcapio::Endpoint::ipv4(
-        peer_.address().is_v4() ? peer_.address().to_v4().to_uint() : 0x7F000001u, peer_.port());
-  }
+  pcapio::Endpoint local() const override { return local_of(handle_); }
+  pcapio::Endpoint remote() const override { return remote_of(peer_); }
   bool tcp() const override { return true; }
   std::string describe() const override {
     return "tcp://" + peer_.address().to_string() + ":" + std::to_string(peer_.port());
   }
 
  private:
-  asio::io_context io_;
-  asio::ip::tcp::socket sock_;
   asio::ip::tcp::endpoint peer_;
-  top::Model model_;
 };
 
-class SerialTransport : public Transport {
+class SerialTransport : public AsioTransport<asio::serial_port> {
  public:
   SerialTransport(const std::string& dev, unsigned baud, top::Model model)
-      : port_(io_), dev_(dev), model_(model) {
+      : AsioTransport(model, false), dev_(dev) {
     std::error_code ec;
-    port_.open(dev, ec);
+    handle_.open(dev, ec);
     if (ec) throw TransportError("serial:" + dev + ": " + ec.message());
-    port_.set_option(asio::serial_port::baud_rate(baud), ec);
+    handle_.set_option(asio::serial_port::baud_rate(baud), ec);
     if (ec)
       throw TransportError("serial:" + dev + ": baud " + std::to_string(baud) + ": " +
                            ec.message());
-    port_.set_option(asio::serial_port::character_size(8), ec);
-    port_.set_option(asio::serial_port::parity(asio::serial_port::parity::none), ec);
-    port_.set_option(asio::serial_port::stop_bits(asio::serial_port::stop_bits::one), ec);
-    port_.set_option(asio::serial_port::flow_control(asio::serial_port::flow_control::none), ec);
+    handle_.set_option(asio::serial_port::character_size(8), ec);
+    handle_.set_option(asio::serial_port::parity(asio::serial_port::parity::none), ec);
+    handle_.set_option(asio::serial_port::stop_bits(asio::serial_port::stop_bits::one), ec);
+    handle_.set_option(asio::serial_port::flow_control(asio::serial_port::flow_control::none), ec);
   }
-  std::uint64_t now_us() override { return steady_us(); }
-  bool datagram() const override { return false; }
-  char client_address() const override { return client_for(model_, false); }
-  void send(std::string_view b) override {
-    std::error_code ec;
-    asio::write(port_, asio::buffer(b.data(), b.size()), ec);
-    if (ec) throw TransportError("serial write: " + ec.message());
-  }
+  void send(std::string_view b) override { write_all(b, "serial write"); }
   bool receive(std::uint64_t deadline_us, std::string& out) override {
-    if (!wait_readable(port_.native_handle(), deadline_us)) return false;
+    if (!wait_readable(handle_.native_handle(), deadline_us)) return false;
     char buf[4096];
-    const ssize_t n = ::read(port_.native_handle(), buf, sizeof buf);
+    const ssize_t n = ::read(handle_.native_handle(), buf, sizeof buf);
     if (n < 0) {
       if (errno == EAGAIN || errno == EINTR) return false;
       throw TransportError("serial read: " + std::string(std::strerror(errno)));
@@ -349,10 +356,7 @@ class SerialTransport : public Transport {
   std::string describe() const override { return "serial:" + dev_; }
 
  private:
-  asio::io_context io_;
-  asio::serial_port port_;
   std::string dev_;
-  top::Model model_;
 };
 
 }  // namespace
@@ -387,6 +391,25 @@ std::unique_ptr<Transport> open_transport(const std::string& target, top::Model 
   }
   throw TransportError(target +
                        ": expected udp://HOST:PORT, tcp://HOST:PORT or serial:DEVICE[@BAUD]");
+}
+
+std::unique_ptr<Transport> open_target(bool sim, const std::string& target, top::Model model,
+                                       const std::string& sim_faults, std::uint64_t sim_seed,
+                                       int bind_port) {
+  if (sim) {
+    topsim::FaultConfig fc;
+    if (!sim_faults.empty()) {
+      std::string err;
+      auto f = topsim::parse_faults(sim_faults, err);
+      if (!f) throw TransportError("--sim-fault: " + err);
+      fc = *f;
+    }
+    return std::make_unique<SimTransport>(model, fc, sim_seed);
+  }
+  int local = bind_port;
+  if (local < 0 && top::client_port(model) && target.rfind("udp://", 0) == 0)
+    local = top::client_port(model);
+  return open_transport(target, model, local);
 }
 
 }  // namespace topconf

@@ -89,4 +89,13 @@ class SimTransport : public Transport {
 std::unique_ptr<Transport> open_transport(const std::string& target, top::Model model,
                                           int local_port = -1);
 
+// What topconf run and topconf fuzz test: with `sim`, an in-process topsim
+// with the faults of `sim_faults` (topsim's --fault syntax) and `sim_seed`;
+// otherwise open_transport(target), bound to `bind_port` or, for UDP, to the
+// port the model answers to (-1). Throws TransportError naming the bad
+// --sim-fault or target.
+std::unique_ptr<Transport> open_target(bool sim, const std::string& target, top::Model model,
+                                       const std::string& sim_faults, std::uint64_t sim_seed,
+                                       int bind_port);
+
 }  // namespace topconf
