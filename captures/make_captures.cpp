@@ -65,6 +65,13 @@ struct Udp {
                         : udp4(kCamera, kClient, dport, cport, payload);
     pk.emplace_back(T0 + ms * 1000, wrap(ip));
   }
+  // `request` (without its checksum) at `ms`, echoed with the addresses
+  // swapped `after` ms later.
+  void echoed(std::int64_t ms, std::int64_t after, std::string request) {
+    up(ms, F(request));
+    std::swap(request[3], request[4]);
+    down(ms + after, F(request));
+  }
 };
 
 std::string gac(int i) {
@@ -76,13 +83,11 @@ std::string gac(int i) {
 void sample() {
   // SkyDroid C12 over Ethernet/IPv4/UDP 5000: the bundled sample.
   Udp u("sample.pcap", kEn10mb, 40000, 5000);
-  u.up(0, F("#TPUG2wGAA0A"));  // attitude push at 10 Hz
-  u.down(4, F("#TPGU2wGAA0A"));
+  u.echoed(0, 4, "#TPUG2wGAA0A");                              // attitude push at 10 Hz
   for (int i = 0; i < 12; ++i) u.down(100 + i * 100, gac(i));  // the stream, 10 Hz
-  u.up(150, F("#tpUG6wGAYEC7832"));                            // yaw -50.00 deg at speed 0x32
-  u.down(162, F("#tpGU6wGAYEC7832"));                          // echo after 12 ms
-  u.up(300, F("#tpUG6wGAP03E832") + F("#TPUG2wPTZ05"));        // two frames in one datagram
-  u.down(309, F("#tpGU6wGAP03E832") + "\r\n");                 // CRLF after the frame
+  u.echoed(150, 12, "#tpUG6wGAYEC7832");  // yaw -50.00 deg at speed 0x32; echo after 12 ms
+  u.up(300, F("#tpUG6wGAP03E832") + F("#TPUG2wPTZ05"));  // two frames in one datagram
+  u.down(309, F("#tpGU6wGAP03E832") + "\r\n");           // CRLF after the frame
   u.down(311, F("#TPGU2wPTZ05"));
   u.up(400,
        "#tpUG6wGAY0000"
@@ -93,8 +98,7 @@ void sample() {
   u.down(700, F("#TPDU2wREC01"));                                     // nobody asked
   for (int i = 0; i < 3; ++i) u.up(800 + 30 * i, F("#TPUG2wPTZ00"));  // sent three times
   u.down(805, F("#TPGU2wPTZ00"));
-  u.up(900, F("#tpUG6wGAYfe0c32"));  // lowercase hex data
-  u.down(910, F("#tpGU6wGAYfe0c32"));
+  u.echoed(900, 10, "#tpUG6wGAYfe0c32");  // lowercase hex data
   u.up(1000, F("#tpUG6wGAY03E832"));
   u.down(1011, F("#tpUG6wGAY03E832"));  // simulator: addresses not swapped
 }
@@ -103,8 +107,7 @@ void topotek_vlan() {
   // Topotek SIP over Ethernet + 802.1Q VLAN 100, UDP 9004 -> 9003.
   Udp u("topotek-vlan.pcap", kEn10mb, 9004, 9003);
   u.vlans = {100};
-  u.up(0, F("#TPPG2wGIA01"));
-  u.down(5, F("#TPGP2wGIA01"));
+  u.echoed(0, 5, "#TPPG2wGIA01");
   for (int i = 0; i < 6; ++i) u.down(50 + i * 50, F(std::string("#tpGPCrGIC") + "FF36ED5A0048"));
   // GPS struct: heading 0x2323 ('##'), longitude with a '#' byte
   std::string gps = "#tpPDEwGPS";
@@ -120,37 +123,30 @@ void topotek_vlan() {
 void links() {
   {
     Udp u("sll.pcap", kSll, 40001, 5000);
-    u.up(0, F("#tpUG6wGAYEC7832"));
-    u.down(10, F("#tpGU6wGAYEC7832"));
+    u.echoed(0, 10, "#tpUG6wGAYEC7832");
   }
   {
     Udp u("sll2.pcap", kSll2, 40002, 5000);
-    u.up(0, F("#TPUG2wPTZ05"));
-    u.down(8, F("#TPGU2wPTZ05"));
+    u.echoed(0, 8, "#TPUG2wPTZ05");
   }
   {
     Udp u("rawip.pcap", kRaw, 40003, 12580);
     u.up(0, F("#TPUD2rVER00"));
     u.down(20, F("#tpDU6rVER010502"));
     u.v6 = true;
-    u.up(30, F("#TPUG2wPTZ01"));
-    u.down(40, F("#TPGU2wPTZ01"));
+    u.echoed(30, 10, "#TPUG2wPTZ01");
   }
   {
     Udp u("loopback-null.pcap", kNull, 40004, 5000);
-    u.up(0, F("#TPUG2wPTZ05"));
-    u.down(6, F("#TPGU2wPTZ05"));
+    u.echoed(0, 6, "#TPUG2wPTZ05");
     u.v6 = true;
-    u.up(10, F("#TPUG2wPTZ00"));
-    u.down(16, F("#TPGU2wPTZ00"));
+    u.echoed(10, 6, "#TPUG2wPTZ00");
   }
   {
     Udp u("ipv6.pcap", kEn10mb, 40005, 5000);
     u.v6 = true;
-    u.up(0, F("#tpUG6wGAYEC7832"));
-    u.down(9, F("#tpGU6wGAYEC7832"));
-    u.up(20, F("#TPUG2wGAA05"));
-    u.down(24, F("#TPGU2wGAA05"));
+    u.echoed(0, 9, "#tpUG6wGAYEC7832");
+    u.echoed(20, 4, "#TPUG2wGAA05");
     // 5 Hz asked, 2 Hz sent: stream-rate finding
     for (int i = 0; i < 5; ++i) u.down(100 + i * 500, gac(i));
   }

@@ -67,19 +67,15 @@ inline State& state() {
   return *s;
 }
 
-inline void poison(void* p, std::size_t n) {
+// Marks [p, p + n) unaddressable (poisoned) or addressable again, for ASan.
+inline void set_poisoned(void* p, std::size_t n, bool poisoned) {
 #ifdef TOPKIT_FUZZ_ASAN
-  ASAN_POISON_MEMORY_REGION(p, n);
+  if (poisoned)
+    ASAN_POISON_MEMORY_REGION(p, n);
+  else
+    ASAN_UNPOISON_MEMORY_REGION(p, n);
 #else
-  (void)p, (void)n;
-#endif
-}
-
-inline void unpoison(void* p, std::size_t n) {
-#ifdef TOPKIT_FUZZ_ASAN
-  ASAN_UNPOISON_MEMORY_REGION(p, n);
-#else
-  (void)p, (void)n;
+  (void)p, (void)n, (void)poisoned;
 #endif
 }
 
@@ -91,7 +87,7 @@ inline void* allocate(std::size_t n, std::size_t align) {
     for (Slot& x : s.slots) {
       if (x.p != nullptr && !x.in_use && x.n == n && x.freed_in < s.input) {
         x.in_use = true;
-        unpoison(x.p, n);
+        set_poisoned(x.p, n, false);
         std::memset(x.p, 0xBE, n < 4096 ? n : 4096);
         return x.p;
       }
@@ -124,7 +120,7 @@ inline void release(void* p) {
       }
       x.in_use = false;
       x.freed_in = s.input;
-      poison(p, x.n);
+      set_poisoned(p, x.n, true);
       return;
     }
   }

@@ -23,6 +23,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "top/text.hpp"
@@ -59,50 +60,64 @@ std::vector<fs::path> files_under(const fs::path& p) {
   return files;
 }
 
+// Calls each(file, bytes) for every file under `p` (those whose extension
+// is `ext`, if given), in order, until one returns non-zero. 2 with a
+// message when there is none (`what`: what was looked for) or one cannot be
+// read.
+template <class Each>
+int for_each_file(const fs::path& p, std::string_view ext, const char* what, Each each) {
+  std::vector<fs::path> files;
+  for (const fs::path& f : files_under(p))
+    if (ext.empty() || f.extension() == ext) files.push_back(f);
+  if (files.empty()) {
+    std::fprintf(stderr, "replay: no %s at %s\n", what, p.c_str());
+    return 2;
+  }
+  for (const fs::path& f : files) {
+    std::string bytes;
+    if (!read_file(f, bytes)) {
+      std::fprintf(stderr, "replay: cannot read %s\n", f.c_str());
+      return 2;
+    }
+    if (int rc = each(f, bytes)) return rc;
+  }
+  return 0;
+}
+
 bool unhex(const std::string& hex, std::string& out) {
   if (hex.size() % 2 != 0) return false;
   out.clear();
   for (std::size_t i = 0; i < hex.size(); i += 2) {
-    unsigned v = 0;
-    if (std::sscanf(hex.c_str() + i, "%2x", &v) != 1) return false;
-    out += static_cast<char>(v);
+    const int hi = top::hex_value(hex[i]), lo = top::hex_value(hex[i + 1]);
+    if (hi < 0 || lo < 0) return false;
+    out += static_cast<char>(hi * 16 + lo);
   }
   return true;
 }
 
 int replay_vectors(const fs::path& p, const std::string& prefix, std::size_t& count) {
-  std::vector<fs::path> files;
-  for (const fs::path& f : files_under(p))
-    if (f.extension() == ".json") files.push_back(f);
-  if (files.empty()) {
-    std::fprintf(stderr, "replay: no JSON vector files at %s\n", p.c_str());
-    return 2;
-  }
-  for (const fs::path& f : files) {
-    std::string text;
-    if (!read_file(f, text)) {
-      std::fprintf(stderr, "replay: cannot read %s\n", f.c_str());
-      return 2;
-    }
-    nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
-    if (doc.is_discarded() || !doc.contains("vectors") || !doc["vectors"].is_array()) {
-      std::fprintf(stderr, "replay: %s is not a vector file ({\"vectors\":[...]})\n", f.c_str());
-      return 2;
-    }
-    std::size_t index = 0;
-    for (const auto& v : doc["vectors"]) {
-      std::optional<std::string> bytes;
-      if (!v.contains("bytes") || !v["bytes"].is_string() ||
-          !(bytes = top::bytes_from_utf8(v["bytes"].get<std::string>()))) {
-        std::fprintf(stderr, "replay: %s: vector %zu has no byte string\n", f.c_str(), index);
-        return 2;
-      }
-      run_one(prefix + *bytes);
-      ++count;
-      ++index;
-    }
-  }
-  return 0;
+  return for_each_file(
+      p, ".json", "JSON vector files", [&](const fs::path& f, const std::string& text) {
+        nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
+        if (doc.is_discarded() || !doc.contains("vectors") || !doc["vectors"].is_array()) {
+          std::fprintf(stderr, "replay: %s is not a vector file ({\"vectors\":[...]})\n",
+                       f.c_str());
+          return 2;
+        }
+        std::size_t index = 0;
+        for (const auto& v : doc["vectors"]) {
+          std::optional<std::string> bytes;
+          if (!v.contains("bytes") || !v["bytes"].is_string() ||
+              !(bytes = top::bytes_from_utf8(v["bytes"].get<std::string>()))) {
+            std::fprintf(stderr, "replay: %s: vector %zu has no byte string\n", f.c_str(), index);
+            return 2;
+          }
+          run_one(prefix + *bytes);
+          ++count;
+          ++index;
+        }
+        return 0;
+      });
 }
 
 }  // namespace
@@ -132,20 +147,12 @@ int main(int argc, char** argv) {
       if (int rc = replay_vectors(argv[++i], prefix, count)) return rc;
       continue;
     }
-    std::vector<fs::path> files = files_under(arg);
-    if (files.empty()) {
-      std::fprintf(stderr, "replay: no inputs at %s\n", arg.c_str());
-      return 2;
-    }
-    for (const fs::path& f : files) {
-      std::string bytes;
-      if (!read_file(f, bytes)) {
-        std::fprintf(stderr, "replay: cannot read %s\n", f.c_str());
-        return 2;
-      }
-      run_one(bytes);
-      ++count;
-    }
+    if (int rc = for_each_file(arg, "", "inputs", [&](const fs::path&, const std::string& bytes) {
+          run_one(bytes);
+          ++count;
+          return 0;
+        }))
+      return rc;
   }
   std::printf("replayed %zu input(s) through %s\n", count, argv[0]);
   return 0;

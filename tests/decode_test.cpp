@@ -11,6 +11,7 @@
 #include "top/detail/decimal.hpp"
 
 using namespace top;
+using toptest::tmp_quirk_frame;
 
 namespace {
 
@@ -64,12 +65,7 @@ TEST(Decode, EnumNamesPerDialect) {
 }
 
 TEST(Decode, UndocumentedEnumValue) {
-  std::string s = build_frame({.header = Header::fixed,
-                               .src = 'U',
-                               .dst = 'G',
-                               .control = 'w',
-                               .ident = "PTZ",
-                               .data = "7F"});
+  std::string s = with_checksum("#TPUG2wPTZ7F");
   Decoded d = dec(s, Dialect::skydroid);
   EXPECT_TRUE(toptest::has_code(d.findings, FindingCode::value_out_of_range));
 }
@@ -126,18 +122,7 @@ TEST(Decode, GpsBinaryStructLittleEndian) {
 }
 
 TEST(Decode, TmpQuirkTemperatures) {
-  std::string body = "#PDP16TMP" +
-                     std::string(
-                         "0A0"
-                         "64"
-                         "01F4") +
-                     "140"
-                     "20"
-                     "FF38" +
-                     "0123";
-  char cs[2];
-  put_hex2(checksum(body), cs);
-  Decoded d = dec(body + std::string(cs, 2));
+  Decoded d = dec(tmp_quirk_frame());
   ASSERT_NE(d.command, nullptr);
   EXPECT_EQ(d.command->ident, "TMP");
   EXPECT_EQ(field(d, "x_high").integer, 0xA0);
@@ -150,34 +135,19 @@ TEST(Decode, TmpQuirkTemperatures) {
 TEST(Decode, IpAddressAndCardCapacity) {
   Decoded ip = dec("#tpUDDwIPV192.168.31.22D7", Dialect::skydroid);
   EXPECT_EQ(field(ip, "address").text, "192.168.31.22");
-  std::string sdc = build_frame({.header = Header::variable,
-                                 .src = 'D',
-                                 .dst = 'U',
-                                 .control = 'r',
-                                 .ident = "SDC",
-                                 .data = "0123400ABC"});
+  std::string sdc = with_checksum("#tpDUArSDC0123400ABC");
   Decoded d = dec(sdc, Dialect::skydroid);
   EXPECT_EQ(field(d, "free").integer, 0x01234);
   EXPECT_EQ(field(d, "total").integer, 0x00ABC);
   EXPECT_EQ(format_value(field(d, "free")), "4660 MB");
-  std::string none = build_frame({.header = Header::variable,
-                                  .src = 'D',
-                                  .dst = 'P',
-                                  .control = 'r',
-                                  .ident = "SDC",
-                                  .data = "NNNNN"});
+  std::string none = with_checksum("#tpDP5rSDCNNNNN");
   Decoded n = dec(none, Dialect::topotek);
   ASSERT_FALSE(n.fields.empty());
   EXPECT_TRUE(n.fields[0].none);
 }
 
 TEST(Decode, LowercaseHexDataIsDecodedAndReported) {
-  std::string s = build_frame({.header = Header::variable,
-                               .src = 'U',
-                               .dst = 'G',
-                               .control = 'w',
-                               .ident = "GAY",
-                               .data = "ec7832"});
+  std::string s = with_checksum("#tpUG6wGAYec7832");
   Decoded d = dec(s, Dialect::topotek);
   EXPECT_DOUBLE_EQ(field(d, "angle").value, -50.0);
   EXPECT_TRUE(toptest::has_code(d.findings, FindingCode::lowercase_hex));
@@ -200,24 +170,14 @@ TEST(Decode, ExampleDataDecodesCleanForEveryForm) {
 }
 
 TEST(Decode, SkydroidNoCardIsNotZeroMegabytes) {
-  std::string s = build_frame({.header = Header::variable,
-                               .src = 'D',
-                               .dst = 'U',
-                               .control = 'r',
-                               .ident = "SDC",
-                               .data = "0000000000"});
+  std::string s = with_checksum("#tpDUArSDC0000000000");
   Decoded d = dec(s, Dialect::skydroid);
   ASSERT_EQ(d.fields.size(), 2u);
   EXPECT_TRUE(d.fields[0].none);
   EXPECT_TRUE(d.fields[1].none);
   EXPECT_EQ(d.summary(), "none (all zero: no memory card)");
   // A full card (no MB free) is not "no card".
-  std::string full = build_frame({.header = Header::variable,
-                                  .src = 'D',
-                                  .dst = 'U',
-                                  .control = 'r',
-                                  .ident = "SDC",
-                                  .data = "000001D1C0"});
+  std::string full = with_checksum("#tpDUArSDC000001D1C0");
   Decoded f = dec(full, Dialect::skydroid);
   EXPECT_FALSE(f.fields[0].none);
   EXPECT_EQ(f.fields[0].integer, 0);
@@ -295,12 +255,7 @@ TEST(Decode, FormatValueNumbersAreThoseOfPrintf) {
 // 0.7000000000000001 (what the multiplication gives, and what topdump --json
 // printed for about one field in six of the benchmark capture).
 TEST(Decode, ScaledValuesAreTheNearestDoubleToTheirDecimal) {
-  ParseResult r = parse_exact(build_frame({.header = Header::fixed,
-                                           .src = 'G',
-                                           .dst = 'U',
-                                           .control = 'r',
-                                           .ident = "GAC",
-                                           .data = "0046FFAD0053"}));
+  ParseResult r = parse_exact(with_checksum("#TPGUCrGAC0046FFAD0053"));
   ASSERT_EQ(r.status, ParseStatus::frame);
   const Decoded d = decode(r.frame, {.dialect = Dialect::skydroid});
   EXPECT_EQ(field(d, "yaw").value, 0.7);

@@ -14,12 +14,6 @@ using namespace top;
 
 namespace {
 
-std::string with_checksum(std::string body) {
-  char b[2];
-  put_hex2(checksum(body), b);
-  return body + std::string(b, 2);
-}
-
 struct Trigger {
   std::string bytes;
   Dialect dialect = Dialect::unknown;

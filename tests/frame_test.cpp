@@ -11,6 +11,7 @@
 using namespace top;
 using toptest::ExactBuffer;
 using toptest::has_code;
+using toptest::tmp_quirk_frame;
 
 TEST(Checksum, AppendixExample) {
   // Both documents' appendix: "#TPUD2wAWB01" sums to 0x44.
@@ -260,18 +261,8 @@ TEST(Parse, TrailingBytesAndCrlf) {
 }
 
 TEST(Parse, LowercaseLengthChar) {
-  std::string s = build_frame({.header = Header::variable,
-                               .src = 'U',
-                               .dst = 'D',
-                               .control = 'w',
-                               .ident = "IPV",
-                               .data = "192.168.1.100"});
-  s[5] = 'd';
-  s.replace(s.size() - 2, 2, [&] {
-    char b[2];
-    put_hex2(checksum(std::string_view(s).substr(0, s.size() - 2)), b);
-    return std::string(b, 2);
-  }());
+  // IPV with 13 data chars, its length char written lowercase ("d")
+  const std::string s = with_checksum("#tpUDdwIPV192.168.1.100");
   ParseResult r = parse_exact(s);
   ASSERT_EQ(r.status, ParseStatus::frame);
   EXPECT_TRUE(r.frame.checksum_ok);
@@ -279,19 +270,9 @@ TEST(Parse, LowercaseLengthChar) {
 }
 
 TEST(Parse, TmpQuirkDocumentedForm) {
-  std::string body = "#PDP16TMP" +
-                     std::string(
-                         "0A0"
-                         "64"
-                         "01F4") +
-                     "140"
-                     "20"
-                     "FF38" +
-                     "0123";
-  ASSERT_EQ(body.size(), 9u + 22u);
-  char cs[2];
-  put_hex2(checksum(body), cs);
-  ParseResult r = parse_exact(body + std::string(cs, 2));
+  const std::string f = tmp_quirk_frame();
+  ASSERT_EQ(f.size(), 9u + 22u + 2u);
+  ParseResult r = parse_exact(f);
   ASSERT_EQ(r.status, ParseStatus::frame);
   EXPECT_EQ(r.frame.header, Header::tmp_quirk);
   EXPECT_EQ(r.frame.ident_view(), "TMP");
@@ -305,10 +286,7 @@ TEST(Parse, TmpQuirkDocumentedForm) {
 }
 
 TEST(Parse, TmpQuirkTwoDigitLength) {
-  std::string body = "#tpDP16wTMP" + std::string(22, '0');
-  char cs[2];
-  put_hex2(checksum(body), cs);
-  ParseResult r = parse_exact(body + std::string(cs, 2));
+  ParseResult r = parse_exact(with_checksum("#tpDP16wTMP" + std::string(22, '0')));
   ASSERT_EQ(r.status, ParseStatus::frame);
   EXPECT_EQ(r.frame.control, 'w');
   EXPECT_EQ(r.frame.declared_length, 0x16u);
@@ -317,69 +295,67 @@ TEST(Parse, TmpQuirkTwoDigitLength) {
 }
 
 TEST(Parse, TwoDigitLengthOnAnotherIdent) {
-  std::string body = "#tpUD10wIPV" + std::string(16, '1');
-  char cs[2];
-  put_hex2(checksum(body), cs);
-  ParseResult r = parse_exact(body + std::string(cs, 2));
+  ParseResult r = parse_exact(with_checksum("#tpUD10wIPV" + std::string(16, '1')));
   ASSERT_EQ(r.status, ParseStatus::frame);
   EXPECT_TRUE(has_code(r.frame.findings, FindingCode::two_digit_length));
 }
 
 TEST(Build, HeadersAndLengths) {
-  EXPECT_EQ(build_frame({.header = Header::fixed,
-                         .src = 'U',
-                         .dst = 'D',
-                         .control = 'w',
-                         .ident = "AWB",
-                         .data = "01"}),
-            "#TPUD2wAWB0144");
-  EXPECT_EQ(build_frame({.header = Header::variable,
-                         .src = 'U',
-                         .dst = 'G',
-                         .control = 'w',
-                         .ident = "GAY",
-                         .data = "EF0732"}),
-            "#tpUG6wGAYEF073288");
-  std::string d(40, 'x');
-  std::string e8 = build_frame({.header = Header::variable,
-                                .src = 'P',
-                                .dst = 'D',
-                                .control = 'w',
-                                .ident = "ABC",
-                                .data = d});
-  EXPECT_EQ(e8.substr(0, 3), "#tP");
-  EXPECT_EQ(static_cast<unsigned char>(e8[5]), 40u);
-  ParseResult r = parse_exact(e8);
-  ASSERT_EQ(r.status, ParseStatus::frame);
-  EXPECT_EQ(r.frame.header, Header::ext8);
-  EXPECT_EQ(r.frame.data(), d);
-  EXPECT_TRUE(r.frame.checksum_ok);
-
-  std::string big(300, '#');
-  std::string e16 = build_frame({.header = Header::ext8,
-                                 .src = 'P',
-                                 .dst = 'D',
-                                 .control = 'w',
-                                 .ident = "ABC",
-                                 .data = big});
-  EXPECT_EQ(e16.substr(0, 3), "#Tp");
-  ParseResult r16 = parse_exact(e16);
-  ASSERT_EQ(r16.status, ParseStatus::frame);
-  EXPECT_EQ(r16.frame.header, Header::ext16);
-  EXPECT_EQ(r16.frame.control, 0);
-  EXPECT_EQ(r16.frame.data(), big);
-  EXPECT_TRUE(r16.frame.checksum_ok);
-}
-
-TEST(Build, LowercaseChecksumOption) {
-  std::string s = build_frame({.header = Header::variable,
-                               .src = 'U',
-                               .dst = 'M',
-                               .control = 'r',
-                               .ident = "ZOM",
-                               .data = "00",
-                               .lowercase_checksum = true});
-  EXPECT_EQ(s, "#tpUM2rZOM00a3");
+  struct Built {
+    BuildSpec spec;
+    std::string_view frame;
+  };
+  for (const Built& x : {
+           Built{{.header = Header::fixed,
+          .src = 'U',
+          .dst = 'D',
+          .control = 'w',
+          .ident = "AWB",
+          .data = "01"},
+                 "#TPUD2wAWB0144"},
+           Built{{.header = Header::variable,
+           .src = 'U',
+           .dst = 'G',
+           .control = 'w',
+           .ident = "GAY",
+           .data = "EF0732"},
+                 "#tpUG6wGAYEF073288"},
+           Built{{.header = Header::variable,
+           .src = 'U',
+           .dst = 'M',
+           .control = 'r',
+           .ident = "ZOM",
+           .data = "00",
+           .lowercase_checksum = true},
+                 "#tpUM2rZOM00a3"},
+       })
+    EXPECT_EQ(build_frame(x.spec), x.frame);
+  // Data too long for the header asked for: the next header that holds it,
+  // its length in raw bytes (ext16 has no control byte).
+  struct Extended {
+    std::string data;
+    Header asked, got;
+    std::string_view prefix, length;
+    char control;
+  };
+  for (const Extended& x :
+       {Extended{std::string(40, 'x'), Header::variable, Header::ext8, "#tP", "\x28", 'w'},
+        Extended{std::string(300, '#'), Header::ext8, Header::ext16, "#Tp", "\x01\x2C", 0}}) {
+    const std::string f = build_frame({.header = x.asked,
+                                       .src = 'P',
+                                       .dst = 'D',
+                                       .control = 'w',
+                                       .ident = "ABC",
+                                       .data = x.data});
+    EXPECT_EQ(f.substr(0, 3), x.prefix);
+    EXPECT_EQ(f.substr(5, x.length.size()), x.length);
+    ParseResult r = parse_exact(f);
+    ASSERT_EQ(r.status, ParseStatus::frame);
+    EXPECT_EQ(r.frame.header, x.got);
+    EXPECT_EQ(r.frame.control, x.control);
+    EXPECT_EQ(r.frame.data(), x.data);
+    EXPECT_TRUE(r.frame.checksum_ok);
+  }
 }
 
 // One helper appends the checksum (the fuzz seeds, the matrices, the faults
@@ -407,4 +383,18 @@ TEST(Text, EscapesRoundTripAndVectorStringsAreBytes) {
   EXPECT_FALSE(bytes_from_utf8("\xe2\x82\xac").has_value());  // U+20AC is no byte
   EXPECT_FALSE(bytes_from_utf8("\xc3").has_value());
   EXPECT_EQ(ascii_text("a\xe9"), "a\\xE9");
+}
+
+// One XML/HTML escape for topdump's report and topconf's reports: markup as
+// entities, and the control bytes XML 1.0 forbids as escape() writes them
+// (topdump's SVG wrote '.', topconf '\x0D' for a CR before).
+TEST(Text, MarkupEscapeWritesControlBytesAsEscape) {
+  EXPECT_EQ(markup_escape("<a href=\"x\">'&'</a>"),
+            "&lt;a href=&quot;x&quot;&gt;&#39;&amp;&#39;&lt;/a&gt;");
+  EXPECT_EQ(markup_escape(std::string("#TP\r\n\t\x01\x1f\x7f\xc3\xa9", 11)),
+            std::string("#TP\\r\n\t\\x01\\x1F\x7f\xc3\xa9"));
+  std::string all;
+  for (int c = 0; c < 256; ++c) all += static_cast<char>(c);
+  const std::string out = markup_escape(all);
+  for (unsigned char c : out) EXPECT_TRUE(c >= 0x20 || c == '\t' || c == '\n') << int{c};
 }

@@ -206,10 +206,7 @@ TEST(Stream, HostileNestedHeadersStayLinear) {
 // (finish, reset) when the line went quiet. settle() decides and goes on.
 TEST(Stream, SettleDecidesOnAFrameWaitingForLookAhead) {
   // declared length 6, but the checksum validates with the 4 data bytes there
-  std::string lying = "#tpUD6wCAP0000";
-  char cs[2];
-  put_hex2(checksum(lying), cs);
-  lying.append(cs, 2);
+  const std::string lying = with_checksum("#tpUD6wCAP0000");
   StreamDecoder d;
   d.feed(lying);
   StreamItem it;

@@ -70,6 +70,17 @@ inline std::string describe(const std::vector<top::StreamItem>& items) {
   return s;
 }
 
+// A frame in Topotek 12.2's malformed TMP form (#PDP16TMP: header "#P",
+// addresses D and P, length 0x16 = 22 data bytes), in 0.1 degC: hottest
+// point x 0x0A0, y 0x64 at 0x01F4 (50.0), coldest x 0x140, y 0x20 at 0xFF38
+// (-20.0), centre 0x0123 (29.1); checksum appended.
+inline std::string tmp_quirk_frame() {
+  return top::with_checksum(
+      "#PDP16TMP0A06401F4"
+      "14020FF38"
+      "0123");
+}
+
 inline bool has_code(const std::vector<top::Finding>& v, top::FindingCode c) {
   for (const auto& f : v)
     if (f.code == c) return true;

@@ -49,14 +49,19 @@ struct Fixture {
   void down(std::int64_t ms, const std::string& p) {
     a->datagram(T + ms * 1000, device, client, p, ++record, 42);
   }
+  // `request` (checksum appended) at `ms`, echoed with the addresses swapped
+  // `after` ms later.
+  void echoed(std::int64_t ms, std::int64_t after, std::string request) {
+    up(ms, top::with_checksum(request));
+    std::swap(request[3], request[4]);
+    down(ms + after, top::with_checksum(request));
+  }
 };
 
 TEST(Pairing, RequestResponseLatencyAndStats) {
   Fixture f;
-  f.up(0, top::with_checksum("#tpUG6wGAYEC7832"));
-  f.down(12, top::with_checksum("#tpGU6wGAYEC7832"));
-  f.up(20, top::with_checksum("#tpUG6wGAYEC7832"));
-  f.down(27, top::with_checksum("#tpGU6wGAYEC7832"));
+  f.echoed(0, 12, "#tpUG6wGAYEC7832");
+  f.echoed(20, 7, "#tpUG6wGAYEC7832");
   f.a->finish();
   ASSERT_EQ(f.rec.frames.size(), 4u);
   EXPECT_EQ(f.rec.frames[1].reply_to, 1u);
@@ -97,8 +102,7 @@ TEST(Field, RealC12AttitudePushIsAStreamNotARequest) {
   // A real C12 pushes #tpUGCrGAC (client first) from its port 5000: each is
   // a push of the GAC stream GAA asked for, never an unanswered request.
   Fixture f;
-  f.up(0, top::with_checksum("#TPUG2wGAA0A"));
-  f.down(3, top::with_checksum("#TPGU2wGAA0A"));
+  f.echoed(0, 3, "#TPUG2wGAA0A");
   for (int i = 0; i < 30; ++i) f.down(100 + i * 100, top::with_checksum("#tpUGCrGAC000000000000"));
   f.a->finish();
   const Stats& s = f.a->stats();
@@ -121,8 +125,7 @@ TEST(Field, RolesFromTheAnswerWhenBothEndsUsePort5000) {
   // the GAA write comes from the client, so the pushes are the device's.
   Fixture f;
   f.client = ep4(1, 5000);
-  f.up(0, top::with_checksum("#TPUG2wGAA0A"));
-  f.down(3, top::with_checksum("#TPGU2wGAA0A"));
+  f.echoed(0, 3, "#TPUG2wGAA0A");
   for (int i = 0; i < 10; ++i) f.down(100 + i * 100, top::with_checksum("#tpUGCrGAC000000000000"));
   f.a->finish();
   EXPECT_EQ(f.a->stats().unanswered, 0u);
@@ -186,8 +189,7 @@ TEST(Field, CopiesOfAnAnsweredRequestAreNotUnanswered) {
   Fixture f;
   f.up(0, top::with_checksum("#TPUG6wGAY03E832"));
   f.up(30, top::with_checksum("#TPUG6wGAY03E832"));
-  f.up(60, top::with_checksum("#TPUG6wGAY03E832"));
-  f.down(70, top::with_checksum("#TPGU6wGAY03E832"));
+  f.echoed(60, 10, "#TPUG6wGAY03E832");
   f.a->finish();
   EXPECT_EQ(f.a->stats().unanswered, 0u);
   EXPECT_FALSE(f.rec.has_note(ACode::unanswered));
@@ -216,8 +218,7 @@ TEST(Field, ClientStreamFramesExpectNoAnswer) {
   // SkyDroid 3.3.6: after FAE 01 the flight controller sends FAI writes;
   // the document gives them no reply.
   Fixture f;
-  f.up(0, top::with_checksum("#TPUG2wFAE01"));
-  f.down(3, top::with_checksum("#TPGU2wFAE01"));
+  f.echoed(0, 3, "#TPUG2wFAE01");
   for (int i = 0; i < 20; ++i) f.up(100 + i * 50, top::with_checksum("#TPUGCwFAIEC7800000000"));
   f.a->finish();
   EXPECT_EQ(f.a->stats().unanswered, 0u);
@@ -356,8 +357,7 @@ TEST(Pairing, UnswappedResponseIsPairedAndReported) {
 
 TEST(Streams, RateMeasuredAgainstAsked) {
   Fixture f;
-  f.up(0, top::with_checksum("#TPUG2wGAA0A"));  // 10 Hz
-  f.down(2, top::with_checksum("#TPGU2wGAA0A"));
+  f.echoed(0, 2, "#TPUG2wGAA0A");  // 10 Hz
   for (int i = 0; i < 11; ++i)
     f.down(100 + i * 200, top::with_checksum("#TPGUCrGAC000000000000"));  // 5 Hz
   f.a->finish();

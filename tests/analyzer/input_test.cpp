@@ -32,6 +32,13 @@ std::string q(const std::string& s) { return "'" + s + "'"; }
 std::string bin() { return q(topdump_bin()); }
 std::string cap(const std::string& n) { return q(captures_dir() + "/" + n); }
 
+// `bytes` with the 32-bit word at `at` set to `v` (host order, as the
+// capture files of these tests are written).
+std::string with_u32(std::string bytes, std::size_t at, std::uint32_t v) {
+  std::memcpy(bytes.data() + at, &v, 4);
+  return bytes;
+}
+
 std::size_t count(const std::string& hay, const std::string& needle) {
   std::size_t n = 0;
   for (auto at = hay.find(needle); at != std::string::npos; at = hay.find(needle, at + 1)) ++n;
@@ -231,6 +238,15 @@ struct SerialRun {
   void send(std::size_t i, const std::string& s) {
     ASSERT_EQ(::write(ptys[i].master, s.data(), s.size()), static_cast<ssize_t>(s.size()));
   }
+  // Sends `probe` on tap i until topdump shows `seen` (it has opened the
+  // port): false after 40 tries.
+  bool wait_open(std::size_t i, const std::string& probe, const std::string& seen) {
+    for (int k = 0; k < 40; ++k) {
+      send(i, probe);
+      if (read_until(out, acc, seen, 250)) return true;
+    }
+    return false;
+  }
   // Ends topdump with SIGINT; its exit status.
   int stop() {
     kill(pid, SIGINT);
@@ -264,13 +280,7 @@ TEST(Input, TwoSerialTapsPairRequestsAndReplies) {
   SerialRun r(2);
   ASSERT_TRUE(r.ok());
   // wait until topdump has opened both ports: a probe on the first is decoded
-  const std::string probe = top::with_checksum("#TPUG2wVER00");
-  bool up = false;
-  for (int i = 0; i < 40 && !up; ++i) {
-    r.send(0, probe);
-    up = read_until(r.out, r.acc, "\"VER\"", 250);
-  }
-  ASSERT_TRUE(up) << r.acc;
+  ASSERT_TRUE(r.wait_open(0, top::with_checksum("#TPUG2wVER00"), "\"VER\"")) << r.acc;
   std::this_thread::sleep_for(std::chrono::milliseconds(100));
   r.send(0, top::with_checksum("#TPUG2wPTZ05"));
   std::this_thread::sleep_for(std::chrono::milliseconds(30));
@@ -296,12 +306,7 @@ TEST(Input, LiveCrlfWithinTheQuietTimeBelongsToItsFrame) {
   SerialRun r(1);
   ASSERT_TRUE(r.ok());
   const std::string f = top::with_checksum("#TPGU2wPTZ05");
-  bool up = false;
-  for (int i = 0; i < 40 && !up; ++i) {
-    r.send(0, f + "\r\n");
-    up = read_until(r.out, r.acc, "\"PTZ\"", 250);
-  }
-  ASSERT_TRUE(up) << r.acc;
+  ASSERT_TRUE(r.wait_open(0, f + "\r\n", "\"PTZ\"")) << r.acc;
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   read_until(r.out, r.acc, "never", 50);
   r.acc.clear();
@@ -406,11 +411,9 @@ TEST(Input, BrokenRecordsHaveCodesOfTheirOwnAndOffsetsThatAgree) {
     w.write(T, pkt);
     w.write(T + 1, pkt);
   }
-  std::string bytes = slurp(tmp.file("caplen.pcap"));
   const std::size_t second = 24 + 16 + pkt.size();
-  const std::uint32_t big = 300000;
-  std::memcpy(bytes.data() + second + 8, &big, 4);
-  write_file(tmp.file("caplen.pcap"), bytes);
+  write_file(tmp.file("caplen.pcap"),
+             with_u32(slurp(tmp.file("caplen.pcap")), second + 8, 300000));  // its caplen
   auto j = capture_finding(tmp.file("caplen.pcap"), "bad-caplen");
   ASSERT_FALSE(j.is_null());
   EXPECT_EQ(j["record"], 2);
@@ -427,10 +430,8 @@ TEST(Input, BrokenRecordsHaveCodesOfTheirOwnAndOffsetsThatAgree) {
   std::uint32_t epb_len;
   std::memcpy(&epb_len, ng.data() + first_epb + 4, 4);
   const std::size_t second_epb = first_epb + epb_len;
-  std::string seven = ng;
-  const std::uint32_t len7 = 7;
-  std::memcpy(seven.data() + second_epb + 4, &len7, 4);
-  write_file(tmp.file("seven.pcapng"), seven);
+  // the second packet block 7 bytes long, then on interface 9 of 1
+  write_file(tmp.file("seven.pcapng"), with_u32(ng, second_epb + 4, 7));
   j = capture_finding(tmp.file("seven.pcapng"), "bad-block-length");
   ASSERT_FALSE(j.is_null());
   EXPECT_EQ(j["record"], 2);
@@ -440,10 +441,7 @@ TEST(Input, BrokenRecordsHaveCodesOfTheirOwnAndOffsetsThatAgree) {
             std::string::npos)
       << j.dump();
 
-  std::string iface = ng;
-  const std::uint32_t if9 = 9;
-  std::memcpy(iface.data() + second_epb + 8, &if9, 4);
-  write_file(tmp.file("iface.pcapng"), iface);
+  write_file(tmp.file("iface.pcapng"), with_u32(ng, second_epb + 8, 9));
   j = capture_finding(tmp.file("iface.pcapng"), "unknown-interface");
   ASSERT_FALSE(j.is_null());
   EXPECT_EQ(j["record"], 2);

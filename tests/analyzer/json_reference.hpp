@@ -219,19 +219,13 @@ inline json stats_json(const Stats& s, top::Severity worst) {
   j["first_time"] = time_json(s.first);
   j["last_time"] = time_json(s.last);
   j["worst"] = top::to_string(worst);
-  json ids = json::object();
-  for (const auto& [k, v] : s.per_ident) ids[k] = v;
-  j["per_ident"] = std::move(ids);
-  json codes = json::object();
-  for (const auto& [k, v] : s.per_code) codes[k] = v;
-  j["per_finding"] = std::move(codes);
-  json p;
-  p["requests"] = s.requests;
-  p["responses"] = s.responses;
-  p["paired"] = s.paired;
-  p["unanswered"] = s.unanswered;
-  p["unsolicited"] = s.unsolicited;
-  j["pairing"] = std::move(p);
+  j["per_ident"] = s.per_ident;  // std::map: an object, {} when empty
+  j["per_finding"] = s.per_code;
+  j["pairing"] = {{"requests", s.requests},
+                  {"responses", s.responses},
+                  {"paired", s.paired},
+                  {"unanswered", s.unanswered},
+                  {"unsolicited", s.unsolicited}};
   json lat = json::object();
   for (const auto& [k, l] : s.latency) {
     json x;

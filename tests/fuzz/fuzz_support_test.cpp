@@ -148,10 +148,7 @@ TEST(Reference, DecodesTheDocumentsWorkedValues) {
   ASSERT_EQ(v.size(), 1u);
   EXPECT_EQ(v[0].value, -76);
   // SkyDroid 3.3.1: "-50 deg is -5000 = 0xEC78"; speed hex.
-  std::string frame = "#tpUG6wGAYEC7805";
-  char cs[2];
-  put_hex2(checksum(frame), cs);
-  frame.append(cs, 2);
+  const std::string frame = top::with_checksum("#tpUG6wGAYEC7805");
   auto h = topref::parse(frame);
   ASSERT_TRUE(h);
   auto w = topref::decode(*topref::find_layout("skydroid", *h), h->data);

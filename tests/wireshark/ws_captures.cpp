@@ -39,6 +39,34 @@ constexpr Ip4 kClient{192, 168, 144, 10};
 constexpr Ip4 kDevice{192, 168, 144, 108};
 constexpr int kDltUser0 = 147;
 
+// One TCP connection from the client's port `cp` to the device's `dp`, opened
+// by the handshake: segments 10 ms apart, each side's sequence number kept.
+struct TcpFlow {
+  PcapWriter& out;
+  std::int64_t& ts;
+  std::uint16_t cp, dp;
+  std::uint32_t cs = 1000, ds = 5000;
+  TcpFlow(PcapWriter& o, std::int64_t& t, std::uint16_t client_port, std::uint16_t device_port)
+      : out(o), ts(t), cp(client_port), dp(device_port) {
+    (*this)(true, pcapio::kSyn, "");
+    (*this)(false, pcapio::kSyn | pcapio::kAck, "");
+    (*this)(true, pcapio::kAck, "");
+  }
+  void operator()(bool up, std::uint8_t flags, const std::string& payload) {
+    namespace w = pcapio;
+    const std::uint32_t next =
+        static_cast<std::uint32_t>(payload.size()) + ((flags & w::kSyn) ? 1 : 0);
+    if (up) {
+      out.write(ts, w::eth(w::tcp4(kClient, kDevice, cp, dp, cs, ds, flags, payload)));
+      cs += next;
+    } else {
+      out.write(ts, w::eth(w::tcp4(kDevice, kClient, dp, cp, ds, cs, flags, payload)));
+      ds += next;
+    }
+    ts += 10000;
+  }
+};
+
 // The bytes of a vector: each UTF-8 char is one byte (tests/vectors/README.md).
 std::string bytes_of(const std::string& utf8) {
   std::string out;
@@ -148,20 +176,7 @@ int write_heuristic(const std::string& dir) {
   udp(false, top::with_checksum("#tpGU6wGAYEC7832"));
   udp(true, top::with_checksum("#TPUG2wPTZ05") + top::with_checksum("#TPUD2rVER00"));
   udp(false, top::with_checksum("#TPGU2wPTZ05") + "\r\n" + top::with_checksum("#tpDU6rVER010502"));
-  std::uint32_t cs = 1000, ds = 5000;
-  auto tcp = [&](bool up, std::uint8_t flags, const std::string& payload) {
-    if (up) {
-      out.write(ts, w::eth(w::tcp4(kClient, kDevice, 40003, 40004, cs, ds, flags, payload)));
-      cs += static_cast<std::uint32_t>(payload.size()) + ((flags & w::kSyn) ? 1 : 0);
-    } else {
-      out.write(ts, w::eth(w::tcp4(kDevice, kClient, 40004, 40003, ds, cs, flags, payload)));
-      ds += static_cast<std::uint32_t>(payload.size()) + ((flags & w::kSyn) ? 1 : 0);
-    }
-    ts += 10000;
-  };
-  tcp(true, w::kSyn, "");
-  tcp(false, w::kSyn | w::kAck, "");
-  tcp(true, w::kAck, "");
+  TcpFlow tcp{out, ts, 40003, 40004};
   const std::string gay = top::with_checksum("#tpUG6wGAYEC7832");
   tcp(true, w::kAck | w::kPsh, gay.substr(0, 12));
   tcp(true, w::kAck | w::kPsh, gay.substr(12));
@@ -180,20 +195,7 @@ int write_tcp(const std::string& dir) {
   PcapWriter out(dir + "/tcp.pcap", DLT_EN10MB);
   if (!out.ok()) return 2;
   std::int64_t ts = 1714564800000000;
-  std::uint32_t cs = 1000, ds = 5000;
-  auto tcp = [&](bool up, std::uint8_t flags, const std::string& payload) {
-    if (up) {
-      out.write(ts, w::eth(w::tcp4(kClient, kDevice, 40000, 5000, cs, ds, flags, payload)));
-      cs += static_cast<std::uint32_t>(payload.size()) + ((flags & w::kSyn) ? 1 : 0);
-    } else {
-      out.write(ts, w::eth(w::tcp4(kDevice, kClient, 5000, 40000, ds, cs, flags, payload)));
-      ds += static_cast<std::uint32_t>(payload.size()) + ((flags & w::kSyn) ? 1 : 0);
-    }
-    ts += 10000;
-  };
-  tcp(true, w::kSyn, "");
-  tcp(false, w::kSyn | w::kAck, "");
-  tcp(true, w::kAck, "");
+  TcpFlow tcp{out, ts, 40000, 5000};
   tcp(true, w::kAck | w::kPsh, top::with_checksum("#tpUG6wGAP112F32"));
   std::string bad = top::with_checksum("#tpGU6wGAP112F32");
   bad.back() = bad.back() == '0' ? '1' : '0';  // a wrong checksum
