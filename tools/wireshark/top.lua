@@ -2318,26 +2318,25 @@ local function parse_frame(b, p0, at_end)
                                  " bytes of a frame that needs " .. want)
   end
   local function invalid(code, offset, message) return "invalid", 0, finding(code, offset, message) end
-  if n == 0 then
-    if at_end then return truncated(0, 1) end
+  -- The input ends before byte `want` of the frame: wait for more, or truncated at the end.
+  local function short(want)
+    if at_end then return truncated(n, want) end
     return "need_more"
   end
+  local function bad_control()
+    return invalid("bad-control", 6, "control char " .. printable(B(6)) .. " is not r or w")
+  end
+  if n == 0 then return short(1) end
   if B(0) ~= 35 then return invalid("bad-header", 0, "frame must start with '#', got " .. printable(B(0))) end
   local header, control, ident_at, data_at, declared = "variable", nil, 7, 10, 0
   local hex_length, two_digit = true, false
   local notes = {}
-  if n < 2 then
-    if at_end then return truncated(n, 12) end
-    return "need_more"
-  end
+  if n < 2 then return short(12) end
   local c1 = B(1)
   if c1 == 80 then
     local tmp = "#PDP??TMP"
     for i = 1, 8 do
-      if i >= n then
-        if at_end then return truncated(n, 33) end
-        return "need_more"
-      end
+      if i >= n then return short(33) end
       local k = sbyte(tmp, i + 1)
       local ok
       if k == 63 then ok = is_hex(B(i)) else ok = B(i) == k end
@@ -2354,10 +2353,7 @@ local function parse_frame(b, p0, at_end)
       return invalid("bad-header", 1, "'#' followed by " .. printable(c1) ..
                      ", not a TOP header (#TP #tp #tP #Tp)")
     end
-    if n < 3 then
-      if at_end then return truncated(n, 12) end
-      return "need_more"
-    end
+    if n < 3 then return short(12) end
     local c2 = B(2)
     if c2 ~= 80 and c2 ~= 112 then
       return invalid("bad-header", 2, "\"#" .. schar(c1) .. "\" followed by " .. printable(c2) ..
@@ -2372,19 +2368,13 @@ local function parse_frame(b, p0, at_end)
 
   if header ~= "tmp" then
     for i = 3, 4 do
-      if n < i + 1 then
-        if at_end then return truncated(n, 12) end
-        return "need_more"
-      end
+      if n < i + 1 then return short(12) end
       if not is_address(B(i)) then
         return invalid("bad-address", i, (i == 3 and "source" or "destination") .. " address " ..
                        printable(B(i)) .. " is not one of U M D E P G")
       end
     end
-    if n < 6 then
-      if at_end then return truncated(n, 12) end
-      return "need_more"
-    end
+    if n < 6 then return short(12) end
     if header == "fixed" or header == "variable" then
       if not is_hex(B(5)) then
         return invalid("bad-length-char", 5, "length char " .. printable(B(5)) .. " is not a hex digit")
@@ -2392,53 +2382,38 @@ local function parse_frame(b, p0, at_end)
       if is_lower_hex(B(5)) then
         notes[#notes + 1] = finding("lowercase-hex", 5, "length char written in lowercase")
       end
-      if n < 7 then
-        if at_end then return truncated(n, 12) end
-        return "need_more"
-      end
+      if n < 7 then return short(12) end
       if B(6) == 114 or B(6) == 119 then
         control = B(6)
         declared = hexv(B(5))
       elseif is_hex(B(6)) then
-        if n < 8 then
-          if at_end then return truncated(n, 13) end
-          return "need_more"
-        end
+        if n < 8 then return short(13) end
         if B(7) ~= 114 and B(7) ~= 119 then
-          return invalid("bad-control", 6, "control char " .. printable(B(6)) .. " is not r or w")
+          return bad_control()
         end
         control = B(7)
         declared = hexv(B(5)) * 16 + hexv(B(6))
         two_digit, hex_length, ident_at, data_at = true, false, 8, 11
       else
-        return invalid("bad-control", 6, "control char " .. printable(B(6)) .. " is not r or w")
+        return bad_control()
       end
     elseif header == "ext8" then
       declared = B(5)
       hex_length = false
-      if n < 7 then
-        if at_end then return truncated(n, 12) end
-        return "need_more"
-      end
+      if n < 7 then return short(12) end
       if B(6) ~= 114 and B(6) ~= 119 then
-        return invalid("bad-control", 6, "control char " .. printable(B(6)) .. " is not r or w")
+        return bad_control()
       end
       control = B(6)
     else -- ext16
-      if n < 7 then
-        if at_end then return truncated(n, 12) end
-        return "need_more"
-      end
+      if n < 7 then return short(12) end
       declared = B(5) * 256 + B(6)
       hex_length, control, ident_at, data_at = false, nil, 7, 10
     end
   end
 
   for i = ident_at, ident_at + 2 do
-    if n < i + 1 then
-      if at_end then return truncated(n, data_at + 2) end
-      return "need_more"
-    end
+    if n < i + 1 then return short(data_at + 2) end
     if not is_ident_char(B(i)) then
       return invalid("bad-ident", i, "identifier char " .. printable(B(i)) ..
                      " is not an uppercase letter or digit")
