@@ -94,6 +94,21 @@ struct Page {
   void streams();
   void findings();
   void unanswered();
+
+  // Opens section `id` under heading `title`. With nothing to show
+  // (`empty`), writes `none` (a muted or ok paragraph), closes the section
+  // and returns false.
+  bool open(std::string_view id, std::string_view title, bool empty, std::string_view none) {
+    o += "<section id=\"";
+    o += id;
+    o += "\"><h2>";
+    o += title;
+    o += "</h2>";
+    if (!empty) return true;
+    o += none;
+    o += "</section>";
+    return false;
+  }
 };
 
 void Page::overview() {
@@ -365,11 +380,9 @@ void Page::response() {
 
 void Page::latency() {
   const Stats& s = *r.stats;
-  o += "<section id=\"latency\"><h2>4. Latency</h2>";
-  if (s.latency.empty()) {
-    o += "<p class=\"muted\">No request was answered.</p></section>";
+  if (!open("latency", "4. Latency", s.latency.empty(),
+            "<p class=\"muted\">No request was answered.</p>"))
     return;
-  }
   o += "<table><tr><th>identifier</th><th>pairs</th><th>min</th><th>median</th><th>p90</th>"
        "<th>p95</th><th>p99</th><th>max</th></tr>";
   auto ms = [](std::int64_t us) { return fmt("%.3f ms", static_cast<double>(us) / 1000.0); };
@@ -409,11 +422,9 @@ void Page::latency() {
 }
 
 void Page::streams() {
-  o += "<section id=\"streams\"><h2>5. Streams</h2>";
-  if (r.streams.empty()) {
-    o += "<p class=\"muted\">No push stream was switched on.</p></section>";
+  if (!open("streams", "5. Streams", r.streams.empty(),
+            "<p class=\"muted\">No push stream was switched on.</p>"))
     return;
-  }
   o += "<table><tr><th>conv</th><th>stream</th><th>asked by</th><th>asked</th><th>measured</th>"
        "<th>frames</th><th>gaps over 3 periods</th></tr>";
   for (const auto& x : r.streams)
@@ -458,11 +469,7 @@ void Page::streams() {
 
 void Page::findings() {
   const ReportSink& d = *r.data;
-  o += "<section id=\"findings\"><h2>6. Findings</h2>";
-  if (d.codes.empty()) {
-    o += "<p class=\"ok\">No finding.</p></section>";
-    return;
-  }
+  if (!open("findings", "6. Findings", d.codes.empty(), "<p class=\"ok\">No finding.</p>")) return;
   std::vector<svg::Lane> ls;
   const char* names[3] = {"info", "warning", "error"};
   const char* colors[3] = {"#6b8fb3", "#e08a00", "#c8102e"};
@@ -512,11 +519,9 @@ void Page::findings() {
 
 void Page::unanswered() {
   const auto& u = r.data->unanswered;
-  o += "<section id=\"unanswered\"><h2>7. Unanswered requests</h2>";
-  if (u.empty()) {
-    o += "<p class=\"ok\">Every request was answered.</p></section>";
+  if (!open("unanswered", "7. Unanswered requests", u.empty(),
+            "<p class=\"ok\">Every request was answered.</p>"))
     return;
-  }
   o += "<p>As <code>topdump read</code> reports them, with their causes.</p><table><tr><th>"
        "frame</th><th>time</th><th>conv</th><th>file</th><th>finding</th></tr>";
   for (std::size_t i = 0; i < u.size() && i < kMaxRows; ++i)

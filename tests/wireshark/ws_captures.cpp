@@ -34,10 +34,12 @@ namespace {
 
 using pcapio::Ip4;
 using pcapio::PcapWriter;
+namespace w = pcapio;
 
 constexpr Ip4 kClient{192, 168, 144, 10};
 constexpr Ip4 kDevice{192, 168, 144, 108};
 constexpr int kDltUser0 = 147;
+constexpr std::int64_t kT0 = 1714564800000000;  // 2024-05-01T12:00:00Z
 
 // One TCP connection from the client's port `cp` to the device's `dp`, opened
 // by the handshake: segments 10 ms apart, each side's sequence number kept.
@@ -53,7 +55,6 @@ struct TcpFlow {
     (*this)(true, pcapio::kAck, "");
   }
   void operator()(bool up, std::uint8_t flags, const std::string& payload) {
-    namespace w = pcapio;
     const std::uint32_t next =
         static_cast<std::uint32_t>(payload.size()) + ((flags & w::kSyn) ? 1 : 0);
     if (up) {
@@ -117,7 +118,7 @@ int write_forms(const std::string& dir) {
   PcapWriter all(dir + "/forms.pcap", DLT_EN10MB), sky(dir + "/forms-skydroid.pcap", DLT_EN10MB),
       user0(dir + "/forms-user0.pcap", kDltUser0);
   if (!all.ok() || !sky.ok() || !user0.ok()) return 2;
-  std::int64_t ts = 1714564800000000;
+  std::int64_t ts = kT0;
   for (const Built& x : frames) {
     const std::uint16_t device = x.skydroid ? 5000 : 9003, client = x.skydroid ? 40000 : 9004;
     const std::string pkt =
@@ -136,7 +137,7 @@ int write_forms(const std::string& dir) {
 int write_vectors(const std::string& dir, const std::string& source) {
   PcapWriter out(dir + "/vectors.pcap", DLT_EN10MB);
   if (!out.ok()) return 2;
-  std::int64_t ts = 1714564800000000;
+  std::int64_t ts = kT0;
   std::uint16_t client = 41000;
   for (const char* file : {"skydroid", "topotek", "extra"}) {
     std::ifstream in(source + "/tests/vectors/" + file + ".json");
@@ -163,10 +164,9 @@ int write_vectors(const std::string& dir, const std::string& source) {
 }
 
 int write_heuristic(const std::string& dir) {
-  namespace w = pcapio;
   PcapWriter out(dir + "/heuristic.pcap", DLT_EN10MB);
   if (!out.ok()) return 2;
-  std::int64_t ts = 1714564800000000;
+  std::int64_t ts = kT0;
   auto udp = [&](bool up, const std::string& payload) {
     out.write(ts, w::eth(up ? w::udp4(kClient, kDevice, 40001, 40002, payload)
                             : w::udp4(kDevice, kClient, 40002, 40001, payload)));
@@ -191,10 +191,9 @@ int write_heuristic(const std::string& dir) {
 // segment's end, which makes Wireshark hand the first frame over again; CR/LF
 // at the start of the next segment.
 int write_tcp(const std::string& dir) {
-  namespace w = pcapio;
   PcapWriter out(dir + "/tcp.pcap", DLT_EN10MB);
   if (!out.ok()) return 2;
-  std::int64_t ts = 1714564800000000;
+  std::int64_t ts = kT0;
   TcpFlow tcp{out, ts, 40000, 5000};
   tcp(true, w::kAck | w::kPsh, top::with_checksum("#tpUG6wGAP112F32"));
   std::string bad = top::with_checksum("#tpGU6wGAP112F32");
