@@ -369,7 +369,7 @@ TEST(Text, EscapesRoundTripAndVectorStringsAreBytes) {
 // (topdump's SVG wrote '.', topconf '\x0D' for a CR before).
 TEST(Text, MarkupEscapeWritesControlBytesAsEscape) {
   EXPECT_EQ(markup_escape("<a href=\"x\">'&'</a>"),
-            "&lt;a href=&quot;x&quot;&gt;&#39;&amp;&#39;&lt;/a&gt;");
+            "&lt;a href=&quot;x&quot;&gt;'&amp;'&lt;/a&gt;");
   EXPECT_EQ(markup_escape(std::string("#TP\r\n\t\x01\x1f\x7f\xc3\xa9", 11)),
             std::string("#TP\\r\n\t\\x01\\x1F\x7f\xc3\xa9"));
   std::string all;

@@ -96,9 +96,6 @@ std::string markup_escape(std::string_view text) {
       case '"':
         out += "&quot;";
         break;
-      case '\'':
-        out += "&#39;";
-        break;
       default:
         if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n')
           out += escape(std::string_view(&c, 1));

@@ -33,10 +33,11 @@ inline int hex_value(char c) noexcept { return detail::kHexValue[static_cast<uns
 std::string escape(std::string_view bytes);
 
 // Text for XML and HTML, element content or attribute value (topdump's
-// report and its SVG plots, topconf's JUnit and HTML reports): & < > " ' as
-// entities; the control bytes XML 1.0 does not allow (all below 0x20 but tab
-// and newline) as escape() writes them ("\r", "\x01"), so a byte reads the
-// same in a report as in topdump's lines; every other byte as it is.
+// report and its SVG plots, topconf's JUnit and HTML reports): & < > " as
+// entities (attributes are always double-quoted, so ' stays); the control
+// bytes XML 1.0 does not allow (all below 0x20 but tab and newline) as
+// escape() writes them ("\r", "\x01"), so a byte reads the same in a report
+// as in topdump's lines; every other byte as it is.
 std::string markup_escape(std::string_view text);
 
 // Turns "\x23", "\r", "\n", "\t", "\0", "\\" into bytes. Returns nullopt and
