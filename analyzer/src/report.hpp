@@ -14,6 +14,7 @@
 #include <map>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "analyzer.hpp"
@@ -74,7 +75,7 @@ struct ConvData {
   Transport transport{};
   top::Dialect dialect = top::Dialect::unknown;
   std::uint64_t frames = 0;
-  std::map<std::string, Attitude> attitude;  // "GAC", "GIC"
+  std::map<std::string, Attitude, std::less<>> attitude;  // "GAC", "GIC"
   // deques: no copy as they grow, and stable addresses (AngleResult::cmd)
   std::deque<AngleCommand> angles;
   std::deque<RateCommand> rates;
@@ -140,7 +141,7 @@ class ReportSink : public Sink {
   std::map<std::string, CodeStat, std::less<>> codes;
   std::array<TimeHist, 3> finding_times;  // per severity
   std::vector<Unanswered> unanswered;
-  std::map<std::string, std::array<std::uint64_t, kLatencyBins>> latency_bins;
+  std::map<std::string, std::array<std::uint64_t, kLatencyBins>, std::less<>> latency_bins;
   std::vector<Slow> slowest;  // a min-heap on latency, at most kSlowest
   // The identifier of recent requests by frame number (direct-mapped: an
   // answer comes within a few thousand frames, or latency keys by its own).
@@ -156,6 +157,12 @@ class ReportSink : public Sink {
   Example* finding(std::string_view code, top::Severity sev, std::int64_t ts, const FrameEvent* e,
                    std::uint32_t at, const std::string& message, const std::string* sender);
   void motion(const FrameEvent& e, ConvData& c);
+  // Hashed views of the maps' keys (std::map nodes do not move): a finding
+  // code's statistics and an identifier's latency bins in one hash lookup,
+  // instead of a walk of string comparisons per frame.
+  std::unordered_map<std::string_view, CodeStat*> code_at_;
+  std::unordered_map<std::string_view, std::array<std::uint64_t, kLatencyBins>*> bins_at_;
+  ConvData* last_conv_ = nullptr;
 };
 
 // ---- the analysis --------------------------------------------------------
