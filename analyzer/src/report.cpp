@@ -126,6 +126,15 @@ void ReportSink::frame(const FrameEvent& e) {
     const top::Frame& f = *e.entry->frame;
     const top::Decoded& d = e.entry->decoded;
     if (d.dialect != top::Dialect::unknown) c.dialect = d.dialect;
+    if (d.role == top::Role::response && d.command && d.command->models && !e.entry->bad_checksum) {
+      const top::ModelSet left = c.models & d.command->models;
+      if (left == 0) {
+        c.conflict = d.command->ident;
+      } else if (left != c.models) {
+        c.models = left;
+        c.narrowed_by = d.command->ident;
+      }
+    }
     for (const auto& x : f.findings)
       finding(top::to_string(x.code), x.severity, e.ts, &e, x.offset, x.message, sender);
     for (const auto& x : d.findings)
@@ -669,14 +678,36 @@ top::Dialect dialect_of(const Report& r, const ConvStats& c) {
   return it == r.data->convs.end() ? c.dialect : it->second.dialect;
 }
 
-std::string model_text(top::Model given, top::Dialect d) {
+std::string model_text(top::Model given, top::Dialect d, const ConvData* c) {
   if (given != top::Model::unknown) return std::string(top::to_string(given)) + " (given)";
-  std::vector<top::Model> of;
+  std::vector<top::Model> of, left;
   for (top::Model m : top::all_models())
-    if (top::dialect_of(m) == d) of.push_back(m);
+    if (top::dialect_of(m) == d) {
+      of.push_back(m);
+      if (c && (c->models & top::model_bit(m))) left.push_back(m);
+    }
   if (of.size() == 1)
     return std::string(top::to_string(of[0])) + " (guessed: the only model of the dialect)";
-  return "";
+  std::string t;
+  if (!left.empty() && left.size() < of.size()) {
+    for (std::size_t i = 0; i < left.size(); ++i)
+      t += (i == 0                 ? ""
+            : i + 1 == left.size() ? " or "
+                                   : ", ") +
+           std::string(top::to_string(left[i]));
+    t += " (guessed: the device sent " + std::string(c->narrowed_by) +
+         (left.size() == 1 ? ", which the documents give to this model only)"
+                           : ", which the documents give to these models only)");
+  }
+  if (c && !c->conflict.empty())
+    t += std::string(t.empty() ? "" : "; ") + "the device sent " + std::string(c->conflict) +
+         ", which the documents give to none of these";
+  return t;
+}
+
+std::string model_text(const Report& r, const ConvStats& c) {
+  const auto it = r.data->convs.find(c.id);
+  return model_text(r.model, dialect_of(r, c), it == r.data->convs.end() ? nullptr : &it->second);
 }
 
 Report analyze(const ReportSink& data, const Stats& stats, top::Severity worst, top::Model model,

@@ -75,6 +75,11 @@ struct ConvData {
   Transport transport{};
   top::Dialect dialect = top::Dialect::unknown;
   std::uint64_t frames = 0;
+  // The models whose catalog has every command the device sent (frames in
+  // the response role with a good checksum), the command that last narrowed
+  // them, and one the device sent that no model left has.
+  top::ModelSet models = static_cast<top::ModelSet>(~0u);
+  std::string_view narrowed_by, conflict;
   std::map<std::string, Attitude, std::less<>> attitude;  // "GAC", "GIC"
   // deques: no copy as they grow, and stable addresses (AngleResult::cmd)
   std::deque<AngleCommand> angles;
@@ -260,8 +265,10 @@ Report analyze(const ReportSink& data, const Stats& stats, top::Severity worst, 
 top::Dialect dialect_of(const Report& r, const ConvStats& c);
 
 // The model of a conversation: the one given, else guessed where the dialect
-// leaves one (Topotek: sip), with how it was decided; "" when unknown.
-std::string model_text(top::Model given, top::Dialect d);
+// leaves one (Topotek: sip) or the commands the device sent leave fewer
+// than the dialect's models, with how it was decided; "" when unknown.
+std::string model_text(top::Model given, top::Dialect d, const ConvData* c);
+std::string model_text(const Report& r, const ConvStats& c);
 
 // The report as JSON (2-space indent) appended to `out`.
 void write_json(std::string& out, const Report& r);
