@@ -145,9 +145,7 @@ void Page::overview() {
          td("<code>" + markup_escape(c.a) + "</code>") +
          td("<code>" + markup_escape(c.b) + "</code>") +
          td(std::string(top::to_string(dialect_of(r, c)))) +
-         td(markup_escape(model_text(r.model, dialect_of(r, c)).empty()
-                              ? "-"
-                              : model_text(r.model, dialect_of(r, c)))) +
+         td(markup_escape(model_text(r, c).empty() ? "-" : model_text(r, c))) +
          tdn(std::to_string(c.frames)) + tdn(std::to_string(c.requests)) +
          tdn(std::to_string(c.responses)) + tdn(std::to_string(c.paired)) + "</tr>";
   o += "</table>";
