@@ -31,6 +31,7 @@ train(${GEN} 200000 ${capture} 7)
 train(${TOPDUMP} stats ${capture})
 train(${TOPDUMP} stats --json ${capture})
 train(${TOPDUMP} read --json --no-progress ${capture})
+train(${TOPDUMP} report ${capture} -o ${WORK}/train.html)
 # The same traffic over TCP (reassembly) and as a raw serial dump (the
 # stream decoder), in a volume that keeps those paths as hot in the profile
 # as they are in use.

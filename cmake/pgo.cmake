@@ -4,8 +4,8 @@
 # instrumented topdump and gen_capture in ${CMAKE_BINARY_DIR}/pgo/gen (a
 # nested build of this same source tree), runs them on a training set
 # (cmake/pgo-train.cmake: generated UDP and TCP captures and a serial dump,
-# and every bundled capture, through read, read -V, read --json, read --csv
-# and stats), and then compiles the library, topdump_core and topdump with
+# and every bundled capture, through read, read -V, read --json, read --csv,
+# stats and report), and then compiles the library, topdump_core and topdump with
 # the profile. Everything else builds as usual. The training captures are
 # not the benchmark's (other seeds and sizes); bench/README.md gives the
 # figures with and without the profile.

@@ -58,6 +58,10 @@ class Out {
   void hold(std::int64_t ts, std::uint64_t record, bool first);
   void release(bool all);
   void write(const char* p, std::size_t n);
+  // Runs of held bytes leave through one gathered write (writev) per
+  // release, straight from buf_: no copy into stdio's buffer.
+  void gather(const char* p, std::size_t n);
+  void write_gathered();
   std::FILE* f_;
   bool live_;
   std::int64_t window_;
@@ -69,6 +73,7 @@ class Out {
   std::size_t head_ = 0;     // spans_ before it were written
   std::size_t mark_ = 0, dead_ = 0, pending_ = 0, since_ = 0;
   std::int64_t newest_ = kNoTime;
+  std::vector<std::pair<const char*, std::size_t>> runs_;
 };
 
 // Each event of read --json as one line (with '\n') appended to `out`.

@@ -94,16 +94,43 @@ std::optional<std::int64_t> parse_time(std::string_view s) {
 
 std::string format_time(std::int64_t us) {
   if (us == kNoTime) return "-";
-  std::int64_t sec = us / 1000000, frac = us % 1000000;
-  if (frac < 0) frac += 1000000, --sec;
-  std::time_t t = static_cast<std::time_t>(sec);
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char b[48];
-  std::snprintf(b, sizeof b, "%04d-%02d-%02dT%02d:%02d:%02d.%06lldZ", tm.tm_year + 1900,
-                tm.tm_mon + 1, tm.tm_mday, tm.tm_hour, tm.tm_min, tm.tm_sec,
-                static_cast<long long>(frac));
-  return b;
+  // the civil date by chrono's calendar (no gmtime_r and printf per line:
+  // the text output prints one per frame)
+  using namespace std::chrono;
+  const sys_time<microseconds> tp{microseconds(us)};
+  const auto day = floor<days>(tp);
+  const year_month_day ymd{day};
+  const hh_mm_ss<microseconds> hms{tp - day};
+  const int y = static_cast<int>(ymd.year());
+  if (y < 0 || y > 9999) {  // printf's form for years the fast path does not write
+    char b[64];
+    std::snprintf(b, sizeof b, "%04d-%02u-%02uT%02lld:%02lld:%02lld.%06lldZ", y,
+                  static_cast<unsigned>(ymd.month()), static_cast<unsigned>(ymd.day()),
+                  static_cast<long long>(hms.hours().count()),
+                  static_cast<long long>(hms.minutes().count()),
+                  static_cast<long long>(hms.seconds().count()),
+                  static_cast<long long>(hms.subseconds().count()));
+    return b;
+  }
+  char b[27];  // 2024-05-01T12:00:00.123456Z
+  auto put = [&](int at, long long v, int digits) {
+    for (int i = digits - 1; i >= 0; --i, v /= 10) b[at + i] = static_cast<char>('0' + v % 10);
+  };
+  put(0, y, 4);
+  b[4] = '-';
+  put(5, static_cast<unsigned>(ymd.month()), 2);
+  b[7] = '-';
+  put(8, static_cast<unsigned>(ymd.day()), 2);
+  b[10] = 'T';
+  put(11, hms.hours().count(), 2);
+  b[13] = ':';
+  put(14, hms.minutes().count(), 2);
+  b[16] = ':';
+  put(17, hms.seconds().count(), 2);
+  b[19] = '.';
+  put(20, hms.subseconds().count(), 6);
+  b[26] = 'Z';
+  return std::string(b, sizeof b);
 }
 
 // ---------------------------------------------------------------------------

@@ -282,11 +282,6 @@ int run_read(const ReadOptions& o) {
     return 2;
   }
   auto fmt = format_from_string(o.c.format);
-  // The reorder window releases its events in runs of a few kilobytes:
-  // through a 1 MiB stdio buffer they leave in few writes (a system call
-  // costs microseconds on a VM; 4 KiB buffers made read --json 16% slower).
-  static char stdout_buffer[1 << 20];
-  std::setvbuf(stdout, stdout_buffer, _IOFBF, sizeof stdout_buffer);
   Out out(stdout, false, kReorderWindowUs);
   auto sink = make_sink(o.c, out, err);
   if (!sink) {

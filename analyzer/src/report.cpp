@@ -63,13 +63,14 @@ int sev_index(top::Severity s) { return std::min(2, static_cast<int>(s)); }
 Example* ReportSink::finding(std::string_view code, top::Severity sev, std::int64_t ts,
                              const FrameEvent* e, std::uint32_t at, const std::string& message,
                              const std::string* sender) {
-  auto it = codes.find(code);
-  if (it == codes.end()) {
-    it = codes.emplace(std::string(code), CodeStat{}).first;
+  auto known = code_at_.find(code);
+  if (known == code_at_.end()) {
+    auto it = codes.emplace(std::string(code), CodeStat{}).first;
     it->second.code = std::string(code);
     it->second.severity = sev;
+    known = code_at_.emplace(std::string_view(it->first), &it->second).first;
   }
-  CodeStat& c = it->second;
+  CodeStat& c = *known->second;
   c.severity = std::max(c.severity, sev);
   ++c.count;
   if (ts != kNoTime) {
@@ -111,7 +112,9 @@ Example* ReportSink::finding(std::string_view code, top::Severity sev, std::int6
 
 void ReportSink::frame(const FrameEvent& e) {
   if (files.empty() || files.back() != file) files.push_back(file);
-  ConvData& c = convs[e.conv_id()];
+  const std::uint64_t id = e.conv_id();
+  if (!last_conv_ || last_conv_->id != id || last_conv_->frames == 0) last_conv_ = &convs[id];
+  ConvData& c = *last_conv_;
   if (c.frames++ == 0) {
     c.id = e.conv_id();
     c.transport = e.transport;
@@ -123,6 +126,15 @@ void ReportSink::frame(const FrameEvent& e) {
     const top::Frame& f = *e.entry->frame;
     const top::Decoded& d = e.entry->decoded;
     if (d.dialect != top::Dialect::unknown) c.dialect = d.dialect;
+    if (d.role == top::Role::response && d.command && d.command->models && !e.entry->bad_checksum) {
+      const top::ModelSet left = c.models & d.command->models;
+      if (left == 0) {
+        c.conflict = d.command->ident;
+      } else if (left != c.models) {
+        c.models = left;
+        c.narrowed_by = d.command->ident;
+      }
+    }
     for (const auto& x : f.findings)
       finding(top::to_string(x.code), x.severity, e.ts, &e, x.offset, x.message, sender);
     for (const auto& x : d.findings)
@@ -135,18 +147,25 @@ void ReportSink::frame(const FrameEvent& e) {
     }
     if (e.latency_us >= 0) {
       // keyed by the request's identifier, as the statistics are (ERE answers XYZ)
-      std::string ident(f.ident_view());
+      std::string_view ident = f.ident_view();
       if (const Pending& p = pending[e.reply_to % pending.size()]; p.n == e.reply_to)
-        ident.assign(p.ident, 3);
-      auto& bins = latency_bins[ident];
+        ident = std::string_view(p.ident, 3);
+      auto at = bins_at_.find(ident);
+      if (at == bins_at_.end()) {
+        auto it =
+            latency_bins.emplace(std::string(ident), std::array<std::uint64_t, kLatencyBins>{})
+                .first;
+        at = bins_at_.emplace(std::string_view(it->first), &it->second).first;
+      }
+      auto& bins = *at->second;
       ++bins[latency_bin(e.latency_us)];
       auto later = [](const Slow& a, const Slow& b) { return a.latency_us > b.latency_us; };
       if (slowest.size() < kSlowest) {
-        slowest.push_back({e.latency_us, e.reply_to, e.n, e.conv_id(), e.ts, ident, f.raw});
+        slowest.push_back({e.latency_us, e.reply_to, e.n, id, e.ts, std::string(ident), f.raw});
         std::push_heap(slowest.begin(), slowest.end(), later);
       } else if (e.latency_us > slowest.front().latency_us) {
         std::pop_heap(slowest.begin(), slowest.end(), later);
-        slowest.back() = {e.latency_us, e.reply_to, e.n, e.conv_id(), e.ts, ident, f.raw};
+        slowest.back() = {e.latency_us, e.reply_to, e.n, id, e.ts, std::string(ident), f.raw};
         std::push_heap(slowest.begin(), slowest.end(), later);
       }
     }
@@ -159,7 +178,9 @@ void ReportSink::motion(const FrameEvent& e, ConvData& c) {
   const top::Frame& f = *e.entry->frame;
   const top::Decoded& d = e.entry->decoded;
   const std::string_view id = f.ident_view();
-  if (id[0] != 'G' && id != "PTZ" && id != "YPR" && id != "RPS") return;
+  // identifiers are three characters: compared as such, not through memcmp
+  auto is = [&](const char(&x)[4]) { return id[0] == x[0] && id[1] == x[1] && id[2] == x[2]; };
+  if (id[0] != 'G' && !is("PTZ") && !is("YPR") && !is("RPS")) return;
   if (id[0] == 'G' && (id[1] == 'A' || id[1] == 'I') && id[2] == 'C') {  // GAC, GIC
     // the attitude forms of both dialects: yaw, pitch, roll
     if (d.fields.size() != 3 || e.entry->bad_checksum || e.ts == kNoTime) return;
@@ -179,7 +200,7 @@ void ReportSink::motion(const FrameEvent& e, ConvData& c) {
   if (!d.command) return;
   const std::string_view cid = d.command->ident;  // static, unlike the frame's
   if (e.entry->bad_checksum) {
-    if (id[0] == 'G' || id == "PTZ" || id == "YPR" || id == "RPS")
+    if (id[0] == 'G' || is("PTZ") || is("YPR") || is("RPS"))
       c.marks.push_back({e.n, e.ts, cid, "bad checksum (dropped)"});
     return;
   }
@@ -201,18 +222,18 @@ void ReportSink::motion(const FrameEvent& e, ConvData& c) {
                        static_cast<float>(v->value),
                        v->spec ? static_cast<float>(v->spec->scale) : 1.f});
   };
-  if (id == "GAY" || id == "GAP" || id == "GAR" || id == "GIY" || id == "GIP" || id == "GIR") {
+  if (is("GAY") || is("GAP") || is("GAR") || is("GIY") || is("GIP") || is("GIR")) {
     angle(axis_of(id[2]), "angle", "speed");
-  } else if (id == "GAM" || id == "GIM") {
+  } else if (is("GAM") || is("GIM")) {
     angle(0, "yaw", "yaw_speed");
     angle(1, "pitch", "pitch_speed");
-  } else if (id == "GSY" || id == "GSP" || id == "GSR") {
+  } else if (is("GSY") || is("GSP") || is("GSR")) {
     rate(axis_of(id[2]), "speed");
-  } else if (id == "GSM" || id == "YPR" || id == "RPS") {
+  } else if (is("GSM") || is("YPR") || is("RPS")) {
     rate(0, "yaw_speed");
     rate(1, "pitch_speed");
     rate(2, "roll_speed");
-  } else if (id == "PTZ") {
+  } else if (is("PTZ")) {
     const auto* a = field(d, "action");
     c.marks.push_back({e.n, e.ts, cid, a ? a->enum_name : std::string_view()});
   }
@@ -657,14 +678,36 @@ top::Dialect dialect_of(const Report& r, const ConvStats& c) {
   return it == r.data->convs.end() ? c.dialect : it->second.dialect;
 }
 
-std::string model_text(top::Model given, top::Dialect d) {
+std::string model_text(top::Model given, top::Dialect d, const ConvData* c) {
   if (given != top::Model::unknown) return std::string(top::to_string(given)) + " (given)";
-  std::vector<top::Model> of;
+  std::vector<top::Model> of, left;
   for (top::Model m : top::all_models())
-    if (top::dialect_of(m) == d) of.push_back(m);
+    if (top::dialect_of(m) == d) {
+      of.push_back(m);
+      if (c && (c->models & top::model_bit(m))) left.push_back(m);
+    }
   if (of.size() == 1)
     return std::string(top::to_string(of[0])) + " (guessed: the only model of the dialect)";
-  return "";
+  std::string t;
+  if (!left.empty() && left.size() < of.size()) {
+    for (std::size_t i = 0; i < left.size(); ++i)
+      t += (i == 0                 ? ""
+            : i + 1 == left.size() ? " or "
+                                   : ", ") +
+           std::string(top::to_string(left[i]));
+    t += " (guessed: the device sent " + std::string(c->narrowed_by) +
+         (left.size() == 1 ? ", which the documents give to this model only)"
+                           : ", which the documents give to these models only)");
+  }
+  if (c && !c->conflict.empty())
+    t += std::string(t.empty() ? "" : "; ") + "the device sent " + std::string(c->conflict) +
+         ", which the documents give to none of these";
+  return t;
+}
+
+std::string model_text(const Report& r, const ConvStats& c) {
+  const auto it = r.data->convs.find(c.id);
+  return model_text(r.model, dialect_of(r, c), it == r.data->convs.end() ? nullptr : &it->second);
 }
 
 Report analyze(const ReportSink& data, const Stats& stats, top::Severity worst, top::Model model,

@@ -14,6 +14,7 @@
 #include <map>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "analyzer.hpp"
@@ -74,7 +75,12 @@ struct ConvData {
   Transport transport{};
   top::Dialect dialect = top::Dialect::unknown;
   std::uint64_t frames = 0;
-  std::map<std::string, Attitude> attitude;  // "GAC", "GIC"
+  // The models whose catalog has every command the device sent (frames in
+  // the response role with a good checksum), the command that last narrowed
+  // them, and one the device sent that no model left has.
+  top::ModelSet models = static_cast<top::ModelSet>(~0u);
+  std::string_view narrowed_by, conflict;
+  std::map<std::string, Attitude, std::less<>> attitude;  // "GAC", "GIC"
   // deques: no copy as they grow, and stable addresses (AngleResult::cmd)
   std::deque<AngleCommand> angles;
   std::deque<RateCommand> rates;
@@ -140,7 +146,7 @@ class ReportSink : public Sink {
   std::map<std::string, CodeStat, std::less<>> codes;
   std::array<TimeHist, 3> finding_times;  // per severity
   std::vector<Unanswered> unanswered;
-  std::map<std::string, std::array<std::uint64_t, kLatencyBins>> latency_bins;
+  std::map<std::string, std::array<std::uint64_t, kLatencyBins>, std::less<>> latency_bins;
   std::vector<Slow> slowest;  // a min-heap on latency, at most kSlowest
   // The identifier of recent requests by frame number (direct-mapped: an
   // answer comes within a few thousand frames, or latency keys by its own).
@@ -156,6 +162,12 @@ class ReportSink : public Sink {
   Example* finding(std::string_view code, top::Severity sev, std::int64_t ts, const FrameEvent* e,
                    std::uint32_t at, const std::string& message, const std::string* sender);
   void motion(const FrameEvent& e, ConvData& c);
+  // Hashed views of the maps' keys (std::map nodes do not move): a finding
+  // code's statistics and an identifier's latency bins in one hash lookup,
+  // instead of a walk of string comparisons per frame.
+  std::unordered_map<std::string_view, CodeStat*> code_at_;
+  std::unordered_map<std::string_view, std::array<std::uint64_t, kLatencyBins>*> bins_at_;
+  ConvData* last_conv_ = nullptr;
 };
 
 // ---- the analysis --------------------------------------------------------
@@ -253,8 +265,10 @@ Report analyze(const ReportSink& data, const Stats& stats, top::Severity worst, 
 top::Dialect dialect_of(const Report& r, const ConvStats& c);
 
 // The model of a conversation: the one given, else guessed where the dialect
-// leaves one (Topotek: sip), with how it was decided; "" when unknown.
-std::string model_text(top::Model given, top::Dialect d);
+// leaves one (Topotek: sip) or the commands the device sent leave fewer
+// than the dialect's models, with how it was decided; "" when unknown.
+std::string model_text(top::Model given, top::Dialect d, const ConvData* c);
+std::string model_text(const Report& r, const ConvStats& c);
 
 // The report as JSON (2-space indent) appended to `out`.
 void write_json(std::string& out, const Report& r);

@@ -127,9 +127,7 @@ void Page::overview() {
     o += "<tr>" + tdn(std::to_string(c.id)) + td(std::string(to_string(c.transport))) +
          td("<code>" + esc(c.a) + "</code>") + td("<code>" + esc(c.b) + "</code>") +
          td(std::string(top::to_string(dialect_of(r, c)))) +
-         td(esc(model_text(r.model, dialect_of(r, c)).empty()
-                    ? "-"
-                    : model_text(r.model, dialect_of(r, c)))) +
+         td(esc(model_text(r, c).empty() ? "-" : model_text(r, c))) +
          tdn(std::to_string(c.frames)) + tdn(std::to_string(c.requests)) +
          tdn(std::to_string(c.responses)) + tdn(std::to_string(c.paired)) + "</tr>";
   o += "</table>";

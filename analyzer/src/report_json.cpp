@@ -68,7 +68,7 @@ void write_json(std::string& out, const Report& r) {
     text("a", c.a);
     text("b", c.b);
     text("dialect", top::to_string(dialect_of(r, c)));
-    text("model", model_text(r.model, dialect_of(r, c)));
+    text("model", model_text(r, c));
     u("frames", c.frames);
     j.close_object();
   }

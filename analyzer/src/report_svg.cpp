@@ -38,11 +38,30 @@ namespace {
 
 constexpr int kLeft = 58, kRight = 12, kTop = 22, kBottom = 26;
 
-// printf's "%.1f", through to_chars (a plot writes thousands of these).
+// One decimal, as printf's "%.1f" but for ties (rounded away from zero
+// here) and with no "-0.0": a plot writes hundreds of thousands of these,
+// and to_chars with a precision costs a printf each.
 void put_num(std::string& o, double v) {
-  char b[64];
-  const auto r = std::to_chars(b, b + sizeof b, v, std::chars_format::fixed, 1);
-  o.append(b, r.ec == std::errc() ? r.ptr : b);
+  if (!(std::fabs(v) < 1e15)) {  // NaN, infinities, huge: never a coordinate
+    char b[64];
+    const auto r = std::to_chars(b, b + sizeof b, v, std::chars_format::fixed, 1);
+    o.append(b, r.ec == std::errc() ? r.ptr : b);
+    return;
+  }
+  const long long t = std::llround(v * 10);
+  unsigned long long u =
+      t < 0 ? 0ULL - static_cast<unsigned long long>(t) : static_cast<unsigned long long>(t);
+  char b[24];
+  char* p = b + sizeof b;
+  *--p = static_cast<char>('0' + u % 10);
+  *--p = '.';
+  u /= 10;
+  do {
+    *--p = static_cast<char>('0' + u % 10);
+    u /= 10;
+  } while (u);
+  if (t < 0) *--p = '-';
+  o.append(p, static_cast<std::size_t>(b + sizeof b - p));
 }
 std::string num(double v) {
   std::string s;

@@ -1,6 +1,11 @@
 // The text outputs: one line per frame, garbage run and finding, and the
 // -V field tree under each frame.
+#include <sys/uio.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <climits>
 #include <cstdio>
 #include <cstring>
 
@@ -12,6 +17,45 @@ namespace topdump {
 
 void Out::write(const char* p, std::size_t n) {
   if (n && std::fwrite(p, 1, n, f_) != n) failed_ = true;
+}
+
+void Out::gather(const char* p, std::size_t n) {
+  if (n == 0) return;
+  if (!runs_.empty() && runs_.back().first + runs_.back().second == p)
+    runs_.back().second += n;
+  else
+    runs_.emplace_back(p, n);
+}
+
+// The runs go out with writev on the stream's descriptor, after what stdio
+// holds for it; a stream with no descriptor, or a failed writev, takes the
+// rest through fwrite (which then sets the stream's error flag and errno).
+void Out::write_gathered() {
+  const int fd = std::fflush(f_) == 0 ? fileno(f_) : -1;
+  std::size_t i = 0;
+  if (fd >= 0) {
+    std::vector<iovec> iov;
+    iov.reserve(std::min<std::size_t>(runs_.size(), IOV_MAX));
+    while (i < runs_.size()) {
+      iov.clear();
+      for (std::size_t j = i; j < runs_.size() && iov.size() < IOV_MAX; ++j)
+        iov.push_back({const_cast<char*>(runs_[j].first), runs_[j].second});
+      const ssize_t w = ::writev(fd, iov.data(), static_cast<int>(iov.size()));
+      if (w < 0) {
+        if (errno == EINTR) continue;
+        break;
+      }
+      // skip what was written, splitting a run written in part
+      auto left = static_cast<std::size_t>(w);
+      while (left > 0 && left >= runs_[i].second) left -= runs_[i++].second;
+      if (left > 0) {
+        runs_[i].first += left;
+        runs_[i].second -= left;
+      }
+    }
+  }
+  for (; i < runs_.size(); ++i) write(runs_[i].first, runs_[i].second);
+  runs_.clear();
 }
 
 void Out::flush() {
@@ -75,9 +119,10 @@ void Out::release(bool all) {
   while (i < k) {
     std::size_t b = spans_[i].begin, e = b + spans_[i].len;
     for (++i; i < k && spans_[i].begin == e; ++i) e += spans_[i].len;
-    write(buf_.data() + b, e - b);
+    gather(buf_.data() + b, e - b);
     dead_ += e - b;
   }
+  write_gathered();
   for (std::size_t j = head_; j < k; ++j)
     if (spans_[j].pending) --pending_;
   head_ = k;
@@ -88,11 +133,15 @@ void Out::release(bool all) {
     mark_ = dead_ = 0;
     return;
   }
-  if (head_ * 2 > n) {
+  if (head_ >= 4096 && head_ * 2 > n) {
     spans_.erase(spans_.begin(), spans_.begin() + static_cast<std::ptrdiff_t>(head_));
     head_ = 0;
   }
-  if (dead_ > (1u << 18) && dead_ * 2 > buf_.size()) {
+  // Written bytes are dropped once they are seven times what is held (each
+  // byte is moved an eighth of a time on average), or past twice the held
+  // limit.
+  const std::size_t held = buf_.size() - dead_;
+  if (dead_ > (1u << 18) && (dead_ > 7 * held || buf_.size() > 2 * kMaxHeldBytes)) {
     // move the held bytes to the front, in buffer order (each goes to a
     // lower offset, so in place), keeping the buffer's allocation
     std::vector<std::size_t> order(spans_.size() - head_);

@@ -43,7 +43,8 @@ bool exact_decimal(const FieldValue& f, std::int64_t& mantissa, int& decimals) n
 namespace {
 
 // mantissa / 10^decimals with exactly `decimals` digits after the point.
-void append_fixed(std::string& out, std::int64_t mantissa, int decimals) {
+[[gnu::always_inline]] inline void append_fixed(std::string& out, std::int64_t mantissa,
+                                                int decimals) {
   char b[32];
   char* e = b + sizeof b;
   char* p = e;

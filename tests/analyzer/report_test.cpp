@@ -238,4 +238,21 @@ TEST(ReportCli, SampleCaptureFacts) {
   EXPECT_TRUE(has_flag(*gay, "superseded")) << gay->dump(2);
 }
 
+// Item 1: the model given, or guessed from what the device sent: the
+// sample's device sent REC, which the SkyDroid document gives to c10, c10pro
+// and c12 only; Topotek has one model.
+TEST(ReportCli, ModelGuessedFromWhatTheDeviceSent) {
+  const std::string caps = std::string(TOPKIT_SOURCE_DIR) + "/captures/";
+  json r = report_json(caps + "sample.pcap");
+  ASSERT_EQ(r["overview"]["conversations"].size(), 1u);
+  EXPECT_EQ(r["overview"]["conversations"][0]["model"],
+            "c10, c10pro or c12 (guessed: the device sent REC, which the documents give to "
+            "these models only)");
+  r = report_json(caps + "sample.pcap", "--model c13");
+  EXPECT_EQ(r["overview"]["conversations"][0]["model"], "c13 (given)");
+  r = report_json(caps + "topotek-vlan.pcap");
+  EXPECT_EQ(r["overview"]["conversations"][0]["model"],
+            "sip (guessed: the only model of the dialect)");
+}
+
 }  // namespace

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <ctime>
 #include <nlohmann/json.hpp>
 
 #include "pcapio/packet.hpp"
@@ -334,6 +336,39 @@ TEST(Time, ParseAndFormat) {
   EXPECT_EQ(parse_time("1714564800.000001"), T + 1);
   EXPECT_FALSE(parse_time("yesterday"));
   EXPECT_EQ(format_time(T + 1), "2024-05-01T12:00:00.000001Z");
+}
+
+// format_time's calendar arithmetic against its slow twin, gmtime_r and
+// printf, over dates either side of the epoch, leap days, year ends and
+// microseconds.
+TEST(Time, FormatMatchesGmtime) {
+  auto slow = [](std::int64_t us) {
+    std::int64_t sec = us / 1000000, frac = us % 1000000;
+    if (frac < 0) frac += 1000000, --sec;
+    const auto t = static_cast<std::time_t>(sec);
+    std::tm tm{};
+    gmtime_r(&t, &tm);
+    char b[64];
+    std::snprintf(b, sizeof b, "%04d-%02d-%02dT%02d:%02d:%02d.%06lldZ", tm.tm_year + 1900,
+                  tm.tm_mon + 1, tm.tm_mday, tm.tm_hour, tm.tm_min, tm.tm_sec,
+                  static_cast<long long>(frac));
+    return std::string(b);
+  };
+  std::vector<std::int64_t> at = {0,
+                                  -1,
+                                  1,
+                                  951782400000000,     // 2000-02-29
+                                  951868799999999,     // 2000-02-29T23:59:59.999999
+                                  4107542399999999,    // 2100-02-28T23:59:59.999999
+                                  253402300799999999,  // 9999-12-31T23:59:59.999999
+                                  -62135596800000000,  // 0001-01-01
+                                  -2208988800000001};  // 1899-12-31T23:59:59.999999
+  std::uint64_t x = 88172645463325252ULL;              // xorshift: dates from 0001 to 9999
+  for (int i = 0; i < 20000; ++i) {
+    x ^= x << 13, x ^= x >> 7, x ^= x << 17;
+    at.push_back(-62135596800000000 + static_cast<std::int64_t>(x % 315537897600000000ULL));
+  }
+  for (std::int64_t us : at) ASSERT_EQ(format_time(us), slow(us)) << us;
 }
 
 // --- the binary: exit status, stats JSON -----------------------------------------
