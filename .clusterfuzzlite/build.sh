@@ -9,6 +9,18 @@ cd "$SRC/topkit"
 # checkout, and the build directory's cache must name the same source each run.
 cd "$(pwd -P)"
 
+# Coverage instrumentation only for our code, not the standard library's
+# or the header-only libraries' templates (fuzz/coverage-ignorelist.txt;
+# fuzz/README.md, "Speed"): only when the flags ask for SanitizerCoverage
+# (libFuzzer builds; clang warns about the option otherwise).
+case " $CXXFLAGS " in
+  *fuzzer-no-link* | *-fsanitize-coverage=*)
+    ignore="-fsanitize-coverage-ignorelist=$PWD/fuzz/coverage-ignorelist.txt"
+    CFLAGS="$CFLAGS $ignore"
+    CXXFLAGS="$CXXFLAGS $ignore"
+    ;;
+esac
+
 # CMAKE_BUILD_TYPE=None: no optimisation flags of our own on top of theirs.
 cmake -S . -B build/oss -G Ninja \
   -DCMAKE_BUILD_TYPE=None \

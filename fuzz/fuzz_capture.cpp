@@ -11,8 +11,9 @@
 // max_len bytes of an input (as libFuzzer cuts seeds to -max_len); each
 // line is checked by json_check.hpp's validator, and on a sample of inputs
 // (one in 16, chosen from the bytes; every input in replay builds) also by
-// nlohmann::json::accept, which must agree; big_blocks.hpp keeps the
-// Analyzer's 373 KB table from costing a fresh mmap per input.
+// nlohmann::json::accept, which must agree; big_blocks.hpp recycles any
+// block above 128 KiB across inputs (the Analyzer's identifier table was
+// one until it became 10 KB pages, README.md "Speed, third pass").
 #include <sys/mman.h>
 #include <unistd.h>
 

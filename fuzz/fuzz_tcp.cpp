@@ -5,8 +5,8 @@
 // are all a few mutations away; bit 2 of flags makes it absolute instead),
 // a length byte and that many payload bytes. Checks: nothing crashes, leaks
 // or hangs, and the analyzer's bounded TCP buffers keep memory bounded
-// (-rss_limit_mb). big_blocks.hpp keeps the Analyzer's 373 KB table from
-// costing a fresh mmap per input (README.md, "Speed").
+// (-rss_limit_mb). big_blocks.hpp recycles any block above 128 KiB across
+// inputs (README.md, "Speed").
 #include <cstdint>
 #include <string_view>
 

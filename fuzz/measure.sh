@@ -20,9 +20,18 @@
 # and NEW on CPU 1 for even-numbered targets and the other way round for
 # odd ones, so both share whatever load the machine has.
 #
+# Coverage measured by one binary: builds that instrument different code
+# (fuzz/coverage-ignorelist.txt leaves the standard library's and other
+# header-only libraries' functions out) count cov/ft differently, so
+# TOPKIT_MEASURE_RECOV=DIR replays each run's final corpus (its new inputs
+# and the seeds) through DIR's build of the target (-runs=0) and adds the
+# cov/ft that build counts on it: the same yardstick for both runs.
+#
 # Environment:
 #   TOPKIT_MEASURE_BIN=DIR...  binaries (default build/fuzz/fuzz, options
 #                              then from fuzz/)
+#   TOPKIT_MEASURE_RECOV=DIR   also count each final corpus's coverage with
+#                              DIR's binaries
 #   TOPKIT_MEASURE_CPUS="0 1"  the two CPUs to pin to
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -74,7 +83,14 @@ run() {  # run CPU BIN TARGET VARIANT LABEL
   eps=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$dir/log")
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$dir/log")
   cpu_s=$(awk '{print $1 + $2}' "$dir/time")
-  echo "$t|$label|$v|$eps|$(awk -v r="$runs" -v c="$cpu_s" 'BEGIN { printf "%d", (c > 0 ? r / c : 0) }')|$(echo "$last" | grep -oE 'cov: [0-9]+' | cut -d' ' -f2)|$(echo "$last" | grep -oE 'ft: [0-9]+' | cut -d' ' -f2)|$(echo "$last" | grep -oE 'corp: [0-9]+' | cut -d' ' -f2)" >"$dir.row"
+  local recov=""
+  if [ -n "${TOPKIT_MEASURE_RECOV:-}" ]; then
+    taskset -c "$cpu" "$TOPKIT_MEASURE_RECOV/$t" "${f[@]}" -runs=0 -timeout=10 -rss_limit_mb=2048 \
+      "$dir/corpus" "fuzz/corpus/$name" >"$dir/recov" 2>&1 || true
+    recov=$(grep -E '^#[0-9]+[[:space:]]+INITED' "$dir/recov" | tail -n 1 | grep -oE 'cov: [0-9]+ ft: [0-9]+' |
+      sed 's/cov: //; s/ ft: / \/ /')
+  fi
+  echo "$t|$label|$v|$eps|$(awk -v r="$runs" -v c="$cpu_s" 'BEGIN { printf "%d", (c > 0 ? r / c : 0) }')|$(echo "$last" | grep -oE 'cov: [0-9]+' | cut -d' ' -f2)|$(echo "$last" | grep -oE 'ft: [0-9]+' | cut -d' ' -f2)|$(echo "$last" | grep -oE 'corp: [0-9]+' | cut -d' ' -f2)|$recov" >"$dir.row"
 }
 
 i=0
@@ -99,14 +115,14 @@ for t in "${targets[@]}"; do
   i=$((i + 1))
 done
 wait
-echo "| target | build | mutator | exec/s | runs/CPU-s | cov | ft | corpus |"
-echo "|---|---|---|---:|---:|---:|---:|---:|"
+echo "| target | build | mutator | exec/s | runs/CPU-s | cov | ft | corpus | cov / ft by ${TOPKIT_MEASURE_RECOV:-(none)} |"
+echo "|---|---|---|---:|---:|---:|---:|---:|---:|"
 for t in "${targets[@]}"; do
   for b in "${!bins[@]}"; do
     for v in built custom plain none; do
       [ -f "$work/$t.b$b.$v.row" ] || continue
-      IFS='|' read -r c1 c2 c3 c4 c5 c6 c7 c8 <"$work/$t.b$b.$v.row"
-      echo "| $c1 | ${bins[$b]} | $c3 | $c4 | $c5 | $c6 | $c7 | $c8 |"
+      IFS='|' read -r c1 c2 c3 c4 c5 c6 c7 c8 c9 <"$work/$t.b$b.$v.row"
+      echo "| $c1 | ${bins[$b]} | $c3 | $c4 | $c5 | $c6 | $c7 | $c8 | ${c9:--} |"
     done
   done
 done

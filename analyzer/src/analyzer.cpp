@@ -36,10 +36,10 @@ top::Severity FrameEvent::worst() const noexcept {
 
 void Analyzer::Impl::FreeDeleter::operator()(std::uint64_t* p) const noexcept { std::free(p); }
 
-void Analyzer::Impl::allocate_ident_table() {
-  auto* p = static_cast<std::uint64_t*>(std::calloc(top::ident_slots, sizeof(std::uint64_t)));
+void Analyzer::Impl::allocate_ident_page(std::unique_ptr<std::uint64_t[], FreeDeleter>& page) {
+  auto* p = static_cast<std::uint64_t*>(std::calloc(kIdentPage, sizeof(std::uint64_t)));
   if (!p) throw std::bad_alloc();
-  ident_table.reset(p);
+  page.reset(p);
 }
 
 std::string unpack_ident(std::uint32_t k) {
@@ -126,9 +126,10 @@ void Analyzer::Impl::mute(top::Frame& f, FrameEvent& ev) {
 void Analyzer::Impl::materialize(Stats& s) const {
   s.per_ident.clear();
   for (const auto& [k, v] : idents) s.per_ident[unpack_ident(k)] += v;
-  if (ident_table)
-    for (std::size_t i = 0; i < top::ident_slots; ++i)
-      if (ident_table[i]) s.per_ident[top::ident_of(i)] += ident_table[i];
+  for (std::size_t p = 0; p < ident_pages.size(); ++p)
+    if (const auto& page = ident_pages[p])
+      for (std::size_t i = 0; i < kIdentPage; ++i)
+        if (page[i]) s.per_ident[top::ident_of(p * kIdentPage + i)] += page[i];
   s.per_code.clear();
   for (std::size_t i = 0; i < codes.size(); ++i)
     if (codes[i])
