@@ -52,14 +52,27 @@ class Out {
   struct Span {
     std::int64_t key;  // the time; INT64_MAX while an untimed event waits for one
     std::uint64_t record;
-    std::size_t begin, len;
+    std::size_t chunk, begin, len;
     bool pending;
+  };
+  // window_ > 0: held bytes sit in chunks of about kChunk bytes, buf_ being
+  // the one events are appended to (chunk cur_); a chunk is reused once
+  // every event in it is written, so what is held and written stays in the
+  // cache and nothing is moved.
+  static constexpr std::size_t kChunk = 1u << 16;
+  struct Chunk {
+    std::string bytes;  // empty for cur_ (its bytes are buf_)
+    std::size_t live = 0;
   };
   void hold(std::int64_t ts, std::uint64_t record, bool first);
   void release(bool all);
+  void next_chunk();
+  const char* bytes_of(const Span& x) const {
+    return (x.chunk == cur_ ? buf_ : chunks_[x.chunk].bytes).data() + x.begin;
+  }
   void write(const char* p, std::size_t n);
   // Runs of held bytes leave through one gathered write (writev) per
-  // release, straight from buf_: no copy into stdio's buffer.
+  // release, straight from the chunks: no copy into stdio's buffer.
   void gather(const char* p, std::size_t n);
   void write_gathered();
   std::FILE* f_;
@@ -67,11 +80,12 @@ class Out {
   std::int64_t window_;
   bool failed_ = false;
   std::string buf_;
-  // window_ > 0: the held events, their bytes in buf_ from mark_ back;
-  // dead_ bytes of buf_ were written already
+  std::vector<Chunk> chunks_ = std::vector<Chunk>(1);
+  std::vector<std::size_t> free_;  // chunks to reuse
+  std::size_t cur_ = 0;
   std::vector<Span> spans_;  // sorted by key from head_ on (stable)
   std::size_t head_ = 0;     // spans_ before it were written
-  std::size_t mark_ = 0, dead_ = 0, pending_ = 0, since_ = 0;
+  std::size_t mark_ = 0, held_ = 0, pending_ = 0, since_ = 0;
   std::int64_t newest_ = kNoTime;
   std::vector<std::pair<const char*, std::size_t>> runs_;
 };

@@ -81,7 +81,7 @@ void Out::hold(std::int64_t ts, std::uint64_t record, bool first) {
       }
   }
   const std::int64_t key = first ? INT64_MIN : ts == kNoTime ? INT64_MAX : ts;
-  const Span span{key, record, mark_, len, !first && ts == kNoTime};
+  const Span span{key, record, cur_, mark_, len, !first && ts == kNoTime};
   if (spans_.size() == head_ || spans_.back().key <= key) {
     spans_.push_back(span);
   } else {  // a late event: after the held ones of the same time or earlier
@@ -93,10 +93,31 @@ void Out::hold(std::int64_t ts, std::uint64_t record, bool first) {
     std::stable_sort(spans_.begin() + static_cast<std::ptrdiff_t>(head_), spans_.end(),
                      [](const Span& x, const Span& y) { return x.key < y.key; });
   if (span.pending) ++pending_;
+  ++chunks_[cur_].live;
+  held_ += len;
   since_ += len;
   mark_ = buf_.size();
   if (ts != kNoTime && (newest_ == kNoTime || ts > newest_)) newest_ = ts;
-  if (since_ >= (1u << 16) || spans_.size() - head_ > kMaxHeldEvents) release(false);
+  if (since_ >= kChunk || spans_.size() - head_ > kMaxHeldEvents) release(false);
+  if (buf_.size() >= kChunk) next_chunk();
+}
+
+// buf_ (chunk cur_, which holds events still to be written) is kept as that
+// chunk's bytes; appends go on in a free chunk's buffer.
+void Out::next_chunk() {
+  std::size_t next;
+  if (!free_.empty()) {
+    next = free_.back();
+    free_.pop_back();
+  } else {
+    next = chunks_.size();
+    chunks_.emplace_back();
+  }
+  chunks_[cur_].bytes.swap(buf_);
+  buf_.swap(chunks_[next].bytes);
+  buf_.clear();
+  cur_ = next;
+  mark_ = 0;
 }
 
 void Out::release(bool all) {
@@ -107,7 +128,7 @@ void Out::release(bool all) {
     const std::int64_t horizon = newest_ == kNoTime ? INT64_MIN : newest_ - window_;
     while (k < n && spans_[k].key <= horizon) ++k;
     // over the limits: the oldest go out whatever their time, down to 7/8
-    std::size_t held = buf_.size() - dead_;
+    std::size_t held = held_;
     for (std::size_t i = head_; i < k; ++i) held -= spans_[i].len;
     while (k < n && (n - k > kMaxHeldEvents - kMaxHeldEvents / 8 ||
                      (held > kMaxHeldBytes - kMaxHeldBytes / 8 && held > spans_[k].len))) {
@@ -115,49 +136,29 @@ void Out::release(bool all) {
       ++k;
     }
   }
-  std::size_t i = head_;
-  while (i < k) {
-    std::size_t b = spans_[i].begin, e = b + spans_[i].len;
-    for (++i; i < k && spans_[i].begin == e; ++i) e += spans_[i].len;
-    gather(buf_.data() + b, e - b);
-    dead_ += e - b;
-  }
+  for (std::size_t i = head_; i < k; ++i) gather(bytes_of(spans_[i]), spans_[i].len);
   write_gathered();
-  for (std::size_t j = head_; j < k; ++j)
-    if (spans_[j].pending) --pending_;
+  for (std::size_t j = head_; j < k; ++j) {
+    const Span& x = spans_[j];
+    if (x.pending) --pending_;
+    held_ -= x.len;
+    if (--chunks_[x.chunk].live == 0) {
+      if (x.chunk == cur_) {  // every event appended to it is written
+        buf_.clear();
+        mark_ = 0;
+      } else {
+        chunks_[x.chunk].bytes.clear();
+        free_.push_back(x.chunk);
+      }
+    }
+  }
   head_ = k;
   if (head_ == n) {
     spans_.clear();
     head_ = 0;
-    buf_.clear();
-    mark_ = dead_ = 0;
-    return;
-  }
-  if (head_ >= 4096 && head_ * 2 > n) {
+  } else if (head_ >= 4096 && head_ * 2 > n) {
     spans_.erase(spans_.begin(), spans_.begin() + static_cast<std::ptrdiff_t>(head_));
     head_ = 0;
-  }
-  // Written bytes are dropped once they are seven times what is held (each
-  // byte is moved an eighth of a time on average), or past twice the held
-  // limit.
-  const std::size_t held = buf_.size() - dead_;
-  if (dead_ > (1u << 18) && (dead_ > 7 * held || buf_.size() > 2 * kMaxHeldBytes)) {
-    // move the held bytes to the front, in buffer order (each goes to a
-    // lower offset, so in place), keeping the buffer's allocation
-    std::vector<std::size_t> order(spans_.size() - head_);
-    for (std::size_t j = 0; j < order.size(); ++j) order[j] = head_ + j;
-    std::sort(order.begin(), order.end(),
-              [&](std::size_t x, std::size_t y) { return spans_[x].begin < spans_[y].begin; });
-    std::size_t to = 0;
-    for (std::size_t j : order) {
-      Span& x = spans_[j];
-      std::memmove(buf_.data() + to, buf_.data() + x.begin, x.len);
-      x.begin = to;
-      to += x.len;
-    }
-    buf_.resize(to);
-    mark_ = to;
-    dead_ = 0;
   }
 }
 
