@@ -99,24 +99,28 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
   spec.data = data;
   const std::string raw = build_frame(spec);
 
-  const ParseResult r = parse_exact(raw);
+  // Results live across inputs and are decoded into (the forms topdump's
+  // loops use), so their buffers are reused instead of allocated per input.
+  static ParseResult r;
+  static Decoded d, v, c;
+  parse_exact(raw, ParseOptions{}, r);
   FUZZ_CHECK(r.status == ParseStatus::frame && r.frame.checksum_ok,
              "a built frame does not parse: \"" + show(raw) + "\"");
   const Frame& f = r.frame;
   FUZZ_CHECK(f.data() == data && f.ident_view() == cmd.ident,
              "a built frame parses to other parts: \"" + show(raw) + "\"");
 
-  const Decoded d = decode(f, opts);
+  decode(f, opts, d);
   FUZZ_CHECK(d.dialect == kDialect, "decoded in another dialect");
   FUZZ_CHECK(d.command != nullptr && d.command->ident == cmd.ident,
              "decode() did not find " + std::string(cmd.ident));
   std::uint32_t next = f.data_offset;
-  for (const FieldValue& v : d.fields) {
-    FUZZ_CHECK(v.spec != nullptr && v.offset == next,
-               "field " + std::string(v.name()) + " does not follow the previous one");
-    next = v.offset + v.length;
+  for (const FieldValue& fv : d.fields) {
+    FUZZ_CHECK(fv.spec != nullptr && fv.offset == next,
+               "field " + std::string(fv.name()) + " does not follow the previous one");
+    next = fv.offset + fv.length;
     FUZZ_CHECK(next <= f.data_offset + f.data_length, "field past the data");
-    (void)format_value(v);
+    (void)format_value(fv);
   }
   (void)d.summary();
   if (d.form != nullptr) check_reencode(*d.form, d, data);
@@ -125,7 +129,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
   // role, and every finding's code, severity and offset.
   DecodeOptions bare = opts;
   bare.detail = false;
-  const Decoded v = decode(f, bare);
+  decode(f, bare, v);
   bool same = v.dialect == d.dialect && v.role == d.role && v.command == d.command &&
               v.form == d.form && v.fields.empty() && v.findings.size() == d.findings.size();
   for (std::size_t i = 0; same && i < v.findings.size(); ++i)
@@ -138,7 +142,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
   // shapes' results): the same verdict, quirks included.
   static DecodeCache cache;
   bare.cache = &cache;
-  const Decoded c = decode(f, bare);
+  decode(f, bare, c);
   same = c.dialect == v.dialect && c.role == v.role && c.command == v.command && c.form == v.form &&
          c.fields.empty() && c.findings.size() == v.findings.size();
   for (std::size_t i = 0; same && i < c.findings.size(); ++i)

@@ -19,6 +19,7 @@
 
 namespace top {
 
+using detail::cat;
 using detail::decimals_of;
 using detail::FieldCheck;
 using detail::fmt_number;
@@ -87,8 +88,11 @@ struct Ctx {
   Decoded& out;
   bool detail = true;  // DecodeOptions::detail
   bool lowercase_reported = false;
-  void add(FindingCode code, std::uint32_t offset, std::string msg) {
-    out.findings.push_back(make_finding(code, offset, detail ? std::move(msg) : std::string()));
+  // `message()` builds the text, only with detail (topdump stats keeps the
+  // code, severity and offset of a finding, never its text).
+  template <class Message>
+  void add(FindingCode code, std::uint32_t offset, Message&& message) {
+    out.findings.push_back(make_finding(code, offset, detail ? message() : std::string()));
   }
   // The field's text (text, number, nmea and raw kinds; the bytes of an
   // invalid or "none" field), kept only with detail.
@@ -105,8 +109,9 @@ std::string_view judge(Ctx& ctx, const FieldSpec& spec, std::string_view bytes,
   if (!spec.enums.empty()) {
     if (const EnumValue* e = find_enum(spec.enums, integer)) return e->name;
     if (spec.kind == FieldKind::enum_hex || spec.kind == FieldKind::enum_char) {
-      ctx.add(FindingCode::value_out_of_range, offset,
-              std::string(spec.name) + ": '" + std::string(bytes) + "' is not a documented value");
+      ctx.add(FindingCode::value_out_of_range, offset, [&] {
+        return cat({spec.name, ": '", bytes, "' is not a documented value"});
+      });
       return {};
     }
   }
@@ -114,10 +119,10 @@ std::string_view judge(Ctx& ctx, const FieldSpec& spec, std::string_view bytes,
   const double v = value();
   if (v < spec.min - 1e-9 || v > spec.max + 1e-9) {
     int d = decimals_of(spec.scale);
-    ctx.add(FindingCode::value_out_of_range, offset,
-            std::string(spec.name) + " " + fmt_number(v, d) + (spec.unit.empty() ? "" : " ") +
-                std::string(spec.unit) + " outside [" + fmt_number(spec.min, d) + ", " +
-                fmt_number(spec.max, d) + "]");
+    ctx.add(FindingCode::value_out_of_range, offset, [&] {
+      return cat({spec.name, " ", fmt_number(v, d), spec.unit.empty() ? "" : " ", spec.unit,
+                  " outside [", fmt_number(spec.min, d), ", ", fmt_number(spec.max, d), "]"});
+    });
   }
   return {};
 }
@@ -133,10 +138,11 @@ void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes, std::
     ctx.keep(fv, bytes);
     return;
   }
-  auto bad = [&](std::string why) {
+  // "<name>: " + why, in up to three pieces
+  auto bad = [&](std::string_view why, std::string_view more = {}, std::string_view end = {}) {
     fv.valid = false;
     ctx.keep(fv, bytes);
-    ctx.add(FindingCode::bad_field, offset, std::string(spec.name) + ": " + why);
+    ctx.add(FindingCode::bad_field, offset, [&] { return cat({spec.name, ": ", why, more, end}); });
   };
   switch (spec.kind) {
     case FieldKind::hex_u:
@@ -147,14 +153,15 @@ void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes, std::
       bool lower = false;
       for (char c : bytes) {
         int h = hex_value(c);
-        if (h < 0) return bad("'" + std::string(bytes) + "' is not hex");
+        if (h < 0) return bad("'", bytes, "' is not hex");
         lower |= is_lower_hex(c);
         v = v * 16 + static_cast<unsigned>(h);
       }
       if (lower && !ctx.lowercase_reported) {
         ctx.lowercase_reported = true;
-        ctx.add(FindingCode::lowercase_hex, offset,
-                std::string(spec.name) + ": hex digits '" + std::string(bytes) + "' in lowercase");
+        ctx.add(FindingCode::lowercase_hex, offset, [&] {
+          return cat({spec.name, ": hex digits '", bytes, "' in lowercase"});
+        });
       }
       std::int64_t iv = static_cast<std::int64_t>(v);
       if (spec.kind == FieldKind::hex_s) {
@@ -171,7 +178,7 @@ void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes, std::
       std::int64_t v = 0;
       if (bytes.empty()) return bad("no digits");
       for (char c : bytes) {
-        if (c < '0' || c > '9') return bad("'" + std::string(bytes) + "' is not decimal");
+        if (c < '0' || c > '9') return bad("'", bytes, "' is not decimal");
         v = v * 10 + (c - '0');
       }
       fv.integer = v;
@@ -197,7 +204,7 @@ void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes, std::
       double v = 0;
       std::string_view t = bytes;
       while (!t.empty() && t.front() == ' ') t.remove_prefix(1);
-      if (!parse_number(t, v)) return bad("'" + std::string(bytes) + "' is not a number");
+      if (!parse_number(t, v)) return bad("'", bytes, "' is not a number");
       fv.value = v * spec.scale;
       fv.integer = static_cast<std::int64_t>(v);
       ctx.keep(fv, bytes);
@@ -208,7 +215,7 @@ void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes, std::
     case FieldKind::le_u16:
     case FieldKind::le_i32: {
       std::size_t w = spec.kind == FieldKind::le_i32 ? 4 : 2;
-      if (bytes.size() != w) return bad("needs " + std::to_string(w) + " bytes");
+      if (bytes.size() != w) return bad("needs ", std::to_string(w), " bytes");
       std::uint32_t u = 0;
       for (std::size_t i = 0; i < w; ++i)
         u |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i])) << (8 * i);
@@ -229,10 +236,10 @@ void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes, std::
       if (bytes.size() < 2) return bad("too short for a hemisphere and a coordinate");
       char hemi = bytes[0];
       if (hemi != 'E' && hemi != 'W' && hemi != 'N' && hemi != 'S')
-        return bad(std::string("hemisphere '") + hemi + "' is not N S E W");
+        return bad("hemisphere '", {&hemi, 1}, "' is not N S E W");
       double raw = 0;
       if (!parse_number(bytes.substr(1), raw) || raw < 0)
-        return bad("'" + std::string(bytes.substr(1)) + "' is not dddmm.mmmm");
+        return bad("'", bytes.substr(1), "' is not dddmm.mmmm");
       double deg = std::floor(raw / 100.0);
       double minutes = raw - deg * 100.0;
       double v = deg + minutes / 60.0;
@@ -304,7 +311,7 @@ bool judge_planned(Ctx& ctx, const FormPlan& plan, const Frame& frame) {
     const bool labelled = c.labels & (iv >= 0) & (iv < 64) & ((c.label_bits >> (iv & 63)) & 1u);
     if (!labelled && (c.enum_only || iv < c.lo || iv > c.hi))
       ctx.add(FindingCode::value_out_of_range, frame.data_offset + c.end - c.bits / 4,
-              std::string());
+              [] { return std::string(); });
   }
   return true;
 }
@@ -345,32 +352,38 @@ void decode_shape(Ctx& ctx, const Frame& frame, const DecodeOptions& opts, Diale
                       : message(frame.declared_length, g_class);
   }
   if (d == Dialect::skydroid && (frame.header == Header::ext8 || frame.header == Header::ext16))
-    ctx.add(FindingCode::ext_header_skydroid, 0,
-            std::string(to_string(frame.header)) +
-                " is a Topotek extended header; SkyDroid defines only #TP/#tp");
+    ctx.add(FindingCode::ext_header_skydroid, 0, [&] {
+      return cat({to_string(frame.header),
+                  " is a Topotek extended header; SkyDroid defines only #TP/#tp"});
+    });
 
   if (!cmd) {
-    ctx.add(FindingCode::unknown_ident, ident_at,
-            "identifier " + std::string(ident) + " is not in the " +
-                std::string(d == Dialect::unknown ? "TOP" : to_string(d)) + " catalog");
+    ctx.add(FindingCode::unknown_ident, ident_at, [&] {
+      return cat({"identifier ", ident, " is not in the ",
+                  d == Dialect::unknown ? "TOP" : to_string(d), " catalog"});
+    });
     return;
   }
   if (opts.model != Model::unknown && !cmd->supports(opts.model)) {
     // Not in the document for the model: a warning when field evidence says
     // the firmware takes it anyway (device.hpp), an error when nothing does.
     const FieldSupport* fs = field_supported(d, opts.model, ident, std::nullopt);
-    ctx.add(FindingCode::unsupported_on_model, ident_at,
-            std::string(ident) + " (" + std::string(cmd->section) + ") is not listed for " +
-                std::string(to_string(opts.model)) +
-                (fs ? "; field: " + std::string(fs->evidence) : std::string()));
+    ctx.add(FindingCode::unsupported_on_model, ident_at, [&] {
+      return cat({ident, " (", cmd->section, ") is not listed for ", to_string(opts.model),
+                  fs ? "; field: " : "", fs ? fs->evidence : ""});
+    });
     Finding& x = out.findings.back();
     x.severity = fs ? Severity::warning : Severity::error;
     if (fs) x.quirk = fs->evidence;
   }
   if (ident == "ERE")
-    ctx.add(FindingCode::error_reply, ident_at,
-            std::string("the device rejected a command as invalid (") + frame.src + " to " +
-                frame.dst + ")");
+    ctx.add(FindingCode::error_reply, ident_at, [&] {
+      return cat({"the device rejected a command as invalid (",
+                  {&frame.src, 1},
+                  " to ",
+                  {&frame.dst, 1},
+                  ")"});
+    });
 
   const std::size_t len = frame.data_length;
   const FormSpec* form = nullptr;
@@ -393,29 +406,39 @@ void decode_shape(Ctx& ctx, const Frame& frame, const DecodeOptions& opts, Diale
       break;
     }
     if (form)
-      ctx.add(FindingCode::unswapped_addresses, 3,
-              std::string("laid out as a ") +
-                  (form->role == Role::response ? "response" : "request") + " but addressed " +
-                  frame.src + " to " + frame.dst);
+      ctx.add(FindingCode::unswapped_addresses, 3, [&] {
+        return cat({"laid out as a ",
+                    form->role == Role::response ? "response" : "request",
+                    " but addressed ",
+                    {&frame.src, 1},
+                    " to ",
+                    {&frame.dst, 1}});
+      });
   }
   if (!control_known) {
-    ctx.add(FindingCode::unsupported_control, 6,
-            std::string(ident) + " has no '" + std::string(1, frame.control) + "' form in " +
-                std::string(cmd->section));
+    ctx.add(FindingCode::unsupported_control, 6, [&] {
+      return cat({ident, " has no '", {&frame.control, 1}, "' form in ", cmd->section});
+    });
     return;
   }
   if (!form) {
-    std::string allowed;
-    for (const FormSpec& f : cmd->forms) {
-      if (frame.control != 0 && f.control != frame.control) continue;
-      if (!allowed.empty()) allowed += ", ";
-      allowed += f.min_length == f.max_length
-                     ? std::to_string(f.min_length)
-                     : std::to_string(f.min_length) + "-" + std::to_string(f.max_length);
-    }
-    ctx.add(FindingCode::data_length, frame.data_offset,
-            std::to_string(len) + " data byte(s); " + std::string(ident) + " '" +
-                std::string(1, frame.control ? frame.control : '?') + "' takes " + allowed);
+    ctx.add(FindingCode::data_length, frame.data_offset, [&] {
+      std::string m = cat({std::to_string(len),
+                           " data byte(s); ",
+                           ident,
+                           " '",
+                           {frame.control ? &frame.control : "?", 1},
+                           "' takes "});
+      bool first = true;
+      for (const FormSpec& f : cmd->forms) {
+        if (frame.control != 0 && f.control != frame.control) continue;
+        if (!first) m += ", ";
+        first = false;
+        m += std::to_string(f.min_length);
+        if (f.min_length != f.max_length) m.append("-").append(std::to_string(f.max_length));
+      }
+      return m;
+    });
     return;
   }
   out.form = form;
@@ -514,9 +537,10 @@ static void decode_frame(const Frame& frame, const DecodeOptions& opts, Decoded&
     if (pos >= data.size() && fs.width != 0) break;
     std::size_t w = fs.width == 0 ? data.size() - pos : fs.width;
     if (pos + w > data.size()) {
-      ctx.add(FindingCode::data_length, static_cast<std::uint32_t>(frame.data_offset + pos),
-              std::string(fs.name) + " needs " + std::to_string(w) + " byte(s), " +
-                  std::to_string(data.size() - pos) + " left");
+      ctx.add(FindingCode::data_length, static_cast<std::uint32_t>(frame.data_offset + pos), [&] {
+        return cat({fs.name, " needs ", std::to_string(w), " byte(s), ",
+                    std::to_string(data.size() - pos), " left"});
+      });
       break;
     }
     const auto at = static_cast<std::uint32_t>(frame.data_offset + pos);

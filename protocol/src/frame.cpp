@@ -11,6 +11,7 @@
 
 namespace top {
 
+using detail::cat;
 using detail::hex_value;
 using detail::is_hex;
 using detail::is_lower_hex;
@@ -122,7 +123,7 @@ std::string hex2(std::uint8_t v) {
 
 std::string printable(char c) {
   auto u = static_cast<unsigned char>(c);
-  if (u >= 0x20 && u < 0x7F) return std::string("'") + c + "'";
+  if (u >= 0x20 && u < 0x7F) return {'\'', c, '\''};
   char b[8];
   std::snprintf(b, sizeof b, "0x%02X", u);
   return b;
@@ -148,8 +149,8 @@ Verdict need_more() { return Verdict{}; }
 
 Verdict truncated(Finding& err, std::size_t have, std::size_t want) {
   return invalid(err, FindingCode::truncated, have,
-                 "input ends after " + std::to_string(have) + " bytes of a frame that needs " +
-                     std::to_string(want));
+                 cat({"input ends after ", std::to_string(have), " bytes of a frame that needs ",
+                      std::to_string(want)}));
 }
 
 // Header variants whose checksum a sender may have used by mistake.
@@ -245,7 +246,7 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
   if (n == 0) return at_end ? truncated(err, 0, 1) : need_more();
   if (b[0] != '#')
     return invalid(err, FindingCode::bad_header, 0,
-                   "frame must start with '#', got " + printable(b[0]));
+                   cat({"frame must start with '#', got ", printable(b[0])}));
 
   Layout lay;
   // --- header -----------------------------------------------------------
@@ -259,7 +260,7 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
       if (!okc)
         return invalid(
             err, FindingCode::bad_header, 1,
-            "'#' followed by " + printable(b[1]) + ", not a TOP header (#TP #tp #tP #Tp)");
+            cat({"'#' followed by ", printable(b[1]), ", not a TOP header (#TP #tp #tP #Tp)"}));
     }
     lay.header = Header::tmp_quirk;
     lay.ident_at = 6;
@@ -269,13 +270,14 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
     lay.hex_length = false;
   } else {
     if (b[1] != 'T' && b[1] != 't')
-      return invalid(err, FindingCode::bad_header, 1,
-                     "'#' followed by " + printable(b[1]) + ", not a TOP header (#TP #tp #tP #Tp)");
+      return invalid(
+          err, FindingCode::bad_header, 1,
+          cat({"'#' followed by ", printable(b[1]), ", not a TOP header (#TP #tp #tP #Tp)"}));
     if (short_of(3)) return at_end ? truncated(err, n, 12) : need_more();
     if (b[2] != 'P' && b[2] != 'p')
       return invalid(
           err, FindingCode::bad_header, 2,
-          std::string("\"#") + b[1] + "\" followed by " + printable(b[2]) + ", not a TOP header");
+          cat({"\"#", b.substr(1, 1), "\" followed by ", printable(b[2]), ", not a TOP header"}));
     if (b[1] == 'T')
       lay.header = b[2] == 'P' ? Header::fixed : Header::ext16;
     else
@@ -291,8 +293,8 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
       if (short_of(i + 1)) return at_end ? truncated(err, n, 12) : need_more();
       if (!is_address(b[i]))
         return invalid(err, FindingCode::bad_address, i,
-                       std::string(i == 3 ? "source" : "destination") + " address " +
-                           printable(b[i]) + " is not one of U M D E P G");
+                       cat({i == 3 ? "source" : "destination", " address ", printable(b[i]),
+                            " is not one of U M D E P G"}));
     }
     // --- length and control ----------------------------------------------
     if (short_of(6)) return at_end ? truncated(err, n, 12) : need_more();
@@ -301,7 +303,7 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
       case Header::variable: {
         if (!is_hex(b[5]))
           return invalid(err, FindingCode::bad_length_char, 5,
-                         "length char " + printable(b[5]) + " is not a hex digit");
+                         cat({"length char ", printable(b[5]), " is not a hex digit"}));
         if (is_lower_hex(b[5]))
           notes.push_back(
               make_finding(FindingCode::lowercase_hex, 5, "length char written in lowercase"));
@@ -314,7 +316,7 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
           if (short_of(8)) return at_end ? truncated(err, n, 13) : need_more();
           if (b[7] != 'r' && b[7] != 'w')
             return invalid(err, FindingCode::bad_control, 6,
-                           "control char " + printable(b[6]) + " is not r or w");
+                           cat({"control char ", printable(b[6]), " is not r or w"}));
           lay.control = b[7];
           lay.declared = static_cast<std::size_t>(hex_value(b[5])) * 16 +
                          static_cast<std::size_t>(hex_value(b[6]));
@@ -324,7 +326,7 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
           lay.data_at = 11;
         } else {
           return invalid(err, FindingCode::bad_control, 6,
-                         "control char " + printable(b[6]) + " is not r or w");
+                         cat({"control char ", printable(b[6]), " is not r or w"}));
         }
         break;
       }
@@ -334,7 +336,7 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
         if (short_of(7)) return at_end ? truncated(err, n, 12) : need_more();
         if (b[6] != 'r' && b[6] != 'w')
           return invalid(err, FindingCode::bad_control, 6,
-                         "control char " + printable(b[6]) + " is not r or w");
+                         cat({"control char ", printable(b[6]), " is not r or w"}));
         lay.control = b[6];
         break;
       }
@@ -357,13 +359,14 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
   for (std::size_t i = lay.ident_at; i < lay.ident_at + 3; ++i) {
     if (short_of(i + 1)) return at_end ? truncated(err, n, lay.data_at + 2) : need_more();
     if (!is_ident_char(b[i]))
-      return invalid(err, FindingCode::bad_ident, i,
-                     "identifier char " + printable(b[i]) + " is not an uppercase letter or digit");
+      return invalid(
+          err, FindingCode::bad_ident, i,
+          cat({"identifier char ", printable(b[i]), " is not an uppercase letter or digit"}));
   }
   if (lay.declared > opts.max_data_length)
     return invalid(err, FindingCode::frame_too_long, 5,
-                   "declared data length " + std::to_string(lay.declared) +
-                       " exceeds the limit of " + std::to_string(opts.max_data_length));
+                   cat({"declared data length ", std::to_string(lay.declared),
+                        " exceeds the limit of ", std::to_string(opts.max_data_length)}));
 
   f.src = lay.header == Header::tmp_quirk ? b[2] : b[3];
   f.dst = lay.header == Header::tmp_quirk ? b[3] : b[4];
@@ -386,7 +389,7 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
   } else if (lay.two_digit) {
     notes.push_back(
         make_finding(FindingCode::two_digit_length, 5,
-                     "length written as two hex digits (0x" + std::string(b.substr(5, 2)) + ")"));
+                     cat({"length written as two hex digits (0x", b.substr(5, 2), ")"})));
   }
 
   // --- data and checksum -------------------------------------------------------
@@ -424,8 +427,8 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
       if (is_lower_hex(b[declared_cs]) || is_lower_hex(b[declared_cs + 1]))
         notes.push_back(
             make_finding(FindingCode::checksum_case, static_cast<std::uint32_t>(declared_cs),
-                         "checksum " + std::string(b.substr(declared_cs, 2)) +
-                             " is right but lowercase; strict receivers expect " + hex2(v)));
+                         cat({"checksum ", b.substr(declared_cs, 2),
+                              " is right but lowercase; strict receivers expect ", hex2(v)})));
       return finish(L, true, v, prefix_declared);
     }
   }
@@ -453,10 +456,10 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
       found_prefix = s;
     }
     if (count == 1) {
-      notes.push_back(make_finding(FindingCode::length_mismatch, 5,
-                                   "declared length " + std::to_string(L) +
-                                       " but the checksum validates with " + std::to_string(found) +
-                                       " data bytes; decoded with " + std::to_string(found)));
+      notes.push_back(make_finding(
+          FindingCode::length_mismatch, 5,
+          cat({"declared length ", std::to_string(L), " but the checksum validates with ",
+               std::to_string(found), " data bytes; decoded with ", std::to_string(found)})));
       return finish(found, true, found_value, found_prefix);
     }
   }
@@ -467,8 +470,8 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
       unsigned p = sum_to(declared_cs);
       notes.push_back(make_finding(FindingCode::no_checksum,
                                    static_cast<std::uint32_t>(declared_cs),
-                                   "frame ends where its checksum should be (expected " +
-                                       hex2(static_cast<std::uint8_t>(p)) + ")"));
+                                   cat({"frame ends where its checksum should be (expected ",
+                                        hex2(static_cast<std::uint8_t>(p)), ")"})));
       return finish(L, false, 0, p);
     }
     return truncated(err, n, declared_end);
@@ -477,14 +480,14 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
   // No checksum at all: the data is followed directly by a boundary.
   if (is_boundary(b[declared_cs])) {
     notes.push_back(make_finding(FindingCode::no_checksum, static_cast<std::uint32_t>(declared_cs),
-                                 "frame ends where its checksum should be (expected " +
-                                     hex2(static_cast<std::uint8_t>(prefix_declared)) + ")"));
+                                 cat({"frame ends where its checksum should be (expected ",
+                                      hex2(static_cast<std::uint8_t>(prefix_declared)), ")"})));
     return finish(L, false, 0, prefix_declared);
   }
 
   // A wrong checksum: say whether it is the sum under another header case.
   std::uint8_t expected = static_cast<std::uint8_t>(prefix_declared & 0xFF);
-  std::string got(b.substr(declared_cs, 2));
+  const std::string_view got = b.substr(declared_cs, 2);
   int hi = hex_value(b[declared_cs]), lo = hex_value(b[declared_cs + 1]);
   bool present = hi >= 0 && lo >= 0;
   std::uint8_t value = present ? static_cast<std::uint8_t>(hi * 16 + lo) : 0;
@@ -495,19 +498,27 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
       if (v[0] == b[1] && v[1] == b[2]) continue;
       unsigned alt = base + static_cast<unsigned char>(v[0]) + static_cast<unsigned char>(v[1]);
       if (static_cast<std::uint8_t>(alt & 0xFF) == value) {
-        notes.push_back(make_finding(
-            FindingCode::checksum_header_case, static_cast<std::uint32_t>(declared_cs),
-            "checksum " + got + " is the sum with header #" + std::string(v.data(), 2) + ", not #" +
-                std::string(b.substr(1, 2)) + " (expected " + hex2(expected) + ")",
-            "skydroid-doc-header-case"));
+        notes.push_back(make_finding(FindingCode::checksum_header_case,
+                                     static_cast<std::uint32_t>(declared_cs),
+                                     cat({"checksum ",
+                                          got,
+                                          " is the sum with header #",
+                                          {v.data(), 2},
+                                          ", not #",
+                                          b.substr(1, 2),
+                                          " (expected ",
+                                          hex2(expected),
+                                          ")"}),
+                                     "skydroid-doc-header-case"));
         return finish(L, true, value, prefix_declared);
       }
     }
   }
   notes.push_back(make_finding(
       FindingCode::bad_checksum, static_cast<std::uint32_t>(declared_cs),
-      present ? "checksum " + got + ", expected " + hex2(expected)
-              : "checksum field '" + got + "' is not two hex digits, expected " + hex2(expected)));
+      present
+          ? cat({"checksum ", got, ", expected ", hex2(expected)})
+          : cat({"checksum field '", got, "' is not two hex digits, expected ", hex2(expected)})));
   return finish(L, present, value, prefix_declared);
 }
 
@@ -535,9 +546,9 @@ void parse_frame(std::string_view bytes, bool at_end, const ParseOptions& opts, 
   if (r.status != ParseStatus::frame) reset_keep_capacity(out.frame);
 }
 
-ParseResult parse_exact(std::string_view bytes, const ParseOptions& opts) {
-  ParseResult r = parse_frame(bytes, true, opts);
-  if (r.status != ParseStatus::frame) return r;
+void parse_exact(std::string_view bytes, const ParseOptions& opts, ParseResult& r) {
+  parse_frame(bytes, true, opts, r);
+  if (r.status != ParseStatus::frame) return;
   std::size_t i = r.consumed;
   std::size_t crlf = 0;
   while (i < bytes.size() && (bytes[i] == '\r' || bytes[i] == '\n')) {
@@ -548,13 +559,18 @@ ParseResult parse_exact(std::string_view bytes, const ParseOptions& opts) {
     r.frame.terminator = static_cast<std::uint8_t>(std::min<std::size_t>(crlf, 255));
     r.frame.findings.push_back(
         make_finding(FindingCode::crlf, static_cast<std::uint32_t>(r.consumed),
-                     "frame followed by " + std::to_string(crlf) + " CR/LF byte(s)"));
+                     cat({"frame followed by ", std::to_string(crlf), " CR/LF byte(s)"})));
   }
   if (i < bytes.size())
     r.frame.findings.push_back(
         make_finding(FindingCode::trailing_bytes, static_cast<std::uint32_t>(i),
-                     std::to_string(bytes.size() - i) + " byte(s) after the frame"));
+                     cat({std::to_string(bytes.size() - i), " byte(s) after the frame"})));
   r.consumed = bytes.size();
+}
+
+ParseResult parse_exact(std::string_view bytes, const ParseOptions& opts) {
+  ParseResult r;
+  parse_exact(bytes, opts, r);
   return r;
 }
 

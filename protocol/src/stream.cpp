@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "chars.hpp"
+
 namespace top {
 
 namespace {
@@ -83,9 +85,9 @@ void StreamDecoder::compact() {
 void note_terminator(Frame& f, std::size_t count) {
   if (count == 0) return;
   f.terminator = static_cast<std::uint8_t>(std::min<std::size_t>(count, 255));
-  f.findings.push_back(
-      make_finding(FindingCode::crlf, static_cast<std::uint32_t>(f.raw.size()),
-                   "frame followed by " + std::to_string(f.terminator) + " CR/LF byte(s)"));
+  f.findings.push_back(make_finding(
+      FindingCode::crlf, static_cast<std::uint32_t>(f.raw.size()),
+      detail::cat({"frame followed by ", std::to_string(f.terminator), " CR/LF byte(s)"})));
 }
 
 void StreamDecoder::release_pending() {
@@ -132,12 +134,13 @@ void StreamDecoder::flush_garbage() {
   it.offset = garbage_start_;
   it.length = garbage_len_;
   it.preview = std::move(garbage_preview_);
-  std::string what = std::to_string(garbage_len_) + " byte(s) outside any frame";
+  const std::string count = std::to_string(garbage_len_);
   if (garbage_has_reason_) {
     it.finding = std::move(garbage_reason_);
-    it.finding.message = what + ": " + it.finding.message;
+    it.finding.message = detail::cat({count, " byte(s) outside any frame: ", it.finding.message});
   } else {
-    it.finding = make_finding(FindingCode::garbage, 0, what);
+    it.finding =
+        make_finding(FindingCode::garbage, 0, detail::cat({count, " byte(s) outside any frame"}));
   }
   ready_.push_back(std::move(it));
   garbage_len_ = 0;
@@ -207,8 +210,9 @@ void StreamDecoder::pump() {
               make_finding(r.frame.has(FindingCode::no_checksum) ? FindingCode::no_checksum
                                                                  : FindingCode::bad_checksum,
                            0,
-                           "abandoned a frame that fails its checksum for a valid frame at +" +
-                               std::to_string(q - pos_));
+                           detail::cat({"abandoned a frame that fails its checksum for a "
+                                        "valid frame at +",
+                                        std::to_string(q - pos_)}));
           add_garbage(pos_, q - pos_, &why);
           pos_ = q;
           yielded = true;

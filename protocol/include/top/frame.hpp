@@ -125,6 +125,8 @@ void parse_frame(std::string_view bytes, bool at_end, const ParseOptions& opts, 
 // Parses a buffer that should hold exactly one frame: a missing frame gives
 // invalid, anything after the frame but CR/LF gives a trailing-bytes finding.
 ParseResult parse_exact(std::string_view bytes, const ParseOptions& opts = {});
+// The same into `out`, reusing its capacity as parse_frame does.
+void parse_exact(std::string_view bytes, const ParseOptions& opts, ParseResult& out);
 
 // How a frame is built.
 struct BuildSpec {
