@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "check.hpp"
+#include "reuse.hpp"
 #include "top/top.hpp"
 
 using namespace top;
@@ -99,10 +100,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
   spec.data = data;
   const std::string raw = build_frame(spec);
 
-  // Results live across inputs and are decoded into (the forms topdump's
-  // loops use), so their buffers are reused instead of allocated per input.
-  static ParseResult r;
-  static Decoded d, v, c;
+  // Kept across inputs (reuse.hpp).
+  static ParseResult r = topfuzz::reused_parse_result();
+  static Decoded d = topfuzz::reused_decoded(), v = topfuzz::reused_decoded(),
+                 c = topfuzz::reused_decoded();
   parse_exact(raw, ParseOptions{}, r);
   FUZZ_CHECK(r.status == ParseStatus::frame && r.frame.checksum_ok,
              "a built frame does not parse: \"" + show(raw) + "\"");
@@ -114,13 +115,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
   FUZZ_CHECK(d.dialect == kDialect, "decoded in another dialect");
   FUZZ_CHECK(d.command != nullptr && d.command->ident == cmd.ident,
              "decode() did not find " + std::string(cmd.ident));
+  static std::string text = topfuzz::reused_text();
   std::uint32_t next = f.data_offset;
   for (const FieldValue& fv : d.fields) {
     FUZZ_CHECK(fv.spec != nullptr && fv.offset == next,
                "field " + std::string(fv.name()) + " does not follow the previous one");
     next = fv.offset + fv.length;
     FUZZ_CHECK(next <= f.data_offset + f.data_length, "field past the data");
-    (void)format_value(fv);
+    text.clear();
+    append_value(fv, text);  // format_value() without a string per field
   }
   (void)d.summary();
   if (d.form != nullptr) check_reencode(*d.form, d, data);

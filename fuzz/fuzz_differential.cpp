@@ -24,6 +24,7 @@
 #include "check.hpp"
 #include "mutator.hpp"
 #include "reference.hpp"
+#include "reuse.hpp"
 #include "top/top.hpp"
 
 using topfuzz::show;
@@ -42,7 +43,8 @@ void compare_fields(const top::Frame& f, const topref::Frame& g, std::string_vie
     if (layout == nullptr) continue;
     top::DecodeOptions o;
     o.dialect = d;
-    const top::Decoded dec = top::decode(f, o);
+    static top::Decoded dec = topfuzz::reused_decoded();
+    top::decode(f, o, dec);
     if (dec.form == nullptr) continue;  // the catalog has no layout for it (yet)
     const std::vector<topref::Value> ref = topref::decode(*layout, g.data);
     FUZZ_CHECK(dec.fields.size() == ref.size(),
@@ -70,7 +72,8 @@ void compare_fields(const top::Frame& f, const topref::Frame& g, std::string_vie
 void single_frame(std::string_view in) {
   const std::optional<topref::Frame> g = topref::parse(in);
   const bool ref_ok = g.has_value() && g->size == in.size();
-  const top::ParseResult r = top::parse_exact(in);
+  static top::ParseResult r = topfuzz::reused_parse_result();
+  top::parse_exact(in, {}, r);
   const bool fast_ok = r.status == top::ParseStatus::frame && r.consumed == in.size() &&
                        r.frame.raw.size() == in.size() && clean(r.frame);
   FUZZ_CHECK(ref_ok == fast_ok, "\"" + show(in) + "\": the reference " +
@@ -78,17 +81,27 @@ void single_frame(std::string_view in) {
                                     (fast_ok ? "accepts" : "rejects") + " it");
   if (!ref_ok) return;
   const top::Frame& f = r.frame;
-  const std::string header(f.header_text().substr(1));
-  FUZZ_CHECK(header == g->header && f.src == g->src && f.dst == g->dst && f.control == g->control &&
-                 f.ident_view() == g->ident && f.declared_length == g->length &&
-                 f.data_length == g->length && f.data_offset == g->data_offset &&
-                 f.data() == g->data && f.checksum == g->checksum,
+  FUZZ_CHECK(f.header_text().substr(1) == g->header && f.src == g->src && f.dst == g->dst &&
+                 f.control == g->control && f.ident_view() == g->ident &&
+                 f.declared_length == g->length && f.data_length == g->length &&
+                 f.data_offset == g->data_offset && f.data() == g->data &&
+                 f.checksum == g->checksum,
              "\"" + show(in) + "\": the parts differ from the reference's");
   compare_fields(f, *g, in);
 }
 
 void stream(std::string_view in) {
-  std::vector<std::pair<std::size_t, std::size_t>> ref;
+  // Kept across inputs (reuse.hpp): the decoder is reset, the lists cleared.
+  static std::vector<std::pair<std::size_t, std::size_t>> ref, fast;
+  static top::StreamDecoder d;
+  static top::StreamItem it;
+  if (ref.capacity() == 0) {  // a frame or garbage item per byte at most
+    ref.reserve(topfuzz::capped(std::size_t{1} << 16));
+    fast.reserve(topfuzz::capped(std::size_t{1} << 16));
+  }
+  ref.clear();
+  fast.clear();
+  d.reset();
   std::size_t at = 0;
   while (at < in.size()) {
     const std::optional<topref::Frame> g = topref::parse(in.substr(at));
@@ -98,12 +111,9 @@ void stream(std::string_view in) {
   }
   const bool ref_split = !ref.empty() && at == in.size();
 
-  top::StreamDecoder d;
   d.feed(in);
   d.finish();
-  std::vector<std::pair<std::size_t, std::size_t>> fast;
   bool fast_clean = true;
-  top::StreamItem it;
   while (d.next(it)) {
     if (it.kind != top::ItemKind::frame || !clean(it.frame) || it.frame.terminator != 0)
       fast_clean = false;

@@ -1,12 +1,14 @@
 // Target: one buffer that should hold one frame (parse_exact), decoded in
-// every dialect. Checks the frame model's invariants, and that the parse
-// verdict does not depend on whether more bytes may follow.
+// every dialect. Checks the frame model's invariants, that the parse
+// verdict does not depend on whether more bytes may follow, and that a
+// parse without messages gives the same verdict.
 #include <cstdint>
 #include <string>
 #include <string_view>
 
 #include "check.hpp"
 #include "mutator.hpp"
+#include "reuse.hpp"
 #include "top/top.hpp"
 
 using namespace top;
@@ -47,12 +49,14 @@ void check_frame(std::string_view in, const Frame& f) {
 }
 
 void check_decoded(const Frame& f, const Decoded& d) {
+  static std::string text = topfuzz::reused_text();
   for (const FieldValue& v : d.fields) {
     FUZZ_CHECK(v.spec != nullptr, "field without a spec");
     FUZZ_CHECK(v.offset >= f.data_offset &&
                    std::size_t{v.offset} + v.length <= std::size_t{f.data_offset} + f.data_length,
                "field " + std::string(v.name()) + " outside the data: " + describe(f));
-    (void)format_value(v);
+    text.clear();
+    append_value(v, text);  // format_value() without a string per field
   }
   FUZZ_CHECK(d.form == nullptr || d.command != nullptr, "a form without a command");
   FUZZ_CHECK(d.fields.empty() || d.form != nullptr, "fields without a form");
@@ -67,12 +71,10 @@ void check_decoded(const Frame& f, const Decoded& d) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   size = topfuzz::capped(size);
   const std::string_view in(reinterpret_cast<const char*>(data), size);
-  // Results live across inputs and are parsed into (the forms topdump's
-  // loops use): their buffers are reused, as in the tools, instead of
-  // allocated and freed on every input (ASan's allocator was a quarter of
-  // the time).
-  static ParseResult r, open, closed, slow;
-  static Decoded decoded;
+  // Kept across inputs (reuse.hpp).
+  static ParseResult r = topfuzz::reused_parse_result(), open = topfuzz::reused_parse_result(),
+                     closed = topfuzz::reused_parse_result(), slow = topfuzz::reused_parse_result();
+  static Decoded decoded = topfuzz::reused_decoded();
   const ParseOptions defaults;
   parse_exact(in, defaults, r);
   FUZZ_CHECK(r.status != ParseStatus::need_more, "parse_exact asked for more bytes");
@@ -92,6 +94,23 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                    closed.error.offset == open.error.offset,
                "an invalid verdict changed at the end of input: \"" + show(in) + "\"");
   }
+
+  // Without messages (as the stream decoder parses inside a frame): the
+  // same verdict, codes and offsets, and no text.
+  static ParseResult quiet = topfuzz::reused_parse_result();
+  ParseOptions no_text;
+  no_text.messages = false;
+  parse_frame(in, true, no_text, quiet);
+  bool same_quiet = quiet.status == closed.status && quiet.consumed == closed.consumed &&
+                    quiet.error.code == closed.error.code &&
+                    quiet.error.offset == closed.error.offset && quiet.error.message.empty() &&
+                    quiet.frame.raw == closed.frame.raw &&
+                    quiet.frame.findings.size() == closed.frame.findings.size();
+  for (std::size_t i = 0; same_quiet && i < quiet.frame.findings.size(); ++i)
+    same_quiet = quiet.frame.findings[i].code == closed.frame.findings[i].code &&
+                 quiet.frame.findings[i].offset == closed.frame.findings[i].offset &&
+                 quiet.frame.findings[i].message.empty();
+  FUZZ_CHECK(same_quiet, "a parse without messages differs: \"" + show(in) + "\"");
 
   // The one-pass path for clean frames builds what the general parse builds.
   ParseOptions general;

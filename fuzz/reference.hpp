@@ -28,14 +28,15 @@
 
 namespace topref {
 
+// Views into the parsed bytes: valid as long as they are.
 struct Frame {
-  std::string header;  // "TP", "tp", "tP" or "Tp"
+  std::string_view header;  // "TP", "tp", "tP" or "Tp"
   char src = 0, dst = 0;
   char control = 0;  // 0 for #Tp
-  std::string ident;
+  std::string_view ident;
   std::size_t length = 0;  // declared data length
   std::size_t data_offset = 0;
-  std::string data;
+  std::string_view data;
   unsigned checksum = 0;
   std::size_t size = 0;  // bytes of the whole frame
 };
@@ -54,7 +55,7 @@ inline int upper_hex(char c) {
 inline std::optional<Frame> parse(std::string_view s) {
   Frame f;
   if (s.size() < 10 || s[0] != '#') return std::nullopt;
-  f.header = std::string(s.substr(1, 2));
+  f.header = s.substr(1, 2);
   if (f.header != "TP" && f.header != "tp" && f.header != "tP" && f.header != "Tp")
     return std::nullopt;
   f.src = s[3];
@@ -73,12 +74,12 @@ inline std::optional<Frame> parse(std::string_view s) {
     f.control = s[6];
     if (f.control != 'r' && f.control != 'w') return std::nullopt;
   }
-  f.ident = std::string(s.substr(7, 3));
+  f.ident = s.substr(7, 3);
   for (char c : f.ident)
     if (!((c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9'))) return std::nullopt;
   f.data_offset = 10;
   if (s.size() < 10 + f.length + 2) return std::nullopt;
-  f.data = std::string(s.substr(10, f.length));
+  f.data = s.substr(10, f.length);
   unsigned sum = 0;
   for (std::size_t i = 0; i < 10 + f.length; ++i) sum += static_cast<unsigned char>(s[i]);
   int hi = upper_hex(s[10 + f.length]), lo = upper_hex(s[11 + f.length]);

@@ -180,7 +180,7 @@ std::string Decoded::summary() const {
     if (!s.empty()) s += ", ";
     s += f.name();
     s += ' ';
-    s += format_value(f);
+    append_value(f, s);
   }
   return s;
 }

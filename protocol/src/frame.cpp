@@ -241,26 +241,34 @@ bool parse_plain(std::string_view b, const ParseOptions& opts, Frame& f, Verdict
 Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Frame& f,
                    Finding& err) {
   reset_keep_capacity(f);
+  // A finding's text, built only when the caller keeps it.
+  auto text = [&](auto&& build) { return opts.messages ? std::string(build()) : std::string(); };
+  auto cut = [&](std::size_t have, std::size_t want) {
+    return opts.messages ? truncated(err, have, want)
+                         : invalid(err, FindingCode::truncated, have, {});
+  };
   const std::size_t n = b.size();
   auto short_of = [&](std::size_t want) { return n < want; };
-  if (n == 0) return at_end ? truncated(err, 0, 1) : need_more();
+  if (n == 0) return at_end ? cut(0, 1) : need_more();
   if (b[0] != '#')
-    return invalid(err, FindingCode::bad_header, 0,
-                   cat({"frame must start with '#', got ", printable(b[0])}));
+    return invalid(err, FindingCode::bad_header, 0, text([&] {
+                     return cat({"frame must start with '#', got ", printable(b[0])});
+                   }));
 
   Layout lay;
   // --- header -----------------------------------------------------------
-  if (short_of(2)) return at_end ? truncated(err, n, 12) : need_more();
+  if (short_of(2)) return at_end ? cut(n, 12) : need_more();
   if (b[1] == 'P') {
     // Topotek 12.2 documents "#PDP16TMP<22 chars><RR>": no 'tp', no control.
     static constexpr std::string_view kTmp = "#PDP??TMP";
     for (std::size_t i = 1; i < kTmp.size(); ++i) {
-      if (i >= n) return at_end ? truncated(err, n, 33) : need_more();
+      if (i >= n) return at_end ? cut(n, 33) : need_more();
       bool okc = kTmp[i] == '?' ? is_hex(b[i]) : b[i] == kTmp[i];
       if (!okc)
-        return invalid(
-            err, FindingCode::bad_header, 1,
-            cat({"'#' followed by ", printable(b[1]), ", not a TOP header (#TP #tp #tP #Tp)"}));
+        return invalid(err, FindingCode::bad_header, 1, text([&] {
+                         return cat({"'#' followed by ", printable(b[1]),
+                                     ", not a TOP header (#TP #tp #tP #Tp)"});
+                       }));
     }
     lay.header = Header::tmp_quirk;
     lay.ident_at = 6;
@@ -270,14 +278,16 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
     lay.hex_length = false;
   } else {
     if (b[1] != 'T' && b[1] != 't')
-      return invalid(
-          err, FindingCode::bad_header, 1,
-          cat({"'#' followed by ", printable(b[1]), ", not a TOP header (#TP #tp #tP #Tp)"}));
-    if (short_of(3)) return at_end ? truncated(err, n, 12) : need_more();
+      return invalid(err, FindingCode::bad_header, 1, text([&] {
+                       return cat({"'#' followed by ", printable(b[1]),
+                                   ", not a TOP header (#TP #tp #tP #Tp)"});
+                     }));
+    if (short_of(3)) return at_end ? cut(n, 12) : need_more();
     if (b[2] != 'P' && b[2] != 'p')
-      return invalid(
-          err, FindingCode::bad_header, 2,
-          cat({"\"#", b.substr(1, 1), "\" followed by ", printable(b[2]), ", not a TOP header"}));
+      return invalid(err, FindingCode::bad_header, 2, text([&] {
+                       return cat({"\"#", b.substr(1, 1), "\" followed by ", printable(b[2]),
+                                   ", not a TOP header"});
+                     }));
     if (b[1] == 'T')
       lay.header = b[2] == 'P' ? Header::fixed : Header::ext16;
     else
@@ -290,33 +300,36 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
   if (lay.header != Header::tmp_quirk) {
     // --- addresses --------------------------------------------------------
     for (std::size_t i = 3; i < 5; ++i) {
-      if (short_of(i + 1)) return at_end ? truncated(err, n, 12) : need_more();
+      if (short_of(i + 1)) return at_end ? cut(n, 12) : need_more();
       if (!is_address(b[i]))
-        return invalid(err, FindingCode::bad_address, i,
-                       cat({i == 3 ? "source" : "destination", " address ", printable(b[i]),
-                            " is not one of U M D E P G"}));
+        return invalid(err, FindingCode::bad_address, i, text([&] {
+                         return cat({i == 3 ? "source" : "destination", " address ",
+                                     printable(b[i]), " is not one of U M D E P G"});
+                       }));
     }
     // --- length and control ----------------------------------------------
-    if (short_of(6)) return at_end ? truncated(err, n, 12) : need_more();
+    if (short_of(6)) return at_end ? cut(n, 12) : need_more();
     switch (lay.header) {
       case Header::fixed:
       case Header::variable: {
         if (!is_hex(b[5]))
-          return invalid(err, FindingCode::bad_length_char, 5,
-                         cat({"length char ", printable(b[5]), " is not a hex digit"}));
+          return invalid(err, FindingCode::bad_length_char, 5, text([&] {
+                           return cat({"length char ", printable(b[5]), " is not a hex digit"});
+                         }));
         if (is_lower_hex(b[5]))
-          notes.push_back(
-              make_finding(FindingCode::lowercase_hex, 5, "length char written in lowercase"));
-        if (short_of(7)) return at_end ? truncated(err, n, 12) : need_more();
+          notes.push_back(make_finding(FindingCode::lowercase_hex, 5,
+                                       text([] { return "length char written in lowercase"; })));
+        if (short_of(7)) return at_end ? cut(n, 12) : need_more();
         if (b[6] == 'r' || b[6] == 'w') {
           lay.control = b[6];
           lay.declared = static_cast<std::size_t>(hex_value(b[5]));
         } else if (is_hex(b[6])) {
           // Two-digit length ("#tpDP16wTMP..."): the TMP firmware quirk.
-          if (short_of(8)) return at_end ? truncated(err, n, 13) : need_more();
+          if (short_of(8)) return at_end ? cut(n, 13) : need_more();
           if (b[7] != 'r' && b[7] != 'w')
-            return invalid(err, FindingCode::bad_control, 6,
-                           cat({"control char ", printable(b[6]), " is not r or w"}));
+            return invalid(err, FindingCode::bad_control, 6, text([&] {
+                             return cat({"control char ", printable(b[6]), " is not r or w"});
+                           }));
           lay.control = b[7];
           lay.declared = static_cast<std::size_t>(hex_value(b[5])) * 16 +
                          static_cast<std::size_t>(hex_value(b[6]));
@@ -325,23 +338,25 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
           lay.ident_at = 8;
           lay.data_at = 11;
         } else {
-          return invalid(err, FindingCode::bad_control, 6,
-                         cat({"control char ", printable(b[6]), " is not r or w"}));
+          return invalid(err, FindingCode::bad_control, 6, text([&] {
+                           return cat({"control char ", printable(b[6]), " is not r or w"});
+                         }));
         }
         break;
       }
       case Header::ext8: {
         lay.declared = static_cast<unsigned char>(b[5]);
         lay.hex_length = false;
-        if (short_of(7)) return at_end ? truncated(err, n, 12) : need_more();
+        if (short_of(7)) return at_end ? cut(n, 12) : need_more();
         if (b[6] != 'r' && b[6] != 'w')
-          return invalid(err, FindingCode::bad_control, 6,
-                         cat({"control char ", printable(b[6]), " is not r or w"}));
+          return invalid(err, FindingCode::bad_control, 6, text([&] {
+                           return cat({"control char ", printable(b[6]), " is not r or w"});
+                         }));
         lay.control = b[6];
         break;
       }
       case Header::ext16: {
-        if (short_of(7)) return at_end ? truncated(err, n, 12) : need_more();
+        if (short_of(7)) return at_end ? cut(n, 12) : need_more();
         lay.declared = static_cast<std::size_t>(static_cast<unsigned char>(b[5]) << 8 |
                                                 static_cast<unsigned char>(b[6]));
         lay.hex_length = false;
@@ -357,16 +372,18 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
 
   // --- identifier -----------------------------------------------------------
   for (std::size_t i = lay.ident_at; i < lay.ident_at + 3; ++i) {
-    if (short_of(i + 1)) return at_end ? truncated(err, n, lay.data_at + 2) : need_more();
+    if (short_of(i + 1)) return at_end ? cut(n, lay.data_at + 2) : need_more();
     if (!is_ident_char(b[i]))
-      return invalid(
-          err, FindingCode::bad_ident, i,
-          cat({"identifier char ", printable(b[i]), " is not an uppercase letter or digit"}));
+      return invalid(err, FindingCode::bad_ident, i, text([&] {
+                       return cat({"identifier char ", printable(b[i]),
+                                   " is not an uppercase letter or digit"});
+                     }));
   }
   if (lay.declared > opts.max_data_length)
-    return invalid(err, FindingCode::frame_too_long, 5,
-                   cat({"declared data length ", std::to_string(lay.declared),
-                        " exceeds the limit of ", std::to_string(opts.max_data_length)}));
+    return invalid(err, FindingCode::frame_too_long, 5, text([&] {
+                     return cat({"declared data length ", std::to_string(lay.declared),
+                                 " exceeds the limit of ", std::to_string(opts.max_data_length)});
+                   }));
 
   f.src = lay.header == Header::tmp_quirk ? b[2] : b[3];
   f.dst = lay.header == Header::tmp_quirk ? b[3] : b[4];
@@ -379,17 +396,19 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
 
   if (lay.header == Header::tmp_quirk || (lay.two_digit && f.ident_view() == "TMP")) {
     notes.push_back(
-        make_finding(FindingCode::tmp_quirk, lay.header == Header::tmp_quirk ? 1 : 5,
-                     lay.header == Header::tmp_quirk
-                         ? "the malformed TMP form documented in Topotek 12.2 (#PDP16TMP: "
-                           "no 'tp', two-digit length, no control char)"
-                         : "TMP frame with a two-digit length (Topotek 12.2: 22 data chars "
-                           "do not fit one hex digit)",
+        make_finding(FindingCode::tmp_quirk, lay.header == Header::tmp_quirk ? 1 : 5, text([&] {
+                       return lay.header == Header::tmp_quirk
+                                  ? "the malformed TMP form documented in Topotek 12.2 "
+                                    "(#PDP16TMP: no 'tp', two-digit length, no control char)"
+                                  : "TMP frame with a two-digit length (Topotek 12.2: 22 data "
+                                    "chars do not fit one hex digit)";
+                     }),
                      "topotek-tmp-length"));
   } else if (lay.two_digit) {
     notes.push_back(
-        make_finding(FindingCode::two_digit_length, 5,
-                     cat({"length written as two hex digits (0x", b.substr(5, 2), ")"})));
+        make_finding(FindingCode::two_digit_length, 5, text([&] {
+                       return cat({"length written as two hex digits (0x", b.substr(5, 2), ")"});
+                     })));
   }
 
   // --- data and checksum -------------------------------------------------------
@@ -425,10 +444,11 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
     std::uint8_t v = 0;
     if (checksum_at(b, declared_cs, prefix_declared, v)) {
       if (is_lower_hex(b[declared_cs]) || is_lower_hex(b[declared_cs + 1]))
-        notes.push_back(
-            make_finding(FindingCode::checksum_case, static_cast<std::uint32_t>(declared_cs),
-                         cat({"checksum ", b.substr(declared_cs, 2),
-                              " is right but lowercase; strict receivers expect ", hex2(v)})));
+        notes.push_back(make_finding(
+            FindingCode::checksum_case, static_cast<std::uint32_t>(declared_cs), text([&] {
+              return cat({"checksum ", b.substr(declared_cs, 2),
+                          " is right but lowercase; strict receivers expect ", hex2(v)});
+            })));
       return finish(L, true, v, prefix_declared);
     }
   }
@@ -456,10 +476,12 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
       found_prefix = s;
     }
     if (count == 1) {
-      notes.push_back(make_finding(
-          FindingCode::length_mismatch, 5,
-          cat({"declared length ", std::to_string(L), " but the checksum validates with ",
-               std::to_string(found), " data bytes; decoded with ", std::to_string(found)})));
+      notes.push_back(
+          make_finding(FindingCode::length_mismatch, 5, text([&] {
+                         return cat({"declared length ", std::to_string(L),
+                                     " but the checksum validates with ", std::to_string(found),
+                                     " data bytes; decoded with ", std::to_string(found)});
+                       })));
       return finish(found, true, found_value, found_prefix);
     }
   }
@@ -468,20 +490,23 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
     // Only reachable at the end of input.
     if (n == declared_cs) {
       unsigned p = sum_to(declared_cs);
-      notes.push_back(make_finding(FindingCode::no_checksum,
-                                   static_cast<std::uint32_t>(declared_cs),
-                                   cat({"frame ends where its checksum should be (expected ",
-                                        hex2(static_cast<std::uint8_t>(p)), ")"})));
+      notes.push_back(
+          make_finding(FindingCode::no_checksum, static_cast<std::uint32_t>(declared_cs), text([&] {
+                         return cat({"frame ends where its checksum should be (expected ",
+                                     hex2(static_cast<std::uint8_t>(p)), ")"});
+                       })));
       return finish(L, false, 0, p);
     }
-    return truncated(err, n, declared_end);
+    return cut(n, declared_end);
   }
 
   // No checksum at all: the data is followed directly by a boundary.
   if (is_boundary(b[declared_cs])) {
-    notes.push_back(make_finding(FindingCode::no_checksum, static_cast<std::uint32_t>(declared_cs),
-                                 cat({"frame ends where its checksum should be (expected ",
-                                      hex2(static_cast<std::uint8_t>(prefix_declared)), ")"})));
+    notes.push_back(
+        make_finding(FindingCode::no_checksum, static_cast<std::uint32_t>(declared_cs), text([&] {
+                       return cat({"frame ends where its checksum should be (expected ",
+                                   hex2(static_cast<std::uint8_t>(prefix_declared)), ")"});
+                     })));
     return finish(L, false, 0, prefix_declared);
   }
 
@@ -499,26 +524,31 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
       unsigned alt = base + static_cast<unsigned char>(v[0]) + static_cast<unsigned char>(v[1]);
       if (static_cast<std::uint8_t>(alt & 0xFF) == value) {
         notes.push_back(make_finding(FindingCode::checksum_header_case,
-                                     static_cast<std::uint32_t>(declared_cs),
-                                     cat({"checksum ",
-                                          got,
-                                          " is the sum with header #",
-                                          {v.data(), 2},
-                                          ", not #",
-                                          b.substr(1, 2),
-                                          " (expected ",
-                                          hex2(expected),
-                                          ")"}),
+                                     static_cast<std::uint32_t>(declared_cs), text([&] {
+                                       return cat({"checksum ",
+                                                   got,
+                                                   " is the sum with header #",
+                                                   {v.data(), 2},
+                                                   ", not #",
+                                                   b.substr(1, 2),
+                                                   " (expected ",
+                                                   hex2(expected),
+                                                   ")"});
+                                     }),
                                      "skydroid-doc-header-case"));
         return finish(L, true, value, prefix_declared);
       }
     }
   }
-  notes.push_back(make_finding(
-      FindingCode::bad_checksum, static_cast<std::uint32_t>(declared_cs),
-      present
-          ? cat({"checksum ", got, ", expected ", hex2(expected)})
-          : cat({"checksum field '", got, "' is not two hex digits, expected ", hex2(expected)})));
+  notes.push_back(make_finding(FindingCode::bad_checksum, static_cast<std::uint32_t>(declared_cs),
+                               present ? text([&] {
+                                 return cat({"checksum ", got, ", expected ", hex2(expected)});
+                               })
+                                       : text([&] {
+                                           return cat({"checksum field '", got,
+                                                       "' is not two hex digits, expected ",
+                                                       hex2(expected)});
+                                         })));
   return finish(L, present, value, prefix_declared);
 }
 

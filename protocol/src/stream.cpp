@@ -19,7 +19,9 @@ constexpr std::size_t kMaxReady = 64;
 constexpr int kMaxInnerCandidates = 16;
 }  // namespace
 
-StreamDecoder::StreamDecoder(StreamOptions opts) : opts_(opts) {}
+StreamDecoder::StreamDecoder(StreamOptions opts) : opts_(opts), quiet_(opts.parse) {
+  quiet_.messages = false;
+}
 
 void StreamDecoder::reset() {
   buf_.clear();
@@ -173,8 +175,15 @@ void StreamDecoder::pump() {
       r = std::move(held_);
       scan_from = static_cast<std::size_t>(held_scan_ - base_);
       tried = held_tried_;
+    } else if (garbage_len_ > 0 && garbage_has_reason_ && opts_.parse.messages) {
+      // Inside a garbage run that has its reason: the text of another
+      // error would be dropped, so none is written; a frame found here (with
+      // findings) is parsed again with its texts.
+      parse_frame(all.substr(pos_), judge, quiet_, r);
+      if (r.status == ParseStatus::frame && !r.frame.findings.empty())
+        parse_frame(all.substr(pos_), judge, opts_.parse, r);
     } else {
-      r = parse_frame(all.substr(pos_), judge, opts_.parse);
+      parse_frame(all.substr(pos_), judge, opts_.parse, r);
     }
     has_held_ = false;
     if (r.status == ParseStatus::need_more) break;
@@ -194,7 +203,8 @@ void StreamDecoder::pump() {
       bool wait = false, yielded = false;
       for (std::size_t q = scan_from; q < pos_ + r.consumed && tried < kMaxInnerCandidates; ++q) {
         if (buf_[q] != '#') continue;
-        ParseResult inner = parse_frame(all.substr(q), judge, opts_.parse);
+        ParseResult& inner = inner_;  // only its verdict is looked at
+        parse_frame(all.substr(q), judge, quiet_, inner);
         if (inner.status == ParseStatus::need_more) {
           // Hold the outer parse; resume at this '#' when more bytes come.
           wait = true;

@@ -103,6 +103,11 @@ struct ParseOptions {
   // result is the same either way; false is for tests and fuzzers that
   // compare the two).
   bool fast_path = true;
+  // Write the text of the findings and of the error. False leaves every
+  // message empty (codes, severities and offsets are the same): for callers
+  // that look only at the verdict, such as the stream decoder trying a '#'
+  // inside a frame.
+  bool messages = true;
 };
 
 struct ParseResult {

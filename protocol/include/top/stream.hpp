@@ -97,6 +97,10 @@ class StreamDecoder {
   std::uint64_t held_scan_ = 0;
   int held_tried_ = 0;
   ParseResult held_;
+  // The parse options without messages, and the result of a parse at a '#'
+  // inside a frame (its verdict is all that is used).
+  ParseOptions quiet_;
+  ParseResult inner_;
 };
 
 }  // namespace top

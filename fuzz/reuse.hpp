@@ -1,0 +1,45 @@
+// Results a target keeps across inputs and parses or decodes into (the
+// forms topdump's loops use), so that their buffers are reused instead of
+// allocated and freed on every input: under ASan an allocation and its free
+// cost more than most parses.
+//
+// They get room for any input of the target up front. A buffer that grew
+// while an input ran would look to libFuzzer like a leak (more mallocs than
+// frees in the run), and libFuzzer then runs that input again under
+// LeakSanitizer's full scan, milliseconds each time.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "check.hpp"
+#include "top/top.hpp"
+
+namespace topfuzz {
+
+// Room enough for the findings and fields of any frame a target builds.
+inline constexpr std::size_t kRoomFindings = 64;
+inline constexpr std::size_t kRoomFields = 96;
+
+inline top::ParseResult reused_parse_result() {
+  top::ParseResult r;
+  r.frame.raw.reserve(capped(std::size_t{1} << 17));
+  r.frame.findings.reserve(kRoomFindings);
+  return r;
+}
+
+inline top::Decoded reused_decoded() {
+  top::Decoded d;
+  d.fields.reserve(kRoomFields);
+  d.findings.reserve(kRoomFindings);
+  return d;
+}
+
+// A string for formatted values (append_value), as long as any input.
+inline std::string reused_text() {
+  std::string s;
+  s.reserve(capped(std::size_t{1} << 17) * 4 + 256);  // \xNN per byte at most
+  return s;
+}
+
+}  // namespace topfuzz
