@@ -104,6 +104,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
   static ParseResult r = topfuzz::reused_parse_result();
   static Decoded d = topfuzz::reused_decoded(), v = topfuzz::reused_decoded(),
                  c = topfuzz::reused_decoded();
+  const topfuzz::ReleaseAtEnd release(r, d, v, c);
   parse_exact(raw, ParseOptions{}, r);
   FUZZ_CHECK(r.status == ParseStatus::frame && r.frame.checksum_ok,
              "a built frame does not parse: \"" + show(raw) + "\"");

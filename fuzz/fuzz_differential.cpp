@@ -44,6 +44,7 @@ void compare_fields(const top::Frame& f, const topref::Frame& g, std::string_vie
     top::DecodeOptions o;
     o.dialect = d;
     static top::Decoded dec = topfuzz::reused_decoded();
+    const topfuzz::ReleaseAtEnd release(dec);
     top::decode(f, o, dec);
     if (dec.form == nullptr) continue;  // the catalog has no layout for it (yet)
     const std::vector<topref::Value> ref = topref::decode(*layout, g.data);
@@ -73,6 +74,7 @@ void single_frame(std::string_view in) {
   const std::optional<topref::Frame> g = topref::parse(in);
   const bool ref_ok = g.has_value() && g->size == in.size();
   static top::ParseResult r = topfuzz::reused_parse_result();
+  const topfuzz::ReleaseAtEnd release(r);
   top::parse_exact(in, {}, r);
   const bool fast_ok = r.status == top::ParseStatus::frame && r.consumed == in.size() &&
                        r.frame.raw.size() == in.size() && clean(r.frame);
@@ -95,6 +97,7 @@ void stream(std::string_view in) {
   static std::vector<std::pair<std::size_t, std::size_t>> ref, fast;
   static top::StreamDecoder d;
   static top::StreamItem it;
+  const topfuzz::ReleaseAtEnd release(it);
   if (ref.capacity() == 0) {  // a frame or garbage item per byte at most
     ref.reserve(topfuzz::capped(std::size_t{1} << 16));
     fast.reserve(topfuzz::capped(std::size_t{1} << 16));

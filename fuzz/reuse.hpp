@@ -11,6 +11,7 @@
 
 #include <cstddef>
 #include <string>
+#include <tuple>
 
 #include "check.hpp"
 #include "top/top.hpp"
@@ -34,6 +35,40 @@ inline top::Decoded reused_decoded() {
   d.findings.reserve(kRoomFindings);
   return d;
 }
+
+// What a result holds on the heap beyond its reserved room (the texts of
+// findings and fields) is freed when the input ends: libFuzzer counts an
+// input's mallocs and frees, and a text kept until the next input's parse
+// would count as a leak of this one.
+inline void release(top::ParseResult& r) {
+  r.frame.findings.clear();
+  r.error.message = std::string();
+}
+inline void release(top::Decoded& d) {
+  d.fields.clear();
+  d.findings.clear();
+}
+inline void release(top::StreamItem& it) {
+  it.frame.findings.clear();
+  it.finding.message = std::string();
+  it.preview = std::string();
+}
+
+// Releases the given results when it goes out of scope, at every return of
+// the target.
+template <class... R>
+class ReleaseAtEnd {
+ public:
+  explicit ReleaseAtEnd(R&... r) : results_(r...) {}
+  ReleaseAtEnd(const ReleaseAtEnd&) = delete;
+  ReleaseAtEnd& operator=(const ReleaseAtEnd&) = delete;
+  ~ReleaseAtEnd() {
+    std::apply([](auto&... x) { (release(x), ...); }, results_);
+  }
+
+ private:
+  std::tuple<R&...> results_;
+};
 
 // A string for formatted values (append_value), as long as any input.
 inline std::string reused_text() {
