@@ -19,6 +19,7 @@
 
 #include "check.hpp"
 #include "mutator.hpp"
+#include "reuse.hpp"
 #include "top/top.hpp"
 
 using namespace top;
@@ -59,6 +60,14 @@ bool same_item(const StreamItem& a, const StreamItem& b) {
   return x.raw == y.raw && x.header == y.header && x.data_offset == y.data_offset &&
          x.data_length == y.data_length && x.terminator == y.terminator &&
          x.checksum_ok == y.checksum_ok && same_findings(x.findings, y.findings);
+}
+
+std::vector<StreamItem> items_room() {
+  std::vector<StreamItem> v;
+#ifdef TOPKIT_LIBFUZZER  // replays (ctest) grow as they need
+  v.reserve(topfuzz::capped(std::size_t{1} << 16));
+#endif
+  return v;
 }
 
 void drain(StreamDecoder& d, std::vector<StreamItem>& out) {
@@ -119,9 +128,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     sizes.assign(1, 1);
   const std::string_view stream(reinterpret_cast<const char*>(data + 1 + k), size - 1 - k);
 
-  std::vector<StreamItem> whole;
+  // Kept across inputs (reuse.hpp): each list has room for an item per
+  // byte, each decoder is reset.
+  static std::vector<StreamItem> whole = items_room(), split = items_room(), flushed = items_room();
+  static StreamDecoder d, f;
+  const topfuzz::ReleaseAtEnd release(whole, split, flushed);
+  d.reset();
+  f.reset();
   {
-    StreamDecoder d;
     d.feed(stream);
     drain(d, whole);
     d.finish();
@@ -138,8 +152,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const bool both = true;  // replays are few: every input both ways
 #endif
   if (!flushing || both) {
-    std::vector<StreamItem> split;
-    StreamDecoder d;
+    d.reset();
     feed_chunks(d, stream, sizes, false, split);
     const std::size_t common = std::min(whole.size(), split.size());
     for (std::size_t i = 0; i < common; ++i)
@@ -151,8 +164,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                                                  std::to_string(whole.size()));
   }
   if (flushing || both) {
-    std::vector<StreamItem> flushed;
-    StreamDecoder f;
     feed_chunks(f, stream, sizes, true, flushed);
     check_cover(stream, flushed, "flushed");
   }

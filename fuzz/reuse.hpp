@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <string>
 #include <tuple>
+#include <vector>
 
 #include "check.hpp"
 #include "top/top.hpp"
@@ -47,6 +48,10 @@ inline void release(top::ParseResult& r) {
 inline void release(top::Decoded& d) {
   d.fields.clear();
   d.findings.clear();
+}
+template <class T>
+void release(std::vector<T>& v) {
+  v.clear();
 }
 inline void release(top::StreamItem& it) {
   it.frame.findings.clear();
