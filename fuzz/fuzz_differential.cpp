@@ -95,7 +95,11 @@ void single_frame(std::string_view in) {
 void stream(std::string_view in) {
   // Kept across inputs (reuse.hpp): the decoder is reset, the lists cleared.
   static std::vector<std::pair<std::size_t, std::size_t>> ref, fast;
-  static top::StreamDecoder d;
+  static top::StreamDecoder d([] {  // boundaries only: no texts
+    top::StreamOptions o;
+    o.parse.messages = false;
+    return o;
+  }());
   static top::StreamItem it;
   const topfuzz::ReleaseAtEnd release(it);
   if (ref.capacity() == 0) {  // a frame or garbage item per byte at most

@@ -123,6 +123,46 @@ TEST(Stream, SameItemsHoweverSplit) {
   }
 }
 
+// Without messages (StreamOptions::parse.messages false, as the
+// differential fuzz target decodes): the same items, findings, codes and
+// offsets, however the stream is split, and no text anywhere; with them
+// every finding and garbage item has its text.
+TEST(Stream, WithoutMessagesTheSameItems) {
+  const std::string stream = std::string("xx#T#TPUD2wCAP013E\r\n") + gps_frame_with_hash() +
+                             "#tpDU3rVER0105025A" + "#TPUD9wCAP#TPUD2wCAP013E" +
+                             "#TPUG6wGAYEF073288#TPUD2wCAP0100\n#PDP#tpUD5wCAP0001E4\r\n" +
+                             "#tpUM2rZOM00A3#TPUD";
+  StreamOptions quiet;
+  quiet.parse.messages = false;
+  const std::vector<StreamItem> with = decode_all(stream);
+  std::size_t texts = 0, findings = 0;
+  for (const StreamItem& it : with) {
+    if (it.kind == ItemKind::garbage) {
+      ++findings;
+      texts += !it.finding.message.empty();
+    }
+    for (const Finding& f : it.frame.findings) {
+      ++findings;
+      texts += !f.message.empty();
+    }
+  }
+  ASSERT_GT(findings, 8u) << describe(with);
+  EXPECT_EQ(texts, findings);
+  const std::string expected = describe(with);
+  std::mt19937 rng(11);
+  for (int round = 0; round < 50; ++round) {
+    std::vector<std::size_t> sizes;
+    for (int i = 0; i < 8; ++i) sizes.push_back(1 + rng() % 9);
+    const std::vector<StreamItem> without =
+        round == 0 ? decode_all(stream, quiet) : decode_chunked(stream, sizes, quiet);
+    ASSERT_EQ(describe(without), expected) << "round " << round;
+    for (const StreamItem& it : without) {
+      EXPECT_TRUE(it.finding.message.empty()) << it.finding.message;
+      for (const Finding& f : it.frame.findings) EXPECT_TRUE(f.message.empty()) << f.message;
+    }
+  }
+}
+
 TEST(Stream, MemoryStaysBounded) {
   StreamDecoder d;
   std::mt19937 rng(1);

@@ -12,8 +12,9 @@
 namespace toptest {
 
 // Every item of a byte stream fed in one piece.
-inline std::vector<top::StreamItem> decode_all(std::string_view bytes) {
-  top::StreamDecoder d;
+inline std::vector<top::StreamItem> decode_all(std::string_view bytes,
+                                               const top::StreamOptions& opts = {}) {
+  top::StreamDecoder d(opts);
   d.feed(bytes);
   d.finish();
   std::vector<top::StreamItem> out;
@@ -24,8 +25,9 @@ inline std::vector<top::StreamItem> decode_all(std::string_view bytes) {
 
 // Every item of a byte stream fed in chunks of the given sizes (cycled).
 inline std::vector<top::StreamItem> decode_chunked(std::string_view bytes,
-                                                   const std::vector<std::size_t>& sizes) {
-  top::StreamDecoder d;
+                                                   const std::vector<std::size_t>& sizes,
+                                                   const top::StreamOptions& opts = {}) {
+  top::StreamDecoder d(opts);
   std::vector<top::StreamItem> out;
   top::StreamItem it;
   std::size_t i = 0, k = 0;

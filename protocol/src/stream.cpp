@@ -84,18 +84,19 @@ void StreamDecoder::compact() {
   }
 }
 
-void note_terminator(Frame& f, std::size_t count) {
+void note_terminator(Frame& f, std::size_t count, bool message) {
   if (count == 0) return;
   f.terminator = static_cast<std::uint8_t>(std::min<std::size_t>(count, 255));
   f.findings.push_back(make_finding(
       FindingCode::crlf, static_cast<std::uint32_t>(f.raw.size()),
-      detail::cat({"frame followed by ", std::to_string(f.terminator), " CR/LF byte(s)"})));
+      message ? detail::cat({"frame followed by ", std::to_string(f.terminator), " CR/LF byte(s)"})
+              : std::string()));
 }
 
 void StreamDecoder::release_pending() {
   if (!has_pending_) return;
   Frame& f = pending_.frame;
-  note_terminator(f, f.terminator);
+  note_terminator(f, f.terminator, opts_.parse.messages);
   ready_.push_back(std::move(pending_));
   has_pending_ = false;
 }
@@ -136,13 +137,17 @@ void StreamDecoder::flush_garbage() {
   it.offset = garbage_start_;
   it.length = garbage_len_;
   it.preview = std::move(garbage_preview_);
-  const std::string count = std::to_string(garbage_len_);
+  const bool text = opts_.parse.messages;
   if (garbage_has_reason_) {
     it.finding = std::move(garbage_reason_);
-    it.finding.message = detail::cat({count, " byte(s) outside any frame: ", it.finding.message});
+    if (text)
+      it.finding.message = detail::cat(
+          {std::to_string(garbage_len_), " byte(s) outside any frame: ", it.finding.message});
   } else {
-    it.finding =
-        make_finding(FindingCode::garbage, 0, detail::cat({count, " byte(s) outside any frame"}));
+    it.finding = make_finding(
+        FindingCode::garbage, 0,
+        text ? detail::cat({std::to_string(garbage_len_), " byte(s) outside any frame"})
+             : std::string());
   }
   ready_.push_back(std::move(it));
   garbage_len_ = 0;
@@ -216,13 +221,14 @@ void StreamDecoder::pump() {
         }
         ++tried;
         if (inner.status == ParseStatus::frame && inner.frame.checksum_ok) {
-          Finding why =
-              make_finding(r.frame.has(FindingCode::no_checksum) ? FindingCode::no_checksum
-                                                                 : FindingCode::bad_checksum,
-                           0,
-                           detail::cat({"abandoned a frame that fails its checksum for a "
-                                        "valid frame at +",
-                                        std::to_string(q - pos_)}));
+          Finding why = make_finding(
+              r.frame.has(FindingCode::no_checksum) ? FindingCode::no_checksum
+                                                    : FindingCode::bad_checksum,
+              0,
+              opts_.parse.messages
+                  ? detail::cat({"abandoned a frame that fails its checksum for a valid frame at +",
+                                 std::to_string(q - pos_)})
+                  : std::string());
           add_garbage(pos_, q - pos_, &why);
           pos_ = q;
           yielded = true;

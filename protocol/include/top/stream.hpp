@@ -30,10 +30,13 @@ struct StreamItem {
 };
 
 // Records that `count` CR/LF bytes followed a frame: sets its terminator
-// (capped at 255) and adds the crlf finding, as the decoder does.
-void note_terminator(Frame& f, std::size_t count);
+// (capped at 255) and adds the crlf finding, as the decoder does (without
+// its text when `message` is false).
+void note_terminator(Frame& f, std::size_t count, bool message = true);
 
 struct StreamOptions {
+  // parse.messages false: items carry no texts (findings' and garbage
+  // reasons' messages are empty; codes, offsets and lengths are the same).
   ParseOptions parse;
 };
 
