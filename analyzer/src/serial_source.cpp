@@ -255,22 +255,22 @@ std::size_t csv_split(std::string_view l, std::vector<std::string>& out) {
     return s;
   };
   std::string* cur = &next();
-  bool q = false;
-  for (std::size_t i = 0; i < l.size(); ++i) {
-    char c = l[i];
+  bool q = false;  // inside quotes
+  // a run of plain bytes at a time, up to the next byte that matters
+  for (std::size_t i = 0; i < l.size();) {
+    const std::size_t j = q ? l.find('"', i) : l.find_first_of(",\"", i);
+    cur->append(l.substr(i, j - i));
+    if (j == std::string_view::npos) break;
+    i = j + 1;
     if (q) {
-      if (c == '"' && i + 1 < l.size() && l[i + 1] == '"')
-        *cur += '"', ++i;
-      else if (c == '"')
-        q = false;
+      if (i < l.size() && l[i] == '"')
+        *cur += '"', ++i;  // "" inside quotes is a quote
       else
-        *cur += c;
-    } else if (c == '"') {
+        q = false;
+    } else if (l[j] == '"') {
       q = true;
-    } else if (c == ',') {
-      cur = &next();
     } else {
-      *cur += c;
+      cur = &next();
     }
   }
   return n;
