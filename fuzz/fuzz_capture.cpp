@@ -15,6 +15,7 @@
 // nlohmann::json::accept, which must agree. No file per input (a memfd
 // written, then opened through /proc/self/fd cost six system calls an
 // input: README.md, "Capture and TCP targets (fourth pass)").
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -95,7 +96,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   FUZZ_CHECK(in.file != nullptr, "fmemopen failed");
   in.regular = true;
   in.size = size;
-  in.head.assign(reinterpret_cast<const char*>(data), size < 4096 ? size : 4096);
+  in.head.assign(reinterpret_cast<const char*>(data), std::min(size, topdump::kInputHead));
 
 #ifdef TOPKIT_LIBFUZZER
   const bool cross_check = topfuzz::sampled(data, size, 4);
