@@ -1,28 +1,27 @@
 // Target: topdump's capture readers on file bytes (TOPKIT_FUZZ_FORMAT picks
 // the reader: pcap (pcap and pcapng, through libpcap), raw, socat, saleae,
-// lines), built as fuzz_capture_<format>. The input is written to an
-// in-memory file (memfd) and read with read_file() exactly as `topdump read
-// -f FORMAT` reads a file, then the analyzer is finished. Checks: read_file
-// either reads or explains why not; the sink sees no more frames than the
-// analyzer counted; every event written as JSON Lines is valid
-// JSON; nothing crashes, leaks or hangs.
+// lines), built as fuzz_capture_<format>. The input is opened as a stdio
+// stream over its bytes (fmemopen: seekable, as a regular file) and read
+// with read_input(), the reader `topdump read -f FORMAT` runs on an opened
+// file (read_file() = open_input() + read_input()), then the analyzer is
+// finished. Checks: read_input either reads or explains why not; the sink
+// sees no more frames than the analyzer counted; every event written as
+// JSON Lines is valid JSON; nothing crashes, leaks or hangs.
 //
 // Speed (see README.md, "Speed"): the libFuzzer build reads at most
 // max_len bytes of an input (as libFuzzer cuts seeds to -max_len); each
 // line is checked by json_check.hpp's validator, and on a sample of inputs
 // (one in 16, chosen from the bytes; every input in replay builds) also by
-// nlohmann::json::accept, which must agree; big_blocks.hpp recycles any
-// block above 128 KiB across inputs (the Analyzer's identifier table was
-// one until it became 10 KB pages, README.md "Speed, third pass").
-#include <sys/mman.h>
-#include <unistd.h>
-
+// nlohmann::json::accept, which must agree. No file per input (a memfd
+// written, then opened through /proc/self/fd cost six system calls an
+// input: README.md, "Capture and TCP targets (fourth pass)").
+#include <algorithm>
 #include <cstdint>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "analyzer.hpp"
-#include "big_blocks.hpp"
 #include "check.hpp"
 #include "json_check.hpp"
 #include "output.hpp"
@@ -82,28 +81,22 @@ class CheckingSink : public topdump::Sink {
   std::string line;
 };
 
-int memfd() {
-  static const int fd = memfd_create("topkit-fuzz-capture", 0);
-  return fd;
-}
-
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  topfuzz::big_blocks_next_input();
   size = topfuzz::capped(size);
   static const topdump::Format format =
       topdump::format_from_string(TOPKIT_STR(TOPKIT_FUZZ_FORMAT)).value();
-  const int fd = memfd();
-  FUZZ_CHECK(fd >= 0, "memfd_create failed");
-  FUZZ_CHECK(ftruncate(fd, 0) == 0, "ftruncate failed");
-  std::size_t done = 0;
-  while (done < size) {
-    const ssize_t n = pwrite(fd, data + done, size - done, static_cast<off_t>(done));
-    FUZZ_CHECK(n > 0, "pwrite failed");
-    done += static_cast<std::size_t>(n);
-  }
-  const std::string path = "/proc/self/fd/" + std::to_string(fd);
+  // What open_input() makes of a regular file: the stream at byte 0, its
+  // size and its first bytes for detection (fmemopen of 0 bytes is a stream
+  // at its end, glibc 2.22 and later).
+  topdump::Input in;
+  in.name = "input";
+  in.file = fmemopen(const_cast<std::uint8_t*>(data), size, "rb");
+  FUZZ_CHECK(in.file != nullptr, "fmemopen failed");
+  in.regular = true;
+  in.size = size;
+  in.head.assign(reinterpret_cast<const char*>(data), std::min(size, topdump::kInputHead));
 
 #ifdef TOPKIT_LIBFUZZER
   const bool cross_check = topfuzz::sampled(data, size, 4);
@@ -113,10 +106,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   CheckingSink sink(cross_check);
   topdump::AnalyzerOptions opts;
   topdump::Analyzer a(opts, sink);
-  topdump::SourceOptions so;
+  static const topdump::SourceOptions so;  // the ports tables: the same for every input
   std::string error;
-  const bool ok = topdump::read_file(path, format, a, so, error);
-  FUZZ_CHECK(ok || !error.empty(), "read_file failed without saying why");
+  const bool ok = topdump::read_input(in, format, a, so, error);
+  FUZZ_CHECK(ok || !error.empty(), "read_input failed without saying why");
   a.finish();
   FUZZ_CHECK(a.frames_seen() >= sink.frames, "more frame events than frames seen");
   return 0;

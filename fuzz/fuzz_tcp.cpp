@@ -5,17 +5,14 @@
 // are all a few mutations away; bit 2 of flags makes it absolute instead),
 // a length byte and that many payload bytes. Checks: nothing crashes, leaks
 // or hangs, and the analyzer's bounded TCP buffers keep memory bounded
-// (-rss_limit_mb). big_blocks.hpp recycles any block above 128 KiB across
-// inputs (README.md, "Speed").
+// (-rss_limit_mb).
 #include <cstdint>
 #include <string_view>
 
 #include "analyzer.hpp"
-#include "big_blocks.hpp"
 #include "check.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  topfuzz::big_blocks_next_input();
   size = topfuzz::capped(size);
   topdump::Sink sink;
   topdump::AnalyzerOptions opts;

@@ -359,7 +359,6 @@ int pipe_close(void* c) {
   return r;
 }
 
-constexpr std::size_t kHead = 4096;
 // Our own FILE buffer: libpcap reads each record with two freads, and
 // stdio's default 4 KiB buffer costs a read(2) every ~50 records (5% of
 // topdump stats; 64 KiB to 1 MiB measure alike).
@@ -407,8 +406,8 @@ bool open_input(const std::string& path, Input& in, std::string& error) {
       return false;
     }
     std::setvbuf(in.file, in.buffer.get(), _IOFBF, kReadBuffer);
-    in.head.resize(kHead);
-    in.head.resize(std::fread(in.head.data(), 1, kHead, in.file));
+    in.head.resize(kInputHead);
+    in.head.resize(std::fread(in.head.data(), 1, kInputHead, in.file));
     if (std::ferror(in.file) || std::fseek(in.file, 0, SEEK_SET) != 0) {
       error = in.name + ": cannot read: " + std::strerror(errno);
       return false;
@@ -416,10 +415,10 @@ bool open_input(const std::string& path, Input& in, std::string& error) {
     return true;
   }
   // Not seekable: keep what detection reads and hand it out again first.
-  std::string head(kHead, '\0');
+  std::string head(kInputHead, '\0');
   std::size_t got = 0;
-  while (got < kHead) {
-    ssize_t r = ::read(fd, head.data() + got, kHead - got);
+  while (got < kInputHead) {
+    ssize_t r = ::read(fd, head.data() + got, kInputHead - got);
     if (r < 0 && errno == EINTR) continue;
     if (r < 0) {
       error = in.name + ": cannot read: " + std::strerror(errno);

@@ -209,7 +209,7 @@ void socat_log(const std::string& path, LineReader& r, A& a) {
           if (!std::isxdigit(static_cast<unsigned char>(h[i])) ||
               !std::isxdigit(static_cast<unsigned char>(h[i + 1])))
             break;
-          bytes.push_back(static_cast<char>(std::stoi(std::string(h.substr(i, 2)), nullptr, 16)));
+          bytes.push_back(static_cast<char>(top::hex_value(h[i]) << 4 | top::hex_value(h[i + 1])));
         }
         continue;
       }
@@ -243,30 +243,37 @@ void socat_log(const std::string& path, LineReader& r, A& a) {
   }
 }
 
-std::vector<std::string> csv_split(std::string_view l) {
-  std::vector<std::string> out;
-  std::string cur;
-  bool q = false;
-  for (std::size_t i = 0; i < l.size(); ++i) {
-    char c = l[i];
+// Splits a CSV line into `out`'s first `n` strings (returned), reusing
+// their storage: a Saleae export is a row per byte, and a fresh vector of
+// strings per row was most of what reading one cost.
+std::size_t csv_split(std::string_view l, std::vector<std::string>& out) {
+  std::size_t n = 0;
+  auto next = [&]() -> std::string& {
+    if (n == out.size()) out.emplace_back();
+    std::string& s = out[n++];
+    s.clear();
+    return s;
+  };
+  std::string* cur = &next();
+  bool q = false;  // inside quotes
+  // a run of plain bytes at a time, up to the next byte that matters
+  for (std::size_t i = 0; i < l.size();) {
+    const std::size_t j = q ? l.find('"', i) : l.find_first_of(",\"", i);
+    cur->append(l.substr(i, j - i));
+    if (j == std::string_view::npos) break;
+    i = j + 1;
     if (q) {
-      if (c == '"' && i + 1 < l.size() && l[i + 1] == '"')
-        cur += '"', ++i;
-      else if (c == '"')
-        q = false;
+      if (i < l.size() && l[i] == '"')
+        *cur += '"', ++i;  // "" inside quotes is a quote
       else
-        cur += c;
-    } else if (c == '"') {
+        q = false;
+    } else if (l[j] == '"') {
       q = true;
-    } else if (c == ',') {
-      out.push_back(std::move(cur));
-      cur.clear();
     } else {
-      cur += c;
+      cur = &next();
     }
   }
-  out.push_back(std::move(cur));
-  return out;
+  return n;
 }
 
 std::optional<int> csv_byte(std::string_view v) {
@@ -300,10 +307,13 @@ std::optional<int> csv_byte(std::string_view v) {
 // Saleae Logic 2 Async Serial export: name,type,start_time,duration,data[,error]
 // (times in seconds from the start of the capture; read as seconds after the
 // epoch). Each analyzer name is one direction.
+const std::string kSerial = "serial", kLine = "line";
+
 template <class A>
 void saleae_log(const std::string& path, std::FILE* file, LineReader& r, A& a) {
   if (!r.get()) return;
-  auto head = csv_split(r.line);
+  std::vector<std::string> head;
+  head.resize(csv_split(r.line, head));
   int c_name = -1, c_type = -1, c_time = -1, c_data = -1, c_err = -1;
   for (std::size_t i = 0; i < head.size(); ++i) {
     int* col = head[i] == "name"         ? &c_name
@@ -336,39 +346,38 @@ void saleae_log(const std::string& path, std::FILE* file, LineReader& r, A& a) {
     std::fseek(file, static_cast<long>(r.next), SEEK_SET);
     LineReader scan(file);
     std::string l;
+    std::vector<std::string> cols;
     while (names.size() < 2 && std::getline(scan.in, l)) {
       if (!l.empty() && l.back() == '\r') l.pop_back();
-      auto cols = csv_split(l);
-      if (c_name < 0 || static_cast<int>(cols.size()) <= c_name) break;
+      if (c_name < 0 || static_cast<int>(csv_split(l, cols)) <= c_name) break;
       const std::string& n = cols[static_cast<std::size_t>(c_name)];
       if (std::find(names.begin(), names.end(), n) == names.end()) names.push_back(n);
     }
     std::fseek(file, back, SEEK_SET);
   }
+  std::vector<std::string> cols;  // the row's columns; their storage is reused
+  Endpoint from, to;              // the row's ends, reused likewise
   while (r.get()) {
     if (r.line.empty()) continue;
-    auto cols = csv_split(r.line);
+    const int ncols = static_cast<int>(csv_split(r.line, cols));
     auto bad = [&](const std::string& why) {
       a.source_note(kNoTime, ACode::log_syntax,
                     path + ": line " + std::to_string(r.number) + ": " + why, r.number, r.offset);
     };
     // every column the header names must be in the row (the header may name
     // a column twice, the later one past the data columns)
-    if (static_cast<int>(cols.size()) <= std::max({c_time, c_data, c_name})) {
+    if (ncols <= std::max({c_time, c_data, c_name})) {
       bad("too few columns");
       continue;
     }
-    if (c_type >= 0 && c_type < static_cast<int>(cols.size()) &&
-        cols[static_cast<std::size_t>(c_type)] != "data")
-      continue;
-    std::string name = c_name >= 0 ? cols[static_cast<std::size_t>(c_name)] : "serial";
+    if (c_type >= 0 && c_type < ncols && cols[static_cast<std::size_t>(c_type)] != "data") continue;
+    const std::string& name = c_name >= 0 ? cols[static_cast<std::size_t>(c_name)] : kSerial;
     auto v = csv_byte(cols[static_cast<std::size_t>(c_data)]);
     if (!v) {
       bad("data \"" + escape(cols[static_cast<std::size_t>(c_data)]) + "\" is not a byte");
       continue;
     }
-    if (c_err >= 0 && c_err < static_cast<int>(cols.size()) &&
-        !cols[static_cast<std::size_t>(c_err)].empty())
+    if (c_err >= 0 && c_err < ncols && !cols[static_cast<std::size_t>(c_err)].empty())
       bad("the analyzer flagged this byte: " + escape(cols[static_cast<std::size_t>(c_err)]));
     char* endp = nullptr;
     const std::string& ts_text = cols[static_cast<std::size_t>(c_time)];
@@ -379,16 +388,14 @@ void saleae_log(const std::string& path, std::FILE* file, LineReader& r, A& a) {
         (endp && *endp == 0 && !ts_text.empty() && std::isfinite(secs) && std::fabs(secs) < 4.6e12)
             ? static_cast<std::int64_t>(secs * 1e6 + (secs >= 0 ? 0.5 : -0.5))
             : kNoTime;
-    std::string other;
-    if (names.size() == 2)
-      other = names[0] == name ? names[1] : names[0];
-    else
-      other = "line";
-    if (names.size() == 2 && name != names[0] && name != names[1]) other = "line";
+    const std::string* other = &kLine;
+    if (names.size() == 2 && (name == names[0] || name == names[1]))
+      other = names[0] == name ? &names[1] : &names[0];
+    from.name = name;
+    to.name = *other;
     char byte = static_cast<char>(*v);
     a.record(true);
-    a.chunk(ts, Transport::serial, named(name), named(other), std::string_view(&byte, 1), r.number,
-            0);
+    a.chunk(ts, Transport::serial, from, to, std::string_view(&byte, 1), r.number, 0);
   }
 }
 

@@ -31,13 +31,16 @@ Format detect_format(std::string_view head);
 // behind a bad magic number. nullopt otherwise.
 std::optional<std::string> damaged_capture(std::string_view head);
 
+// How many first bytes of an input open_input() reads for detection.
+inline constexpr std::size_t kInputHead = 4096;
+
 // An input opened for reading: a file, or stdin ("-"), a pipe, FIFO or
 // terminal, whose first bytes are read for detection and handed out again.
 struct Input {
   std::string name;                // the path, "stdin" for "-"
   std::unique_ptr<char[]> buffer;  // the FILE's buffer; outlives it
   std::FILE* file = nullptr;       // at byte 0 of the content
-  std::string head;                // the first bytes (up to 4 KiB)
+  std::string head;                // the first bytes (up to kInputHead)
   bool regular = false;            // a regular file (seekable, sized)
   std::uint64_t size = 0;          // regular files
   Input() = default;

@@ -235,6 +235,38 @@ TEST(SerialLogs, SaleaeCsvTwoChannels) {
   EXPECT_TRUE(r.has_note(ACode::log_syntax));
 }
 
+// CSV quoting as Logic 2 writes it (RFC 4180): a quoted field may hold commas
+// and doubled quotes, a quote may open mid-field, and a quote left open runs
+// to the end of the line. The reader splits a row a run of plain bytes at a
+// time; each case lands in the column it belongs to.
+TEST(SerialLogs, SaleaeCsvQuotedColumns) {
+  TempDir tmp;
+  std::string csv = "name,type,start_time,duration,data,error\n";
+  auto add = [&](const std::string& name, const std::string& bytes, const std::string& tail) {
+    for (char c : bytes)
+      csv += name + ",\"da\"ta,1.0,8.68e-05,0x" +
+             std::string(1, "0123456789ABCDEF"[(c >> 4) & 15]) +
+             std::string(1, "0123456789ABCDEF"[c & 15]) + "," + tail + "\n";
+  };
+  add("\"T,X\"", top::with_checksum("#TPUG2wPTZ05"), "");
+  add("\"R\"\"X\"", top::with_checksum("#TPGU2wPTZ05"), "");
+  add("\"T,X\"", "#", "\"framing, \"\"stop\"\" bit");  // open quote: the rest of the line
+  write_file(tmp.file("q.csv"), csv);
+  Recorder r = read(tmp.file("q.csv"), {}, Format::saleae);
+  ASSERT_EQ(r.frames.size(), 2u);
+  EXPECT_EQ(r.frames[0].from, "T,X");
+  EXPECT_EQ(r.frames[0].to, "R\"X");
+  EXPECT_EQ(r.frames[1].from, "R\"X");
+  EXPECT_EQ(r.frames[1].reply_to, 1u);
+  ASSERT_EQ(r.count_note(ACode::log_syntax), 1u);
+  for (const auto& n : r.notes) {
+    if (n.note.code != ACode::log_syntax) continue;
+    EXPECT_NE(n.note.message.find("line 30: the analyzer flagged this byte: framing, \"stop\" bit"),
+              std::string::npos)
+        << n.note.message;
+  }
+}
+
 // fuzz/regressions/capture_saleae/duplicate-name-column-out-of-range (found by
 // fuzz_capture_saleae): the header names "name", "type" and "start_time"
 // twice, the second "name" past the end of every data row. The reader took the
