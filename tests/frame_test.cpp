@@ -158,6 +158,36 @@ TEST(Parse, NeedMoreUntilComplete) {
   EXPECT_EQ(parse_frame(s, false).status, ParseStatus::frame);
 }
 
+// A need_more verdict says, once the header is read, how long the input must
+// grow before the verdict can change (the stream decoder waits for that
+// rather than parsing the header again for every byte of a serial link):
+// every longer prefix below it is need_more too, and it is never past the
+// first prefix with another verdict.
+TEST(Parse, NeedMoreSaysHowManyBytesToWaitFor) {
+  const std::string gay = "#tpUG6wGAYEF073288";
+  const ParseResult r = parse_frame(std::string_view(gay).substr(0, 12), false);
+  ASSERT_EQ(r.status, ParseStatus::need_more);
+  EXPECT_EQ(r.consumed, gay.size());  // the data and the checksum
+  std::size_t hinted = 0;
+  for (std::string s : {gay, std::string("#tpUG6wGAYEF0732FF#TPUD2wCAP013E"),
+                        std::string("#tPUD") + '\x14' + "wGAY" + std::string(20, '0') + "00",
+                        std::string("#TpUD") + '\x00' + '\x03' + "ZOM0A0" + "00",
+                        std::string("#tpDP16wTMP") + std::string(22, '0') + "00"}) {
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      const std::string_view prefix = std::string_view(s).substr(0, i);
+      const ParseResult p = parse_frame(prefix, false);
+      if (p.status != ParseStatus::need_more || p.consumed == 0) continue;
+      ++hinted;
+      ASSERT_GT(p.consumed, i) << s << " prefix " << i;
+      for (std::size_t j = i; j < p.consumed && j <= s.size(); ++j)
+        ASSERT_EQ(parse_frame(std::string_view(s).substr(0, j), false).status,
+                  ParseStatus::need_more)
+            << s << " prefix " << j << " after a hint of " << p.consumed << " at " << i;
+    }
+  }
+  EXPECT_GT(hinted, 20u);
+}
+
 TEST(Parse, BadChecksumCarriesExpected) {
   ParseResult r = parse_exact("#TPUD2wCAP0100");
   ASSERT_EQ(r.status, ParseStatus::frame);

@@ -145,7 +145,9 @@ Verdict invalid(Finding& err, FindingCode code, std::size_t offset, std::string 
   return Verdict{ParseStatus::invalid, 0};
 }
 
-Verdict need_more() { return Verdict{}; }
+// `until`: the input length below which the verdict stays need_more (0
+// when the parse cannot tell).
+Verdict need_more(std::size_t until = 0) { return Verdict{ParseStatus::need_more, until}; }
 
 Verdict truncated(Finding& err, std::size_t have, std::size_t want) {
   return invalid(err, FindingCode::truncated, have,
@@ -419,7 +421,8 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
   // plus its checksum and the byte after it.
   const std::size_t lookahead = lay.data_at + max_data_hex + 3;
 
-  if (!at_end && n < declared_end) return need_more();
+  // Every byte before the data is read: nothing changes until the checksum.
+  if (!at_end && n < declared_end) return need_more(declared_end);
 
   // Sum of bytes [0, p).
   auto sum_to = [&](std::size_t p) { return byte_sum(b.data(), p); };
@@ -455,7 +458,7 @@ Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Fr
 
   // The declared boundary does not validate.
   if (lay.hex_length && opts.recover_lying_length) {
-    if (!at_end && n < lookahead) return need_more();
+    if (!at_end && n < lookahead) return need_more(lookahead);
     std::size_t found = SIZE_MAX;
     int count = 0;
     std::uint8_t found_value = 0;

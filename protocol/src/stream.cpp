@@ -34,6 +34,7 @@ void StreamDecoder::reset() {
   garbage_has_reason_ = false;
   ready_.clear();
   has_held_ = false;
+  wait_at_ = wait_until_ = 0;
 }
 
 void StreamDecoder::feed(std::string_view chunk) {
@@ -173,6 +174,8 @@ void StreamDecoder::pump() {
       pos_ = end;
       continue;
     }
+    // The last parse here said nothing changes before this many bytes.
+    if (!judge && wait_at_ == base_ + pos_ && wait_until_ > base_ + buf_.size()) break;
     ParseResult r;
     std::size_t scan_from = pos_ + 1;
     int tried = 0;
@@ -191,7 +194,11 @@ void StreamDecoder::pump() {
       parse_frame(all.substr(pos_), judge, opts_.parse, r);
     }
     has_held_ = false;
-    if (r.status == ParseStatus::need_more) break;
+    if (r.status == ParseStatus::need_more) {
+      wait_at_ = base_ + pos_;
+      wait_until_ = base_ + pos_ + r.consumed;
+      break;
+    }
     // flushing: a frame cut short is not garbage yet, its rest may come
     if (r.status == ParseStatus::invalid && !at_end_ && r.error.code == FindingCode::truncated)
       break;

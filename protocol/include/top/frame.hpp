@@ -112,9 +112,12 @@ struct ParseOptions {
 
 struct ParseResult {
   ParseStatus status = ParseStatus::need_more;
-  std::size_t consumed = 0;  // frame bytes (status == frame)
-  Frame frame;               // status == frame
-  Finding error;             // status == invalid: code and offset of the fault
+  // status == frame: the frame's bytes. need_more: the length of input
+  // below which the verdict stays need_more, when the parse knows it (the
+  // frame's header is complete), else 0.
+  std::size_t consumed = 0;
+  Frame frame;    // status == frame
+  Finding error;  // status == invalid: code and offset of the fault
 };
 
 // Parses the frame that starts at bytes[0] (which should be '#').

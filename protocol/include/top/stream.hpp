@@ -100,6 +100,11 @@ class StreamDecoder {
   std::uint64_t held_scan_ = 0;
   int held_tried_ = 0;
   ParseResult held_;
+  // A frame at stream offset wait_at_ that cannot be judged before the
+  // stream holds wait_until_ bytes (a serial link feeds a byte at a time:
+  // the header is not parsed again for each).
+  std::uint64_t wait_at_ = 0;
+  std::uint64_t wait_until_ = 0;
   // The parse options without messages, and the result of a parse at a '#'
   // inside a frame (its verdict is all that is used).
   ParseOptions quiet_;
