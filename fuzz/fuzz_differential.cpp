@@ -70,12 +70,16 @@ void compare_fields(const top::Frame& f, const topref::Frame& g, std::string_vie
   }
 }
 
-void single_frame(std::string_view in) {
-  const std::optional<topref::Frame> g = topref::parse(in);
+void single_frame(std::string_view in, const std::optional<topref::Frame>& g) {
   const bool ref_ok = g.has_value() && g->size == in.size();
   static top::ParseResult r = topfuzz::reused_parse_result();
   const topfuzz::ReleaseAtEnd release(r);
-  top::parse_exact(in, {}, r);
+  static const top::ParseOptions quiet = [] {  // the parts are compared, not the texts
+    top::ParseOptions o;
+    o.messages = false;
+    return o;
+  }();
+  top::parse_exact(in, quiet, r);
   const bool fast_ok = r.status == top::ParseStatus::frame && r.consumed == in.size() &&
                        r.frame.raw.size() == in.size() && clean(r.frame);
   FUZZ_CHECK(ref_ok == fast_ok, "\"" + show(in) + "\": the reference " +
@@ -92,7 +96,8 @@ void single_frame(std::string_view in) {
   compare_fields(f, *g, in);
 }
 
-void stream(std::string_view in) {
+// `first`: the reference's parse at byte 0 (single_frame's).
+void stream(std::string_view in, const std::optional<topref::Frame>& first) {
   // Kept across inputs (reuse.hpp): the decoder is reset, the lists cleared.
   static std::vector<std::pair<std::size_t, std::size_t>> ref, fast;
   static top::StreamDecoder d([] {  // boundaries only: no texts
@@ -110,20 +115,29 @@ void stream(std::string_view in) {
   fast.clear();
   d.reset();
   std::size_t at = 0;
-  while (at < in.size()) {
-    const std::optional<topref::Frame> g = topref::parse(in.substr(at));
-    if (!g) break;
-    ref.emplace_back(at, g->size);
-    at += g->size;
+  if (first) {
+    ref.emplace_back(0, first->size);
+    at = first->size;
+    while (at < in.size()) {
+      const std::optional<topref::Frame> g = topref::parse(in.substr(at));
+      if (!g) break;
+      ref.emplace_back(at, g->size);
+      at += g->size;
+    }
   }
   const bool ref_split = !ref.empty() && at == in.size();
 
+  // Items until the first that is not a clean frame: it decides that the
+  // decoder does not split the input, and the decoder decodes no further
+  // (one item at a time, as next() asks).
   d.feed(in);
   d.finish();
   bool fast_clean = true;
   while (d.next(it)) {
-    if (it.kind != top::ItemKind::frame || !clean(it.frame) || it.frame.terminator != 0)
+    if (it.kind != top::ItemKind::frame || !clean(it.frame) || it.frame.terminator != 0) {
       fast_clean = false;
+      break;
+    }
     fast.emplace_back(it.offset, it.length);
   }
   const bool fast_split = fast_clean && !fast.empty();
@@ -141,7 +155,8 @@ void stream(std::string_view in) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   size = topfuzz::capped(size);
   const std::string_view in(reinterpret_cast<const char*>(data), size);
-  single_frame(in);
-  stream(in);
+  const std::optional<topref::Frame> first = topref::parse(in);  // both halves need it
+  single_frame(in, first);
+  stream(in, first);
   return 0;
 }

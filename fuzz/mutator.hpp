@@ -12,6 +12,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
+#include <string_view>
+
+#include "top/frame.hpp"
 
 namespace topfuzz {
 
@@ -28,9 +32,10 @@ inline std::size_t repair_frames(std::uint8_t* d, std::size_t size) {
   std::size_t repaired = 0;
   std::size_t p = 0;
   while (p + 3 <= size) {
-    if (d[p] != '#') {
-      ++p;
-      continue;
+    if (d[p] != '#') {  // to the next '#' (memchr: this runs on every mutation)
+      const void* h = std::memchr(d + p, '#', size - 2 - p);
+      if (h == nullptr) break;
+      p = static_cast<std::size_t>(static_cast<const std::uint8_t*>(h) - d);
     }
     const std::uint8_t h1 = d[p + 1], h2 = d[p + 2];
     const bool fixed = h1 == 'T' && h2 == 'P', variable = h1 == 't' && h2 == 'p';
@@ -40,8 +45,13 @@ inline std::size_t repair_frames(std::uint8_t* d, std::size_t size) {
       continue;
     }
     const std::size_t data_at = p + 10;
-    std::size_t q = data_at;
-    while (q < size && d[q] != '#' && d[q] != '\r' && d[q] != '\n') ++q;
+    // The extent ends at the first '#', CR or LF (memchr: this runs on
+    // every mutation).
+    std::size_t q = size;
+    for (const int stop : {'#', '\r', '\n'})
+      if (data_at < q)
+        if (const void* h = std::memchr(d + data_at, stop, q - data_at))
+          q = static_cast<std::size_t>(static_cast<const std::uint8_t*>(h) - d);
     if (q < data_at + 2) {  // no room for a checksum
       ++p;
       continue;
@@ -58,8 +68,8 @@ inline std::size_t repair_frames(std::uint8_t* d, std::size_t size) {
       d[p + 5] = static_cast<std::uint8_t>(kHex[len]);
     }
     const std::size_t cs = data_at + len;
-    unsigned sum = 0;
-    for (std::size_t i = p; i < cs; ++i) sum += d[i];
+    const unsigned sum =
+        top::checksum(std::string_view(reinterpret_cast<const char*>(d + p), cs - p));
     d[cs] = static_cast<std::uint8_t>(kHex[(sum >> 4) & 0x0F]);
     d[cs + 1] = static_cast<std::uint8_t>(kHex[sum & 0x0F]);
     ++repaired;

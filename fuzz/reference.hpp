@@ -109,13 +109,15 @@ struct Layout {
 };
 
 inline const std::vector<Layout>& layouts() {
+  // Built once (the field lists were built on every call, which the fuzz
+  // targets make for each frame).
   using F = std::vector<Field>;
-  const F u2{{2, false}}, s2{{2, true}}, s2s2{{2, true}, {2, true}};
-  const F s2s2s2{{2, true}, {2, true}, {2, true}};
-  const F angle{{4, true}, {2, false}};
-  const F angle2{{4, true}, {2, false}, {4, true}, {2, false}};
-  const F att{{4, true}, {4, true}, {4, true}};
-  const F s4{{4, true}}, zoom_focus{{4, true}, {4, true, "NNNN"}};
+  static const F u2{{2, false}}, s2{{2, true}}, s2s2{{2, true}, {2, true}};
+  static const F s2s2s2{{2, true}, {2, true}, {2, true}};
+  static const F angle{{4, true}, {2, false}};
+  static const F angle2{{4, true}, {2, false}, {4, true}, {2, false}};
+  static const F att{{4, true}, {4, true}, {4, true}};
+  static const F s4{{4, true}}, zoom_focus{{4, true}, {4, true, "NNNN"}};
   static const std::vector<Layout> all = {
       // SkyDroid 3.1 PTZ x1x2; 3.2 speed X0X1 "8-bit signed"; 3.3.1 angle
       // X0X1X2X3 "16-bit signed" + speed X4X5 hex; 3.3.2 GAA X0X1;

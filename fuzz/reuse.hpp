@@ -53,10 +53,11 @@ template <class T>
 void release(std::vector<T>& v) {
   v.clear();
 }
+// A stream item's buffers circulate through its decoder (next() swaps them
+// in and out), so they are kept; only the texts are freed.
 inline void release(top::StreamItem& it) {
   it.frame.findings.clear();
   it.finding.message = std::string();
-  it.preview = std::string();
 }
 
 // Releases the given results when it goes out of scope, at every return of

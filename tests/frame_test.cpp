@@ -37,6 +37,20 @@ TEST(Checksum, EveryLengthAndByteAgreesWithTheByteLoop) {
     }
 }
 
+// The character classes are a table: every byte against the documents'
+// sets (addresses U M D E P G, SkyDroid 2 / Topotek 2; identifiers of
+// uppercase letters and digits).
+TEST(Chars, ClassesOfEveryByte) {
+  for (int i = 0; i < 256; ++i) {
+    const char c = static_cast<char>(i);
+    const bool address = c == 'U' || c == 'M' || c == 'D' || c == 'E' || c == 'P' || c == 'G';
+    const bool ident = (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
+    EXPECT_EQ(is_address(c), address) << i;
+    EXPECT_EQ(is_ident_char(c), ident) << i;
+    EXPECT_EQ(detail::char_is(c, detail::kClassLowerHex), c >= 'a' && c <= 'f') << i;
+  }
+}
+
 TEST(Parse, ValidFixedFrame) {
   ExactBuffer buf("#TPUD2wAWB0144");
   ParseResult r = parse_frame(buf.view(), true);

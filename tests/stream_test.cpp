@@ -163,6 +163,62 @@ TEST(Stream, WithoutMessagesTheSameItems) {
   }
 }
 
+namespace {
+// Every field of an item, for exact comparisons.
+std::string everything(const StreamItem& it) {
+  auto finding = [](const Finding& f) {
+    return std::string(to_string(f.code)) + "/" + std::to_string(static_cast<int>(f.severity)) +
+           "@" + std::to_string(f.offset) + " '" + f.message + "' q'" + std::string(f.quirk) + "'";
+  };
+  const Frame& f = it.frame;
+  std::string s = std::to_string(static_cast<int>(it.kind)) + " @" + std::to_string(it.offset) +
+                  "+" + std::to_string(it.length) + " frame{" +
+                  std::to_string(static_cast<int>(f.header)) + " " + std::string(1, f.src) +
+                  std::string(1, f.dst) + std::string(1, f.control) + std::string(f.ident_view()) +
+                  " " + std::to_string(f.declared_length) + "/" + std::to_string(f.data_offset) +
+                  "/" + std::to_string(f.data_length) + " cs" + std::to_string(f.checksum) + "/" +
+                  std::to_string(f.expected_checksum) + (f.checksum_present ? "p" : "") +
+                  (f.checksum_ok ? "ok" : "") + " t" + std::to_string(f.terminator) + " '" + f.raw +
+                  "' [";
+  for (const Finding& x : f.findings) s += finding(x) + "; ";
+  return s + "]} finding{" + finding(it.finding) + "} preview '" + it.preview + "'\n";
+}
+}  // namespace
+
+// next() swaps an item into the caller's StreamItem and keeps the old one's
+// buffers for a later item: nothing of an earlier item (a frame's findings,
+// a garbage item's preview or reason) may show in a later one, whether the
+// caller keeps one item or takes a new one each time.
+TEST(Stream, ReusedItemsCarryNothingOver) {
+  const std::string stream = std::string("xx#T#TPUD2wCAP013E\r\n") + gps_frame_with_hash() +
+                             "noise that is longer than the preview of thirty-two bytes" +
+                             "#tpDU3rVER0105025A#TPUD9wCAP#TPUD2wCAP013E" +
+                             "#TPUG6wGAYEF073288#TPUD2wCAP0100\n#PDP#tpUD5wCAP0001E4\r\n" +
+                             "#tpUM2rZOM00A3" + std::string(70000, 'z') + "#TPUD2wCAP013E#TPUD";
+  for (const bool messages : {true, false}) {
+    StreamOptions o;
+    o.parse.messages = messages;
+    std::string fresh, reused;
+    StreamDecoder a(o), b(o);
+    a.feed(stream);
+    a.finish();
+    for (StreamItem it; a.next(it); it = StreamItem{}) fresh += everything(it);
+    StreamItem kept;
+    b.feed(stream);
+    b.finish();
+    while (b.next(kept)) reused += everything(kept);
+    EXPECT_EQ(reused, fresh) << "messages " << messages;
+    EXPECT_NE(fresh.find("garbage"), std::string::npos);
+    // and a decoder reset and used again
+    b.reset();
+    b.feed(stream);
+    b.finish();
+    std::string again;
+    while (b.next(kept)) again += everything(kept);
+    EXPECT_EQ(again, fresh) << "messages " << messages;
+  }
+}
+
 TEST(Stream, MemoryStaysBounded) {
   StreamDecoder d;
   std::mt19937 rng(1);
@@ -205,6 +261,31 @@ TEST(Stream, FlushReleasesAHeldFrame) {
   d.flush();
   ASSERT_TRUE(d.next(it));
   EXPECT_EQ(it.frame.raw, "#TPUD2wCAP013E");
+}
+
+// flush() and settle() decide on the frame held last in the buffer: they
+// must see every byte fed so far. They used to decode only until 64 items
+// were queued, so in a chunk of more frames the frame held there was
+// released before the CR/LF after it was read, and that CR/LF came out as
+// garbage (a burst of 65 frames on a serial or TCP link, in topsim and in
+// topdump's live and TCP paths).
+TEST(Stream, FlushAndSettleSeeTheWholeChunk) {
+  std::string burst;
+  for (int i = 0; i < 200; ++i) burst += "#TPUD2wCAP013E\r\n";
+  for (const bool settle : {false, true}) {
+    StreamDecoder d;
+    d.feed(burst);
+    settle ? d.settle() : d.flush();
+    std::vector<StreamItem> items;
+    StreamItem it;
+    while (d.next(it)) items.push_back(std::move(it));
+    ASSERT_EQ(items.size(), 200u) << (settle ? "settle" : "flush") << describe(items);
+    for (const StreamItem& x : items) {
+      ASSERT_EQ(x.kind, ItemKind::frame) << describe(items);
+      EXPECT_EQ(x.frame.terminator, 2);
+    }
+    EXPECT_EQ(d.buffered(), 0u);
+  }
 }
 
 TEST(Stream, LargeChunkIsDecodedLazily) {

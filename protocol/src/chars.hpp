@@ -5,13 +5,14 @@
 #include <string>
 #include <string_view>
 
+#include "top/frame.hpp"
 #include "top/text.hpp"
 
 namespace top::detail {
 
 using top::hex_value;
 inline bool is_hex(char c) noexcept { return hex_value(c) >= 0; }
-inline bool is_lower_hex(char c) noexcept { return c >= 'a' && c <= 'f'; }
+inline bool is_lower_hex(char c) noexcept { return char_is(c, kClassLowerHex); }
 
 // The pieces joined, in one allocation (a chain of operator+ grows the
 // string piece by piece, an allocation per growth: most of the cost of a

@@ -49,6 +49,15 @@ std::optional<FindingCode> finding_code_from_string(std::string_view s) noexcept
   return std::nullopt;
 }
 
+void swap(Finding& a, Finding& b) noexcept {
+  using std::swap;
+  swap(a.code, b.code);
+  swap(a.severity, b.severity);
+  swap(a.offset, b.offset);
+  a.message.swap(b.message);
+  swap(a.quirk, b.quirk);
+}
+
 Finding make_finding(FindingCode code, std::uint32_t offset, std::string message,
                      std::string_view quirk) {
   return Finding{code, default_severity(code), offset, std::move(message), quirk};

@@ -105,6 +105,37 @@ void put_hex2(std::uint8_t v, char out[2]) noexcept {
   out[1] = kDigits[v & 0x0F];
 }
 
+void reset_keep_capacity(Frame& f) noexcept {
+  f.header = Header::variable;
+  f.src = f.dst = f.control = 0;
+  f.ident[0] = f.ident[1] = f.ident[2] = 0;
+  f.declared_length = f.data_offset = f.data_length = 0;
+  f.checksum = f.expected_checksum = 0;
+  f.checksum_present = f.checksum_ok = false;
+  f.terminator = 0;
+  f.raw.clear();
+  f.findings.clear();
+}
+
+void swap(Frame& a, Frame& b) noexcept {
+  using std::swap;
+  swap(a.header, b.header);
+  swap(a.src, b.src);
+  swap(a.dst, b.dst);
+  swap(a.control, b.control);
+  swap(a.ident, b.ident);
+  swap(a.declared_length, b.declared_length);
+  swap(a.data_offset, b.data_offset);
+  swap(a.data_length, b.data_length);
+  swap(a.checksum, b.checksum);
+  swap(a.expected_checksum, b.expected_checksum);
+  swap(a.checksum_present, b.checksum_present);
+  swap(a.checksum_ok, b.checksum_ok);
+  swap(a.terminator, b.terminator);
+  a.raw.swap(b.raw);
+  a.findings.swap(b.findings);
+}
+
 std::string with_checksum(std::string_view s) {
   std::string out(s);
   char c[2];
@@ -129,8 +160,6 @@ std::string printable(char c) {
   return b;
 }
 
-bool is_ident_char(char c) noexcept { return (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9'); }
-
 bool is_boundary(char c) noexcept { return c == '#' || c == '\r' || c == '\n'; }
 
 // A parse's verdict without its frame (built in place by parse_into) or its
@@ -141,7 +170,14 @@ struct Verdict {
 };
 
 Verdict invalid(Finding& err, FindingCode code, std::size_t offset, std::string msg) {
-  err = make_finding(code, static_cast<std::uint32_t>(offset), std::move(msg));
+  // In place, as make_finding would build it: the stream decoder parses at
+  // every '#', most of them fail, and a Finding built and moved in costs more
+  // than the parse.
+  err.code = code;
+  err.severity = default_severity(code);
+  err.offset = static_cast<std::uint32_t>(offset);
+  err.message = std::move(msg);
+  err.quirk = {};
   return Verdict{ParseStatus::invalid, 0};
 }
 
@@ -179,19 +215,6 @@ bool checksum_at(std::string_view b, std::size_t p, unsigned prefix_sum,
   if (hi < 0 || lo < 0) return false;
   value = static_cast<std::uint8_t>(hi * 16 + lo);
   return value == static_cast<std::uint8_t>(prefix_sum & 0xFF);
-}
-
-// Back to a default frame, keeping the capacity of raw and findings.
-void reset_keep_capacity(Frame& f) {
-  f.header = Header::variable;
-  f.src = f.dst = f.control = 0;
-  f.ident[0] = f.ident[1] = f.ident[2] = 0;
-  f.declared_length = f.data_offset = f.data_length = 0;
-  f.checksum = f.expected_checksum = 0;
-  f.checksum_present = f.checksum_ok = false;
-  f.terminator = 0;
-  f.raw.clear();
-  f.findings.clear();
 }
 
 // The common frame in one pass: #TP or #tp, two addresses, an uppercase hex

@@ -11,9 +11,15 @@ namespace {
 // stream of noise is neither held nor counted forever.
 constexpr std::uint64_t kMaxGarbageRun = std::uint64_t{64} * 1024;
 constexpr std::size_t kPreview = 32;
-// Items decoded ahead of next(): a large chunk is decoded lazily, so the
-// queue stays small whatever the chunk size.
-constexpr std::size_t kMaxReady = 64;
+// Items decoded ahead of next(): one. A large chunk is decoded lazily, and a
+// caller that stops at an item (a fuzz target at the first one that is not a
+// clean frame) pays for no more.
+constexpr std::size_t kReadyAhead = 1;
+// Queue slots kept once the queue is empty again: flush() and settle()
+// queue a whole chunk's items, and a long run of noise fed at once comes
+// out as several garbage items.
+constexpr std::size_t kKeepSlots = 16;
+constexpr std::size_t kNoLimit = static_cast<std::size_t>(-1);
 // '#' bytes inside a frame that fails its checksum that are tried as the
 // start of a valid frame; a cap keeps hostile binary data linear.
 constexpr int kMaxInnerCandidates = 16;
@@ -32,7 +38,7 @@ void StreamDecoder::reset() {
   garbage_len_ = 0;
   garbage_preview_.clear();
   garbage_has_reason_ = false;
-  ready_.clear();
+  ready_head_ = ready_count_ = 0;
   has_held_ = false;
   wait_at_ = wait_until_ = 0;
 }
@@ -49,7 +55,7 @@ void StreamDecoder::finish() {
 }
 
 void StreamDecoder::flush() {
-  pump();
+  pump(kNoLimit);
   release_pending();
 }
 
@@ -59,17 +65,37 @@ void StreamDecoder::settle() {
   // length or a frame inside it), but keep the stream open: a frame cut
   // short still waits for its rest.
   flushing_ = true;
-  pump();
+  pump(kNoLimit);
   flushing_ = false;
   release_pending();
 }
 
 bool StreamDecoder::next(StreamItem& out) {
-  if (ready_.empty()) pump();
-  if (ready_.empty()) return false;
-  out = std::move(ready_.front());
-  ready_.pop_front();
+  if (ready_count_ == 0) pump(kReadyAhead);
+  if (ready_count_ == 0) return false;
+  // The slot takes out's old buffers, for a later item.
+  swap(out, ready_[ready_head_]);
+  ready_head_ = ready_head_ + 1 == ready_.size() ? 0 : ready_head_ + 1;
+  if (--ready_count_ == 0) {
+    ready_head_ = 0;
+    if (ready_.size() > kKeepSlots) {
+      ready_.resize(kKeepSlots);
+      ready_.shrink_to_fit();
+    }
+  }
   return true;
+}
+
+StreamItem& StreamDecoder::push_item() {
+  if (ready_count_ == ready_.size()) {  // full: unwrap the ring, then grow it
+    std::rotate(ready_.begin(), ready_.begin() + static_cast<std::ptrdiff_t>(ready_head_),
+                ready_.end());
+    ready_head_ = 0;
+    ready_.emplace_back();
+  }
+  std::size_t at = ready_head_ + ready_count_++;
+  if (at >= ready_.size()) at -= ready_.size();
+  return ready_[at];
 }
 
 void StreamDecoder::compact() {
@@ -85,6 +111,16 @@ void StreamDecoder::compact() {
   }
 }
 
+void swap(StreamItem& a, StreamItem& b) noexcept {
+  using std::swap;
+  swap(a.kind, b.kind);
+  swap(a.offset, b.offset);
+  swap(a.length, b.length);
+  swap(a.frame, b.frame);
+  swap(a.finding, b.finding);
+  a.preview.swap(b.preview);
+}
+
 void note_terminator(Frame& f, std::size_t count, bool message) {
   if (count == 0) return;
   f.terminator = static_cast<std::uint8_t>(std::min<std::size_t>(count, 255));
@@ -96,13 +132,24 @@ void note_terminator(Frame& f, std::size_t count, bool message) {
 
 void StreamDecoder::release_pending() {
   if (!has_pending_) return;
-  Frame& f = pending_.frame;
+  Frame& f = parsed_.frame;
   note_terminator(f, f.terminator, opts_.parse.messages);
-  ready_.push_back(std::move(pending_));
+  StreamItem& it = push_item();  // a slot whose old buffers are reused
+  it.kind = ItemKind::frame;
+  it.offset = pending_offset_;
+  it.length = pending_length_;
+  swap(it.frame, f);  // the next parse takes the slot's old buffers
+  it.finding.code = FindingCode{};
+  it.finding.severity = Severity{};
+  it.finding.offset = 0;
+  it.finding.message.clear();
+  it.finding.quirk = {};
+  it.preview.clear();
   has_pending_ = false;
 }
 
-void StreamDecoder::add_garbage(std::size_t at, std::size_t len, const Finding* why) {
+// `why` (when given) is taken: its contents may be exchanged.
+void StreamDecoder::add_garbage(std::size_t at, std::size_t len, Finding* why) {
   release_pending();
   // A run ends at exactly kMaxGarbageRun bytes however the bytes arrived
   // (adding a long span at once used to overshoot the cap, so the items
@@ -115,7 +162,7 @@ void StreamDecoder::add_garbage(std::size_t at, std::size_t len, const Finding* 
       garbage_has_reason_ = false;
     }
     if (why && !garbage_has_reason_) {
-      garbage_reason_ = *why;
+      swap(garbage_reason_, *why);
       garbage_reason_.offset += static_cast<std::uint32_t>(off - garbage_start_);
       garbage_has_reason_ = true;
     }
@@ -133,14 +180,15 @@ void StreamDecoder::add_garbage(std::size_t at, std::size_t len, const Finding* 
 
 void StreamDecoder::flush_garbage() {
   if (garbage_len_ == 0) return;
-  StreamItem it;
+  StreamItem& it = push_item();  // a slot whose old buffers are reused
   it.kind = ItemKind::garbage;
   it.offset = garbage_start_;
   it.length = garbage_len_;
-  it.preview = std::move(garbage_preview_);
+  reset_keep_capacity(it.frame);
+  it.preview.swap(garbage_preview_);
   const bool text = opts_.parse.messages;
   if (garbage_has_reason_) {
-    it.finding = std::move(garbage_reason_);
+    swap(it.finding, garbage_reason_);
     if (text)
       it.finding.message = detail::cat(
           {std::to_string(garbage_len_), " byte(s) outside any frame: ", it.finding.message});
@@ -150,19 +198,18 @@ void StreamDecoder::flush_garbage() {
         text ? detail::cat({std::to_string(garbage_len_), " byte(s) outside any frame"})
              : std::string());
   }
-  ready_.push_back(std::move(it));
   garbage_len_ = 0;
   garbage_preview_.clear();
   garbage_has_reason_ = false;
 }
 
-void StreamDecoder::pump() {
+void StreamDecoder::pump(std::size_t limit) {
   const std::string_view all(buf_);
   const bool judge = at_end_ || flushing_;  // parse as if no more bytes came
-  while (pos_ < buf_.size() && ready_.size() < kMaxReady) {
+  while (pos_ < buf_.size() && ready_count_ < limit) {
     char c = buf_[pos_];
     if (has_pending_ && (c == '\r' || c == '\n')) {
-      if (pending_.frame.terminator < 255) ++pending_.frame.terminator;
+      if (parsed_.frame.terminator < 255) ++parsed_.frame.terminator;
       ++pos_;
       continue;
     }
@@ -176,11 +223,11 @@ void StreamDecoder::pump() {
     }
     // The last parse here said nothing changes before this many bytes.
     if (!judge && wait_at_ == base_ + pos_ && wait_until_ > base_ + buf_.size()) break;
-    ParseResult r;
+    ParseResult& r = parsed_;  // its buffers are reused
     std::size_t scan_from = pos_ + 1;
     int tried = 0;
     if (has_held_ && held_at_ == base_ + pos_) {
-      r = std::move(held_);
+      std::swap(r, held_);
       scan_from = static_cast<std::size_t>(held_scan_ - base_);
       tried = held_tried_;
     } else if (garbage_len_ > 0 && garbage_has_reason_ && opts_.parse.messages) {
@@ -213,8 +260,9 @@ void StreamDecoder::pump() {
     // inside it: trust a validated length over an unvalidated one.
     if (!r.frame.checksum_ok) {
       bool wait = false, yielded = false;
-      for (std::size_t q = scan_from; q < pos_ + r.consumed && tried < kMaxInnerCandidates; ++q) {
-        if (buf_[q] != '#') continue;
+      const std::string_view outer = all.substr(0, pos_ + r.consumed);
+      for (std::size_t q = outer.find('#', scan_from);
+           q != std::string_view::npos && tried < kMaxInnerCandidates; q = outer.find('#', q + 1)) {
         ParseResult& inner = inner_;  // only its verdict is looked at
         parse_frame(all.substr(q), judge, quiet_, inner);
         if (inner.status == ParseStatus::need_more) {
@@ -243,18 +291,17 @@ void StreamDecoder::pump() {
         }
       }
       if (wait) {
-        held_ = std::move(r);
+        std::swap(held_, r);
         break;
       }
       if (yielded) continue;
     }
     release_pending();
     flush_garbage();
-    pending_ = StreamItem{};
-    pending_.kind = ItemKind::frame;
-    pending_.offset = base_ + pos_;
-    pending_.length = r.consumed;
-    pending_.frame = std::move(r.frame);
+    // The frame stays in parsed_ until released (every parse comes after
+    // release_pending()).
+    pending_offset_ = base_ + pos_;
+    pending_length_ = r.consumed;
     has_pending_ = true;
     pos_ += r.consumed;
   }

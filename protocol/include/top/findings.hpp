@@ -112,6 +112,9 @@ struct Finding {
   std::string_view quirk;
 };
 
+// Exchanges two findings (their texts change hands, nothing is copied).
+void swap(Finding& a, Finding& b) noexcept;
+
 // Builds a finding with the code's default severity.
 Finding make_finding(FindingCode code, std::uint32_t offset, std::string message,
                      std::string_view quirk = {});

@@ -6,6 +6,7 @@
 // Nothing here allocates beyond the frame's own bytes, prints or throws.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -40,10 +41,29 @@ inline constexpr std::size_t prefix_size = 10;
 // Largest frame of any header: "#Tp" SD LL III data(65535) CC.
 inline constexpr std::size_t max_frame_size = 3 + 2 + 2 + 3 + max_data_ext16 + 2;
 
-// True for the address characters the documents define (U M D E P G).
-inline bool is_address(char c) noexcept {
-  return c == 'U' || c == 'M' || c == 'D' || c == 'E' || c == 'P' || c == 'G';
+namespace detail {
+// Character classes of the frame syntax, one table lookup each: the parser
+// tests several per frame, and a chain of compares costs more (and under
+// the fuzzers' comparison tracing, much more).
+enum : std::uint8_t { kClassAddress = 1, kClassIdent = 2, kClassLowerHex = 4 };
+inline constexpr std::array<std::uint8_t, 256> kCharClass = [] {
+  std::array<std::uint8_t, 256> t{};
+  for (const char c : {'U', 'M', 'D', 'E', 'P', 'G'})
+    t[static_cast<unsigned char>(c)] |= kClassAddress;
+  for (int c = 'A'; c <= 'Z'; ++c) t[static_cast<std::size_t>(c)] |= kClassIdent;
+  for (int c = '0'; c <= '9'; ++c) t[static_cast<std::size_t>(c)] |= kClassIdent;
+  for (int c = 'a'; c <= 'f'; ++c) t[static_cast<std::size_t>(c)] |= kClassLowerHex;
+  return t;
+}();
+inline bool char_is(char c, std::uint8_t cls) noexcept {
+  return (kCharClass[static_cast<unsigned char>(c)] & cls) != 0;
 }
+}  // namespace detail
+
+// True for the address characters the documents define (U M D E P G).
+inline bool is_address(char c) noexcept { return detail::char_is(c, detail::kClassAddress); }
+// True for an identifier character: an uppercase letter or a digit.
+inline bool is_ident_char(char c) noexcept { return detail::char_is(c, detail::kClassIdent); }
 // True for a client-side address: U (UART/UDP client) or P (network client).
 inline bool is_client_address(char c) noexcept { return c == 'U' || c == 'P'; }
 
@@ -79,6 +99,13 @@ struct Frame {
   Severity worst() const noexcept;
   bool has(FindingCode c) const noexcept;
 };
+
+// Back to a default Frame, keeping the capacity of raw and findings: for a
+// frame reused across parses.
+void reset_keep_capacity(Frame& f) noexcept;
+// Exchanges two frames: their buffers change hands, nothing is copied (the
+// stream decoder hands frames out this way and reuses the buffers it gets).
+void swap(Frame& a, Frame& b) noexcept;
 
 // The TOP checksum: sum of the bytes, modulo 256.
 std::uint8_t checksum(std::string_view bytes) noexcept;

@@ -3,13 +3,16 @@
 // Feed chunks with feed(), pull items with next() until it returns false,
 // call finish() at the end of the stream and pull again. The items are the
 // same however the stream was split. Memory is bounded by max_frame_size
-// plus a small look-ahead, whatever the input.
+// plus a small look-ahead, whatever the input. Items are decoded one at a
+// time as next() asks for them, and their buffers are reused: next() swaps
+// the item into `out`, and out's old buffers hold a later item, so a caller
+// that keeps one StreamItem decodes without allocating.
 #pragma once
 
 #include <cstdint>
-#include <deque>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "top/frame.hpp"
 
@@ -28,6 +31,9 @@ struct StreamItem {
   Finding finding;           // kind == garbage: code, offset 0, message
   std::string preview;       // kind == garbage: the first bytes (<= 32)
 };
+
+// Exchanges two items (their buffers change hands, nothing is copied).
+void swap(StreamItem& a, StreamItem& b) noexcept;
 
 // Records that `count` CR/LF bytes followed a frame: sets its terminator
 // (capped at 255) and adds the crlf finding, as the decoder does (without
@@ -51,7 +57,9 @@ class StreamDecoder {
   // truncated garbage item, a held frame is released.
   void finish();
   // Releases a complete frame held to see whether CR/LF follows it (for live
-  // links, after each chunk); a later CR/LF is then reported as garbage.
+  // links, after each chunk): the frame that ends the bytes fed so far, with
+  // the CR/LF bytes among them; a CR/LF fed later is then reported as
+  // garbage. It decodes every byte fed so far: their items queue up.
   void flush();
   // For a live link that has gone quiet: flush(), and decide on a frame that
   // fails its checksum with the bytes there are (no longer waiting for the
@@ -61,7 +69,8 @@ class StreamDecoder {
   void settle();
   // Forgets everything; offsets restart at 0.
   void reset();
-  // Moves the next item into `out`; false when none is ready.
+  // Moves the next item into `out` (out's old contents are kept for reuse);
+  // false when none is ready.
   bool next(StreamItem& out);
 
   // Bytes fed so far.
@@ -71,9 +80,11 @@ class StreamDecoder {
   std::size_t buffered() const noexcept { return buf_.size() - pos_; }
 
  private:
-  void pump();
+  // Decodes until `limit` items are ready or the bytes run out.
+  void pump(std::size_t limit);
   void release_pending();
-  void add_garbage(std::size_t at, std::size_t len, const Finding* why);
+  StreamItem& push_item();
+  void add_garbage(std::size_t at, std::size_t len, Finding* why);
   void flush_garbage();
   void compact();
 
@@ -82,15 +93,22 @@ class StreamDecoder {
   std::size_t pos_ = 0;
   std::uint64_t base_ = 0;  // stream offset of buf_[0]
   bool at_end_ = false;
-  bool flushing_ = false;     // inside settle(): judge as at the end, keep the stream open
-  bool has_pending_ = false;  // a frame held until we know what follows it
-  StreamItem pending_;
+  bool flushing_ = false;  // inside settle(): judge as at the end, keep the stream open
+  // A frame held until we know what follows it: parsed_.frame, at stream
+  // offset pending_offset_.
+  bool has_pending_ = false;
+  std::uint64_t pending_offset_ = 0;
+  std::uint64_t pending_length_ = 0;
   std::uint64_t garbage_start_ = 0;
   std::uint64_t garbage_len_ = 0;
   std::string garbage_preview_;
   Finding garbage_reason_;
   bool garbage_has_reason_ = false;
-  std::deque<StreamItem> ready_;
+  // Items ready for next(): a ring of ready_count_ items from ready_head_.
+  // The slots keep their buffers; next() swaps an item out.
+  std::vector<StreamItem> ready_;
+  std::size_t ready_head_ = 0;
+  std::size_t ready_count_ = 0;
   // A complete frame that fails its checksum, held while a frame that
   // starts inside it is still incomplete: its parse and the stream offset of
   // the '#' to try next, so each new chunk costs only that inner parse
@@ -105,9 +123,11 @@ class StreamDecoder {
   // the header is not parsed again for each).
   std::uint64_t wait_at_ = 0;
   std::uint64_t wait_until_ = 0;
-  // The parse options without messages, and the result of a parse at a '#'
-  // inside a frame (its verdict is all that is used).
+  // The parse options without messages, the parse at the decoding position
+  // (which holds the pending frame) and the parse at a '#' inside a frame
+  // (its verdict is all that is used), kept to reuse their buffers.
   ParseOptions quiet_;
+  ParseResult parsed_;
   ParseResult inner_;
 };
 
