@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "analyzer.hpp"
-#include "ring.hpp"
+#include "top/detail/ring.hpp"
 
 namespace topdump {
 
@@ -120,7 +120,7 @@ struct Conversation {
   Silence silence;
   top::DialectDetector det;
   std::uint32_t observed = 0;
-  Ring<Pending> pending;
+  top::detail::Ring<Pending> pending;
   // How many pending requests per (identifier, direction), counted in 64
   // buckets by a hash of the pair: a frame whose bucket is empty has no
   // request to answer and skips the scan of `pending` (stream frames,

@@ -38,7 +38,7 @@ void StreamDecoder::reset() {
   garbage_len_ = 0;
   garbage_preview_.clear();
   garbage_has_reason_ = false;
-  ready_head_ = ready_count_ = 0;
+  ready_.clear();
   has_held_ = false;
   wait_at_ = wait_until_ = 0;
 }
@@ -71,31 +71,12 @@ void StreamDecoder::settle() {
 }
 
 bool StreamDecoder::next(StreamItem& out) {
-  if (ready_count_ == 0) pump(kReadyAhead);
-  if (ready_count_ == 0) return false;
-  // The slot takes out's old buffers, for a later item.
-  swap(out, ready_[ready_head_]);
-  ready_head_ = ready_head_ + 1 == ready_.size() ? 0 : ready_head_ + 1;
-  if (--ready_count_ == 0) {
-    ready_head_ = 0;
-    if (ready_.size() > kKeepSlots) {
-      ready_.resize(kKeepSlots);
-      ready_.shrink_to_fit();
-    }
-  }
+  if (ready_.empty()) pump(kReadyAhead);
+  if (ready_.empty()) return false;
+  swap(out, ready_.front());  // the slot takes out's old buffers, for a later item
+  ready_.pop_front();
+  ready_.trim(kKeepSlots);
   return true;
-}
-
-StreamItem& StreamDecoder::push_item() {
-  if (ready_count_ == ready_.size()) {  // full: unwrap the ring, then grow it
-    std::rotate(ready_.begin(), ready_.begin() + static_cast<std::ptrdiff_t>(ready_head_),
-                ready_.end());
-    ready_head_ = 0;
-    ready_.emplace_back();
-  }
-  std::size_t at = ready_head_ + ready_count_++;
-  if (at >= ready_.size()) at -= ready_.size();
-  return ready_[at];
 }
 
 void StreamDecoder::compact() {
@@ -134,7 +115,7 @@ void StreamDecoder::release_pending() {
   if (!has_pending_) return;
   Frame& f = parsed_.frame;
   note_terminator(f, f.terminator, opts_.parse.messages);
-  StreamItem& it = push_item();  // a slot whose old buffers are reused
+  StreamItem& it = ready_.push_back();  // a slot whose old buffers are reused
   it.kind = ItemKind::frame;
   it.offset = pending_offset_;
   it.length = pending_length_;
@@ -180,7 +161,7 @@ void StreamDecoder::add_garbage(std::size_t at, std::size_t len, Finding* why) {
 
 void StreamDecoder::flush_garbage() {
   if (garbage_len_ == 0) return;
-  StreamItem& it = push_item();  // a slot whose old buffers are reused
+  StreamItem& it = ready_.push_back();  // a slot whose old buffers are reused
   it.kind = ItemKind::garbage;
   it.offset = garbage_start_;
   it.length = garbage_len_;
@@ -206,7 +187,7 @@ void StreamDecoder::flush_garbage() {
 void StreamDecoder::pump(std::size_t limit) {
   const std::string_view all(buf_);
   const bool judge = at_end_ || flushing_;  // parse as if no more bytes came
-  while (pos_ < buf_.size() && ready_count_ < limit) {
+  while (pos_ < buf_.size() && ready_.size() < limit) {
     char c = buf_[pos_];
     if (has_pending_ && (c == '\r' || c == '\n')) {
       if (parsed_.frame.terminator < 255) ++parsed_.frame.terminator;

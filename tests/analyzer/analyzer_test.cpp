@@ -14,8 +14,8 @@
 #include "escape.hpp"
 #include "pcapio/packet.hpp"
 #include "pcapio/writer.hpp"
-#include "ring.hpp"
 #include "test_support.hpp"
+#include "top/detail/ring.hpp"
 #include "top/frame.hpp"
 
 namespace topdump::test {
@@ -570,8 +570,27 @@ TEST(Stats, WithoutDetailEqualsWithDetail) {
 // pops and erasures anywhere, across growth and wrap-around; a slot handed
 // back by push_back is reused, so the test assigns all of it as the
 // analyzer does.
+// clear() empties and keeps the slots; trim() drops slots only when empty
+// (the stream decoder trims after a burst), and the ring works on after.
+TEST(Ring, ClearAndTrim) {
+  top::detail::Ring<std::string> ring;
+  for (int i = 0; i < 100; ++i) ring.push_back() = "item " + std::to_string(i);
+  ring.trim(8);  // not empty: nothing is dropped
+  ASSERT_EQ(ring.size(), 100u);
+  EXPECT_EQ(ring[99], "item 99");
+  ring.pop_front();
+  EXPECT_EQ(ring.front(), "item 1");
+  ring.clear();
+  EXPECT_TRUE(ring.empty());
+  ring.trim(8);
+  for (int i = 0; i < 20; ++i) ring.push_back() = "again " + std::to_string(i);
+  ASSERT_EQ(ring.size(), 20u);
+  for (int i = 0; i < 20; ++i)
+    EXPECT_EQ(ring[static_cast<std::size_t>(i)], "again " + std::to_string(i));
+}
+
 TEST(Ring, BehavesAsADequeThroughGrowthWrapAndErase) {
-  Ring<std::string> ring;
+  top::detail::Ring<std::string> ring;
   std::deque<std::string> model;
   std::mt19937 rng(5);
   std::size_t erased_inside = 0, erased_newest = 0, max_size = 0;

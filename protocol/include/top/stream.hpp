@@ -12,8 +12,8 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
-#include <vector>
 
+#include "top/detail/ring.hpp"
 #include "top/frame.hpp"
 
 namespace top {
@@ -83,7 +83,6 @@ class StreamDecoder {
   // Decodes until `limit` items are ready or the bytes run out.
   void pump(std::size_t limit);
   void release_pending();
-  StreamItem& push_item();
   void add_garbage(std::size_t at, std::size_t len, Finding* why);
   void flush_garbage();
   void compact();
@@ -104,11 +103,9 @@ class StreamDecoder {
   std::string garbage_preview_;
   Finding garbage_reason_;
   bool garbage_has_reason_ = false;
-  // Items ready for next(): a ring of ready_count_ items from ready_head_.
-  // The slots keep their buffers; next() swaps an item out.
-  std::vector<StreamItem> ready_;
-  std::size_t ready_head_ = 0;
-  std::size_t ready_count_ = 0;
+  // Items ready for next(). The slots keep their buffers; next() swaps an
+  // item out.
+  detail::Ring<StreamItem> ready_;
   // A complete frame that fails its checksum, held while a frame that
   // starts inside it is still incomplete: its parse and the stream offset of
   // the '#' to try next, so each new chunk costs only that inner parse

@@ -1,16 +1,17 @@
-// A FIFO of reusable slots for the session layer (pending requests).
+// A FIFO of reusable slots: the stream decoder's ready items, topdump's
+// pending requests.
 #pragma once
 
 #include <cstddef>
 #include <utility>
 #include <vector>
 
-namespace topdump {
+namespace top::detail {
 
 // A FIFO that keeps its slots, and the buffers of their strings, for reuse:
-// requests come and go at tens of hertz per conversation, and a std::deque
-// allocates and frees a block every few of them. Elements are reached by
-// age, oldest first.
+// items and requests come and go all the time, and a std::deque allocates
+// and frees a block every few of them. Elements are reached by age, oldest
+// first.
 template <class T>
 class Ring {
  public:
@@ -29,6 +30,16 @@ class Ring {
   void pop_front() noexcept {
     head_ = (head_ + 1) & (v_.size() - 1);
     --n_;
+  }
+  // Empties it; the slots stay.
+  void clear() noexcept { head_ = n_ = 0; }
+  // When empty, keeps only `keep` slots (a power of two): a burst's slots
+  // are not held forever.
+  void trim(std::size_t keep) {
+    if (n_ != 0 || v_.size() <= keep) return;
+    v_.resize(keep);
+    v_.shrink_to_fit();
+    head_ = 0;
   }
   // Removes element i; the later ones move down by one, and its slot (with
   // its buffers) goes to the back for reuse: one move per later element.
@@ -54,4 +65,4 @@ class Ring {
   std::size_t head_ = 0, n_ = 0;
 };
 
-}  // namespace topdump
+}  // namespace top::detail
