@@ -9,12 +9,24 @@
 // mutated texts, and the capture targets compare them on a sample of inputs.
 #pragma once
 
-#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 #include <string_view>
+
+// The validator is the harness's check, not the code under test, and runs
+// on every byte of every line a capture target writes. Its hot paths read
+// through a raw pointer: in the fuzz build (clang, ASan + UBSan), UBSan's
+// object-size checks made std::string_view's and std::array's accessors
+// too big to inline, a call per byte (a tenth of a capture target's time),
+// and for the same reason its own functions are built without UBSan (ASan
+// stays). tests/fuzz/fuzz_support_test.cpp checks it against nlohmann,
+// with UBSan in the asan preset (g++).
+#ifdef __clang__
+#pragma clang attribute push(__attribute__((no_sanitize("undefined"))), apply_to = function)
+#endif
 
 namespace topfuzz {
 
@@ -25,26 +37,29 @@ namespace json_detail {
 constexpr int kMaxDepth = 256;
 
 struct Cursor {
+  explicit Cursor(std::string_view text) : s(text), p(text.data()), n(text.size()) {}
   std::string_view s;
+  const char* p;  // s's bytes and size, read without a call
+  std::size_t n;
   std::size_t i = 0;
   int depth = 0;
   bool too_deep = false;
-  int peek() const { return i < s.size() ? static_cast<unsigned char>(s[i]) : -1; }
+  int peek() const { return i < n ? static_cast<unsigned char>(p[i]) : -1; }
   void skip_space() {
-    while (i < s.size() && (s[i] == ' ' || s[i] == '\t' || s[i] == '\n' || s[i] == '\r')) ++i;
+    while (i < n && (p[i] == ' ' || p[i] == '\t' || p[i] == '\n' || p[i] == '\r')) ++i;
   }
   bool eat(std::string_view word) {
-    if (s.substr(i, word.size()) != word) return false;
+    if (n - i < word.size() || std::memcmp(p + i, word.data(), word.size()) != 0) return false;
     i += word.size();
     return true;
   }
 };
 
 inline int hex4(Cursor& c) {
-  if (c.i + 4 > c.s.size()) return -1;
+  if (c.i + 4 > c.n) return -1;
   int v = 0;
   for (int k = 0; k < 4; ++k) {
-    const char h = c.s[c.i++];
+    const char h = c.p[c.i++];
     int d;
     if (h >= '0' && h <= '9')
       d = h - '0';
@@ -89,20 +104,25 @@ inline bool utf8_tail(Cursor& c, unsigned b) {
 
 // Bytes that stand for themselves inside a string: printable ASCII and DEL,
 // but the quote and the backslash.
-inline constexpr auto kPlain = [] {
-  std::array<bool, 256> t{};
-  for (int b = 0x20; b < 0x80; ++b) t[static_cast<std::size_t>(b)] = b != '"' && b != '\\';
+// (A plain array: std::array's operator[] is a function of the standard
+// library, built with UBSan's checks.)
+struct ByteTable {
+  bool is[256];
+};
+inline constexpr ByteTable kPlain = [] {
+  ByteTable t{};
+  for (int b = 0x20; b < 0x80; ++b) t.is[b] = b != '"' && b != '\\';
   return t;
 }();
 
 inline bool string(Cursor& c) {
   ++c.i;  // opening quote
-  const char* const p = c.s.data();
-  const std::size_t n = c.s.size();
+  const char* const p = c.p;
+  const std::size_t n = c.n;
   while (true) {
     // a run of plain bytes at a time (most of a line), then one that is not
     std::size_t i = c.i;
-    while (i < n && kPlain[static_cast<unsigned char>(p[i])]) ++i;
+    while (i < n && kPlain.is[static_cast<unsigned char>(p[i])]) ++i;
     c.i = i;
     const int x = c.peek();
     if (x < 0 || x < 0x20) return false;
@@ -169,8 +189,20 @@ inline bool number(Cursor& c) {
   // nlohmann reads integers that do not fit 64 bits, and every number with
   // a fraction or exponent, as a double and rejects one that is not finite.
   if (plain_int && c.i - start <= 19) return true;
-  const std::string text(c.s.substr(start, c.i - start));
-  return std::isfinite(std::strtod(text.c_str(), nullptr));
+  // strtod needs a terminated copy: on the stack when it fits (the
+  // analyzer's times and rates are short), else on the heap.
+  const std::size_t len = c.i - start;
+  char small[64];
+  std::string big;
+  const char* text = small;
+  if (len < sizeof small) {
+    std::memcpy(small, c.p + start, len);
+    small[len] = '\0';
+  } else {
+    big.assign(c.p + start, len);
+    text = big.c_str();
+  }
+  return std::isfinite(std::strtod(text, nullptr));
 }
 
 inline bool value(Cursor& c);
@@ -236,7 +268,7 @@ enum class Json { valid, invalid, too_deep };
 // value ends the text); too_deep when
 // it nests more than 256 levels before the verdict (ask nlohmann then).
 inline Json json_check(std::string_view text) {
-  json_detail::Cursor c{text};
+  json_detail::Cursor c(text);
   if (c.peek() == 0xEF) {
     if (!c.eat("\xEF\xBB\xBF")) return Json::invalid;
   }
@@ -261,3 +293,7 @@ inline bool sampled(const std::uint8_t* data, std::size_t size, unsigned bits) {
 }
 
 }  // namespace topfuzz
+
+#ifdef __clang__
+#pragma clang attribute pop
+#endif

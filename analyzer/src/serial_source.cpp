@@ -4,8 +4,10 @@
 #include <asio.hpp>
 #include <cctype>
 #include <cerrno>
+#include <charconv>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <functional>
 #include <istream>
@@ -112,7 +114,7 @@ class FileBuf : public std::streambuf {
     return traits_type::to_int_type(buf_[0]);
   }
   std::FILE* f_;
-  std::array<char, 1 << 16> buf_{};
+  std::array<char, 1 << 16> buf_;  // not zeroed: only what fread wrote is read
 };
 
 struct LineReader {
@@ -157,7 +159,12 @@ template <class A>
 void socat_log(const std::string& path, LineReader& r, A& a) {
   Endpoint left = named("left"), right = named("right");
   std::uint64_t chunk_no = 0;
+  // Kept from chunk to chunk, so that their storage is reused: a log is
+  // mostly headers and short chunks, and these were most of what reading
+  // one allocated.
   std::string pending;  // text after the data of a chunk (next header glued on)
+  std::string iso;      // the header's time, as ISO 8601
+  std::string bytes;    // the chunk's data
   bool have_line = false;
   for (;;) {
     if (!have_line) {
@@ -185,31 +192,41 @@ void socat_log(const std::string& path, LineReader& r, A& a) {
     a.record(true);
     bool rtl = l[0] == '<';
     // time: "YYYY/MM/DD HH:MM:SS.nnnnnnnnn" (local time of the logging host; read as UTC)
-    std::string iso(l.substr(2, 29));
+    iso.assign(l.substr(2, 29));
     if (iso.size() >= 10) iso[4] = iso[7] = '-', iso[10] = 'T';
     auto sp = iso.find(' ');
     if (sp != std::string::npos) iso.resize(sp);
     auto ts = parse_time(iso);
     std::int64_t t = ts ? *ts : kNoTime;
-    auto lp = l.find("length=");
-    std::size_t length = std::strtoul(std::string(l.substr(lp + 7)).c_str(), nullptr, 10);
+    // "length=N": the decimal digits after it. Anything else is noted and
+    // read as 0 (a "length=-5" was once read as 2^64 - 5 and took the rest
+    // of the log for this chunk's data); too many digits read as the most.
+    const std::string_view len_text = l.substr(l.find("length=") + 7);
+    std::size_t length = 0;
+    const std::errc len_error =
+        std::from_chars(len_text.data(), len_text.data() + len_text.size(), length).ec;
+    if (len_error == std::errc::result_out_of_range) length = SIZE_MAX;
+    if (len_error == std::errc::invalid_argument)
+      a.source_note(t, ACode::log_syntax,
+                    path + ": line " + std::to_string(r.number) +
+                        ": the chunk header's length is not a number",
+                    r.number, r.offset);
     pending.clear();
-    std::string bytes;
+    bytes.clear();
     bool hex = false, decided = false;
     while (bytes.size() < length && r.get()) {
       std::string_view d = r.line;
       if (!decided) {
         decided = true;
-        hex = d.size() >= 3 && d[0] == ' ' && std::isxdigit(static_cast<unsigned char>(d[1])) &&
-              std::isxdigit(static_cast<unsigned char>(d[2])) && (d.size() == 3 || d[3] == ' ');
+        hex = d.size() >= 3 && d[0] == ' ' && top::hex_value(d[1]) >= 0 &&
+              top::hex_value(d[2]) >= 0 && (d.size() == 3 || d[3] == ' ');
       }
       if (hex) {
         std::string_view h = d.substr(0, std::min<std::size_t>(d.size(), 49));
         for (std::size_t i = 1; i + 1 < h.size() && bytes.size() < length; i += 3) {
-          if (!std::isxdigit(static_cast<unsigned char>(h[i])) ||
-              !std::isxdigit(static_cast<unsigned char>(h[i + 1])))
-            break;
-          bytes.push_back(static_cast<char>(top::hex_value(h[i]) << 4 | top::hex_value(h[i + 1])));
+          const int hi = top::hex_value(h[i]), lo = top::hex_value(h[i + 1]);
+          if (hi < 0 || lo < 0) break;
+          bytes.push_back(static_cast<char>(hi << 4 | lo));
         }
         continue;
       }
@@ -223,13 +240,13 @@ void socat_log(const std::string& path, LineReader& r, A& a) {
         }
         if (bytes.size() == length && i + 1 < d.size()) {
           // the next header follows the data on the same line
-          pending = std::string(d.substr(i + 1));
+          pending.assign(d.substr(i + 1));
         }
       }
       if (bytes.size() < length) bytes.push_back('\n');
     }
     if (!hex && !pending.empty()) {
-      r.line = pending;
+      r.line.swap(pending);
       pending.clear();
       have_line = true;
     }

@@ -212,6 +212,28 @@ TEST(SerialLogs, SocatHexDump) {
   EXPECT_EQ(r.frames[0].raw, "#TPUG2wPTZ056F");
 }
 
+// A chunk header whose length is not a number is noted and read as an empty
+// chunk; the chunks after it are read as usual. ("length=-5" was read by
+// strtoul as 2^64 - 5, and the rest of the log became that chunk's data.)
+TEST(SerialLogs, SocatLengthNotANumber) {
+  TempDir tmp;
+  std::string f = top::with_checksum("#TPUG2wPTZ05");
+  std::string log =
+      "> 2024/05/01 12:00:00.000000000  length=-5 from=0 to=13\n" + std::string("--\n") +
+      "> 2024/05/01 12:00:00.001000000  length=" + std::to_string(f.size()) + " from=0 to=13\n" +
+      f + "\n--\n" + "> 2024/05/01 12:00:00.002000000  length=x from=0 to=13\n" +
+      "< 2024/05/01 12:00:00.003000000  length=" + std::to_string(f.size()) + " from=0 to=13\n" +
+      f + "\n";
+  write_file(tmp.file("s.log"), log);
+  Recorder r = read(tmp.file("s.log"));
+  ASSERT_EQ(r.frames.size(), 2u);
+  EXPECT_EQ(r.frames[0].ts, T + 1000);
+  EXPECT_EQ(r.frames[0].raw, f);
+  EXPECT_EQ(r.frames[1].ts, T + 3000);
+  EXPECT_EQ(r.frames[1].from, "right");
+  EXPECT_EQ(r.count_note(ACode::log_syntax), 2u);
+}
+
 TEST(SerialLogs, SaleaeCsvTwoChannels) {
   TempDir tmp;
   std::string csv = "name,type,start_time,duration,data,error\n";
