@@ -288,6 +288,35 @@ TEST(Stream, FlushAndSettleSeeTheWholeChunk) {
   }
 }
 
+// A frame's terminator counts at most 255 CR/LF bytes; the rest are a
+// garbage run after it, so every byte still belongs to one item, whether the
+// bytes come at once or one at a time. (The bytes past 255 were once counted
+// by no item.)
+TEST(Stream, CrLfRunOver255IsGarbageAfterTheFrame) {
+  const std::string frame = "#TPUD2wCAP013E";
+  const std::string stream = frame + std::string(300, '\r') + frame;
+  for (const bool bytewise : {false, true}) {
+    StreamDecoder d;
+    if (bytewise) {
+      for (char c : stream) d.feed(std::string_view(&c, 1));
+    } else {
+      d.feed(stream);
+    }
+    d.finish();
+    std::vector<StreamItem> items;
+    StreamItem it;
+    while (d.next(it)) items.push_back(std::move(it));
+    ASSERT_EQ(items.size(), 3u) << describe(items);
+    EXPECT_EQ(items[0].kind, ItemKind::frame);
+    EXPECT_EQ(items[0].frame.terminator, 255);
+    EXPECT_EQ(items[1].kind, ItemKind::garbage);
+    EXPECT_EQ(items[1].offset, frame.size() + 255);
+    EXPECT_EQ(items[1].length, 45u);
+    EXPECT_EQ(items[2].kind, ItemKind::frame);
+    EXPECT_EQ(items[2].offset, frame.size() + 300);
+  }
+}
+
 TEST(Stream, LargeChunkIsDecodedLazily) {
   std::string big;
   for (int i = 0; i < 100000; ++i) big += "#TPUD2wCAP013E";

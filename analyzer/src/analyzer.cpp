@@ -262,7 +262,10 @@ void Analyzer::datagram(std::int64_t ts, const Endpoint& src, const Endpoint& ds
     if (r.status != top::ParseStatus::frame) break;
     if (!r.frame.checksum_ok && std::memchr(payload.data() + p + 1, '#', r.consumed - 1)) break;
     std::size_t q = p + r.consumed;
-    while (q < payload.size() && (payload[q] == '\r' || payload[q] == '\n')) ++q;
+    // CR/LF as the decoder counts them: any past top::kMaxTerminator are
+    // garbage, which the decoder below yields.
+    const std::size_t q_max = std::min(payload.size(), q + top::kMaxTerminator);
+    while (q < q_max && (payload[q] == '\r' || payload[q] == '\n')) ++q;
     if (q != p + r.consumed) top::note_terminator(r.frame, q - p - r.consumed);
     impl_->frame(c, d, r.frame, Position{record, index++, offset + p}, ts, p);
     p = q;

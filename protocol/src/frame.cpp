@@ -612,7 +612,7 @@ void parse_exact(std::string_view bytes, const ParseOptions& opts, ParseResult& 
     ++crlf;
   }
   if (crlf > 0) {
-    r.frame.terminator = static_cast<std::uint8_t>(std::min<std::size_t>(crlf, 255));
+    r.frame.terminator = static_cast<std::uint8_t>(std::min(crlf, kMaxTerminator));
     r.frame.findings.push_back(
         make_finding(FindingCode::crlf, static_cast<std::uint32_t>(r.consumed),
                      cat({"frame followed by ", std::to_string(crlf), " CR/LF byte(s)"})));

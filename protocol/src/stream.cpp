@@ -104,7 +104,7 @@ void swap(StreamItem& a, StreamItem& b) noexcept {
 
 void note_terminator(Frame& f, std::size_t count, bool message) {
   if (count == 0) return;
-  f.terminator = static_cast<std::uint8_t>(std::min<std::size_t>(count, 255));
+  f.terminator = static_cast<std::uint8_t>(std::min(count, kMaxTerminator));
   f.findings.push_back(make_finding(
       FindingCode::crlf, static_cast<std::uint32_t>(f.raw.size()),
       message ? detail::cat({"frame followed by ", std::to_string(f.terminator), " CR/LF byte(s)"})
@@ -189,8 +189,11 @@ void StreamDecoder::pump(std::size_t limit) {
   const bool judge = at_end_ || flushing_;  // parse as if no more bytes came
   while (pos_ < buf_.size() && ready_.size() < limit) {
     char c = buf_[pos_];
-    if (has_pending_ && (c == '\r' || c == '\n')) {
-      if (parsed_.frame.terminator < 255) ++parsed_.frame.terminator;
+    // A frame's terminator counts up to kMaxTerminator CR/LF bytes; more
+    // are garbage after it. (They used to be counted as 255 and covered by no
+    // item at all: found by fuzz_stream, regressions/stream/crlf-run-over-255.)
+    if (has_pending_ && (c == '\r' || c == '\n') && parsed_.frame.terminator < kMaxTerminator) {
+      ++parsed_.frame.terminator;
       ++pos_;
       continue;
     }

@@ -67,6 +67,11 @@ inline bool is_ident_char(char c) noexcept { return detail::char_is(c, detail::k
 // True for a client-side address: U (UART/UDP client) or P (network client).
 inline bool is_client_address(char c) noexcept { return c == 'U' || c == 'P'; }
 
+// The most CR/LF bytes a frame's terminator counts (Frame::terminator is a
+// uint8_t). The stream decoder makes any more that follow a garbage run after
+// the frame, so every byte of a stream belongs to exactly one item.
+inline constexpr std::size_t kMaxTerminator = 255;
+
 // A parsed frame. `raw` holds exactly the frame's bytes (no terminator).
 struct Frame {
   Header header = Header::variable;
@@ -81,7 +86,7 @@ struct Frame {
   std::uint8_t expected_checksum = 0;  // sum of the bytes before them
   bool checksum_present = false;       // two hex digits were there
   bool checksum_ok = false;            // present and equal (any case)
-  std::uint8_t terminator = 0;         // CR/LF bytes that followed the frame
+  std::uint8_t terminator = 0;         // CR/LF bytes that followed the frame (<= kMaxTerminator)
   std::string raw;
   std::vector<Finding> findings;
 

@@ -36,8 +36,8 @@ struct StreamItem {
 void swap(StreamItem& a, StreamItem& b) noexcept;
 
 // Records that `count` CR/LF bytes followed a frame: sets its terminator
-// (capped at 255) and adds the crlf finding, as the decoder does (without
-// its text when `message` is false).
+// (capped at kMaxTerminator) and adds the crlf finding, as the decoder does
+// (without its text when `message` is false).
 void note_terminator(Frame& f, std::size_t count, bool message = true);
 
 struct StreamOptions {
