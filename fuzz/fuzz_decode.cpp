@@ -98,9 +98,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
   spec.control = form.control;
   spec.ident = cmd.ident;
   spec.data = data;
-  const std::string raw = build_frame(spec);
-
   // Kept across inputs (reuse.hpp).
+  static std::string raw = topfuzz::reused_text();
+  build_frame(spec, raw);
+
   static ParseResult r = topfuzz::reused_parse_result();
   static Decoded d = topfuzz::reused_decoded(), v = topfuzz::reused_decoded(),
                  c = topfuzz::reused_decoded();
@@ -126,7 +127,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
     text.clear();
     append_value(fv, text);  // format_value() without a string per field
   }
-  (void)d.summary();
+  text.clear();
+  d.append_summary(text);  // summary() without a string per input
+  FUZZ_CHECK(text.empty() == d.fields.empty(), "a summary must exist exactly when fields do");
   if (d.form != nullptr) check_reencode(*d.form, d, data);
 
   // Without detail (topdump stats) the verdict is the same: command, form,

@@ -45,6 +45,9 @@ TEST(Decode, AngleCommand) {
   EXPECT_EQ(format_value(a), "-50.00 deg");
   EXPECT_DOUBLE_EQ(field(d, "speed").value, 5.0);
   EXPECT_EQ(d.summary(), "angle -50.00 deg, speed 5.0 deg/s");
+  std::string s = "GAY: ";  // appended after what the buffer holds, separators as summary()'s
+  d.append_summary(s);
+  EXPECT_EQ(s, "GAY: angle -50.00 deg, speed 5.0 deg/s");
 }
 
 TEST(Decode, TpLengthSeverityDependsOnClassAndDialect) {

@@ -357,6 +357,16 @@ TEST(Parse, TwoDigitLengthOnAnotherIdent) {
   EXPECT_TRUE(has_code(r.frame.findings, FindingCode::two_digit_length));
 }
 
+// Into a buffer: what was there is replaced (a checksum of the old contents
+// and the new frame together would be wrong), whatever its length.
+TEST(Build, IntoABufferReplacesItsContents) {
+  std::string out = std::string(300, 'x');
+  build_frame({.header = Header::fixed, .dst = 'D', .ident = "AWB", .data = "01"}, out);
+  EXPECT_EQ(out, "#TPUD2wAWB0144");
+  build_frame({.ident = "GAY", .data = "EF0732"}, out);
+  EXPECT_EQ(out, "#tpUG6wGAYEF073288");
+}
+
 TEST(Build, HeadersAndLengths) {
   // src U and control w are BuildSpec's defaults
   EXPECT_EQ(build_frame({.header = Header::fixed, .dst = 'D', .ident = "AWB", .data = "01"}),

@@ -98,11 +98,13 @@ void Analyzer::Impl::unanswered(Conversation& c, const Pending& p, bool at_end) 
       p.cause == Cause::none && p.ts != kNoTime &&
       (!other.sent_frame || other.last_frame_ts == kNoTime || other.last_frame_ts < p.ts);
   std::string msg = message([&] {
-    std::string m =
-        escape(std::string_view(p.ident, 3)) + " request (frame " + std::to_string(p.n) + ")" +
-        (at_end ? std::string(" got no response before the end of the capture")
-                : " got no response within " + std::to_string(A.opts_.timeout_us / 1000) + " ms");
-    return m + std::string(cause_text(p.cause));
+    return at_end
+               ? top::cat({escape(std::string_view(p.ident, 3)), " request (frame ",
+                           std::to_string(p.n), ") got no response before the end of the capture",
+                           cause_text(p.cause)})
+               : top::cat({escape(std::string_view(p.ident, 3)), " request (frame ",
+                           std::to_string(p.n), ") got no response within ",
+                           std::to_string(A.opts_.timeout_us / 1000), " ms", cause_text(p.cause)});
   });
   if (silent) {
     Silence& s = c.silence;

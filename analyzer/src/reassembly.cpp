@@ -19,7 +19,8 @@ Position Analyzer::Impl::map_position(Direction& D, std::uint64_t off, std::uint
     p.offset = s.rec_off + (off >= s.stream_off ? off - s.stream_off : 0);
     // the time of the chunk that holds the item's last byte
     std::uint64_t last = off + (len ? len - 1 : 0);
-    for (const Seg& x : D.segs) {
+    for (std::size_t i = 0; i < D.segs.size(); ++i) {
+      const Seg& x = D.segs[i];
       if (x.stream_off > last) break;
       if (x.ts != kNoTime) ts = x.ts;
     }
@@ -34,7 +35,7 @@ Position Analyzer::Impl::map_position(Direction& D, std::uint64_t off, std::uint
 
 void Analyzer::Impl::drain_stream(Conversation& c, int d, std::int64_t ts) {
   Direction& D = c.dir[d];
-  top::StreamItem it;
+  top::StreamItem& it = drained;
   while (D.dec.next(it)) {
     std::uint64_t so = 0;
     std::int64_t t = ts;
@@ -51,8 +52,8 @@ void Analyzer::Impl::deliver(Conversation& c, int d, std::string_view bytes, std
   // frames come out in capture order (a CR/LF it sends later is garbage).
   c.dir[1 - d].dec.flush();
   drain_stream(c, 1 - d, ts);
-  D.segs.push_back(Seg{D.dec.fed(), record, offset, ts});
-  if (D.segs.size() > 4096) D.segs.pop_front();
+  if (D.segs.size() == 4096) D.segs.pop_front();
+  D.segs.push_back() = Seg{D.dec.fed(), record, offset, ts};
   D.dec.feed(bytes);
   if (c.transport == Transport::tcp) {
     D.next_seq += static_cast<std::uint32_t>(bytes.size());

@@ -12,9 +12,17 @@ std::vector<const top::Finding*> all_findings(const top::Frame& f, const top::De
   v.reserve(f.findings.size() + d.findings.size());
   for (const auto& x : f.findings) v.push_back(&x);
   for (const auto& x : d.findings) v.push_back(&x);
-  std::stable_sort(v.begin(), v.end(), [](const top::Finding* a, const top::Finding* b) {
+  const auto by_offset = [](const top::Finding* a, const top::Finding* b) {
     return a->offset < b->offset;
-  });
+  };
+  // Stably: by insertion for the few findings a frame has (std::stable_sort
+  // allocates a buffer on every call).
+  if (v.size() > 32) {
+    std::stable_sort(v.begin(), v.end(), by_offset);
+    return v;
+  }
+  for (std::size_t i = 1; i < v.size(); ++i)
+    for (std::size_t j = i; j > 0 && by_offset(v[j], v[j - 1]); --j) std::swap(v[j], v[j - 1]);
   return v;
 }
 

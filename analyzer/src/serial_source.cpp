@@ -10,8 +10,11 @@
 #include <cstdint>
 #include <cstring>
 #include <functional>
+#include <initializer_list>
 #include <istream>
 #include <memory>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "escape.hpp"
@@ -135,6 +138,20 @@ struct LineReader {
   }
 };
 
+// "PATH: line N: " and the pieces, in one allocation (a chain of operator+
+// made one per piece: a fuzzed log is mostly such notes).
+std::string line_note(const std::string& path, std::uint64_t line,
+                      std::initializer_list<std::string_view> why) {
+  const std::string n = std::to_string(line);
+  std::size_t size = path.size() + n.size() + 9;
+  for (std::string_view p : why) size += p.size();
+  std::string m;
+  m.reserve(size);
+  m.append(path).append(": line ").append(n).append(": ");
+  for (std::string_view p : why) m.append(p);
+  return m;
+}
+
 // A raw dump holds the bytes one tap received: one direction, named for
 // the file, to the end that was not tapped ("peer").
 template <class A>
@@ -182,8 +199,8 @@ void socat_log(const std::string& path, LineReader& r, A& a) {
     }
     if (!is_socat_header(l)) {
       a.source_note(kNoTime, ACode::log_syntax,
-                    path + ": line " + std::to_string(r.number) +
-                        ": expected a socat chunk header (\"> YYYY/MM/DD ... length=N\")",
+                    line_note(path, r.number,
+                              {"expected a socat chunk header (\"> YYYY/MM/DD ... length=N\")"}),
                     r.number, r.offset);
       pending.clear();
       continue;
@@ -208,8 +225,7 @@ void socat_log(const std::string& path, LineReader& r, A& a) {
     if (len_error == std::errc::result_out_of_range) length = SIZE_MAX;
     if (len_error == std::errc::invalid_argument)
       a.source_note(t, ACode::log_syntax,
-                    path + ": line " + std::to_string(r.number) +
-                        ": the chunk header's length is not a number",
+                    line_note(path, r.number, {"the chunk header's length is not a number"}),
                     r.number, r.offset);
     pending.clear();
     bytes.clear();
@@ -252,9 +268,9 @@ void socat_log(const std::string& path, LineReader& r, A& a) {
     }
     if (bytes.size() < length)
       a.source_note(t, ACode::log_syntax,
-                    path + ": chunk " + std::to_string(chunk_no) + " (line " +
-                        std::to_string(r.number) + "): " + std::to_string(bytes.size()) + " of " +
-                        std::to_string(length) + " bytes present",
+                    top::cat({path, ": chunk ", std::to_string(chunk_no), " (line ",
+                              std::to_string(r.number), "): ", std::to_string(bytes.size()), " of ",
+                              std::to_string(length), " bytes present"}),
                     chunk_no, bytes.size());
     a.chunk(t, Transport::serial, rtl ? right : left, rtl ? left : right, bytes, chunk_no, 0);
   }
@@ -262,8 +278,11 @@ void socat_log(const std::string& path, LineReader& r, A& a) {
 
 // Splits a CSV line into `out`'s first `n` strings (returned), reusing
 // their storage: a Saleae export is a row per byte, and a fresh vector of
-// strings per row was most of what reading one cost.
-std::size_t csv_split(std::string_view l, std::vector<std::string>& out) {
+// strings per row was most of what reading one cost. Stops after `max`
+// columns (the rest of the line is not read: a row's columns past the last
+// one the header names are never looked at), so n <= max.
+std::size_t csv_split(std::string_view l, std::vector<std::string>& out,
+                      std::size_t max = SIZE_MAX) {
   std::size_t n = 0;
   auto next = [&]() -> std::string& {
     if (n == out.size()) out.emplace_back();
@@ -287,6 +306,7 @@ std::size_t csv_split(std::string_view l, std::vector<std::string>& out) {
     } else if (l[j] == '"') {
       q = true;
     } else {
+      if (n == max) break;
       cur = &next();
     }
   }
@@ -342,8 +362,9 @@ void saleae_log(const std::string& path, std::FILE* file, LineReader& r, A& a) {
     if (!col) continue;
     if (*col >= 0) {
       a.source_note(kNoTime, ACode::log_syntax,
-                    path + ": line 1: the header names column \"" + escape(head[i]) +
-                        "\" twice; the first one is read",
+                    line_note(path, 1,
+                              {"the header names column \"", escape(head[i]),
+                               "\" twice; the first one is read"}),
                     1, 0);
       continue;
     }
@@ -351,9 +372,12 @@ void saleae_log(const std::string& path, std::FILE* file, LineReader& r, A& a) {
   }
   if (c_time < 0 || c_data < 0) {
     a.source_note(kNoTime, ACode::log_syntax,
-                  path + ": line 1: the header lacks start_time or data", 1, 0);
+                  line_note(path, 1, {"the header lacks start_time or data"}), 1, 0);
     return;
   }
+  // The columns a row is read for: those up to the last one the header names.
+  const auto row_columns =
+      static_cast<std::size_t>(std::max({c_name, c_type, c_time, c_data, c_err}) + 1);
   // first pass: the first two analyzer names are the two directions
   std::vector<std::string> names;
   {
@@ -366,7 +390,9 @@ void saleae_log(const std::string& path, std::FILE* file, LineReader& r, A& a) {
     std::vector<std::string> cols;
     while (names.size() < 2 && std::getline(scan.in, l)) {
       if (!l.empty() && l.back() == '\r') l.pop_back();
-      if (c_name < 0 || static_cast<int>(csv_split(l, cols)) <= c_name) break;
+      if (c_name < 0 ||
+          static_cast<int>(csv_split(l, cols, static_cast<std::size_t>(c_name) + 1)) <= c_name)
+        break;
       const std::string& n = cols[static_cast<std::size_t>(c_name)];
       if (std::find(names.begin(), names.end(), n) == names.end()) names.push_back(n);
     }
@@ -376,26 +402,25 @@ void saleae_log(const std::string& path, std::FILE* file, LineReader& r, A& a) {
   Endpoint from, to;              // the row's ends, reused likewise
   while (r.get()) {
     if (r.line.empty()) continue;
-    const int ncols = static_cast<int>(csv_split(r.line, cols));
-    auto bad = [&](const std::string& why) {
-      a.source_note(kNoTime, ACode::log_syntax,
-                    path + ": line " + std::to_string(r.number) + ": " + why, r.number, r.offset);
+    const int ncols = static_cast<int>(csv_split(r.line, cols, row_columns));
+    auto bad = [&](std::initializer_list<std::string_view> why) {
+      a.source_note(kNoTime, ACode::log_syntax, line_note(path, r.number, why), r.number, r.offset);
     };
     // every column the header names must be in the row (the header may name
     // a column twice, the later one past the data columns)
     if (ncols <= std::max({c_time, c_data, c_name})) {
-      bad("too few columns");
+      bad({"too few columns"});
       continue;
     }
     if (c_type >= 0 && c_type < ncols && cols[static_cast<std::size_t>(c_type)] != "data") continue;
     const std::string& name = c_name >= 0 ? cols[static_cast<std::size_t>(c_name)] : kSerial;
     auto v = csv_byte(cols[static_cast<std::size_t>(c_data)]);
     if (!v) {
-      bad("data \"" + escape(cols[static_cast<std::size_t>(c_data)]) + "\" is not a byte");
+      bad({"data \"", escape(cols[static_cast<std::size_t>(c_data)]), "\" is not a byte"});
       continue;
     }
     if (c_err >= 0 && c_err < ncols && !cols[static_cast<std::size_t>(c_err)].empty())
-      bad("the analyzer flagged this byte: " + escape(cols[static_cast<std::size_t>(c_err)]));
+      bad({"the analyzer flagged this byte: ", escape(cols[static_cast<std::size_t>(c_err)])});
     char* endp = nullptr;
     const std::string& ts_text = cols[static_cast<std::size_t>(c_time)];
     double secs = std::strtod(ts_text.c_str(), &endp);
@@ -422,23 +447,22 @@ void lines_log(const std::string& path, LineReader& r, A& a) {
   while (r.get()) {
     if (r.line.empty() || (r.line.size() > 1 && r.line[0] == '#' && r.line[1] == ' ')) continue;
     std::string_view t, d, rest;
-    auto bad = [&](const std::string& why) {
-      a.source_note(kNoTime, ACode::log_syntax,
-                    path + ": line " + std::to_string(r.number) + ": " + why, r.number, r.offset);
+    auto bad = [&](std::initializer_list<std::string_view> why) {
+      a.source_note(kNoTime, ACode::log_syntax, line_note(path, r.number, why), r.number, r.offset);
     };
     if (!split_line_log(r.line, t, d, rest)) {
-      bad("expected \"<ISO-8601 time> <TX|RX> <frame>\"");
+      bad({"expected \"<ISO-8601 time> <TX|RX> <frame>\""});
       continue;
     }
     auto ts = parse_time(t);
     if (!ts) {
-      bad("bad time \"" + escape(t) + "\"");
+      bad({"bad time \"", escape(t), "\""});
       continue;
     }
     std::string err;
     auto bytes = unescape(rest, err);
     if (!bytes) {
-      bad(err);
+      bad({err});
       continue;
     }
     a.record(true);

@@ -12,7 +12,6 @@
 #include <array>
 #include <cstdint>
 #include <cstring>
-#include <deque>
 #include <map>
 #include <memory>
 #include <string>
@@ -88,7 +87,10 @@ struct Direction {
   Endpoint src, dst;
   std::string from, to;
   top::StreamDecoder dec;
-  std::deque<Seg> segs;
+  // The chunks whose bytes the decoder holds, oldest first (at most 4096).
+  // A Ring, not a std::deque: a deque allocates two blocks as it is made,
+  // and a conversation makes two directions, TCP or not.
+  top::detail::Ring<Seg> segs;
   std::uint64_t base = 0;  // stream offset of the decoder's offset 0
   std::uint64_t last_record = 0;
   std::uint32_t index = 0;
@@ -295,7 +297,7 @@ struct Analyzer::Impl {
   // Latency per identifier: a capture pairs a handful of identifiers, so a
   // linear search of their keys beats hashing (a division per reply).
   std::vector<std::uint32_t> latency_keys;
-  std::deque<Latency> latency;  // latency[i] is latency_keys[i]'s
+  std::vector<Latency> latency;  // latency[i] is latency_keys[i]'s
   // The last index found for each of 64 hashed slots: most replies find
   // their identifier's table there without a search (whose exit, at a
   // different place for each identifier, mispredicted).
@@ -331,6 +333,11 @@ struct Analyzer::Impl {
   Position map_position(Direction& D, std::uint64_t off, std::uint64_t len,
                         std::uint64_t& stream_off, std::int64_t& ts);
   void drain_stream(Conversation& c, int d, std::int64_t ts);
+  // The item drain_stream() takes each next() into. Kept: next() swaps the
+  // buffers of the item it is given back into the decoder's ring, so a
+  // local one took the last frame's raw bytes and findings with it, freed,
+  // at the end of every drain (and the decoder allocated them again).
+  top::StreamItem drained;
   void deliver(Conversation& c, int d, std::string_view bytes, std::uint64_t record,
                std::uint64_t offset, std::int64_t ts);
   void overlap_check(Conversation& c, int d, std::uint32_t seq, std::string_view bytes,

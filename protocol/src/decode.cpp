@@ -346,10 +346,12 @@ void decode_shape(Ctx& ctx, const Frame& frame, const DecodeOptions& opts, Diale
     f.code = FindingCode::tp_length;
     f.severity = g_class ? Severity::info : default_severity(FindingCode::tp_length);
     f.offset = 5;
-    if (ctx.detail)
-      f.message = frame.declared_length < 16  // two-digit lengths (TMP quirk) go past F
-                      ? kMessages[frame.declared_length + (g_class ? 16 : 0)]
-                      : message(frame.declared_length, g_class);
+    // (Not a ?: of the two: its result would be a copy of the kept message,
+    // then assigned, two allocations instead of one.)
+    if (ctx.detail && frame.declared_length < 16)  // two-digit lengths (TMP quirk) go past F
+      f.message = kMessages[frame.declared_length + (g_class ? 16 : 0)];
+    else if (ctx.detail)
+      f.message = message(frame.declared_length, g_class);
   }
   if (d == Dialect::skydroid && (frame.header == Header::ext8 || frame.header == Header::ext16))
     ctx.add(FindingCode::ext_header_skydroid, 0, [&] {
@@ -451,8 +453,7 @@ namespace {
 
 // The cache's slot for this frame's shape, or null (no cache, or a shape it
 // does not key).
-detail::ShapeSlot* shape_slot(const DecodeOptions& opts, const Frame& f, Dialect d,
-                              Role role) noexcept {
+detail::ShapeSlot* shape_slot(const DecodeOptions& opts, const Frame& f, Dialect d, Role role) {
   if (!opts.cache) return nullptr;
   const std::uint64_t key = detail::shape_key(f, d, role, opts.model);
   return key ? &detail::CacheAccess::slot(*opts.cache, key) : nullptr;

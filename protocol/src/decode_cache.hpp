@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string_view>
 
 #include "decode_plan.hpp"
@@ -98,7 +99,8 @@ struct CacheAccess {
   // bits of the key's product with a 64-bit odd constant: every bit of the
   // key reaches them (the low bits of a product see only the key's low bits,
   // where shapes of different identifiers look alike).
-  static ShapeSlot& slot(DecodeCache& c, std::uint64_t key) noexcept {
+  static ShapeSlot& slot(DecodeCache& c, std::uint64_t key) {
+    if (!c.slots_) c.slots_ = std::make_unique<ShapeSlot[]>(c.count_);  // at the first lookup
     ShapeSlot& s =
         c.slots_[static_cast<std::size_t>(((key * 0x9E3779B97F4A7C15ull) >> 32) >> c.shift_)];
     if (s.key != key) {  // another shape's: forget it all

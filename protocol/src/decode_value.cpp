@@ -174,15 +174,23 @@ std::string format_value(const FieldValue& f) {
 
 std::string Decoded::summary() const {
   std::string s;
-  if (form && !form->none.empty() && !fields.empty() && fields.front().none && !form->note.empty())
-    return "none (" + std::string(form->note) + ")";
-  for (const FieldValue& f : fields) {
-    if (!s.empty()) s += ", ";
-    s += f.name();
-    s += ' ';
-    append_value(f, s);
-  }
+  append_summary(s);
   return s;
+}
+
+void Decoded::append_summary(std::string& out) const {
+  if (form && !form->none.empty() && !fields.empty() && fields.front().none &&
+      !form->note.empty()) {
+    out.append("none (").append(form->note).append(")");
+    return;
+  }
+  const std::size_t start = out.size();
+  for (const FieldValue& f : fields) {
+    if (out.size() != start) out += ", ";
+    out += f.name();
+    out += ' ';
+    append_value(f, out);
+  }
 }
 
 }  // namespace top

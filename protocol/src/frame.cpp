@@ -631,12 +631,18 @@ ParseResult parse_exact(std::string_view bytes, const ParseOptions& opts) {
 }
 
 std::string build_frame(const BuildSpec& spec) {
+  std::string out;
+  build_frame(spec, out);
+  return out;
+}
+
+void build_frame(const BuildSpec& spec, std::string& out) {
   Header h = spec.header;
   std::size_t len = spec.data.size();
   if ((h == Header::fixed || h == Header::variable) && len > max_data_hex) h = Header::ext8;
   if (h == Header::ext8 && len > max_data_ext8) h = Header::ext16;
   if (h == Header::tmp_quirk) h = Header::variable;
-  std::string out;
+  out.clear();
   out.reserve(prefix_size + len + 2);
   out += to_string(h);
   out += spec.src;
@@ -666,7 +672,6 @@ std::string build_frame(const BuildSpec& spec) {
     for (char& c : cs)
       if (c >= 'A' && c <= 'F') c = static_cast<char>(c - 'A' + 'a');
   out.append(cs, 2);
-  return out;
 }
 
 }  // namespace top

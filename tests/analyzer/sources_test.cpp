@@ -289,6 +289,28 @@ TEST(SerialLogs, SaleaeCsvQuotedColumns) {
   }
 }
 
+// A row is split only up to the last column the header names (the rest of
+// the line is never looked at): columns past it, an unterminated quote among
+// them or hundreds of commas, change nothing.
+TEST(SerialLogs, SaleaeCsvColumnsPastTheHeadersAreNotRead) {
+  TempDir tmp;
+  std::string csv = "name,type,start_time,duration,data,error\n";
+  const std::string req = top::with_checksum("#TPUG2wPTZ05");
+  const std::string tails[] = {"", ",extra", ",\"open, quote", "," + std::string(500, ',')};
+  for (std::size_t i = 0; i < req.size(); ++i) {
+    char b[96];
+    std::snprintf(b, sizeof b, "TX,data,%.6f,8.68e-05,0x%02X,", 1.0 + static_cast<double>(i) * 1e-4,
+                  static_cast<unsigned char>(req[i]));
+    csv += b + tails[i % 4] + "\n";
+  }
+  write_file(tmp.file("x.csv"), csv);
+  Recorder r = read(tmp.file("x.csv"), {}, Format::saleae);
+  ASSERT_EQ(r.frames.size(), 1u);
+  EXPECT_EQ(r.frames[0].raw, req);
+  EXPECT_EQ(r.frames[0].from, "TX");
+  EXPECT_EQ(r.count_note(ACode::log_syntax), 0u);
+}
+
 // fuzz/regressions/capture_saleae/duplicate-name-column-out-of-range (found by
 // fuzz_capture_saleae): the header names "name", "type" and "start_time"
 // twice, the second "name" past the end of every data row. The reader took the

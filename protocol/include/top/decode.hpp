@@ -49,7 +49,8 @@ void append_plain_value(const FieldValue& f, std::string& out);
 // seen before skips the catalog lookups and goes straight to its data. The
 // results are the same with or without it (tested, and compared by the
 // decode fuzzers). One per thread; 128 slots by default (a few kilobytes),
-// rounded up to a power of two.
+// rounded up to a power of two, allocated at the first lookup (a cache that
+// decode() never uses, as with detail, costs nothing).
 class DecodeCache {
  public:
   explicit DecodeCache(std::size_t slots = 128);
@@ -61,8 +62,9 @@ class DecodeCache {
   std::uint64_t misses() const noexcept { return misses_; }
 
  private:
-  friend struct detail::CacheAccess;  // decode_cache.hpp
-  std::unique_ptr<detail::ShapeSlot[]> slots_;
+  friend struct detail::CacheAccess;            // decode_cache.hpp
+  std::unique_ptr<detail::ShapeSlot[]> slots_;  // count_ of them, from the first lookup
+  std::size_t count_ = 0;
   std::uint64_t misses_ = 0;
   unsigned shift_ = 32;  // a slot is the top log2(slots) bits of a 32-bit hash
 };
@@ -93,6 +95,8 @@ struct Decoded {
 
   // "yaw -50.00 deg, speed 5.0 deg/s"
   std::string summary() const;
+  // The same, appended to `out` (a reused buffer).
+  void append_summary(std::string& out) const;
 };
 
 // The role a frame plays, judged from its addresses: a frame from U/P is a

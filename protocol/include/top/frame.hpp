@@ -184,5 +184,8 @@ struct BuildSpec {
 // dialect rules. A #TP/#tp frame with more than 15 data bytes is built as #tP
 // (or #Tp past 255).
 std::string build_frame(const BuildSpec& spec);
+// The same into `out` (its old contents replaced, its storage kept): for a
+// loop that builds a frame at a time.
+void build_frame(const BuildSpec& spec, std::string& out);
 
 }  // namespace top

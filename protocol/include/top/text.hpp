@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -27,6 +28,19 @@ inline constexpr std::array<std::int8_t, 256> kHexValue = [] {
 
 // Value of a hex digit (either case), -1 otherwise.
 inline int hex_value(char c) noexcept { return detail::kHexValue[static_cast<unsigned char>(c)]; }
+
+// The pieces joined, in one allocation: a chain of operator+ grows the
+// string piece by piece, an allocation per growth, and a message built that
+// way (a finding's, a capture note's) cost more than the check that found
+// it. Numbers as std::to_string gives them stay in its small-string buffer.
+inline std::string cat(std::initializer_list<std::string_view> parts) {
+  std::size_t n = 0;
+  for (std::string_view p : parts) n += p.size();
+  std::string s;
+  s.reserve(n);
+  for (std::string_view p : parts) s.append(p);
+  return s;
+}
 
 // Printable ASCII as is; "\\" for a backslash, "\r" and "\n", anything else
 // as \xNN (uppercase), so the result round-trips through unescape().
