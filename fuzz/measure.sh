@@ -27,9 +27,20 @@
 # and the seeds) through DIR's build of the target (-runs=0) and adds the
 # cov/ft that build counts on it: the same yardstick for both runs.
 #
+# The host: this VM's two CPUs are not steady. The same binary, alone,
+# -seed=1, runs fuzz_frame at 115k exec/s and a minute later, on either
+# CPU, at 71k (fuzz/README.md, "Speed, eighth pass"). So each run is timed
+# with a probe before and after: a fixed awk loop on the same CPU, its
+# user seconds in the `probe` column (0.24-0.27 s on a CPU in its usual
+# state, 0.3-0.42 s when the host is slow). TOPKIT_MEASURE_REPEAT=N runs every
+# target N times, changing CPU each time, and prints each run on its own
+# line with its probe, then the best and the median of the N: a run
+# slowed by the host shows in its probe, not only in its exec/s.
+#
 # Environment:
 #   TOPKIT_MEASURE_BIN=DIR...  binaries (default build/fuzz/fuzz, options
 #                              then from fuzz/)
+#   TOPKIT_MEASURE_REPEAT=N    runs per target and variant (default 1)
 #   TOPKIT_MEASURE_RECOV=DIR   also count each final corpus's coverage with
 #                              DIR's binaries
 #   TOPKIT_MEASURE_CPUS="0 1"  the two CPUs to pin to
@@ -39,6 +50,7 @@ seconds=${1:-300}
 shift || true
 read -r -a bins <<<"${TOPKIT_MEASURE_BIN:-build/fuzz/fuzz}"
 read -r -a cpus <<<"${TOPKIT_MEASURE_CPUS:-0 1}"
+repeat=${TOPKIT_MEASURE_REPEAT:-1}
 if [ $# -gt 0 ]; then
   targets=("$@")
 else
@@ -67,10 +79,18 @@ flags() {
     }' "$opts"
 }
 
-run() {  # run CPU BIN TARGET VARIANT LABEL
-  local cpu=$1 bin=$2 t=$3 v=$4 label=$5 name=${3#fuzz_}
-  local dir=$work/$t.$label.$v
+# probe CPU: user seconds of a fixed loop on CPU (the host's state now).
+probe() {
+  local TIMEFORMAT=%3U
+  { time taskset -c "$1" awk 'BEGIN { for (i = 0; i < 6000000; i++) s += i % 7 }'; } 2>&1
+}
+
+run() {  # run CPU BIN TARGET VARIANT LABEL REP
+  local cpu=$1 bin=$2 t=$3 v=$4 label=$5 rep=${6:-0} name=${3#fuzz_}
+  local dir=$work/$t.$label.$v.r$rep
   mkdir -p "$dir/corpus"
+  local speed after
+  speed=$(probe "$cpu")
   local pre=(taskset -c "$cpu")
   [ "$v" = plain ] && pre=(env TOPKIT_FUZZ_NO_MUTATOR=1 "${pre[@]}")
   local f=()
@@ -78,6 +98,7 @@ run() {  # run CPU BIN TARGET VARIANT LABEL
   /usr/bin/time -f '%U %S' -o "$dir/time" "${pre[@]}" "$bin/$t" "${f[@]}" \
     -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 -seed=1 \
     "$dir/corpus" "fuzz/corpus/$name" >"$dir/log" 2>&1 || echo "$t $label $v: exit $?" >&2
+  after=$(probe "$cpu")
   local last eps runs cpu_s
   last=$(grep -E '^#[0-9]+[[:space:]]+DONE' "$dir/log" | tail -n 1)
   eps=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$dir/log")
@@ -90,39 +111,55 @@ run() {  # run CPU BIN TARGET VARIANT LABEL
     recov=$(grep -E '^#[0-9]+[[:space:]]+INITED' "$dir/recov" | tail -n 1 | grep -oE 'cov: [0-9]+ ft: [0-9]+' |
       sed 's/cov: //; s/ ft: / \/ /')
   fi
-  echo "$t|$label|$v|$eps|$(awk -v r="$runs" -v c="$cpu_s" 'BEGIN { printf "%d", (c > 0 ? r / c : 0) }')|$(echo "$last" | grep -oE 'cov: [0-9]+' | cut -d' ' -f2)|$(echo "$last" | grep -oE 'ft: [0-9]+' | cut -d' ' -f2)|$(echo "$last" | grep -oE 'corp: [0-9]+' | cut -d' ' -f2)|$recov" >"$dir.row"
+  echo "$t|$label|$v|$eps|$(awk -v r="$runs" -v c="$cpu_s" 'BEGIN { printf "%d", (c > 0 ? r / c : 0) }')|$(echo "$last" | grep -oE 'cov: [0-9]+' | cut -d' ' -f2)|$(echo "$last" | grep -oE 'ft: [0-9]+' | cut -d' ' -f2)|$(echo "$last" | grep -oE 'corp: [0-9]+' | cut -d' ' -f2)|$recov|$cpu|$speed / $after" >"$dir.row"
 }
 
-i=0
-single=0  # targets without a mutator run two at a time
-for t in "${targets[@]}"; do
-  if [ ${#bins[@]} -ge 2 ]; then
-    a=$((i % 2))
-    run "${cpus[0]}" "${bins[$a]}" "$t" built "b$a" &
-    run "${cpus[1]}" "${bins[$((1 - a))]}" "$t" built "b$((1 - a))" &
-    wait
-  elif uses_mutator "${bins[0]}" "$t"; then
-    wait
-    single=0
-    run "${cpus[0]}" "${bins[0]}" "$t" custom b0 &
-    run "${cpus[1]}" "${bins[0]}" "$t" plain b0 &
-    wait
-  else
-    run "${cpus[$single]}" "${bins[0]}" "$t" none b0 &
-    single=$((1 - single))
-    [ $single = 0 ] && wait
-  fi
-  i=$((i + 1))
+# Repetition r of a target puts each of its runs on the other CPU from
+# repetition r - 1.
+for ((r = 0; r < repeat; r++)); do
+  i=0
+  single=0  # targets without a mutator run two at a time
+  for t in "${targets[@]}"; do
+    x=$(((i + r) % 2))
+    if [ ${#bins[@]} -ge 2 ]; then
+      a=$(((i + r) % 2))
+      run "${cpus[0]}" "${bins[$a]}" "$t" built "b$a" "$r" &
+      run "${cpus[1]}" "${bins[$((1 - a))]}" "$t" built "b$((1 - a))" "$r" &
+      wait
+    elif uses_mutator "${bins[0]}" "$t"; then
+      wait
+      single=0
+      run "${cpus[$x]}" "${bins[0]}" "$t" custom b0 "$r" &
+      run "${cpus[$((1 - x))]}" "${bins[0]}" "$t" plain b0 "$r" &
+      wait
+    else
+      run "${cpus[$(((single + r) % 2))]}" "${bins[0]}" "$t" none b0 "$r" &
+      single=$((1 - single))
+      [ $single = 0 ] && wait
+    fi
+    i=$((i + 1))
+  done
+  wait
 done
 wait
-echo "| target | build | mutator | exec/s | runs/CPU-s | cov | ft | corpus | cov / ft by ${TOPKIT_MEASURE_RECOV:-(none)} |"
-echo "|---|---|---|---:|---:|---:|---:|---:|---:|"
+echo "| target | build | mutator | exec/s | runs/CPU-s | cov | ft | corpus | cov / ft by ${TOPKIT_MEASURE_RECOV:-(none)} | CPU | probe s |"
+echo "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"
 for t in "${targets[@]}"; do
   for b in "${!bins[@]}"; do
     for v in built custom plain none; do
-      [ -f "$work/$t.b$b.$v.row" ] || continue
-      IFS='|' read -r c1 c2 c3 c4 c5 c6 c7 c8 c9 <"$work/$t.b$b.$v.row"
-      echo "| $c1 | ${bins[$b]} | $c3 | $c4 | $c5 | $c6 | $c7 | $c8 | ${c9:--} |"
+      [ -f "$work/$t.b$b.$v.r0.row" ] || continue
+      all=()
+      for ((r = 0; r < repeat; r++)); do
+        IFS='|' read -r c1 c2 c3 c4 c5 c6 c7 c8 c9 c10 c11 <"$work/$t.b$b.$v.r$r.row"
+        echo "| $c1 | ${bins[$b]} | $c3 | $c4 | $c5 | $c6 | $c7 | $c8 | ${c9:--} | $c10 | $c11 |"
+        all+=("$c4")
+      done
+      if [ "$repeat" -gt 1 ]; then
+        printf '%s\n' "${all[@]}" | sort -n | awk -v t="$t" -v b="${bins[$b]}" -v v="$v" '
+          { x[NR] = $1 }
+          END { m = (NR % 2) ? x[(NR + 1) / 2] : int((x[NR / 2] + x[NR / 2 + 1]) / 2)
+                printf "| %s | %s | %s | best %d, median %d of %d | | | | | | | |\n", t, b, v, x[NR], m, NR }'
+      fi
     done
   done
 done

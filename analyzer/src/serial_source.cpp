@@ -292,9 +292,18 @@ std::size_t csv_split(std::string_view l, std::vector<std::string>& out,
   };
   std::string* cur = &next();
   bool q = false;  // inside quotes
-  // a run of plain bytes at a time, up to the next byte that matters
+  // A run of plain bytes at a time, up to the next byte that matters: the
+  // next comma and the next quote are each found with one memchr over the
+  // rest of the row, and looked for again only once passed (find_first_of
+  // called memchr on its two-byte set for every byte of the row).
+  std::size_t comma = l.find(','), quote = l.find('"');
   for (std::size_t i = 0; i < l.size();) {
-    const std::size_t j = q ? l.find('"', i) : l.find_first_of(",\"", i);
+    if (quote < i) quote = l.find('"', i);
+    std::size_t j = quote;
+    if (!q) {
+      if (comma < i) comma = l.find(',', i);
+      j = std::min(comma, quote);
+    }
     cur->append(l.substr(i, j - i));
     if (j == std::string_view::npos) break;
     i = j + 1;
