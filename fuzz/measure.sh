@@ -31,8 +31,8 @@
 # -seed=1, runs fuzz_frame at 115k exec/s and a minute later, on either
 # CPU, at 71k (fuzz/README.md, "Speed, eighth pass"). So each run is timed
 # with a probe before and after: a fixed awk loop on the same CPU, its
-# user seconds in the `probe` column (0.24-0.27 s on a CPU in its usual
-# state, 0.3-0.42 s when the host is slow). TOPKIT_MEASURE_REPEAT=N runs every
+# user seconds in the `probe` column (0.24-0.31 s on a CPU in its usual
+# state, 0.32-0.45 s when the host slows it). TOPKIT_MEASURE_REPEAT=N runs every
 # target N times, changing CPU each time, and prints each run on its own
 # line with its probe, then the best and the median of the N: a run
 # slowed by the host shows in its probe, not only in its exec/s.
