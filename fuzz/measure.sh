@@ -32,8 +32,8 @@
 # CPU, at 71k (fuzz/README.md, "Speed, eighth pass"). So each run is timed
 # with a probe before and after: a fixed awk loop on the same CPU, its
 # user seconds in the `probe` column (0.24-0.31 s on a CPU in its usual
-# state, 0.32-0.45 s when the host slows it). TOPKIT_MEASURE_REPEAT=N runs every
-# target N times, changing CPU each time, and prints each run on its own
+# state, 0.32-0.45 s when the host slows it). TOPKIT_MEASURE_REPEAT=N runs
+# every target N times, changing CPU each time, and prints each run on its own
 # line with its probe, then the best and the median of the N: a run
 # slowed by the host shows in its probe, not only in its exec/s.
 #
@@ -51,6 +51,10 @@ shift || true
 read -r -a bins <<<"${TOPKIT_MEASURE_BIN:-build/fuzz/fuzz}"
 read -r -a cpus <<<"${TOPKIT_MEASURE_CPUS:-0 1}"
 repeat=${TOPKIT_MEASURE_REPEAT:-1}
+if ! [[ $repeat =~ ^[1-9][0-9]*$ ]]; then
+  echo "fuzz/measure.sh: TOPKIT_MEASURE_REPEAT must be a whole number of runs, 1 or more (got \"$repeat\")" >&2
+  exit 2
+fi
 if [ $# -gt 0 ]; then
   targets=("$@")
 else
@@ -122,9 +126,8 @@ for ((r = 0; r < repeat; r++)); do
   for t in "${targets[@]}"; do
     x=$(((i + r) % 2))
     if [ ${#bins[@]} -ge 2 ]; then
-      a=$(((i + r) % 2))
-      run "${cpus[0]}" "${bins[$a]}" "$t" built "b$a" "$r" &
-      run "${cpus[1]}" "${bins[$((1 - a))]}" "$t" built "b$((1 - a))" "$r" &
+      run "${cpus[0]}" "${bins[$x]}" "$t" built "b$x" "$r" &
+      run "${cpus[1]}" "${bins[$((1 - x))]}" "$t" built "b$((1 - x))" "$r" &
       wait
     elif uses_mutator "${bins[0]}" "$t"; then
       wait

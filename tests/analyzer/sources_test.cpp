@@ -289,6 +289,35 @@ TEST(SerialLogs, SaleaeCsvQuotedColumns) {
   }
 }
 
+// The row splitter finds each next comma and quote once and looks again
+// only after passing it: commas inside several quoted columns of one row,
+// a quote right after a comma, "" at a column's end and empty columns all
+// split as before.
+TEST(SerialLogs, SaleaeCsvSeveralQuotedColumnsInARow) {
+  TempDir tmp;
+  std::string csv = "type,name,start_time,duration,data,error\n";
+  auto add = [&](const std::string& name, const std::string& bytes) {
+    for (char c : bytes)
+      csv += "\"data\"," + name + ",1.0,,0x" + std::string(1, "0123456789ABCDEF"[(c >> 4) & 15]) +
+             std::string(1, "0123456789ABCDEF"[c & 15]) + ",\n";
+  };
+  add("\"a,b\"", top::with_checksum("#TPUG2wPTZ05"));
+  add("\"c,,d\"\"\"", top::with_checksum("#TPGU2wPTZ05"));
+  csv += "\"data\",\"a,b\",2.0,,0x23,\"e,\"\"f\"\"\"\n";
+  write_file(tmp.file("q.csv"), csv);
+  Recorder r = read(tmp.file("q.csv"), {}, Format::saleae);
+  ASSERT_EQ(r.frames.size(), 2u);
+  EXPECT_EQ(r.frames[0].from, "a,b");
+  EXPECT_EQ(r.frames[0].to, "c,,d\"");
+  EXPECT_EQ(r.frames[1].from, "c,,d\"");
+  ASSERT_EQ(r.count_note(ACode::log_syntax), 1u);
+  for (const auto& n : r.notes) {
+    if (n.note.code != ACode::log_syntax) continue;
+    EXPECT_NE(n.note.message.find("the analyzer flagged this byte: e,\"f\""), std::string::npos)
+        << n.note.message;
+  }
+}
+
 // A row is split only up to the last column the header names (the rest of
 // the line is never looked at): columns past it, an unterminated quote among
 // them or hundreds of commas, change nothing.
