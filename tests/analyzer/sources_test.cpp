@@ -170,6 +170,20 @@ TEST(Pcap, MalformedHeadersAreFindingsNotCrashes) {
 
 // --- serial logs -------------------------------------------------------------
 
+// The log has exactly one log_syntax note, and it says `what`.
+void expect_one_log_syntax_note(const Recorder& r, std::string_view what) {
+  ASSERT_EQ(r.count_note(ACode::log_syntax), 1u);
+  for (const auto& n : r.notes)
+    if (n.note.code == ACode::log_syntax) {
+      EXPECT_NE(n.note.message.find(what), std::string::npos) << n.note.message;
+    }
+}
+
+// A byte as a Saleae export's data column writes it: 0x23.
+std::string saleae_byte(char c) {
+  return std::string("0x") + "0123456789ABCDEF"[(c >> 4) & 15] + "0123456789ABCDEF"[c & 15];
+}
+
 TEST(SerialLogs, FormatDetection) {
   EXPECT_EQ(detect_format(std::string("\xd4\xc3\xb2\xa1", 4)), Format::pcap);
   EXPECT_EQ(detect_format(std::string("\x0a\x0d\x0d\x0a", 4)), Format::pcapng);
@@ -266,9 +280,7 @@ TEST(SerialLogs, SaleaeCsvQuotedColumns) {
   std::string csv = "name,type,start_time,duration,data,error\n";
   auto add = [&](const std::string& name, const std::string& bytes, const std::string& tail) {
     for (char c : bytes)
-      csv += name + ",\"da\"ta,1.0,8.68e-05,0x" +
-             std::string(1, "0123456789ABCDEF"[(c >> 4) & 15]) +
-             std::string(1, "0123456789ABCDEF"[c & 15]) + "," + tail + "\n";
+      csv += name + ",\"da\"ta,1.0,8.68e-05," + saleae_byte(c) + "," + tail + "\n";
   };
   add("\"T,X\"", top::with_checksum("#TPUG2wPTZ05"), "");
   add("\"R\"\"X\"", top::with_checksum("#TPGU2wPTZ05"), "");
@@ -280,13 +292,7 @@ TEST(SerialLogs, SaleaeCsvQuotedColumns) {
   EXPECT_EQ(r.frames[0].to, "R\"X");
   EXPECT_EQ(r.frames[1].from, "R\"X");
   EXPECT_EQ(r.frames[1].reply_to, 1u);
-  ASSERT_EQ(r.count_note(ACode::log_syntax), 1u);
-  for (const auto& n : r.notes) {
-    if (n.note.code != ACode::log_syntax) continue;
-    EXPECT_NE(n.note.message.find("line 30: the analyzer flagged this byte: framing, \"stop\" bit"),
-              std::string::npos)
-        << n.note.message;
-  }
+  expect_one_log_syntax_note(r, "line 30: the analyzer flagged this byte: framing, \"stop\" bit");
 }
 
 // The row splitter finds each next comma and quote once and looks again
@@ -297,9 +303,7 @@ TEST(SerialLogs, SaleaeCsvSeveralQuotedColumnsInARow) {
   TempDir tmp;
   std::string csv = "type,name,start_time,duration,data,error\n";
   auto add = [&](const std::string& name, const std::string& bytes) {
-    for (char c : bytes)
-      csv += "\"data\"," + name + ",1.0,,0x" + std::string(1, "0123456789ABCDEF"[(c >> 4) & 15]) +
-             std::string(1, "0123456789ABCDEF"[c & 15]) + ",\n";
+    for (char c : bytes) csv += "\"data\"," + name + ",1.0,," + saleae_byte(c) + ",\n";
   };
   add("\"a,b\"", top::with_checksum("#TPUG2wPTZ05"));
   add("\"c,,d\"\"\"", top::with_checksum("#TPGU2wPTZ05"));
@@ -310,12 +314,7 @@ TEST(SerialLogs, SaleaeCsvSeveralQuotedColumnsInARow) {
   EXPECT_EQ(r.frames[0].from, "a,b");
   EXPECT_EQ(r.frames[0].to, "c,,d\"");
   EXPECT_EQ(r.frames[1].from, "c,,d\"");
-  ASSERT_EQ(r.count_note(ACode::log_syntax), 1u);
-  for (const auto& n : r.notes) {
-    if (n.note.code != ACode::log_syntax) continue;
-    EXPECT_NE(n.note.message.find("the analyzer flagged this byte: e,\"f\""), std::string::npos)
-        << n.note.message;
-  }
+  expect_one_log_syntax_note(r, "line 30: the analyzer flagged this byte: e,\"f\"");
 }
 
 // A row is split only up to the last column the header names (the rest of
@@ -360,8 +359,7 @@ TEST(FuzzRegression, SaleaeCsvWithADuplicatedColumnReadsTheFirst) {
   TempDir tmp;
   std::string csv = "name,type,start_time,duration,data,error,name\n";
   for (char c : top::with_checksum("#TPUG2wPTZ05"))
-    csv += "TX,data,1.0,8.68e-05,0x" + std::string(1, "0123456789ABCDEF"[(c >> 4) & 15]) +
-           std::string(1, "0123456789ABCDEF"[c & 15]) + ",\n";
+    csv += "TX,data,1.0,8.68e-05," + saleae_byte(c) + ",\n";
   csv += "TX,data,1.0\n";  // short: too few columns, not a crash
   write_file(tmp.file("d.csv"), csv);
   Recorder d = read(tmp.file("d.csv"), {}, Format::saleae);
@@ -402,8 +400,7 @@ TEST(SerialLogs, SaleaeCsvHugeTimeIsNoTime) {
   TempDir tmp;
   std::string csv = "name,type,start_time,duration,data,error\n";
   for (char c : top::with_checksum("#TPUG2wPTZ05"))
-    csv += "TX,data,1e300,8.68e-05,0x" + std::string(1, "0123456789ABCDEF"[(c >> 4) & 15]) +
-           std::string(1, "0123456789ABCDEF"[c & 15]) + ",\n";
+    csv += "TX,data,1e300,8.68e-05," + saleae_byte(c) + ",\n";
   write_file(tmp.file("h.csv"), csv);
   Recorder r = read(tmp.file("h.csv"), {}, Format::saleae);
   ASSERT_EQ(r.frames.size(), 1u);
