@@ -444,3 +444,51 @@ TEST(Text, MarkupEscapeWritesControlBytesAsEscape) {
   const std::string out = markup_escape(all);
   for (unsigned char c : out) EXPECT_TRUE(c >= 0x20 || c == '\t' || c == '\n') << int{c};
 }
+
+// BuildSpec's deliberate malformations reproduce what real senders send.
+TEST(Build, DeclaredLengthThatLiesIsTheC12VersionReply) {
+  BuildSpec b;
+  b.src = 'D';
+  b.dst = 'U';
+  b.control = 'r';
+  b.ident = "VER";
+  b.data = "010502";
+  b.declared_length = 3;
+  const std::string f = build_frame(b);
+  EXPECT_EQ(f, "#tpDU3rVER0105025A");  // DESIGN.md, "Lengths that lie"
+  const ParseResult r = parse_exact(f);
+  ASSERT_EQ(r.status, ParseStatus::frame);
+  EXPECT_TRUE(r.frame.has(FindingCode::length_mismatch));
+  EXPECT_EQ(r.frame.data(), "010502");
+}
+
+TEST(Build, ChecksumOverAnotherHeaderIsTheGayExample) {
+  BuildSpec b;
+  b.header = Header::fixed;
+  b.ident = "GAY";
+  b.data = "EF0732";
+  b.checksum_header = Header::variable;
+  const std::string f = build_frame(b);
+  EXPECT_EQ(f, "#TPUG6wGAYEF073288");  // SkyDroid 3.3.1's example
+  const ParseResult r = parse_exact(f);
+  ASSERT_EQ(r.status, ParseStatus::frame);
+  EXPECT_TRUE(r.frame.has(FindingCode::checksum_header_case));
+  b.checksum_header = Header::fixed;  // the header written: no malformation
+  EXPECT_TRUE(parse_exact(build_frame(b)).frame.ok());
+}
+
+TEST(Build, TwoDigitLengthIsTheTmpFirmwareForm) {
+  BuildSpec b;
+  b.src = 'D';
+  b.dst = 'P';
+  b.ident = "TMP";
+  const std::string data = "0100200300400500600700";
+  b.data = data;
+  b.two_digit_length = true;
+  const std::string f = build_frame(b);
+  EXPECT_EQ(f.substr(0, 11), "#tpDP16wTMP");
+  const ParseResult r = parse_exact(f);
+  ASSERT_EQ(r.status, ParseStatus::frame);
+  EXPECT_TRUE(r.frame.has(FindingCode::tmp_quirk));
+  EXPECT_EQ(r.frame.data(), data);
+}

@@ -35,6 +35,10 @@ static_assert(std::size(kOrder) == static_cast<std::size_t>(Order::request_order
 constexpr std::string_view kTraitKind[] = {"yaw-inverted", "pitch-inverted", "answers-to-source",
                                            "link-by-source", "speed-refresh"};
 static_assert(std::size(kTraitKind) == static_cast<std::size_t>(TraitKind::speed_refresh) + 1);
+constexpr std::string_view kLink[] = {"network", "uart"};
+static_assert(std::size(kLink) == static_cast<std::size_t>(Link::uart) + 1);
+constexpr std::string_view kRejection[] = {"none", "unsupported", "invalid"};
+static_assert(std::size(kRejection) == static_cast<std::size_t>(Rejection::invalid) + 1);
 
 constexpr StreamSpec kStreams[] = {
     {.dialect = Dialect::skydroid,
@@ -361,6 +365,72 @@ const FieldSupport* field_supported(Dialect d, Model model, std::string_view ide
       if (v == *value) return &s;
   }
   return nullptr;
+}
+
+// ---- rules ----
+
+std::string_view to_string(Link l) noexcept { return enum_name(kLink, l); }
+std::string_view to_string(Rejection r) noexcept { return enum_name(kRejection, r); }
+
+char client_address(Dialect d, Link link) noexcept {
+  return d == Dialect::topotek && link == Link::network ? 'P' : 'U';
+}
+
+bool answers_source(Model model, Profile profile, Link link, char src) noexcept {
+  if (find_trait(TraitKind::link_by_source, model, profile) == nullptr) return true;
+  return src == client_address(dialect_of(model), link);
+}
+
+bool rejects(FindingCode c) noexcept {
+  switch (c) {
+    case FindingCode::unknown_ident:
+    case FindingCode::unsupported_on_model:
+    case FindingCode::unsupported_control:
+    case FindingCode::data_length:
+    case FindingCode::bad_field:
+    case FindingCode::value_out_of_range:
+      return true;
+    default:
+      return false;
+  }
+}
+
+Rejection rejection(const Decoded& dec, Model model, bool field_evidence) noexcept {
+  Rejection r = Rejection::none;
+  for (const Finding& f : dec.findings) {
+    if (f.code == FindingCode::unsupported_on_model) {
+      const bool lifted = field_evidence && f.severity != Severity::error &&
+                          dec.command != nullptr &&
+                          field_supported(dec.dialect, model, dec.command->ident,
+                                          !dec.fields.empty() && dec.fields[0].valid
+                                              ? std::optional<std::int64_t>(dec.fields[0].integer)
+                                              : std::nullopt) != nullptr;
+      if (!lifted) return Rejection::unsupported;
+    } else if (f.code == FindingCode::unknown_ident) {
+      return Rejection::unsupported;
+    } else if (rejects(f.code)) {
+      r = Rejection::invalid;
+    }
+  }
+  return r;
+}
+
+bool answers_error_reply(Dialect d) noexcept { return d == Dialect::skydroid; }
+
+BuildSpec error_reply(const Frame& request) noexcept {
+  BuildSpec b;
+  b.header = Header::fixed;
+  b.src = request.dst;
+  b.dst = request.src;
+  b.control = 'w';
+  b.ident = error_reply_ident;
+  b.data = error_reply_data;
+  return b;
+}
+
+std::uint32_t speed_hold_ms(Model model, Profile profile) noexcept {
+  const Trait* t = find_trait(TraitKind::speed_refresh, model, profile);
+  return t != nullptr && t->value != 0 ? t->value : default_speed_hold_ms;
 }
 
 }  // namespace top

@@ -153,4 +153,72 @@ std::span<const FieldSupport> field_support() noexcept;
 const FieldSupport* field_supported(Dialect d, Model model, std::string_view ident,
                                     std::optional<std::int64_t> value) noexcept;
 
+// ---- Rules of the device: asked for by topsim, topconf, the fuzzers and
+// topdump alike, so that each is written once. ----
+
+// The link a request reaches the device on.
+enum class Link : std::uint8_t {
+  network,  // UDP or TCP
+  uart      // a serial line
+};
+std::string_view to_string(Link l) noexcept;  // "network", "uart"
+
+// The source address a client of `d` writes on `link`: Topotek names the
+// interface by the source byte (P network, U UART; Topotek 2), SkyDroid's
+// clients are U on every link (SkyDroid 2.1).
+char client_address(Dialect d, Link link) noexcept;
+// Whether a device of `model` under `profile` answers a request with source
+// `src` that arrived on `link` (the trait link_by_source: a Topotek UDP
+// request with source U gets no answer). Devices without the trait answer
+// every source.
+bool answers_source(Model model, Profile profile, Link link, char src) noexcept;
+
+// Why a device refuses a request, judged from the request's catalog findings.
+enum class Rejection : std::uint8_t {
+  none,         // the device takes it
+  unsupported,  // unknown-ident, or unsupported-on-model without field evidence
+  invalid       // unsupported-control, data-length, bad-field, value-out-of-range
+};
+std::string_view to_string(Rejection r) noexcept;  // "none", "unsupported", "invalid"
+// The rejection a device of `model` gives a request decoded as `dec` (its
+// catalog findings). With `field_evidence` (the field profile), an
+// unsupported-on-model is lifted where field evidence says the model takes
+// the command with that first-field value (field_supported: C13 PTZ 0E);
+// without it (the document profile) it always rejects. unsupported wins
+// over invalid.
+Rejection rejection(const Decoded& dec, Model model, bool field_evidence = true) noexcept;
+// True for the finding codes that can make a device reject a request.
+bool rejects(FindingCode c) noexcept;
+
+// The invalid-command reply (SkyDroid 2.3.2): #TP<dst><src>2wERE!!<cs>.
+inline constexpr std::string_view error_reply_ident = "ERE";
+inline constexpr std::string_view error_reply_data = "!!";
+// True when `f` is an invalid-command reply.
+inline bool is_error_reply(const Frame& f) noexcept { return f.ident_view() == error_reply_ident; }
+// True when `ident` names the invalid-command reply.
+inline bool is_error_reply(std::string_view ident) noexcept { return ident == error_reply_ident; }
+// Whether devices of `d` answer an invalid request with ERE (SkyDroid 2.3.2;
+// Topotek documents no such reply and stays silent).
+bool answers_error_reply(Dialect d) noexcept;
+// The ERE a device sends for `request`, addresses swapped; the spec views
+// static text and the request's nothing.
+BuildSpec error_reply(const Frame& request) noexcept;
+
+// Timing rules (each with the reason it has the value it has).
+// A push stream runs at its asked rate when its measured rate is within this
+// fraction of it: GAA asks a rate in whole Hz and devices pace by their own
+// tick, so a few percent are jitter and 25% is a different rate.
+inline constexpr double stream_rate_tolerance = 0.25;
+// A device holding bytes that may start a frame (one failing its checksum
+// waits for the bytes after it: a length that lies) decides on them once its
+// line has been quiet this long. The documents give no inter-frame timeout; this is
+// topsim's choice (a 20-byte frame at 115200 baud takes 1.7 ms), and topconf
+// waits it out before it expects the device's verdict on a cut frame.
+inline constexpr std::uint32_t quiet_line_ms = 20;
+// How long a speed command keeps the motors turning without a refresh: the
+// speed_refresh trait's value for `model` (field: autopilots refresh at
+// 10-50 Hz), else default_speed_hold_ms.
+inline constexpr std::uint32_t default_speed_hold_ms = 1000;
+std::uint32_t speed_hold_ms(Model model, Profile profile) noexcept;
+
 }  // namespace top

@@ -177,6 +177,19 @@ struct BuildSpec {
   std::string_view ident;
   std::string_view data;
   bool lowercase_checksum = false;
+  // Deliberate malformations, as real senders make them (topsim's faults and
+  // firmware forms, topconf fuzz cases). Each leaves the frame otherwise
+  // well formed.
+  // The length written, when it is not the data's: a length that lies (the
+  // C12 "#tpDU3rVER0105025A": length 3, six data chars). #TP/#tp write its
+  // low hex digit, #tP its low byte, #Tp two bytes.
+  std::optional<std::uint32_t> declared_length;
+  // The header the checksum is summed over, when not the one written: the
+  // SkyDroid GAY/GOT examples, summed as #tp and sent as #TP.
+  std::optional<Header> checksum_header;
+  // The length of a #tp frame as two hex digits: the Topotek 12.2 TMP
+  // firmware form #tpDP16wTMP... (22 data chars).
+  bool two_digit_length = false;
 };
 
 // Builds a frame with the header's length encoding and the checksum. The

@@ -7,5 +7,6 @@
 #include "top/dialect.hpp"
 #include "top/findings.hpp"
 #include "top/frame.hpp"
+#include "top/motion.hpp"
 #include "top/stream.hpp"
 #include "top/text.hpp"

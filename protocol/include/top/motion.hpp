@@ -1,0 +1,78 @@
+// Commands that move the gimbal, and the attitude that shows where it is:
+// which identifier is an angle target, a rate, a PTZ action or an attitude
+// report, on which axes, in which fields, and which way a positive value
+// turns. topsim moves its axes by this table, topdump's report compares
+// commands with the attitude by it, and the diagnoses read it.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string_view>
+
+#include "top/dialect.hpp"
+
+namespace top {
+
+enum class Axis : std::uint8_t { yaw, pitch, roll };
+std::string_view to_string(Axis a) noexcept;  // "yaw", "pitch", "roll"
+inline constexpr std::size_t axis_count = 3;
+
+enum class MotionKind : std::uint8_t {
+  angle,    // a target angle per axis, with an optional speed to reach it
+  rate,     // a turning rate per axis, held until refreshed or changed
+  ptz,      // a PTZ action code (directions, stop, centre)
+  attitude  // the gimbal's reported angles
+};
+std::string_view to_string(MotionKind k) noexcept;  // "angle", "rate", "ptz", "attitude"
+
+// The frame of reference of an angle or attitude.
+enum class Reference : std::uint8_t {
+  body,  // relative to the aircraft (magnetic encoder: GA* on Topotek, all SkyDroid)
+  earth  // in the earth frame (gyroscope: Topotek GI*, 4.3.2)
+};
+
+// One axis of a motion command: the field that carries its value and, for
+// angles, the field of the speed to reach it.
+struct MotionAxis {
+  Axis axis = Axis::yaw;
+  std::string_view value;  // "angle", "yaw", "speed", "yaw_speed"
+  std::string_view speed;  // angles: "speed", "yaw_speed"; empty for rates
+  // The sign of a positive value as the document writes it: +1 when a
+  // positive value turns right (yaw) or up (pitch), -1 when it turns down.
+  std::int8_t sign = 1;
+};
+
+struct MotionSpec {
+  Dialect dialect = Dialect::unknown;
+  std::string_view ident;
+  MotionKind kind = MotionKind::angle;
+  Reference reference = Reference::body;
+  std::array<MotionAxis, axis_count> axes{};
+  std::uint8_t count = 0;    // axes used
+  std::string_view section;  // where the document says so
+  std::span<const MotionAxis> fields() const noexcept { return {axes.data(), count}; }
+};
+
+// Every motion command and attitude report of both dialects.
+std::span<const MotionSpec> motions() noexcept;
+// The row of `ident` in dialect `d`, or nullptr.
+const MotionSpec* motion_of(Dialect d, std::string_view ident) noexcept;
+// The attitude report a command of `spec` is judged against: the one of the
+// same reference frame (Topotek GIC for GI* commands, GAC otherwise).
+std::string_view attitude_for(const MotionSpec& spec) noexcept;
+
+// PTZ action codes that move or stop an axis (SkyDroid 3.1 and Topotek 4.1
+// agree on 00-05: stop, up, down, left, right, centre).
+enum class PtzMove : std::uint8_t { none, stop, turn, centre };
+struct PtzAction {
+  PtzMove move = PtzMove::none;
+  Axis axis = Axis::yaw;  // turn
+  std::int8_t sign = 0;   // turn: +1 right/up, -1 left/down
+};
+// What PTZ code `code` does. C13 codes 0E-13 (pitch, yaw and roll trim, +
+// then -) turn an axis only where field evidence says the model takes them
+// (field_supported in top/device.hpp); the caller asks that.
+PtzAction ptz_action(std::int64_t code) noexcept;
+
+}  // namespace top

@@ -1,0 +1,133 @@
+// The motion table of top/motion.hpp: every command that moves the gimbal and
+// every attitude report, with the document section that defines it.
+#include "top/motion.hpp"
+
+#include <iterator>
+
+#include "top/enum_names.hpp"
+
+namespace top {
+namespace {
+
+constexpr std::string_view kAxis[] = {"yaw", "pitch", "roll"};
+static_assert(std::size(kAxis) == axis_count);
+constexpr std::string_view kKind[] = {"angle", "rate", "ptz", "attitude"};
+static_assert(std::size(kKind) == static_cast<std::size_t>(MotionKind::attitude) + 1);
+
+constexpr MotionAxis yaw(std::string_view v, std::string_view s = {}, std::int8_t sign = 1) {
+  return {Axis::yaw, v, s, sign};
+}
+constexpr MotionAxis pitch(std::string_view v, std::string_view s = {}, std::int8_t sign = 1) {
+  return {Axis::pitch, v, s, sign};
+}
+constexpr MotionAxis roll(std::string_view v, std::string_view s = {}, std::int8_t sign = 1) {
+  return {Axis::roll, v, s, sign};
+}
+
+constexpr MotionSpec one(Dialect d, std::string_view id, MotionKind k, Reference r, MotionAxis a,
+                         std::string_view section) {
+  return {d, id, k, r, {a, {}, {}}, 1, section};
+}
+constexpr MotionSpec two(Dialect d, std::string_view id, MotionKind k, Reference r, MotionAxis a,
+                         MotionAxis b, std::string_view section) {
+  return {d, id, k, r, {a, b, {}}, 2, section};
+}
+constexpr MotionSpec three(Dialect d, std::string_view id, MotionKind k, Reference r, MotionAxis a,
+                           MotionAxis b, MotionAxis c, std::string_view section) {
+  return {d, id, k, r, {a, b, c}, 3, section};
+}
+
+constexpr Dialect S = Dialect::skydroid;
+constexpr Dialect T = Dialect::topotek;
+constexpr MotionKind kAngle = MotionKind::angle;
+constexpr MotionKind kRate = MotionKind::rate;
+constexpr MotionKind kAtt = MotionKind::attitude;
+constexpr Reference B = Reference::body;
+constexpr Reference E = Reference::earth;
+// Topotek 4.2: "the text makes pitch down positive" (its angles are up
+// positive); SkyDroid 3.2 gives pitch speed up positive.
+constexpr std::int8_t kDown = -1;
+
+constexpr MotionSpec kMotions[] = {
+    // SkyDroid 3.1-3.3
+    {S, "PTZ", MotionKind::ptz, B, {}, 0, "SkyDroid 3.1"},
+    one(S, "GSY", kRate, B, yaw("speed"), "SkyDroid 3.2"),
+    one(S, "GSP", kRate, B, pitch("speed"), "SkyDroid 3.2"),
+    one(S, "GSR", kRate, B, roll("speed"), "SkyDroid 3.2"),
+    two(S, "GSM", kRate, B, yaw("yaw_speed"), pitch("pitch_speed"), "SkyDroid 3.2"),
+    one(S, "GAY", kAngle, B, yaw("angle", "speed"), "SkyDroid 3.3.1"),
+    one(S, "GAP", kAngle, B, pitch("angle", "speed"), "SkyDroid 3.3.1"),
+    one(S, "GAR", kAngle, B, roll("angle", "speed"), "SkyDroid 3.3.1"),
+    two(S, "GAM", kAngle, B, yaw("yaw", "yaw_speed"), pitch("pitch", "pitch_speed"),
+        "SkyDroid 3.3.1"),
+    three(S, "GAC", kAtt, B, yaw("yaw"), pitch("pitch"), roll("roll"), "SkyDroid 3.3.2.2"),
+    // Topotek 4.1-4.3
+    {T, "PTZ", MotionKind::ptz, B, {}, 0, "Topotek 4.1"},
+    one(T, "GSY", kRate, B, yaw("speed"), "Topotek 4.2"),
+    one(T, "GSP", kRate, B, pitch("speed", {}, kDown), "Topotek 4.2"),
+    one(T, "GSR", kRate, B, roll("speed"), "Topotek 4.2"),
+    two(T, "GSM", kRate, B, yaw("yaw_speed"), pitch("pitch_speed", {}, kDown), "Topotek 4.2"),
+    two(T, "RPS", kRate, B, roll("roll_speed"), pitch("pitch_speed", {}, kDown), "Topotek 4.2"),
+    three(T, "YPR", kRate, B, yaw("yaw_speed"), pitch("pitch_speed", {}, kDown), roll("roll_speed"),
+          "Topotek 4.2"),
+    one(T, "GAY", kAngle, B, yaw("angle", "speed"), "Topotek 4.3.1"),
+    one(T, "GAP", kAngle, B, pitch("angle", "speed"), "Topotek 4.3.1"),
+    one(T, "GAR", kAngle, B, roll("angle", "speed"), "Topotek 4.3.1"),
+    two(T, "GAM", kAngle, B, yaw("yaw", "yaw_speed"), pitch("pitch", "pitch_speed"),
+        "Topotek 4.3.1"),
+    one(T, "GIY", kAngle, E, yaw("angle", "speed"), "Topotek 4.3.2"),
+    one(T, "GIP", kAngle, E, pitch("angle", "speed"), "Topotek 4.3.2"),
+    one(T, "GIR", kAngle, E, roll("angle", "speed"), "Topotek 4.3.2"),
+    two(T, "GIM", kAngle, E, yaw("yaw", "yaw_speed"), pitch("pitch", "pitch_speed"),
+        "Topotek 4.3.2"),
+    three(T, "GAC", kAtt, B, yaw("yaw"), pitch("pitch"), roll("roll"), "Topotek 4.3.3"),
+    three(T, "GIC", kAtt, E, yaw("yaw"), pitch("pitch"), roll("roll"), "Topotek 4.3.5"),
+};
+
+}  // namespace
+
+std::string_view to_string(Axis a) noexcept { return enum_name(kAxis, a); }
+std::string_view to_string(MotionKind k) noexcept { return enum_name(kKind, k); }
+
+std::span<const MotionSpec> motions() noexcept { return kMotions; }
+
+const MotionSpec* motion_of(Dialect d, std::string_view ident) noexcept {
+  if (ident.size() != 3) return nullptr;
+  for (const MotionSpec& m : kMotions)
+    if (m.dialect == d && m.ident == ident) return &m;
+  return nullptr;
+}
+
+std::string_view attitude_for(const MotionSpec& spec) noexcept {
+  return spec.reference == Reference::earth ? "GIC" : "GAC";
+}
+
+PtzAction ptz_action(std::int64_t code) noexcept {
+  switch (code) {
+    case 0x00:
+      return {PtzMove::stop, Axis::yaw, 0};
+    case 0x01:  // up
+      return {PtzMove::turn, Axis::pitch, 1};
+    case 0x02:  // down
+      return {PtzMove::turn, Axis::pitch, -1};
+    case 0x03:  // left
+      return {PtzMove::turn, Axis::yaw, -1};
+    case 0x04:  // right
+      return {PtzMove::turn, Axis::yaw, 1};
+    case 0x05:
+      return {PtzMove::centre, Axis::yaw, 0};
+    case 0x0E:  // C13 field evidence: 0E/0F pitch +/-, 10/11 yaw, 12/13 roll
+    case 0x0F:
+    case 0x10:
+    case 0x11:
+    case 0x12:
+    case 0x13: {
+      constexpr Axis kTrim[] = {Axis::pitch, Axis::yaw, Axis::roll};
+      return {PtzMove::turn, kTrim[(code - 0x0E) / 2], static_cast<std::int8_t>(code % 2 ? -1 : 1)};
+    }
+    default:
+      return {};
+  }
+}
+
+}  // namespace top

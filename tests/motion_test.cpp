@@ -1,0 +1,99 @@
+// The motion table of top/motion.hpp, kept in step with the catalog.
+#include "top/motion.hpp"
+
+#include <gtest/gtest.h>
+
+#include "top/top.hpp"
+
+using namespace top;
+
+namespace {
+
+bool form_has_field(const CommandSpec& c, std::string_view name) {
+  for (const FormSpec& f : c.forms)
+    for (const FieldSpec& s : f.fields)
+      if (s.name == name) return true;
+  return false;
+}
+
+}  // namespace
+
+// Every row names a command of its dialect, and every field it names is a
+// field of that command's forms: a renamed field fails here, not in topsim.
+TEST(Motion, EveryRowAndFieldIsInTheCatalog) {
+  for (const MotionSpec& m : motions()) {
+    const CommandSpec* c = find_command(m.dialect, m.ident);
+    ASSERT_NE(c, nullptr) << m.ident;
+    EXPECT_FALSE(m.section.empty()) << m.ident;
+    if (m.kind == MotionKind::ptz) {
+      EXPECT_TRUE(form_has_field(*c, "action")) << m.ident;
+      continue;
+    }
+    EXPECT_GT(m.count, 0) << m.ident;
+    for (const MotionAxis& a : m.fields()) {
+      EXPECT_TRUE(form_has_field(*c, a.value)) << m.ident << " " << a.value;
+      if (!a.speed.empty()) {
+        EXPECT_TRUE(form_has_field(*c, a.speed)) << m.ident << " " << a.speed;
+      }
+      EXPECT_EQ(a.speed.empty(), m.kind != MotionKind::angle) << m.ident;
+    }
+  }
+}
+
+// The other way round: every gimbal command whose name says it sets an
+// angle (GA?/GI? with a speed) or a speed (GS?) has a row.
+TEST(Motion, EveryGimbalAngleAndSpeedCommandHasARow) {
+  for (Dialect d : {Dialect::skydroid, Dialect::topotek})
+    for (const CommandSpec& c : commands(d)) {
+      const std::string_view id = c.ident;
+      const bool speed = id.size() == 3 && id[0] == 'G' && id[1] == 'S';
+      const bool angle = id.size() == 3 && id[0] == 'G' && (id[1] == 'A' || id[1] == 'I') &&
+                         form_has_field(c, "speed");
+      if (speed || angle) {
+        EXPECT_NE(motion_of(c.dialect, id), nullptr) << id;
+      }
+    }
+}
+
+TEST(Motion, AxesAndReferenceOfTheCombinedCommands) {
+  const MotionSpec* gam = motion_of(Dialect::skydroid, "GAM");
+  ASSERT_NE(gam, nullptr);
+  ASSERT_EQ(gam->fields().size(), 2u);
+  EXPECT_EQ(gam->fields()[0].axis, Axis::yaw);
+  EXPECT_EQ(gam->fields()[1].axis, Axis::pitch);
+  EXPECT_EQ(gam->fields()[1].speed, "pitch_speed");
+  EXPECT_EQ(attitude_for(*gam), "GAC");
+  const MotionSpec* gim = motion_of(Dialect::topotek, "GIM");
+  ASSERT_NE(gim, nullptr);
+  EXPECT_EQ(gim->reference, Reference::earth);
+  EXPECT_EQ(attitude_for(*gim), "GIC");
+  EXPECT_EQ(motion_of(Dialect::skydroid, "GIM"), nullptr);
+  EXPECT_EQ(motion_of(Dialect::topotek, "ZMC"), nullptr);
+}
+
+// SkyDroid 3.2: pitch speed up positive. Topotek 4.2's text: down positive.
+TEST(Motion, PitchRateSignPerDialect) {
+  EXPECT_EQ(motion_of(Dialect::skydroid, "GSP")->fields()[0].sign, 1);
+  EXPECT_EQ(motion_of(Dialect::topotek, "GSP")->fields()[0].sign, -1);
+  EXPECT_EQ(motion_of(Dialect::topotek, "GSY")->fields()[0].sign, 1);
+  // Angles are up positive in both documents.
+  EXPECT_EQ(motion_of(Dialect::topotek, "GAP")->fields()[0].sign, 1);
+}
+
+TEST(Motion, PtzActions) {
+  EXPECT_EQ(ptz_action(0x00).move, PtzMove::stop);
+  EXPECT_EQ(ptz_action(0x05).move, PtzMove::centre);
+  const PtzAction up = ptz_action(0x01), left = ptz_action(0x03);
+  EXPECT_EQ(up.move, PtzMove::turn);
+  EXPECT_EQ(up.axis, Axis::pitch);
+  EXPECT_EQ(up.sign, 1);
+  EXPECT_EQ(left.axis, Axis::yaw);
+  EXPECT_EQ(left.sign, -1);
+  // C13 trims: 0E/0F pitch, 10/11 yaw, 12/13 roll, + then -.
+  EXPECT_EQ(ptz_action(0x0F).axis, Axis::pitch);
+  EXPECT_EQ(ptz_action(0x0F).sign, -1);
+  EXPECT_EQ(ptz_action(0x10).axis, Axis::yaw);
+  EXPECT_EQ(ptz_action(0x12).axis, Axis::roll);
+  EXPECT_EQ(ptz_action(0x12).sign, 1);
+  EXPECT_EQ(ptz_action(0x06).move, PtzMove::none);  // follow/lock: no motion
+}
