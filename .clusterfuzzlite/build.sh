@@ -11,7 +11,7 @@ cd "$(pwd -P)"
 
 # Coverage instrumentation only for our code, not the standard library's
 # or the header-only libraries' templates (fuzz/coverage-ignorelist.txt;
-# fuzz/README.md, "Speed"): only when the flags ask for SanitizerCoverage
+# docs/perf/fuzz-speed.md, "Speed, third pass"): only when the flags ask for SanitizerCoverage
 # (libFuzzer builds; clang warns about the option otherwise).
 case " $CXXFLAGS " in
   *fuzzer-no-link* | *-fsanitize-coverage=*)

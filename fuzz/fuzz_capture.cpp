@@ -8,13 +8,13 @@
 // sees no more frames than the analyzer counted; every event written as
 // JSON Lines is valid JSON; nothing crashes, leaks or hangs.
 //
-// Speed (see README.md, "Speed"): the libFuzzer build reads at most
+// Speed (see docs/perf/fuzz-speed.md, "Speed"): the libFuzzer build reads at most
 // max_len bytes of an input (as libFuzzer cuts seeds to -max_len); each
 // line is checked by json_check.hpp's validator, and on a sample of inputs
 // (one in 16, chosen from the bytes; every input in replay builds) also by
 // nlohmann::json::accept, which must agree. No file per input (a memfd
 // written, then opened through /proc/self/fd cost six system calls an
-// input: README.md, "Capture and TCP targets (fourth pass)").
+// input: docs/perf/fuzz-speed.md, "Capture and TCP targets (fourth pass)").
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>

@@ -29,7 +29,7 @@
 #
 # The host: this VM's two CPUs are not steady. The same binary, alone,
 # -seed=1, runs fuzz_frame at 115k exec/s and a minute later, on either
-# CPU, at 71k (fuzz/README.md, "Speed, eighth pass"). So each run is timed
+# CPU, at 71k (docs/perf/fuzz-speed.md, "Speed, eighth pass"). So each run is timed
 # with a probe before and after: a fixed awk loop on the same CPU, its
 # user seconds in the `probe` column (0.24-0.31 s on a CPU in its usual
 # state, 0.32-0.45 s when the host slows it). TOPKIT_MEASURE_REPEAT=N runs

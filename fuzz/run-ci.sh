@@ -34,7 +34,7 @@ tmp=$(mktemp -d)
 # 5 s run most of the time is early discovery): on tmpfs when there is one.
 # On the build VM's ext4 /tmp creating a file cost 0.5-0.9 ms of kernel
 # time (inode allocation scanning recently deleted inodes): 5-14% of a
-# target's CPU in perf (fuzz/README.md, "Speed").
+# target's CPU in perf (docs/perf/fuzz-speed.md, "Speed").
 rundirs=$(mktemp -d -p /dev/shm topkit-fuzz.XXXXXX 2>/dev/null || mktemp -d)
 trap 'rm -rf "$tmp" "$rundirs"' EXIT
 printf 'extern "C" int LLVMFuzzerTestOneInput(const unsigned char*, unsigned long) { return 0; }\n' \
