@@ -45,7 +45,9 @@ int main(int argc, char** argv) {
   }
   std::set<std::string> entries;
   for (const char* h : {"#TP", "#tp", "#tP", "#Tp", "#PDP16TMP", "#tpDP16wTMP"}) entries.insert(h);
-  for (const char* s : {"\r\n", "\n", "ERE", "!!"}) entries.insert(s);
+  for (std::string_view s : {std::string_view("\r\n"), std::string_view("\n"),
+                             top::error_reply_ident, top::error_reply_data})
+    entries.insert(std::string(s));
   const std::string addresses = "UMDEPG";
   for (char a : addresses)
     for (char b : addresses) entries.insert(std::string{a, b});
@@ -57,8 +59,9 @@ int main(int argc, char** argv) {
         entries.insert(std::string(1, f.control) + ident);
         const std::string data = example_data(f);
         const bool response = f.role == Role::response;
-        const char src = response ? c.address : (d == Dialect::topotek ? 'P' : 'U');
-        const char dst = response ? (d == Dialect::topotek ? 'P' : 'U') : c.address;
+        const char client = top::client_address(d, top::Link::network);
+        const char src = response ? c.address : client;
+        const char dst = response ? client : c.address;
         BuildSpec spec;
         spec.header = choose_header(d, c.address, data.size());
         spec.src = src;

@@ -91,7 +91,7 @@ int main(int argc, char** argv) {
       for (std::size_t j = 0; j < c.forms.size(); ++j) {
         const FormSpec& f = c.forms[j];
         const std::string data = example_data(f);
-        const char client = d == Dialect::topotek ? 'P' : 'U';
+        const char client = top::client_address(d, top::Link::network);
         BuildSpec spec;
         spec.header = choose_header(d, c.address, data.size());
         spec.control = f.control;

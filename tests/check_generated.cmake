@@ -1,10 +1,46 @@
-# Fails when the output of GEN (run with the arguments ARGS, if any) differs
-# from the committed file DOC.
-execute_process(COMMAND ${GEN} ${ARGS} OUTPUT_VARIABLE out RESULT_VARIABLE rc)
+# Fails when a generated file differs from the committed one.
+#   -DGEN=exe [-DARGS=a;b] -DDOC=file   GEN ARGS writes the file to stdout
+#   -DGEN=exe [-DARGS=a;b] -DDIR=dir -DOUT=tmp
+#                                       GEN ARGS tmp writes files into tmp; each
+#                                       must equal its namesake in dir
+# The fix is always: cmake --build BUILD --target regenerate, then review.
+if(DEFINED DOC)
+  execute_process(COMMAND ${GEN} ${ARGS} OUTPUT_VARIABLE out RESULT_VARIABLE rc)
+  if(rc)
+    message(FATAL_ERROR "${GEN} failed: ${rc}")
+  endif()
+  file(READ ${DOC} committed)
+  if(NOT out STREQUAL committed)
+    message(FATAL_ERROR "${DOC} is out of date; regenerate it: cmake --build BUILD --target "
+                        "regenerate (or ${GEN} ${ARGS} > ${DOC})")
+  endif()
+  return()
+endif()
+file(REMOVE_RECURSE ${OUT})
+file(MAKE_DIRECTORY ${OUT})
+execute_process(COMMAND ${GEN} ${ARGS} ${OUT} RESULT_VARIABLE rc)
 if(rc)
   message(FATAL_ERROR "${GEN} failed: ${rc}")
 endif()
-file(READ ${DOC} committed)
-if(NOT out STREQUAL committed)
-  message(FATAL_ERROR "${DOC} is out of date; regenerate it with: ${GEN} ${ARGS} > ${DOC}")
+file(GLOB made RELATIVE ${OUT} ${OUT}/*)
+if(NOT made)
+  message(FATAL_ERROR "${GEN} wrote nothing into ${OUT}")
 endif()
+set(stale "")
+foreach(f IN LISTS made)
+  if(NOT EXISTS ${DIR}/${f})
+    list(APPEND stale "${f} (not committed)")
+  else()
+    file(SHA256 ${OUT}/${f} a)
+    file(SHA256 ${DIR}/${f} b)
+    if(NOT a STREQUAL b)
+      list(APPEND stale ${f})
+    endif()
+  endif()
+endforeach()
+if(stale)
+  message(FATAL_ERROR "out of date in ${DIR}: ${stale}; regenerate them: cmake --build BUILD "
+                      "--target regenerate")
+endif()
+list(LENGTH made n)
+message(STATUS "${n} files of ${DIR} are up to date")

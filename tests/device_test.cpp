@@ -41,6 +41,10 @@ TEST(DeviceRules, TopotekAnswersOnlyTheLinkTheSourceNames) {
     EXPECT_FALSE(answers_source(Model::sip, p, Link::uart, 'P'));
   }
   ASSERT_NE(find_trait(TraitKind::link_by_source, Model::sip, Profile::document), nullptr);
+  // A capture's device of unknown model: the dialect's rule.
+  EXPECT_FALSE(answers_source(Dialect::topotek, Profile::field, Link::network, 'U'));
+  EXPECT_TRUE(answers_source(Dialect::topotek, Profile::field, Link::uart, 'U'));
+  EXPECT_TRUE(answers_source(Dialect::skydroid, Profile::field, Link::network, 'P'));
 }
 
 TEST(DeviceRules, SkydroidAnswersEverySource) {

@@ -492,3 +492,13 @@ TEST(Build, TwoDigitLengthIsTheTmpFirmwareForm) {
   EXPECT_TRUE(r.frame.has(FindingCode::tmp_quirk));
   EXPECT_EQ(r.frame.data(), data);
 }
+
+TEST(Addresses, EveryAddressHasItsDescriptionAndNothingElseDoes) {
+  for (int c = 0; c < 256; ++c) {
+    const char a = static_cast<char>(c);
+    EXPECT_EQ(is_address(a), !describe_address(a).empty()) << c;
+  }
+  EXPECT_EQ(describe_address('U'), "UART/UDP client");
+  EXPECT_EQ(describe_address('P'), "network client");
+  EXPECT_EQ(describe_address('G'), "gimbal");
+}

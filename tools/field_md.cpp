@@ -60,7 +60,7 @@ int main() {
   o += "| dialect | command | answer | section |\n|---|---|---|---|\n";
   for (top::Dialect d : {top::Dialect::skydroid, top::Dialect::topotek})
     for (const top::CommandSpec& c : top::commands(d)) {
-      if (!c.has_control('w') || c.ident == "ERE") continue;
+      if (!c.has_control('w') || top::is_error_reply(c.ident)) continue;
       const top::WriteReply r = top::write_reply(c);
       if (r == top::WriteReply::echo) continue;
       o += "| " + std::string(top::to_string(d)) + " | " + std::string(c.ident) + " | " +

@@ -381,6 +381,14 @@ bool answers_source(Model model, Profile profile, Link link, char src) noexcept 
   return src == client_address(dialect_of(model), link);
 }
 
+bool answers_source(Dialect d, Profile profile, Link link, char src) noexcept {
+  for (const Trait& t : kTraits)
+    if (t.kind == TraitKind::link_by_source && t.dialect == d &&
+        (t.source != Source::field || profile == Profile::field))
+      return src == client_address(d, link);
+  return true;
+}
+
 bool rejects(FindingCode c) noexcept {
   switch (c) {
     case FindingCode::unknown_ident:

@@ -42,6 +42,25 @@ std::string_view to_string(Model m) noexcept { return enum_name(kModel, m, "unkn
 std::string_view to_string(Role r) noexcept { return enum_name(kRole, r, "any"); }
 std::string_view to_string(Header h) noexcept { return enum_name(kHeader, h, "?"); }
 std::string_view describe(Header h) noexcept { return enum_name(kHeaderDescription, h, "?"); }
+
+std::string_view describe_address(char a) noexcept {
+  switch (a) {
+    case 'U':
+      return "UART/UDP client";
+    case 'M':
+      return "lens";
+    case 'D':
+      return "system/image";
+    case 'E':
+      return "auxiliary";
+    case 'P':
+      return "network client";
+    case 'G':
+      return "gimbal";
+    default:
+      return {};
+  }
+}
 std::string_view to_string(FieldKind k) noexcept { return enum_name(kFieldKind, k, "?"); }
 
 std::optional<Dialect> dialect_from_string(std::string_view s) noexcept {

@@ -172,6 +172,9 @@ char client_address(Dialect d, Link link) noexcept;
 // request with source U gets no answer). Devices without the trait answer
 // every source.
 bool answers_source(Model model, Profile profile, Link link, char src) noexcept;
+// The same for a device of dialect `d` whose model is not known (a capture):
+// the trait of any model of the dialect.
+bool answers_source(Dialect d, Profile profile, Link link, char src) noexcept;
 
 // Why a device refuses a request, judged from the request's catalog findings.
 enum class Rejection : std::uint8_t {

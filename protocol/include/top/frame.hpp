@@ -64,6 +64,9 @@ inline bool char_is(char c, std::uint8_t cls) noexcept {
 inline bool is_address(char c) noexcept { return detail::char_is(c, detail::kClassAddress); }
 // True for an identifier character: an uppercase letter or a digit.
 inline bool is_ident_char(char c) noexcept { return detail::char_is(c, detail::kClassIdent); }
+// What an address stands for (DESIGN.md, "The frame"): "UART/UDP client"
+// for U, "lens" for M, ...; empty for a byte that is not an address.
+std::string_view describe_address(char a) noexcept;
 // True for a client-side address: U (UART/UDP client) or P (network client).
 inline bool is_client_address(char c) noexcept { return c == 'U' || c == 'P'; }
 
