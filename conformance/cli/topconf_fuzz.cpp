@@ -1,4 +1,4 @@
-#include "conf/fuzz_cli.hpp"
+#include "commands.hpp"
 
 #include <spdlog/spdlog.h>
 

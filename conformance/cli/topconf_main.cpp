@@ -10,7 +10,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "conf/fuzz_cli.hpp"
+#include "commands.hpp"
 #include "conf/generate.hpp"
 #include "conf/matrix.hpp"
 #include "conf/report.hpp"
