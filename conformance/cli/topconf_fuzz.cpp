@@ -1,31 +1,32 @@
-#include "commands.hpp"
-
+// topconf fuzz: generated and mutated frames against a device, with
+// liveness probes, minimisation and the JSON Lines, JUnit, HTML and pcap
+// outputs.
 #include <spdlog/spdlog.h>
 
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
 
+#include "commands.hpp"
 #include "conf/fuzz.hpp"
 #include "conf/fuzz_report.hpp"
 #include "conf/runner.hpp"
 #include "conf/transport.hpp"
 
-namespace topconf {
+namespace topconf::cli {
 
-FuzzCommand::FuzzCommand(CLI::App& app, std::string& model_name, std::string& matrix_path) {
-  sub_ = app.add_subcommand(
-      "fuzz",
-      "send generated and mutated frames to a device, probe that it still answers after each "
-      "case, minimise what breaks it (docs/TOPCONF-FUZZ.md)");
-  sub_->add_option("--model", model_name, top::model_list("|", "|"))->required();
+FuzzCommand::FuzzCommand(CLI::App& app)
+    : Subcommand(app, "fuzz",
+                 "send generated and mutated frames to a device, probe that it still answers "
+                 "after each case, minimise what breaks it (docs/TOPCONF-FUZZ.md)") {
+  sub_->add_option("--model", model_name_, top::model_list("|", "|"))->required();
   sub_->add_option("--target", target_,
                    "udp://HOST:PORT, tcp://HOST:PORT, serial:DEVICE[@BAUD] or sim (an "
                    "in-process topsim)")
       ->required();
-  sub_->add_option("--matrix", matrix_path,
-                   "matrix JSON for the probe and the levels (default: "
-                   "conformance/matrices/<model>.json)");
+  sub_->add_option("--matrix", matrix_path_,
+                   "matrix JSON for the probe and the levels (default: <model>.json in "
+                   "share/topkit/matrices next to the binary; topconf models --paths)");
   seed_opt_ = sub_->add_option("--seed", seed_, "seed of the mutations")->capture_default_str();
   cases_opt_ = sub_->add_option("--cases", cases_, "run this many cases (default 10000)");
   start_opt_ = sub_->add_option("--start", start_, "first case index (default 0)");
@@ -65,6 +66,56 @@ FuzzCommand::FuzzCommand(CLI::App& app, std::string& model_name, std::string& ma
   sub_->add_flag("-q,--quiet", quiet_, "no progress lines");
 }
 
+// --resume: the seed and the next index from the file's session; `append`
+// when the --json file is the one resumed.
+std::optional<int> FuzzCommand::resume(top::Model model, FuzzOptions& o, bool& append) {
+  std::ifstream in(resume_);
+  if (!in) {
+    spdlog::error("--resume {}: cannot read", resume_);
+    return 2;
+  }
+  std::string line;
+  std::size_t n = 0;
+  bool have_session = false;
+  std::optional<std::uint64_t> last;
+  while (std::getline(in, line)) {
+    ++n;
+    const auto j = nlohmann::json::parse(line, nullptr, false);
+    if (j.is_discarded() || !j.is_object()) {
+      spdlog::error("--resume {}: line {}: not JSON", resume_, n);
+      return 2;
+    }
+    if (j.contains("session")) {
+      have_session = true;
+      if (j.value("model", "") != top::to_string(model)) {
+        spdlog::error("--resume {}: line {}: the session is for model {}", resume_, n,
+                      j.value("model", "?"));
+        return 2;
+      }
+      if (!seed_opt_->count()) o.seed = j.value("seed", std::uint64_t{1});
+    } else if (j.contains("index") && j["index"].is_number_unsigned()) {
+      last = std::max(last.value_or(0), j["index"].get<std::uint64_t>());
+    }
+  }
+  if (!have_session) {
+    spdlog::error("--resume {}: no session line (not a topconf fuzz --json file)", resume_);
+    return 2;
+  }
+  if (!start_opt_->count()) o.start = last ? *last + 1 : 0;
+  if (json_.empty() || json_ == resume_) {
+    json_ = resume_;
+    append = true;
+  }
+  spdlog::info("resuming {} at case {} (seed {})", resume_, o.start, o.seed);
+  return std::nullopt;
+}
+
+int FuzzCommand::run() {
+  Matrix matrix;
+  if (auto rc = load_run_matrix(model_name_, matrix_path_, matrix)) return *rc;
+  return run(matrix);
+}
+
 int FuzzCommand::run(const Matrix& loaded) {
   Matrix matrix = loaded;
   if (probe_timeout_ms_) matrix.probe_timeout_ms = probe_timeout_ms_;
@@ -86,44 +137,7 @@ int FuzzCommand::run(const Matrix& loaded) {
   // --resume: the seed and the next index from the file's session.
   bool append = false;
   if (!resume_.empty()) {
-    std::ifstream in(resume_);
-    if (!in) {
-      spdlog::error("--resume {}: cannot read", resume_);
-      return 2;
-    }
-    std::string line;
-    std::size_t n = 0;
-    bool have_session = false;
-    std::optional<std::uint64_t> last;
-    while (std::getline(in, line)) {
-      ++n;
-      const auto j = nlohmann::json::parse(line, nullptr, false);
-      if (j.is_discarded() || !j.is_object()) {
-        spdlog::error("--resume {}: line {}: not JSON", resume_, n);
-        return 2;
-      }
-      if (j.contains("session")) {
-        have_session = true;
-        if (j.value("model", "") != top::to_string(model)) {
-          spdlog::error("--resume {}: line {}: the session is for model {}", resume_, n,
-                        j.value("model", "?"));
-          return 2;
-        }
-        if (!seed_opt_->count()) o.seed = j.value("seed", std::uint64_t{1});
-      } else if (j.contains("index") && j["index"].is_number_unsigned()) {
-        last = std::max(last.value_or(0), j["index"].get<std::uint64_t>());
-      }
-    }
-    if (!have_session) {
-      spdlog::error("--resume {}: no session line (not a topconf fuzz --json file)", resume_);
-      return 2;
-    }
-    if (!start_opt_->count()) o.start = last ? *last + 1 : 0;
-    if (json_.empty() || json_ == resume_) {
-      json_ = resume_;
-      append = true;
-    }
-    spdlog::info("resuming {} at case {} (seed {})", resume_, o.start, o.seed);
+    if (auto rc = resume(model, o, append)) return *rc;
   }
   if (end_opt_->count()) o.end = end_;
   if (cases_opt_->count()) o.end = o.start + cases_;
@@ -220,4 +234,4 @@ int FuzzCommand::run(const Matrix& loaded) {
   return res.exit_code();
 }
 
-}  // namespace topconf
+}  // namespace topconf::cli

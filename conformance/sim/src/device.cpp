@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "device_util.hpp"
+
 namespace topsim {
 namespace {
 
@@ -13,58 +15,7 @@ using top::Frame;
 
 constexpr std::uint64_t kNever = std::numeric_limits<std::uint64_t>::max();
 
-std::string hex_s16(double deg) {
-  long v = std::lround(deg * 100.0);
-  v = std::clamp(v, -32768L, 32767L);
-  char buf[8];
-  std::snprintf(buf, sizeof buf, "%04X",
-                static_cast<unsigned>(static_cast<std::uint16_t>(static_cast<std::int16_t>(v))));
-  return buf;
-}
-
-std::string hex_u(std::uint64_t v, int width) {
-  char buf[24];
-  std::snprintf(buf, sizeof buf, "%0*llX", width, static_cast<unsigned long long>(v));
-  return buf;
-}
-
-// Commands Topotek's document defines that the simulator implements even
-// while the catalog does not list them yet (catalog_topotek.cpp is being
-// completed): the sim answers them from its own state.
-bool topotek_builtin(std::string_view ident) noexcept {
-  return ident == "REC" || ident == "CAP" || ident == "GIA" || ident == "GIC" || ident == "GAA";
-}
-
-const top::FieldValue* field(const top::Decoded& d, std::string_view name) {
-  for (const auto& f : d.fields)
-    if (f.name() == name && f.valid && !f.none) return &f;
-  return nullptr;
-}
-
-// Two hex digits of data as a number, -1 when they are not.
-int data_byte(std::string_view data) noexcept {
-  if (data.size() != 2) return -1;
-  int hi = top::hex_value(data[0]), lo = top::hex_value(data[1]);
-  if (hi < 0 || lo < 0) return -1;
-  return hi * 16 + lo;
-}
-
-bool catalog_rejects(const top::Decoded& dec) {
-  for (const auto& f : dec.findings) {
-    switch (f.code) {
-      case FindingCode::unknown_ident:
-      case FindingCode::unsupported_on_model:
-      case FindingCode::unsupported_control:
-      case FindingCode::data_length:
-      case FindingCode::bad_field:
-      case FindingCode::value_out_of_range:
-        return true;
-      default:
-        break;
-    }
-  }
-  return false;
-}
+using detail::hex_s16;
 
 }  // namespace
 
@@ -130,9 +81,8 @@ bool Device::takes_in_field(const top::Decoded& dec) const {
 }
 
 bool Device::accepts(const Frame& f, Link link) const noexcept {
-  if (dialect_ != Dialect::topotek) return true;
   // Topotek answers to the interface the source byte names.
-  return (link == Link::network && f.src == 'P') || (link == Link::uart && f.src == 'U');
+  return rules::answers_source(dialect_, link, f.src);
 }
 
 std::string Device::make(top::Header h, const Frame& req, char control, std::string_view ident,
@@ -149,7 +99,9 @@ std::string Device::make(top::Header h, const Frame& req, char control, std::str
 
 void Device::reply_error(const Frame& req, std::vector<std::string>& out) const {
   // SkyDroid 2.3.2: #TP<dst><src>2wERE!!<cs>, addresses swapped.
-  if (dialect_ == Dialect::skydroid) out.push_back(make(top::Header::fixed, req, 'w', "ERE", "!!"));
+  if (!rules::sends_error_reply(dialect_)) return;
+  out.push_back(opts_.swap_addresses ? rules::error_reply(req.dst, req.src)
+                                     : rules::error_reply(req.src, req.dst));
 }
 
 std::string Device::attitude_data() const {
@@ -182,91 +134,6 @@ std::string Device::build(const top::DeviceForm& form, char client, char device,
   spec.ident = ident;
   spec.data = data;
   return top::build_frame(spec);
-}
-
-std::vector<Device::TraitLine> Device::describe() const {
-  std::vector<TraitLine> out;
-  auto src = [](const top::DeviceForm& f) { return std::string(top::to_string(f.source)); };
-  auto header = [](top::Header h) { return std::string(top::to_string(h)); };
-  auto order = [](top::Order o) {
-    return o == top::Order::swapped ? std::string("swapped") : std::string("request-order");
-  };
-  const top::StreamSpec* push = nullptr;
-  for (const top::StreamSpec& s : top::streams()) {
-    const top::CommandSpec* req = top::find_command(dialect_, s.request);
-    if (s.dialect == dialect_ && s.sender == top::Sender::device && req && req->supports(model_)) {
-      push = &s;
-      break;
-    }
-  }
-  if (push) {
-    const top::DeviceForm f = form_of(push->push, top::Sent::push, 12);
-    const top::DeviceForm p =
-        top::device_form(model_, push->push, 'r', top::Sent::push, 12, opts_.profile);
-    out.push_back({std::string(push->push) + "-push-header", header(f.header),
-                   opts_.push_header ? "option" : src(p), std::string(p.evidence)});
-    out.push_back({std::string(push->push) + "-push-order", order(f.order),
-                   opts_.push_order || !opts_.swap_addresses ? "option" : src(p),
-                   std::string(p.evidence)});
-  }
-  std::vector<std::string_view> seen;
-  for (const top::DeviceForm& r : top::device_forms()) {
-    if (r.sent != top::Sent::reply || r.dialect != dialect_ ||
-        !(r.models & top::model_bit(model_)) ||
-        std::find(seen.begin(), seen.end(), r.ident) != seen.end())
-      continue;
-    seen.push_back(r.ident);
-    std::size_t len = 4;
-    if (const top::CommandSpec* c = top::find_command(dialect_, r.ident))
-      for (const top::FormSpec& x : c->forms)
-        if (x.control == r.control && x.role == top::Role::response) len = x.min_length;
-    const top::DeviceForm p =
-        top::device_form(model_, r.ident, r.control, top::Sent::reply, len, opts_.profile);
-    const top::DeviceForm f = form_of(r.ident, top::Sent::reply, len);
-    out.push_back(
-        {std::string(r.ident) + "-reply", header(f.header) + " " + order(f.order),
-         opts_.reply_header || opts_.reply_order || !opts_.swap_addresses ? "option" : src(p),
-         std::string(p.evidence)});
-  }
-  {
-    const top::DeviceForm rule =
-        top::device_form(model_, "???", 'r', top::Sent::reply, 4, opts_.profile);
-    out.push_back({"reply", opts_.swap_addresses ? "swapped" : "request-order",
-                   opts_.swap_addresses ? "document rule" : "option", std::string(rule.evidence)});
-  }
-  auto trait = [&](top::TraitKind k, const std::optional<bool>& opt, bool on) {
-    const top::Trait* t = top::find_trait(k, model_, top::Profile::field);
-    if (!t && !on) return;
-    const bool from_profile = top::find_trait(k, model_, opts_.profile) != nullptr;
-    out.push_back({std::string(top::to_string(k)), on ? "on" : "off",
-                   opt            ? "option"
-                   : from_profile ? std::string(top::to_string(t->source))
-                                  : "document rule",
-                   t ? std::string(t->evidence) : std::string()});
-  };
-  trait(top::TraitKind::yaw_inverted, opts_.yaw_inverted, yaw_inverted_);
-  trait(top::TraitKind::pitch_inverted, opts_.pitch_inverted, pitch_inverted_);
-  for (const top::FieldSupport& fs : top::field_support()) {
-    if (fs.dialect != dialect_ || !(fs.models & top::model_bit(model_))) continue;
-    std::string v;
-    for (std::int64_t x : fs.values)
-      v += (v.empty() ? "" : ",") + hex_u(static_cast<std::uint64_t>(x), 2);
-    out.push_back({std::string(fs.ident) + "-field-codes", field_ptz_ ? v : "off",
-                   opts_.field_ptz ? "option"
-                   : field_ptz_    ? "field"
-                                   : "document rule",
-                   std::string(fs.evidence)});
-  }
-  for (top::TraitKind k : {top::TraitKind::answers_to_source, top::TraitKind::link_by_source,
-                           top::TraitKind::speed_refresh}) {
-    const top::Trait* t = top::find_trait(k, model_, opts_.profile);
-    if (!t) continue;
-    std::string value = t->value ? std::to_string(t->value) : "on";
-    if (k == top::TraitKind::speed_refresh) value = std::to_string(opts_.speed_hold_ms) + " ms";
-    out.push_back({std::string(top::to_string(k)), value, std::string(top::to_string(t->source)),
-                   std::string(t->evidence)});
-  }
-  return out;
 }
 
 void Device::start_stream(std::string_view ident, std::uint32_t hz, char dst,
@@ -315,138 +182,6 @@ std::string Device::read_data(const top::CommandSpec& cmd, const top::FormSpec& 
   return top::example_data(form);
 }
 
-bool Device::handle_special(const Frame& req, const top::Decoded& dec, std::uint64_t now_us,
-                            std::vector<std::string>& out) {
-  const std::string_view id = req.ident_view();
-  const std::string_view data = req.data();
-  const bool write = req.control == 'w';
-  const bool topotek = dialect_ == Dialect::topotek;
-  auto echo = [&] { out.push_back(make(req.header, req, req.control, id, data)); };
-
-  // Topotek D class (5.1, 5.2): REC and CAP answer with a file index.
-  if (topotek && (id == "REC" || id == "CAP") && write) {
-    const int v = data_byte(data);
-    if (v < 0) return false;
-    if (id == "REC") {
-      const int act = v & 0x0F;
-      bool rec = act == 1 ? true : act == 0 ? false : act == 0x0A ? !recording_ : recording_;
-      if (act != 0 && act != 1 && act != 0x0A) return false;
-      if (rec && !recording_) ++file_index_;
-      recording_ = rec;
-    } else {
-      const int act = v & 0x0F;
-      if (act != 1 && act != 2 && act != 3 && act != 5) return false;
-      ++file_index_;
-    }
-    const std::string reply =
-        std::string(id == "CAP" || recording_ ? "11" : "00") + hex_u(file_index_, 8);
-    out.push_back(make(top::Header::variable, req, 'w', id, reply));
-    return true;
-  }
-  if (topotek && (id == "REC" || id == "GIA" || id == "GAA") && !write) {
-    std::string v = id == "REC" ? (recording_ ? "01" : "00") : "00";
-    if (id != "REC") {
-      for (const Stream& s : streams_)
-        if (s.ident == top::stream_enabled_by(dialect_, id)->push && s.period_us) v = "01";
-    }
-    out.push_back(make(top::Header::fixed, req, 'r', id, v));
-    return true;
-  }
-  if (topotek && (id == "GIA" || id == "GAA") && write) {
-    const int v = data_byte(data);
-    if (v != 0 && v != 1) return false;
-    start_stream(top::stream_enabled_by(dialect_, id)->push, v ? opts_.topotek_stream_hz : 0,
-                 req.src, now_us);
-    echo();
-    return true;
-  }
-  if (topotek && id == "GIC" && !write) {
-    advance(now_us);
-    out.push_back(make(top::Header::variable, req, 'r', id, attitude_data()));
-    return true;
-  }
-  if (topotek) return false;
-
-  // SkyDroid state behind the catalog entries.
-  if (!write) return false;
-  advance(now_us);
-  auto axis_of = [](std::string_view ident) -> int {
-    const char c = ident[2];
-    return c == 'Y' ? 0 : c == 'P' ? 1 : c == 'R' ? 2 : -1;
-  };
-  auto set_target = [&](int ax, const top::FieldValue* ang, const top::FieldValue* spd) {
-    if (!ang) return;
-    Axis& a = axes_[ax];
-    a.target = std::clamp(ang->value, a.min, a.max);
-    double s = spd ? spd->value : 0;
-    a.target_speed = s > 0 ? s : 9.9;  // 0: the document gives no meaning; full speed
-    a.has_target = true;
-    a.rate = 0;
-    a.rate_until = 0;
-  };
-  auto set_rate = [&](int ax, const top::FieldValue* spd) {
-    if (!spd) return;
-    Axis& a = axes_[ax];
-    a.rate = spd->value;
-    a.rate_until = now_us + std::uint64_t{opts_.speed_hold_ms} * 1000;
-    a.has_target = false;
-  };
-  if (id == "GAY" || id == "GAP" || id == "GAR") {
-    set_target(axis_of(id), field(dec, "angle"), field(dec, "speed"));
-  } else if (id == "GAM") {
-    set_target(0, field(dec, "yaw"), field(dec, "yaw_speed"));
-    set_target(1, field(dec, "pitch"), field(dec, "pitch_speed"));
-  } else if (id == "GSY" || id == "GSP" || id == "GSR") {
-    set_rate(axis_of(id), field(dec, "speed"));
-  } else if (id == "GSM") {
-    set_rate(0, field(dec, "yaw_speed"));
-    set_rate(1, field(dec, "pitch_speed"));
-  } else if (id == "PTZ") {
-    const auto* a = field(dec, "action");
-    const int act = a ? static_cast<int>(a->integer) : -1;
-    constexpr double kPtzRate = 10.0;
-    if (act == 0) {
-      for (Axis& x : axes_) x.rate = 0, x.has_target = false;
-    } else if (act >= 1 && act <= 4) {
-      Axis& x = axes_[act <= 2 ? 1 : 0];
-      x.rate = (act == 1 || act == 4) ? kPtzRate : -kPtzRate;
-      x.rate_until = now_us + std::uint64_t{opts_.speed_hold_ms} * 1000;
-      x.has_target = false;
-    } else if (act == 5) {
-      for (Axis& x : axes_) x.target = 0, x.target_speed = 9.9, x.has_target = true, x.rate = 0;
-    } else if (act >= 0x0E && act <= 0x13 && field_ptz_ &&
-               top::field_supported(dialect_, model_, id, act)) {
-      // C13 field evidence: 0E/0F pitch +/-, 10/11 yaw +/-, 12/13 roll +/-.
-      static constexpr int kAxis[] = {1, 0, 2};
-      Axis& x = axes_[kAxis[(act - 0x0E) / 2]];
-      x.rate = (act % 2 == 0) ? kPtzRate : -kPtzRate;
-      x.rate_until = now_us + std::uint64_t{opts_.speed_hold_ms} * 1000;
-      x.has_target = false;
-    }
-  } else if (id == "GAA") {
-    const auto* r = field(dec, "rate");
-    start_stream(top::stream_enabled_by(dialect_, id)->push,
-                 r ? static_cast<std::uint32_t>(r->integer) : 0, req.src, now_us);
-  } else if (id == "REC") {
-    const auto* a = field(dec, "action");
-    const int act = a ? static_cast<int>(a->integer) : -1;
-    const bool rec = act == 1 ? true : act == 0 ? false : !recording_;
-    if (rec && !recording_) ++file_index_;
-    recording_ = rec;
-  } else if (id == "CAP") {
-    ++file_index_;
-  } else if (id == "ZMC") {
-    const int v = data_byte(data);
-    if (v == 1) zoom_ = std::max(1.0, zoom_ - 1);
-    if (v == 2) zoom_ = std::min(30.0, zoom_ + 1);
-    settings_["ZMC"] = std::string(data);
-  } else {
-    return false;
-  }
-  echo();
-  return true;
-}
-
 void Device::handle(const Frame& req, Link link, std::uint64_t now_us,
                     std::vector<std::string>& out) {
   ++requests_;
@@ -464,18 +199,13 @@ void Device::handle(const Frame& req, Link link, std::uint64_t now_us,
   const top::Decoded dec = top::decode(req, dopts);
   const std::string_view id = req.ident_view();
 
-  // Topotek commands the simulator implements that a catalog without them
-  // would reject (kept so the sim does not depend on catalog completeness).
-  if (dialect_ == Dialect::topotek && !dec.command && topotek_builtin(id) &&
-      handle_special(req, dec, now_us, out))
-    return;
   // A request laid out as a response form (a 1-char VER read) is invalid too.
-  if (!dec.command || (catalog_rejects(dec) && !takes_in_field(dec)) || !dec.form ||
+  if (!dec.command || (rules::rejects(dec) && !takes_in_field(dec)) || !dec.form ||
       dec.form->role == top::Role::response) {
     reply_error(req, out);
     return;
   }
-  if (handle_special(req, dec, now_us, out)) return;
+  if (dispatch(req, dec, now_us, out)) return;
 
   const top::CommandSpec& cmd = *dec.command;
   if (req.control == 'w') {
@@ -516,33 +246,6 @@ void Device::handle(const Frame& req, Link link, std::uint64_t now_us,
   }
   const top::DeviceForm form = form_of(id, top::Sent::reply, data.size());
   out.push_back(build(form, req.src, req.dst, 'r', id, data));
-}
-
-Session::Session(Device& device, Link link, bool datagram)
-    : device_(device), link_(link), datagram_(datagram) {}
-
-void Session::feed(std::string_view bytes, std::uint64_t now_us, std::vector<std::string>& out,
-                   std::vector<Frame>* received) {
-  decoder_.feed(bytes);
-  if (datagram_)
-    decoder_.finish();
-  else
-    decoder_.flush();
-  top::StreamItem item;
-  while (decoder_.next(item)) {
-    if (item.kind != top::ItemKind::frame) continue;
-    device_.handle(item.frame, link_, now_us, out);
-    if (received) received->push_back(std::move(item.frame));
-  }
-  if (datagram_) decoder_.reset();
-}
-
-std::vector<std::string> handle_datagram(Device& device, std::string_view bytes, Link link,
-                                         std::uint64_t now_us) {
-  std::vector<std::string> out;
-  Session s(device, link, true);
-  s.feed(bytes, now_us, out);
-  return out;
 }
 
 }  // namespace topsim

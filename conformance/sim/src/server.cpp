@@ -15,6 +15,8 @@
 #include <stdexcept>
 
 #include "pcapio/writer.hpp"
+#include "sim/intake.hpp"
+#include "sim/rules.hpp"
 #include "top/dialect.hpp"
 
 namespace topsim {
@@ -76,6 +78,13 @@ std::vector<std::uint16_t> extra_udp_ports(top::Model m) {
   return v;
 }
 
+// "127.0.0.1:40000" (IPv6 in brackets).
+template <class Endpoint>
+std::string endpoint_name(const Endpoint& e) {
+  const std::string a = e.address().to_string();
+  return (e.address().is_v6() ? "[" + a + "]" : a) + ":" + std::to_string(e.port());
+}
+
 struct Server::Impl {
   ServerConfig cfg;
   asio::io_context io;
@@ -105,6 +114,8 @@ struct Server::Impl {
     std::function<void(std::string)> send;
     pcapio::Endpoint remote, local;
     bool stream_link = false;
+    std::string_view link = "udp";  // for on_traffic
+    std::string name;               // the peer, for on_traffic
   };
   Peer stream_peer;  // the last peer that sent a request (receives pushes)
   bool have_stream_peer = false;
@@ -153,42 +164,36 @@ struct Server::Impl {
         e.delay_us = at - now;
       }
       if (e.delay_us == 0) {
-        if (pcap) pcap->write(peer.local, peer.remote, e.bytes);
-        peer.send(std::move(e.bytes));
+        deliver(peer, std::move(e.bytes));
         continue;
       }
       auto t = std::make_shared<asio::steady_timer>(io, std::chrono::microseconds(e.delay_us));
       t->async_wait([this, t, peer, bytes = std::move(e.bytes)](std::error_code ec) mutable {
         if (ec) return;
-        if (pcap) pcap->write(peer.local, peer.remote, bytes);
-        peer.send(std::move(bytes));
+        deliver(peer, std::move(bytes));
       });
     }
   }
+
+  // Sends one write of the device to `peer`: recorded, told, sent.
+  void deliver(const Peer& peer, std::string bytes) {
+    if (pcap) pcap->write(peer.local, peer.remote, bytes);
+    if (cfg.on_traffic) cfg.on_traffic(Traffic{peer.link, '>', peer.name, bytes});
+    peer.send(std::move(bytes));
+  }
+
+  Intake intake(Link link) { return Intake{device, link, &faults}; }
 
   // `keep` holds the decoder's owner (a TCP connection) alive for timers.
   void on_bytes(top::StreamDecoder& dec, std::string_view bytes, bool datagram, const Peer& peer,
                 Link link, std::shared_ptr<void> keep = nullptr) {
     stats.bytes_in.fetch_add(bytes.size(), std::memory_order_relaxed);
     if (pcap) pcap->write(peer.remote, peer.local, bytes);
-    dec.feed(bytes);
-    if (datagram)
-      dec.finish();
-    else
-      dec.flush();
+    if (cfg.on_traffic) cfg.on_traffic(Traffic{peer.link, '<', peer.name, bytes});
     std::vector<std::string> out;
-    top::StreamItem item;
-    const std::uint64_t now = now_us();
-    while (dec.next(item)) {
-      if (item.kind != top::ItemKind::frame) continue;
-      stats.frames_in.fetch_add(1, std::memory_order_relaxed);
-      if (!faults.admit(item.frame, now)) continue;
-      device.handle(item.frame, link, now, out);
-    }
-    if (datagram)
-      dec.reset();
-    else if (dec.buffered() > 0)
-      arm_quiet(dec, peer, link, std::move(keep));
+    const std::size_t frames = intake(link).take(dec, bytes, datagram, now_us(), out);
+    stats.frames_in.fetch_add(frames, std::memory_order_relaxed);
+    if (!datagram && dec.buffered() > 0) arm_quiet(dec, peer, link, std::move(keep));
     stream_peer = peer;
     have_stream_peer = true;
     if (!out.empty()) emit(peer, out);
@@ -196,21 +201,17 @@ struct Server::Impl {
   }
 
   // Bytes held on a stream (a frame failing its checksum waits for
-  // look-ahead): once the line is quiet for 20 ms, decide on them.
+  // look-ahead): once the line is quiet (rules::kQuietLineMs), decide on them.
   void arm_quiet(top::StreamDecoder& dec, const Peer& peer, Link link, std::shared_ptr<void> keep) {
     const std::uint64_t fed = dec.fed();
-    auto t = std::make_shared<asio::steady_timer>(io, std::chrono::milliseconds(20));
+    auto t =
+        std::make_shared<asio::steady_timer>(io, std::chrono::milliseconds(rules::kQuietLineMs));
     t->async_wait([this, t, &dec, fed, peer, link, keep](std::error_code ec) {
       if (ec || dec.fed() != fed || dec.buffered() == 0) return;
       dec.finish();
       std::vector<std::string> out;
-      top::StreamItem item;
-      while (dec.next(item)) {
-        if (item.kind != top::ItemKind::frame) continue;
-        stats.frames_in.fetch_add(1, std::memory_order_relaxed);
-        if (!faults.admit(item.frame, now_us())) continue;
-        device.handle(item.frame, link, now_us(), out);
-      }
+      const std::size_t frames = intake(link).drain(dec, now_us(), out);
+      stats.frames_in.fetch_add(frames, std::memory_order_relaxed);
       dec.reset();
       if (!out.empty()) emit(peer, out);
     });
@@ -249,6 +250,10 @@ struct Server::Impl {
               std::error_code se;
               u.sock.send_to(asio::buffer(b), to, 0, se);
             };
+            if (cfg.on_traffic)
+              p.name = endpoint_name(u.from) +
+                       (cfg.reply_port ? " (replies to port " + std::to_string(to.port()) + ")"
+                                       : std::string());
             on_bytes(u.dec, std::string_view(u.buf.data(), n), true, p, Link::network);
           }
           udp_receive(u);
@@ -293,6 +298,8 @@ struct Server::Impl {
             if (auto l = w.lock(); l && l->open) l->write(std::move(b));
           };
           p.stream_link = true;
+          p.link = "tcp";
+          if (cfg.on_traffic && !e1) p.name = endpoint_name(re);
           on_bytes(c->dec, std::string_view(c->buf.data(), n), false, p, Link::network, c);
           tcp_read(c);
         });
@@ -312,6 +319,8 @@ struct Server::Impl {
     p.remote = pcapio::Endpoint::ipv4(0x7F000001u, 9001);
     p.local = pcapio::Endpoint::ipv4(0x7F000001u, 9000);
     p.stream_link = true;
+    p.link = pty_line ? "pty" : "serial";
+    p.name = pty_line ? pty_path : cfg.device;
     if (pty_line)
       p.send = [l = pty_line](std::string b) { l->write(std::move(b)); };
     else

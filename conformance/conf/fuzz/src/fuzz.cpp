@@ -7,7 +7,9 @@
 #include <thread>
 
 #include "conf/link.hpp"
+#include "conf/probe.hpp"
 #include "conf/runner.hpp"
+#include "sim/rules.hpp"
 #include "top/device.hpp"
 #include "top/enum_names.hpp"
 
@@ -15,11 +17,7 @@ namespace topconf {
 namespace {
 
 using WallClock = std::chrono::steady_clock;
-
-struct Probe {
-  std::string bytes;
-  std::string ident;
-};
+using topsim::rules::is_error_reply;
 
 struct Session {
   const Matrix& m;
@@ -34,17 +32,11 @@ struct Session {
   std::uint64_t probe_timeout_us() const { return std::uint64_t{m.probe_timeout_ms} * 1000; }
 
   // One probe (up to `tries` times): any answer with its identifier, or
-  // ERE, is life. Pushes do not count: a hung device may still stream.
+  // ERE, is life.
   bool alive(int tries) {
     for (int i = 0; i < tries; ++i) {
       ++probes;
-      link.send(probe.bytes);
-      const std::uint64_t deadline = link.now() + probe_timeout_us();
-      Received r;
-      while (link.next(deadline, r)) {
-        const std::string_view id = r.frame.ident_view();
-        if (id == probe.ident || id == "ERE") return true;
-      }
+      if (probe_answered(link, probe, probe_timeout_us())) return true;
     }
     return false;
   }
@@ -71,15 +63,13 @@ struct Session {
                  std::string(top::to_string(fd.code)) + ": " + fd.message;
     }
     const char client = t.client_address();
-    const bool push = is_push(m.dialect, f.ident_view());
-    // To the client, or to whoever the request came from (the reply swaps
-    // the request's addresses, SkyDroid 2.3.1).
+    // To the client, or to whoever a request of the case came from
+    // (reply_addressed: swapped, or in a recorded request order).
     bool addressed = f.dst == client && f.src != client;
     for (std::size_t i = 0; !addressed && i + 1 < c.addresses.size(); i += 2)
-      addressed = f.src == c.addresses[i + 1] && f.dst == c.addresses[i];
+      addressed = reply_addressed(m.dialect, m.model, f, c.addresses[i], c.addresses[i + 1]);
     if (!addressed && f.src == client) {
-      const top::DeviceForm* rf =
-          top::recorded_form(m.dialect, m.model, f, push ? top::Sent::push : top::Sent::reply);
+      const top::DeviceForm* rf = recorded_form_of(m.dialect, m.model, f);
       addressed = rf && rf->order == top::Order::request_order;
     }
     if (!addressed)
@@ -88,7 +78,7 @@ struct Session {
     // An echo carries what the case sent: its values are the client's.
     const bool echo = f.ident_view() == c.ident && f.data_length > 0 &&
                       c.bytes.find(f.data()) != std::string::npos;
-    if (echo || f.ident_view() == "ERE") return {};
+    if (echo || is_error_reply(f.ident_view())) return {};
     top::DecodeOptions dopt;
     dopt.dialect = m.dialect;
     dopt.model = m.model;
@@ -113,15 +103,16 @@ struct Session {
     std::vector<Received> got;
     Received rx;
     auto own = [&](const top::Frame& f) {
-      return (!c.ident.empty() && f.ident_view() == c.ident) || f.ident_view() == "ERE";
+      return (!c.ident.empty() && f.ident_view() == c.ident) || is_error_reply(f.ident_view());
     };
     auto keep = [&](Received&& x) {
       if (is_push(m.dialect, x.frame.ident_view()) && x.frame.ident_view() != c.ident) return;
       got.push_back(std::move(x));
     };
     if (!t.datagram() && c.open_end) {
-      // The device holds the cut frame until its line is quiet (20 ms).
-      const std::uint64_t quiet = link.now() + 30000;
+      // The device holds the cut frame until its line is quiet (and 10 ms more).
+      const std::uint64_t quiet =
+          link.now() + std::uint64_t{topsim::rules::kQuietLineMs} * 1000 + 10000;
       while (link.next(quiet, rx)) keep(std::move(rx));
     }
     bool found = false;
@@ -165,7 +156,7 @@ struct Session {
     bool answered_ident = false, answered_ere = false;
     for (const Received& x : got) {
       answered_ident |= !c.ident.empty() && x.frame.ident_view() == c.ident;
-      answered_ere |= x.frame.ident_view() == "ERE";
+      answered_ere |= is_error_reply(x.frame.ident_view());
     }
     if (c.promise == Promise::silence && promised && (answered_ident || answered_ere)) {
       r.failure = FailureClass::accepted_corrupt;
@@ -250,6 +241,25 @@ struct Session {
     return false;
   }
 
+  // After a failed case: revives the device when it stopped, minimises
+  // the failure; false when the device did not answer again.
+  bool after_failure(FuzzFailure& f, bool dead, const std::deque<FuzzCase>& recent) {
+    bool alive_again = !dead;
+    if (dead) alive_again = revive(f.restarted);
+    if (alive_again && o.minimise) {
+      minimise(f, std::vector<FuzzCase>(recent.begin(), recent.end()));
+      bool restarted = false;
+      // Leave the device answering for the cases that follow.
+      if (!alive(1)) alive_again = revive(restarted);
+    } else if (!alive_again) {
+      f.how = MinimiseHow::skipped;
+      f.note = o.restart ? "not minimised: the device did not answer again after the restart"
+                         : "not minimised: no --restart-cmd, and the device did not answer "
+                           "again";
+    }
+    return alive_again;
+  }
+
   void minimise(FuzzFailure& f, const std::vector<FuzzCase>& window) {
     if (!o.restart && f.cls == FailureClass::stopped) {
       f.how = MinimiseHow::skipped;
@@ -311,6 +321,38 @@ struct Session {
   }
 };
 
+// The probe, and a second sync frame for cases that contain the probe's
+// identifier: the first must-level read of the matrix with another one.
+void set_probes(const Matrix& m, Transport& t, Session& s) {
+  const bool sky = m.dialect == top::Dialect::skydroid;
+  const SendSpec fallback = [&] {
+    SendSpec p;
+    p.command = sky ? "AWB" : "VER";
+    p.control = 'r';
+    p.data = "00";
+    if (!sky) p.dst = 'G';
+    return p;
+  }();
+  std::string err;
+  std::string probe_bytes;
+  resolve_send(m.probe ? *m.probe : fallback, m.dialect, t.client_address(), probe_bytes, err);
+  s.probe = Probe::of(std::move(probe_bytes), false);
+  s.alt = s.probe;
+  for (const Case& k : m.cases) {
+    if (k.level != Level::must || !k.applies_to(m.model) || k.steps.size() != 1 ||
+        !k.steps[0].send || k.steps[0].send->raw || k.steps[0].send->control != 'r' ||
+        k.steps[0].send->command == s.probe.ident ||
+        std::find(k.tags.begin(), k.tags.end(), "read") == k.tags.end())
+      continue;
+    std::string b;
+    if (resolve_send(*k.steps[0].send, m.dialect, t.client_address(), b, err) &&
+        b.size() > top::prefix_size) {
+      s.alt = Probe::of(b, false);
+      break;
+    }
+  }
+}
+
 }  // namespace
 
 namespace {
@@ -354,34 +396,7 @@ FuzzResult run_fuzz(const Matrix& m, Transport& t, const FuzzOptions& o) {
   res.catalog_cases = src.catalog_cases();
   Session s{m, t, o, src, FrameLink(t, o.pcap, 4096), {}, {}, 0, t.now_us()};
 
-  // The probe, and a second sync frame for cases that contain the probe's
-  // identifier: the first must-level read of the matrix with another one.
-  const bool sky = m.dialect == top::Dialect::skydroid;
-  const SendSpec fallback = [&] {
-    SendSpec p;
-    p.command = sky ? "AWB" : "VER";
-    p.control = 'r';
-    p.data = "00";
-    if (!sky) p.dst = 'G';
-    return p;
-  }();
-  std::string err;
-  resolve_send(m.probe ? *m.probe : fallback, m.dialect, t.client_address(), s.probe.bytes, err);
-  s.probe.ident = s.probe.bytes.size() >= top::prefix_size ? s.probe.bytes.substr(7, 3) : "";
-  s.alt = s.probe;
-  for (const Case& k : m.cases) {
-    if (k.level != Level::must || !k.applies_to(m.model) || k.steps.size() != 1 ||
-        !k.steps[0].send || k.steps[0].send->raw || k.steps[0].send->control != 'r' ||
-        k.steps[0].send->command == s.probe.ident ||
-        std::find(k.tags.begin(), k.tags.end(), "read") == k.tags.end())
-      continue;
-    std::string b;
-    if (resolve_send(*k.steps[0].send, m.dialect, t.client_address(), b, err) &&
-        b.size() > top::prefix_size) {
-      s.alt = Probe{b, b.substr(7, 3)};
-      break;
-    }
-  }
+  set_probes(m, t, s);
 
   try {
     if (!s.alive(3)) {
@@ -435,19 +450,7 @@ FuzzResult run_fuzz(const Matrix& m, Transport& t, const FuzzOptions& o) {
       f.reason = r.reason;
       f.spec = r.spec;
       for (const auto& c : recent) f.before.push_back(c.index);
-      bool alive_again = !dead;
-      if (dead) alive_again = s.revive(f.restarted);
-      if (alive_again && o.minimise) {
-        s.minimise(f, std::vector<FuzzCase>(recent.begin(), recent.end()));
-        bool restarted = false;
-        // Leave the device answering for the cases that follow.
-        if (!s.alive(1)) alive_again = s.revive(restarted);
-      } else if (!alive_again) {
-        f.how = MinimiseHow::skipped;
-        f.note = o.restart ? "not minimised: the device did not answer again after the restart"
-                           : "not minimised: no --restart-cmd, and the device did not answer "
-                             "again";
-      }
+      const bool alive_again = s.after_failure(f, dead, recent);
       if (o.on_failure) o.on_failure(f);
       res.failures.push_back(std::move(f));
       if (!alive_again) {

@@ -6,6 +6,7 @@
 #include <iterator>
 
 #include "fuzz/mutator.hpp"
+#include "sim/rules.hpp"
 #include "top/device.hpp"
 #include "top/enum_names.hpp"
 
@@ -79,8 +80,16 @@ const char* hex_byte(unsigned char c) {
 std::string_view to_string(Promise p) noexcept { return top::enum_name(kPromise, p); }
 
 std::string mutate(std::string b, std::uint64_t s, bool repair) {
-  static constexpr std::string_view kTokens[] = {"#",   "\r\n", "#TP", "#tp", "#tP",
-                                                 "#Tp", "\n",   "ERE", "!!",  "\xFF"};
+  static constexpr std::string_view kTokens[] = {"#",
+                                                 "\r\n",
+                                                 "#TP",
+                                                 "#tp",
+                                                 "#tP",
+                                                 "#Tp",
+                                                 "\n",
+                                                 topsim::rules::kErrorIdent,
+                                                 topsim::rules::kErrorData,
+                                                 "\xFF"};
   const int edits = 1 + static_cast<int>(splitmix(s) % 4);
   for (int e = 0; e < edits; ++e) {
     const std::uint64_t r = splitmix(s);
@@ -121,30 +130,45 @@ std::string mutate(std::string b, std::uint64_t s, bool repair) {
   return b;
 }
 
+namespace {
+
+std::string frame(top::Header h, char src, char dst, char ctl, std::string_view ident,
+                  std::string_view data) {
+  top::BuildSpec b;
+  b.header = h;
+  b.src = src;
+  b.dst = dst;
+  b.control = ctl;
+  b.ident = ident;
+  b.data = data;
+  return top::build_frame(b);
+}
+
+}  // namespace
+
 CaseSource::CaseSource(top::Model model, char client, std::uint64_t seed, const Matrix* matrix)
     : model_(model),
       dialect_(top::dialect_of(model)),
       client_(client),
       seed_(seed),
       matrix_(matrix) {
+  add_global();
+  // Every identifier and form of the model.
+  for (const top::CommandSpec& c : top::commands(dialect_)) {
+    if (!c.supports(model_) || topsim::rules::is_error_reply(c.ident)) continue;
+    for (const top::FormSpec& form : c.forms)
+      if (form.role != top::Role::response) add_form(c, form);
+  }
+}
+
+// Global families first: short, and they reach the parser's corners.
+void CaseSource::add_global() {
   const bool sky = dialect_ == top::Dialect::skydroid;
-  auto frame = [&](top::Header h, char src, char dst, char ctl, std::string_view ident,
-                   std::string_view data) {
-    top::BuildSpec b;
-    b.header = h;
-    b.src = src;
-    b.dst = dst;
-    b.control = ctl;
-    b.ident = ident;
-    b.data = data;
-    return top::build_frame(b);
-  };
   // A command every device answers, for the framing and address cases.
   const std::string probe_ident = sky ? "AWB" : "VER";
   const char probe_dst = sky ? 'D' : 'G';
   const std::string probe = frame(top::Header::fixed, client_, probe_dst, 'r', probe_ident, "00");
 
-  // Global families first: short, and they reach the parser's corners.
   add("oversized", "#tP 255 data bytes",
       frame(top::Header::ext8, client_, 'G', 'w', "GAY", std::string(255, '0')));
   add("oversized", "#Tp 1000 data bytes",
@@ -203,112 +227,113 @@ CaseSource::CaseSource(top::Model model, char client, std::uint64_t seed, const 
   add("framing", "a frame inside another's data",
       top::with_checksum(std::string("#tP") + client_ + "G" + static_cast<char>(14) + "wGAY" +
                          probe));
+}
 
-  // Every identifier and form of the model.
-  for (const top::CommandSpec& c : top::commands(dialect_)) {
-    if (!c.supports(model_) || c.ident == "ERE") continue;
-    const std::string id(c.ident);
-    for (const top::FormSpec& form : c.forms) {
-      if (form.role == top::Role::response) continue;
-      const char ctl = form.control;
-      std::string ex = top::example_data(form);
-      if (top::stream_enabled_by(dialect_, id) && ctl == 'w') ex = "00";
-      const std::string tag = id + " " + std::string(1, ctl) + " ";
-      const top::Header h = top::choose_header(dialect_, c.address, ex.size());
-      const std::string valid = frame(h, client_, c.address, ctl, id, ex);
-      add("valid", tag + "example data", valid);
-      // Fields: boundaries, one step out, enum values and the one past.
-      std::size_t off = 0;
-      for (const top::FieldSpec& f : form.fields) {
-        const std::size_t w = f.kind == FieldKind::le_i32   ? 4
-                              : f.kind == FieldKind::le_i16 ? 2
-                              : f.kind == FieldKind::le_u16 ? 2
-                              : f.width == 0                ? ex.size() - std::min(off, ex.size())
-                                                            : f.width;
-        if (off + w > ex.size()) break;
-        auto with_raw = [&](std::int64_t raw, const std::string& what) {
-          const std::string text = encode_raw(f, raw);
-          if (text.size() != w) return;
-          std::string d = ex;
-          d.replace(off, w, text);
-          add("value", tag + std::string(f.name) + " " + what,
-              frame(h, client_, c.address, ctl, id, d));
-        };
-        if (!f.enums.empty()) {
-          std::int64_t top_value = 0;
-          for (const auto& e : f.enums) {
-            with_raw(e.value, std::string(e.name));
-            top_value = std::max(top_value, e.value);
-          }
-          with_raw(top_value + 1, "one past the last value");
-        } else if (f.min <= f.max && f.scale > 0) {
-          const auto lo = static_cast<std::int64_t>(std::llround(f.min / f.scale));
-          const auto hi = static_cast<std::int64_t>(std::llround(f.max / f.scale));
-          with_raw(lo, "min");
-          with_raw(hi, "max");
-          with_raw(lo - 1, "min-1");
-          with_raw(hi + 1, "max+1");
-        }
-        if (f.kind == FieldKind::hex_u || f.kind == FieldKind::hex_s) {
-          std::string d = ex;
-          d.replace(off, w, std::string(w, 'F'));
-          add("value", tag + std::string(f.name) + " all F",
-              frame(h, client_, c.address, ctl, id, d));
-          d.replace(off, w, std::string(w, 'f'));
-          add("value", tag + std::string(f.name) + " lowercase",
-              frame(h, client_, c.address, ctl, id, d));
-          d.replace(off, w, std::string(w, 'G'));
-          add("value", tag + std::string(f.name) + " not hex",
-              frame(h, client_, c.address, ctl, id, d));
-        }
-        off += w;
-      }
-      // Wrong lengths.
-      if (!ex.empty())
-        add("length", tag + "one char short",
-            frame(h, client_, c.address, ctl, id, ex.substr(0, ex.size() - 1)));
-      add("length", tag + "one char long", frame(h, client_, c.address, ctl, id, ex + "0"));
-      add("length", tag + "no data", frame(h, client_, c.address, ctl, id, ""));
-      if (valid.size() > 12 && valid[1] != 'T' && valid[2] == 'p' && ex.size() >= 1) {
-        // The length char lies; the checksum is right for the bytes sent.
-        for (int delta : {-1, 1}) {
-          const int n = static_cast<int>(ex.size()) + delta;
-          if (n < 0 || n > 15) continue;
-          std::string f = valid.substr(0, valid.size() - 2);
-          f[5] = "0123456789ABCDEF"[n];
-          add("length", tag + (delta < 0 ? "length char one less" : "length char one more"),
-              top::with_checksum(f));
-        }
-      }
-      // The four headers, whatever the length.
-      for (top::Header hh :
-           {top::Header::fixed, top::Header::variable, top::Header::ext8, top::Header::ext16})
-        if (hh != h &&
-            !(ex.size() > 15 && (hh == top::Header::fixed || hh == top::Header::variable)))
-          add("header", tag + "under " + std::string(top::to_string(hh)),
-              frame(hh, client_, c.address, ctl, id, ex));
-      // Checksum variants.
-      std::string body = valid.substr(0, valid.size() - 2);
-      char cs[2];
-      top::put_hex2(static_cast<std::uint8_t>(top::checksum(body) + 1), cs);
-      add("checksum", tag + "wrong checksum", body + std::string(cs, 2));
-      std::string lower = valid;
-      for (std::size_t i = lower.size() - 2; i < lower.size(); ++i)
-        lower[i] = static_cast<char>(std::tolower(static_cast<unsigned char>(lower[i])));
-      if (lower != valid) add("checksum", tag + "lowercase checksum", lower);
-      add("checksum", tag + "no checksum", body);
-      if (body[1] == 'T' || body[1] == 't') {
-        std::string other = body;
-        other[1] = other[1] == 'T' ? 't' : 'T';
-        other[2] = other[2] == 'P' ? 'p' : 'P';
-        top::put_hex2(top::checksum(other), cs);
-        add("checksum", tag + "checksum over the other header case", body + std::string(cs, 2));
-      }
-      // Framing around the command's own frame.
-      add("framing", tag + "CRLF after", valid + "\r\n");
-      add("framing", tag + "three copies", valid + valid + valid);
-      add("framing", tag + "garbage before", "\x00\x7Fzz" + valid);
+// The cases of one request form of a command.
+void CaseSource::add_form(const top::CommandSpec& c, const top::FormSpec& form) {
+  const std::string id(c.ident);
+  const char ctl = form.control;
+  std::string ex = top::example_data(form);
+  if (top::stream_enabled_by(dialect_, id) && ctl == 'w') ex = "00";
+  const std::string tag = id + " " + std::string(1, ctl) + " ";
+  const top::Header h = top::choose_header(dialect_, c.address, ex.size());
+  const std::string valid = frame(h, client_, c.address, ctl, id, ex);
+  add("valid", tag + "example data", valid);
+  add_values(c, form, h, tag, ex);
+  // Wrong lengths.
+  if (!ex.empty())
+    add("length", tag + "one char short",
+        frame(h, client_, c.address, ctl, id, ex.substr(0, ex.size() - 1)));
+  add("length", tag + "one char long", frame(h, client_, c.address, ctl, id, ex + "0"));
+  add("length", tag + "no data", frame(h, client_, c.address, ctl, id, ""));
+  if (valid.size() > 12 && valid[1] != 'T' && valid[2] == 'p' && ex.size() >= 1) {
+    // The length char lies; the checksum is right for the bytes sent.
+    for (int delta : {-1, 1}) {
+      const int n = static_cast<int>(ex.size()) + delta;
+      if (n < 0 || n > 15) continue;
+      std::string f = valid.substr(0, valid.size() - 2);
+      f[5] = "0123456789ABCDEF"[n];
+      add("length", tag + (delta < 0 ? "length char one less" : "length char one more"),
+          top::with_checksum(f));
     }
+  }
+  // The four headers, whatever the length.
+  for (top::Header hh :
+       {top::Header::fixed, top::Header::variable, top::Header::ext8, top::Header::ext16})
+    if (hh != h && !(ex.size() > 15 && (hh == top::Header::fixed || hh == top::Header::variable)))
+      add("header", tag + "under " + std::string(top::to_string(hh)),
+          frame(hh, client_, c.address, ctl, id, ex));
+  // Checksum variants.
+  std::string body = valid.substr(0, valid.size() - 2);
+  char cs[2];
+  top::put_hex2(static_cast<std::uint8_t>(top::checksum(body) + 1), cs);
+  add("checksum", tag + "wrong checksum", body + std::string(cs, 2));
+  std::string lower = valid;
+  for (std::size_t i = lower.size() - 2; i < lower.size(); ++i)
+    lower[i] = static_cast<char>(std::tolower(static_cast<unsigned char>(lower[i])));
+  if (lower != valid) add("checksum", tag + "lowercase checksum", lower);
+  add("checksum", tag + "no checksum", body);
+  if (body[1] == 'T' || body[1] == 't') {
+    std::string other = body;
+    other[1] = other[1] == 'T' ? 't' : 'T';
+    other[2] = other[2] == 'P' ? 'p' : 'P';
+    top::put_hex2(top::checksum(other), cs);
+    add("checksum", tag + "checksum over the other header case", body + std::string(cs, 2));
+  }
+  // Framing around the command's own frame.
+  add("framing", tag + "CRLF after", valid + "\r\n");
+  add("framing", tag + "three copies", valid + valid + valid);
+  add("framing", tag + "garbage before", "\x00\x7Fzz" + valid);
+}
+
+// Fields: boundaries, one step out, enum values and the one past.
+void CaseSource::add_values(const top::CommandSpec& c, const top::FormSpec& form, top::Header h,
+                            const std::string& tag, const std::string& ex) {
+  const std::string id(c.ident);
+  const char ctl = form.control;
+  std::size_t off = 0;
+  for (const top::FieldSpec& f : form.fields) {
+    const std::size_t w = f.kind == FieldKind::le_i32   ? 4
+                          : f.kind == FieldKind::le_i16 ? 2
+                          : f.kind == FieldKind::le_u16 ? 2
+                          : f.width == 0                ? ex.size() - std::min(off, ex.size())
+                                                        : f.width;
+    if (off + w > ex.size()) break;
+    auto with_raw = [&](std::int64_t raw, const std::string& what) {
+      const std::string text = encode_raw(f, raw);
+      if (text.size() != w) return;
+      std::string d = ex;
+      d.replace(off, w, text);
+      add("value", tag + std::string(f.name) + " " + what,
+          frame(h, client_, c.address, ctl, id, d));
+    };
+    if (!f.enums.empty()) {
+      std::int64_t top_value = 0;
+      for (const auto& e : f.enums) {
+        with_raw(e.value, std::string(e.name));
+        top_value = std::max(top_value, e.value);
+      }
+      with_raw(top_value + 1, "one past the last value");
+    } else if (f.min <= f.max && f.scale > 0) {
+      const auto lo = static_cast<std::int64_t>(std::llround(f.min / f.scale));
+      const auto hi = static_cast<std::int64_t>(std::llround(f.max / f.scale));
+      with_raw(lo, "min");
+      with_raw(hi, "max");
+      with_raw(lo - 1, "min-1");
+      with_raw(hi + 1, "max+1");
+    }
+    if (f.kind == FieldKind::hex_u || f.kind == FieldKind::hex_s) {
+      std::string d = ex;
+      d.replace(off, w, std::string(w, 'F'));
+      add("value", tag + std::string(f.name) + " all F", frame(h, client_, c.address, ctl, id, d));
+      d.replace(off, w, std::string(w, 'f'));
+      add("value", tag + std::string(f.name) + " lowercase",
+          frame(h, client_, c.address, ctl, id, d));
+      d.replace(off, w, std::string(w, 'G'));
+      add("value", tag + std::string(f.name) + " not hex",
+          frame(h, client_, c.address, ctl, id, d));
+    }
+    off += w;
   }
 }
 

@@ -11,7 +11,20 @@ bool is_push(top::Dialect d, std::string_view ident) {
   return s && s->sender == top::Sender::device;
 }
 
+const top::DeviceForm* recorded_form_of(top::Dialect d, top::Model m, const top::Frame& f) {
+  const top::Sent sent = is_push(d, f.ident_view()) ? top::Sent::push : top::Sent::reply;
+  return top::recorded_form(d, m, f, sent);
+}
+
+bool reply_addressed(top::Dialect d, top::Model m, const top::Frame& f, char src, char dst) {
+  if (f.src == dst && f.dst == src) return true;
+  if (f.src != src || f.dst != dst) return false;
+  const top::DeviceForm* rf = recorded_form_of(d, m, f);
+  return rf && rf->order == top::Order::request_order;
+}
+
 void FrameLink::send(std::string_view bytes) {
+  if (on_send) on_send(bytes);
   if (pcap_) pcap_->write(t_.local(), t_.remote(), bytes);
   t_.send(bytes);
 }

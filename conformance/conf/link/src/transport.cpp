@@ -8,122 +8,11 @@
 #include <chrono>
 #include <type_traits>
 
+#include "sim/rules.hpp"
 #include "top/dialect.hpp"
 
 namespace topconf {
 
-// ---------------------------------------------------------------------------
-// In-process simulator
-
-SimTransport::SimTransport(top::Model model, topsim::FaultConfig faults, std::uint64_t seed,
-                           topsim::Link link, top::Profile profile)
-    : link_(link),
-      options_([&] {
-        topsim::DeviceOptions o;
-        o.profile = profile;
-        o.swap_addresses = !faults.no_swap;
-        o.tmp_quirk = faults.tmp_quirk;
-        return o;
-      }()),
-      device_(model, options_),
-      faults_(faults, seed) {}
-
-bool SimTransport::restart() {
-  device_ = topsim::Device(device_.model(), options_);
-  faults_.restart();
-  queue_.clear();
-  decoder_.reset();
-  return true;
-}
-
-char SimTransport::client_address() const {
-  return device_.dialect() == top::Dialect::topotek && link_ == topsim::Link::network ? 'P' : 'U';
-}
-
-std::string SimTransport::describe() const {
-  return std::string("in-process topsim ") + std::string(top::to_string(device_.model()));
-}
-
-void SimTransport::schedule(const std::vector<std::string>& frames) {
-  std::vector<topsim::Emission> em;
-  for (const auto& f : frames) faults_.apply(f, link_ == topsim::Link::uart, em);
-  for (auto& e : em) {
-    std::uint64_t at = now_ + e.delay_us;
-    if (!datagram()) {
-      // One write at a time on a line: a split frame is not interleaved.
-      at = std::max(at, line_busy_until_);
-      line_busy_until_ = at;
-    }
-    Pending p{at, seq_++, std::move(e.bytes)};
-    auto it =
-        std::upper_bound(queue_.begin(), queue_.end(), p, [](const Pending& a, const Pending& b) {
-          return a.at != b.at ? a.at < b.at : a.seq < b.seq;
-        });
-    queue_.insert(it, std::move(p));
-  }
-  // A device that never drains would grow without bound; a real link
-  // drops what its buffers cannot hold.
-  while (queue_.size() > 100000) queue_.pop_back();
-}
-
-void SimTransport::send(std::string_view bytes) {
-  if (datagram()) decoder_.reset();
-  decoder_.feed(bytes);
-  if (datagram())
-    decoder_.finish();
-  else
-    decoder_.flush();
-  last_rx_ = now_;
-  std::vector<std::string> replies;
-  handle_items(replies);
-  schedule(replies);
-}
-
-void SimTransport::handle_items(std::vector<std::string>& replies) {
-  top::StreamItem item;
-  while (decoder_.next(item)) {
-    if (item.kind != top::ItemKind::frame) continue;
-    if (!faults_.admit(item.frame, now_)) continue;
-    device_.handle(item.frame, link_, now_, replies);
-  }
-}
-
-bool SimTransport::receive(std::uint64_t deadline_us, std::string& out) {
-  for (;;) {
-    const std::uint64_t t_queue = queue_.empty() ? UINT64_MAX : queue_.front().at;
-    const std::uint64_t t_dev = faults_.hung() ? UINT64_MAX : device_.next_timer();
-    // The device decides on held bytes once the line has been quiet 20 ms.
-    const std::uint64_t t_quiet =
-        !datagram() && decoder_.buffered() > 0 ? last_rx_ + 20000 : UINT64_MAX;
-    const std::uint64_t t = std::min({t_queue, t_dev, t_quiet});
-    if (t > deadline_us) {
-      now_ = std::max(now_, deadline_us);
-      return false;
-    }
-    now_ = std::max(now_, t);
-    if (t == t_quiet && t < t_queue) {
-      const std::size_t held = decoder_.buffered();
-      decoder_.settle();
-      std::vector<std::string> replies;
-      handle_items(replies);
-      // a frame cut short keeps waiting: the line's bytes are all here, so
-      // it is junk; drop it as a device whose UART timed out would
-      if (decoder_.buffered() >= held) decoder_.reset();
-      schedule(replies);
-      continue;
-    }
-    if (t_queue <= t_dev) {
-      out = std::move(queue_.front().bytes);
-      queue_.pop_front();
-      return true;
-    }
-    std::vector<std::string> frames;
-    device_.poll(now_, frames);
-    schedule(frames);
-  }
-}
-
-// ---------------------------------------------------------------------------
 // Asio transports: sockets and a serial port, waited on with poll(2) so a
 // deadline always ends a wait.
 
@@ -170,7 +59,8 @@ bool split_host_port(const std::string& s, std::string& host, std::uint16_t& por
 }
 
 char client_for(top::Model m, bool network) {
-  return top::dialect_of(m) == top::Dialect::topotek && network ? 'P' : 'U';
+  return topsim::rules::client_address(top::dialect_of(m),
+                                       network ? topsim::Link::network : topsim::Link::uart);
 }
 
 // The endpoints a pcap names for a socket: loopback with the socket's own

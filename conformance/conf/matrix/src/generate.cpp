@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "sim/rules.hpp"
+
 namespace topconf {
 namespace {
 
@@ -29,7 +31,7 @@ const top::FormSpec* find_form(const top::CommandSpec& c, char control, top::Rol
 bool clean_request(Dialect d, top::Model m, const top::CommandSpec& c, char control,
                    const std::string& data) {
   top::BuildSpec b;
-  b.src = d == Dialect::topotek ? 'P' : 'U';
+  b.src = topsim::rules::client_address(d, topsim::Link::network);
   b.dst = c.address;
   b.control = control;
   b.ident = c.ident;
@@ -147,29 +149,18 @@ json models_of(const top::CommandSpec& c) {
   return models;
 }
 
-}  // namespace
-
-json generate_matrix(top::Model model) {
-  const Dialect d = top::dialect_of(model);
-  const bool sky = d == Dialect::skydroid;
-  const std::string dn(top::to_string(d));
-  const std::string doc =
-      sky ? "SkyDroid TOP protocol V1.1.5 (seeds/000_3e8dc32e1138ca8b.txt)"
-          : "Topotek SIP Udp&uart-Protocol V1.1.3 (seeds/001_3ee7043eb5910c28.txt)";
-  json m;
-  m["$schema"] = "../matrix.schema.json";
-  m["format"] = "topconf-matrix-1";
-  m["title"] = "Default conformance matrix for " + std::string(top::to_string(model)) +
-               " (generated from the TOPKit catalog by `topconf generate`; edit freely)";
-  m["model"] = std::string(top::to_string(model));
-  m["document"] = doc;
-  m["defaults"] = {
-      {"timeout_ms", 300}, {"retries", 1}, {"settle_ms", 15}, {"probe_timeout_ms", 500}};
-  m["probe"] = sky ? json{{"command", "AWB"}, {"control", "r"}, {"data", "00"}}
-                   : json{{"command", "VER"}, {"control", "r"}, {"data", "00"}, {"dst", "G"}};
+// The matrix of one model, built case by case.
+struct Generator {
+  top::Model model;
+  Dialect d = top::dialect_of(model);
+  bool sky = d == Dialect::skydroid;
+  std::string dn = std::string(top::to_string(d));
+  std::string ere_section = sky ? "SkyDroid 2.3.2" : "Topotek 2";
+  json negative_silence = json{{"silence_ms", 60}};
   json cases = json::array();
-  const auto negative_silence = json{{"silence_ms", 60}};
-  auto error_alts = [&]() {
+  std::vector<std::string> classes_done;
+
+  json error_alts() const {
     if (!sky) return json::array({negative_silence});
     return json::array({json{{"error", true}},
                         json{{"error", true},
@@ -179,42 +170,85 @@ json generate_matrix(top::Model model) {
                         json{{"silence_ms", 60},
                              {"tolerated", true},
                              {"note", "the device ignores the invalid command instead of ERE"}}});
-  };
-  const std::string ere_section = sky ? "SkyDroid 2.3.2" : "Topotek 2";
+  }
 
-  std::vector<std::string> classes_done;
-  for (const top::CommandSpec& c : top::commands(d)) {
-    if (!c.supports(model) || c.ident == "ERE") continue;
-    const std::string id = std::string(c.ident);
-    const std::string base = dn + "/" + section_number(c.section) + "/" + id;
-    const bool appendix = c.section.find("appendix") != std::string_view::npos;
-    const bool destructive = id == "RST" || id == "RTF";
-    const std::string level = appendix || destructive ? "may" : "must";
-    const std::string cls(1, c.address);
-    const json models = models_of(c);
-    auto tags = [&](std::initializer_list<const char*> extra) {
+  json head() const {
+    const std::string doc =
+        sky ? "SkyDroid TOP protocol V1.1.5 (seeds/000_3e8dc32e1138ca8b.txt)"
+            : "Topotek SIP Udp&uart-Protocol V1.1.3 (seeds/001_3ee7043eb5910c28.txt)";
+    json m;
+    m["$schema"] = "../matrix.schema.json";
+    m["format"] = "topconf-matrix-1";
+    m["title"] = "Default conformance matrix for " + std::string(top::to_string(model)) +
+                 " (generated from the TOPKit catalog by `topconf generate`; edit freely)";
+    m["model"] = std::string(top::to_string(model));
+    m["document"] = doc;
+    m["defaults"] = {
+        {"timeout_ms", 300}, {"retries", 1}, {"settle_ms", 15}, {"probe_timeout_ms", 500}};
+    m["probe"] = sky ? json{{"command", "AWB"}, {"control", "r"}, {"data", "00"}}
+                     : json{{"command", "VER"}, {"control", "r"}, {"data", "00"}, {"dst", "G"}};
+    return m;
+  }
+
+  // What the cases of one command share.
+  struct Command {
+    const top::CommandSpec& c;
+    std::string id, base, level, cls;
+    bool appendix = false, destructive = false;
+    json models;
+    const top::FormSpec *w = nullptr, *rq = nullptr, *rs = nullptr;
+    std::string wdata, rdata;
+    json tags(std::initializer_list<const char*> extra) const {
       json t = json::array({std::string("class-") + cls, id});
       for (auto e : extra) t.push_back(e);
       if (appendix) t.push_back("appendix");
       if (destructive) t.push_back("destructive");
       return t;
-    };
-    const top::FormSpec* w = find_form(c, 'w', top::Role::request);
-    const top::FormSpec* rq = find_form(c, 'r', top::Role::request);
-    const top::FormSpec* rs = find_form(c, 'r', top::Role::response);
-    std::string wdata;
-    if (w) {
-      wdata = top::example_data(*w);
-      // Pushes are the stream case's business: switch them off.
-      if (top::stream_enabled_by(d, id)) wdata = "00";
-      if (!clean_request(d, model, c, 'w', wdata)) w = nullptr;
     }
+    json head(const std::string& suffix, const std::string& title, const std::string& lvl,
+              json tag_list) const {
+      return {{"id", base + suffix},
+              {"section", std::string(c.section)},
+              {"title", std::string(c.title) + title},
+              {"level", lvl},
+              {"models", models},
+              {"tags", std::move(tag_list)}};
+    }
+  };
+
+  Command command_of(const top::CommandSpec& c) const {
+    Command k{c};
+    k.id = std::string(c.ident);
+    k.base = dn + "/" + section_number(c.section) + "/" + k.id;
+    k.appendix = c.section.find("appendix") != std::string_view::npos;
+    k.destructive = k.id == "RST" || k.id == "RTF";
+    k.level = k.appendix || k.destructive ? "may" : "must";
+    k.cls = std::string(1, c.address);
+    k.models = models_of(c);
+    k.w = find_form(c, 'w', top::Role::request);
+    k.rq = find_form(c, 'r', top::Role::request);
+    k.rs = find_form(c, 'r', top::Role::response);
+    if (k.w) {
+      k.wdata = top::example_data(*k.w);
+      // Pushes are the stream case's business: switch them off.
+      if (top::stream_enabled_by(d, k.id)) k.wdata = "00";
+      if (!clean_request(d, model, c, 'w', k.wdata)) k.w = nullptr;
+    }
+    if (k.rq) {
+      k.rdata = top::example_data(*k.rq);
+      if (!clean_request(d, model, c, 'r', k.rdata)) k.rq = nullptr;
+    }
+    return k;
+  }
+
+  void positive(const Command& k) {
+    const top::CommandSpec& c = k.c;
     // A write with its own reply layout (Topotek REC/CAP: state and file
     // index) is answered in that layout; any other write is echoed.
     const top::FormSpec* wr = nullptr;
     for (const auto& f : c.forms)
       if (f.control == 'w' && f.role == top::Role::response) wr = &f;
-    if (w) {
+    if (k.w) {
       json expect = echo_alts();
       std::string answer = "echoed with the addresses swapped";
       if (wr) {
@@ -224,104 +258,89 @@ json generate_matrix(top::Model model) {
         expect = reply_alts(reply);
         answer = "answered in its reply layout";
       }
-      cases.push_back(
-          {{"id", base + "/write"},
-           {"section", std::string(c.section)},
-           {"title", std::string(c.title) + ": a write is " + answer},
-           {"level", level},
-           {"models", models},
-           {"tags", tags({"positive", "write"})},
-           {"steps", json::array({{{"send", send(c, 'w', wdata)}, {"expect", expect}}})}});
+      json cs = k.head("/write", ": a write is " + answer, k.level, k.tags({"positive", "write"}));
+      cs["steps"] = json::array({{{"send", send(c, 'w', k.wdata)}, {"expect", expect}}});
+      cases.push_back(std::move(cs));
     }
-    std::string rdata;
-    if (rq) {
-      rdata = top::example_data(*rq);
-      if (!clean_request(d, model, c, 'r', rdata)) rq = nullptr;
-    }
-    if (rq) {
+    if (k.rq) {
       json reply = {{"control", "r"}};
-      if (rs && rs->role == top::Role::response) {
-        json f = reply_checks(*rs);
+      if (k.rs && k.rs->role == top::Role::response) {
+        json f = reply_checks(*k.rs);
         if (!f.empty()) reply["fields"] = f;
       }
-      if (appendix) reply.erase("control");
-      cases.push_back({{"id", base + "/read"},
-                       {"section", std::string(c.section)},
-                       {"title", std::string(c.title) + ": a read is answered with data"},
-                       {"level", level},
-                       {"models", models},
-                       {"tags", tags({"positive", "read"})},
-                       {"steps", json::array({{{"send", send(c, 'r', rdata)},
-                                               {"expect", reply_alts(reply)}}})}});
+      if (k.appendix) reply.erase("control");
+      json cs =
+          k.head("/read", ": a read is answered with data", k.level, k.tags({"positive", "read"}));
+      cs["steps"] = json::array({{{"send", send(c, 'r', k.rdata)}, {"expect", reply_alts(reply)}}});
+      cases.push_back(std::move(cs));
     }
-    if (w && rq && rs && rs->role == top::Role::response && same_layout(*w, *rs) && !destructive) {
-      std::string alt = alternate_data(*w);
-      if (!clean_request(d, model, c, 'w', alt)) alt = wdata;
-      cases.push_back(
-          {{"id", base + "/state"},
-           {"section", std::string(c.section)},
-           {"title", std::string(c.title) + ": a written value reads back"},
-           {"level", level == "must" ? "should" : level},
-           {"models", models},
-           {"tags", tags({"state"})},
-           {"steps",
-            json::array({{{"send", send(c, 'w', alt)},
-                          {"expect", json::array({json{
-                                         {"readback", {{"send", send(c, 'r', rdata)}}}}})}}})}});
-    }
-    // Negative: wrong length (per command) and a bad checksum (per class).
-    const top::FormSpec* any = w ? w : rq;
-    const char ctl = w ? 'w' : 'r';
-    if (any && any->min_length > 0 && any->max_length < 15) {
-      const std::string bad = (w ? wdata : rdata).substr(0, any->min_length - 1);
-      cases.push_back(
-          {{"id", base + "/wrong-length"},
-           {"section", ere_section},
-           {"title", std::string(c.title) + ": a frame with a wrong data length is rejected"},
-           {"level", "should"},
-           {"models", models},
-           {"tags", tags({"negative", "wrong-length"})},
-           {"steps", json::array({{{"send", send(c, ctl, bad)}, {"expect", error_alts()}}})}});
-    }
-    if (any && std::find(classes_done.begin(), classes_done.end(), cls) == classes_done.end()) {
-      classes_done.push_back(cls);
-      top::BuildSpec b;
-      b.src = sky ? 'U' : 'P';
-      b.dst = c.address;
-      b.control = ctl;
-      b.ident = c.ident;
-      const std::string data = w ? wdata : rdata;
-      b.data = data;
-      b.header = top::choose_header(d, c.address, data.size());
-      std::string f = top::build_frame(b);
-      // Corrupt the checksum: add one to its value.
-      const std::uint8_t bad_cs =
-          static_cast<std::uint8_t>(top::checksum(f.substr(0, f.size() - 2)) + 1);
-      char cs[2];
-      top::put_hex2(bad_cs, cs);
-      f.replace(f.size() - 2, 2, cs, 2);
-      if (!sky) f.replace(3, 1, "{client}");
-      cases.push_back({{"id", dn + "/frame/bad-checksum/class-" + cls},
-                       {"section", sky ? "SkyDroid 2.3" : "Topotek 2"},
-                       {"title", "a " + id + " frame with a wrong checksum gets no answer"},
-                       {"level", "should"},
-                       {"tags", json::array({"negative", "bad-checksum", "class-" + cls})},
-                       {"steps", json::array({{{"send", {{"raw", f}}},
-                                               {"expect", json::array({negative_silence})}}})}});
+    if (k.w && k.rq && k.rs && k.rs->role == top::Role::response && same_layout(*k.w, *k.rs) &&
+        !k.destructive) {
+      std::string alt = alternate_data(*k.w);
+      if (!clean_request(d, model, c, 'w', alt)) alt = k.wdata;
+      json cs = k.head("/state", ": a written value reads back",
+                       k.level == "must" ? "should" : k.level, k.tags({"state"}));
+      cs["steps"] = json::array(
+          {{{"send", send(c, 'w', alt)},
+            {"expect", json::array({json{{"readback", {{"send", send(c, 'r', k.rdata)}}}}})}}});
+      cases.push_back(std::move(cs));
     }
   }
-  // Unknown identifier.
-  cases.push_back(
-      {{"id", dn + "/frame/unknown-ident"},
-       {"section", ere_section},
-       {"title", "an unknown identifier is rejected (ERE on SkyDroid, silence on Topotek)"},
-       {"level", "should"},
-       {"tags", json::array({"negative", "unknown-ident"})},
-       {"steps",
-        json::array(
-            {{{"send", {{"command", "ZZZ"}, {"control", "r"}, {"data", "00"}, {"dst", "D"}}},
-              {"expect", error_alts()}}})}});
-  if (sky) {
+
+  // Negative: wrong length (per command) and a bad checksum (per class).
+  void negative(const Command& k) {
+    const top::CommandSpec& c = k.c;
+    const top::FormSpec* any = k.w ? k.w : k.rq;
+    const char ctl = k.w ? 'w' : 'r';
+    if (any && any->min_length > 0 && any->max_length < 15) {
+      const std::string bad = (k.w ? k.wdata : k.rdata).substr(0, any->min_length - 1);
+      json cs = k.head("/wrong-length", ": a frame with a wrong data length is rejected", "should",
+                       k.tags({"negative", "wrong-length"}));
+      cs["section"] = ere_section;
+      cs["steps"] = json::array({{{"send", send(c, ctl, bad)}, {"expect", error_alts()}}});
+      cases.push_back(std::move(cs));
+    }
+    if (!any || std::find(classes_done.begin(), classes_done.end(), k.cls) != classes_done.end())
+      return;
+    classes_done.push_back(k.cls);
+    top::BuildSpec b;
+    b.src = topsim::rules::client_address(d, topsim::Link::network);
+    b.dst = c.address;
+    b.control = ctl;
+    b.ident = c.ident;
+    const std::string data = k.w ? k.wdata : k.rdata;
+    b.data = data;
+    b.header = top::choose_header(d, c.address, data.size());
+    std::string f = top::build_frame(b);
+    // Corrupt the checksum: add one to its value.
+    const std::uint8_t bad_cs =
+        static_cast<std::uint8_t>(top::checksum(f.substr(0, f.size() - 2)) + 1);
+    char cs[2];
+    top::put_hex2(bad_cs, cs);
+    f.replace(f.size() - 2, 2, cs, 2);
+    if (!sky) f.replace(3, 1, "{client}");
+    cases.push_back({{"id", dn + "/frame/bad-checksum/class-" + k.cls},
+                     {"section", sky ? "SkyDroid 2.3" : "Topotek 2"},
+                     {"title", "a " + k.id + " frame with a wrong checksum gets no answer"},
+                     {"level", "should"},
+                     {"tags", json::array({"negative", "bad-checksum", "class-" + k.cls})},
+                     {"steps", json::array({{{"send", {{"raw", f}}},
+                                             {"expect", json::array({negative_silence})}}})}});
+  }
+
+  void frame_cases() {
+    // Unknown identifier.
+    cases.push_back(
+        {{"id", dn + "/frame/unknown-ident"},
+         {"section", ere_section},
+         {"title", "an unknown identifier is rejected (ERE on SkyDroid, silence on Topotek)"},
+         {"level", "should"},
+         {"tags", json::array({"negative", "unknown-ident"})},
+         {"steps",
+          json::array(
+              {{{"send", {{"command", "ZZZ"}, {"control", "r"}, {"data", "00"}, {"dst", "D"}}},
+                {"expect", error_alts()}}})}});
+    if (!sky) return;
     // The document's own ERE example, as an exact frame.
     cases.push_back(
         {{"id", "skydroid/2.3.2/ERE/example"},
@@ -332,34 +351,52 @@ json generate_matrix(top::Model model) {
          {"steps", json::array({{{"send", {{"raw", "#TPUM2rZZZ00"}}},
                                  {"expect", json::array({json{{"frame", "#TPMU2wERE!!30"}}})}}})}});
   }
+
   // Streaming: every device stream of the catalog (top/device.hpp): SkyDroid
   // GAA (rate in Hz), Topotek GAA and GIA (on/off, the device's rate).
-  for (const top::StreamSpec& st : top::streams()) {
-    if (st.dialect != d || st.sender != top::Sender::device) continue;
-    const top::CommandSpec* gaa = top::find_command(d, st.request);
-    if (!gaa || !gaa->supports(model)) continue;
-    const std::string on = st.rate_in_data ? "0A" : "01";
-    const double hz = 10;
-    const std::string push(st.push);
-    cases.push_back(
-        {{"id",
-          dn + "/" + section_number(gaa->section) + "/" + std::string(gaa->ident) + "/stream"},
-         {"section", std::string(gaa->section)},
-         {"title", push + " is pushed at the rate " + std::string(gaa->ident) + " asked for"},
-         {"level", "must"},
-         {"models", models_of(*gaa)},
-         {"tags", json::array({"stream", "class-G", std::string(gaa->ident)})},
-         {"steps", json::array({
-                       {{"send", send(*gaa, 'w', on)}, {"expect", echo_alts()}},
-                       {{"expect", json::array({json{{"stream",
-                                                      {{"ident", push},
-                                                       {"rate_hz", hz},
-                                                       {"tolerance", 0.25},
-                                                       {"duration_ms", 450}}}}})}},
-                       {{"send", send(*gaa, 'w', "00")}, {"expect", echo_alts()}},
-                   })}});
+  void stream_cases() {
+    for (const top::StreamSpec& st : top::streams()) {
+      if (st.dialect != d || st.sender != top::Sender::device) continue;
+      const top::CommandSpec* gaa = top::find_command(d, st.request);
+      if (!gaa || !gaa->supports(model)) continue;
+      const std::string on = st.rate_in_data ? "0A" : "01";
+      const double hz = 10;
+      const std::string push(st.push);
+      const json stream = {{"ident", push},
+                           {"rate_hz", hz},
+                           {"tolerance", topsim::rules::kStreamRateTolerance},
+                           {"duration_ms", 450}};
+      cases.push_back(
+          {{"id",
+            dn + "/" + section_number(gaa->section) + "/" + std::string(gaa->ident) + "/stream"},
+           {"section", std::string(gaa->section)},
+           {"title", push + " is pushed at the rate " + std::string(gaa->ident) + " asked for"},
+           {"level", "must"},
+           {"models", models_of(*gaa)},
+           {"tags", json::array({"stream", "class-G", std::string(gaa->ident)})},
+           {"steps", json::array({
+                         {{"send", send(*gaa, 'w', on)}, {"expect", echo_alts()}},
+                         {{"expect", json::array({json{{"stream", stream}}})}},
+                         {{"send", send(*gaa, 'w', "00")}, {"expect", echo_alts()}},
+                     })}});
+    }
   }
-  m["cases"] = cases;
+};
+
+}  // namespace
+
+json generate_matrix(top::Model model) {
+  Generator g{model};
+  json m = g.head();
+  for (const top::CommandSpec& c : top::commands(g.d)) {
+    if (!c.supports(model) || topsim::rules::is_error_reply(c.ident)) continue;
+    const Generator::Command k = g.command_of(c);
+    g.positive(k);
+    g.negative(k);
+  }
+  g.frame_cases();
+  g.stream_cases();
+  m["cases"] = g.cases;
   return m;
 }
 

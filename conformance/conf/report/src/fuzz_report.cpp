@@ -1,6 +1,7 @@
 #include "conf/fuzz_report.hpp"
 
 #include "conf/report.hpp"
+#include "junit.hpp"
 #include "top/text.hpp"
 
 namespace topconf {
@@ -112,11 +113,14 @@ void write_junit(std::ostream& os, const FuzzResult& r) {
   for (FailureClass c : kFailureClasses)
     failing += std::any_of(r.failures.begin(), r.failures.end(),
                            [c](const FuzzFailure& f) { return f.cls == c; });
-  os << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  os << "<testsuites>\n<testsuite name=\"topconf.fuzz." << markup_escape(top::to_string(r.model))
-     << "\" tests=\"" << std::size(kFailureClasses) << "\" failures=\"" << failing << "\" errors=\""
-     << (r.unusable ? 1 : 0) << "\" time=\"" << r.seconds << "\" timestamp=\""
-     << markup_escape(r.started_at) << "\">\n";
+  detail::JunitSuite suite;
+  suite.name = "topconf.fuzz." + std::string(top::to_string(r.model));
+  suite.tests = std::size(kFailureClasses);
+  suite.failures = failing;
+  suite.errors = r.unusable ? 1 : 0;
+  suite.seconds = r.seconds;
+  suite.timestamp = r.started_at;
+  detail::open_junit(os, suite);
   for (FailureClass c : kFailureClasses) {
     os << "  <testcase classname=\"topconf.fuzz\" name=\"" << to_string(c) << "\" time=\"0\">";
     if (r.unusable) {
@@ -135,7 +139,7 @@ void write_junit(std::ostream& os, const FuzzResult& r) {
     }
     os << "</testcase>\n";
   }
-  os << "</testsuite>\n</testsuites>\n";
+  detail::close_junit(os);
 }
 
 void write_html(std::ostream& os, const FuzzResult& r) {

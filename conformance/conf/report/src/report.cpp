@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <iomanip>
 
+#include "junit.hpp"
 #include "top/text.hpp"
 
 namespace topconf {
@@ -118,12 +119,15 @@ nlohmann::json to_json(const RunResult& r) {
 void write_junit(std::ostream& os, const RunResult& r) {
   std::size_t failures =
       r.count(Verdict::fail) + r.count(Verdict::non_strict) + r.count(Verdict::inconclusive);
-  os << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  os << "<testsuites>\n<testsuite name=\"topconf." << markup_escape(top::to_string(r.model))
-     << "\" tests=\"" << r.cases.size() << "\" failures=\"" << failures << "\" errors=\""
-     << (r.count(Verdict::error) + (r.unreachable ? 1 : 0)) << "\" skipped=\""
-     << r.count(Verdict::not_applicable) << "\" time=\"" << r.seconds << "\" timestamp=\""
-     << markup_escape(r.started_at) << "\">\n";
+  detail::JunitSuite suite;
+  suite.name = "topconf." + std::string(top::to_string(r.model));
+  suite.tests = r.cases.size();
+  suite.failures = failures;
+  suite.errors = r.count(Verdict::error) + (r.unreachable ? 1 : 0);
+  suite.skipped = r.count(Verdict::not_applicable);
+  suite.seconds = r.seconds;
+  suite.timestamp = r.started_at;
+  detail::open_junit(os, suite);
   if (r.unreachable)
     os << "  <testcase classname=\"topconf\" name=\"liveness\"><error message=\""
        << markup_escape(r.unreachable_reason) << "\"/></testcase>\n";
@@ -154,7 +158,7 @@ void write_junit(std::ostream& os, const RunResult& r) {
          << "\n";
     os << "</system-out></testcase>\n";
   }
-  os << "</testsuite>\n</testsuites>\n";
+  detail::close_junit(os);
 }
 
 void write_html_head(std::ostream& os, std::string_view title) {

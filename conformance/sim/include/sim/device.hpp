@@ -12,13 +12,10 @@
 #include <string_view>
 #include <vector>
 
+#include "sim/rules.hpp"
 #include "top/top.hpp"
 
 namespace topsim {
-
-// The link a request arrived on. Topotek answers only when the request's
-// source byte names that link: P for the network, U for the UART.
-enum class Link : std::uint8_t { network, uart };
 
 struct DeviceOptions {
   // Where the device's behaviour comes from (top/device.hpp): field
@@ -36,7 +33,7 @@ struct DeviceOptions {
   bool tmp_quirk = false;              // answer TMP in the malformed #tpDU16wTMP form
   // A speed command holds for this long unless refreshed (field notes:
   // motors stop when rate commands are not refreshed).
-  std::uint32_t speed_hold_ms = 1000;
+  std::uint32_t speed_hold_ms = rules::kSpeedHoldMs;
   // Push rate of Topotek GIC/GAC streams, which GIA/GAA only switch on.
   std::uint32_t topotek_stream_hz = 10;
 };
@@ -106,8 +103,11 @@ class Device {
   std::string make(top::Header h, const top::Frame& req, char control, std::string_view ident,
                    std::string_view data) const;
   void reply_error(const top::Frame& req, std::vector<std::string>& out) const;
-  bool handle_special(const top::Frame& req, const top::Decoded& dec, std::uint64_t now_us,
-                      std::vector<std::string>& out);
+  // The commands with state behind them (sim/src/device_handlers.cpp): true
+  // when a handler answered `req`.
+  bool dispatch(const top::Frame& req, const top::Decoded& dec, std::uint64_t now_us,
+                std::vector<std::string>& out);
+  friend struct Handlers;
   void start_stream(std::string_view ident, std::uint32_t hz, char dst, std::uint64_t now_us);
   std::string attitude_data() const;
   std::string read_data(const top::CommandSpec& cmd, const top::FormSpec& form) const;
@@ -132,24 +132,9 @@ class Device {
   std::uint64_t requests_ = 0;
 };
 
-// Frames from the bytes of one connection (stream) or one datagram each.
-class Session {
- public:
-  Session(Device& device, Link link, bool datagram);
-  // Decodes `bytes`, lets the device handle every frame, appends replies.
-  // `received` (optional) gets the request frames.
-  void feed(std::string_view bytes, std::uint64_t now_us, std::vector<std::string>& out,
-            std::vector<top::Frame>* received = nullptr);
-
- private:
-  Device& device_;
-  Link link_;
-  bool datagram_;
-  top::StreamDecoder decoder_;
-};
-
 // The request handler as a function (the fuzz entry point): one datagram's
 // bytes in, the frames the device answers out. Never throws on any input.
+// Through sim/intake.hpp's Intake, as every transport.
 std::vector<std::string> handle_datagram(Device& device, std::string_view bytes, Link link,
                                          std::uint64_t now_us);
 

@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -15,6 +16,15 @@
 namespace topsim {
 
 enum class TransportKind : std::uint8_t { udp, tcp, pty, serial };
+
+// One datagram (or chunk of a byte stream) on a transport, for topsim
+// --verbose: received ('<') or sent ('>').
+struct Traffic {
+  std::string_view link;  // "udp", "tcp", "pty", "serial"
+  char dir = '<';
+  std::string peer;  // "127.0.0.1:40000" or the line's path
+  std::string_view bytes;
+};
 
 struct ServerConfig {
   top::Model model = top::Model::c12;
@@ -29,6 +39,8 @@ struct ServerConfig {
   std::uint64_t seed = 1;
   std::string record;  // pcap path, empty for none
   DeviceOptions device_options;
+  // Told of every datagram or chunk received and sent (null: nobody).
+  std::function<void(const Traffic&)> on_traffic;
 };
 
 // The default UDP/TCP port of a model: SkyDroid 5000, Topotek 9003.

@@ -56,6 +56,10 @@ class CaseSource {
 
  private:
   void add(std::string family, std::string name, std::string bytes);
+  void add_global();
+  void add_form(const top::CommandSpec& c, const top::FormSpec& form);
+  void add_values(const top::CommandSpec& c, const top::FormSpec& form, top::Header h,
+                  const std::string& tag, const std::string& ex);
   Level level_for(std::string_view ident, char control, std::string_view tag) const;
   top::Model model_;
   top::Dialect dialect_;

@@ -13,6 +13,7 @@
 #include "conf/transport.hpp"
 #include "pcapio/writer.hpp"
 #include "top/catalog.hpp"
+#include "top/device.hpp"
 #include "top/stream.hpp"
 
 namespace topconf {
@@ -26,6 +27,15 @@ struct Received {
 // Whether the device of dialect `d` pushes frames of `ident` (GAC, GIC...)
 // rather than answering with them (top/device.hpp's streams).
 bool is_push(top::Dialect d, std::string_view ident);
+
+// Whether the device frame `f` (a reply, or a push) is addressed as an
+// answer to a request from `src` to `dst`: the addresses swapped (SkyDroid
+// 2.3.1), or in the request's order where the device's recorded form
+// (top/device.hpp) says so (the SkyDroid 4.22 SLR example).
+bool reply_addressed(top::Dialect d, top::Model m, const top::Frame& f, char src, char dst);
+// The recorded form (top/device.hpp) a device frame matches, as a reply or
+// a push by its identifier, or null.
+const top::DeviceForm* recorded_form_of(top::Dialect d, top::Model m, const top::Frame& f);
 
 class FrameLink {
  public:
@@ -41,7 +51,9 @@ class FrameLink {
   // Forgets the frames already decoded.
   void clear() { frames_.clear(); }
 
-  // Told of every chunk received and of every run of garbage (its length).
+  // Told of every write sent, every chunk received and every run of
+  // garbage (its length).
+  std::function<void(std::string_view)> on_send;
   std::function<void(std::string_view)> on_chunk;
   std::function<void(std::size_t)> on_garbage;
 

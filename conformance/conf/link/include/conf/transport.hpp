@@ -13,6 +13,7 @@
 #include "pcapio/writer.hpp"
 #include "sim/device.hpp"
 #include "sim/faults.hpp"
+#include "sim/intake.hpp"
 
 namespace topconf {
 
@@ -80,7 +81,7 @@ class SimTransport : public Transport {
   std::deque<Pending> queue_;          // kept sorted by (at, seq)
   std::uint64_t line_busy_until_ = 0;  // stream links write one thing at a time
   std::uint64_t last_rx_ = 0;          // for the quiet flush of decoder_
-  void handle_items(std::vector<std::string>& replies);
+  topsim::Intake intake() { return topsim::Intake{device_, link_, &faults_}; }
 };
 
 // Parses udp://HOST:PORT, tcp://HOST:PORT, serial:DEVICE[@BAUD] and opens

@@ -6,11 +6,14 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
+#include <regex>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "sim/rules.hpp"
 #include "top/top.hpp"
 
 namespace topconf {
@@ -37,10 +40,11 @@ struct SendSpec {
 // A check on one decoded field of a reply.
 struct FieldCheck {
   std::string name;
-  std::optional<double> min, max;     // range in scaled units
-  std::vector<std::string> enums;     // allowed enum names
-  std::string pattern;                // ECMAScript regex over the field text
-  std::optional<std::string> equals;  // the formatted raw text of the field
+  std::optional<double> min, max;        // range in scaled units
+  std::vector<std::string> enums;        // allowed enum names
+  std::string pattern;                   // ECMAScript regex over the field text
+  std::shared_ptr<const std::regex> re;  // `pattern` compiled (by load_matrix)
+  std::optional<std::string> equals;     // the formatted raw text of the field
 };
 
 enum class ExpectKind : std::uint8_t { frame, echo, reply, error, silence, stream, readback };
@@ -56,13 +60,14 @@ struct Expectation {
   std::string ident;  // default: the request's identifier
   char control = 0;   // 0: any
   std::vector<FieldCheck> fields;
-  std::string data_pattern;         // regex over the whole data
-  std::optional<std::string> data;  // exact data
+  std::string data_pattern;                   // regex over the whole data
+  std::shared_ptr<const std::regex> data_re;  // `data_pattern` compiled (by load_matrix)
+  std::optional<std::string> data;            // exact data
   // silence
   std::uint32_t silence_ms = 0;
   // stream
   double rate_hz = 0;
-  double tolerance = 0.25;  // fraction of rate_hz
+  double tolerance = topsim::rules::kStreamRateTolerance;  // fraction of rate_hz
   std::uint32_t duration_ms = 0;
   // readback: the read sent after the write's reply; the reply data must
   // equal `data` when given, else the data the step wrote.
