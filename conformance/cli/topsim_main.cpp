@@ -199,7 +199,7 @@ int serve(const Options& o, const topsim::ServerConfig& cfg) {
   }
   if (cfg.faults.any()) spdlog::info("faults: {} (seed {})", o.faults, o.seed);
   server.run();
-  spdlog::info("topsim: {} frames in, {} frames out", server.stats().frames_in.load(),
+  spdlog::info("{} frames in, {} frames out", server.stats().frames_in.load(),
                server.stats().frames_out.load());
   return 0;
 }
