@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -33,70 +34,25 @@ bool write_output(const std::string& path, const std::function<void(std::ostream
 std::optional<int> load_run_matrix(const std::string& model_name, const std::string& matrix_path,
                                    Matrix& out);
 
-class RunCommand : public topkit::cli::Subcommand {
- public:
-  explicit RunCommand(CLI::App& app);
-  int run() override;
-
- private:
-  std::string target_, model_name_, matrix_path_, json_out_, junit_out_, html_out_, pcap_out_,
-      sim_faults_;
-  std::vector<std::string> case_ids_, tags_, levels_;
-  std::uint64_t seed_ = 0, sim_seed_ = 1;
-  std::uint32_t retries_ = 0, timeout_ms_ = 0, settle_ms_ = 0;
-  int bind_port_ = -1;
-  bool no_color_ = false, quiet_ = false;
-  CLI::Option *seed_opt_ = nullptr, *retries_opt_ = nullptr, *timeout_opt_ = nullptr,
-              *settle_opt_ = nullptr;
+// The target of run and fuzz: a device, or an in-process topsim.
+struct TargetArgs {
+  std::string target;      // --target (run: empty for the in-process topsim)
+  std::string sim_faults;  // --sim-fault
+  std::uint64_t sim_seed = 1;
+  int bind_port = -1;  // --bind
 };
 
-class FuzzCommand : public topkit::cli::Subcommand {
- public:
-  explicit FuzzCommand(CLI::App& app);
-  int run() override;
-
- private:
-  int run(const Matrix& matrix);
-  std::optional<int> resume(top::Model model, FuzzOptions& o, bool& append);
-  std::string model_name_, matrix_path_;
-  std::string target_, sim_faults_, resume_, restart_cmd_, json_, junit_, html_, pcap_;
-  std::uint64_t seed_ = 1, sim_seed_ = 1, cases_ = 0, start_ = 0, end_ = 0;
-  std::vector<std::uint64_t> only_;
-  double duration_ = 0, rate_ = 0;
-  std::uint32_t probe_every_ = 1, timeout_ms_ = 300, slow_ms_ = 1000, recover_ms_ = 3000;
-  std::size_t window_ = 8, max_failures_ = 0;
-  std::uint32_t probe_timeout_ms_ = 0;
-  int bind_port_ = -1;
-  bool no_minimise_ = false, quiet_ = false;
-  CLI::Option *seed_opt_ = nullptr, *cases_opt_ = nullptr, *start_opt_ = nullptr,
-              *end_opt_ = nullptr;
+// The files run and fuzz write besides stdout.
+struct OutputArgs {
+  std::string json, junit, html, pcap;
 };
 
-class GenerateCommand : public topkit::cli::Subcommand {
- public:
-  explicit GenerateCommand(CLI::App& app);
-  int run() override;
-
- private:
-  std::string model_name_, out_;
-};
-
-class ModelsCommand : public topkit::cli::Subcommand {
- public:
-  explicit ModelsCommand(CLI::App& app);
-  int run() override;
-
- private:
-  bool paths_ = false;
-};
-
-class ValidateCommand : public topkit::cli::Subcommand {
- public:
-  explicit ValidateCommand(CLI::App& app);
-  int run() override;
-
- private:
-  std::vector<std::string> files_;
-};
+// The subcommands, each defined in its file (topconf_<name>.cpp); topconf
+// adds them in this order.
+std::unique_ptr<topkit::cli::Subcommand> run_command(CLI::App& app);
+std::unique_ptr<topkit::cli::Subcommand> fuzz_command(CLI::App& app);
+std::unique_ptr<topkit::cli::Subcommand> generate_command(CLI::App& app);
+std::unique_ptr<topkit::cli::Subcommand> models_command(CLI::App& app);
+std::unique_ptr<topkit::cli::Subcommand> validate_command(CLI::App& app);
 
 }  // namespace topconf::cli

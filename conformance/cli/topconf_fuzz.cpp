@@ -15,12 +15,38 @@
 
 namespace topconf::cli {
 
+namespace {
+
+class FuzzCommand : public topkit::cli::Subcommand {
+ public:
+  explicit FuzzCommand(CLI::App& app);
+  int run() override;
+
+ private:
+  int run(const Matrix& matrix);
+  std::optional<int> resume(top::Model model, FuzzOptions& o, bool& append);
+  TargetArgs t_;
+  OutputArgs out_;
+  std::string model_name_, matrix_path_, resume_, restart_cmd_;
+  std::uint64_t seed_ = 1, cases_ = 0, start_ = 0, end_ = 0;
+  std::vector<std::uint64_t> only_;
+  double duration_ = 0, rate_ = 0;
+  std::uint32_t probe_every_ = 1, timeout_ms_ = 300, slow_ms_ = 1000, recover_ms_ = 3000;
+  std::size_t window_ = 8, max_failures_ = 0;
+  std::uint32_t probe_timeout_ms_ = 0;
+  bool no_minimise_ = false, quiet_ = false;
+  CLI::Option *seed_opt_ = nullptr, *cases_opt_ = nullptr, *start_opt_ = nullptr,
+              *end_opt_ = nullptr;
+};
+
+}  // namespace
+
 FuzzCommand::FuzzCommand(CLI::App& app)
     : Subcommand(app, "fuzz",
                  "send generated and mutated frames to a device, probe that it still answers "
                  "after each case, minimise what breaks it (docs/TOPCONF-FUZZ.md)") {
   sub_->add_option("--model", model_name_, top::model_list("|", "|"))->required();
-  sub_->add_option("--target", target_,
+  sub_->add_option("--target", t_.target,
                    "udp://HOST:PORT, tcp://HOST:PORT, serial:DEVICE[@BAUD] or sim (an "
                    "in-process topsim)")
       ->required();
@@ -56,13 +82,13 @@ FuzzCommand::FuzzCommand(CLI::App& app)
   sub_->add_option("--probe-timeout-ms", probe_timeout_ms_,
                    "wait this long for the probe's answer (default: the matrix's)");
   sub_->add_flag("--no-minimise", no_minimise_, "report failures without replaying them");
-  sub_->add_option("--json", json_, "write JSON Lines: every case with its bytes and verdict");
-  sub_->add_option("--junit", junit_, "write JUnit XML, one testcase per failure class");
-  sub_->add_option("--html", html_, "write a self-contained HTML report");
-  sub_->add_option("--pcap", pcap_, "write every case sent and every answer to a pcap");
-  sub_->add_option("--sim-fault", sim_faults_, "--target sim: faults (as topsim --fault)");
-  sub_->add_option("--sim-seed", sim_seed_, "--target sim: fault seed");
-  sub_->add_option("--bind", bind_port_, "UDP: local port to receive on (default: 9004 for sip)");
+  sub_->add_option("--json", out_.json, "write JSON Lines: every case with its bytes and verdict");
+  sub_->add_option("--junit", out_.junit, "write JUnit XML, one testcase per failure class");
+  sub_->add_option("--html", out_.html, "write a self-contained HTML report");
+  sub_->add_option("--pcap", out_.pcap, "write every case sent and every answer to a pcap");
+  sub_->add_option("--sim-fault", t_.sim_faults, "--target sim: faults (as topsim --fault)");
+  sub_->add_option("--sim-seed", t_.sim_seed, "--target sim: fault seed");
+  sub_->add_option("--bind", t_.bind_port, "UDP: local port to receive on (default: 9004 for sip)");
   sub_->add_flag("-q,--quiet", quiet_, "no progress lines");
 }
 
@@ -102,8 +128,8 @@ std::optional<int> FuzzCommand::resume(top::Model model, FuzzOptions& o, bool& a
     return 2;
   }
   if (!start_opt_->count()) o.start = last ? *last + 1 : 0;
-  if (json_.empty() || json_ == resume_) {
-    json_ = resume_;
+  if (out_.json.empty() || out_.json == resume_) {
+    out_.json = resume_;
     append = true;
   }
   spdlog::info("resuming {} at case {} (seed {})", resume_, o.start, o.seed);
@@ -143,14 +169,14 @@ int FuzzCommand::run(const Matrix& loaded) {
   if (cases_opt_->count()) o.end = o.start + cases_;
   if (!o.end && o.only.empty() && duration_ <= 0) o.end = o.start + 10000;
 
-  const bool sim = target_ == "sim";
-  if (!sim && !sim_faults_.empty()) {
+  const bool sim = t_.target == "sim";
+  if (!sim && !t_.sim_faults.empty()) {
     spdlog::error("--sim-fault applies to --target sim only");
     return 2;
   }
   std::unique_ptr<Transport> transport;
   try {
-    transport = open_target(sim, target_, model, sim_faults_, sim_seed_, bind_port_);
+    transport = open_target(sim, t_.target, model, t_.sim_faults, t_.sim_seed, t_.bind_port);
   } catch (const TransportError& e) {
     spdlog::error("{}", e.what());
     return 2;
@@ -163,14 +189,14 @@ int FuzzCommand::run(const Matrix& loaded) {
       if (rc != 0) spdlog::warn("--restart-cmd exited with status {}", rc);
       return rc == 0;
     };
-  } else if (target_ == "sim") {
+  } else if (t_.target == "sim") {
     o.restart = [&t] { return t.restart(); };
   }
 
   std::unique_ptr<pcapio::Recorder> pcap;
-  if (!pcap_.empty()) {
+  if (!out_.pcap.empty()) {
     try {
-      pcap = std::make_unique<pcapio::Recorder>(pcap_, t.tcp());
+      pcap = std::make_unique<pcapio::Recorder>(out_.pcap, t.tcp());
     } catch (const std::exception& e) {
       spdlog::error("{}", e.what());
       return 2;
@@ -178,10 +204,10 @@ int FuzzCommand::run(const Matrix& loaded) {
     o.pcap = pcap.get();
   }
   std::ofstream jl;
-  if (!json_.empty()) {
-    jl.open(json_, append ? std::ios::app : std::ios::trunc);
+  if (!out_.json.empty()) {
+    jl.open(out_.json, append ? std::ios::app : std::ios::trunc);
     if (!jl) {
-      spdlog::error("{}: cannot write", json_);
+      spdlog::error("{}: cannot write", out_.json);
       return 2;
     }
     if (!append) {
@@ -215,7 +241,7 @@ int FuzzCommand::run(const Matrix& loaded) {
     jl << summary_json(res).dump() << "\n";
     jl.flush();
     if (!jl) {
-      spdlog::error("{}: write failed", json_);
+      spdlog::error("{}: write failed", out_.json);
       ok = false;
     }
   }
@@ -228,10 +254,14 @@ int FuzzCommand::run(const Matrix& loaded) {
       ok = false;
     }
   };
-  write(junit_, [&](std::ostream& os) { write_junit(os, res); });
-  write(html_, [&](std::ostream& os) { write_html(os, res); });
+  write(out_.junit, [&](std::ostream& os) { write_junit(os, res); });
+  write(out_.html, [&](std::ostream& os) { write_html(os, res); });
   if (!ok) return 2;
   return res.exit_code();
+}
+
+std::unique_ptr<topkit::cli::Subcommand> fuzz_command(CLI::App& app) {
+  return std::make_unique<FuzzCommand>(app);
 }
 
 }  // namespace topconf::cli

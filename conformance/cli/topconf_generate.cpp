@@ -7,6 +7,19 @@
 
 namespace topconf::cli {
 
+namespace {
+
+class GenerateCommand : public topkit::cli::Subcommand {
+ public:
+  explicit GenerateCommand(CLI::App& app);
+  int run() override;
+
+ private:
+  std::string model_name_, out_;
+};
+
+}  // namespace
+
 GenerateCommand::GenerateCommand(CLI::App& app)
     : Subcommand(app, "generate", "write a model's default matrix generated from the catalog") {
   sub_->add_option("--model", model_name_, top::model_list("|", "|"))->required();
@@ -22,6 +35,10 @@ int GenerateCommand::run() {
     return 0;
   }
   return write_output(out_, [&](std::ostream& o) { o << text; }) ? 0 : 2;
+}
+
+std::unique_ptr<topkit::cli::Subcommand> generate_command(CLI::App& app) {
+  return std::make_unique<GenerateCommand>(app);
 }
 
 }  // namespace topconf::cli

@@ -12,11 +12,12 @@ int main(int argc, char** argv) {
   CLI::App app{"topconf: conformance runner for the TOP gimbal-camera protocol"};
   topkit::cli::setup_app(app, kTool);
   app.require_subcommand(1);
-  RunCommand run(app);
-  FuzzCommand fuzz(app);
-  GenerateCommand generate(app);
-  ModelsCommand models(app);
-  ValidateCommand validate(app);
+  const auto run = run_command(app);
+  const auto fuzz = fuzz_command(app);
+  const auto generate = generate_command(app);
+  const auto models = models_command(app);
+  const auto validate = validate_command(app);
   if (int rc = topkit::cli::parse(app, argc, argv); rc >= 0) return rc;
-  return topkit::cli::run_selected(kTool, {&run, &fuzz, &generate, &models, &validate});
+  return topkit::cli::run_selected(
+      kTool, {run.get(), fuzz.get(), generate.get(), models.get(), validate.get()});
 }

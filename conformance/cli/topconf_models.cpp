@@ -6,6 +6,19 @@
 
 namespace topconf::cli {
 
+namespace {
+
+class ModelsCommand : public topkit::cli::Subcommand {
+ public:
+  explicit ModelsCommand(CLI::App& app);
+  int run() override;
+
+ private:
+  bool paths_ = false;
+};
+
+}  // namespace
+
 ModelsCommand::ModelsCommand(CLI::App& app)
     : Subcommand(app, "models", "list the models, one per line (the catalog's)") {
   sub_->add_flag("--paths", paths_, "with the default matrix of each, where topconf looks for it");
@@ -18,6 +31,10 @@ int ModelsCommand::run() {
     std::cout << "\n";
   }
   return 0;
+}
+
+std::unique_ptr<topkit::cli::Subcommand> models_command(CLI::App& app) {
+  return std::make_unique<ModelsCommand>(app);
 }
 
 }  // namespace topconf::cli

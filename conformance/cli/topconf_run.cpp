@@ -14,9 +14,31 @@
 
 namespace topconf::cli {
 
+namespace {
+
+class RunCommand : public topkit::cli::Subcommand {
+ public:
+  explicit RunCommand(CLI::App& app);
+  int run() override;
+
+ private:
+  TargetArgs t_;
+  OutputArgs out_;
+  std::string model_name_, matrix_path_;
+  std::vector<std::string> case_ids_, tags_, levels_;
+  std::uint64_t seed_ = 0;
+  std::uint32_t retries_ = 0, timeout_ms_ = 0, settle_ms_ = 0;
+  bool no_color_ = false, quiet_ = false;
+  CLI::Option *seed_opt_ = nullptr, *retries_opt_ = nullptr, *timeout_opt_ = nullptr,
+              *settle_opt_ = nullptr;
+};
+
+}  // namespace
+
 RunCommand::RunCommand(CLI::App& app)
     : Subcommand(app, "run", "run a matrix against a target (default: an in-process topsim)") {
-  sub_->add_option("--target", target_, "udp://HOST:PORT, tcp://HOST:PORT or serial:DEVICE[@BAUD]");
+  sub_->add_option("--target", t_.target,
+                   "udp://HOST:PORT, tcp://HOST:PORT or serial:DEVICE[@BAUD]");
   sub_->add_option("--model", model_name_, top::model_list("|", "|"))->required();
   sub_->add_option("--matrix", matrix_path_,
                    "matrix JSON (default: <model>.json in share/topkit/matrices next to the "
@@ -31,14 +53,14 @@ RunCommand::RunCommand(CLI::App& app)
                                   "reply timeout per step (default: the matrix's)");
   settle_opt_ = sub_->add_option("--settle-ms", settle_ms_,
                                  "watch this long for duplicate replies (default: the matrix's)");
-  sub_->add_option("--json", json_out_, "write results with timestamped transcripts as JSON");
-  sub_->add_option("--junit", junit_out_, "write JUnit XML");
-  sub_->add_option("--html", html_out_, "write a self-contained HTML report");
-  sub_->add_option("--pcap", pcap_out_, "write every frame of the run to a pcap");
-  sub_->add_option("--sim-fault", sim_faults_,
+  sub_->add_option("--json", out_.json, "write results with timestamped transcripts as JSON");
+  sub_->add_option("--junit", out_.junit, "write JUnit XML");
+  sub_->add_option("--html", out_.html, "write a self-contained HTML report");
+  sub_->add_option("--pcap", out_.pcap, "write every frame of the run to a pcap");
+  sub_->add_option("--sim-fault", t_.sim_faults,
                    "in-process topsim only: inject these faults (as topsim --fault)");
-  sub_->add_option("--sim-seed", sim_seed_, "in-process topsim only: fault seed");
-  sub_->add_option("--bind", bind_port_,
+  sub_->add_option("--sim-seed", t_.sim_seed, "in-process topsim only: fault seed");
+  sub_->add_option("--bind", t_.bind_port,
                    "UDP: local port to receive on (default: 9004 for sip, ephemeral otherwise)");
   sub_->add_flag("--no-color", no_color_, "no ANSI colours in the table");
   sub_->add_flag("-q,--quiet", quiet_, "print the summary only");
@@ -53,16 +75,16 @@ int RunCommand::run() {
   }
   Matrix matrix;
   if (auto rc = load_run_matrix(model_name_, matrix_path_, matrix)) return *rc;
-  if (!target_.empty() && !sim_faults_.empty()) {
+  if (!t_.target.empty() && !t_.sim_faults.empty()) {
     spdlog::error("--sim-fault applies to the in-process topsim only (no --target)");
     return 2;
   }
   std::unique_ptr<Transport> transport;
   std::unique_ptr<pcapio::Recorder> pcap;
   try {
-    transport =
-        open_target(target_.empty(), target_, matrix.model, sim_faults_, sim_seed_, bind_port_);
-    if (!pcap_out_.empty()) pcap = std::make_unique<pcapio::Recorder>(pcap_out_, transport->tcp());
+    transport = open_target(t_.target.empty(), t_.target, matrix.model, t_.sim_faults, t_.sim_seed,
+                            t_.bind_port);
+    if (!out_.pcap.empty()) pcap = std::make_unique<pcapio::Recorder>(out_.pcap, transport->tcp());
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return 2;
@@ -89,13 +111,17 @@ int RunCommand::run() {
     write_console(std::cout, result, !no_color_ && ::isatty(1));
   }
   bool ok = true;
-  if (!json_out_.empty())
-    ok &= write_output(json_out_, [&](std::ostream& o) { o << to_json(result).dump(2) << "\n"; });
-  if (!junit_out_.empty())
-    ok &= write_output(junit_out_, [&](std::ostream& o) { write_junit(o, result); });
-  if (!html_out_.empty())
-    ok &= write_output(html_out_, [&](std::ostream& o) { write_html(o, result); });
+  if (!out_.json.empty())
+    ok &= write_output(out_.json, [&](std::ostream& o) { o << to_json(result).dump(2) << "\n"; });
+  if (!out_.junit.empty())
+    ok &= write_output(out_.junit, [&](std::ostream& o) { write_junit(o, result); });
+  if (!out_.html.empty())
+    ok &= write_output(out_.html, [&](std::ostream& o) { write_html(o, result); });
   return ok ? result.exit_code() : 2;
+}
+
+std::unique_ptr<topkit::cli::Subcommand> run_command(CLI::App& app) {
+  return std::make_unique<RunCommand>(app);
 }
 
 }  // namespace topconf::cli

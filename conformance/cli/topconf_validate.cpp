@@ -8,6 +8,19 @@
 
 namespace topconf::cli {
 
+namespace {
+
+class ValidateCommand : public topkit::cli::Subcommand {
+ public:
+  explicit ValidateCommand(CLI::App& app);
+  int run() override;
+
+ private:
+  std::vector<std::string> files_;
+};
+
+}  // namespace
+
 ValidateCommand::ValidateCommand(CLI::App& app)
     : Subcommand(app, "validate", "check matrix files against the schema rules") {
   sub_->add_option("files", files_, "matrix files")->required();
@@ -30,6 +43,10 @@ int ValidateCommand::run() {
       std::cout << f << ": ok, " << r.matrix->cases.size() << " case(s)\n";
   }
   return rc;
+}
+
+std::unique_ptr<topkit::cli::Subcommand> validate_command(CLI::App& app) {
+  return std::make_unique<ValidateCommand>(app);
 }
 
 }  // namespace topconf::cli

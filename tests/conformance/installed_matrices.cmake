@@ -2,16 +2,13 @@
 # matrices under PREFIX/share/topkit/matrices, and the installed topconf,
 # run from another directory with no TOPCONF_MATRIX_DIR, finds them there
 # (relative to its own binary, not at a source path baked in).
+include(GNUInstallDirs)
 set(prefix "${BINARY_DIR}/install-matrices/prefix")
 set(elsewhere "${BINARY_DIR}/install-matrices/cwd")
 file(REMOVE_RECURSE "${prefix}" "${elsewhere}")
 file(MAKE_DIRECTORY "${elsewhere}")
 execute_process(COMMAND ${CMAKE_COMMAND} --install "${BINARY_DIR}" --prefix "${prefix}"
-                --component tools RESULT_VARIABLE rc OUTPUT_QUIET)
-if(rc)
-  message(FATAL_ERROR "install failed: ${rc}")
-endif()
-include(GNUInstallDirs)
+                --component tools OUTPUT_QUIET COMMAND_ERROR_IS_FATAL ANY)
 set(dir "${prefix}/${CMAKE_INSTALL_DATADIR}/topkit/matrices")
 set(topconf "${prefix}/${CMAKE_INSTALL_BINDIR}/topconf")
 file(GLOB installed "${dir}/*.json")

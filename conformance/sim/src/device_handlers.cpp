@@ -1,6 +1,7 @@
 // The commands with state behind them, as a table: (dialect, identifier,
 // control) -> handler. A handler answers (true) or leaves the request to
-// the catalog-driven answer of Device::handle (false).
+// the catalog-driven answer of Device::handle (false); the SkyDroid writes
+// are echoed once their handler took them.
 #include <algorithm>
 
 #include "device_util.hpp"
@@ -108,14 +109,18 @@ struct Handlers {
         turn(c, a, spd->value);
       }
     }
-    echo(c);
     return true;
+  }
+
+  // The request's "action" field, -1 without one.
+  static int action(const Call& c) {
+    const auto* a = field(c.dec, "action");
+    return a ? static_cast<int>(a->integer) : -1;
   }
 
   static bool ptz(const Call& c) {
     Device& d = c.dev;
-    const auto* a = field(c.dec, "action");
-    const int act = a ? static_cast<int>(a->integer) : -1;
+    const int act = action(c);
     constexpr double kPtzRate = 10.0;
     if (act == 0) {
       for (Axis& x : d.axes_) x.rate = 0, x.has_target = false;
@@ -129,7 +134,6 @@ struct Handlers {
       static constexpr int kAxis[] = {1, 0, 2};
       turn(c, d.axes_[kAxis[(act - 0x0E) / 2]], (act % 2 == 0) ? kPtzRate : -kPtzRate);
     }
-    echo(c);
     return true;
   }
 
@@ -138,24 +142,20 @@ struct Handlers {
     const auto* r = field(c.dec, "rate");
     c.dev.start_stream(top::stream_enabled_by(c.dev.dialect_, c.req.ident_view())->push,
                        r ? static_cast<std::uint32_t>(r->integer) : 0, c.req.src, c.now_us);
-    echo(c);
     return true;
   }
 
   static bool record(const Call& c) {
     Device& d = c.dev;
-    const auto* a = field(c.dec, "action");
-    const int act = a ? static_cast<int>(a->integer) : -1;
+    const int act = action(c);
     const bool rec = act == 1 ? true : act == 0 ? false : !d.recording_;
     if (rec && !d.recording_) ++d.file_index_;
     d.recording_ = rec;
-    echo(c);
     return true;
   }
 
   static bool capture(const Call& c) {
     ++c.dev.file_index_;
-    echo(c);
     return true;
   }
 
@@ -165,7 +165,6 @@ struct Handlers {
     if (v == 1) d.zoom_ = std::max(1.0, d.zoom_ - 1);
     if (v == 2) d.zoom_ = std::min(30.0, d.zoom_ + 1);
     d.settings_["ZMC"] = std::string(c.req.data());
-    echo(c);
     return true;
   }
 };
@@ -177,6 +176,7 @@ struct Entry {
   std::string_view ident;
   char control;
   Handlers::Fn fn;
+  bool echo = false;  // the write is echoed once the handler took it
 };
 
 constexpr top::Dialect kSky = top::Dialect::skydroid;
@@ -192,11 +192,11 @@ constexpr Entry kHandlers[] = {
     {kTopotek, "GIA", 'w', Handlers::topotek_stream_write},
     {kTopotek, "GAA", 'w', Handlers::topotek_stream_write},
     {kTopotek, "GIC", 'r', Handlers::topotek_attitude_read},
-    {kSky, "PTZ", 'w', Handlers::ptz},
-    {kSky, "GAA", 'w', Handlers::stream_rate},
-    {kSky, "REC", 'w', Handlers::record},
-    {kSky, "CAP", 'w', Handlers::capture},
-    {kSky, "ZMC", 'w', Handlers::zoom},
+    {kSky, "PTZ", 'w', Handlers::ptz, true},
+    {kSky, "GAA", 'w', Handlers::stream_rate, true},
+    {kSky, "REC", 'w', Handlers::record, true},
+    {kSky, "CAP", 'w', Handlers::capture, true},
+    {kSky, "ZMC", 'w', Handlers::zoom, true},
 };
 
 }  // namespace
@@ -205,12 +205,19 @@ bool Device::dispatch(const top::Frame& req, const top::Decoded& dec, std::uint6
                       std::vector<std::string>& out) {
   const Handlers::Call call{*this, req, dec, now_us, out};
   const std::string_view id = req.ident_view();
+  const Entry* entry = nullptr;
   for (const Entry& e : kHandlers)
-    if (e.dialect == dialect_ && e.control == req.control && e.ident == id) return e.fn(call);
-  if (dialect_ == kSky && req.control == 'w')
+    if (e.dialect == dialect_ && e.control == req.control && e.ident == id) {
+      entry = &e;
+      break;
+    }
+  static constexpr Entry kMotion{kSky, "", 'w', Handlers::motion, true};
+  if (!entry && dialect_ == kSky && req.control == 'w')
     for (const rules::Motion& m : rules::kMotions)
-      if (m.ident == id) return Handlers::motion(call);
-  return false;
+      if (m.ident == id) entry = &kMotion;
+  if (!entry || !entry->fn(call)) return false;
+  if (entry->echo) Handlers::echo(call);
+  return true;
 }
 
 }  // namespace topsim

@@ -32,33 +32,36 @@ inline void setup_app(CLI::App& app, const std::string& tool) {
   app.get_formatter()->column_width(34);
 }
 
+// What is wrong with the first word of a command line whose tool needs a
+// subcommand, before CLI11 sees it (CLI11 would only say that a subcommand
+// is required): an unknown option, or a word that names no subcommand (with
+// the subcommands there are). Empty when nothing is.
+inline std::string subcommand_problem(CLI::App& app, int argc, char** argv) {
+  if (app.get_require_subcommand_min() == 0 || argc < 2) return {};
+  if (argv[1][0] == '-') {
+    std::string opt = argv[1];
+    opt = opt.substr(0, opt.find('='));
+    if (app.get_option_no_throw(opt)) return {};
+    return "unknown option \"" + opt + "\" (--help for more)";
+  }
+  const std::string word = argv[1];
+  std::string names;
+  bool known = false;
+  for (const CLI::App* s : app.get_subcommands({})) {
+    known = known || s->check_name(word);
+    names += (names.empty() ? "" : ", ") + s->get_name();
+  }
+  if (known) return {};
+  return "unknown subcommand \"" + word + "\" (one of " + names + "; --help for more)";
+}
+
 // Parses the command line. Returns -1 to go on, or the exit status: 0 after
 // --help or --version, 2 on bad usage (with CLI11's message, and for a word
 // where a subcommand belongs, the subcommands there are).
 inline int parse_or_exit(CLI::App& app, int argc, char** argv) {
-  if (app.get_require_subcommand_min() > 0 && argc > 1 && argv[1][0] == '-') {
-    // CLI11 would only say that a subcommand is required
-    std::string opt = argv[1];
-    opt = opt.substr(0, opt.find('='));
-    if (!app.get_option_no_throw(opt)) {
-      std::fprintf(stderr, "%s: unknown option \"%s\" (--help for more)\n", app.get_name().c_str(),
-                   opt.c_str());
-      return 2;
-    }
-  }
-  if (app.get_require_subcommand_min() > 0 && argc > 1 && argv[1][0] != '-') {
-    const std::string word = argv[1];
-    std::string names;
-    bool known = false;
-    for (const CLI::App* s : app.get_subcommands({})) {
-      known = known || s->check_name(word);
-      names += (names.empty() ? "" : ", ") + s->get_name();
-    }
-    if (!known) {
-      std::fprintf(stderr, "%s: unknown subcommand \"%s\" (one of %s; --help for more)\n",
-                   app.get_name().c_str(), word.c_str(), names.c_str());
-      return 2;
-    }
+  if (const std::string why = subcommand_problem(app, argc, argv); !why.empty()) {
+    std::fprintf(stderr, "%s: %s\n", app.get_name().c_str(), why.c_str());
+    return 2;
   }
   try {
     app.parse(argc, argv);
@@ -113,26 +116,9 @@ inline std::optional<std::size_t> one_of(const std::string& tool, const std::str
 // --version. Returns -1 to go on, or the exit status (0, or 2).
 inline int parse(CLI::App& app, int argc, char** argv) {
   const std::string tool = app.get_name();
-  if (app.get_require_subcommand_min() > 0 && argc > 1 && argv[1][0] == '-') {
-    std::string opt = argv[1];
-    opt = opt.substr(0, opt.find('='));
-    if (!app.get_option_no_throw(opt)) {
-      error(tool, "unknown option \"" + opt + "\" (--help for more)");
-      return 2;
-    }
-  }
-  if (app.get_require_subcommand_min() > 0 && argc > 1 && argv[1][0] != '-') {
-    const std::string word = argv[1];
-    std::string names;
-    bool known = false;
-    for (const CLI::App* s : app.get_subcommands({})) {
-      known = known || s->check_name(word);
-      names += (names.empty() ? "" : ", ") + s->get_name();
-    }
-    if (!known) {
-      error(tool, "unknown subcommand \"" + word + "\" (one of " + names + "; --help for more)");
-      return 2;
-    }
+  if (const std::string why = subcommand_problem(app, argc, argv); !why.empty()) {
+    error(tool, why);
+    return 2;
   }
   try {
     app.parse(argc, argv);
