@@ -2,15 +2,21 @@
 // --version flag, exit status 2 for every usage error (CLI11's own codes
 // are 100-115), an unknown subcommand named, option defaults shown in
 // --help (and so in the man pages generated from it, docs/man/), and a
-// failed write to stdout turned into exit status 2.
+// failed write to stdout turned into exit status 2. parse(), error(),
+// one_of() and Subcommand give topsim and topconf one error format
+// ("TOOL: error: ..."), one check of a named value and one subcommand
+// pattern; topkit/log.hpp points spdlog at the same format.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <initializer_list>
 #include <iostream>
+#include <optional>
 #include <string>
+#include <vector>
 
 #ifndef TOPKIT_VERSION
 #error "TOPKIT_VERSION is defined by CMake (the project's version)"
@@ -26,33 +32,36 @@ inline void setup_app(CLI::App& app, const std::string& tool) {
   app.get_formatter()->column_width(34);
 }
 
+// What is wrong with the first word of a command line whose tool needs a
+// subcommand, before CLI11 sees it (CLI11 would only say that a subcommand
+// is required): an unknown option, or a word that names no subcommand (with
+// the subcommands there are). Empty when nothing is.
+inline std::string subcommand_problem(CLI::App& app, int argc, char** argv) {
+  if (app.get_require_subcommand_min() == 0 || argc < 2) return {};
+  if (argv[1][0] == '-') {
+    std::string opt = argv[1];
+    opt = opt.substr(0, opt.find('='));
+    if (app.get_option_no_throw(opt)) return {};
+    return "unknown option \"" + opt + "\" (--help for more)";
+  }
+  const std::string word = argv[1];
+  std::string names;
+  bool known = false;
+  for (const CLI::App* s : app.get_subcommands({})) {
+    known = known || s->check_name(word);
+    names += (names.empty() ? "" : ", ") + s->get_name();
+  }
+  if (known) return {};
+  return "unknown subcommand \"" + word + "\" (one of " + names + "; --help for more)";
+}
+
 // Parses the command line. Returns -1 to go on, or the exit status: 0 after
 // --help or --version, 2 on bad usage (with CLI11's message, and for a word
 // where a subcommand belongs, the subcommands there are).
 inline int parse_or_exit(CLI::App& app, int argc, char** argv) {
-  if (app.get_require_subcommand_min() > 0 && argc > 1 && argv[1][0] == '-') {
-    // CLI11 would only say that a subcommand is required
-    std::string opt = argv[1];
-    opt = opt.substr(0, opt.find('='));
-    if (!app.get_option_no_throw(opt)) {
-      std::fprintf(stderr, "%s: unknown option \"%s\" (--help for more)\n", app.get_name().c_str(),
-                   opt.c_str());
-      return 2;
-    }
-  }
-  if (app.get_require_subcommand_min() > 0 && argc > 1 && argv[1][0] != '-') {
-    const std::string word = argv[1];
-    std::string names;
-    bool known = false;
-    for (const CLI::App* s : app.get_subcommands({})) {
-      known = known || s->check_name(word);
-      names += (names.empty() ? "" : ", ") + s->get_name();
-    }
-    if (!known) {
-      std::fprintf(stderr, "%s: unknown subcommand \"%s\" (one of %s; --help for more)\n",
-                   app.get_name().c_str(), word.c_str(), names.c_str());
-      return 2;
-    }
+  if (const std::string why = subcommand_problem(app, argc, argv); !why.empty()) {
+    std::fprintf(stderr, "%s: %s\n", app.get_name().c_str(), why.c_str());
+    return 2;
   }
   try {
     app.parse(argc, argv);
@@ -76,6 +85,75 @@ inline int close_stdout(const std::string& tool, int rc) {
     return 2;
   }
   return rc;
+}
+
+// ---------------------------------------------------------------------------
+// The one error format, the one parse, the one subcommand pattern (topsim and
+// topconf; topdump keeps parse_or_exit until it moves).
+
+// "TOOL: error: MESSAGE" on stderr: the format of every message a tool
+// writes about a failure (no timestamp; topkit/log.hpp sets spdlog to it).
+inline void error(const std::string& tool, const std::string& message) {
+  std::fprintf(stderr, "%s: error: %s\n", tool.c_str(), message.c_str());
+}
+
+// The index of `value` in `names`, or none with "TOOL: error: OPTION VALUE:
+// not one of A, B, C" (the one check of an option whose value names one of
+// a list: a model, a level, an enum).
+inline std::optional<std::size_t> one_of(const std::string& tool, const std::string& option,
+                                         const std::string& value,
+                                         const std::vector<std::string>& names) {
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (names[i] == value) return i;
+  std::string list;
+  for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+  error(tool, option + " " + value + ": not one of " + list);
+  return std::nullopt;
+}
+
+// Parses the command line as parse_or_exit does, with every usage error in
+// the one format ("TOOL: error: ..."), and stdout checked after --help and
+// --version. Returns -1 to go on, or the exit status (0, or 2).
+inline int parse(CLI::App& app, int argc, char** argv) {
+  const std::string tool = app.get_name();
+  if (const std::string why = subcommand_problem(app, argc, argv); !why.empty()) {
+    error(tool, why);
+    return 2;
+  }
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version
+    if (e.get_exit_code() == 0) return close_stdout(tool, app.exit(e));
+    error(tool, std::string(e.what()) + " (--help for more)");
+    return 2;
+  }
+  return -1;
+}
+
+// One subcommand: its options are added to the parent in the derived
+// class's constructor; run() is called when the command line chose it.
+class Subcommand {
+ public:
+  Subcommand(CLI::App& parent, const std::string& name, const std::string& help)
+      : sub_(parent.add_subcommand(name, help)) {}
+  virtual ~Subcommand() = default;
+  Subcommand(const Subcommand&) = delete;
+  Subcommand& operator=(const Subcommand&) = delete;
+  bool selected() const { return sub_->parsed(); }
+  // The exit status: 0, 1 (findings, failures) or 2.
+  virtual int run() = 0;
+
+ protected:
+  CLI::App* sub_;
+};
+
+// Runs the subcommand the command line chose and checks stdout after it.
+inline int run_selected(const std::string& tool, std::initializer_list<Subcommand*> subs) {
+  for (Subcommand* s : subs)
+    if (s->selected()) return close_stdout(tool, s->run());
+  error(tool, "a subcommand is required (--help for more)");
+  return 2;
 }
 
 }  // namespace topkit::cli

@@ -1,0 +1,240 @@
+// topsim: a stateful TOP gimbal camera on UDP, TCP, a pseudo-terminal or a
+// serial port, with seeded fault injection and pcap recording.
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <optional>
+
+#include "sim/server.hpp"
+#include "top/text.hpp"
+#include "topkit/cli.hpp"
+#include "topkit/log.hpp"
+#include "topkit/model.hpp"
+
+namespace {
+
+constexpr const char* kTool = "topsim";
+
+bool split_host_port(const std::string& s, std::string& host, std::uint16_t& port) {
+  const auto colon = s.rfind(':');
+  if (colon == std::string::npos) {
+    host = s;
+    return true;
+  }
+  host = s.substr(0, colon);
+  try {
+    const unsigned long p = std::stoul(s.substr(colon + 1));
+    if (p > 65535) return false;
+    port = static_cast<std::uint16_t>(p);
+  } catch (...) {
+    return false;
+  }
+  return !host.empty();
+}
+
+// The command line, as parsed.
+struct Options {
+  std::string model_name = "c12";
+  std::string udp, tcp, serial, faults, record;
+  bool pty = false, verbose = false, describe = false;
+  std::uint64_t seed = 1;
+  int reply_port = -1;
+  unsigned baud = 115200;
+  std::string profile_name = "field", push_order, push_header, reply_order, reply_header;
+  std::string yaw_sign, pitch_sign, field_codes;
+  bool udp_given = false, tcp_given = false;
+};
+
+void add_options(CLI::App& app, Options& o) {
+  app.add_option("--model", o.model_name, top::model_list("|", "|"))->capture_default_str();
+  app.add_option("--udp", o.udp,
+                 "serve UDP on HOST:PORT (default 127.0.0.1 and the model's port; the default "
+                 "transport but for the C20)")
+      ->expected(0, 1);
+  app.add_option("--tcp", o.tcp,
+                 "serve TCP on HOST:PORT (default 127.0.0.1 and the model's port; the default "
+                 "transport of the C20)")
+      ->expected(0, 1);
+  app.add_flag("--pty", o.pty, "serve on a new pseudo-terminal and print its path");
+  app.add_option("--serial", o.serial, "serve on a serial device");
+  app.add_option("--baud", o.baud, "serial baud rate")->capture_default_str();
+  app.add_option("--fault", o.faults,
+                 "faults: drop=P,delay=MS,duplicate=P,bad-checksum=P,header-case=P,no-swap,"
+                 "lying-length=P,tmp-quirk,split,garbage=P,hang-on=IDENT; firmware faults (SIGHUP "
+                 "restarts the device): crash-on=CLASS,hang-on=CLASS,hang-s=S,slow-on=CLASS,"
+                 "slow-ms=MS,answer-corrupt, CLASS = ident:ID|len:N|byte:HH");
+  app.add_option("--seed", o.seed, "seed of the fault injection")->capture_default_str();
+  app.add_option("--record", o.record, "write every frame received and sent to FILE.pcap");
+  app.add_option("--reply-port", o.reply_port,
+                 "UDP: send replies to this client port (0: the request's source port; "
+                 "default 9004 for sip as the Topotek document says, 0 otherwise)");
+  app.add_flag("-v,--verbose", o.verbose,
+               "log every datagram received and sent (UDP, TCP, pty, serial) on stderr");
+  app.add_option("--profile", o.profile_name,
+                 "field: follow field evidence, then the document's examples, then its rules; "
+                 "document: the document's examples, then its rules")
+      ->check(CLI::IsMember({"field", "document"}))
+      ->capture_default_str();
+  // An option whose value is one of `values`.
+  auto choice = [&](const char* name, std::string& value, const char* help,
+                    std::vector<std::string> values) {
+    app.add_option(name, value, help)->check(CLI::IsMember(std::move(values)));
+  };
+  choice("--push-order", o.push_order, "attitude push addresses: swapped|request-order",
+         {"swapped", "request-order"});
+  choice("--push-header", o.push_header, "attitude push header: TP|tp", {"TP", "tp"});
+  choice("--reply-order", o.reply_order, "read reply addresses: swapped|request-order",
+         {"swapped", "request-order"});
+  choice("--reply-header", o.reply_header, "read reply header (2-15 data chars): TP|tp",
+         {"TP", "tp"});
+  choice("--yaw-sign", o.yaw_sign, "attitude yaw against the command: normal|inverted",
+         {"normal", "inverted"});
+  choice("--pitch-sign", o.pitch_sign, "attitude pitch against the command: normal|inverted",
+         {"normal", "inverted"});
+  choice("--field-codes", o.field_codes,
+         "accept the command values field evidence says the model takes (C13 PTZ): "
+         "on|off",
+         {"on", "off"});
+  app.add_flag("--describe", o.describe,
+               "print the device's traits with their sources (profile, options) and exit");
+}
+
+// The device's options from the traits given.
+topsim::DeviceOptions device_options(const Options& o) {
+  topsim::DeviceOptions dopt;
+  dopt.profile = *top::profile_from_string(o.profile_name);
+  auto order = [](const std::string& v) {
+    return v == "swapped" ? top::Order::swapped : top::Order::request_order;
+  };
+  auto header = [](const std::string& v) {
+    return v == "TP" ? top::Header::fixed : top::Header::variable;
+  };
+  if (!o.push_order.empty()) dopt.push_order = order(o.push_order);
+  if (!o.push_header.empty()) dopt.push_header = header(o.push_header);
+  if (!o.reply_order.empty()) dopt.reply_order = order(o.reply_order);
+  if (!o.reply_header.empty()) dopt.reply_header = header(o.reply_header);
+  if (!o.yaw_sign.empty()) dopt.yaw_inverted = o.yaw_sign == "inverted";
+  if (!o.pitch_sign.empty()) dopt.pitch_inverted = o.pitch_sign == "inverted";
+  if (!o.field_codes.empty()) dopt.field_ptz = o.field_codes == "on";
+  return dopt;
+}
+
+// The server's configuration, or the exit status (2) after a message.
+std::optional<int> configure(const Options& o, top::Model model, topsim::ServerConfig& cfg) {
+  const int chosen = static_cast<int>(o.udp_given) + static_cast<int>(o.tcp_given) +
+                     static_cast<int>(o.pty) + static_cast<int>(!o.serial.empty());
+  if (chosen > 1) {
+    spdlog::error("choose one of --udp, --tcp, --pty, --serial");
+    return 2;
+  }
+  cfg.model = model;
+  cfg.device_options = device_options(o);
+  cfg.seed = o.seed;
+  cfg.record = o.record;
+  cfg.baud = o.baud;
+  cfg.port = topsim::default_port(model);
+  if (o.pty) {
+    cfg.kind = topsim::TransportKind::pty;
+  } else if (!o.serial.empty()) {
+    cfg.kind = topsim::TransportKind::serial;
+    cfg.device = o.serial;
+  } else {
+    cfg.kind = o.tcp_given   ? topsim::TransportKind::tcp
+               : o.udp_given ? topsim::TransportKind::udp
+                             : topsim::default_transport(model);
+    const std::string& spec = cfg.kind == topsim::TransportKind::tcp ? o.tcp : o.udp;
+    if (!spec.empty() && !split_host_port(spec, cfg.host, cfg.port)) {
+      spdlog::error("{}: expected HOST:PORT", spec);
+      return 2;
+    }
+    if (cfg.kind == topsim::TransportKind::udp && spec.empty())
+      cfg.extra_udp_ports = topsim::extra_udp_ports(model);
+  }
+  cfg.reply_port =
+      o.reply_port >= 0 ? static_cast<std::uint16_t>(o.reply_port) : top::client_port(model);
+  if (!o.faults.empty()) {
+    std::string err;
+    auto f = topsim::parse_faults(o.faults, err);
+    if (!f) {
+      spdlog::error("--fault: {}", err);
+      return 2;
+    }
+    cfg.faults = *f;
+  }
+  if (o.verbose) {
+    // Each datagram (or chunk of a stream), both ways, bytes escaped.
+    cfg.on_traffic = [](const topsim::Traffic& t) {
+      spdlog::debug("{} {} {} {} bytes: {}", t.link, t.dir, t.peer, t.bytes.size(),
+                    top::escape(t.bytes));
+    };
+  }
+  return std::nullopt;
+}
+
+// Serves until SIGINT or SIGTERM; the address served goes to stdout.
+int serve(const Options& o, const topsim::ServerConfig& cfg) {
+  topsim::Server server(cfg);
+  server.stop_on_signals();
+  server.restart_on_hangup();
+  switch (cfg.kind) {
+    case topsim::TransportKind::pty:
+      std::printf("%s\n", server.pty_path().c_str());
+      std::fflush(stdout);
+      spdlog::info("topsim {} on pseudo-terminal {}", o.model_name, server.pty_path());
+      break;
+    case topsim::TransportKind::serial:
+      spdlog::info("topsim {} on serial {} at {} baud", o.model_name, cfg.device, cfg.baud);
+      break;
+    default:
+      std::printf("%s %s:%u\n", cfg.kind == topsim::TransportKind::tcp ? "tcp" : "udp",
+                  cfg.host.c_str(), static_cast<unsigned>(server.port()));
+      for (std::size_t i = 1; i < server.udp_ports().size(); ++i)
+        std::printf("udp %s:%u\n", cfg.host.c_str(), static_cast<unsigned>(server.udp_ports()[i]));
+      std::fflush(stdout);
+      spdlog::info(
+          "topsim {} listening on {} {}:{}{}", o.model_name,
+          cfg.kind == topsim::TransportKind::tcp ? "tcp" : "udp", cfg.host, server.port(),
+          cfg.reply_port ? " (replies to port " + std::to_string(cfg.reply_port) + ")" : "");
+  }
+  if (cfg.faults.any()) spdlog::info("faults: {} (seed {})", o.faults, o.seed);
+  server.run();
+  spdlog::info("{} frames in, {} frames out", server.stats().frames_in.load(),
+               server.stats().frames_out.load());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Messages go to stderr ("topsim: error: ..."); stdout carries the address served.
+  topkit::cli::use_stderr_log(kTool);
+  CLI::App app{
+      "topsim: a TOP gimbal camera simulator (SkyDroid C10/C10Pro/C12/C13/C20, Topotek SIP)"};
+  topkit::cli::setup_app(app, kTool);
+  Options o;
+  add_options(app, o);
+  if (int rc = topkit::cli::parse(app, argc, argv); rc >= 0) return rc;
+  o.udp_given = app.count("--udp") > 0;
+  o.tcp_given = app.count("--tcp") > 0;
+
+  const auto model = topkit::cli::model_arg(kTool, o.model_name);
+  if (!model) return 2;
+  if (o.describe) {
+    const topsim::Device dev(*model, device_options(o));
+    std::printf("topsim %s, profile %s\n", o.model_name.c_str(), o.profile_name.c_str());
+    for (const auto& t : dev.describe())
+      std::printf("  %-24s %-22s %-17s %s\n", t.name.c_str(), t.value.c_str(), t.source.c_str(),
+                  t.evidence.c_str());
+    return topkit::cli::close_stdout(kTool, 0);
+  }
+  topsim::ServerConfig cfg;
+  if (auto rc = configure(o, *model, cfg)) return *rc;
+  if (o.verbose) spdlog::set_level(spdlog::level::debug);
+  try {
+    return topkit::cli::close_stdout(kTool, serve(o, cfg));
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  }
+}

@@ -1,0 +1,403 @@
+#include "conf/generate.hpp"
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "sim/rules.hpp"
+
+namespace topconf {
+namespace {
+
+using json = nlohmann::ordered_json;
+using top::Dialect;
+using top::FieldKind;
+
+std::string section_number(std::string_view section) {
+  // "SkyDroid 3.3.1" -> "3.3.1"; "SkyDroid appendix I" -> "appendix-I"
+  auto sp = section.find(' ');
+  std::string s(sp == std::string_view::npos ? section : section.substr(sp + 1));
+  for (char& c : s)
+    if (c == ' ') c = '-';
+  return s;
+}
+
+const top::FormSpec* find_form(const top::CommandSpec& c, char control, top::Role role) {
+  for (const auto& f : c.forms)
+    if (f.control == control && (f.role == role || f.role == top::Role::any)) return &f;
+  return nullptr;
+}
+
+bool clean_request(Dialect d, top::Model m, const top::CommandSpec& c, char control,
+                   const std::string& data) {
+  top::BuildSpec b;
+  b.src = topsim::rules::client_address(d, topsim::Link::network);
+  b.dst = c.address;
+  b.control = control;
+  b.ident = c.ident;
+  b.data = data;
+  b.header = top::choose_header(d, c.address, data.size());
+  auto p = top::parse_exact(top::build_frame(b));
+  if (p.status != top::ParseStatus::frame || !p.frame.ok()) return false;
+  top::DecodeOptions o;
+  o.dialect = d;
+  o.model = m;
+  o.role = top::Role::request;
+  auto dec = top::decode(p.frame, o);
+  if (!dec.form) return false;
+  for (const auto& f : dec.findings)
+    if (f.severity != top::Severity::info) return false;
+  return true;
+}
+
+// Data for a write that differs from the device's default where it can:
+// the first enum value or the low end of each range.
+std::string alternate_data(const top::FormSpec& form) {
+  std::vector<top::EncodeValue> vals;
+  std::vector<std::string> texts;
+  texts.reserve(form.fields.size());
+  for (const auto& f : form.fields) {
+    top::EncodeValue v;
+    switch (f.kind) {
+      case FieldKind::enum_hex:
+      case FieldKind::enum_char:
+        if (!f.enums.empty()) v.number = static_cast<double>(f.enums.front().value);
+        break;
+      case FieldKind::text:
+        texts.push_back(f.width == 0 ? "10.0.0.9" : std::string(f.width, 'B'));
+        v.text = texts.back();
+        v.use_text = true;
+        break;
+      case FieldKind::raw:
+      case FieldKind::nmea:
+        return top::example_data(form);
+      default:
+        v.number = f.min <= f.max ? f.min : 1 * f.scale;
+    }
+    vals.push_back(v);
+  }
+  std::string out;
+  if (!top::encode_fields(form, vals, out)) return top::example_data(form);
+  return out;
+}
+
+bool same_layout(const top::FormSpec& a, const top::FormSpec& b) {
+  if (a.fields.size() != b.fields.size()) return false;
+  for (std::size_t i = 0; i < a.fields.size(); ++i)
+    if (a.fields[i].kind != b.fields[i].kind || a.fields[i].width != b.fields[i].width)
+      return false;
+  return a.min_length == b.min_length && a.max_length == b.max_length;
+}
+
+json send(const top::CommandSpec& c, char control, const std::string& data) {
+  json j{{"command", std::string(c.ident)}, {"control", std::string(1, control)}};
+  bool printable = true;
+  for (unsigned char ch : data) printable = printable && ch >= 0x20 && ch < 0x7F;
+  if (printable) {
+    j["data"] = data;
+  } else {
+    std::string hex;
+    char b[3];
+    for (unsigned char ch : data) {
+      std::snprintf(b, sizeof b, "%02X", static_cast<unsigned>(ch));
+      hex += b;
+    }
+    j["data_hex"] = hex;
+  }
+  return j;
+}
+
+json echo_alts() {
+  return json::array({json{{"echo", true}},
+                      json{{"echo", true},
+                           {"addresses", "any"},
+                           {"tolerated", true},
+                           {"note", "reply keeps the client's address first (some simulators)"}}});
+}
+
+// An answer in the reply layout `reply`; addresses kept in the request's
+// order are tolerated.
+json reply_alts(const json& reply) {
+  return json::array(
+      {json{{"reply", reply}}, json{{"reply", reply},
+                                    {"addresses", "any"},
+                                    {"tolerated", true},
+                                    {"note", "reply keeps the client's address first"}}});
+}
+
+json reply_checks(const top::FormSpec& resp) {
+  json fields = json::object();
+  for (const auto& f : resp.fields) {
+    json chk = json::object();
+    if ((f.kind == FieldKind::enum_hex || f.kind == FieldKind::enum_char) && !f.enums.empty()) {
+      json names = json::array();
+      for (const auto& e : f.enums) names.push_back(std::string(e.name));
+      chk["enum"] = names;
+    } else if (f.min <= f.max && f.kind != FieldKind::text && f.kind != FieldKind::raw) {
+      chk["min"] = f.min;
+      chk["max"] = f.max;
+    }
+    if (!chk.empty()) fields[std::string(f.name)] = chk;
+  }
+  return fields;
+}
+
+json models_of(const top::CommandSpec& c) {
+  json models = json::array();
+  for (top::Model m : top::all_models())
+    if (c.models & top::model_bit(m)) models.push_back(std::string(top::to_string(m)));
+  return models;
+}
+
+// The matrix of one model, built case by case.
+struct Generator {
+  top::Model model;
+  Dialect d = top::dialect_of(model);
+  bool sky = d == Dialect::skydroid;
+  std::string dn = std::string(top::to_string(d));
+  std::string ere_section = sky ? "SkyDroid 2.3.2" : "Topotek 2";
+  json negative_silence = json{{"silence_ms", 60}};
+  json cases = json::array();
+  std::vector<std::string> classes_done;
+
+  json error_alts() const {
+    if (!sky) return json::array({negative_silence});
+    return json::array({json{{"error", true}},
+                        json{{"error", true},
+                             {"addresses", "any"},
+                             {"tolerated", true},
+                             {"note", "ERE without swapped addresses"}},
+                        json{{"silence_ms", 60},
+                             {"tolerated", true},
+                             {"note", "the device ignores the invalid command instead of ERE"}}});
+  }
+
+  json head() const {
+    const std::string doc =
+        sky ? "SkyDroid TOP protocol V1.1.5 (seeds/000_3e8dc32e1138ca8b.txt)"
+            : "Topotek SIP Udp&uart-Protocol V1.1.3 (seeds/001_3ee7043eb5910c28.txt)";
+    json m;
+    m["$schema"] = "../matrix.schema.json";
+    m["format"] = "topconf-matrix-1";
+    m["title"] = "Default conformance matrix for " + std::string(top::to_string(model)) +
+                 " (generated from the TOPKit catalog by `topconf generate`; edit freely)";
+    m["model"] = std::string(top::to_string(model));
+    m["document"] = doc;
+    m["defaults"] = {
+        {"timeout_ms", 300}, {"retries", 1}, {"settle_ms", 15}, {"probe_timeout_ms", 500}};
+    m["probe"] = sky ? json{{"command", "AWB"}, {"control", "r"}, {"data", "00"}}
+                     : json{{"command", "VER"}, {"control", "r"}, {"data", "00"}, {"dst", "G"}};
+    return m;
+  }
+
+  // What the cases of one command share.
+  struct Command {
+    const top::CommandSpec& c;
+    std::string id, base, level, cls;
+    bool appendix = false, destructive = false;
+    json models;
+    const top::FormSpec *w = nullptr, *rq = nullptr, *rs = nullptr;
+    std::string wdata, rdata;
+    json tags(std::initializer_list<const char*> extra) const {
+      json t = json::array({std::string("class-") + cls, id});
+      for (auto e : extra) t.push_back(e);
+      if (appendix) t.push_back("appendix");
+      if (destructive) t.push_back("destructive");
+      return t;
+    }
+    json head(const std::string& suffix, const std::string& title, const std::string& lvl,
+              json tag_list) const {
+      return {{"id", base + suffix},
+              {"section", std::string(c.section)},
+              {"title", std::string(c.title) + title},
+              {"level", lvl},
+              {"models", models},
+              {"tags", std::move(tag_list)}};
+    }
+  };
+
+  Command command_of(const top::CommandSpec& c) const {
+    Command k{c};
+    k.id = std::string(c.ident);
+    k.base = dn + "/" + section_number(c.section) + "/" + k.id;
+    k.appendix = c.section.find("appendix") != std::string_view::npos;
+    k.destructive = k.id == "RST" || k.id == "RTF";
+    k.level = k.appendix || k.destructive ? "may" : "must";
+    k.cls = std::string(1, c.address);
+    k.models = models_of(c);
+    k.w = find_form(c, 'w', top::Role::request);
+    k.rq = find_form(c, 'r', top::Role::request);
+    k.rs = find_form(c, 'r', top::Role::response);
+    if (k.w) {
+      k.wdata = top::example_data(*k.w);
+      // Pushes are the stream case's business: switch them off.
+      if (top::stream_enabled_by(d, k.id)) k.wdata = "00";
+      if (!clean_request(d, model, c, 'w', k.wdata)) k.w = nullptr;
+    }
+    if (k.rq) {
+      k.rdata = top::example_data(*k.rq);
+      if (!clean_request(d, model, c, 'r', k.rdata)) k.rq = nullptr;
+    }
+    return k;
+  }
+
+  void positive(const Command& k) {
+    const top::CommandSpec& c = k.c;
+    // A write with its own reply layout (Topotek REC/CAP: state and file
+    // index) is answered in that layout; any other write is echoed.
+    const top::FormSpec* wr = nullptr;
+    for (const auto& f : c.forms)
+      if (f.control == 'w' && f.role == top::Role::response) wr = &f;
+    if (k.w) {
+      json expect = echo_alts();
+      std::string answer = "echoed with the addresses swapped";
+      if (wr) {
+        json reply = {{"control", "w"}};
+        json f = reply_checks(*wr);
+        if (!f.empty()) reply["fields"] = f;
+        expect = reply_alts(reply);
+        answer = "answered in its reply layout";
+      }
+      json cs = k.head("/write", ": a write is " + answer, k.level, k.tags({"positive", "write"}));
+      cs["steps"] = json::array({{{"send", send(c, 'w', k.wdata)}, {"expect", expect}}});
+      cases.push_back(std::move(cs));
+    }
+    if (k.rq) {
+      json reply = {{"control", "r"}};
+      if (k.rs && k.rs->role == top::Role::response) {
+        json f = reply_checks(*k.rs);
+        if (!f.empty()) reply["fields"] = f;
+      }
+      if (k.appendix) reply.erase("control");
+      json cs =
+          k.head("/read", ": a read is answered with data", k.level, k.tags({"positive", "read"}));
+      cs["steps"] = json::array({{{"send", send(c, 'r', k.rdata)}, {"expect", reply_alts(reply)}}});
+      cases.push_back(std::move(cs));
+    }
+    if (k.w && k.rq && k.rs && k.rs->role == top::Role::response && same_layout(*k.w, *k.rs) &&
+        !k.destructive) {
+      std::string alt = alternate_data(*k.w);
+      if (!clean_request(d, model, c, 'w', alt)) alt = k.wdata;
+      json cs = k.head("/state", ": a written value reads back",
+                       k.level == "must" ? "should" : k.level, k.tags({"state"}));
+      cs["steps"] = json::array(
+          {{{"send", send(c, 'w', alt)},
+            {"expect", json::array({json{{"readback", {{"send", send(c, 'r', k.rdata)}}}}})}}});
+      cases.push_back(std::move(cs));
+    }
+  }
+
+  // Negative: wrong length (per command) and a bad checksum (per class).
+  void negative(const Command& k) {
+    const top::CommandSpec& c = k.c;
+    const top::FormSpec* any = k.w ? k.w : k.rq;
+    const char ctl = k.w ? 'w' : 'r';
+    if (any && any->min_length > 0 && any->max_length < 15) {
+      const std::string bad = (k.w ? k.wdata : k.rdata).substr(0, any->min_length - 1);
+      json cs = k.head("/wrong-length", ": a frame with a wrong data length is rejected", "should",
+                       k.tags({"negative", "wrong-length"}));
+      cs["section"] = ere_section;
+      cs["steps"] = json::array({{{"send", send(c, ctl, bad)}, {"expect", error_alts()}}});
+      cases.push_back(std::move(cs));
+    }
+    if (!any || std::find(classes_done.begin(), classes_done.end(), k.cls) != classes_done.end())
+      return;
+    classes_done.push_back(k.cls);
+    top::BuildSpec b;
+    b.src = topsim::rules::client_address(d, topsim::Link::network);
+    b.dst = c.address;
+    b.control = ctl;
+    b.ident = c.ident;
+    const std::string data = k.w ? k.wdata : k.rdata;
+    b.data = data;
+    b.header = top::choose_header(d, c.address, data.size());
+    std::string f = top::build_frame(b);
+    // Corrupt the checksum: add one to its value.
+    const std::uint8_t bad_cs =
+        static_cast<std::uint8_t>(top::checksum(f.substr(0, f.size() - 2)) + 1);
+    char cs[2];
+    top::put_hex2(bad_cs, cs);
+    f.replace(f.size() - 2, 2, cs, 2);
+    if (!sky) f.replace(3, 1, "{client}");
+    cases.push_back({{"id", dn + "/frame/bad-checksum/class-" + k.cls},
+                     {"section", sky ? "SkyDroid 2.3" : "Topotek 2"},
+                     {"title", "a " + k.id + " frame with a wrong checksum gets no answer"},
+                     {"level", "should"},
+                     {"tags", json::array({"negative", "bad-checksum", "class-" + k.cls})},
+                     {"steps", json::array({{{"send", {{"raw", f}}},
+                                             {"expect", json::array({negative_silence})}}})}});
+  }
+
+  void frame_cases() {
+    // Unknown identifier.
+    cases.push_back(
+        {{"id", dn + "/frame/unknown-ident"},
+         {"section", ere_section},
+         {"title", "an unknown identifier is rejected (ERE on SkyDroid, silence on Topotek)"},
+         {"level", "should"},
+         {"tags", json::array({"negative", "unknown-ident"})},
+         {"steps",
+          json::array(
+              {{{"send", {{"command", "ZZZ"}, {"control", "r"}, {"data", "00"}, {"dst", "D"}}},
+                {"expect", error_alts()}}})}});
+    if (!sky) return;
+    // The document's own ERE example, as an exact frame.
+    cases.push_back(
+        {{"id", "skydroid/2.3.2/ERE/example"},
+         {"section", "SkyDroid 2.3.2"},
+         {"title", "the invalid-command reply is exactly #TPMU2wERE!!30"},
+         {"level", "should"},
+         {"tags", json::array({"negative", "exact-frame"})},
+         {"steps", json::array({{{"send", {{"raw", "#TPUM2rZZZ00"}}},
+                                 {"expect", json::array({json{{"frame", "#TPMU2wERE!!30"}}})}}})}});
+  }
+
+  // Streaming: every device stream of the catalog (top/device.hpp): SkyDroid
+  // GAA (rate in Hz), Topotek GAA and GIA (on/off, the device's rate).
+  void stream_cases() {
+    for (const top::StreamSpec& st : top::streams()) {
+      if (st.dialect != d || st.sender != top::Sender::device) continue;
+      const top::CommandSpec* gaa = top::find_command(d, st.request);
+      if (!gaa || !gaa->supports(model)) continue;
+      const std::string on = st.rate_in_data ? "0A" : "01";
+      const double hz = 10;
+      const std::string push(st.push);
+      const json stream = {{"ident", push},
+                           {"rate_hz", hz},
+                           {"tolerance", topsim::rules::kStreamRateTolerance},
+                           {"duration_ms", 450}};
+      cases.push_back(
+          {{"id",
+            dn + "/" + section_number(gaa->section) + "/" + std::string(gaa->ident) + "/stream"},
+           {"section", std::string(gaa->section)},
+           {"title", push + " is pushed at the rate " + std::string(gaa->ident) + " asked for"},
+           {"level", "must"},
+           {"models", models_of(*gaa)},
+           {"tags", json::array({"stream", "class-G", std::string(gaa->ident)})},
+           {"steps", json::array({
+                         {{"send", send(*gaa, 'w', on)}, {"expect", echo_alts()}},
+                         {{"expect", json::array({json{{"stream", stream}}})}},
+                         {{"send", send(*gaa, 'w', "00")}, {"expect", echo_alts()}},
+                     })}});
+    }
+  }
+};
+
+}  // namespace
+
+json generate_matrix(top::Model model) {
+  Generator g{model};
+  json m = g.head();
+  for (const top::CommandSpec& c : top::commands(g.d)) {
+    if (!c.supports(model) || topsim::rules::is_error_reply(c.ident)) continue;
+    const Generator::Command k = g.command_of(c);
+    g.positive(k);
+    g.negative(k);
+  }
+  g.frame_cases();
+  g.stream_cases();
+  m["cases"] = g.cases;
+  return m;
+}
+
+}  // namespace topconf

@@ -1,0 +1,141 @@
+// topsim's device model: a stateful gimbal camera for one model, built on
+// the catalog. Pure: bytes and a time in, frames out. No I/O, no clock of
+// its own (the caller passes `now_us`), so tests and fuzzers drive it
+// deterministically.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sim/rules.hpp"
+#include "top/top.hpp"
+
+namespace topsim {
+
+struct DeviceOptions {
+  // Where the device's behaviour comes from (top/device.hpp): field
+  // evidence, then the document's examples, then its rules; or the
+  // document alone. Each trait below overrides the profile when set.
+  top::Profile profile = top::Profile::field;
+  std::optional<top::Order> push_order;    // GAC/GIC pushes
+  std::optional<top::Header> push_header;  // fixed (#TP) or variable (#tp)
+  std::optional<top::Order> reply_order;   // replies to reads
+  std::optional<top::Header> reply_header;
+  std::optional<bool> yaw_inverted;    // attitude reports -yaw of the command
+  std::optional<bool> pitch_inverted;  // the same for pitch
+  std::optional<bool> field_ptz;       // C13: PTZ codes the field says work
+  bool swap_addresses = true;          // false: the no-swap fault (client first)
+  bool tmp_quirk = false;              // answer TMP in the malformed #tpDU16wTMP form
+  // A speed command holds for this long unless refreshed (field notes:
+  // motors stop when rate commands are not refreshed).
+  std::uint32_t speed_hold_ms = rules::kSpeedHoldMs;
+  // Push rate of Topotek GIC/GAC streams, which GIA/GAA only switch on.
+  std::uint32_t topotek_stream_hz = 10;
+};
+
+// One gimbal axis: an angle moving toward a target at a speed, or turning
+// at a commanded rate until the rate expires.
+struct Axis {
+  double angle = 0;  // deg
+  double min = -90, max = 90;
+  bool has_target = false;
+  double target = 0;        // deg
+  double target_speed = 0;  // deg/s
+  double rate = 0;          // deg/s
+  std::uint64_t rate_until = 0;
+};
+
+// An attitude stream switched on by GAA (SkyDroid, rate in Hz) or GIA/GAA
+// (Topotek, on/off).
+struct Stream {
+  std::string ident;            // GAC or GIC
+  std::uint32_t period_us = 0;  // 0: off
+  std::uint64_t next_us = 0;
+  char dst = 'U';  // client address the pushes go to
+};
+
+class Device {
+ public:
+  explicit Device(top::Model model, DeviceOptions opts = {});
+
+  top::Model model() const noexcept { return model_; }
+  // One trait as the device applies it, with its source.
+  struct TraitLine {
+    std::string name;    // the switch: "push-order"
+    std::string value;   // "request-order"
+    std::string source;  // "field", "document example", "document rule", "option"
+    std::string evidence;
+  };
+  // Every trait of this device (for `topsim --describe`).
+  std::vector<TraitLine> describe() const;
+  top::Dialect dialect() const noexcept { return dialect_; }
+  const DeviceOptions& options() const noexcept { return opts_; }
+
+  // Handles one parsed request received on `link` at `now_us` and appends
+  // the frames the device sends back (none for silence).
+  void handle(const top::Frame& request, Link link, std::uint64_t now_us,
+              std::vector<std::string>& out);
+
+  // When the next stream frame is due (max() when no stream runs).
+  std::uint64_t next_timer() const noexcept;
+  // Appends the stream frames due at `now_us`.
+  void poll(std::uint64_t now_us, std::vector<std::string>& out);
+
+  // State, for tests and the console.
+  const Axis& yaw() const noexcept { return axes_[0]; }
+  const Axis& pitch() const noexcept { return axes_[1]; }
+  const Axis& roll() const noexcept { return axes_[2]; }
+  void advance(std::uint64_t now_us) noexcept;
+  bool recording() const noexcept { return recording_; }
+  std::uint32_t file_index() const noexcept { return file_index_; }
+  // The stored data of a setting (written value or default), "" if none.
+  std::string setting(std::string_view ident) const;
+  const std::vector<Stream>& streams() const noexcept { return streams_; }
+  std::uint64_t requests() const noexcept { return requests_; }
+
+ private:
+  bool accepts(const top::Frame& f, Link link) const noexcept;
+  std::string make(top::Header h, const top::Frame& req, char control, std::string_view ident,
+                   std::string_view data) const;
+  void reply_error(const top::Frame& req, std::vector<std::string>& out) const;
+  // The commands with state behind them (sim/src/device_handlers.cpp): true
+  // when a handler answered `req`.
+  bool dispatch(const top::Frame& req, const top::Decoded& dec, std::uint64_t now_us,
+                std::vector<std::string>& out);
+  friend struct Handlers;
+  void start_stream(std::string_view ident, std::uint32_t hz, char dst, std::uint64_t now_us);
+  std::string attitude_data() const;
+  std::string read_data(const top::CommandSpec& cmd, const top::FormSpec& form) const;
+  // The form of a reply or push of `ident` with `length` data chars: the
+  // profile's, then the options' overrides, then the no-swap fault.
+  top::DeviceForm form_of(std::string_view ident, top::Sent sent, std::size_t length) const;
+  std::string build(const top::DeviceForm& form, char client, char device, char control,
+                    std::string_view ident, std::string_view data) const;
+  bool takes_in_field(const top::Decoded& dec) const;
+
+  top::Model model_;
+  top::Dialect dialect_;
+  DeviceOptions opts_;
+  bool yaw_inverted_ = false, pitch_inverted_ = false, field_ptz_ = false;
+  Axis axes_[3];
+  std::uint64_t now_us_ = 0;
+  bool recording_ = false;
+  std::uint32_t file_index_ = 0;
+  double zoom_ = 1.0;
+  std::map<std::string, std::string, std::less<>> settings_;
+  std::vector<Stream> streams_;
+  std::uint64_t requests_ = 0;
+};
+
+// The request handler as a function (the fuzz entry point): one datagram's
+// bytes in, the frames the device answers out. Never throws on any input.
+// Through sim/intake.hpp's Intake, as every transport.
+std::vector<std::string> handle_datagram(Device& device, std::string_view bytes, Link link,
+                                         std::uint64_t now_us);
+
+}  // namespace topsim

@@ -1,0 +1,91 @@
+// topsim's transports: the device model served over UDP, TCP, a
+// pseudo-terminal or a serial port with Asio, with fault injection and an
+// optional pcap recording.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sim/device.hpp"
+#include "sim/faults.hpp"
+
+namespace topsim {
+
+enum class TransportKind : std::uint8_t { udp, tcp, pty, serial };
+
+// One datagram (or chunk of a byte stream) on a transport, for topsim
+// --verbose: received ('<') or sent ('>').
+struct Traffic {
+  std::string_view link;  // "udp", "tcp", "pty", "serial"
+  char dir = '<';
+  std::string peer;  // "127.0.0.1:40000" or the line's path
+  std::string_view bytes;
+};
+
+struct ServerConfig {
+  top::Model model = top::Model::c12;
+  TransportKind kind = TransportKind::udp;
+  std::string host = "127.0.0.1";
+  std::uint16_t port = 0;        // 0: ephemeral (tests); the CLI fills the model's port
+  std::uint16_t reply_port = 0;  // UDP: 0 replies to the source port; Topotek: 9004
+  std::vector<std::uint16_t> extra_udp_ports;  // also served (C10: UDP 9002)
+  std::string device;                          // serial device path
+  unsigned baud = 115200;
+  FaultConfig faults;
+  std::uint64_t seed = 1;
+  std::string record;  // pcap path, empty for none
+  DeviceOptions device_options;
+  // Told of every datagram or chunk received and sent (null: nobody).
+  std::function<void(const Traffic&)> on_traffic;
+};
+
+// The default UDP/TCP port of a model: SkyDroid 5000, Topotek 9003.
+std::uint16_t default_port(top::Model m) noexcept;
+// The network transport a model speaks when none is chosen: TCP for the
+// C20 (SkyDroid 2.1: TCP 5000 only), UDP for the others.
+TransportKind default_transport(top::Model m) noexcept;
+// The other UDP ports a model serves by default (C10: 9002); from
+// top::known_ports().
+std::vector<std::uint16_t> extra_udp_ports(top::Model m);
+
+struct ServerStats {
+  std::atomic<std::uint64_t> bytes_in{0};
+  std::atomic<std::uint64_t> frames_in{0};
+  std::atomic<std::uint64_t> frames_out{0};
+};
+
+class Server {
+ public:
+  // Opens the socket, pseudo-terminal or serial port; throws
+  // std::runtime_error with a message naming what failed.
+  explicit Server(ServerConfig cfg);
+  ~Server();
+  Server(const Server&) = delete;
+  Server& operator=(const Server&) = delete;
+
+  std::uint16_t port() const noexcept;           // bound UDP/TCP port
+  std::vector<std::uint16_t> udp_ports() const;  // every bound UDP port
+  // Stops run() on SIGINT/SIGTERM (asio::signal_set; for the CLI).
+  void stop_on_signals();
+  // Restarts the device on SIGHUP, as restart() does (for `topconf fuzz
+  // --restart-cmd 'kill -HUP PID'`; the CLI).
+  void restart_on_hangup();
+  // A power cycle of the device (callable from any thread): its state as at
+  // start, firmware faults (crash-on, hang-on) cleared; sockets stay open.
+  void restart();
+  std::string pty_path() const;  // slave path for --pty
+  // Serves until stop() (callable from any thread).
+  void run();
+  void stop();
+  const ServerStats& stats() const noexcept;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace topsim

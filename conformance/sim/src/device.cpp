@@ -1,0 +1,251 @@
+#include "sim/device.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "device_util.hpp"
+
+namespace topsim {
+namespace {
+
+using top::Dialect;
+using top::FindingCode;
+using top::Frame;
+
+constexpr std::uint64_t kNever = std::numeric_limits<std::uint64_t>::max();
+
+using detail::hex_s16;
+
+}  // namespace
+
+Device::Device(top::Model model, DeviceOptions opts)
+    : model_(model), dialect_(top::dialect_of(model)), opts_(opts) {
+  const top::Profile p = opts_.profile;
+  yaw_inverted_ = opts_.yaw_inverted.value_or(
+      top::find_trait(top::TraitKind::yaw_inverted, model, p) != nullptr);
+  pitch_inverted_ = opts_.pitch_inverted.value_or(
+      top::find_trait(top::TraitKind::pitch_inverted, model, p) != nullptr);
+  field_ptz_ = opts_.field_ptz.value_or(p == top::Profile::field);
+  if (dialect_ == Dialect::topotek) {
+    axes_[0].min = -150;
+    axes_[0].max = 150;
+  }
+  axes_[2].min = -45;
+  axes_[2].max = 45;
+  // Read-only values a real device reports.
+  settings_["VER"] = dialect_ == Dialect::topotek ? "SIP0001V113TK0" : "V1.1.5";
+  settings_["SDC"] = "0EA601D4C0";  // 60000 MB free of 120000 MB
+  settings_["IPV"] = "192.168.144.108";
+  settings_["GTW"] = "192.168.144.1";
+}
+
+std::string Device::setting(std::string_view ident) const {
+  auto it = settings_.find(ident);
+  return it == settings_.end() ? std::string() : it->second;
+}
+
+void Device::advance(std::uint64_t now_us) noexcept {
+  if (now_us <= now_us_) return;
+  const std::uint64_t from = now_us_;
+  now_us_ = now_us;
+  for (Axis& a : axes_) {
+    std::uint64_t rate_end = std::min(now_us, std::max(a.rate_until, from));
+    if (a.rate != 0 && rate_end > from) {
+      a.angle += a.rate * static_cast<double>(rate_end - from) / 1e6;
+      a.angle = std::clamp(a.angle, a.min, a.max);
+    }
+    if (a.rate_until <= now_us) a.rate = 0;
+    if (a.has_target && a.rate == 0) {
+      double step = a.target_speed * static_cast<double>(now_us - from) / 1e6;
+      double diff = a.target - a.angle;
+      if (std::fabs(diff) <= step) {
+        a.angle = a.target;
+        a.has_target = false;
+      } else {
+        a.angle += diff > 0 ? step : -step;
+      }
+    }
+  }
+}
+
+bool Device::takes_in_field(const top::Decoded& dec) const {
+  // The only rejection field evidence lifts: unsupported-on-model for a
+  // value the field says the model's firmware takes (C13 PTZ).
+  if (!field_ptz_ || !dec.command || dec.fields.empty() || !dec.fields[0].valid) return false;
+  for (const auto& f : dec.findings)
+    if (f.code != FindingCode::unsupported_on_model && f.severity != top::Severity::info)
+      return false;
+  return top::field_supported(dialect_, model_, dec.command->ident, dec.fields[0].integer) !=
+         nullptr;
+}
+
+bool Device::accepts(const Frame& f, Link link) const noexcept {
+  // Topotek answers to the interface the source byte names.
+  return rules::answers_source(dialect_, link, f.src);
+}
+
+std::string Device::make(top::Header h, const Frame& req, char control, std::string_view ident,
+                         std::string_view data) const {
+  top::BuildSpec spec;
+  spec.header = h;
+  spec.src = opts_.swap_addresses ? req.dst : req.src;
+  spec.dst = opts_.swap_addresses ? req.src : req.dst;
+  spec.control = control;
+  spec.ident = ident;
+  spec.data = data;
+  return top::build_frame(spec);
+}
+
+void Device::reply_error(const Frame& req, std::vector<std::string>& out) const {
+  // SkyDroid 2.3.2: #TP<dst><src>2wERE!!<cs>, addresses swapped.
+  if (!rules::sends_error_reply(dialect_)) return;
+  out.push_back(opts_.swap_addresses ? rules::error_reply(req.dst, req.src)
+                                     : rules::error_reply(req.src, req.dst));
+}
+
+std::string Device::attitude_data() const {
+  // C12 field trait: the attitude reports the opposite sign of the command.
+  const double yaw = yaw_inverted_ ? -axes_[0].angle : axes_[0].angle;
+  const double pitch = pitch_inverted_ ? -axes_[1].angle : axes_[1].angle;
+  return hex_s16(yaw) + hex_s16(pitch) + hex_s16(axes_[2].angle);
+}
+
+top::DeviceForm Device::form_of(std::string_view ident, top::Sent sent, std::size_t length) const {
+  top::DeviceForm f = top::device_form(model_, ident, 'r', sent, length, opts_.profile);
+  const auto& order = sent == top::Sent::push ? opts_.push_order : opts_.reply_order;
+  const auto& header = sent == top::Sent::push ? opts_.push_header : opts_.reply_header;
+  if (order) f.order = *order;
+  if (header) f.header = *header;
+  if (!opts_.swap_addresses) f.order = top::Order::request_order;
+  // A header the length cannot take (#TP/#tp past 15 chars) is the rule's.
+  if (length > top::max_data_hex) f.header = top::choose_header(dialect_, 'G', length);
+  return f;
+}
+
+std::string Device::build(const top::DeviceForm& form, char client, char device, char control,
+                          std::string_view ident, std::string_view data) const {
+  top::BuildSpec spec;
+  spec.header = form.header;
+  const bool swapped = form.order == top::Order::swapped;
+  spec.src = swapped ? device : client;
+  spec.dst = swapped ? client : device;
+  spec.control = control;
+  spec.ident = ident;
+  spec.data = data;
+  return top::build_frame(spec);
+}
+
+void Device::start_stream(std::string_view ident, std::uint32_t hz, char dst,
+                          std::uint64_t now_us) {
+  auto it = std::find_if(streams_.begin(), streams_.end(),
+                         [&](const Stream& s) { return s.ident == ident; });
+  if (it == streams_.end()) {
+    streams_.push_back(Stream{std::string(ident), 0, 0, dst});
+    it = streams_.end() - 1;
+  }
+  it->dst = dst;
+  it->period_us = hz == 0 ? 0 : 1000000u / hz;
+  it->next_us = now_us + it->period_us;
+}
+
+std::uint64_t Device::next_timer() const noexcept {
+  std::uint64_t t = kNever;
+  for (const Stream& s : streams_)
+    if (s.period_us != 0) t = std::min(t, s.next_us);
+  return t;
+}
+
+void Device::poll(std::uint64_t now_us, std::vector<std::string>& out) {
+  advance(now_us);
+  for (Stream& s : streams_) {
+    if (s.period_us == 0) continue;
+    // Never emit a backlog: a late poll sends one frame and catches up.
+    if (s.next_us > now_us) continue;
+    const std::string data = attitude_data();
+    out.push_back(
+        build(form_of(s.ident, top::Sent::push, data.size()), s.dst, 'G', 'r', s.ident, data));
+    s.next_us += s.period_us;
+    if (s.next_us <= now_us) s.next_us = now_us + s.period_us;
+  }
+}
+
+std::string Device::read_data(const top::CommandSpec& cmd, const top::FormSpec& form) const {
+  const std::string_view ident = cmd.ident;
+  if (ident == "REC") return recording_ ? "01" : "00";
+  if (ident == "GAC" || ident == "GIC") return attitude_data();
+  auto it = settings_.find(ident);
+  if (it != settings_.end()) {
+    const std::string& v = it->second;
+    if (v.size() >= form.min_length && v.size() <= form.max_length) return v;
+  }
+  return top::example_data(form);
+}
+
+void Device::handle(const Frame& req, Link link, std::uint64_t now_us,
+                    std::vector<std::string>& out) {
+  ++requests_;
+  advance(now_us);
+  // A frame we cannot trust (bad or missing checksum, bad structure) gets
+  // silence: the device cannot know who sent it or what it meant.
+  if (!req.ok()) return;
+  if (req.control != 'r' && req.control != 'w') return;
+  if (!accepts(req, link)) return;
+
+  top::DecodeOptions dopts;
+  dopts.dialect = dialect_;
+  dopts.model = model_;
+  dopts.role = top::Role::request;
+  const top::Decoded dec = top::decode(req, dopts);
+  const std::string_view id = req.ident_view();
+
+  // A request laid out as a response form (a 1-char VER read) is invalid too.
+  if (!dec.command || (rules::rejects(dec) && !takes_in_field(dec)) || !dec.form ||
+      dec.form->role == top::Role::response) {
+    reply_error(req, out);
+    return;
+  }
+  if (dispatch(req, dec, now_us, out)) return;
+
+  const top::CommandSpec& cmd = *dec.command;
+  if (req.control == 'w') {
+    // Settings (image, network, ...) are stored, never applied to the host.
+    settings_[std::string(id)] = std::string(req.data());
+    // A write with a reply layout of its own (Topotek 5.8.7 LON/LAT target
+    // output, 5.9 LRF result) is answered in that layout; others are echoed.
+    for (const auto& f : cmd.forms) {
+      if (f.control != 'w' || f.role != top::Role::response || &f == dec.form) continue;
+      const std::string data = top::example_data(f);
+      out.push_back(
+          make(top::choose_header(dialect_, cmd.address, data.size()), req, 'w', id, data));
+      return;
+    }
+    out.push_back(make(req.header, req, 'w', id, req.data()));
+    return;
+  }
+  // A read: find the response form (or the request's own when the command
+  // has a single 'r' form for both roles).
+  const top::FormSpec* resp = nullptr;
+  for (const auto& f : cmd.forms)
+    if (f.control == 'r' && f.role == top::Role::response) {
+      resp = &f;
+      break;
+    }
+  if (!resp) resp = dec.form;
+  std::string data = read_data(cmd, *resp);
+  if (opts_.tmp_quirk && id == "TMP") {
+    // The Topotek 12.2 firmware form: two-digit length, control w.
+    data = "0100200300400500600700";
+    std::string f = "#tp";
+    f += opts_.swap_addresses ? req.dst : req.src;
+    f += opts_.swap_addresses ? req.src : req.dst;
+    f += "16wTMP";
+    f += data;
+    out.push_back(top::with_checksum(f));
+    return;
+  }
+  const top::DeviceForm form = form_of(id, top::Sent::reply, data.size());
+  out.push_back(build(form, req.src, req.dst, 'r', id, data));
+}
+
+}  // namespace topsim

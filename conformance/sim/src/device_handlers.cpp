@@ -1,0 +1,223 @@
+// The commands with state behind them, as a table: (dialect, identifier,
+// control) -> handler. A handler answers (true) or leaves the request to
+// the catalog-driven answer of Device::handle (false); the SkyDroid writes
+// are echoed once their handler took them.
+#include <algorithm>
+
+#include "device_util.hpp"
+#include "sim/device.hpp"
+
+namespace topsim {
+
+using detail::data_byte;
+using detail::field;
+using detail::hex_u;
+
+struct Handlers {
+  struct Call {
+    Device& dev;
+    const top::Frame& req;
+    const top::Decoded& dec;
+    std::uint64_t now_us;
+    std::vector<std::string>& out;
+  };
+  using Fn = bool (*)(const Call&);
+
+  // An axis turning at `rate` deg/s until the speed hold ends, unless refreshed.
+  static void turn(const Call& c, Axis& a, double rate) {
+    a.rate = rate;
+    a.rate_until = c.now_us + std::uint64_t{c.dev.opts_.speed_hold_ms} * 1000;
+    a.has_target = false;
+  }
+
+  static void echo(const Call& c) {
+    c.out.push_back(
+        c.dev.make(c.req.header, c.req, c.req.control, c.req.ident_view(), c.req.data()));
+  }
+
+  // Topotek D class (5.1, 5.2): REC and CAP answer with a file index.
+  static bool topotek_file_write(const Call& c) {
+    Device& d = c.dev;
+    const std::string_view id = c.req.ident_view();
+    const int v = data_byte(c.req.data());
+    if (v < 0) return false;
+    const int act = v & 0x0F;
+    if (id == "REC") {
+      if (act != 0 && act != 1 && act != 0x0A) return false;
+      const bool rec = act == 1 ? true : act == 0 ? false : !d.recording_;
+      if (rec && !d.recording_) ++d.file_index_;
+      d.recording_ = rec;
+    } else {
+      if (act != 1 && act != 2 && act != 3 && act != 5) return false;
+      ++d.file_index_;
+    }
+    const std::string reply =
+        std::string(id == "CAP" || d.recording_ ? "11" : "00") + hex_u(d.file_index_, 8);
+    c.out.push_back(d.make(top::Header::variable, c.req, 'w', id, reply));
+    return true;
+  }
+
+  // Topotek REC, GIA and GAA reads: the recording state, a stream on or off.
+  static bool topotek_state_read(const Call& c) {
+    Device& d = c.dev;
+    const std::string_view id = c.req.ident_view();
+    std::string v = id == "REC" ? (d.recording_ ? "01" : "00") : "00";
+    if (id != "REC") {
+      for (const Stream& s : d.streams_)
+        if (s.ident == top::stream_enabled_by(d.dialect_, id)->push && s.period_us) v = "01";
+    }
+    c.out.push_back(d.make(top::Header::fixed, c.req, 'r', id, v));
+    return true;
+  }
+
+  // Topotek GIA and GAA writes: the stream on (at the device's rate) or off.
+  static bool topotek_stream_write(const Call& c) {
+    Device& d = c.dev;
+    const int v = data_byte(c.req.data());
+    if (v != 0 && v != 1) return false;
+    d.start_stream(top::stream_enabled_by(d.dialect_, c.req.ident_view())->push,
+                   v ? d.opts_.topotek_stream_hz : 0, c.req.src, c.now_us);
+    echo(c);
+    return true;
+  }
+
+  // Topotek GIC read: the attitude now.
+  static bool topotek_attitude_read(const Call& c) {
+    c.dev.advance(c.now_us);
+    c.out.push_back(
+        c.dev.make(top::Header::variable, c.req, 'r', c.req.ident_view(), c.dev.attitude_data()));
+    return true;
+  }
+
+  // SkyDroid angle and speed commands (rules::kMotions).
+  static bool motion(const Call& c) {
+    Device& d = c.dev;
+    for (const rules::Motion& m : rules::kMotions) {
+      if (m.ident != c.req.ident_view() || m.axis < 0) continue;
+      Axis& a = d.axes_[m.axis];
+      const top::FieldValue* spd = field(c.dec, m.speed_field);
+      if (m.kind == rules::MotionKind::angle) {
+        const top::FieldValue* ang = field(c.dec, m.value_field);
+        if (!ang) continue;
+        a.target = std::clamp(ang->value, a.min, a.max);
+        const double s = spd ? spd->value : 0;
+        a.target_speed = s > 0 ? s : 9.9;  // 0: the document gives no meaning; full speed
+        a.has_target = true;
+        a.rate = 0;
+        a.rate_until = 0;
+      } else if (spd) {
+        turn(c, a, spd->value);
+      }
+    }
+    return true;
+  }
+
+  // The request's "action" field, -1 without one.
+  static int action(const Call& c) {
+    const auto* a = field(c.dec, "action");
+    return a ? static_cast<int>(a->integer) : -1;
+  }
+
+  static bool ptz(const Call& c) {
+    Device& d = c.dev;
+    const int act = action(c);
+    constexpr double kPtzRate = 10.0;
+    if (act == 0) {
+      for (Axis& x : d.axes_) x.rate = 0, x.has_target = false;
+    } else if (act >= 1 && act <= 4) {
+      turn(c, d.axes_[act <= 2 ? 1 : 0], (act == 1 || act == 4) ? kPtzRate : -kPtzRate);
+    } else if (act == 5) {
+      for (Axis& x : d.axes_) x.target = 0, x.target_speed = 9.9, x.has_target = true, x.rate = 0;
+    } else if (act >= 0x0E && act <= 0x13 && d.field_ptz_ &&
+               top::field_supported(d.dialect_, d.model_, c.req.ident_view(), act)) {
+      // C13 field evidence: 0E/0F pitch +/-, 10/11 yaw +/-, 12/13 roll +/-.
+      static constexpr int kAxis[] = {1, 0, 2};
+      turn(c, d.axes_[kAxis[(act - 0x0E) / 2]], (act % 2 == 0) ? kPtzRate : -kPtzRate);
+    }
+    return true;
+  }
+
+  // SkyDroid GAA: the attitude stream at the rate asked for (0: off).
+  static bool stream_rate(const Call& c) {
+    const auto* r = field(c.dec, "rate");
+    c.dev.start_stream(top::stream_enabled_by(c.dev.dialect_, c.req.ident_view())->push,
+                       r ? static_cast<std::uint32_t>(r->integer) : 0, c.req.src, c.now_us);
+    return true;
+  }
+
+  static bool record(const Call& c) {
+    Device& d = c.dev;
+    const int act = action(c);
+    const bool rec = act == 1 ? true : act == 0 ? false : !d.recording_;
+    if (rec && !d.recording_) ++d.file_index_;
+    d.recording_ = rec;
+    return true;
+  }
+
+  static bool capture(const Call& c) {
+    ++c.dev.file_index_;
+    return true;
+  }
+
+  static bool zoom(const Call& c) {
+    Device& d = c.dev;
+    const int v = data_byte(c.req.data());
+    if (v == 1) d.zoom_ = std::max(1.0, d.zoom_ - 1);
+    if (v == 2) d.zoom_ = std::min(30.0, d.zoom_ + 1);
+    d.settings_["ZMC"] = std::string(c.req.data());
+    return true;
+  }
+};
+
+namespace {
+
+struct Entry {
+  top::Dialect dialect;
+  std::string_view ident;
+  char control;
+  Handlers::Fn fn;
+  bool echo = false;  // the write is echoed once the handler took it
+};
+
+constexpr top::Dialect kSky = top::Dialect::skydroid;
+constexpr top::Dialect kTopotek = top::Dialect::topotek;
+
+// The motion commands (rules::kMotions) are looked up there.
+constexpr Entry kHandlers[] = {
+    {kTopotek, "REC", 'w', Handlers::topotek_file_write},
+    {kTopotek, "CAP", 'w', Handlers::topotek_file_write},
+    {kTopotek, "REC", 'r', Handlers::topotek_state_read},
+    {kTopotek, "GIA", 'r', Handlers::topotek_state_read},
+    {kTopotek, "GAA", 'r', Handlers::topotek_state_read},
+    {kTopotek, "GIA", 'w', Handlers::topotek_stream_write},
+    {kTopotek, "GAA", 'w', Handlers::topotek_stream_write},
+    {kTopotek, "GIC", 'r', Handlers::topotek_attitude_read},
+    {kSky, "PTZ", 'w', Handlers::ptz, true},
+    {kSky, "GAA", 'w', Handlers::stream_rate, true},
+    {kSky, "REC", 'w', Handlers::record, true},
+    {kSky, "CAP", 'w', Handlers::capture, true},
+    {kSky, "ZMC", 'w', Handlers::zoom, true},
+};
+
+}  // namespace
+
+bool Device::dispatch(const top::Frame& req, const top::Decoded& dec, std::uint64_t now_us,
+                      std::vector<std::string>& out) {
+  const Handlers::Call call{*this, req, dec, now_us, out};
+  const std::string_view id = req.ident_view();
+  const Entry* entry = nullptr;
+  for (const Entry& e : kHandlers)
+    if (e.dialect == dialect_ && e.control == req.control && e.ident == id) {
+      entry = &e;
+      break;
+    }
+  static constexpr Entry kMotion{kSky, "", 'w', Handlers::motion, true};
+  if (!entry && dialect_ == kSky && req.control == 'w')
+    for (const rules::Motion& m : rules::kMotions)
+      if (m.ident == id) entry = &kMotion;
+  if (!entry || !entry->fn(call)) return false;
+  if (entry->echo) Handlers::echo(call);
+  return true;
+}
+
+}  // namespace topsim

@@ -1,0 +1,460 @@
+#include "sim/server.hpp"
+
+#include <fcntl.h>
+#include <pty.h>
+#include <termios.h>
+#include <unistd.h>
+
+#include <asio.hpp>
+#include <chrono>
+#include <cstring>
+#include <deque>
+#include <functional>
+#include <map>
+#include <optional>
+#include <stdexcept>
+
+#include "pcapio/writer.hpp"
+#include "sim/intake.hpp"
+#include "sim/rules.hpp"
+#include "top/dialect.hpp"
+
+namespace topsim {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// A byte stream with a write queue (TCP socket, pty master, serial port).
+template <class S>
+class Line : public std::enable_shared_from_this<Line<S>> {
+ public:
+  explicit Line(S s) : s_(std::move(s)) {}
+  S& stream() { return s_; }
+  void write(std::string bytes) {
+    // A client that never reads: bounded; new writes are dropped (the
+    // front one may be in flight).
+    if (q_.size() >= 4096) return;
+    const bool idle = q_.empty();
+    q_.push_back(std::move(bytes));
+    if (idle) pump();
+  }
+  bool open = true;
+
+ private:
+  void pump() {
+    auto self = this->shared_from_this();
+    asio::async_write(s_, asio::buffer(q_.front()), [self](std::error_code ec, std::size_t) {
+      if (ec) {
+        self->open = false;
+        self->q_.clear();
+        return;
+      }
+      self->q_.pop_front();
+      if (!self->q_.empty()) self->pump();
+    });
+  }
+  S s_;
+  std::deque<std::string> q_;
+};
+
+}  // namespace
+
+std::uint16_t default_port(top::Model m) noexcept {
+  const top::PortSpec* p = top::default_port(m);
+  return p ? p->port : 0;
+}
+
+TransportKind default_transport(top::Model m) noexcept {
+  const top::PortSpec* p = top::default_port(m);
+  return p && p->tcp ? TransportKind::tcp : TransportKind::udp;
+}
+
+std::vector<std::uint16_t> extra_udp_ports(top::Model m) {
+  std::vector<std::uint16_t> v;
+  const top::PortSpec* first = top::default_port(m);
+  for (const top::PortSpec& p : top::known_ports())
+    if (&p != first && !p.tcp && m != top::Model::unknown && (p.served & top::model_bit(m)))
+      v.push_back(p.port);
+  return v;
+}
+
+// "127.0.0.1:40000" (IPv6 in brackets).
+template <class Endpoint>
+std::string endpoint_name(const Endpoint& e) {
+  const std::string a = e.address().to_string();
+  return (e.address().is_v6() ? "[" + a + "]" : a) + ":" + std::to_string(e.port());
+}
+
+struct Server::Impl {
+  ServerConfig cfg;
+  asio::io_context io;
+  Device device;
+  FaultInjector faults;
+  Clock::time_point start = Clock::now();
+  ServerStats stats;
+  std::unique_ptr<pcapio::Recorder> pcap;
+  asio::steady_timer stream_timer{io};
+
+  struct UdpPort {
+    explicit UdpPort(asio::io_context& io) : sock(io) {}
+    asio::ip::udp::socket sock;
+    asio::ip::udp::endpoint from;
+    std::string buf = std::string(65536, '\0');
+    top::StreamDecoder dec;
+    std::uint16_t port = 0;
+  };
+  std::vector<std::unique_ptr<UdpPort>> udp;  // the model's port, then extra ones (C10: 9002)
+  std::optional<asio::ip::tcp::acceptor> acceptor;
+  std::uint16_t bound_port = 0;
+  std::string pty_path;
+  int pty_slave = -1;
+
+  // Where the device's frames go, and how to record them.
+  struct Peer {
+    std::function<void(std::string)> send;
+    pcapio::Endpoint remote, local;
+    bool stream_link = false;
+    std::string_view link = "udp";  // for on_traffic
+    std::string name;               // the peer, for on_traffic
+  };
+  Peer stream_peer;  // the last peer that sent a request (receives pushes)
+  bool have_stream_peer = false;
+
+  explicit Impl(ServerConfig c)
+      : cfg(std::move(c)), device(cfg.model, device_options()), faults(cfg.faults, cfg.seed) {}
+
+  DeviceOptions device_options() const {
+    DeviceOptions o = cfg.device_options;
+    o.swap_addresses = !cfg.faults.no_swap;
+    o.tmp_quirk = o.tmp_quirk || cfg.faults.tmp_quirk;
+    return o;
+  }
+
+  // A power cycle: the device's state as at start, crash and hang cleared.
+  void restart() {
+    device = Device(cfg.model, device_options());
+    faults.restart();
+    stream_timer.cancel();
+  }
+  void wait_hangup(std::shared_ptr<asio::signal_set> sig) {
+    sig->async_wait([this, sig](std::error_code ec, int) {
+      if (ec) return;
+      restart();
+      wait_hangup(sig);
+    });
+  }
+
+  std::uint64_t now_us() const {
+    return static_cast<std::uint64_t>(
+        std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - start).count());
+  }
+
+  std::uint64_t line_busy_until = 0;  // stream links: one write at a time
+
+  void emit(const Peer& peer, const std::vector<std::string>& frames) {
+    std::vector<Emission> em;
+    for (const auto& f : frames) faults.apply(f, peer.stream_link, em);
+    const std::uint64_t now = now_us();
+    for (auto& e : em) {
+      stats.frames_out.fetch_add(1, std::memory_order_relaxed);
+      if (peer.stream_link) {
+        // A split frame's second half must not be overtaken by the next frame.
+        const std::uint64_t at = std::max(now + e.delay_us, line_busy_until);
+        line_busy_until = at;
+        e.delay_us = at - now;
+      }
+      if (e.delay_us == 0) {
+        deliver(peer, std::move(e.bytes));
+        continue;
+      }
+      auto t = std::make_shared<asio::steady_timer>(io, std::chrono::microseconds(e.delay_us));
+      t->async_wait([this, t, peer, bytes = std::move(e.bytes)](std::error_code ec) mutable {
+        if (ec) return;
+        deliver(peer, std::move(bytes));
+      });
+    }
+  }
+
+  // Sends one write of the device to `peer`: recorded, told, sent.
+  void deliver(const Peer& peer, std::string bytes) {
+    if (pcap) pcap->write(peer.local, peer.remote, bytes);
+    if (cfg.on_traffic) cfg.on_traffic(Traffic{peer.link, '>', peer.name, bytes});
+    peer.send(std::move(bytes));
+  }
+
+  Intake intake(Link link) { return Intake{device, link, &faults}; }
+
+  // `keep` holds the decoder's owner (a TCP connection) alive for timers.
+  void on_bytes(top::StreamDecoder& dec, std::string_view bytes, bool datagram, const Peer& peer,
+                Link link, std::shared_ptr<void> keep = nullptr) {
+    stats.bytes_in.fetch_add(bytes.size(), std::memory_order_relaxed);
+    if (pcap) pcap->write(peer.remote, peer.local, bytes);
+    if (cfg.on_traffic) cfg.on_traffic(Traffic{peer.link, '<', peer.name, bytes});
+    std::vector<std::string> out;
+    const std::size_t frames = intake(link).take(dec, bytes, datagram, now_us(), out);
+    stats.frames_in.fetch_add(frames, std::memory_order_relaxed);
+    if (!datagram && dec.buffered() > 0) arm_quiet(dec, peer, link, std::move(keep));
+    stream_peer = peer;
+    have_stream_peer = true;
+    if (!out.empty()) emit(peer, out);
+    arm_stream_timer();
+  }
+
+  // Bytes held on a stream (a frame failing its checksum waits for
+  // look-ahead): once the line is quiet (rules::kQuietLineMs), decide on them.
+  void arm_quiet(top::StreamDecoder& dec, const Peer& peer, Link link, std::shared_ptr<void> keep) {
+    const std::uint64_t fed = dec.fed();
+    auto t =
+        std::make_shared<asio::steady_timer>(io, std::chrono::milliseconds(rules::kQuietLineMs));
+    t->async_wait([this, t, &dec, fed, peer, link, keep](std::error_code ec) {
+      if (ec || dec.fed() != fed || dec.buffered() == 0) return;
+      dec.finish();
+      std::vector<std::string> out;
+      const std::size_t frames = intake(link).drain(dec, now_us(), out);
+      stats.frames_in.fetch_add(frames, std::memory_order_relaxed);
+      dec.reset();
+      if (!out.empty()) emit(peer, out);
+    });
+  }
+
+  void arm_stream_timer() {
+    const std::uint64_t next = device.next_timer();
+    if (next == std::numeric_limits<std::uint64_t>::max()) return;
+    stream_timer.expires_at(start + std::chrono::microseconds(next));
+    stream_timer.async_wait([this](std::error_code ec) {
+      if (ec) return;
+      std::vector<std::string> out;
+      device.poll(now_us(), out);
+      if (have_stream_peer && !faults.hung() && !out.empty()) emit(stream_peer, out);
+      arm_stream_timer();
+    });
+  }
+
+  // UDP ----------------------------------------------------------------
+  void udp_receive(UdpPort& u) {
+    u.sock.async_receive_from(
+        asio::buffer(u.buf), u.from, [this, &u](std::error_code ec, std::size_t n) {
+          if (ec == asio::error::operation_aborted) return;
+          if (!ec) {
+            asio::ip::udp::endpoint to = u.from;
+            if (cfg.reply_port) to.port(cfg.reply_port);
+            Peer p;
+            p.remote = pcapio::Endpoint::ipv4(
+                to.address().is_v4() ? to.address().to_v4().to_uint() : 0x7F000001u, to.port());
+            std::error_code e;
+            const auto local = u.sock.local_endpoint(e);
+            p.local = pcapio::Endpoint::ipv4(
+                e || !local.address().is_v4() ? 0x7F000001u : local.address().to_v4().to_uint(),
+                u.port);
+            p.send = [&u, to](std::string b) {
+              std::error_code se;
+              u.sock.send_to(asio::buffer(b), to, 0, se);
+            };
+            if (cfg.on_traffic)
+              p.name = endpoint_name(u.from) +
+                       (cfg.reply_port ? " (replies to port " + std::to_string(to.port()) + ")"
+                                       : std::string());
+            on_bytes(u.dec, std::string_view(u.buf.data(), n), true, p, Link::network);
+          }
+          udp_receive(u);
+        });
+  }
+
+  // TCP ----------------------------------------------------------------
+  using TcpLine = Line<asio::ip::tcp::socket>;
+  struct Conn {
+    std::shared_ptr<TcpLine> line;
+    top::StreamDecoder dec;
+    std::string buf = std::string(4096, '\0');
+  };
+  void tcp_accept() {
+    acceptor->async_accept([this](std::error_code ec, asio::ip::tcp::socket s) {
+      if (ec == asio::error::operation_aborted) return;
+      if (!ec) {
+        auto c = std::make_shared<Conn>();
+        std::error_code nd;
+        s.set_option(asio::ip::tcp::no_delay(true), nd);
+        c->line = std::make_shared<TcpLine>(std::move(s));
+        tcp_read(c);
+      }
+      tcp_accept();
+    });
+  }
+  void tcp_read(std::shared_ptr<Conn> c) {
+    c->line->stream().async_read_some(
+        asio::buffer(c->buf), [this, c](std::error_code ec, std::size_t n) {
+          if (ec) return;  // closed: the connection's state goes with it
+          auto& sock = c->line->stream();
+          std::error_code e1, e2;
+          auto re = sock.remote_endpoint(e1);
+          auto le = sock.local_endpoint(e2);
+          Peer p;
+          p.remote = pcapio::Endpoint::ipv4(e1 ? 0x7F000001u : re.address().to_v4().to_uint(),
+                                            e1 ? std::uint16_t{0} : re.port());
+          p.local =
+              pcapio::Endpoint::ipv4(e2 ? 0x7F000001u : le.address().to_v4().to_uint(), bound_port);
+          std::weak_ptr<TcpLine> w = c->line;
+          p.send = [w](std::string b) {
+            if (auto l = w.lock(); l && l->open) l->write(std::move(b));
+          };
+          p.stream_link = true;
+          p.link = "tcp";
+          if (cfg.on_traffic && !e1) p.name = endpoint_name(re);
+          on_bytes(c->dec, std::string_view(c->buf.data(), n), false, p, Link::network, c);
+          tcp_read(c);
+        });
+  }
+
+  // pty / serial ---------------------------------------------------------
+  using PtyLine = Line<asio::posix::stream_descriptor>;
+  using SerialLine = Line<asio::serial_port>;
+  std::shared_ptr<PtyLine> pty_line;
+  std::shared_ptr<SerialLine> serial_line;
+  top::StreamDecoder line_decoder;
+  std::string line_buf = std::string(4096, '\0');
+
+  Peer line_peer() {
+    Peer p;
+    // Serial and pty traffic is recorded as UDP 127.0.0.1:9000 <-> :9001.
+    p.remote = pcapio::Endpoint::ipv4(0x7F000001u, 9001);
+    p.local = pcapio::Endpoint::ipv4(0x7F000001u, 9000);
+    p.stream_link = true;
+    p.link = pty_line ? "pty" : "serial";
+    p.name = pty_line ? pty_path : cfg.device;
+    if (pty_line)
+      p.send = [l = pty_line](std::string b) { l->write(std::move(b)); };
+    else
+      p.send = [l = serial_line](std::string b) { l->write(std::move(b)); };
+    return p;
+  }
+  template <class L>
+  void line_read(std::shared_ptr<L> l) {
+    l->stream().async_read_some(asio::buffer(line_buf), [this, l](std::error_code ec,
+                                                                  std::size_t n) {
+      if (ec == asio::error::operation_aborted) return;
+      if (ec) {
+        // A pty master reads EIO while no client has the slave open; wait.
+        auto t = std::make_shared<asio::steady_timer>(io, std::chrono::milliseconds(20));
+        t->async_wait([this, l, t](std::error_code e) {
+          if (!e) line_read(l);
+        });
+        return;
+      }
+      on_bytes(line_decoder, std::string_view(line_buf.data(), n), false, line_peer(), Link::uart);
+      line_read(l);
+    });
+  }
+};
+
+Server::Server(ServerConfig cfg) : impl_(std::make_unique<Impl>(std::move(cfg))) {
+  Impl& m = *impl_;
+  if (!m.cfg.record.empty())
+    m.pcap = std::make_unique<pcapio::Recorder>(m.cfg.record, m.cfg.kind == TransportKind::tcp);
+  std::error_code ec;
+  switch (m.cfg.kind) {
+    case TransportKind::udp: {
+      auto addr = asio::ip::make_address(m.cfg.host, ec);
+      if (ec) throw std::runtime_error("udp: bad host '" + m.cfg.host + "': " + ec.message());
+      std::vector<std::uint16_t> ports = {m.cfg.port};
+      ports.insert(ports.end(), m.cfg.extra_udp_ports.begin(), m.cfg.extra_udp_ports.end());
+      for (const std::uint16_t port : ports) {
+        auto u = std::make_unique<Impl::UdpPort>(m.io);
+        asio::ip::udp::endpoint ep(addr, port);
+        u->sock.open(ep.protocol(), ec);
+        if (!ec) u->sock.bind(ep, ec);
+        if (ec)
+          throw std::runtime_error("udp " + m.cfg.host + ":" + std::to_string(port) + ": " +
+                                   ec.message());
+        u->port = u->sock.local_endpoint().port();
+        m.udp.push_back(std::move(u));
+      }
+      m.bound_port = m.udp.front()->port;
+      for (auto& u : m.udp) m.udp_receive(*u);
+      break;
+    }
+    case TransportKind::tcp: {
+      auto addr = asio::ip::make_address(m.cfg.host, ec);
+      if (ec) throw std::runtime_error("tcp: bad host '" + m.cfg.host + "': " + ec.message());
+      asio::ip::tcp::endpoint ep(addr, m.cfg.port);
+      m.acceptor.emplace(m.io);
+      m.acceptor->open(ep.protocol(), ec);
+      if (!ec) m.acceptor->set_option(asio::socket_base::reuse_address(true), ec);
+      if (!ec) m.acceptor->bind(ep, ec);
+      if (!ec) m.acceptor->listen(asio::socket_base::max_listen_connections, ec);
+      if (ec)
+        throw std::runtime_error("tcp " + m.cfg.host + ":" + std::to_string(m.cfg.port) + ": " +
+                                 ec.message());
+      m.bound_port = m.acceptor->local_endpoint().port();
+      m.tcp_accept();
+      break;
+    }
+    case TransportKind::pty: {
+      int master = -1, slave = -1;
+      char name[256] = {0};
+      if (openpty(&master, &slave, name, nullptr, nullptr) != 0)
+        throw std::runtime_error(std::string("openpty: ") + std::strerror(errno));
+      termios t{};
+      if (tcgetattr(slave, &t) == 0) {
+        cfmakeraw(&t);
+        tcsetattr(slave, TCSANOW, &t);
+      }
+      m.pty_slave = slave;  // kept open so the master never sees EIO/HUP
+      m.pty_path = name;
+      ::fcntl(master, F_SETFL, ::fcntl(master, F_GETFL) | O_NONBLOCK);
+      m.pty_line = std::make_shared<Impl::PtyLine>(asio::posix::stream_descriptor(m.io, master));
+      m.line_read(m.pty_line);
+      break;
+    }
+    case TransportKind::serial: {
+      asio::serial_port sp(m.io);
+      sp.open(m.cfg.device, ec);
+      if (ec) throw std::runtime_error("serial " + m.cfg.device + ": " + ec.message());
+      sp.set_option(asio::serial_port::baud_rate(m.cfg.baud), ec);
+      sp.set_option(asio::serial_port::character_size(8), ec);
+      sp.set_option(asio::serial_port::parity(asio::serial_port::parity::none), ec);
+      sp.set_option(asio::serial_port::stop_bits(asio::serial_port::stop_bits::one), ec);
+      m.serial_line = std::make_shared<Impl::SerialLine>(std::move(sp));
+      m.line_read(m.serial_line);
+      break;
+    }
+  }
+}
+
+Server::~Server() {
+  if (impl_ && impl_->pty_slave >= 0) ::close(impl_->pty_slave);
+}
+
+std::uint16_t Server::port() const noexcept { return impl_->bound_port; }
+
+std::vector<std::uint16_t> Server::udp_ports() const {
+  std::vector<std::uint16_t> out;
+  for (const auto& u : impl_->udp) out.push_back(u->port);
+  return out;
+}
+
+void Server::stop_on_signals() {
+  auto sig = std::make_shared<asio::signal_set>(impl_->io, SIGINT, SIGTERM);
+  sig->async_wait([this, sig](std::error_code ec, int) {
+    if (!ec) impl_->io.stop();
+  });
+}
+void Server::restart_on_hangup() {
+  impl_->wait_hangup(std::make_shared<asio::signal_set>(impl_->io, SIGHUP));
+}
+
+void Server::restart() {
+  asio::post(impl_->io, [this] { impl_->restart(); });
+}
+
+std::string Server::pty_path() const { return impl_->pty_path; }
+const ServerStats& Server::stats() const noexcept { return impl_->stats; }
+
+void Server::run() {
+  auto guard = asio::make_work_guard(impl_->io);
+  impl_->io.run();
+  if (impl_->pcap) impl_->pcap->flush();
+}
+
+void Server::stop() { impl_->io.stop(); }
+
+}  // namespace topsim
