@@ -196,21 +196,4 @@ TEST(Device, TopotekStateCommandsAreCatalogued) {
     EXPECT_NE(top::find_command(top::Dialect::topotek, id), nullptr) << id;
 }
 
-// The device rules of sim/rules.hpp: the link answered by source, the
-// error reply, the motion table.
-TEST(DeviceRules, AsTheDocumentsAndTheFieldSay) {
-  namespace rules = topsim::rules;
-  EXPECT_EQ(rules::client_address(top::Dialect::topotek, Link::network), 'P');
-  EXPECT_EQ(rules::client_address(top::Dialect::topotek, Link::uart), 'U');
-  EXPECT_EQ(rules::client_address(top::Dialect::skydroid, Link::network), 'U');
-  EXPECT_FALSE(rules::answers_source(top::Dialect::topotek, Link::network, 'U'));
-  EXPECT_TRUE(rules::answers_source(top::Dialect::skydroid, Link::network, 'P'));
-  EXPECT_EQ(rules::error_reply('M', 'U'), "#TPMU2wERE!!30");  // SkyDroid 2.3.2's example
-  for (const rules::Motion& m : rules::kMotions) {
-    const top::CommandSpec* c = top::find_command(top::Dialect::skydroid, m.ident);
-    ASSERT_NE(c, nullptr) << m.ident;
-    EXPECT_GE(m.axis, 0) << m.ident;
-  }
-}
-
 }  // namespace

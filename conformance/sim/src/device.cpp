@@ -27,6 +27,7 @@ Device::Device(top::Model model, DeviceOptions opts)
   pitch_inverted_ = opts_.pitch_inverted.value_or(
       top::find_trait(top::TraitKind::pitch_inverted, model, p) != nullptr);
   field_ptz_ = opts_.field_ptz.value_or(p == top::Profile::field);
+  if (opts_.speed_hold_ms == 0) opts_.speed_hold_ms = top::speed_hold_ms(model, p);
   if (dialect_ == Dialect::topotek) {
     axes_[0].min = -150;
     axes_[0].max = 150;
@@ -69,20 +70,8 @@ void Device::advance(std::uint64_t now_us) noexcept {
   }
 }
 
-bool Device::takes_in_field(const top::Decoded& dec) const {
-  // The only rejection field evidence lifts: unsupported-on-model for a
-  // value the field says the model's firmware takes (C13 PTZ).
-  if (!field_ptz_ || !dec.command || dec.fields.empty() || !dec.fields[0].valid) return false;
-  for (const auto& f : dec.findings)
-    if (f.code != FindingCode::unsupported_on_model && f.severity != top::Severity::info)
-      return false;
-  return top::field_supported(dialect_, model_, dec.command->ident, dec.fields[0].integer) !=
-         nullptr;
-}
-
 bool Device::accepts(const Frame& f, Link link) const noexcept {
-  // Topotek answers to the interface the source byte names.
-  return rules::answers_source(dialect_, link, f.src);
+  return top::answers_source(model_, opts_.profile, link, f.src);
 }
 
 std::string Device::make(top::Header h, const Frame& req, char control, std::string_view ident,
@@ -98,10 +87,10 @@ std::string Device::make(top::Header h, const Frame& req, char control, std::str
 }
 
 void Device::reply_error(const Frame& req, std::vector<std::string>& out) const {
-  // SkyDroid 2.3.2: #TP<dst><src>2wERE!!<cs>, addresses swapped.
-  if (!rules::sends_error_reply(dialect_)) return;
-  out.push_back(opts_.swap_addresses ? rules::error_reply(req.dst, req.src)
-                                     : rules::error_reply(req.src, req.dst));
+  if (!top::answers_error_reply(dialect_)) return;
+  top::BuildSpec ere = top::error_reply(req);
+  if (!opts_.swap_addresses) std::swap(ere.src, ere.dst);
+  out.push_back(top::build_frame(ere));
 }
 
 std::string Device::attitude_data() const {
@@ -200,8 +189,8 @@ void Device::handle(const Frame& req, Link link, std::uint64_t now_us,
   const std::string_view id = req.ident_view();
 
   // A request laid out as a response form (a 1-char VER read) is invalid too.
-  if (!dec.command || (rules::rejects(dec) && !takes_in_field(dec)) || !dec.form ||
-      dec.form->role == top::Role::response) {
+  if (!dec.command || top::rejection(dec, model_, field_ptz_) != top::Rejection::none ||
+      !dec.form || dec.form->role == top::Role::response) {
     reply_error(req, out);
     return;
   }

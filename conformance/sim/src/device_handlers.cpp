@@ -89,23 +89,24 @@ struct Handlers {
     return true;
   }
 
-  // SkyDroid angle and speed commands (rules::kMotions).
+  // SkyDroid angle and speed commands (top/motion.hpp).
   static bool motion(const Call& c) {
     Device& d = c.dev;
-    for (const rules::Motion& m : rules::kMotions) {
-      if (m.ident != c.req.ident_view() || m.axis < 0) continue;
-      Axis& a = d.axes_[m.axis];
-      const top::FieldValue* spd = field(c.dec, m.speed_field);
-      if (m.kind == rules::MotionKind::angle) {
-        const top::FieldValue* ang = field(c.dec, m.value_field);
+    const top::MotionSpec* m = top::motion_of(d.dialect_, c.req.ident_view());
+    if (!m) return false;
+    for (const top::MotionAxis& x : m->fields()) {
+      Axis& a = d.axes_[static_cast<std::size_t>(x.axis)];
+      if (m->kind == top::MotionKind::angle) {
+        const top::FieldValue* ang = field(c.dec, x.value);
         if (!ang) continue;
+        const top::FieldValue* spd = field(c.dec, x.speed);
         a.target = std::clamp(ang->value, a.min, a.max);
         const double s = spd ? spd->value : 0;
         a.target_speed = s > 0 ? s : 9.9;  // 0: the document gives no meaning; full speed
         a.has_target = true;
         a.rate = 0;
         a.rate_until = 0;
-      } else if (spd) {
+      } else if (const top::FieldValue* spd = field(c.dec, x.value)) {
         turn(c, a, spd->value);
       }
     }
@@ -122,17 +123,17 @@ struct Handlers {
     Device& d = c.dev;
     const int act = action(c);
     constexpr double kPtzRate = 10.0;
-    if (act == 0) {
+    const top::PtzAction p = top::ptz_action(act);
+    // C13 trims (0E-13) turn only where field evidence says the model takes them.
+    const bool trim = act >= 0x0E;
+    if (p.move == top::PtzMove::stop) {
       for (Axis& x : d.axes_) x.rate = 0, x.has_target = false;
-    } else if (act >= 1 && act <= 4) {
-      turn(c, d.axes_[act <= 2 ? 1 : 0], (act == 1 || act == 4) ? kPtzRate : -kPtzRate);
-    } else if (act == 5) {
+    } else if (p.move == top::PtzMove::turn &&
+               (!trim || (d.field_ptz_ &&
+                          top::field_supported(d.dialect_, d.model_, c.req.ident_view(), act)))) {
+      turn(c, d.axes_[static_cast<std::size_t>(p.axis)], p.sign * kPtzRate);
+    } else if (p.move == top::PtzMove::centre) {
       for (Axis& x : d.axes_) x.target = 0, x.target_speed = 9.9, x.has_target = true, x.rate = 0;
-    } else if (act >= 0x0E && act <= 0x13 && d.field_ptz_ &&
-               top::field_supported(d.dialect_, d.model_, c.req.ident_view(), act)) {
-      // C13 field evidence: 0E/0F pitch +/-, 10/11 yaw +/-, 12/13 roll +/-.
-      static constexpr int kAxis[] = {1, 0, 2};
-      turn(c, d.axes_[kAxis[(act - 0x0E) / 2]], (act % 2 == 0) ? kPtzRate : -kPtzRate);
     }
     return true;
   }
@@ -182,7 +183,7 @@ struct Entry {
 constexpr top::Dialect kSky = top::Dialect::skydroid;
 constexpr top::Dialect kTopotek = top::Dialect::topotek;
 
-// The motion commands (rules::kMotions) are looked up there.
+// The motion commands (top::motion_of) are looked up there.
 constexpr Entry kHandlers[] = {
     {kTopotek, "REC", 'w', Handlers::topotek_file_write},
     {kTopotek, "CAP", 'w', Handlers::topotek_file_write},
@@ -212,9 +213,10 @@ bool Device::dispatch(const top::Frame& req, const top::Decoded& dec, std::uint6
       break;
     }
   static constexpr Entry kMotion{kSky, "", 'w', Handlers::motion, true};
+  // SkyDroid angle and rate commands move the axes (Topotek's do not yet).
   if (!entry && dialect_ == kSky && req.control == 'w')
-    for (const rules::Motion& m : rules::kMotions)
-      if (m.ident == id) entry = &kMotion;
+    if (const top::MotionSpec* m = top::motion_of(dialect_, id))
+      if (m->kind == top::MotionKind::angle || m->kind == top::MotionKind::rate) entry = &kMotion;
   if (!entry || !entry->fn(call)) return false;
   if (entry->echo) Handlers::echo(call);
   return true;

@@ -16,7 +16,7 @@
 
 #include "pcapio/writer.hpp"
 #include "sim/intake.hpp"
-#include "sim/rules.hpp"
+#include "top/device.hpp"
 #include "top/dialect.hpp"
 
 namespace topsim {
@@ -201,11 +201,11 @@ struct Server::Impl {
   }
 
   // Bytes held on a stream (a frame failing its checksum waits for
-  // look-ahead): once the line is quiet (rules::kQuietLineMs), decide on them.
+  // look-ahead): once the line is quiet (top::quiet_line_ms), decide on them.
   void arm_quiet(top::StreamDecoder& dec, const Peer& peer, Link link, std::shared_ptr<void> keep) {
     const std::uint64_t fed = dec.fed();
     auto t =
-        std::make_shared<asio::steady_timer>(io, std::chrono::milliseconds(rules::kQuietLineMs));
+        std::make_shared<asio::steady_timer>(io, std::chrono::milliseconds(top::quiet_line_ms));
     t->async_wait([this, t, &dec, fed, peer, link, keep](std::error_code ec) {
       if (ec || dec.fed() != fed || dec.buffered() == 0) return;
       dec.finish();

@@ -9,7 +9,6 @@
 #include "conf/link.hpp"
 #include "conf/probe.hpp"
 #include "conf/runner.hpp"
-#include "sim/rules.hpp"
 #include "top/device.hpp"
 #include "top/enum_names.hpp"
 
@@ -17,7 +16,7 @@ namespace topconf {
 namespace {
 
 using WallClock = std::chrono::steady_clock;
-using topsim::rules::is_error_reply;
+using top::is_error_reply;
 
 struct Session {
   const Matrix& m;
@@ -111,8 +110,7 @@ struct Session {
     };
     if (!t.datagram() && c.open_end) {
       // The device holds the cut frame until its line is quiet (and 10 ms more).
-      const std::uint64_t quiet =
-          link.now() + std::uint64_t{topsim::rules::kQuietLineMs} * 1000 + 10000;
+      const std::uint64_t quiet = link.now() + std::uint64_t{top::quiet_line_ms} * 1000 + 10000;
       while (link.next(quiet, rx)) keep(std::move(rx));
     }
     bool found = false;

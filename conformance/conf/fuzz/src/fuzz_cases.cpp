@@ -6,7 +6,6 @@
 #include <iterator>
 
 #include "fuzz/mutator.hpp"
-#include "sim/rules.hpp"
 #include "top/device.hpp"
 #include "top/enum_names.hpp"
 
@@ -87,8 +86,8 @@ std::string mutate(std::string b, std::uint64_t s, bool repair) {
                                                  "#tP",
                                                  "#Tp",
                                                  "\n",
-                                                 topsim::rules::kErrorIdent,
-                                                 topsim::rules::kErrorData,
+                                                 top::error_reply_ident,
+                                                 top::error_reply_data,
                                                  "\xFF"};
   const int edits = 1 + static_cast<int>(splitmix(s) % 4);
   for (int e = 0; e < edits; ++e) {
@@ -155,7 +154,7 @@ CaseSource::CaseSource(top::Model model, char client, std::uint64_t seed, const 
   add_global();
   // Every identifier and form of the model.
   for (const top::CommandSpec& c : top::commands(dialect_)) {
-    if (!c.supports(model_) || topsim::rules::is_error_reply(c.ident)) continue;
+    if (!c.supports(model_) || top::is_error_reply(c.ident)) continue;
     for (const top::FormSpec& form : c.forms)
       if (form.role != top::Role::response) add_form(c, form);
   }

@@ -1,6 +1,6 @@
 #include "conf/probe.hpp"
 
-#include "sim/rules.hpp"
+#include "top/device.hpp"
 #include "top/frame.hpp"
 
 namespace topconf {
@@ -24,8 +24,7 @@ bool probe_answered(FrameLink& link, const Probe& p, std::uint64_t timeout_us) {
   Received r;
   while (link.next(deadline, r)) {
     const std::string_view id = r.frame.ident_view();
-    if ((id == p.ident && (!p.control || r.frame.control == p.control)) ||
-        topsim::rules::is_error_reply(id))
+    if ((id == p.ident && (!p.control || r.frame.control == p.control)) || top::is_error_reply(id))
       return true;
   }
   return false;

@@ -3,7 +3,7 @@
 
 #include "conf/transport.hpp"
 #include "sim/intake.hpp"
-#include "sim/rules.hpp"
+#include "top/device.hpp"
 
 namespace topconf {
 
@@ -28,9 +28,7 @@ bool SimTransport::restart() {
   return true;
 }
 
-char SimTransport::client_address() const {
-  return topsim::rules::client_address(device_.dialect(), link_);
-}
+char SimTransport::client_address() const { return top::client_address(device_.dialect(), link_); }
 
 std::string SimTransport::describe() const {
   return std::string("in-process topsim ") + std::string(top::to_string(device_.model()));
@@ -72,7 +70,7 @@ bool SimTransport::receive(std::uint64_t deadline_us, std::string& out) {
     const std::uint64_t t_dev = faults_.hung() ? UINT64_MAX : device_.next_timer();
     // The device decides on held bytes once the line has been quiet.
     const std::uint64_t t_quiet = !datagram() && decoder_.buffered() > 0
-                                      ? last_rx_ + std::uint64_t{topsim::rules::kQuietLineMs} * 1000
+                                      ? last_rx_ + std::uint64_t{top::quiet_line_ms} * 1000
                                       : UINT64_MAX;
     const std::uint64_t t = std::min({t_queue, t_dev, t_quiet});
     if (t > deadline_us) {

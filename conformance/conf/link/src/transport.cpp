@@ -8,7 +8,7 @@
 #include <chrono>
 #include <type_traits>
 
-#include "sim/rules.hpp"
+#include "top/device.hpp"
 #include "top/dialect.hpp"
 
 namespace topconf {
@@ -59,8 +59,7 @@ bool split_host_port(const std::string& s, std::string& host, std::uint16_t& por
 }
 
 char client_for(top::Model m, bool network) {
-  return topsim::rules::client_address(top::dialect_of(m),
-                                       network ? topsim::Link::network : topsim::Link::uart);
+  return top::client_address(top::dialect_of(m), network ? top::Link::network : topsim::Link::uart);
 }
 
 // The endpoints a pcap names for a socket: loopback with the socket's own

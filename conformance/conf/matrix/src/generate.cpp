@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/rules.hpp"
+#include "top/device.hpp"
 
 namespace topconf {
 namespace {
@@ -31,7 +31,7 @@ const top::FormSpec* find_form(const top::CommandSpec& c, char control, top::Rol
 bool clean_request(Dialect d, top::Model m, const top::CommandSpec& c, char control,
                    const std::string& data) {
   top::BuildSpec b;
-  b.src = topsim::rules::client_address(d, topsim::Link::network);
+  b.src = top::client_address(d, top::Link::network);
   b.dst = c.address;
   b.control = control;
   b.ident = c.ident;
@@ -304,7 +304,7 @@ struct Generator {
       return;
     classes_done.push_back(k.cls);
     top::BuildSpec b;
-    b.src = topsim::rules::client_address(d, topsim::Link::network);
+    b.src = top::client_address(d, top::Link::network);
     b.dst = c.address;
     b.control = ctl;
     b.ident = c.ident;
@@ -364,7 +364,7 @@ struct Generator {
       const std::string push(st.push);
       const json stream = {{"ident", push},
                            {"rate_hz", hz},
-                           {"tolerance", topsim::rules::kStreamRateTolerance},
+                           {"tolerance", top::stream_rate_tolerance},
                            {"duration_ms", 450}};
       cases.push_back(
           {{"id",
@@ -389,7 +389,7 @@ json generate_matrix(top::Model model) {
   Generator g{model};
   json m = g.head();
   for (const top::CommandSpec& c : top::commands(g.d)) {
-    if (!c.supports(model) || topsim::rules::is_error_reply(c.ident)) continue;
+    if (!c.supports(model) || top::is_error_reply(c.ident)) continue;
     const Generator::Command k = g.command_of(c);
     g.positive(k);
     g.negative(k);

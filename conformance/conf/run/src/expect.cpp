@@ -2,11 +2,11 @@
 
 #include <algorithm>
 
-#include "sim/rules.hpp"
+#include "top/device.hpp"
 
 namespace topconf::detail {
 
-using topsim::rules::is_error_reply;
+using top::is_error_reply;
 
 const top::DeviceForm* recorded_departure(const Matrix& m, const top::Frame& f) {
   const top::DeviceForm* rf = recorded_form_of(m.dialect, m.model, f);

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <optional>
 
-#include "sim/rules.hpp"
+#include "top/device.hpp"
 
 namespace topconf::detail {
 
@@ -204,7 +204,7 @@ StepResult CaseRunner::run_readback(const Case& c, const Step& s, const std::str
       got = true;
       break;
     }
-    if (topsim::rules::is_error_reply(r.frame.ident_view())) break;
+    if (top::is_error_reply(r.frame.ident_view())) break;
   }
   if (!got) {
     res.reason = "the write got no answer, nothing to read back";

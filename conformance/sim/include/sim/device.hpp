@@ -12,10 +12,13 @@
 #include <string_view>
 #include <vector>
 
-#include "sim/rules.hpp"
 #include "top/top.hpp"
 
 namespace topsim {
+
+// The link a request arrived on (top/device.hpp: Topotek answers only the
+// link its source byte names).
+using Link = top::Link;
 
 struct DeviceOptions {
   // Where the device's behaviour comes from (top/device.hpp): field
@@ -31,9 +34,9 @@ struct DeviceOptions {
   std::optional<bool> field_ptz;       // C13: PTZ codes the field says work
   bool swap_addresses = true;          // false: the no-swap fault (client first)
   bool tmp_quirk = false;              // answer TMP in the malformed #tpDU16wTMP form
-  // A speed command holds for this long unless refreshed (field notes:
-  // motors stop when rate commands are not refreshed).
-  std::uint32_t speed_hold_ms = rules::kSpeedHoldMs;
+  // A speed command holds for this long unless refreshed; 0: the model's
+  // (top::speed_hold_ms, from the speed_refresh trait).
+  std::uint32_t speed_hold_ms = 0;
   // Push rate of Topotek GIC/GAC streams, which GIA/GAA only switch on.
   std::uint32_t topotek_stream_hz = 10;
 };
@@ -116,7 +119,6 @@ class Device {
   top::DeviceForm form_of(std::string_view ident, top::Sent sent, std::size_t length) const;
   std::string build(const top::DeviceForm& form, char client, char device, char control,
                     std::string_view ident, std::string_view data) const;
-  bool takes_in_field(const top::Decoded& dec) const;
 
   top::Model model_;
   top::Dialect dialect_;

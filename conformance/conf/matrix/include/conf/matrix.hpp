@@ -13,7 +13,7 @@
 #include <string_view>
 #include <vector>
 
-#include "sim/rules.hpp"
+#include "top/device.hpp"
 #include "top/top.hpp"
 
 namespace topconf {
@@ -67,7 +67,7 @@ struct Expectation {
   std::uint32_t silence_ms = 0;
   // stream
   double rate_hz = 0;
-  double tolerance = topsim::rules::kStreamRateTolerance;  // fraction of rate_hz
+  double tolerance = top::stream_rate_tolerance;  // fraction of rate_hz
   std::uint32_t duration_ms = 0;
   // readback: the read sent after the write's reply; the reply data must
   // equal `data` when given, else the data the step wrote.
