@@ -8,9 +8,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "escape.hpp"
-#include "output.hpp"
-#include "sources.hpp"
+#include "capture/sources.hpp"
+#include "output/escape.hpp"
+#include "output/output.hpp"
 
 namespace topdump::reference {
 

@@ -10,9 +10,9 @@
 #include <random>
 #include <set>
 
-#include "escape.hpp"
 #include "json_reference.hpp"
-#include "json_writer.hpp"
+#include "output/escape.hpp"
+#include "output/json_writer.hpp"
 #include "test_support.hpp"
 #include "top/frame.hpp"
 
