@@ -21,32 +21,46 @@ void put_measure(std::string& o, double v, bool null_if_negative = true) {
 
 }  // namespace
 
-void write_json(std::string& out, const Report& r) {
-  Doc j(out, 2);
-  std::string& o = j.out();
-  const ReportSink& d = *r.data;
-  const Stats& s = *r.stats;
-  auto num = [&](std::string_view k, double v) {  // any value
+namespace {
+
+// The document's writer: the value helpers and one function per section.
+struct Writer {
+  Doc& j;
+  std::string& o;
+  const Report& r;
+  const ReportSink& d;
+  const Stats& s;
+
+  void num(std::string_view k, double v) {  // any value
     j.key(k);
     put_measure(o, v, false);
-  };
-  auto opt = [&](std::string_view k, double v) {  // negative: not measured
+  }
+  void opt(std::string_view k, double v) {  // negative: not measured
     j.key(k);
     put_measure(o, v);
-  };
-  auto u = [&](std::string_view k, std::uint64_t v) {
+  }
+  void u(std::string_view k, std::uint64_t v) {
     j.key(k);
     put_u(o, v);
-  };
-  auto text = [&](std::string_view k, std::string_view v) {
+  }
+  void text(std::string_view k, std::string_view v) {
     j.key(k);
     put_str(o, v);
-  };
-  auto time = [&](std::string_view k, std::int64_t v) {
+  }
+  void time(std::string_view k, std::int64_t v) {
     j.key(k);
     put_time(o, v);
-  };
-  j.open_object();
+  }
+  void overview();
+  void angles();
+  void rates();
+  void latency();
+  void streams();
+  void findings();
+  void unanswered();
+};
+
+void Writer::overview() {
   j.key_object("overview");
   j.key_array("files");
   for (const auto& f : r.opts.files) {
@@ -83,7 +97,9 @@ void write_json(std::string& out, const Report& r) {
   }
   j.close_array();
   j.close_object();
+}
 
+void Writer::angles() {
   j.key_array("angle_commands");
   for (const AngleResult& a : r.angles) {
     j.item_object();
@@ -126,7 +142,9 @@ void write_json(std::string& out, const Report& r) {
     j.close_object();
   }
   j.close_array();
+}
 
+void Writer::rates() {
   j.key_object("rate_commands");
   j.key("refresh_limit_ms");
   if (r.refresh_limit_ms)
@@ -184,7 +202,9 @@ void write_json(std::string& out, const Report& r) {
   }
   j.close_array();
   j.close_object();
+}
 
+void Writer::latency() {
   j.key_object("latency");
   for (const auto& [ident, l] : s.latency) {
     j.key_object(ident);
@@ -229,7 +249,9 @@ void write_json(std::string& out, const Report& r) {
   }
   j.close_array();
   j.close_object();
+}
 
+void Writer::streams() {
   j.key_array("streams");
   for (const StreamResult& x : r.streams) {
     j.item_object();
@@ -265,7 +287,9 @@ void write_json(std::string& out, const Report& r) {
     j.close_object();
   }
   j.close_array();
+}
 
+void Writer::findings() {
   j.key_array("findings");
   for (const auto& [code, c] : d.codes) {
     j.item_object();
@@ -300,7 +324,9 @@ void write_json(std::string& out, const Report& r) {
     j.close_object();
   }
   j.close_array();
+}
 
+void Writer::unanswered() {
   j.key_array("unanswered");
   for (const Unanswered& x : d.unanswered) {
     j.item_object();
@@ -313,8 +339,23 @@ void write_json(std::string& out, const Report& r) {
     j.close_object();
   }
   j.close_array();
+}
+
+}  // namespace
+
+void write_json(std::string& out, const Report& r) {
+  Doc j(out, 2);
+  Writer w{j, j.out(), r, *r.data, *r.stats};
+  j.open_object();
+  w.overview();
+  w.angles();
+  w.rates();
+  w.latency();
+  w.streams();
+  w.findings();
+  w.unanswered();
   j.close_object();
-  o += '\n';
+  j.out() += '\n';
 }
 
 }  // namespace topdump::report

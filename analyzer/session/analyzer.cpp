@@ -9,24 +9,6 @@
 
 namespace topdump {
 
-constexpr std::string_view kTransport[] = {"udp", "tcp", "serial"};
-static_assert(std::size(kTransport) == static_cast<std::size_t>(Transport::serial) + 1);
-
-std::string_view to_string(Transport t) noexcept {
-  const auto i = static_cast<std::size_t>(t);
-  return i < std::size(kTransport) ? kTransport[i] : "?";
-}
-
-bool looks_like_top(std::string_view p) noexcept {
-  for (std::size_t i = p.find('#'); i != std::string_view::npos; i = p.find('#', i + 1)) {
-    if (i + 2 < p.size() && (p[i + 1] == 'T' || p[i + 1] == 't') &&
-        (p[i + 2] == 'P' || p[i + 2] == 'p'))
-      return true;
-    if (p.substr(i, 9) == "#PDP16TMP") return true;
-  }
-  return false;
-}
-
 top::Severity FrameEvent::worst() const noexcept {
   top::Severity w = entry ? entry->worst : top::Severity::info;
   for (const Note& x : notes)

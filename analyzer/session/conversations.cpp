@@ -4,9 +4,13 @@
 #include <algorithm>
 #include <cstring>
 
+#include "capture/link.hpp"
 #include "session.hpp"
 
 namespace topdump {
+
+// Flows recognised by content are remembered as long as conversations.
+static_assert(kMaxContentFlows == kMaxConversations);
 
 namespace {
 bool endpoint_less(const Endpoint& x, const Endpoint& y) {
