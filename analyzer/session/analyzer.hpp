@@ -15,16 +15,16 @@
 #include "findings/afindings.hpp"
 #include "session/events.hpp"
 #include "session/filter.hpp"
+#include "session/pairing.hpp"
 #include "session/stats.hpp"
+#include "session/tcp_reassembly.hpp"
 #include "top/top.hpp"
 
 namespace topdump {
 
-// Named limits (findings fire when they are hit).
+// Named limits (findings fire when they are hit); kMaxPending and the TCP
+// limits are in session/pairing.hpp and session/tcp_reassembly.hpp.
 inline constexpr std::size_t kMaxConversations = 4096;
-inline constexpr std::size_t kMaxPending = 256;       // per conversation
-inline constexpr std::size_t kMaxTcpHeld = 1u << 20;  // out-of-order bytes per direction
-inline constexpr std::size_t kMaxTcpSegments = 1024;  // out-of-order segments per direction
 
 struct AnalyzerOptions {
   top::Dialect dialect = top::Dialect::unknown;  // forced when not unknown

@@ -51,6 +51,8 @@ Conversation& Analyzer::Impl::get_slow(Transport t, const Endpoint& src, const E
     c->dir[1].dst = src;
     c->dir[1].from = c->dir[0].to;
     c->dir[1].to = c->dir[0].from;
+    c->dir[0].tcp = TcpReassembly(A.opts_.max_tcp_held);
+    c->dir[1].tcp = TcpReassembly(A.opts_.max_tcp_held);
     if (A.opts_.dialect != top::Dialect::unknown) c->det.force(A.opts_.dialect);
     if (A.opts_.model != top::Model::unknown) c->det.force(top::dialect_of(A.opts_.model));
     if (src.family) c->det.observe_port(src.port);
@@ -91,14 +93,15 @@ void Analyzer::Impl::evict() {
 void Analyzer::Impl::close(Conversation& c, std::int64_t ts) {
   for (int d = 0; d < 2; ++d) {
     Direction& D = c.dir[d];
-    while (!D.ooo.empty()) gap(c, d, ts);
+    TcpSide side(*this, c, d);
+    D.tcp.finish(ts, side);
     D.dec.finish();
     drain_stream(c, d, ts);
   }
   // After -c the input was cut short: what is pending may yet be answered.
-  while (!c.pending.empty()) {
-    if (!A.done_) unanswered(c, c.pending.front(), true);
-    c.pop_pending();
+  while (!c.pairing.empty()) {
+    if (!A.done_) unanswered(c, c.pairing.oldest(), true);
+    c.pairing.pop_oldest();
   }
   emit_silence(c);
   for (const StreamStat& s : c.st.streams) check_stream(c, s);

@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 
+#include "session.hpp"
 #include "session/analyzer.hpp"
 
 namespace topdump {
@@ -104,6 +105,19 @@ std::int64_t Latency::quantile(double q) const {
 double StreamStat::measured_hz() const {
   if (frames < 2 || first == kNoTime || last <= first) return 0;
   return static_cast<double>(frames - 1) * 1e6 / static_cast<double>(last - first);
+}
+
+Latency& Analyzer::Impl::latency_of(std::uint32_t key) {
+  std::uint32_t& hint = latency_hint[(key * 0x9E3779B1u) >> 26];
+  if (hint != 0 && latency_keys[hint - 1] == key) return latency[hint - 1];
+  std::size_t i = 0;
+  while (i < latency_keys.size() && latency_keys[i] != key) ++i;
+  if (i == latency_keys.size()) {
+    latency_keys.push_back(key);
+    latency.emplace_back();
+  }
+  hint = static_cast<std::uint32_t>(i + 1);
+  return latency[i];
 }
 
 }  // namespace topdump

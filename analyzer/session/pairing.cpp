@@ -1,347 +1,70 @@
-// Pairing: requests wait for their responses (newest first, preferring an
-// echo of their data), go unanswered after the timeout with the cause the
-// capture shows, and a silent device's stretch is one finding; pushes count
-// toward the streams their switches asked for.
-#include <algorithm>
-#include <charconv>
-#include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <cstring>
+#include "session/pairing.hpp"
 
-#include "session.hpp"
-#include "top/text.hpp"
+#include <algorithm>
+#include <cstdlib>
 
 namespace topdump {
 
-namespace {
-// What the capture shows of why a request went unanswered (Cause).
-constexpr std::string_view kCauseText[] = {
-    "",
-    ": its checksum is bad, and devices drop such frames",
-    ": a Topotek request with source U over the network; the device answers U requests on its "
-    "UART only (the network client is P)",
-    ": the identifier is not supported on the model",
-    ": the request is invalid (its length or a value), which devices ignore or answer with ERE",
-};
-static_assert(std::size(kCauseText) == static_cast<std::size_t>(Cause::invalid) + 1);
-std::string_view cause_text(Cause c) { return kCauseText[static_cast<std::size_t>(c)]; }
-}  // namespace
-
-Latency& Analyzer::Impl::latency_of(std::uint32_t key) {
-  std::uint32_t& hint = latency_hint[(key * 0x9E3779B1u) >> 26];
-  if (hint != 0 && latency_keys[hint - 1] == key) return latency[hint - 1];
-  std::size_t i = 0;
-  while (i < latency_keys.size() && latency_keys[i] != key) ++i;
-  if (i == latency_keys.size()) {
-    latency_keys.push_back(key);
-    latency.emplace_back();
+bool Pairing::waiting(const char ident[3], int dir) const noexcept {
+  if (maybe_pending(ident, dir) == 0) return false;
+  for (std::size_t i = 0; i < pending_.size(); ++i) {
+    const Pending& p = pending_[i];
+    if (p.dir == dir && same_ident(p.ident, std::string_view(ident, 3))) return true;
   }
-  hint = static_cast<std::uint32_t>(i + 1);
-  return latency[i];
+  return false;
 }
 
-// Learns which direction the device sends in from a frame of direction d,
-// when the ports did not say: a frame addressed to a client, or one that
-// answers a pending request of the other direction, comes from the
-// device; a stream switch (GAA, GIA, FAE write) comes from a client.
-void Analyzer::Impl::learn_device(Conversation& c, int d, const top::Frame& f,
-                                  top::Dialect dialect) {
-  // Both ends the same (a recording without ports): the addresses decide.
-  if (c.dir[0].src == c.dir[0].dst) return;
-  if (top::role_from_addresses(f) == top::Role::response) {
-    c.device_dir = d;
-    return;
-  }
-  if (c.pending_count(f.ident, 1 - d) > 0) {
-    for (std::size_t i = 0; i < c.pending.size(); ++i) {
-      const Pending& p = c.pending[i];
-      if (p.dir != d && same_ident(p.ident, f.ident_view())) {
-        c.device_dir = d;
-        return;
-      }
-    }
-  }
-  if (f.control == 'w' && dialect != top::Dialect::unknown &&
-      top::stream_enabled_by(dialect, f.ident_view()))
-    c.device_dir = 1 - d;
-}
-
-void Analyzer::Impl::unanswered(Conversation& c, const Pending& p, bool at_end) {
-  if (one_way(c)) return;  // the answers are on a line nobody recorded
-  // A copy of a request that was answered (senders that send each frame
-  // several times) is not unanswered: the device answered one of them.
-  if (p.ts != kNoTime)
-    for (const Answered& a : c.answered)
-      if (a.ts != kNoTime && same_ident(p.ident, std::string_view(a.ident, 3)) &&
-          a.control == p.control && a.src == p.src && a.dst == p.dst && a.data == p.data &&
-          std::llabs(a.ts - p.ts) <= std::max<std::int64_t>(A.opts_.repeat_window_us, 0))
-        return;
-  const Direction& D = c.dir[p.dir];
-  Note about{ACode::unanswered, default_severity(ACode::unanswered), std::string(), p.n};
-  std::memcpy(about.ident, p.ident, 3);
-  about.src = p.src;
-  about.dst = p.dst;
-  if (A.filtering_) {
-    // Reported only when the filter selects it, as a note about the request.
-    NoteEvent e;
-    e.ts = p.ts;
-    e.conv = &c;
-    e.from = &D.from;
-    e.to = &D.to;
-    e.note = about;
-    if (!A.filter_.selects(e)) return;
-  }
-  ++A.stats_.unanswered;
-  const Direction& other = c.dir[1 - p.dir];
-  const bool silent =
-      p.cause == Cause::none && p.ts != kNoTime &&
-      (!other.sent_frame || other.last_frame_ts == kNoTime || other.last_frame_ts < p.ts);
-  std::string msg = message([&] {
-    return at_end
-               ? top::cat({top::escape(std::string_view(p.ident, 3)), " request (frame ",
-                           std::to_string(p.n), ") got no response before the end of the capture",
-                           cause_text(p.cause)})
-               : top::cat({top::escape(std::string_view(p.ident, 3)), " request (frame ",
-                           std::to_string(p.n), ") got no response within ",
-                           std::to_string(A.opts_.timeout_us / 1000), " ms", cause_text(p.cause)});
-  });
-  if (silent) {
-    Silence& s = c.silence;
-    if (s.count && s.dir != p.dir) emit_silence(c);
-    if (s.count == 0) {
-      s.about = about;
-      s.first_n = p.n;
-      s.first_ts = p.ts;
-      s.pos = p.pos;
-      s.dir = p.dir;
-      s.idents.clear();
-      s.single = std::move(msg);
-    }
-    ++s.count;
-    s.last_n = p.n;
-    s.last_ts = p.ts;
-    const std::string id = top::escape(std::string_view(p.ident, 3));
-    if (s.idents.find(id) == std::string::npos && s.idents.size() < 64)
-      s.idents += (s.idents.empty() ? "" : ", ") + id;
-    return;
-  }
-  about.message = std::move(msg);
-  note_event(p.ts, p.pos, c.transport, &c, &D.from, &D.to, std::move(about));
-}
-
-// One finding for requests that went unanswered while the device said
-// nothing (the first request's message when it is alone).
-void Analyzer::Impl::emit_silence(Conversation& c) {
-  Silence& s = c.silence;
-  if (s.count == 0) return;
-  const Direction& D = c.dir[s.dir];
-  std::string msg = s.count == 1 ? std::move(s.single) : message([&] {
-    char span[32];
-    std::snprintf(span, sizeof span, "%.3f", static_cast<double>(s.last_ts - s.first_ts) / 1e6);
-    return "the device was silent: " + std::to_string(s.count) + " requests (" + s.idents +
-           ") from frame " + std::to_string(s.first_n) + " to frame " + std::to_string(s.last_n) +
-           " over " + span + " s got no response";
-  });
-  Note n = s.about;  // the first request's identifier and addresses
-  n.message = std::move(msg);
-  note_event(s.first_ts, s.pos, c.transport, &c, &D.from, &D.to, std::move(n));
-  s = Silence{};
-}
-
-void Analyzer::Impl::request(Conversation& c, int d, FrameEvent& ev) {
-  const top::Frame& f = *ev.entry->frame;
-  Direction& D = c.dir[d];
-  if (ev.ts != kNoTime && D.last_req_ts != kNoTime &&
-      ev.ts - D.last_req_ts <= A.opts_.repeat_window_us && D.last_req == f.raw)
-    ev.notes.push_back(Note{ACode::repeated, default_severity(ACode::repeated), message([&] {
-                              return "same request again after " +
-                                     std::to_string((ev.ts - D.last_req_ts) / 1000) + " ms";
-                            }),
-                            ev.n});
-  D.last_req = f.raw;
-  D.last_req_ts = ev.ts;
-  std::string_view id = f.ident_view();
-  const top::Dialect dialect = ev.entry->decoded.dialect;
-  // A client stream's frame (FAI after FAE) expects no answer.
-  for (StreamStat& s : c.st.streams) {
-    if (s.from_client && s.ident == id) {
-      ++s.frames;
-      if (ev.ts != kNoTime) {
-        if (s.first == kNoTime) s.first = ev.ts;
-        s.last = ev.ts;
-      }
-      return;
-    }
-  }
-  const top::StreamSpec* switched =
-      f.control == 'w' ? top::stream_enabled_by(dialect, id) : nullptr;
-  if (switched) {
-    if (const std::optional<unsigned> value = top::switch_value(f.data())) {
-      const unsigned v = *value;
-      const std::string sid(switched->push);
-      auto& streams = c.st.streams;
-      auto s = std::find_if(streams.begin(), streams.end(),
-                            [&](const StreamStat& x) { return x.ident == sid; });
-      if (v == 0) {
-        // disabled: keep the measured figures
-      } else {
-        if (s == streams.end()) {
-          streams.push_back(StreamStat{});
-          s = streams.end() - 1;
-        } else {
-          check_stream(c, *s);
-          *s = StreamStat{};
-        }
-        s->ident = sid;
-        s->asked_by = std::string(switched->request);
-        s->from_client = switched->sender == top::Sender::client;
-        s->asked_hz = switched->rate_in_data ? static_cast<double>(v) : 0;
-      }
-    }
-  }
-  if (c.pending.size() >= kMaxPending) {
-    unanswered(c, c.pending.front(), false);
-    c.pop_pending();
-  }
-  Pending& p = c.pending.push_back();  // a reused slot: every member is assigned
-  p.ts = ev.ts;
-  p.n = ev.n;
-  p.pos = ev.pos;
-  std::memcpy(p.ident, f.ident, 3);
-  p.control = f.control;
-  p.src = f.src;
-  p.dst = f.dst;
-  p.data.clear();  // append into the slot's buffer: cheaper than assign's replace
-  p.data.append(f.data());
-  p.dir = d;
-  p.cause = Cause::none;
-  if (ev.entry->bad_checksum) {
-    p.cause = Cause::bad_checksum;
-  } else if (dialect == top::Dialect::topotek && f.src == 'U' && c.transport != Transport::serial) {
-    p.cause = Cause::uart_source;
-  } else {
-    // A request laid out as a reply (a one-char VSN read) is invalid too.
-    const top::FormSpec* form = ev.entry->decoded.form;
-    if (form && form->role == top::Role::response) p.cause = Cause::invalid;
-    for (const top::Finding& x : ev.entry->decoded.findings) {
-      if (x.code == top::FindingCode::unknown_ident ||
-          (x.code == top::FindingCode::unsupported_on_model &&
-           x.severity == top::Severity::error)) {
-        p.cause = Cause::unsupported;
-        break;
-      }
-      if (x.code == top::FindingCode::data_length || x.code == top::FindingCode::bad_field ||
-          x.code == top::FindingCode::value_out_of_range ||
-          x.code == top::FindingCode::unsupported_control)
-        p.cause = Cause::invalid;
-    }
-  }
-  c.count_pending(p, true);
-  c.pending_changed();
-}
-
-void Analyzer::Impl::response(Conversation& c, int d, FrameEvent& ev) {
-  const top::Frame& f = *ev.entry->frame;
-  std::string_view id = f.ident_view();
-  bool ere = id == "ERE";
-  // The newest pending request it answers, preferring one whose data it
-  // echoes. TOP frames carry no sequence number. Oldest-first would pair a
-  // reply to a request that was lost (never answered) instead of the
-  // retry it answers: the latency would be off by up to the timeout and
-  // the retry reported unanswered. Newest-first can only swap two
-  // identical requests in flight, whose latencies are alike.
-  const bool none = !ere && c.pending_count(f.ident, 1 - d) == 0;
-  // one pass from the newest: the first request whose data it echoes, else
-  // the newest of its identifier (ERE: the newest to the device it speaks for)
+// One pass from the newest: the first request whose data the response
+// echoes, else the newest of its identifier (ERE: the newest to the device
+// it speaks for). Oldest-first would pair a reply to a request that was lost
+// (never answered) instead of the retry it answers: the latency would be
+// off by up to the timeout and the retry reported unanswered. Newest-first
+// can only swap two identical requests in flight, whose latencies are alike.
+std::optional<Pairing::Match> Pairing::match(std::string_view ident, std::string_view data,
+                                             char src, int dir, bool ere) const {
+  if (!ere && maybe_pending(ident.data(), 1 - dir) == 0) return std::nullopt;
   constexpr std::size_t kNone = SIZE_MAX;
-  std::size_t mi = kNone;
-  bool echoed = false;  // the request found carries the reply's data
-  if (!none) {
-    std::size_t by_ident = kNone;
-    for (std::size_t i = c.pending.size(); i-- > 0;) {
-      const Pending& p = c.pending[i];
-      if (p.dir == d) continue;
-      if (ere) {
-        if (p.dst == f.src) {
-          by_ident = i;
-          break;
-        }
-        continue;
-      }
-      if (!same_ident(p.ident, id)) continue;
-      if (p.data == f.data()) {
-        mi = i;
-        echoed = true;
+  std::size_t by_ident = kNone;
+  for (std::size_t i = pending_.size(); i-- > 0;) {
+    const Pending& p = pending_[i];
+    if (p.dir == dir) continue;
+    if (ere) {
+      if (p.dst == src) {
+        by_ident = i;
         break;
       }
-      if (by_ident == kNone) by_ident = i;
+      continue;
     }
-    if (mi == kNone) mi = by_ident;
+    if (!same_ident(p.ident, ident)) continue;
+    if (p.data == data) return Match{i, true};
+    if (by_ident == kNone) by_ident = i;
   }
-  if (mi != kNone) {
-    const Pending* m = &c.pending[mi];
-    ev.reply_to = m->n;
-    if (ev.ts != kNoTime && m->ts != kNoTime) {
-      ev.latency_us = ev.ts - m->ts;
-      reply_timed = true;
-      reply_key = pack_ident(std::string_view(m->ident, 3));
-    }
-    // Writes answered in a layout of their own (Topotek REC/CAP file index,
-    // LON/LAT, LRF) are not echoes.
-    const top::CommandSpec* cmd = ev.entry->decoded.command;
-    bool exempt = cmd && top::write_reply(*cmd) != top::WriteReply::echo;
-    if (!ere && !exempt && m->control == 'w' && f.control == 'w' && !echoed)
-      ev.notes.push_back(Note{
-          ACode::echo_differs, default_severity(ACode::echo_differs), message([&] {
-            return "reply to write (frame " + std::to_string(m->n) + ") carries \"" +
-                   top::escape(f.data()) + "\", the write carried \"" + top::escape(m->data) + "\"";
-          }),
-          ev.n});
-    Answered& a = c.answered[c.answered_next++ % c.answered.size()];
-    std::memcpy(a.ident, m->ident, 3);
-    a.control = m->control;
-    a.src = m->src;
-    a.dst = m->dst;
-    a.data = m->data;
-    a.ts = m->ts;
-    c.erase_pending(mi);
-    return;
-  }
-  for (StreamStat& s : c.st.streams) {
-    if (s.ident == id) {
-      ++s.frames;
-      if (ev.ts != kNoTime) {
-        if (s.first == kNoTime) s.first = ev.ts;
-        s.last = ev.ts;
-      }
-      return;
-    }
-  }
-  if (one_way(c)) return;  // the requests are on a line nobody recorded
-  ev.notes.push_back(Note{ACode::unsolicited, default_severity(ACode::unsolicited), message([&] {
-                            return top::escape(id) + " response that no pending request asked for";
-                          }),
-                          ev.n});
+  if (by_ident == kNone) return std::nullopt;
+  return Match{by_ident, false};
 }
 
-void Analyzer::Impl::check_stream(Conversation& c, const StreamStat& s) {
-  if (s.asked_hz <= 0 || s.frames < 2) return;
-  double m = s.measured_hz();
-  if (m <= 0 || std::fabs(m - s.asked_hz) <= 0.25 * s.asked_hz) return;
-  // printf's "%.1f" and "%.0f" through to_chars (the same text, without
-  // printf's cost on every re-asked stream)
-  auto fixed = [](double v, int decimals) {
-    char b[64];
-    auto r = std::to_chars(b, b + sizeof b, v, std::chars_format::fixed, decimals);
-    return r.ec == std::errc() ? std::string(b, r.ptr) : std::to_string(v);
-  };
-  std::string msg = message([&] {
-    return s.ident + " stream runs at " + fixed(m, 1) + " Hz, " + s.asked_by + " asked for " +
-           fixed(s.asked_hz, 0) + " Hz (" + std::to_string(s.frames) + " frames)";
-  });
-  Note n{ACode::stream_rate, default_severity(ACode::stream_rate), std::move(msg), 0};
-  std::memcpy(n.ident, s.ident.data(), std::min<std::size_t>(s.ident.size(), 3));
-  note_event(s.last, Position{}, c.transport, &c, &c.dir[0].from, &c.dir[0].to, std::move(n));
+void Pairing::answer(std::size_t index) {
+  const Pending& m = pending_[index];
+  Answered& a = answered_[answered_next_++ % answered_.size()];
+  std::memcpy(a.ident, m.ident, 3);
+  a.control = m.control;
+  a.src = m.src;
+  a.dst = m.dst;
+  a.data = m.data;
+  a.ts = m.ts;
+  count(m, false);
+  pending_.erase(index);
+  changed();
 }
+
+bool Pairing::copy_of_answered(const Pending& p, std::int64_t window_us) const {
+  if (p.ts == kNoTime) return false;
+  for (const Answered& a : answered_)
+    if (a.ts != kNoTime && same_ident(p.ident, std::string_view(a.ident, 3)) &&
+        a.control == p.control && a.src == p.src && a.dst == p.dst && a.data == p.data &&
+        std::llabs(a.ts - p.ts) <= std::max<std::int64_t>(window_us, 0))
+      return true;
+  return false;
+}
+
 }  // namespace topdump

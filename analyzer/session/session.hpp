@@ -3,10 +3,12 @@
 // in files of one idea:
 //   analyzer.cpp       frames and items to events, statistics, the public API
 //   conversations.cpp  the conversation table: lookup, cache, eviction, close
-//   pairing.cpp        requests, responses, unanswered requests, streams
-//   reassembly.cpp     byte streams: TCP reassembly, positions, serial chunks
-//   filter.cpp         the command line's selection
-//   latency.cpp        latency histograms and stream rates
+//   requests.cpp       requests and responses through the conversation's
+//                      Pairing (pairing.hpp), unanswered requests, silences
+//   streams.cpp        device streams: counted pushes, the stream-rate check
+//   byte_streams.cpp   byte streams: TCP through TcpReassembly
+//                      (tcp_reassembly.hpp), positions, serial chunks
+//   latency.cpp        latency histograms and the latency table
 #pragma once
 
 #include <array>
@@ -20,6 +22,8 @@
 #include <vector>
 
 #include "session/analyzer.hpp"
+#include "session/pairing.hpp"
+#include "session/tcp_reassembly.hpp"
 #include "top/detail/ring.hpp"
 
 namespace topdump {
@@ -30,44 +34,6 @@ struct Seg {
   std::uint64_t record;
   std::uint64_t rec_off;
   std::int64_t ts;
-};
-
-// A TCP segment held until the bytes before it arrive.
-struct Held {
-  std::string bytes;
-  std::uint64_t record;
-  std::uint32_t offset;
-  std::int64_t ts;
-};
-
-// Why a request may go unanswered, as far as the capture shows.
-enum class Cause : std::uint8_t {
-  none,
-  bad_checksum,  // devices drop frames they cannot trust
-  uart_source,   // Topotek: source U over the network, answers go to the UART
-  unsupported,   // not in the catalog, or not on the model
-  invalid        // a wrong length or value: Topotek ignores it, SkyDroid answers ERE
-};
-
-struct Pending {
-  std::int64_t ts;
-  std::uint64_t n;
-  Position pos;
-  char ident[3];
-  char control;
-  char src, dst;
-  std::string data;
-  int dir;
-  Cause cause;
-};
-
-// A request that was answered, to recognise its copies.
-struct Answered {
-  char ident[3] = {};
-  char control = 0;
-  char src = 0, dst = 0;
-  std::string data;
-  std::int64_t ts = kNoTime;  // of the request
 };
 
 // Requests that went unanswered while the device said nothing: reported as
@@ -94,12 +60,7 @@ struct Direction {
   std::uint64_t base = 0;  // stream offset of the decoder's offset 0
   std::uint64_t last_record = 0;
   std::uint32_t index = 0;
-  // TCP
-  bool tcp_init = false;
-  std::uint32_t next_seq = 0;
-  std::map<std::uint32_t, Held> ooo;  // keyed by seq - next_seq at insertion time ordering
-  std::size_t held = 0;
-  std::string tail;  // last delivered bytes, for overlap checks
+  TcpReassembly tcp;  // TCP
   // repeats
   std::string last_req;
   std::int64_t last_req_ts = kNoTime;
@@ -117,50 +78,11 @@ struct Conversation {
   // only a device sends (addressed to a client, or answering a request), or
   // the first stream switch (GAA, GIA, FAE) a client sends.
   int device_dir = -1;
-  std::array<Answered, 8> answered{};
-  std::size_t answered_next = 0;
   Silence silence;
   top::DialectDetector det;
   std::uint32_t observed = 0;
-  top::detail::Ring<Pending> pending;
-  // How many pending requests per (identifier, direction), counted in 64
-  // buckets by a hash of the pair: a frame whose bucket is empty has no
-  // request to answer and skips the scan of `pending` (stream frames,
-  // requests). Pairs that share a bucket only cost a scan that finds
-  // nothing; the scan decides.
-  std::array<std::uint16_t, 64> pending_keys{};
-  static_assert(kMaxPending < 0xFFFF);
-
-  static std::size_t key(const char ident[3], int direction) noexcept {
-    const std::uint32_t k = static_cast<std::uint32_t>(static_cast<unsigned char>(ident[0])) |
-                            static_cast<std::uint32_t>(static_cast<unsigned char>(ident[1])) << 8 |
-                            static_cast<std::uint32_t>(static_cast<unsigned char>(ident[2])) << 16 |
-                            static_cast<std::uint32_t>(direction) << 24;
-    return (k * 0x9E3779B1u) >> 26;  // 64 buckets
-  }
-  std::uint32_t pending_count(const char ident[3], int direction) const noexcept {
-    return pending_keys[key(ident, direction)];
-  }
-  void count_pending(const Pending& p, bool add) noexcept {
-    std::uint16_t& n = pending_keys[key(p.ident, p.dir)];
-    n = static_cast<std::uint16_t>(add ? n + 1 : n - 1);
-  }
+  Pairing pairing;
   std::uint64_t last_used = 0;
-  // The time of the oldest pending request (kNoTime: none, or untimed), so
-  // the timeout check of every frame reads one member.
-  std::int64_t oldest = kNoTime;
-
-  void pending_changed() noexcept { oldest = pending.empty() ? kNoTime : pending.front().ts; }
-  void pop_pending() {
-    count_pending(pending.front(), false);
-    pending.pop_front();
-    pending_changed();
-  }
-  void erase_pending(std::size_t i) {
-    count_pending(pending[i], false);
-    pending.erase(i);
-    pending_changed();
-  }
   ConvStats st;
 };
 
@@ -183,10 +105,6 @@ inline std::uint32_t pack_ident(std::string_view id) noexcept {
   return k;
 }
 std::string unpack_ident(std::uint32_t k);
-
-inline bool same_ident(const char a[3], std::string_view b) noexcept {
-  return b.size() == 3 && a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
-}
 
 struct Analyzer::Impl {
   Analyzer& A;
@@ -309,15 +227,13 @@ struct Analyzer::Impl {
   std::uint32_t reply_key = 0;
 
   void learn_device(Conversation& c, int d, const top::Frame& f, top::Dialect dialect);
+  // What the capture shows of why a request may go unanswered.
+  static Cause cause_of(const Conversation& c, const DecodedEntry& e);
   void request(Conversation& c, int d, FrameEvent& ev);
   void response(Conversation& c, int d, FrameEvent& ev);
   // Requests older than the timeout at time ts are unanswered.
   void expire(Conversation& c, std::int64_t ts) {
-    if (ts == kNoTime) return;
-    while (c.oldest != kNoTime && ts - c.oldest > A.opts_.timeout_us) {
-      unanswered(c, c.pending.front(), false);
-      c.pop_pending();
-    }
+    c.pairing.expire(ts, A.opts_.timeout_us, [&](const Pending& p) { unanswered(c, p, false); });
   }
   void unanswered(Conversation& c, const Pending& p, bool at_end);
   // A serial line recorded in one direction only (a raw dump, one tap): its
@@ -340,13 +256,20 @@ struct Analyzer::Impl {
   top::StreamItem drained;
   void deliver(Conversation& c, int d, std::string_view bytes, std::uint64_t record,
                std::uint64_t offset, std::int64_t ts);
-  void overlap_check(Conversation& c, int d, std::uint32_t seq, std::string_view bytes,
-                     std::uint64_t record, std::uint64_t offset, std::int64_t ts);
-  bool place(Conversation& c, int d, std::uint32_t seq, std::string_view p, std::uint64_t record,
-             std::uint64_t offset, std::int64_t ts);
-  void drain_ooo(Conversation& c, int d);
-  void gap(Conversation& c, int d, std::int64_t ts);
   void restart(Conversation& c, int d, std::int64_t ts, std::uint64_t skipped);
+  // What a direction's TCP reassembly finds: bytes for its decoder,
+  // findings as notes, and gaps, after which the decoder restarts.
+  struct TcpSide final : TcpOutput {
+    TcpSide(Impl& i, Conversation& conv, int dir) : I(i), c(conv), d(dir) {}
+    void bytes(std::string_view b, std::uint64_t record, std::uint64_t offset,
+               std::int64_t ts) override;
+    void finding(ACode code, std::string message, std::uint64_t record, std::uint64_t offset,
+                 std::int64_t ts) override;
+    void gap(std::uint64_t skipped, std::int64_t ts) override;
+    Impl& I;
+    Conversation& c;
+    int d;
+  };
 };
 
 }  // namespace topdump
