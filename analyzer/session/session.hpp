@@ -211,7 +211,7 @@ struct Analyzer::Impl {
   // Folds the fast counters into the statistics.
   void materialize(Stats& s) const;
 
-  // --- pairing.cpp: requests, responses, streams ---------------------------
+  // --- requests.cpp, streams.cpp, latency.cpp: pairing and streams --------
   // Latency per identifier: a capture pairs a handful of identifiers, so a
   // linear search of their keys beats hashing (a division per reply).
   std::vector<std::uint32_t> latency_keys;
@@ -245,7 +245,7 @@ struct Analyzer::Impl {
   void emit_silence(Conversation& c);
   void check_stream(Conversation& c, const StreamStat& s);
 
-  // --- reassembly.cpp: byte streams ----------------------------------------
+  // --- byte_streams.cpp: byte streams --------------------------------------
   Position map_position(Direction& D, std::uint64_t off, std::uint64_t len,
                         std::uint64_t& stream_off, std::int64_t& ts);
   void drain_stream(Conversation& c, int d, std::int64_t ts);
