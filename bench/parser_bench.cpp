@@ -7,10 +7,10 @@
 #include <type_traits>
 #include <vector>
 
-#include "analyzer.hpp"
-#include "output.hpp"
+#include "output/output.hpp"
 #include "pcapio/packet.hpp"
 #include "pcapio/writer.hpp"
+#include "session/analyzer.hpp"
 #include "top/frame.hpp"
 #include "top/top.hpp"
 

@@ -5,7 +5,7 @@
 # nested build of this same source tree), runs them on a training set
 # (cmake/pgo-train.cmake: generated UDP and TCP captures and a serial dump,
 # and every bundled capture, through read, read -V, read --json, read --csv,
-# stats and report), and then compiles the library, topdump_core and topdump with
+# stats and report), and then compiles the library, topdump's libraries and topdump with
 # the profile. Everything else builds as usual. The training captures are
 # not the benchmark's (other seeds and sizes); bench/README.md gives the
 # figures with and without the profile.

@@ -21,11 +21,11 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "analyzer.hpp"
+#include "capture/sources.hpp"
 #include "check.hpp"
 #include "json_check.hpp"
-#include "output.hpp"
-#include "sources.hpp"
+#include "output/output.hpp"
+#include "session/analyzer.hpp"
 
 #ifndef TOPKIT_FUZZ_FORMAT
 #error "define TOPKIT_FUZZ_FORMAT (pcap, raw, socat, saleae, lines)"

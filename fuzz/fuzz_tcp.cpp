@@ -9,8 +9,8 @@
 #include <cstdint>
 #include <string_view>
 
-#include "analyzer.hpp"
 #include "check.hpp"
+#include "session/analyzer.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   size = topfuzz::capped(size);

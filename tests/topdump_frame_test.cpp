@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "escape.hpp"
+#include "output/escape.hpp"
 
 using json = nlohmann::json;
 

@@ -10,8 +10,8 @@
 #include <random>
 #include <set>
 
-#include "afindings.hpp"
-#include "escape.hpp"
+#include "findings/afindings.hpp"
+#include "output/escape.hpp"
 #include "pcapio/packet.hpp"
 #include "pcapio/writer.hpp"
 #include "test_support.hpp"

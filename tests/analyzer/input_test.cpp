@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "capture/live.hpp"
 #include "pcapio/packet.hpp"
 #include "pcapio/writer.hpp"
 #include "test_support.hpp"

@@ -1,4 +1,4 @@
-// The one JSON writer (analyzer/src/json_writer.hpp) against nlohmann: the
+// The one JSON writer (analyzer/output/json_writer.hpp) against nlohmann: the
 // numbers and strings it writes, and the documents whose format is
 // nlohmann's dump() (stats --json, frame --json), byte by byte.
 #include <gtest/gtest.h>
@@ -10,9 +10,9 @@
 #include <random>
 #include <set>
 
-#include "escape.hpp"
 #include "json_reference.hpp"
-#include "json_writer.hpp"
+#include "output/escape.hpp"
+#include "output/json_writer.hpp"
 #include "test_support.hpp"
 #include "top/frame.hpp"
 

@@ -1,5 +1,7 @@
 // Live sources: `topdump serial` on a real pseudo-terminal pair, ended by
 // SIGINT; live capture on lo through libpcap when this process may capture.
+#include "capture/live.hpp"
+
 #include <arpa/inet.h>
 #include <fcntl.h>
 #include <gtest/gtest.h>

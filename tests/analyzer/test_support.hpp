@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "analyzer.hpp"
+#include "capture/sources.hpp"
 #include "json_reference.hpp"
-#include "output.hpp"
-#include "sources.hpp"
+#include "output/output.hpp"
+#include "session/analyzer.hpp"
 
 namespace topdump::test {
 

@@ -1,0 +1,103 @@
+// What read, stats, live and serial share (cli's own header): the common
+// options, the analyzer settings they make, the output sink, progress,
+// signals and the exit status.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "capture/sources.hpp"
+#include "commands.hpp"
+#include "output/output.hpp"
+#include "session/analyzer.hpp"
+
+namespace topdump {
+
+// Set by SIGINT and SIGTERM once install_signals() ran: live inputs end.
+extern std::atomic<bool> g_stop;
+void install_signals();
+
+struct Common {
+  std::string dialect = "auto";
+  std::string model = "auto";
+  std::string format = "auto";
+  std::vector<std::uint16_t> ports;
+  std::vector<std::string> idents;
+  std::vector<std::string> addrs;
+  std::string severity;
+  std::string from, to;
+  std::vector<std::string> findings, mute;
+  std::uint64_t count = 0;
+  double timeout_ms = 2000;
+  bool json = false;
+  bool verbose = false;
+  std::string csv;
+  bool no_progress = false;
+};
+
+// The reorder window of read (--help, docs/topdump-json.md): one second of
+// capture time covers TCP reassembly and serial CR/LF holds; a wider one
+// costs read --json a fifth of its speed (the held output leaves the
+// cache), so an unanswered finding found at the timeout (2 s after its
+// request) is beyond its reach.
+constexpr std::int64_t kReorderWindowUs = 1'000'000;
+
+void add_common(CLI::App* sub, Common& o, bool outputs, bool ports = true);
+
+struct Setup {
+  AnalyzerOptions aopts;
+  Filter filter;
+  SourceOptions sopts;
+};
+
+// Turns the options into analyzer settings; false (with a message) on bad usage.
+bool setup(const Common& o, Setup& s, std::string& err);
+
+// A source finding on stderr, naming the file once: "topdump: FILE: !! ...",
+// the message without its own "FILE: ".
+void source_note_to_stderr(const std::string& file, const NoteEvent& e);
+// True when stdout and stderr are the same file or terminal (a copy on
+// stderr would print each line twice).
+bool stderr_is_stdout();
+
+// Source findings also go to stderr, naming the file, unless stderr is
+// where stdout goes.
+class Tee : public Sink {
+ public:
+  Tee(Sink& inner, std::string file)
+      : inner_(inner), file_(std::move(file)), copy_(!stderr_is_stdout()) {}
+  void frame(const FrameEvent& e) override { inner_.frame(e); }
+  void garbage(const GarbageEvent& e) override { inner_.garbage(e); }
+  void note(const NoteEvent& e) override {
+    if (!e.conv && copy_) source_note_to_stderr(file_, e);
+    inner_.note(e);
+  }
+  Sink& inner_;
+  std::string file_;
+  bool copy_;
+};
+
+// The sink of --csv, --json or text; null (with a message) on a bad column.
+std::unique_ptr<Sink> make_sink(const Common& o, Out& out, std::string& err);
+
+void progress_bar(std::uint64_t done, std::uint64_t total);
+// The progress bar goes to stderr when it is a terminal and stdout is not
+// one: on the same terminal it would mix with the output lines.
+bool show_progress(const Common& c);
+
+// 1 when an error finding was seen, else 0.
+int status_of(const Analyzer& a);
+
+// The statistics live and serial print at their end.
+void print_final_stats(const Common& c, const Analyzer& a);
+
+inline constexpr const char* kFormats = "auto, pcap, pcapng, raw, socat, saleae or lines";
+
+// How read, live and serial print: the text line format, the order, and the
+// CSV columns (one list, from the column table).
+std::string output_help();
+
+}  // namespace topdump

@@ -1,0 +1,216 @@
+// The statistics of a run, as text (stats) or JSON (stats --json, and the
+// last line of live and serial --json), each key written here once.
+#include <cmath>
+#include <cstdio>
+
+#include "capture/sources.hpp"
+#include "output/json_writer.hpp"
+#include "output/output.hpp"
+
+namespace topdump {
+
+using namespace jsonw;
+
+namespace {
+
+// A time in seconds as nlohmann writes the double ts / 1e6; null for none.
+void put_seconds(std::string& o, std::int64_t ts) {
+  if (ts == kNoTime)
+    app(o, "null");
+  else
+    put_double(o, static_cast<double>(ts) / 1e6);
+}
+
+void put_ms(std::string& o, std::int64_t us) { put_double(o, static_cast<double>(us) / 1000.0); }
+
+}  // namespace
+
+namespace {
+// The keys of an input: file, format, link (null for serial logs).
+void input_members(Doc& j, const InputInfo& i) {
+  std::string& o = j.out();
+  j.key("file");
+  put_text(o, i.file);
+  j.key("format");
+  put_str(o, to_string(i.format));
+  j.key("link");
+  if (i.link.empty())
+    app(o, "null");
+  else
+    put_str(o, i.link);
+}
+}  // namespace
+
+void write_input_json(std::string& out, const InputInfo& i) {
+  Doc j(out, -1);
+  j.open_object();
+  j.key("type");
+  put_str(out, "input");
+  input_members(j, i);
+  j.close_object();
+  out += '\n';
+}
+
+std::string input_text(const InputInfo& i) {
+  std::string s = i.file + ": " + std::string(to_string(i.format));
+  if (!i.link.empty()) s += ", link type " + i.link;
+  return s;
+}
+
+void write_stats_json(std::string& out, const Stats& s, top::Severity worst, int indent,
+                      std::string_view type, const std::vector<InputInfo>* inputs) {
+  Doc j(out, indent);
+  std::string& o = j.out();
+  auto count = [&](std::string_view k, std::uint64_t v) {
+    j.key(k);
+    put_u(o, v);
+  };
+  auto text = [&](std::string_view k, std::string_view v) {
+    j.key(k);
+    put_str(o, v);
+  };
+  auto table = [&](std::string_view k, const std::map<std::string, std::uint64_t>& m) {
+    j.key_object(k);
+    for (const auto& [name, v] : m) count(name, v);
+    j.close_object();
+  };
+  j.open_object();
+  if (!type.empty()) text("type", type);
+  if (inputs) {
+    j.key_array("inputs");
+    for (const InputInfo& i : *inputs) {
+      j.item_object();
+      input_members(j, i);
+      j.close_object();
+    }
+    j.close_array();
+  }
+  count("frames", s.frames);
+  count("bad_checksum", s.bad_checksum);
+  count("error_frames", s.error_frames);
+  count("garbage", s.garbage);
+  count("records", s.records);
+  count("records_skipped", s.records_skipped);
+  j.key("first_time");
+  put_seconds(o, s.first);
+  j.key("last_time");
+  put_seconds(o, s.last);
+  text("worst", top::to_string(worst));
+  table("per_ident", s.per_ident);
+  table("per_finding", s.per_code);
+  j.key_object("pairing");
+  count("requests", s.requests);
+  count("responses", s.responses);
+  count("paired", s.paired);
+  count("unanswered", s.unanswered);
+  count("unsolicited", s.unsolicited);
+  j.close_object();
+  j.key_object("latency");
+  for (const auto& [k, l] : s.latency) {
+    j.key_object(k);
+    count("count", l.count());
+    j.key("min_ms");
+    put_ms(o, l.min());
+    j.key("median_ms");
+    put_ms(o, l.quantile(0.5));
+    j.key("p95_ms");
+    put_ms(o, l.quantile(0.95));
+    j.key("max_ms");
+    put_ms(o, l.max());
+    j.close_object();
+  }
+  j.close_object();
+  j.key_array("conversations");
+  for (const ConvStats& c : s.conversations) {
+    j.item_object();
+    count("id", c.id);
+    text("transport", to_string(c.transport));
+    text("a", c.a);
+    text("b", c.b);
+    text("dialect", top::to_string(c.dialect));
+    count("frames", c.frames);
+    count("requests", c.requests);
+    count("responses", c.responses);
+    count("paired", c.paired);
+    j.key_array("streams");
+    for (const StreamStat& t : c.streams) {
+      j.item_object();
+      text("ident", t.ident);
+      j.key("asked_hz");
+      if (t.asked_hz > 0)
+        put_double(o, t.asked_hz);
+      else
+        app(o, "null");
+      j.key("measured_hz");
+      put_double(o, std::round(t.measured_hz() * 100.0) / 100.0);
+      count("frames", t.frames);
+      j.close_object();
+    }
+    j.close_array();
+    j.close_object();
+  }
+  j.close_array();
+  count("conversations_dropped", s.conversations_dropped);
+  j.close_object();
+}
+
+std::string stats_text(const Stats& s, top::Severity worst) {
+  std::string o;
+  char b[256];
+  std::snprintf(
+      b, sizeof b,
+      "frames %llu (bad checksum %llu, with an error %llu), garbage runs %llu, records %llu "
+      "(not TOP %llu), worst finding: %s\n",
+      static_cast<unsigned long long>(s.frames), static_cast<unsigned long long>(s.bad_checksum),
+      static_cast<unsigned long long>(s.error_frames), static_cast<unsigned long long>(s.garbage),
+      static_cast<unsigned long long>(s.records),
+      static_cast<unsigned long long>(s.records_skipped),
+      std::string(top::to_string(worst)).c_str());
+  o += b;
+  if (s.first != kNoTime) o += "time " + format_time(s.first) + " .. " + format_time(s.last) + "\n";
+  o += "per identifier:\n";
+  for (const auto& [k, v] : s.per_ident) o += "  " + k + " " + std::to_string(v) + "\n";
+  o += "per finding:\n";
+  for (const auto& [k, v] : s.per_code) o += "  " + k + " " + std::to_string(v) + "\n";
+  std::snprintf(
+      b, sizeof b,
+      "pairing: requests %llu, responses %llu, paired %llu, unanswered %llu, unsolicited %llu\n",
+      static_cast<unsigned long long>(s.requests), static_cast<unsigned long long>(s.responses),
+      static_cast<unsigned long long>(s.paired), static_cast<unsigned long long>(s.unanswered),
+      static_cast<unsigned long long>(s.unsolicited));
+  o += b;
+  if (!s.latency.empty()) {
+    o += "latency (ms): ident count min median p95 max\n";
+    for (const auto& [k, l] : s.latency) {
+      std::snprintf(
+          b, sizeof b, "  %s %llu %.3f %.3f %.3f %.3f\n", k.c_str(),
+          static_cast<unsigned long long>(l.count()), static_cast<double>(l.min()) / 1000.0,
+          static_cast<double>(l.quantile(0.5)) / 1000.0,
+          static_cast<double>(l.quantile(0.95)) / 1000.0, static_cast<double>(l.max()) / 1000.0);
+      o += b;
+    }
+  }
+  o += "conversations:\n";
+  for (const ConvStats& c : s.conversations) {
+    std::snprintf(
+        b, sizeof b,
+        "  %llu %s %s <> %s %s: frames %llu, requests %llu, responses %llu, paired %llu\n",
+        static_cast<unsigned long long>(c.id), std::string(to_string(c.transport)).c_str(),
+        c.a.c_str(), c.b.c_str(), std::string(top::to_string(c.dialect)).c_str(),
+        static_cast<unsigned long long>(c.frames), static_cast<unsigned long long>(c.requests),
+        static_cast<unsigned long long>(c.responses), static_cast<unsigned long long>(c.paired));
+    o += b;
+    for (const StreamStat& t : c.streams) {
+      std::snprintf(b, sizeof b, "    stream %s: %llu frames at %.2f Hz (asked %s)\n",
+                    t.ident.c_str(), static_cast<unsigned long long>(t.frames), t.measured_hz(),
+                    t.asked_hz > 0 ? (std::to_string(static_cast<int>(t.asked_hz)) + " Hz").c_str()
+                                   : "enable");
+      o += b;
+    }
+  }
+  if (s.conversations_dropped)
+    o += "  (" + std::to_string(s.conversations_dropped) + " more conversations not listed)\n";
+  return o;
+}
+
+}  // namespace topdump

@@ -1,0 +1,47 @@
+// The analysis of a report (the report room's own header): what
+// analyze() (analyze.cpp) runs over the sink's data, file by file.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "report/report.hpp"
+
+namespace topdump::report {
+
+// A field of a decoded frame by name, when it holds a value.
+inline const top::FieldValue* field(const top::Decoded& d, std::string_view name) {
+  for (const auto& f : d.fields)
+    if (f.name() == name && f.valid && !f.none) return &f;
+  return nullptr;
+}
+
+// printf of one number ("%.1f").
+std::string fmt(const char* f, double v);
+
+// motion.cpp: the gimbal's response to angle and rate commands.
+struct Series {
+  const std::vector<std::int64_t>* t = nullptr;
+  const std::vector<float>* v = nullptr;
+  const char* name = "";  // "GAC" or "GIC"
+};
+// The times of every command (angle or rate) per axis, sorted.
+using AxisTimes = std::array<std::vector<std::int64_t>, kAxes>;
+AxisTimes axis_times(const ConvData& c);
+// The attitude an axis command is compared with.
+Series series_for(const ConvData& c, std::string_view ident, int axis);
+AngleResult angle_result(const ConvData& c, const AxisTimes& times, const AngleCommand& cmd,
+                         const Series& s, double tol);
+void rate_runs(const ConvData& c, const AxisTimes& times, Report& rep, std::int64_t capture_end);
+double median(std::vector<double> v);
+
+// streams.cpp: each stream's rate over time and its gaps.
+void streams(const ReportSink& d, const Stats& st, Report& rep);
+
+// facts.cpp: the ranked one-line facts at the top of the report.
+void facts(const ReportSink& d, Report& rep);
+
+}  // namespace topdump::report

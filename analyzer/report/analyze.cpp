@@ -1,0 +1,96 @@
+// topdump report: the analysis of the sink's data (analyze()), and the
+// model as the report names it.
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+#include "analysis.hpp"
+#include "report/report.hpp"
+
+namespace topdump::report {
+
+top::Dialect dialect_of(const Report& r, const ConvStats& c) {
+  if (c.dialect != top::Dialect::unknown) return c.dialect;
+  auto it = r.data->convs.find(c.id);
+  return it == r.data->convs.end() ? c.dialect : it->second.dialect;
+}
+
+std::string model_text(top::Model given, top::Dialect d, const ConvData* c) {
+  if (given != top::Model::unknown) return std::string(top::to_string(given)) + " (given)";
+  std::vector<top::Model> of, left;
+  for (top::Model m : top::all_models())
+    if (top::dialect_of(m) == d) {
+      of.push_back(m);
+      if (c && (c->models & top::model_bit(m))) left.push_back(m);
+    }
+  if (of.size() == 1)
+    return std::string(top::to_string(of[0])) + " (guessed: the only model of the dialect)";
+  std::string t;
+  if (!left.empty() && left.size() < of.size()) {
+    for (std::size_t i = 0; i < left.size(); ++i)
+      t += (i == 0                 ? ""
+            : i + 1 == left.size() ? " or "
+                                   : ", ") +
+           std::string(top::to_string(left[i]));
+    t += " (guessed: the device sent " + std::string(c->narrowed_by) +
+         (left.size() == 1 ? ", which the documents give to this model only)"
+                           : ", which the documents give to these models only)");
+  }
+  if (c && !c->conflict.empty())
+    t += std::string(t.empty() ? "" : "; ") + "the device sent " + std::string(c->conflict) +
+         ", which the documents give to none of these";
+  return t;
+}
+
+std::string model_text(const Report& r, const ConvStats& c) {
+  const auto it = r.data->convs.find(c.id);
+  return model_text(r.model, dialect_of(r, c), it == r.data->convs.end() ? nullptr : &it->second);
+}
+
+Report analyze(const ReportSink& data, const Stats& stats, top::Severity worst, top::Model model,
+               const Options& opts) {
+  Report rep;
+  rep.opts = opts;
+  rep.data = &data;
+  rep.stats = &stats;
+  rep.worst = worst;
+  rep.model = model;
+  std::size_t n = 0;
+  for (const auto& [id, c] : data.convs) n += c.angles.size();
+  rep.angles.reserve(n);
+  for (const auto& [id, c] : data.convs) {
+    const AxisTimes times = axis_times(c);
+    // the attitude of each axis for GA* and GI* commands
+    std::array<std::array<Series, kAxes>, 2> series;
+    for (int ax = 0; ax < kAxes; ++ax) {
+      series[0][static_cast<std::size_t>(ax)] = series_for(c, "GAY", ax);
+      series[1][static_cast<std::size_t>(ax)] = series_for(c, "GIY", ax);
+    }
+    for (const auto& a : c.angles) {
+      const bool earth = a.ident.size() == 3 && a.ident[1] == 'I';
+      rep.angles.push_back(angle_result(c, times, a,
+                                        series[earth ? 1 : 0][static_cast<std::size_t>(a.axis)],
+                                        opts.tolerance_deg));
+    }
+    if (!c.rates.empty()) rate_runs(c, times, rep, stats.last);
+  }
+  std::vector<double> per_step;
+  for (const auto& r : rep.runs) {
+    const auto it = data.convs.find(r.conv);
+    if (r.measured_ok && std::llabs(r.steps) >= 2 && it != data.convs.end() &&
+        it->second.dialect == top::Dialect::skydroid)
+      per_step.push_back(std::fabs(r.per_step));
+  }
+  if (!per_step.empty()) {
+    rep.scale_runs = per_step.size();
+    rep.scale_measured = median(per_step);
+    rep.scale_verdict = std::fabs(rep.scale_measured - 0.5) <= 0.1    ? "0.5"
+                        : std::fabs(rep.scale_measured - 0.1) <= 0.02 ? "0.1"
+                                                                      : "neither";
+  }
+  streams(data, stats, rep);
+  facts(data, rep);
+  return rep;
+}
+
+}  // namespace topdump::report

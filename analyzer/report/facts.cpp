@@ -1,0 +1,186 @@
+// topdump report: the ranked one-line facts at the top of the report.
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "analysis.hpp"
+#include "report/report.hpp"
+
+namespace topdump::report {
+
+namespace {
+
+// The cause of an unanswered request, from the note's message.
+std::string cause_of(const std::string& m) {
+  if (m.rfind("the device was silent", 0) == 0) return "the device was silent";
+  for (const char* k : {"end of the capture: ", " ms: "}) {
+    const auto p = m.find(k);
+    if (p != std::string::npos) return m.substr(p + std::string(k).size());
+  }
+  return "";
+}
+
+void add(Report& rep, int rank, top::Severity s, std::string text, std::string anchor) {
+  rep.facts.push_back({rank, s, std::move(text), std::move(anchor)});
+}
+
+// Unanswered requests, grouped by identifier and cause.
+void unanswered_facts(const ReportSink& d, Report& rep) {
+  struct Group {
+    std::uint64_t n = 0;
+    std::int64_t first = kNoTime, last = kNoTime;
+    std::string text;
+  };
+  std::map<std::string, Group> groups;
+  for (const auto& u : d.unanswered) {
+    const std::string cause = cause_of(u.message);
+    if (cause == "the device was silent") {
+      add(rep, 85, top::Severity::warning, u.message + " (from " + clock_text(u.ts) + ")",
+          "unanswered");
+      continue;
+    }
+    Group& g = groups[u.message.substr(0, 3) + "\x01" + cause];
+    ++g.n;
+    if (g.first == kNoTime) g.first = u.ts;
+    g.last = u.ts;
+    g.text = cause.empty() ? "no response" : cause;
+  }
+  for (const auto& [k, g] : groups) {
+    std::string t = std::to_string(g.n) + " " + k.substr(0, 3) +
+                    (g.n == 1 ? " request unanswered at " + clock_text(g.first)
+                              : " requests unanswered from " + clock_text(g.first) + " to " +
+                                    clock_text(g.last)) +
+                    ": " + g.text;
+    add(rep, g.text == "no response" ? 80 : 60, top::Severity::warning, std::move(t), "unanswered");
+  }
+}
+
+// Streams off their rate or with gaps.
+void stream_facts(Report& rep) {
+  for (const auto& s : rep.streams) {
+    const double m = s.stat.measured_hz();
+    if (s.stat.asked_hz > 0 && m > 0 && std::fabs(m - s.stat.asked_hz) > 0.25 * s.stat.asked_hz)
+      add(rep, 75, top::Severity::warning,
+          s.stat.ident + " push at " + fmt("%.1f", m) + " Hz, asked " + fmt("%g", s.stat.asked_hz) +
+              " Hz (" + s.stat.asked_by + ", conversation " + std::to_string(s.conv) + ")",
+          "streams");
+    if (s.gap_count)
+      add(rep, 55, top::Severity::warning,
+          s.stat.ident + " push stopped " + std::to_string(s.gap_count) +
+              (s.gap_count == 1 ? " time" : " times") + " for more than 3 periods; longest " +
+              fmt("%.3f", s.gaps.front().ms / 1000) + " s at " + clock_text(s.gaps.front().t),
+          "streams");
+  }
+}
+
+// Response flags, grouped by identifier.
+void response_facts(Report& rep) {
+  // per identifier: other way, never, range, superseded; the first flagged
+  struct Flags {
+    std::string_view id;
+    std::array<std::uint64_t, 4> n{};
+    std::int64_t first = kNoTime;
+  };
+  std::vector<Flags> all;  // a handful of identifiers: a linear search
+  for (const auto& a : rep.angles) {
+    auto it =
+        std::find_if(all.begin(), all.end(), [&](const Flags& f) { return f.id == a.cmd->ident; });
+    if (it == all.end()) it = all.insert(all.end(), Flags{a.cmd->ident});
+    auto& f = it->n;
+    if (a.other_way) ++f[0];
+    if (a.never_reached && !a.other_way && !a.no_attitude) ++f[1];
+    if (a.out_of_range) ++f[2];
+    if (a.superseded && !a.other_way) ++f[3];
+    if ((a.other_way || a.never_reached) && it->first == kNoTime) it->first = a.cmd->t;
+  }
+  std::sort(all.begin(), all.end(), [](const Flags& a, const Flags& b) { return a.id < b.id; });
+  std::map<std::string_view, std::array<std::uint64_t, 4>> flags;
+  std::map<std::string_view, std::int64_t> first_flag;
+  for (const auto& f : all) {
+    flags[f.id] = f.n;
+    first_flag[f.id] = f.first;
+  }
+  auto plural = [](std::uint64_t n, std::string_view id) {
+    return std::to_string(n) + " " + std::string(id) + (n == 1 ? " command" : " commands");
+  };
+  for (const auto& [id, f] : flags) {
+    if (f[0]) {
+      std::string t = plural(f[0], id) + " moved the gimbal the other way (sign inverted)";
+      if (rep.model == top::Model::unknown || rep.model == top::Model::c12)
+        for (const auto& tr : top::traits())
+          if ((tr.kind == top::TraitKind::yaw_inverted && id.back() != 'P') ||
+              (tr.kind == top::TraitKind::pitch_inverted && id.back() == 'P')) {
+            t += "; field trait of " + std::string(top::to_string(top::Model::c12)) + ": " +
+                 std::string(tr.evidence);
+            break;
+          }
+      add(rep, 78, top::Severity::warning, std::move(t), "response");
+    }
+    if (f[1])
+      add(rep, 70, top::Severity::warning,
+          plural(f[1], id) + " never brought the gimbal within " +
+              fmt("%g", rep.opts.tolerance_deg) + " deg of the target (first at " +
+              clock_text(first_flag[id]) + ")",
+          "response");
+    if (f[2])
+      add(rep, 50, top::Severity::warning,
+          plural(f[2], id) + " asked for an angle outside the model's range (clamped)", "response");
+    if (f[3])
+      add(rep, 15, top::Severity::info, plural(f[3], id) + " superseded before the gimbal settled",
+          "response");
+  }
+}
+
+// Rate commands not refreshed, and the speed scale they showed.
+void rate_facts(Report& rep) {
+  if (!rep.gaps.empty()) {
+    const auto& g =
+        *std::max_element(rep.gaps.begin(), rep.gaps.end(),
+                          [](const auto& a, const auto& b) { return a.gap_ms < b.gap_ms; });
+    add(rep, 65, top::Severity::warning,
+        std::to_string(rep.gaps.size()) + " rate command" + (rep.gaps.size() == 1 ? "" : "s") +
+            " not refreshed within " + std::to_string(rep.refresh_limit_ms) + " ms (longest " +
+            fmt("%.0f", g.gap_ms) + " ms after the " + g.ident + " at " + clock_text(g.t) +
+            "): the motors stop",
+        "rates");
+  }
+  if (!rep.scale_verdict.empty())
+    add(rep, 25, top::Severity::info,
+        "rate commands moved the gimbal at " + fmt("%.3f", rep.scale_measured) +
+            " deg/s per step over " + std::to_string(rep.scale_runs) + " run" +
+            (rep.scale_runs == 1 ? "" : "s") +
+            (rep.scale_verdict == "0.5"   ? ": the field's 0.5 deg/s, not the document's 0.1"
+             : rep.scale_verdict == "0.1" ? ": the document's 0.1 deg/s, not the field's 0.5"
+                                          : ": neither the document's 0.1 nor the field's 0.5"),
+        "rates");
+}
+
+// Frame findings: errors and warnings by code, with who sent them.
+void code_facts(const ReportSink& d, Report& rep) {
+  for (const auto& [code, c] : d.codes) {
+    if (c.severity == top::Severity::info || code == "unanswered" || code == "stream-rate")
+      continue;
+    std::string t = code + ": " + std::to_string(c.count) + (c.count == 1 ? " time" : " times");
+    if (c.senders.size() == 1)
+      t += (c.count == 1 ? ", from " : ", all from ") + c.senders.begin()->first;
+    else if (!c.senders.empty())
+      t += ", from " + std::to_string(c.senders.size()) + " senders";
+    t += " (" + clock_text(c.first) + (c.count > 1 ? " to " + clock_text(c.last) : "") + ")";
+    add(rep, c.severity == top::Severity::error ? 90 : 40, c.severity, std::move(t),
+        "code-" + code);
+  }
+}
+
+}  // namespace
+
+void facts(const ReportSink& d, Report& rep) {
+  unanswered_facts(d, rep);
+  stream_facts(rep);
+  response_facts(rep);
+  rate_facts(rep);
+  code_facts(d, rep);
+  std::stable_sort(rep.facts.begin(), rep.facts.end(),
+                   [](const Fact& a, const Fact& b) { return a.rank > b.rank; });
+}
+
+}  // namespace topdump::report

@@ -1,0 +1,284 @@
+// topdump report: the commands that move the gimbal (kept as the capture
+// streams by), and the gimbal's response to them: angle commands settling
+// or not, rate runs and their refresh, the speed scale.
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+#include "analysis.hpp"
+#include "report/report.hpp"
+
+namespace topdump::report {
+
+void ReportSink::motion(const FrameEvent& e, ConvData& c) {
+  const top::Frame& f = *e.entry->frame;
+  const top::Decoded& d = e.entry->decoded;
+  const std::string_view id = f.ident_view();
+  // identifiers are three characters: compared as such, not through memcmp
+  auto is = [&](const char(&x)[4]) { return id[0] == x[0] && id[1] == x[1] && id[2] == x[2]; };
+  if (id[0] != 'G' && !is("PTZ") && !is("YPR") && !is("RPS")) return;
+  if (id[0] == 'G' && (id[1] == 'A' || id[1] == 'I') && id[2] == 'C') {  // GAC, GIC
+    // the attitude forms of both dialects: yaw, pitch, roll
+    if (d.fields.size() != 3 || e.entry->bad_checksum || e.ts == kNoTime) return;
+    const top::FieldValue *y = &d.fields[0], *p = &d.fields[1], *r = &d.fields[2];
+    if (!y->valid || !p->valid || !r->valid || y->name() != "yaw" || p->name() != "pitch" ||
+        r->name() != "roll")
+      return;
+    Attitude& a = c.attitude[std::string(id)];
+    a.t.push_back(e.ts);
+    a.v[0].push_back(static_cast<float>(y->value));
+    a.v[1].push_back(static_cast<float>(p->value));
+    a.v[2].push_back(static_cast<float>(r->value));
+    if (e.reply_to == 0) a.push_t.push_back(e.ts);
+    return;
+  }
+  if (d.role != top::Role::request || f.control != 'w' || e.ts == kNoTime) return;
+  if (!d.command) return;
+  const std::string_view cid = d.command->ident;  // static, unlike the frame's
+  if (e.entry->bad_checksum) {
+    if (id[0] == 'G' || is("PTZ") || is("YPR") || is("RPS"))
+      c.marks.push_back({e.n, e.ts, cid, "bad checksum (dropped)"});
+    return;
+  }
+  auto axis_of = [](char ch) { return ch == 'Y' ? 0 : ch == 'P' ? 1 : ch == 'R' ? 2 : -1; };
+  auto angle = [&](int axis, const char* name, const char* speed) {
+    const auto* v = field(d, name);
+    if (!v || axis < 0) return;
+    const auto* s = field(d, speed);
+    AngleCommand a{
+        e.n, e.ts, cid, axis, static_cast<float>(v->value), s ? static_cast<float>(s->value) : 0.f,
+        0,   -1};
+    if (v->spec) a.min = static_cast<float>(v->spec->min), a.max = static_cast<float>(v->spec->max);
+    c.angles.push_back(a);
+  };
+  auto rate = [&](int axis, const char* name) {
+    const auto* v = field(d, name);
+    if (!v || axis < 0) return;
+    c.rates.push_back({e.n, e.ts, cid, axis, static_cast<std::int32_t>(v->integer),
+                       static_cast<float>(v->value),
+                       v->spec ? static_cast<float>(v->spec->scale) : 1.f});
+  };
+  if (is("GAY") || is("GAP") || is("GAR") || is("GIY") || is("GIP") || is("GIR")) {
+    angle(axis_of(id[2]), "angle", "speed");
+  } else if (is("GAM") || is("GIM")) {
+    angle(0, "yaw", "yaw_speed");
+    angle(1, "pitch", "pitch_speed");
+  } else if (is("GSY") || is("GSP") || is("GSR")) {
+    rate(axis_of(id[2]), "speed");
+  } else if (is("GSM") || is("YPR") || is("RPS")) {
+    rate(0, "yaw_speed");
+    rate(1, "pitch_speed");
+    rate(2, "roll_speed");
+  } else if (is("PTZ")) {
+    const auto* a = field(d, "action");
+    c.marks.push_back({e.n, e.ts, cid, a ? a->enum_name : std::string_view()});
+  }
+}
+
+// The attitude an axis command is compared with: GIC for the earth-frame
+// GI* commands (Topotek 4.3), GAC for the rest, else whichever was seen.
+Series series_for(const ConvData& c, std::string_view ident, int axis) {
+  const std::string want = ident.size() == 3 && ident[0] == 'G' && ident[1] == 'I' ? "GIC" : "GAC";
+  auto it = c.attitude.find(want);
+  if (it == c.attitude.end() || it->second.t.empty()) {
+    it = c.attitude.find(want == "GAC" ? "GIC" : "GAC");
+    if (it == c.attitude.end() || it->second.t.empty()) return {};
+  }
+  return {&it->second.t, &it->second.v[static_cast<std::size_t>(axis)],
+          it->first == "GIC" ? "GIC" : "GAC"};
+}
+
+namespace {
+
+std::size_t index_at(const std::vector<std::int64_t>& t, std::int64_t ts) {
+  return static_cast<std::size_t>(std::lower_bound(t.begin(), t.end(), ts) - t.begin());
+}
+
+// The first sample of [i0, i1) from which every later one stays within
+// `tol` of `target` (i1: none).
+std::size_t settle_index(const Series& s, std::size_t i0, std::size_t i1, double target,
+                         double tol) {
+  std::size_t k = i1;
+  while (k > i0 && std::fabs((*s.v)[k - 1] - target) <= tol) --k;
+  return k;
+}
+
+}  // namespace
+
+AxisTimes axis_times(const ConvData& c) {
+  AxisTimes t;
+  for (const auto& a : c.angles) t[static_cast<std::size_t>(a.axis)].push_back(a.t);
+  for (const auto& r : c.rates) t[static_cast<std::size_t>(r.axis)].push_back(r.t);
+  for (auto& v : t) std::sort(v.begin(), v.end());
+  return t;
+}
+
+namespace {
+
+// When the next command on the axis comes (angle or rate), or kNoTime.
+std::int64_t next_on_axis(const AxisTimes& times, int axis, std::int64_t t) {
+  const auto& v = times[static_cast<std::size_t>(axis)];
+  auto it = std::upper_bound(v.begin(), v.end(), t);
+  return it == v.end() ? kNoTime : *it;
+}
+
+}  // namespace
+
+AngleResult angle_result(const ConvData& c, const AxisTimes& times, const AngleCommand& cmd,
+                         const Series& s, double tol) {
+  AngleResult r;
+  r.cmd = &cmd;
+  r.conv = c.id;
+  const double eff =
+      cmd.min <= cmd.max ? std::clamp<double>(cmd.target, cmd.min, cmd.max) : cmd.target;
+  r.effective = static_cast<float>(eff);
+  r.out_of_range = eff != cmd.target;
+  const std::int64_t end = next_on_axis(times, cmd.axis, cmd.t);
+  if (!s.t) {
+    r.no_attitude = true;
+    return r;
+  }
+  r.attitude = s.name;
+  const std::size_t i0 = index_at(*s.t, cmd.t);
+  const std::size_t i1 = end == kNoTime ? s.t->size() : index_at(*s.t, end);
+  r.samples = static_cast<std::uint32_t>(i1 > i0 ? i1 - i0 : 0);
+  if (r.samples == 0) {
+    r.no_attitude = true;
+    r.superseded = end != kNoTime;
+    return r;
+  }
+  const std::vector<float>& v = *s.v;
+  const double start = i0 > 0 ? v[i0 - 1] : v[i0];
+  r.start = static_cast<float>(start);
+  const double step = eff - start;
+  auto secs = [&](std::size_t k) {
+    return static_cast<float>(static_cast<double>((*s.t)[k] - cmd.t) / 1e6);
+  };
+  if (cmd.speed > 0) r.expected_s = static_cast<float>(std::fabs(step) / cmd.speed);
+  const std::size_t k = settle_index(s, i0, i1, eff, tol);
+  if (k < i1) r.settling_s = secs(k);
+  const std::size_t tail = std::min<std::size_t>(5, r.samples);
+  double last = 0;
+  for (std::size_t i = i1 - tail; i < i1; ++i) last += v[i];
+  last /= static_cast<double>(tail);
+  r.final_error = static_cast<float>(last - eff);
+  if (std::fabs(step) > tol) {
+    const double dir = step > 0 ? 1 : -1;
+    double over = 0;
+    for (std::size_t i = i0; i < i1; ++i) over = std::max(over, dir * (v[i] - eff));
+    r.overshoot_deg = static_cast<float>(over);
+    r.overshoot_pct = static_cast<float>(100.0 * over / std::fabs(step));
+    const double moved = v[i1 - 1] - start;
+    if (dir * moved < -tol) {
+      // moving the other way is not overshoot: settling against -target
+      r.other_way = true;
+      r.overshoot_deg = r.overshoot_pct = 0;
+      const std::size_t m = settle_index(s, i0, i1, -eff, tol);
+      if (m < i1) r.mirrored_settling_s = secs(m);
+    }
+  }
+  if (r.settling_s < 0) {
+    if (end != kNoTime)
+      r.superseded = true;
+    else
+      r.never_reached = true;
+  }
+  return r;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+namespace {
+
+// Least squares slope (deg/s) of the samples in [t0, t1].
+bool slope(const Series& s, std::int64_t t0, std::int64_t t1, double& out, std::size_t& n) {
+  const std::size_t i0 = index_at(*s.t, t0), i1 = index_at(*s.t, t1 + 1);
+  n = i1 > i0 ? i1 - i0 : 0;
+  if (n < 3) return false;
+  const double tb = static_cast<double>((*s.t)[i0]);
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t i = i0; i < i1; ++i) {
+    const double x = (static_cast<double>((*s.t)[i]) - tb) / 1e6, y = (*s.v)[i];
+    sx += x, sy += y, sxx += x * x, sxy += x * y;
+  }
+  const double dn = static_cast<double>(n), den = dn * sxx - sx * sx;
+  if (den <= 0 || (static_cast<double>((*s.t)[i1 - 1]) - tb) < 2e5) return false;
+  out = (dn * sxy - sx * sy) / den;
+  return true;
+}
+
+const top::Trait* refresh_trait(top::Model model, top::Dialect d) {
+  if (model != top::Model::unknown)
+    return top::find_trait(top::TraitKind::speed_refresh, model, top::Profile::field);
+  for (const auto& t : top::traits())
+    if (t.kind == top::TraitKind::speed_refresh && t.dialect == d) return &t;
+  return nullptr;
+}
+
+}  // namespace
+
+void rate_runs(const ConvData& c, const AxisTimes& times, Report& rep, std::int64_t capture_end) {
+  const top::Trait* trait = refresh_trait(rep.model, c.dialect);
+  const std::int64_t limit_us = trait ? std::int64_t{trait->value} * 1000 : 1'000'000;
+  if (trait) {
+    rep.refresh_limit_ms = trait->value;
+    rep.refresh_evidence = std::string(trait->evidence);
+  }
+  for (int axis = 0; axis < kAxes; ++axis) {
+    std::vector<const RateCommand*> cmds;
+    for (const auto& r : c.rates)
+      if (r.axis == axis) cmds.push_back(&r);
+    if (cmds.empty()) continue;
+    for (std::size_t i = 0; i < cmds.size(); ++i) {
+      const std::int64_t next = i + 1 < cmds.size() ? cmds[i + 1]->t : kNoTime;
+      const std::int64_t other = next_on_axis(times, axis, cmds[i]->t);
+      if (trait && cmds[i]->steps != 0 && (other == kNoTime || other == next)) {
+        const std::int64_t until = next != kNoTime ? next : capture_end;
+        if (until != kNoTime && until - cmds[i]->t > limit_us)
+          rep.gaps.push_back({c.id, cmds[i]->frame, std::string(cmds[i]->ident), cmds[i]->t,
+                              static_cast<double>(until - cmds[i]->t) / 1000.0});
+      }
+    }
+    std::size_t i = 0;
+    while (i < cmds.size()) {
+      std::size_t j = i + 1;
+      std::vector<double> intervals;
+      while (j < cmds.size() && cmds[j]->steps == cmds[i]->steps &&
+             cmds[j]->t - cmds[j - 1]->t <= limit_us) {
+        intervals.push_back(static_cast<double>(cmds[j]->t - cmds[j - 1]->t) / 1000.0);
+        ++j;
+      }
+      RateRun run;
+      run.conv = c.id;
+      run.first_frame = cmds[i]->frame;
+      run.ident = std::string(cmds[i]->ident);
+      run.axis = axis;
+      run.start = cmds[i]->t;
+      run.commands = j - i;
+      run.steps = cmds[i]->steps;
+      run.commanded = cmds[i]->rate;
+      run.scale = cmds[i]->scale;
+      run.median_interval_ms = median(intervals);
+      run.max_interval_ms =
+          intervals.empty() ? 0 : *std::max_element(intervals.begin(), intervals.end());
+      const std::int64_t hold =
+          intervals.empty() ? limit_us : static_cast<std::int64_t>(run.median_interval_ms * 1000);
+      run.end = cmds[j - 1]->t + hold;
+      const std::int64_t other = next_on_axis(times, axis, cmds[j - 1]->t);
+      if (other != kNoTime) run.end = std::min(run.end, other);
+      const Series s = series_for(c, run.ident, axis);
+      // Skip the first 50 ms: the motors take a moment to reach the rate.
+      if (s.t && run.steps != 0)
+        run.measured_ok = slope(s, run.start + 50'000, run.end, run.measured, run.samples);
+      if (run.measured_ok) run.per_step = run.measured / static_cast<double>(run.steps);
+      rep.runs.push_back(run);
+      i = j;
+    }
+  }
+}
+
+}  // namespace topdump::report

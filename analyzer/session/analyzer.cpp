@@ -1,0 +1,273 @@
+#include "session/analyzer.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+
+#include "session.hpp"
+#include "top/text.hpp"
+
+namespace topdump {
+
+top::Severity FrameEvent::worst() const noexcept {
+  top::Severity w = entry ? entry->worst : top::Severity::info;
+  for (const Note& x : notes)
+    if (x.severity > w) w = x.severity;
+  return w;
+}
+
+void Analyzer::Impl::FreeDeleter::operator()(std::uint64_t* p) const noexcept { std::free(p); }
+
+void Analyzer::Impl::allocate_ident_page(std::unique_ptr<std::uint64_t[], FreeDeleter>& page) {
+  auto* p = static_cast<std::uint64_t*>(std::calloc(kIdentPage, sizeof(std::uint64_t)));
+  if (!p) throw std::bad_alloc();
+  page.reset(p);
+}
+
+std::string unpack_ident(std::uint32_t k) {
+  char b[3] = {static_cast<char>(k & 0xFF), static_cast<char>((k >> 8) & 0xFF),
+               static_cast<char>((k >> 16) & 0xFF)};
+  return top::escape(std::string_view(b, 3));
+}
+
+void Analyzer::Impl::note_event(std::int64_t ts, Position pos, Transport t, const Conversation* c,
+                                const std::string* from, const std::string* to, Note n, bool emit) {
+  NoteEvent e{.ts = ts,
+              .pos = pos,
+              .transport = t,
+              .conv = c,
+              .from = from,
+              .to = to,
+              .note = std::move(n)};
+  // What the filter leaves out is neither counted nor in the exit status.
+  if (A.filtering_ && !A.filter_.selects(e)) return;
+  ++acodes[static_cast<std::size_t>(e.note.code)];
+  if (e.note.severity > A.worst_) A.worst_ = e.note.severity;
+  if (emit) A.sink_.note(e);
+}
+
+void Analyzer::Impl::item(Conversation& c, int d, top::StreamItem& it, Position pos,
+                          std::int64_t ts, std::uint64_t stream_off) {
+  Direction& D = c.dir[d];
+  if (it.kind == top::ItemKind::garbage) {
+    const GarbageEvent g{.ts = ts,
+                         .pos = pos,
+                         .transport = c.transport,
+                         .conv = &c,
+                         .from = &D.from,
+                         .to = &D.to,
+                         .item = &it};
+    if (A.filtering_ && !A.filter_.selects(g)) return;
+    ++A.stats_.garbage;
+    ++codes[static_cast<std::size_t>(it.finding.code)];
+    if (it.finding.severity > A.worst_) A.worst_ = it.finding.severity;
+    A.sink_.garbage(g);
+    return;
+  }
+  frame(c, d, it.frame, pos, ts, stream_off);
+}
+
+// Decoding is cheaper than any cache keyed by the frame bytes (frames of a
+// real capture are mostly distinct: angles, attitudes), so each frame is
+// decoded into one reused entry.
+const DecodedEntry& Analyzer::Impl::lookup(top::Frame& f, top::Dialect dialect, top::Role role) {
+  DecodedEntry& e = current;
+  top::DecodeOptions o;
+  o.dialect = dialect;
+  o.model = A.opts_.model;
+  o.role = role;
+  o.detail = A.opts_.detail;
+  o.cache = &decode_cache;
+  top::decode(f, o, e.decoded);
+  e.frame = &f;
+  summarise(e);
+  return e;
+}
+
+// The worst severity and the bad checksum in one pass.
+void Analyzer::Impl::summarise(DecodedEntry& e) {
+  e.worst = top::Severity::info;
+  e.bad_checksum = false;
+  for (const top::Finding& x : e.frame->findings) {
+    e.worst = std::max(e.worst, x.severity);
+    e.bad_checksum |= x.code == top::FindingCode::bad_checksum;
+  }
+  for (const top::Finding& x : e.decoded.findings) e.worst = std::max(e.worst, x.severity);
+}
+
+void Analyzer::Impl::mute(top::Frame& f, FrameEvent& ev) {
+  const Filter& F = A.filter_;
+  DecodedEntry& e = current;
+  auto muted = [&](const top::Finding& x) { return F.mutes(x.code); };
+  std::erase_if(f.findings, muted);
+  std::erase_if(e.decoded.findings, muted);
+  std::erase_if(ev.notes, [&](const Note& n) { return F.mutes(n.code); });
+  summarise(e);
+}
+
+void Analyzer::Impl::materialize(Stats& s) const {
+  s.per_ident.clear();
+  for (const auto& [k, v] : idents) s.per_ident[unpack_ident(k)] += v;
+  for (std::size_t p = 0; p < ident_pages.size(); ++p)
+    if (const auto& page = ident_pages[p])
+      for (std::size_t i = 0; i < kIdentPage; ++i)
+        if (page[i]) s.per_ident[top::ident_of(p * kIdentPage + i)] += page[i];
+  s.per_code.clear();
+  for (std::size_t i = 0; i < codes.size(); ++i)
+    if (codes[i])
+      s.per_code[std::string(top::to_string(static_cast<top::FindingCode>(i)))] += codes[i];
+  for (std::size_t i = 0; i < acodes.size(); ++i)
+    if (acodes[i]) s.per_code[std::string(to_string(static_cast<ACode>(i)))] += acodes[i];
+  s.latency.clear();
+  for (std::size_t i = 0; i < latency_keys.size(); ++i)
+    s.latency[unpack_ident(latency_keys[i])] = latency[i];
+}
+
+void Analyzer::Impl::frame(Conversation& c, int d, top::Frame& f, Position pos, std::int64_t ts,
+                           std::uint64_t stream_off) {
+  Direction& D = c.dir[d];
+  if (c.observed < 64) {
+    c.det.observe(f);
+    ++c.observed;
+  }
+  top::Dialect dialect = c.det.current();
+  if (dialect == top::Dialect::unknown) dialect = top::dialect_from_frame(f);
+  if (c.device_dir < 0) learn_device(c, d, f, dialect);
+  // The device's frames are responses and pushes whatever their address
+  // order (real C12s push #tpUGCrGAC, client first); the client's are
+  // requests.
+  top::Role role = top::Role::any;
+  if (c.device_dir >= 0) role = d == c.device_dir ? top::Role::response : top::Role::request;
+  const DecodedEntry& e = lookup(f, dialect, role);
+  const top::Frame& fr = *e.frame;
+
+  FrameEvent ev{.n = ++A.frame_no_,
+                .ts = ts,
+                .pos = pos,
+                .stream_offset = stream_off,
+                .transport = c.transport,
+                .conv = &c,
+                .from = &D.from,
+                .to = &D.to,
+                .entry = &e};
+
+  expire(c, ts);
+  // Requests that expire now were unanswered before this frame: the
+  // silence they belong to ends with it when it comes from the device.
+  if (c.silence.count && d != c.silence.dir) emit_silence(c);
+  D.last_frame_ts = ts;
+  D.sent_frame = true;
+  reply_timed = false;
+  const top::Role decided = e.decoded.role;
+  if (decided == top::Role::request)
+    request(c, d, ev);
+  else if (decided == top::Role::response)
+    response(c, d, ev);
+
+  // Pairing saw the frame; what follows is reporting, which the filter
+  // governs: a frame it leaves out is neither counted nor in the exit status.
+  if (A.filtering_) {
+    if (!A.filter_.mute.empty() || !A.filter_.amute.empty()) mute(f, ev);
+    if (A.done_ || !A.filter_.selects(ev)) return;
+    if (A.filter_.max_frames && ++A.selected_ >= A.filter_.max_frames) A.done_ = true;
+  }
+  if (ev.worst() > A.worst_) A.worst_ = ev.worst();
+  bool unsolicited = false;
+  for (const Note& n : ev.notes) {
+    ++acodes[static_cast<std::size_t>(n.code)];
+    unsolicited |= n.code == ACode::unsolicited;
+  }
+  ++c.st.frames;
+  if (decided == top::Role::request) {
+    ++A.stats_.requests;
+    ++c.st.requests;
+  } else if (decided == top::Role::response) {
+    ++A.stats_.responses;
+    ++c.st.responses;
+    if (ev.reply_to) {
+      ++A.stats_.paired;
+      ++c.st.paired;
+    }
+    if (reply_timed) latency_of(reply_key).add(ev.latency_us);
+    if (unsolicited) ++A.stats_.unsolicited;
+  }
+  if (A.opts_.stats) {
+    Stats& s = A.stats_;
+    ++s.frames;
+    if (e.bad_checksum) ++s.bad_checksum;
+    if (e.worst == top::Severity::error) ++s.error_frames;
+    count_ident(fr.ident);
+    for (const top::Finding& x : fr.findings) ++codes[static_cast<std::size_t>(x.code)];
+    for (const top::Finding& x : e.decoded.findings) ++codes[static_cast<std::size_t>(x.code)];
+    if (ts != kNoTime) {
+      if (s.first == kNoTime || ts < s.first) s.first = ts;
+      if (s.last == kNoTime || ts > s.last) s.last = ts;
+    }
+  }
+  A.sink_.frame(ev);
+}
+std::uint64_t FrameEvent::conv_id() const noexcept { return conv ? conv->id : 0; }
+std::uint64_t GarbageEvent::conv_id() const noexcept { return conv ? conv->id : 0; }
+std::uint64_t NoteEvent::conv_id() const noexcept { return conv ? conv->id : 0; }
+
+Analyzer::Analyzer(AnalyzerOptions opts, Sink& sink)
+    : impl_(std::make_unique<Impl>(*this)), opts_(opts), sink_(sink) {}
+Analyzer::~Analyzer() = default;
+
+const Stats& Analyzer::stats() const {
+  impl_->materialize(stats_);
+  return stats_;
+}
+
+void Analyzer::record(bool top_traffic) {
+  ++stats_.records;
+  if (!top_traffic) ++stats_.records_skipped;
+}
+
+void Analyzer::datagram(std::int64_t ts, const Endpoint& src, const Endpoint& dst,
+                        std::string_view payload, std::uint64_t record, std::uint32_t offset) {
+  if (filtering_ && !take(ts)) return;
+  int d = 0;
+  Conversation& c = impl_->get(Transport::udp, src, dst, d);
+  // The common case, a datagram of back-to-back frames (each perhaps
+  // followed by CR/LF), skips the stream decoder's queue: for such bytes it
+  // yields exactly these frames. A frame that fails its checksum qualifies
+  // when no '#' inside it could start a frame the decoder would prefer. The
+  // decoder takes over at the first byte that is anything else; its state
+  // there would be empty, so it yields for the rest what it yields for the
+  // whole.
+  std::size_t p = 0;
+  std::uint32_t index = 0;
+  top::ParseResult& r = impl_->scratch;
+  while (p < payload.size() && payload[p] == '#') {
+    top::parse_frame(payload.substr(p), true, top::ParseOptions{}, r);
+    if (r.status != top::ParseStatus::frame) break;
+    if (!r.frame.checksum_ok && std::memchr(payload.data() + p + 1, '#', r.consumed - 1)) break;
+    std::size_t q = p + r.consumed;
+    // CR/LF as the decoder counts them: any past top::kMaxTerminator are
+    // garbage, which the decoder below yields.
+    const std::size_t q_max = std::min(payload.size(), q + top::kMaxTerminator);
+    while (q < q_max && (payload[q] == '\r' || payload[q] == '\n')) ++q;
+    if (q != p + r.consumed) top::note_terminator(r.frame, q - p - r.consumed);
+    impl_->frame(c, d, r.frame, Position{record, index++, offset + p}, ts, p);
+    p = q;
+  }
+  if (p == payload.size()) return;
+  Direction& D = c.dir[d];
+  D.dec.reset();
+  D.dec.feed(payload.substr(p));
+  D.dec.finish();
+  top::StreamItem it;
+  while (D.dec.next(it)) {
+    Position pos{record, index++, offset + p + it.offset};
+    impl_->item(c, d, it, pos, ts, p + it.offset);
+  }
+}
+
+void Analyzer::source_note(std::int64_t ts, ACode code, std::string message, std::uint64_t record,
+                           std::uint64_t offset) {
+  impl_->note_event(ts, Position{record, 0, offset}, Transport::udp, nullptr, nullptr, nullptr,
+                    Note{code, default_severity(code), std::move(message), 0});
+}
+
+}  // namespace topdump

@@ -1,0 +1,135 @@
+// The conversation table: a conversation per transport and pair of ends,
+// found through a small cache of recent lookups, evicted least recently used
+// past the limit, and closed at the end of the input.
+#include <algorithm>
+#include <cstring>
+
+#include "capture/link.hpp"
+#include "session.hpp"
+
+namespace topdump {
+
+// Flows recognised by content are remembered as long as conversations.
+static_assert(kMaxContentFlows == kMaxConversations);
+
+namespace {
+bool endpoint_less(const Endpoint& x, const Endpoint& y) {
+  if (x.family != y.family) return x.family < y.family;
+  if (x.addr != y.addr) return x.addr < y.addr;
+  if (x.port != y.port) return x.port < y.port;
+  return x.name < y.name;
+}
+}  // namespace
+
+std::size_t ConvKeyHash::operator()(const ConvKey& k) const noexcept {
+  auto one = [](const Endpoint& e) -> std::uint64_t {
+    if (e.family == 0) return std::hash<std::string>{}(e.name);
+    std::uint64_t a, b;
+    std::memcpy(&a, e.addr.data(), 8);
+    std::memcpy(&b, e.addr.data() + 8, 8);
+    return (a * 0x9E3779B97F4A7C15ull) ^ (b * 0xC2B2AE3D27D4EB4Full) ^ (std::uint64_t{e.port} << 1);
+  };
+  std::uint64_t h = one(k.a) * 31 + one(k.b) + static_cast<std::uint64_t>(k.t);
+  return static_cast<std::size_t>(h ^ (h >> 29));
+}
+
+Conversation& Analyzer::Impl::get_slow(Transport t, const Endpoint& src, const Endpoint& dst,
+                                       int& d) {
+  ConvKey k{t, src, dst};
+  if (endpoint_less(dst, src)) std::swap(k.a, k.b);
+  auto it = convs.find(k);
+  if (it == convs.end()) {
+    if (convs.size() >= A.opts_.max_conversations) evict();
+    auto c = std::make_unique<Conversation>();
+    c->id = next_conv++;
+    c->transport = t;
+    c->dir[0].src = src;
+    c->dir[0].dst = dst;
+    c->dir[0].from = src.text();
+    c->dir[0].to = dst.text();
+    c->dir[1].src = dst;
+    c->dir[1].dst = src;
+    c->dir[1].from = c->dir[0].to;
+    c->dir[1].to = c->dir[0].from;
+    c->dir[0].tcp = TcpReassembly(A.opts_.max_tcp_held);
+    c->dir[1].tcp = TcpReassembly(A.opts_.max_tcp_held);
+    if (A.opts_.dialect != top::Dialect::unknown) c->det.force(A.opts_.dialect);
+    if (A.opts_.model != top::Model::unknown) c->det.force(top::dialect_of(A.opts_.model));
+    if (src.family) c->det.observe_port(src.port);
+    if (dst.family) c->det.observe_port(dst.port);
+    if (src.family && dst.family) {
+      const bool s_dev = top::port_role(src.port) == top::PortRole::device;
+      const bool d_dev = top::port_role(dst.port) == top::PortRole::device;
+      if (s_dev != d_dev) c->device_dir = s_dev ? 0 : 1;
+    }
+    c->st.id = c->id;
+    c->st.a = c->dir[0].from;
+    c->st.b = c->dir[0].to;
+    c->st.transport = t;
+    it = convs.emplace(std::move(k), std::move(c)).first;
+  }
+  Conversation& c = *it->second;
+  c.last_used = ++clock;
+  d = (c.dir[0].src == src && c.dir[0].dst == dst) ? 0 : 1;
+  return c;
+}
+
+void Analyzer::Impl::evict() {
+  auto victim = convs.begin();
+  for (auto it = convs.begin(); it != convs.end(); ++it)
+    if (it->second->last_used < victim->second->last_used) victim = it;
+  Conversation& c = *victim->second;
+  std::string msg = "more than " + std::to_string(A.opts_.max_conversations) +
+                    " live conversations: closed conversation " + std::to_string(c.id) + " (" +
+                    c.dir[0].from + " <> " + c.dir[0].to + ")";
+  close(c, kNoTime);
+  cache.fill(CacheSlot{});
+  note_event(kNoTime, Position{}, c.transport, nullptr, nullptr, nullptr,
+             Note{ACode::conversation_limit, default_severity(ACode::conversation_limit), msg, 0},
+             ++limit_notes <= 10);
+  convs.erase(victim);
+}
+
+void Analyzer::Impl::close(Conversation& c, std::int64_t ts) {
+  for (int d = 0; d < 2; ++d) {
+    Direction& D = c.dir[d];
+    TcpSide side(*this, c, d);
+    D.tcp.finish(ts, side);
+    D.dec.finish();
+    drain_stream(c, d, ts);
+  }
+  // After -c the input was cut short: what is pending may yet be answered.
+  while (!c.pairing.empty()) {
+    if (!A.done_) unanswered(c, c.pairing.oldest(), true);
+    c.pairing.pop_oldest();
+  }
+  emit_silence(c);
+  for (const StreamStat& s : c.st.streams) check_stream(c, s);
+  c.st.dialect = c.det.current();
+  if (A.filtering_) {
+    // The statistics hold what the filter selected: conversations with a
+    // selected frame, and the streams of the identifiers selected.
+    if (c.st.frames == 0) return;
+    std::erase_if(c.st.streams, [&](const StreamStat& s) {
+      return !A.filter_.selects_ident(s.ident) && !A.filter_.selects_ident(s.asked_by);
+    });
+  }
+  if (A.stats_.conversations.size() < kMaxStatsConversations)
+    A.stats_.conversations.push_back(c.st);
+  else
+    ++A.stats_.conversations_dropped;
+}
+
+void Analyzer::finish() {
+  std::vector<Conversation*> order;
+  for (auto& [k, c] : impl_->convs) order.push_back(c.get());
+  std::sort(order.begin(), order.end(),
+            [](const Conversation* a, const Conversation* b) { return a->id < b->id; });
+  for (Conversation* c : order) impl_->close(*c, kNoTime);
+  impl_->cache.fill(Impl::CacheSlot{});
+  impl_->convs.clear();
+  std::sort(stats_.conversations.begin(), stats_.conversations.end(),
+            [](const ConvStats& a, const ConvStats& b) { return a.id < b.id; });
+}
+
+}  // namespace topdump

@@ -1,0 +1,92 @@
+// The session's events: a decoded frame, a run of garbage, a finding, each
+// with where it sits in the capture; and the Sink that receives them (the
+// outputs).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "capture/sink.hpp"
+#include "findings/afindings.hpp"
+#include "top/top.hpp"
+
+namespace topdump {
+
+struct Conversation;
+
+// Where a frame sits in the capture.
+struct Position {
+  std::uint64_t record = 0;  // 1-based record (packet, log chunk, line, CSV row)
+  std::uint32_t index = 0;   // 0-based index among the items of the record
+  std::uint64_t offset = 0;  // byte offset of the first byte in the record
+};
+
+// A finding of the session or source layer.
+struct Note {
+  ACode code{};
+  top::Severity severity{};
+  std::string message;
+  std::uint64_t frame = 0;  // the frame it is about (0: none)
+  // The identifier and TOP addresses of what it is about (a request, a
+  // stream), for the filter; zero when it is about no frame (TCP, files).
+  char ident[3] = {};
+  char src = 0, dst = 0;
+};
+
+// A decoded frame with its findings summarised.
+struct DecodedEntry {
+  const top::Frame* frame = nullptr;  // the parser's, valid during the event
+  top::Decoded decoded;
+  top::Severity worst = top::Severity::info;
+  bool bad_checksum = false;
+};
+
+struct FrameEvent {
+  std::uint64_t n = 0;        // 1-based frame number
+  std::int64_t ts = kNoTime;  // microseconds since the epoch
+  Position pos;
+  std::uint64_t stream_offset = 0;  // TCP/serial: offset in the direction's byte stream
+  Transport transport{};
+  const Conversation* conv = nullptr;
+  const std::string* from = nullptr;  // endpoint text
+  const std::string* to = nullptr;
+  const DecodedEntry* entry = nullptr;
+  std::uint64_t reply_to = 0;  // frame number of the request answered
+  std::int64_t latency_us = -1;
+  std::vector<Note> notes;  // session findings on this frame
+  top::Severity worst() const noexcept;
+  std::uint64_t conv_id() const noexcept;
+};
+
+struct GarbageEvent {
+  std::int64_t ts = kNoTime;
+  Position pos;
+  Transport transport{};
+  const Conversation* conv = nullptr;
+  const std::string* from = nullptr;
+  const std::string* to = nullptr;
+  const top::StreamItem* item = nullptr;
+  std::uint64_t conv_id() const noexcept;
+};
+
+struct NoteEvent {
+  std::int64_t ts = kNoTime;
+  Position pos;
+  Transport transport{};
+  const Conversation* conv = nullptr;  // may be null (file-level)
+  const std::string* from = nullptr;
+  const std::string* to = nullptr;
+  Note note;
+  std::uint64_t conv_id() const noexcept;
+};
+
+class Sink {
+ public:
+  virtual ~Sink() = default;
+  virtual void frame(const FrameEvent&) {}
+  virtual void garbage(const GarbageEvent&) {}
+  virtual void note(const NoteEvent&) {}
+};
+
+}  // namespace topdump

@@ -1,0 +1,274 @@
+// Requests and responses: requests wait in the conversation's Pairing
+// (newest first, preferring an echo of their data), go unanswered after the
+// timeout with the cause the capture shows, and a silent device's stretch
+// is one finding; pushes count toward the streams their switches asked for.
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+#include "session.hpp"
+#include "top/text.hpp"
+
+namespace topdump {
+
+namespace {
+// What the capture shows of why a request went unanswered (Cause).
+constexpr std::string_view kCauseText[] = {
+    "",
+    ": its checksum is bad, and devices drop such frames",
+    ": a Topotek request with source U over the network; the device answers U requests on its "
+    "UART only (the network client is P)",
+    ": the identifier is not supported on the model",
+    ": the request is invalid (its length or a value), which devices ignore or answer with ERE",
+};
+static_assert(std::size(kCauseText) == static_cast<std::size_t>(Cause::invalid) + 1);
+std::string_view cause_text(Cause c) { return kCauseText[static_cast<std::size_t>(c)]; }
+}  // namespace
+
+// Learns which direction the device sends in from a frame of direction d,
+// when the ports did not say: a frame addressed to a client, or one that
+// answers a pending request of the other direction, comes from the
+// device; a stream switch (GAA, GIA, FAE write) comes from a client.
+void Analyzer::Impl::learn_device(Conversation& c, int d, const top::Frame& f,
+                                  top::Dialect dialect) {
+  // Both ends the same (a recording without ports): the addresses decide.
+  if (c.dir[0].src == c.dir[0].dst) return;
+  if (top::role_from_addresses(f) == top::Role::response) {
+    c.device_dir = d;
+    return;
+  }
+  if (c.pairing.waiting(f.ident, 1 - d)) {
+    c.device_dir = d;
+    return;
+  }
+  if (f.control == 'w' && dialect != top::Dialect::unknown &&
+      top::stream_enabled_by(dialect, f.ident_view()))
+    c.device_dir = 1 - d;
+}
+
+void Analyzer::Impl::unanswered(Conversation& c, const Pending& p, bool at_end) {
+  if (one_way(c)) return;  // the answers are on a line nobody recorded
+  // A copy of a request that was answered (senders that send each frame
+  // several times) is not unanswered: the device answered one of them.
+  if (c.pairing.copy_of_answered(p, A.opts_.repeat_window_us)) return;
+  const Direction& D = c.dir[p.dir];
+  Note about{ACode::unanswered, default_severity(ACode::unanswered), std::string(), p.n};
+  std::memcpy(about.ident, p.ident, 3);
+  about.src = p.src;
+  about.dst = p.dst;
+  if (A.filtering_) {
+    // Reported only when the filter selects it, as a note about the request.
+    NoteEvent e;
+    e.ts = p.ts;
+    e.conv = &c;
+    e.from = &D.from;
+    e.to = &D.to;
+    e.note = about;
+    if (!A.filter_.selects(e)) return;
+  }
+  ++A.stats_.unanswered;
+  const Direction& other = c.dir[1 - p.dir];
+  const bool silent =
+      p.cause == Cause::none && p.ts != kNoTime &&
+      (!other.sent_frame || other.last_frame_ts == kNoTime || other.last_frame_ts < p.ts);
+  std::string msg = message([&] {
+    return at_end
+               ? top::cat({top::escape(std::string_view(p.ident, 3)), " request (frame ",
+                           std::to_string(p.n), ") got no response before the end of the capture",
+                           cause_text(p.cause)})
+               : top::cat({top::escape(std::string_view(p.ident, 3)), " request (frame ",
+                           std::to_string(p.n), ") got no response within ",
+                           std::to_string(A.opts_.timeout_us / 1000), " ms", cause_text(p.cause)});
+  });
+  if (silent) {
+    Silence& s = c.silence;
+    if (s.count && s.dir != p.dir) emit_silence(c);
+    if (s.count == 0) {
+      s.about = about;
+      s.first_n = p.n;
+      s.first_ts = p.ts;
+      s.pos = p.pos;
+      s.dir = p.dir;
+      s.idents.clear();
+      s.single = std::move(msg);
+    }
+    ++s.count;
+    s.last_n = p.n;
+    s.last_ts = p.ts;
+    const std::string id = top::escape(std::string_view(p.ident, 3));
+    if (s.idents.find(id) == std::string::npos && s.idents.size() < 64)
+      s.idents += (s.idents.empty() ? "" : ", ") + id;
+    return;
+  }
+  about.message = std::move(msg);
+  note_event(p.ts, p.pos, c.transport, &c, &D.from, &D.to, std::move(about));
+}
+
+// One finding for requests that went unanswered while the device said
+// nothing (the first request's message when it is alone).
+void Analyzer::Impl::emit_silence(Conversation& c) {
+  Silence& s = c.silence;
+  if (s.count == 0) return;
+  const Direction& D = c.dir[s.dir];
+  std::string msg = s.count == 1 ? std::move(s.single) : message([&] {
+    char span[32];
+    std::snprintf(span, sizeof span, "%.3f", static_cast<double>(s.last_ts - s.first_ts) / 1e6);
+    return "the device was silent: " + std::to_string(s.count) + " requests (" + s.idents +
+           ") from frame " + std::to_string(s.first_n) + " to frame " + std::to_string(s.last_n) +
+           " over " + span + " s got no response";
+  });
+  Note n = s.about;  // the first request's identifier and addresses
+  n.message = std::move(msg);
+  note_event(s.first_ts, s.pos, c.transport, &c, &D.from, &D.to, std::move(n));
+  s = Silence{};
+}
+
+// What the capture shows of why a request may go unanswered.
+Cause Analyzer::Impl::cause_of(const Conversation& c, const DecodedEntry& e) {
+  const top::Frame& f = *e.frame;
+  const top::Dialect dialect = e.decoded.dialect;
+  Cause cause = Cause::none;
+  if (e.bad_checksum) {
+    cause = Cause::bad_checksum;
+  } else if (dialect == top::Dialect::topotek && f.src == 'U' && c.transport != Transport::serial) {
+    cause = Cause::uart_source;
+  } else {
+    // A request laid out as a reply (a one-char VSN read) is invalid too.
+    const top::FormSpec* form = e.decoded.form;
+    if (form && form->role == top::Role::response) cause = Cause::invalid;
+    for (const top::Finding& x : e.decoded.findings) {
+      if (x.code == top::FindingCode::unknown_ident ||
+          (x.code == top::FindingCode::unsupported_on_model &&
+           x.severity == top::Severity::error)) {
+        cause = Cause::unsupported;
+        break;
+      }
+      if (x.code == top::FindingCode::data_length || x.code == top::FindingCode::bad_field ||
+          x.code == top::FindingCode::value_out_of_range ||
+          x.code == top::FindingCode::unsupported_control)
+        cause = Cause::invalid;
+    }
+  }
+  return cause;
+}
+
+void Analyzer::Impl::request(Conversation& c, int d, FrameEvent& ev) {
+  const top::Frame& f = *ev.entry->frame;
+  Direction& D = c.dir[d];
+  if (ev.ts != kNoTime && D.last_req_ts != kNoTime &&
+      ev.ts - D.last_req_ts <= A.opts_.repeat_window_us && D.last_req == f.raw)
+    ev.notes.push_back(Note{ACode::repeated, default_severity(ACode::repeated), message([&] {
+                              return "same request again after " +
+                                     std::to_string((ev.ts - D.last_req_ts) / 1000) + " ms";
+                            }),
+                            ev.n});
+  D.last_req = f.raw;
+  D.last_req_ts = ev.ts;
+  std::string_view id = f.ident_view();
+  const top::Dialect dialect = ev.entry->decoded.dialect;
+  // A client stream's frame (FAI after FAE) expects no answer.
+  for (StreamStat& s : c.st.streams) {
+    if (s.from_client && s.ident == id) {
+      ++s.frames;
+      if (ev.ts != kNoTime) {
+        if (s.first == kNoTime) s.first = ev.ts;
+        s.last = ev.ts;
+      }
+      return;
+    }
+  }
+  const top::StreamSpec* switched =
+      f.control == 'w' ? top::stream_enabled_by(dialect, id) : nullptr;
+  if (switched) {
+    if (const std::optional<unsigned> value = top::switch_value(f.data())) {
+      const unsigned v = *value;
+      const std::string sid(switched->push);
+      auto& streams = c.st.streams;
+      auto s = std::find_if(streams.begin(), streams.end(),
+                            [&](const StreamStat& x) { return x.ident == sid; });
+      if (v == 0) {
+        // disabled: keep the measured figures
+      } else {
+        if (s == streams.end()) {
+          streams.push_back(StreamStat{});
+          s = streams.end() - 1;
+        } else {
+          check_stream(c, *s);
+          *s = StreamStat{};
+        }
+        s->ident = sid;
+        s->asked_by = std::string(switched->request);
+        s->from_client = switched->sender == top::Sender::client;
+        s->asked_hz = switched->rate_in_data ? static_cast<double>(v) : 0;
+      }
+    }
+  }
+  if (c.pairing.size() >= kMaxPending) {
+    unanswered(c, c.pairing.oldest(), false);
+    c.pairing.pop_oldest();
+  }
+  const Cause cause = cause_of(c, *ev.entry);
+  c.pairing.add([&](Pending& p) {  // a reused slot: every member is assigned
+    p.ts = ev.ts;
+    p.n = ev.n;
+    p.pos = ev.pos;
+    std::memcpy(p.ident, f.ident, 3);
+    p.control = f.control;
+    p.src = f.src;
+    p.dst = f.dst;
+    p.data.clear();  // append into the slot's buffer: cheaper than assign's replace
+    p.data.append(f.data());
+    p.dir = d;
+    p.cause = cause;
+  });
+}
+
+void Analyzer::Impl::response(Conversation& c, int d, FrameEvent& ev) {
+  const top::Frame& f = *ev.entry->frame;
+  std::string_view id = f.ident_view();
+  bool ere = id == "ERE";
+  // The newest pending request it answers, preferring one whose data it
+  // echoes (Pairing::match).
+  if (const std::optional<Pairing::Match> mt = c.pairing.match(id, f.data(), f.src, d, ere)) {
+    const Pending* m = &c.pairing[mt->index];
+    ev.reply_to = m->n;
+    if (ev.ts != kNoTime && m->ts != kNoTime) {
+      ev.latency_us = ev.ts - m->ts;
+      reply_timed = true;
+      reply_key = pack_ident(std::string_view(m->ident, 3));
+    }
+    // Writes answered in a layout of their own (Topotek REC/CAP file index,
+    // LON/LAT, LRF) are not echoes.
+    const top::CommandSpec* cmd = ev.entry->decoded.command;
+    bool exempt = cmd && top::write_reply(*cmd) != top::WriteReply::echo;
+    if (!ere && !exempt && m->control == 'w' && f.control == 'w' && !mt->echoed)
+      ev.notes.push_back(Note{
+          ACode::echo_differs, default_severity(ACode::echo_differs), message([&] {
+            return "reply to write (frame " + std::to_string(m->n) + ") carries \"" +
+                   top::escape(f.data()) + "\", the write carried \"" + top::escape(m->data) + "\"";
+          }),
+          ev.n});
+    c.pairing.answer(mt->index);
+    return;
+  }
+  for (StreamStat& s : c.st.streams) {
+    if (s.ident == id) {
+      ++s.frames;
+      if (ev.ts != kNoTime) {
+        if (s.first == kNoTime) s.first = ev.ts;
+        s.last = ev.ts;
+      }
+      return;
+    }
+  }
+  if (one_way(c)) return;  // the requests are on a line nobody recorded
+  ev.notes.push_back(Note{ACode::unsolicited, default_severity(ACode::unsolicited), message([&] {
+                            return top::escape(id) + " response that no pending request asked for";
+                          }),
+                          ev.n});
+}
+
+}  // namespace topdump

@@ -1,0 +1,275 @@
+// The analyzer's internals (not a public header): the state of one
+// conversation and its two directions, and Analyzer::Impl, whose parts live
+// in files of one idea:
+//   analyzer.cpp       frames and items to events, statistics, the public API
+//   conversations.cpp  the conversation table: lookup, cache, eviction, close
+//   requests.cpp       requests and responses through the conversation's
+//                      Pairing (pairing.hpp), unanswered requests, silences
+//   streams.cpp        device streams: counted pushes, the stream-rate check
+//   byte_streams.cpp   byte streams: TCP through TcpReassembly
+//                      (tcp_reassembly.hpp), positions, serial chunks
+//   latency.cpp        latency histograms and the latency table
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "session/analyzer.hpp"
+#include "session/pairing.hpp"
+#include "session/tcp_reassembly.hpp"
+#include "top/detail/ring.hpp"
+
+namespace topdump {
+
+// A chunk of a direction's byte stream: where its bytes came from.
+struct Seg {
+  std::uint64_t stream_off;
+  std::uint64_t record;
+  std::uint64_t rec_off;
+  std::int64_t ts;
+};
+
+// Requests that went unanswered while the device said nothing: reported as
+// one finding for the stretch.
+struct Silence {
+  std::uint64_t count = 0;
+  std::uint64_t first_n = 0, last_n = 0;
+  std::int64_t first_ts = kNoTime, last_ts = kNoTime;
+  Position pos;
+  int dir = 0;
+  std::string idents;  // "GAY, VER, PTZ"
+  std::string single;  // the message when the stretch holds one request
+  Note about;          // the first request's identifier and addresses
+};
+
+struct Direction {
+  Endpoint src, dst;
+  std::string from, to;
+  top::StreamDecoder dec;
+  // The chunks whose bytes the decoder holds, oldest first (at most 4096).
+  // A Ring, not a std::deque: a deque allocates two blocks as it is made,
+  // and a conversation makes two directions, TCP or not.
+  top::detail::Ring<Seg> segs;
+  std::uint64_t base = 0;  // stream offset of the decoder's offset 0
+  std::uint64_t last_record = 0;
+  std::uint32_t index = 0;
+  TcpReassembly tcp;  // TCP
+  // repeats
+  std::string last_req;
+  std::int64_t last_req_ts = kNoTime;
+  std::int64_t last_frame_ts = kNoTime;  // the last frame this direction sent
+  bool sent_frame = false;
+};
+
+struct Conversation {
+  std::uint64_t id = 0;
+  Transport transport{};
+  Direction dir[2];
+  bool has_dir1 = false;
+  // The direction the device sends in (-1: not known yet): from the ports
+  // (a well-known device port at one end), else from the first frame that
+  // only a device sends (addressed to a client, or answering a request), or
+  // the first stream switch (GAA, GIA, FAE) a client sends.
+  int device_dir = -1;
+  Silence silence;
+  top::DialectDetector det;
+  std::uint32_t observed = 0;
+  Pairing pairing;
+  std::uint64_t last_used = 0;
+  ConvStats st;
+};
+
+// The conversation table's key: a transport and both ends, the lesser first.
+struct ConvKey {
+  Transport t;
+  Endpoint a, b;  // a < b
+  bool operator==(const ConvKey&) const = default;
+};
+
+struct ConvKeyHash {
+  std::size_t operator()(const ConvKey& k) const noexcept;
+};
+
+// The identifier as a 24-bit key, and back as display text.
+inline std::uint32_t pack_ident(std::string_view id) noexcept {
+  std::uint32_t k = 0;
+  for (std::size_t i = 0; i < 3 && i < id.size(); ++i)
+    k |= static_cast<std::uint32_t>(static_cast<unsigned char>(id[i])) << (8 * i);
+  return k;
+}
+std::string unpack_ident(std::uint32_t k);
+
+struct Analyzer::Impl {
+  Analyzer& A;
+  explicit Impl(Analyzer& a) : A(a) {}
+
+  // --- conversations.cpp: the conversation table -------------------------
+  std::unordered_map<ConvKey, std::unique_ptr<Conversation>, ConvKeyHash> convs;
+  std::uint64_t next_conv = 1;
+  std::uint64_t clock = 0;
+  std::uint64_t limit_notes = 0;
+  // Recently used (transport, src, dst) -> conversation and direction, so
+  // most records skip building and hashing a ConvKey. Checked on every hit;
+  // cleared when a conversation is closed.
+  struct CacheSlot {
+    Conversation* c = nullptr;
+    int d = 0;
+  };
+  std::array<CacheSlot, 64> cache{};
+
+  static std::size_t cache_slot(Transport t, const Endpoint& src, const Endpoint& dst) noexcept {
+    std::uint64_t h = static_cast<std::uint64_t>(t) + 1;
+    for (const Endpoint* e : {&src, &dst}) {
+      std::uint64_t a = 0, b = 0;
+      std::memcpy(&a, e->addr.data(), 8);
+      std::memcpy(&b, e->addr.data() + 8, 8);
+      h = (h ^ a ^ (b >> 1) ^ (std::uint64_t{e->port} << 7) ^ e->name.size()) *
+          0x9E3779B97F4A7C15ull;
+    }
+    return static_cast<std::size_t>(h >> 58);  // 64 slots
+  }
+  // The conversation of a record and the direction `d` it goes in.
+  Conversation& get(Transport t, const Endpoint& src, const Endpoint& dst, int& d) {
+    CacheSlot& slot = cache[cache_slot(t, src, dst)];
+    if (slot.c && slot.c->transport == t && slot.c->dir[slot.d].src == src &&
+        slot.c->dir[slot.d].dst == dst) {
+      slot.c->last_used = ++clock;
+      d = slot.d;
+      return *slot.c;
+    }
+    Conversation& c = get_slow(t, src, dst, d);
+    slot.c = &c;
+    slot.d = d;
+    return c;
+  }
+  Conversation& get_slow(Transport t, const Endpoint& src, const Endpoint& dst, int& d);
+  void evict();
+  // Ends a conversation: flushes its decoders, expires its requests,
+  // checks its streams and files its statistics.
+  void close(Conversation& c, std::int64_t ts);
+
+  // --- analyzer.cpp: frames and items to events --------------------------
+  DecodedEntry current;
+  top::DecodeCache decode_cache;  // used without detail (topdump stats)
+  top::ParseResult scratch;       // the one-frame datagram path parses into this
+
+  std::array<std::uint64_t, top::finding_code_count> codes{};
+  std::array<std::uint64_t, acode_count> acodes{};
+  // Frames per identifier of three [0-9A-Z] characters (every valid one):
+  // top::ident_index's slots in 23 pages of 2048 (16 KB), each allocated
+  // at the first frame counted in it and zeroed by the allocator (calloc).
+  // A capture uses a few identifiers, so it pays for a few pages, not
+  // 373 KB of zeroes: an analyzer that counts a handful of frames (the fuzz
+  // targets build one per input) stays small, and under ASan a page is a
+  // heap block, not a fresh mmap. A power of two, so finding a slot's page
+  // is a shift (topdump stats, 200k frames: +0.04% instructions over one
+  // flat table; 1296-slot pages, a division, cost +0.6%).
+  static constexpr std::size_t kIdentPage = std::size_t{1} << 11;
+  struct FreeDeleter {
+    void operator()(std::uint64_t* p) const noexcept;
+  };
+  std::array<std::unique_ptr<std::uint64_t[], FreeDeleter>,
+             (top::ident_slots + kIdentPage - 1) / kIdentPage>
+      ident_pages;
+  std::unordered_map<std::uint32_t, std::uint64_t> idents;  // other identifiers
+  void count_ident(const char id[3]) {
+    if (const int i = top::ident_index(id); i >= 0) {
+      const auto slot = static_cast<std::size_t>(i);
+      auto& page = ident_pages[slot / kIdentPage];
+      if (!page) allocate_ident_page(page);
+      ++page[slot % kIdentPage];
+    } else {
+      ++idents[pack_ident(std::string_view(id, 3))];
+    }
+  }
+  static void allocate_ident_page(std::unique_ptr<std::uint64_t[], FreeDeleter>& page);
+
+  // A finding's or note's message, built only when events are described
+  // (AnalyzerOptions::detail); topdump stats counts them without text.
+  template <class Make>
+  std::string message(Make&& make) const {
+    return A.opts_.detail ? std::string(make()) : std::string();
+  }
+
+  void note_event(std::int64_t ts, Position pos, Transport t, const Conversation* c,
+                  const std::string* from, const std::string* to, Note n, bool emit = true);
+  void item(Conversation& c, int d, top::StreamItem& it, Position pos, std::int64_t ts,
+            std::uint64_t stream_off);
+  const DecodedEntry& lookup(top::Frame& f, top::Dialect dialect, top::Role role);
+  static void summarise(DecodedEntry& e);
+  // Drops the findings the filter mutes from a frame and its notes.
+  void mute(top::Frame& f, FrameEvent& ev);
+  void frame(Conversation& c, int d, top::Frame& f, Position pos, std::int64_t ts,
+             std::uint64_t stream_off);
+  // Folds the fast counters into the statistics.
+  void materialize(Stats& s) const;
+
+  // --- requests.cpp, streams.cpp, latency.cpp: pairing and streams --------
+  // Latency per identifier: a capture pairs a handful of identifiers, so a
+  // linear search of their keys beats hashing (a division per reply).
+  std::vector<std::uint32_t> latency_keys;
+  std::vector<Latency> latency;  // latency[i] is latency_keys[i]'s
+  // The last index found for each of 64 hashed slots: most replies find
+  // their identifier's table there without a search (whose exit, at a
+  // different place for each identifier, mispredicted).
+  std::array<std::uint32_t, 64> latency_hint{};  // 1 + index into latency, 0: none
+  Latency& latency_of(std::uint32_t key);
+  // The response at hand answered a request at a known time: its latency
+  // counts, under the request's identifier, when the filter selects it.
+  bool reply_timed = false;
+  std::uint32_t reply_key = 0;
+
+  void learn_device(Conversation& c, int d, const top::Frame& f, top::Dialect dialect);
+  // What the capture shows of why a request may go unanswered.
+  static Cause cause_of(const Conversation& c, const DecodedEntry& e);
+  void request(Conversation& c, int d, FrameEvent& ev);
+  void response(Conversation& c, int d, FrameEvent& ev);
+  // Requests older than the timeout at time ts are unanswered.
+  void expire(Conversation& c, std::int64_t ts) {
+    c.pairing.expire(ts, A.opts_.timeout_us, [&](const Pending& p) { unanswered(c, p, false); });
+  }
+  void unanswered(Conversation& c, const Pending& p, bool at_end);
+  // A serial line recorded in one direction only (a raw dump, one tap): its
+  // frames are neither unsolicited nor unanswered, as far as it shows.
+  static bool one_way(const Conversation& c) noexcept {
+    auto silent = [](const Direction& D) { return D.dec.fed() == 0 && D.base == 0; };
+    return c.transport == Transport::serial && (silent(c.dir[0]) || silent(c.dir[1]));
+  }
+  void emit_silence(Conversation& c);
+  void check_stream(Conversation& c, const StreamStat& s);
+
+  // --- byte_streams.cpp: byte streams --------------------------------------
+  Position map_position(Direction& D, std::uint64_t off, std::uint64_t len,
+                        std::uint64_t& stream_off, std::int64_t& ts);
+  void drain_stream(Conversation& c, int d, std::int64_t ts);
+  // The item drain_stream() takes each next() into. Kept: next() swaps the
+  // buffers of the item it is given back into the decoder's ring, so a
+  // local one took the last frame's raw bytes and findings with it, freed,
+  // at the end of every drain (and the decoder allocated them again).
+  top::StreamItem drained;
+  void deliver(Conversation& c, int d, std::string_view bytes, std::uint64_t record,
+               std::uint64_t offset, std::int64_t ts);
+  void restart(Conversation& c, int d, std::int64_t ts, std::uint64_t skipped);
+  // What a direction's TCP reassembly finds: bytes for its decoder,
+  // findings as notes, and gaps, after which the decoder restarts.
+  struct TcpSide final : TcpOutput {
+    TcpSide(Impl& i, Conversation& conv, int dir) : I(i), c(conv), d(dir) {}
+    void bytes(std::string_view b, std::uint64_t record, std::uint64_t offset,
+               std::int64_t ts) override;
+    void finding(ACode code, std::string message, std::uint64_t record, std::uint64_t offset,
+                 std::int64_t ts) override;
+    void gap(std::uint64_t skipped, std::int64_t ts) override;
+    Impl& I;
+    Conversation& c;
+    int d;
+  };
+};
+
+}  // namespace topdump

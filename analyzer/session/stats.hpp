@@ -1,0 +1,74 @@
+// The statistics of a capture: counts, latency per identifier, streams and
+// conversations.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "capture/sink.hpp"
+#include "top/top.hpp"
+
+namespace topdump {
+
+inline constexpr std::size_t kMaxStatsConversations = 4096;
+
+// Latency: exact min/max/count; exact nearest-rank quantiles up to 4096
+// samples, then from a log histogram (within 1%), so memory stays bounded.
+class Latency {
+ public:
+  void add(std::int64_t us);
+  std::uint64_t count() const noexcept { return count_; }
+  std::int64_t min() const noexcept { return min_; }
+  std::int64_t max() const noexcept { return max_; }
+  std::int64_t quantile(double q) const;  // microseconds
+  // The 1% log bucket of a latency, and the same by its formula (tests).
+  static std::size_t bucket(std::int64_t us);
+  static std::size_t bucket_exact(std::int64_t us);
+
+ private:
+  static std::int64_t bucket_value(std::size_t b);
+  static constexpr std::size_t kExact = 4096;  // exact quantiles up to this many samples
+  std::vector<std::uint32_t> buckets_;
+  std::vector<std::int64_t> exact_;
+  std::uint64_t count_ = 0;
+  std::int64_t min_ = 0, max_ = 0;
+};
+
+struct StreamStat {
+  std::string ident;         // GAC, GIC (device pushes) or FAI (client stream)
+  double asked_hz = 0;       // 0: enable without a rate (Topotek)
+  std::string asked_by;      // the request that switched it on: GAA, GIA, FAE
+  bool from_client = false;  // the client sends it (FAI): never a request to answer
+  std::uint64_t frames = 0;
+  std::int64_t first = kNoTime, last = kNoTime;
+  double measured_hz() const;
+};
+
+struct ConvStats {
+  std::uint64_t id = 0;
+  std::string a, b;  // endpoint texts, a is the first sender
+  Transport transport{};
+  top::Dialect dialect = top::Dialect::unknown;
+  std::uint64_t frames = 0, requests = 0, responses = 0, paired = 0;
+  std::vector<StreamStat> streams;
+};
+
+struct Stats {
+  std::uint64_t records = 0;          // packets, log chunks, lines
+  std::uint64_t records_skipped = 0;  // not TOP traffic
+  std::uint64_t frames = 0;
+  std::uint64_t bad_checksum = 0;
+  std::uint64_t garbage = 0;  // garbage runs
+  std::uint64_t error_frames = 0;
+  std::uint64_t requests = 0, responses = 0, paired = 0, unanswered = 0, unsolicited = 0;
+  std::map<std::string, std::uint64_t> per_ident;
+  std::map<std::string, std::uint64_t> per_code;  // frame, catalog and analyzer codes
+  std::map<std::string, Latency> latency;         // per identifier
+  std::vector<ConvStats> conversations;
+  std::uint64_t conversations_dropped = 0;
+  std::int64_t first = kNoTime, last = kNoTime;
+};
+
+}  // namespace topdump
