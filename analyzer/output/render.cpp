@@ -34,21 +34,9 @@ top::Severity worst(const top::Frame& f, const top::Decoded& d) {
 }
 
 std::string address_name(char a) {
-  switch (a) {
-    case 'U':
-      return "U (UART/UDP client)";
-    case 'M':
-      return "M (lens)";
-    case 'D':
-      return "D (system/image)";
-    case 'E':
-      return "E (auxiliary)";
-    case 'P':
-      return "P (network client)";
-    case 'G':
-      return "G (gimbal)";
-  }
-  return escape(std::string(1, a));
+  const std::string_view what = top::describe_address(a);
+  if (what.empty()) return escape(std::string(1, a));
+  return top::cat({std::string_view(&a, 1), " (", what, ")"});
 }
 
 namespace {

@@ -59,7 +59,7 @@ void unanswered_facts(const ReportSink& d, Report& rep) {
 void stream_facts(Report& rep) {
   for (const auto& s : rep.streams) {
     const double m = s.stat.measured_hz();
-    if (s.stat.asked_hz > 0 && m > 0 && std::fabs(m - s.stat.asked_hz) > 0.25 * s.stat.asked_hz)
+    if (s.stat.off_rate())
       add(rep, 75, top::Severity::warning,
           s.stat.ident + " push at " + fmt("%.1f", m) + " Hz, asked " + fmt("%g", s.stat.asked_hz) +
               " Hz (" + s.stat.asked_by + ", conversation " + std::to_string(s.conv) + ")",

@@ -14,10 +14,9 @@ void ReportSink::motion(const FrameEvent& e, ConvData& c) {
   const top::Frame& f = *e.entry->frame;
   const top::Decoded& d = e.entry->decoded;
   const std::string_view id = f.ident_view();
-  // identifiers are three characters: compared as such, not through memcmp
-  auto is = [&](const char(&x)[4]) { return id[0] == x[0] && id[1] == x[1] && id[2] == x[2]; };
-  if (id[0] != 'G' && !is("PTZ") && !is("YPR") && !is("RPS")) return;
-  if (id[0] == 'G' && (id[1] == 'A' || id[1] == 'I') && id[2] == 'C') {  // GAC, GIC
+  // What moves the gimbal, and the attitude it reports: top/motion.hpp.
+  const top::MotionSpec* m = top::motion_of(d.dialect, id);
+  if (m && m->kind == top::MotionKind::attitude) {
     // the attitude forms of both dialects: yaw, pitch, roll
     if (d.fields.size() != 3 || e.entry->bad_checksum || e.ts == kNoTime) return;
     const top::FieldValue *y = &d.fields[0], *p = &d.fields[1], *r = &d.fields[2];
@@ -36,43 +35,42 @@ void ReportSink::motion(const FrameEvent& e, ConvData& c) {
   if (!d.command) return;
   const std::string_view cid = d.command->ident;  // static, unlike the frame's
   if (e.entry->bad_checksum) {
-    if (id[0] == 'G' || is("PTZ") || is("YPR") || is("RPS"))
-      c.marks.push_back({e.n, e.ts, cid, "bad checksum (dropped)"});
+    // the motion commands and every other G... identifier
+    if (m || id[0] == 'G') c.marks.push_back({e.n, e.ts, cid, "bad checksum (dropped)"});
     return;
   }
-  auto axis_of = [](char ch) { return ch == 'Y' ? 0 : ch == 'P' ? 1 : ch == 'R' ? 2 : -1; };
-  auto angle = [&](int axis, const char* name, const char* speed) {
-    const auto* v = field(d, name);
-    if (!v || axis < 0) return;
-    const auto* s = field(d, speed);
-    AngleCommand a{
-        e.n, e.ts, cid, axis, static_cast<float>(v->value), s ? static_cast<float>(s->value) : 0.f,
-        0,   -1};
-    if (v->spec) a.min = static_cast<float>(v->spec->min), a.max = static_cast<float>(v->spec->max);
-    c.angles.push_back(a);
-  };
-  auto rate = [&](int axis, const char* name) {
-    const auto* v = field(d, name);
-    if (!v || axis < 0) return;
-    c.rates.push_back({e.n, e.ts, cid, axis, static_cast<std::int32_t>(v->integer),
-                       static_cast<float>(v->value),
-                       v->spec ? static_cast<float>(v->spec->scale) : 1.f});
-  };
-  if (is("GAY") || is("GAP") || is("GAR") || is("GIY") || is("GIP") || is("GIR")) {
-    angle(axis_of(id[2]), "angle", "speed");
-  } else if (is("GAM") || is("GIM")) {
-    angle(0, "yaw", "yaw_speed");
-    angle(1, "pitch", "pitch_speed");
-  } else if (is("GSY") || is("GSP") || is("GSR")) {
-    rate(axis_of(id[2]), "speed");
-  } else if (is("GSM") || is("YPR") || is("RPS")) {
-    rate(0, "yaw_speed");
-    rate(1, "pitch_speed");
-    rate(2, "roll_speed");
-  } else if (is("PTZ")) {
+  if (!m) return;
+  if (m->kind == top::MotionKind::ptz) {
     const auto* a = field(d, "action");
     c.marks.push_back({e.n, e.ts, cid, a ? a->enum_name : std::string_view()});
+    return;
   }
+  // axis by axis, yaw first, as the rates and angles are listed
+  for (std::size_t axis = 0; axis < top::axis_count; ++axis)
+    for (const top::MotionAxis& x : m->fields()) {
+      if (static_cast<std::size_t>(x.axis) != axis) continue;
+      const auto* v = field(d, x.value);
+      if (!v) continue;
+      const int ax = static_cast<int>(axis);
+      if (m->kind == top::MotionKind::angle) {
+        const auto* s = field(d, x.speed);
+        AngleCommand a{e.n,
+                       e.ts,
+                       cid,
+                       ax,
+                       static_cast<float>(v->value),
+                       s ? static_cast<float>(s->value) : 0.f,
+                       0,
+                       -1};
+        if (v->spec)
+          a.min = static_cast<float>(v->spec->min), a.max = static_cast<float>(v->spec->max);
+        c.angles.push_back(a);
+      } else {
+        c.rates.push_back({e.n, e.ts, cid, ax, static_cast<std::int32_t>(v->integer),
+                           static_cast<float>(v->value),
+                           v->spec ? static_cast<float>(v->spec->scale) : 1.f});
+      }
+    }
 }
 
 // The attitude an axis command is compared with: GIC for the earth-frame

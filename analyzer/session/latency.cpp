@@ -102,6 +102,11 @@ std::int64_t Latency::quantile(double q) const {
   return max_;
 }
 
+bool StreamStat::off_rate() const {
+  const double m = measured_hz();
+  return asked_hz > 0 && m > 0 && std::fabs(m - asked_hz) > top::stream_rate_tolerance * asked_hz;
+}
+
 double StreamStat::measured_hz() const {
   if (frames < 2 || first == kNoTime || last <= first) return 0;
   return static_cast<double>(frames - 1) * 1e6 / static_cast<double>(last - first);

@@ -133,7 +133,9 @@ Cause Analyzer::Impl::cause_of(const Conversation& c, const DecodedEntry& e) {
   Cause cause = Cause::none;
   if (e.bad_checksum) {
     cause = Cause::bad_checksum;
-  } else if (dialect == top::Dialect::topotek && f.src == 'U' && c.transport != Transport::serial) {
+  } else if (!top::answers_source(
+                 dialect, top::Profile::field,
+                 c.transport == Transport::serial ? top::Link::uart : top::Link::network, f.src)) {
     cause = Cause::uart_source;
   } else {
     // A request laid out as a reply (a one-char VSN read) is invalid too.
@@ -229,7 +231,7 @@ void Analyzer::Impl::request(Conversation& c, int d, FrameEvent& ev) {
 void Analyzer::Impl::response(Conversation& c, int d, FrameEvent& ev) {
   const top::Frame& f = *ev.entry->frame;
   std::string_view id = f.ident_view();
-  bool ere = id == "ERE";
+  bool ere = top::is_error_reply(id);
   // The newest pending request it answers, preferring one whose data it
   // echoes (Pairing::match).
   if (const std::optional<Pairing::Match> mt = c.pairing.match(id, f.data(), f.src, d, ere)) {

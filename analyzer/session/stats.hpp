@@ -44,6 +44,9 @@ struct StreamStat {
   std::uint64_t frames = 0;
   std::int64_t first = kNoTime, last = kNoTime;
   double measured_hz() const;
+  // The one stream-rate verdict (stream-rate finding, stats, report): asked
+  // a rate, measured one, and more than top::stream_rate_tolerance off it.
+  bool off_rate() const;
 };
 
 struct ConvStats {

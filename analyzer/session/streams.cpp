@@ -10,8 +10,8 @@ namespace topdump {
 
 void Analyzer::Impl::check_stream(Conversation& c, const StreamStat& s) {
   if (s.asked_hz <= 0 || s.frames < 2) return;
-  double m = s.measured_hz();
-  if (m <= 0 || std::fabs(m - s.asked_hz) <= 0.25 * s.asked_hz) return;
+  if (!s.off_rate()) return;
+  const double m = s.measured_hz();
   // printf's "%.1f" and "%.0f" through to_chars (the same text, without
   // printf's cost on every re-asked stream)
   auto fixed = [](double v, int decimals) {
