@@ -7,7 +7,6 @@
 # Entry points: topsim::handle_datagram (sim/intake.hpp, topsim_core) and
 # topconf::load_matrix (conf/matrix.hpp, topconf_matrix).
 if(NOT TARGET topsim_core)
-  find_package(nlohmann_json 3 REQUIRED)
   include(${CMAKE_CURRENT_LIST_DIR}/sim/libs.cmake)
   include(${CMAKE_CURRENT_LIST_DIR}/conf/matrix/libs.cmake)
 endif()

@@ -8,13 +8,14 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 B=${1:-build/default}/conformance
-for exe in topsim topconf topsim_load; do
-  [ -x "$B/$exe" ] || { echo "run.sh: $B/$exe missing; build the default preset first" >&2; exit 2; }
+L=${1:-build/default}/bench
+for exe in $B/topsim $B/topconf $L/topsim_load; do
+  [ -x "$exe" ] || { echo "run.sh: $exe missing; build the default preset first" >&2; exit 2; }
 done
 status=0
 echo "== topsim requests/s over UDP loopback (200000 requests, 32 in flight)"
 for m in c12 sip; do
-  "$B/topsim_load" --model "$m" --requests 200000 --window 32 || status=1
+  "$L/topsim_load" --model "$m" --requests 200000 --window 32 || status=1
 done
 echo
 echo "== default matrix wall time (target < 10 s)"

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <iterator>
 
-#include "fuzz/mutator.hpp"
+#include "top/detail/repair.hpp"
 #include "top/device.hpp"
 #include "top/enum_names.hpp"
 
@@ -125,7 +125,7 @@ std::string mutate(std::string b, std::uint64_t s, bool repair) {
     }
   }
   if (repair && !b.empty())
-    topfuzz::repair_frames(reinterpret_cast<std::uint8_t*>(b.data()), b.size());
+    top::detail::repair_frames(reinterpret_cast<std::uint8_t*>(b.data()), b.size());
   return b;
 }
 
