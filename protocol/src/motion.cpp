@@ -2,6 +2,7 @@
 // every attitude report, with the document section that defines it.
 #include "top/motion.hpp"
 
+#include <initializer_list>
 #include <iterator>
 
 #include "top/enum_names.hpp"
@@ -24,17 +25,12 @@ constexpr MotionAxis roll(std::string_view v, std::string_view s = {}, std::int8
   return {Axis::roll, v, s, sign};
 }
 
-constexpr MotionSpec one(Dialect d, std::string_view id, MotionKind k, Reference r, MotionAxis a,
-                         std::string_view section) {
-  return {d, id, k, r, {a, {}, {}}, 1, section};
-}
-constexpr MotionSpec two(Dialect d, std::string_view id, MotionKind k, Reference r, MotionAxis a,
-                         MotionAxis b, std::string_view section) {
-  return {d, id, k, r, {a, b, {}}, 2, section};
-}
-constexpr MotionSpec three(Dialect d, std::string_view id, MotionKind k, Reference r, MotionAxis a,
-                           MotionAxis b, MotionAxis c, std::string_view section) {
-  return {d, id, k, r, {a, b, c}, 3, section};
+// A row of one to three axes.
+constexpr MotionSpec row(Dialect d, std::string_view id, MotionKind k, Reference r,
+                         std::initializer_list<MotionAxis> axes, std::string_view section) {
+  MotionSpec m{d, id, k, r, {}, 0, section};
+  for (const MotionAxis& a : axes) m.axes[m.count++] = a;
+  return m;
 }
 
 constexpr Dialect S = Dialect::skydroid;
@@ -51,37 +47,37 @@ constexpr std::int8_t kDown = -1;
 constexpr MotionSpec kMotions[] = {
     // SkyDroid 3.1-3.3
     {S, "PTZ", MotionKind::ptz, B, {}, 0, "SkyDroid 3.1"},
-    one(S, "GSY", kRate, B, yaw("speed"), "SkyDroid 3.2"),
-    one(S, "GSP", kRate, B, pitch("speed"), "SkyDroid 3.2"),
-    one(S, "GSR", kRate, B, roll("speed"), "SkyDroid 3.2"),
-    two(S, "GSM", kRate, B, yaw("yaw_speed"), pitch("pitch_speed"), "SkyDroid 3.2"),
-    one(S, "GAY", kAngle, B, yaw("angle", "speed"), "SkyDroid 3.3.1"),
-    one(S, "GAP", kAngle, B, pitch("angle", "speed"), "SkyDroid 3.3.1"),
-    one(S, "GAR", kAngle, B, roll("angle", "speed"), "SkyDroid 3.3.1"),
-    two(S, "GAM", kAngle, B, yaw("yaw", "yaw_speed"), pitch("pitch", "pitch_speed"),
+    row(S, "GSY", kRate, B, {yaw("speed")}, "SkyDroid 3.2"),
+    row(S, "GSP", kRate, B, {pitch("speed")}, "SkyDroid 3.2"),
+    row(S, "GSR", kRate, B, {roll("speed")}, "SkyDroid 3.2"),
+    row(S, "GSM", kRate, B, {yaw("yaw_speed"), pitch("pitch_speed")}, "SkyDroid 3.2"),
+    row(S, "GAY", kAngle, B, {yaw("angle", "speed")}, "SkyDroid 3.3.1"),
+    row(S, "GAP", kAngle, B, {pitch("angle", "speed")}, "SkyDroid 3.3.1"),
+    row(S, "GAR", kAngle, B, {roll("angle", "speed")}, "SkyDroid 3.3.1"),
+    row(S, "GAM", kAngle, B, {yaw("yaw", "yaw_speed"), pitch("pitch", "pitch_speed")},
         "SkyDroid 3.3.1"),
-    three(S, "GAC", kAtt, B, yaw("yaw"), pitch("pitch"), roll("roll"), "SkyDroid 3.3.2.2"),
+    row(S, "GAC", kAtt, B, {yaw("yaw"), pitch("pitch"), roll("roll")}, "SkyDroid 3.3.2.2"),
     // Topotek 4.1-4.3
     {T, "PTZ", MotionKind::ptz, B, {}, 0, "Topotek 4.1"},
-    one(T, "GSY", kRate, B, yaw("speed"), "Topotek 4.2"),
-    one(T, "GSP", kRate, B, pitch("speed", {}, kDown), "Topotek 4.2"),
-    one(T, "GSR", kRate, B, roll("speed"), "Topotek 4.2"),
-    two(T, "GSM", kRate, B, yaw("yaw_speed"), pitch("pitch_speed", {}, kDown), "Topotek 4.2"),
-    two(T, "RPS", kRate, B, roll("roll_speed"), pitch("pitch_speed", {}, kDown), "Topotek 4.2"),
-    three(T, "YPR", kRate, B, yaw("yaw_speed"), pitch("pitch_speed", {}, kDown), roll("roll_speed"),
-          "Topotek 4.2"),
-    one(T, "GAY", kAngle, B, yaw("angle", "speed"), "Topotek 4.3.1"),
-    one(T, "GAP", kAngle, B, pitch("angle", "speed"), "Topotek 4.3.1"),
-    one(T, "GAR", kAngle, B, roll("angle", "speed"), "Topotek 4.3.1"),
-    two(T, "GAM", kAngle, B, yaw("yaw", "yaw_speed"), pitch("pitch", "pitch_speed"),
+    row(T, "GSY", kRate, B, {yaw("speed")}, "Topotek 4.2"),
+    row(T, "GSP", kRate, B, {pitch("speed", {}, kDown)}, "Topotek 4.2"),
+    row(T, "GSR", kRate, B, {roll("speed")}, "Topotek 4.2"),
+    row(T, "GSM", kRate, B, {yaw("yaw_speed"), pitch("pitch_speed", {}, kDown)}, "Topotek 4.2"),
+    row(T, "RPS", kRate, B, {roll("roll_speed"), pitch("pitch_speed", {}, kDown)}, "Topotek 4.2"),
+    row(T, "YPR", kRate, B, {yaw("yaw_speed"), pitch("pitch_speed", {}, kDown), roll("roll_speed")},
+        "Topotek 4.2"),
+    row(T, "GAY", kAngle, B, {yaw("angle", "speed")}, "Topotek 4.3.1"),
+    row(T, "GAP", kAngle, B, {pitch("angle", "speed")}, "Topotek 4.3.1"),
+    row(T, "GAR", kAngle, B, {roll("angle", "speed")}, "Topotek 4.3.1"),
+    row(T, "GAM", kAngle, B, {yaw("yaw", "yaw_speed"), pitch("pitch", "pitch_speed")},
         "Topotek 4.3.1"),
-    one(T, "GIY", kAngle, E, yaw("angle", "speed"), "Topotek 4.3.2"),
-    one(T, "GIP", kAngle, E, pitch("angle", "speed"), "Topotek 4.3.2"),
-    one(T, "GIR", kAngle, E, roll("angle", "speed"), "Topotek 4.3.2"),
-    two(T, "GIM", kAngle, E, yaw("yaw", "yaw_speed"), pitch("pitch", "pitch_speed"),
+    row(T, "GIY", kAngle, E, {yaw("angle", "speed")}, "Topotek 4.3.2"),
+    row(T, "GIP", kAngle, E, {pitch("angle", "speed")}, "Topotek 4.3.2"),
+    row(T, "GIR", kAngle, E, {roll("angle", "speed")}, "Topotek 4.3.2"),
+    row(T, "GIM", kAngle, E, {yaw("yaw", "yaw_speed"), pitch("pitch", "pitch_speed")},
         "Topotek 4.3.2"),
-    three(T, "GAC", kAtt, B, yaw("yaw"), pitch("pitch"), roll("roll"), "Topotek 4.3.3"),
-    three(T, "GIC", kAtt, E, yaw("yaw"), pitch("pitch"), roll("roll"), "Topotek 4.3.5"),
+    row(T, "GAC", kAtt, B, {yaw("yaw"), pitch("pitch"), roll("roll")}, "Topotek 4.3.3"),
+    row(T, "GIC", kAtt, E, {yaw("yaw"), pitch("pitch"), roll("roll")}, "Topotek 4.3.5"),
 };
 
 }  // namespace
