@@ -192,7 +192,8 @@ void ReportSink::note(const NoteEvent& e) {
     if (e.to) x->to = *e.to;
   }
   if (e.note.code == ACode::unanswered)
-    unanswered.push_back({e.ts, e.note.frame, e.conv ? e.conv_id() : 0, file, e.note.message});
+    unanswered.push_back({e.ts, e.note.frame, e.conv ? e.conv_id() : 0, file, e.note.message,
+                          top::escape(std::string_view(e.note.ident, 3)), e.note.cause});
 }
 
 }  // namespace topdump::report

@@ -10,16 +10,6 @@ namespace topdump::report {
 
 namespace {
 
-// The cause of an unanswered request, from the note's message.
-std::string cause_of(const std::string& m) {
-  if (m.rfind("the device was silent", 0) == 0) return "the device was silent";
-  for (const char* k : {"end of the capture: ", " ms: "}) {
-    const auto p = m.find(k);
-    if (p != std::string::npos) return m.substr(p + std::string(k).size());
-  }
-  return "";
-}
-
 void add(Report& rep, int rank, top::Severity s, std::string text, std::string anchor) {
   rep.facts.push_back({rank, s, std::move(text), std::move(anchor)});
 }
@@ -33,17 +23,17 @@ void unanswered_facts(const ReportSink& d, Report& rep) {
   };
   std::map<std::string, Group> groups;
   for (const auto& u : d.unanswered) {
-    const std::string cause = cause_of(u.message);
-    if (cause == "the device was silent") {
+    if (u.cause == Cause::silent) {
       add(rep, 85, top::Severity::warning, u.message + " (from " + clock_text(u.ts) + ")",
           "unanswered");
       continue;
     }
-    Group& g = groups[u.message.substr(0, 3) + "\x01" + cause];
+    const std::string_view cause = describe(u.cause);
+    Group& g = groups[u.ident + "\x01" + std::string(cause)];
     ++g.n;
     if (g.first == kNoTime) g.first = u.ts;
     g.last = u.ts;
-    g.text = cause.empty() ? "no response" : cause;
+    g.text = cause.empty() ? "no response" : std::string(cause);
   }
   for (const auto& [k, g] : groups) {
     std::string t = std::to_string(g.n) + " " + k.substr(0, 3) +

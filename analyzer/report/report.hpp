@@ -124,6 +124,8 @@ struct Unanswered {
   std::int64_t ts = kNoTime;
   std::uint64_t frame = 0, conv = 0;
   std::string file, message;
+  std::string ident;  // the request's identifier
+  Cause cause = Cause::none;
 };
 
 struct Slow {

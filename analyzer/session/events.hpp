@@ -23,6 +23,18 @@ struct Position {
 };
 
 // A finding of the session or source layer.
+// Why a request may go unanswered, as far as the capture shows.
+enum class Cause : std::uint8_t {
+  none,
+  bad_checksum,  // devices drop frames they cannot trust
+  uart_source,   // Topotek: source U over the network, answers go to the UART
+  unsupported,   // not in the catalog, or not on the model
+  invalid,       // a wrong length or value: Topotek ignores it, SkyDroid answers ERE
+  silent         // the device sent nothing while several requests went unanswered
+};
+// What the capture shows of that cause, for people ("" for none).
+std::string_view describe(Cause c) noexcept;
+
 struct Note {
   ACode code{};
   top::Severity severity{};
@@ -32,6 +44,7 @@ struct Note {
   // stream), for the filter; zero when it is about no frame (TCP, files).
   char ident[3] = {};
   char src = 0, dst = 0;
+  Cause cause = Cause::none;  // unanswered: why, as far as the capture shows
 };
 
 // A decoded frame with its findings summarised.

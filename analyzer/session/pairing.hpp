@@ -22,15 +22,6 @@ namespace topdump {
 
 inline constexpr std::size_t kMaxPending = 256;  // per conversation
 
-// Why a request may go unanswered, as far as the capture shows.
-enum class Cause : std::uint8_t {
-  none,
-  bad_checksum,  // devices drop frames they cannot trust
-  uart_source,   // Topotek: source U over the network, answers go to the UART
-  unsupported,   // not in the catalog, or not on the model
-  invalid        // a wrong length or value: Topotek ignores it, SkyDroid answers ERE
-};
-
 // A request waiting for its response.
 struct Pending {
   std::int64_t ts;

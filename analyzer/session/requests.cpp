@@ -18,15 +18,21 @@ namespace {
 // What the capture shows of why a request went unanswered (Cause).
 constexpr std::string_view kCauseText[] = {
     "",
-    ": its checksum is bad, and devices drop such frames",
-    ": a Topotek request with source U over the network; the device answers U requests on its "
+    "its checksum is bad, and devices drop such frames",
+    "a Topotek request with source U over the network; the device answers U requests on its "
     "UART only (the network client is P)",
-    ": the identifier is not supported on the model",
-    ": the request is invalid (its length or a value), which devices ignore or answer with ERE",
+    "the identifier is not supported on the model",
+    "the request is invalid (its length or a value), which devices ignore or answer with ERE",
+    "the device was silent",
 };
-static_assert(std::size(kCauseText) == static_cast<std::size_t>(Cause::invalid) + 1);
-std::string_view cause_text(Cause c) { return kCauseText[static_cast<std::size_t>(c)]; }
+static_assert(std::size(kCauseText) == static_cast<std::size_t>(Cause::silent) + 1);
+// ": " and the cause, appended to an unanswered request's message.
+std::string cause_text(Cause c) {
+  return c == Cause::none ? std::string() : top::cat({": ", describe(c)});
+}
 }  // namespace
+
+std::string_view describe(Cause c) noexcept { return kCauseText[static_cast<std::size_t>(c)]; }
 
 // Learns which direction the device sends in from a frame of direction d,
 // when the ports did not say: a frame addressed to a client, or one that
@@ -59,6 +65,7 @@ void Analyzer::Impl::unanswered(Conversation& c, const Pending& p, bool at_end) 
   std::memcpy(about.ident, p.ident, 3);
   about.src = p.src;
   about.dst = p.dst;
+  about.cause = p.cause;
   if (A.filtering_) {
     // Reported only when the filter selects it, as a note about the request.
     NoteEvent e;
@@ -121,13 +128,14 @@ void Analyzer::Impl::emit_silence(Conversation& c) {
            " over " + span + " s got no response";
   });
   Note n = s.about;  // the first request's identifier and addresses
+  if (s.count > 1) n.cause = Cause::silent;
   n.message = std::move(msg);
   note_event(s.first_ts, s.pos, c.transport, &c, &D.from, &D.to, std::move(n));
   s = Silence{};
 }
 
 // What the capture shows of why a request may go unanswered.
-Cause Analyzer::Impl::cause_of(const Conversation& c, const DecodedEntry& e) {
+Cause Analyzer::Impl::cause_of(const Conversation& c, const DecodedEntry& e, top::Model model) {
   const top::Frame& f = *e.frame;
   const top::Dialect dialect = e.decoded.dialect;
   Cause cause = Cause::none;
@@ -138,20 +146,19 @@ Cause Analyzer::Impl::cause_of(const Conversation& c, const DecodedEntry& e) {
                  c.transport == Transport::serial ? top::Link::uart : top::Link::network, f.src)) {
     cause = Cause::uart_source;
   } else {
-    // A request laid out as a reply (a one-char VSN read) is invalid too.
+    // What the device does with it (top/device.hpp); a request laid out as
+    // a reply (a one-char VSN read) is invalid too.
     const top::FormSpec* form = e.decoded.form;
-    if (form && form->role == top::Role::response) cause = Cause::invalid;
-    for (const top::Finding& x : e.decoded.findings) {
-      if (x.code == top::FindingCode::unknown_ident ||
-          (x.code == top::FindingCode::unsupported_on_model &&
-           x.severity == top::Severity::error)) {
+    switch (top::rejection(e.decoded, model)) {
+      case top::Rejection::unsupported:
         cause = Cause::unsupported;
         break;
-      }
-      if (x.code == top::FindingCode::data_length || x.code == top::FindingCode::bad_field ||
-          x.code == top::FindingCode::value_out_of_range ||
-          x.code == top::FindingCode::unsupported_control)
+      case top::Rejection::invalid:
         cause = Cause::invalid;
+        break;
+      case top::Rejection::none:
+        if (form && form->role == top::Role::response) cause = Cause::invalid;
+        break;
     }
   }
   return cause;
@@ -212,7 +219,7 @@ void Analyzer::Impl::request(Conversation& c, int d, FrameEvent& ev) {
     unanswered(c, c.pairing.oldest(), false);
     c.pairing.pop_oldest();
   }
-  const Cause cause = cause_of(c, *ev.entry);
+  const Cause cause = cause_of(c, *ev.entry, A.opts_.model);
   c.pairing.add([&](Pending& p) {  // a reused slot: every member is assigned
     p.ts = ev.ts;
     p.n = ev.n;

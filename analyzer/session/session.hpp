@@ -228,7 +228,7 @@ struct Analyzer::Impl {
 
   void learn_device(Conversation& c, int d, const top::Frame& f, top::Dialect dialect);
   // What the capture shows of why a request may go unanswered.
-  static Cause cause_of(const Conversation& c, const DecodedEntry& e);
+  static Cause cause_of(const Conversation& c, const DecodedEntry& e, top::Model model);
   void request(Conversation& c, int d, FrameEvent& ev);
   void response(Conversation& c, int d, FrameEvent& ev);
   // Requests older than the timeout at time ts are unanswered.

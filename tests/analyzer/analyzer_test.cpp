@@ -169,6 +169,28 @@ TEST(Field, UnansweredSaysWhyWhenTheCaptureShows) {
       << f.rec.notes[0].note.message;
   EXPECT_NE(f.rec.notes[1].note.message.find("not supported on the model"), std::string::npos)
       << f.rec.notes[1].note.message;
+  // The cause travels as a value with its identifier: the report groups by
+  // them, never by re-reading the text.
+  EXPECT_EQ(f.rec.notes[0].note.cause, Cause::bad_checksum);
+  EXPECT_EQ(f.rec.notes[1].note.cause, Cause::unsupported);
+  EXPECT_EQ(std::string(f.rec.notes[1].note.ident, 3), "GOT");
+}
+
+// The C13 takes PTZ only with the codes its field evidence names (02, 05,
+// 0E-13): a PTZ 00 is refused as topsim's C13 refuses it (top::rejection).
+TEST(Field, C13PtzCausePerCodeOfTheFieldEvidence) {
+  Fixture f;
+  AnalyzerOptions o;
+  o.timeout_us = 100000;
+  o.model = top::Model::c13;
+  f.reset(o);
+  f.up(0, top::with_checksum("#TPUG2wPTZ00"));
+  f.up(10, top::with_checksum("#TPUG2wPTZ05"));
+  f.down(20, top::with_checksum("#TPGU2wGAY00"));  // the device is not silent
+  f.a->finish();
+  ASSERT_EQ(f.rec.count_note(ACode::unanswered), 2u);
+  EXPECT_EQ(f.rec.notes[0].note.cause, Cause::unsupported);
+  EXPECT_EQ(f.rec.notes[1].note.cause, Cause::none);
 }
 
 TEST(Field, TopotekUartSourceOverTheNetworkIsNamed) {
@@ -181,6 +203,7 @@ TEST(Field, TopotekUartSourceOverTheNetworkIsNamed) {
   f.a->finish();
   ASSERT_EQ(f.rec.count_note(ACode::unanswered), 1u);
   EXPECT_NE(f.rec.notes[0].note.message.find("UART"), std::string::npos);
+  EXPECT_EQ(f.rec.notes[0].note.cause, Cause::uart_source);
 }
 
 TEST(Field, CopiesOfAnAnsweredRequestAreNotUnanswered) {
@@ -212,6 +235,7 @@ TEST(Field, ASilentDeviceIsOneFindingForTheStretch) {
   const std::string& m = f.rec.notes[0].note.message;
   EXPECT_NE(m.find("silent: 38 requests (VER, GAY)"), std::string::npos) << m;
   EXPECT_EQ(f.rec.notes[0].note.frame, 1u);
+  EXPECT_EQ(f.rec.notes[0].note.cause, Cause::silent);
 }
 
 TEST(Field, ClientStreamFramesExpectNoAnswer) {
