@@ -27,9 +27,14 @@ struct Ran {
   std::string err;
 };
 
-// Runs `args` through the shell with stdout on /dev/full; stderr kept.
+// Runs `args` through the shell with stdout on /dev/full; stderr kept in a
+// file of its own (ctest runs these tests in parallel processes: a shared
+// name let one test read another's stderr, or an empty one).
 Ran to_dev_full(const std::string& args) {
-  const std::string err_file = ::testing::TempDir() + "/cli_test_stderr.txt";
+  std::string err_file = ::testing::TempDir() + "/cli_test_stderr.XXXXXX";
+  const int fd = mkstemp(err_file.data());
+  EXPECT_GE(fd, 0) << err_file;
+  if (fd >= 0) close(fd);
   const int rc = std::system((args + " >/dev/full 2>" + err_file).c_str());
   Ran r;
   r.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
@@ -37,6 +42,7 @@ Ran to_dev_full(const std::string& args) {
   std::stringstream ss;
   ss << in.rdbuf();
   r.err = ss.str();
+  std::remove(err_file.c_str());
   return r;
 }
 
