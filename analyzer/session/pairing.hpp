@@ -2,8 +2,8 @@
 // TOP frames carry no sequence number, so a response answers the newest
 // pending request of its identifier sent the other way, preferring one
 // whose data it echoes; an ERE answers the newest request to the device it
-// speaks for. Requests older than the timeout are unanswered. Answered
-// requests are remembered a while, so that a copy of one (senders that send
+// speaks for that the device rejects, else the newest to it. Requests older than the timeout are
+// unanswered. Answered requests are remembered a while, so that a copy of one (senders that send
 // each frame several times) is not reported unanswered.
 #pragma once
 
@@ -136,7 +136,8 @@ class Pairing {
 // out of line).
 // One pass from the newest: the first request whose data the response
 // echoes, else the newest of its identifier (ERE: the newest to the device
-// it speaks for). Oldest-first would pair a reply to a request that was lost
+// it speaks for that the device rejects (top::rejection), else the newest to
+// it). Oldest-first would pair a reply to a request that was lost
 // (never answered) instead of the retry it answers: the latency would be
 // off by up to the timeout and the retry reported unanswered. Newest-first
 // can only swap two identical requests in flight, whose latencies are alike.
@@ -149,10 +150,9 @@ inline std::optional<Pairing::Match> Pairing::match(std::string_view ident, std:
     const Pending& p = pending_[i];
     if (p.dir == dir) continue;
     if (ere) {
-      if (p.dst == src) {
-        by_ident = i;
-        break;
-      }
+      if (p.dst != src) continue;
+      if (p.cause == Cause::invalid || p.cause == Cause::unsupported) return Match{i, false};
+      if (by_ident == kNone) by_ident = i;
       continue;
     }
     if (!same_ident(p.ident, ident)) continue;

@@ -178,7 +178,10 @@ void Analyzer::Impl::request(Conversation& c, int d, FrameEvent& ev) {
   D.last_req_ts = ev.ts;
   std::string_view id = f.ident_view();
   const top::Dialect dialect = ev.entry->decoded.dialect;
-  // A client stream's frame (FAI after FAE) expects no answer.
+  // A client stream's frame (FAI after FAE) expects no answer, unless the
+  // device rejects it: then it waits for the ERE that refuses it (a
+  // 14-char FAI of ArduPilot's SkyDroid driver, issue 28), so that the ERE
+  // is not paired with the enable before it.
   for (StreamStat& s : c.st.streams) {
     if (s.from_client && s.ident == id) {
       ++s.frames;
@@ -186,6 +189,10 @@ void Analyzer::Impl::request(Conversation& c, int d, FrameEvent& ev) {
         if (s.first == kNoTime) s.first = ev.ts;
         s.last = ev.ts;
       }
+      if (!top::answers_error_reply(dialect)) return;
+      const Cause cause = cause_of(c, *ev.entry, A.opts_.model);
+      if (cause != Cause::unsupported && cause != Cause::invalid) return;
+      pend(c, d, ev, cause);
       return;
     }
   }
@@ -198,8 +205,13 @@ void Analyzer::Impl::request(Conversation& c, int d, FrameEvent& ev) {
       auto& streams = c.st.streams;
       auto s = std::find_if(streams.begin(), streams.end(),
                             [&](const StreamStat& x) { return x.ident == sid; });
+      const double hz = switched->rate_in_data ? static_cast<double>(v) : 0;
       if (v == 0) {
         // disabled: keep the measured figures
+        if (s != streams.end()) s->enabled = false;
+      } else if (s != streams.end() && s->enabled && s->asked_hz == hz) {
+        // asked again for what runs (drivers re-send the enable once a
+        // second): the stream goes on
       } else {
         if (s == streams.end()) {
           streams.push_back(StreamStat{});
@@ -211,15 +223,20 @@ void Analyzer::Impl::request(Conversation& c, int d, FrameEvent& ev) {
         s->ident = sid;
         s->asked_by = std::string(switched->request);
         s->from_client = switched->sender == top::Sender::client;
-        s->asked_hz = switched->rate_in_data ? static_cast<double>(v) : 0;
+        s->asked_hz = hz;
       }
     }
   }
+  pend(c, d, ev, cause_of(c, *ev.entry, A.opts_.model));
+}
+
+// The request waits in the conversation's pairing for its response.
+void Analyzer::Impl::pend(Conversation& c, int d, const FrameEvent& ev, Cause cause) {
+  const top::Frame& f = *ev.entry->frame;
   if (c.pairing.size() >= kMaxPending) {
     unanswered(c, c.pairing.oldest(), false);
     c.pairing.pop_oldest();
   }
-  const Cause cause = cause_of(c, *ev.entry, A.opts_.model);
   c.pairing.add([&](Pending& p) {  // a reused slot: every member is assigned
     p.ts = ev.ts;
     p.n = ev.n;

@@ -226,6 +226,7 @@ struct Analyzer::Impl {
   bool reply_timed = false;
   std::uint32_t reply_key = 0;
 
+  void pend(Conversation& c, int d, const FrameEvent& ev, Cause cause);
   void learn_device(Conversation& c, int d, const top::Frame& f, top::Dialect dialect);
   // What the capture shows of why a request may go unanswered.
   static Cause cause_of(const Conversation& c, const DecodedEntry& e, top::Model model);

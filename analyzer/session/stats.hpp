@@ -41,6 +41,7 @@ struct StreamStat {
   double asked_hz = 0;       // 0: enable without a rate (Topotek)
   std::string asked_by;      // the request that switched it on: GAA, GIA, FAE
   bool from_client = false;  // the client sends it (FAI): never a request to answer
+  bool enabled = true;       // no switch turned it off since it was asked for
   std::uint64_t frames = 0;
   std::int64_t first = kNoTime, last = kNoTime;
   double measured_hz() const;

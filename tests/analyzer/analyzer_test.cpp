@@ -292,6 +292,55 @@ TEST(Pairing, EreAnswersTheRequestToItsSource) {
   EXPECT_TRUE(has_code(f.rec.frames[2], "error-reply"));
 }
 
+// Issue 28: ArduPilot's SkyDroid driver sends FAI with 14 data chars
+// (SkyDroid 3.3.6 gives 12); the device refuses each with ERE. The ERE
+// answers that FAI, not the GAA or FAE before it, whose real echoes are
+// then paired and not unsolicited.
+TEST(Pairing, EreAnswersTheRejectedClientStreamFrame) {
+  Fixture f;
+  f.up(0, top::with_checksum("#TPUG2wFAE01"));
+  f.up(1, top::with_checksum("#TPUG2wGAA0A"));
+  f.down(3, top::with_checksum("#TPGU2wFAE01"));
+  f.up(4, top::with_checksum("#TPUGEwFAIEC7800000000AB"));  // 14 data chars
+  f.down(6, top::with_checksum("#TPGU2wERE!!"));
+  f.down(8, top::with_checksum("#TPGU2wGAA0A"));
+  f.a->finish();
+  ASSERT_EQ(f.rec.frames.size(), 6u);
+  EXPECT_EQ(f.rec.frames[4].reply_to, 4u);  // the FAI
+  EXPECT_EQ(f.rec.frames[5].reply_to, 2u);  // the GAA's echo
+  EXPECT_EQ(f.a->stats().unsolicited, 0u);
+  EXPECT_EQ(f.a->stats().unanswered, 0u);
+}
+
+// Issue 28: drivers re-send a stream's enable once a second; the stream
+// goes on, one count and no stream-rate per re-send.
+TEST(Streams, ReSentEnableContinuesTheStream) {
+  Fixture f;
+  for (int i = 0; i < 50; ++i) {
+    if (i % 10 == 0) f.echoed(i * 100, 2, "#TPUG2wGAA0A");  // 10 Hz, each second
+    f.down(50 + i * 100, top::with_checksum("#TPGUCrGAC000000000000"));
+  }
+  f.a->finish();
+  const auto& c = f.a->stats().conversations.at(0);
+  ASSERT_EQ(c.streams.size(), 1u);
+  EXPECT_EQ(c.streams[0].frames, 50u);
+  EXPECT_FALSE(f.rec.has_note(ACode::stream_rate));
+
+  // Off, then on at another rate: a new stream, measured against its rate.
+  Fixture g;
+  g.echoed(0, 2, "#TPUG2wGAA0A");
+  for (int i = 0; i < 10; ++i) g.down(50 + i * 100, top::with_checksum("#TPGUCrGAC000000000000"));
+  g.echoed(1000, 2, "#TPUG2wGAA00");
+  g.echoed(1500, 2, "#TPUG2wGAA05");
+  for (int i = 0; i < 6; ++i) g.down(1550 + i * 200, top::with_checksum("#TPGUCrGAC000000000000"));
+  g.a->finish();
+  const auto& gc = g.a->stats().conversations.at(0);
+  ASSERT_EQ(gc.streams.size(), 1u);
+  EXPECT_EQ(gc.streams[0].frames, 6u);
+  EXPECT_EQ(gc.streams[0].asked_hz, 5.0);
+  EXPECT_FALSE(g.rec.has_note(ACode::stream_rate));
+}
+
 TEST(Pairing, UnsolicitedEchoDiffersAndRepeated) {
   Fixture f;
   f.down(0, top::with_checksum("#TPGU2wPTZ05"));  // nobody asked
