@@ -35,9 +35,12 @@ std::string cause_text(Cause c) {
 std::string_view describe(Cause c) noexcept { return kCauseText[static_cast<std::size_t>(c)]; }
 
 // Learns which direction the device sends in from a frame of direction d,
-// when the ports did not say: a frame addressed to a client, or one that
-// answers a pending request of the other direction, comes from the
-// device; a stream switch (GAA, GIA, FAE write) comes from a client.
+// when the ports did not say: a frame addressed to a client, one whose
+// layout only a response has (a 12-char attitude push, even from a device
+// that keeps the request's address order), or one that answers a pending
+// request of the other direction, comes from the device; a frame whose
+// layout only a request has, or a stream switch (GAA, GIA, FAE write),
+// comes from a client.
 void Analyzer::Impl::learn_device(Conversation& c, int d, const top::Frame& f,
                                   top::Dialect dialect) {
   // Both ends the same (a recording without ports): the addresses decide.
@@ -45,6 +48,16 @@ void Analyzer::Impl::learn_device(Conversation& c, int d, const top::Frame& f,
   if (top::role_from_addresses(f) == top::Role::response) {
     c.device_dir = d;
     return;
+  }
+  switch (top::role_from_layout(dialect, f)) {
+    case top::Role::response:
+      c.device_dir = d;
+      return;
+    case top::Role::request:
+      c.device_dir = 1 - d;
+      return;
+    case top::Role::any:
+      break;
   }
   if (c.pairing.waiting(f.ident, 1 - d)) {
     c.device_dir = d;
@@ -289,6 +302,19 @@ void Analyzer::Impl::response(Conversation& c, int d, FrameEvent& ev) {
       }
       return;
     }
+  }
+  // A device's push whose switch the capture did not see (it began
+  // before the capture, or the device pushes unasked, as ArduPilot's SITL
+  // simulators do): a stream of its own, asked for by nobody seen.
+  const top::Dialect dialect = ev.entry->decoded.dialect;
+  if (const top::StreamSpec* st = top::stream_of(dialect, id);
+      st && st->sender == top::Sender::device &&
+      top::role_from_layout(dialect, f) == top::Role::response) {
+    StreamStat& s = c.st.streams.emplace_back();
+    s.ident = std::string(id);
+    s.frames = 1;
+    s.first = s.last = ev.ts;
+    return;
   }
   if (one_way(c)) return;  // the requests are on a line nobody recorded
   ev.notes.push_back(Note{ACode::unsolicited, default_severity(ACode::unsolicited), message([&] {

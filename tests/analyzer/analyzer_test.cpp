@@ -132,6 +132,35 @@ TEST(Field, RolesFromTheAnswerWhenBothEndsUsePort5000) {
   EXPECT_EQ(f.a->stats().conversations.at(0).streams.at(0).frames, 10u);
 }
 
+// Issue 28: ArduPilot's SITL simulators keep the request's address order
+// (#TPUG... both ways) and push attitude before anything is asked. A
+// capture that starts with such a push, on ports that name no device,
+// still takes the roles the right way round: the 12-char GAC is a layout
+// only a response has.
+TEST(Field, RolesOfADeviceThatKeepsTheRequestsAddressOrder) {
+  Fixture f;
+  f.device = ep4(2, 40001);
+  const std::string push = top::with_checksum("#TPUGCrGAC0000FC1800C8");
+  f.down(0, push);
+  f.down(100, push);
+  f.up(150, top::with_checksum("#TPUG2wGAA0A"));
+  f.down(152, top::with_checksum("#TPUG2wGAA0A"));  // the echo, unswapped
+  f.up(160, top::with_checksum("#TPUD2rVER00"));
+  f.down(162, top::with_checksum("#TPUD6rVERV1.0.0"));
+  for (int i = 0; i < 10; ++i) f.down(200 + i * 100, push);
+  f.a->finish();
+  const Stats& s = f.a->stats();
+  EXPECT_EQ(s.unsolicited, 0u);
+  EXPECT_EQ(s.unanswered, 0u);
+  EXPECT_EQ(s.requests, 2u);
+  EXPECT_EQ(s.paired, 2u);
+  // the two pushes before the GAA were a stream asked for before the
+  // capture; the GAA started the one that follows
+  EXPECT_EQ(s.conversations.at(0).streams.at(0).frames, 10u);
+  for (const auto& fr : f.rec.frames)
+    for (const auto& code : fr.codes) EXPECT_NE(code, "value-out-of-range") << fr.raw;
+}
+
 TEST(Field, RecordedFormsNameTheirSource) {
   AnalyzerOptions o;
   o.model = top::Model::c13;

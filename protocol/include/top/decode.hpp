@@ -108,6 +108,16 @@ inline Role role_from_addresses(const Frame& f) noexcept {
   return Role::any;
 }
 
+// The role a frame's layout alone gives in `dialect`: response when every
+// form of its identifier and control that takes its data length is a
+// response (a VSN version, a 12-char GAC or GIA attitude), request when
+// every one is a request, else any (`dialect` unknown: the forms of both
+// dialects together); a read of a device stream's push in a layout no
+// request has is a response too (the SkyDroid GAC push). For a device that keeps the request's
+// address order (ArduPilot's SITL simulators), where the addresses say
+// nothing.
+Role role_from_layout(Dialect dialect, const Frame& f) noexcept;
+
 // Decodes the data of a structurally parsed frame. Never fails: unknown
 // identifiers, wrong lengths and bad digits become findings.
 Decoded decode(const Frame& frame, const DecodeOptions& opts = {});
