@@ -1,52 +1,41 @@
-// topdump subcommands. Each add_* registers its options on the app and
-// returns the function that runs it once parsed, returning the exit status:
-// 0 no error finding, 1 an error finding, 2 unreadable input or bad usage.
+// topdump's subcommands, one file each (<name>_cmd.cpp), in the one pattern
+// of topkit/cli.hpp: options added in the constructor, run() when the
+// command line chose it, returning the exit status: 0 no error finding, 1 an
+// error finding, 2 unreadable input, a failed write or bad usage. Messages
+// about a failure are in the one format ("topdump: error: ...").
 #pragma once
 
 #include <CLI/CLI.hpp>
-#include <functional>
+#include <memory>
 #include <string>
-#include <vector>
 
 #include "top/catalog.hpp"
+#include "topkit/cli.hpp"
 
 namespace topdump {
 
-using Run = std::function<int()>;
+inline constexpr const char* kTool = "topdump";
 
-// The values of --model: auto and every model of the catalog.
-inline CLI::IsMember model_check() {
-  std::vector<std::string> v{"auto"};
-  for (top::Model m : top::all_models()) v.emplace_back(top::to_string(m));
-  return CLI::IsMember(v);
-}
+// "topdump: error: MESSAGE" on stderr.
+inline void error(const std::string& message) { topkit::cli::error(kTool, message); }
 
-// --dialect and --model ("auto" or a name) as one setting; false, with a
-// message, when either is unknown or the model speaks the other dialect.
-inline bool dialect_and_model(const std::string& dialect, const std::string& model, top::Dialect& d,
-                              top::Model& m, std::string& err) {
-  auto dd = top::dialect_from_string(dialect);
-  auto mm = top::model_from_string(model);
-  if (!dd || !mm) {
-    err = "bad --dialect or --model";
-    return false;
-  }
-  if (*mm != top::Model::unknown && *dd != top::Dialect::unknown && top::dialect_of(*mm) != *dd) {
-    err = "model " + model + " speaks " + std::string(top::to_string(top::dialect_of(*mm))) +
-          ", not " + dialect;
-    return false;
-  }
-  d = *dd;
-  m = *mm;
-  return true;
-}
+// --dialect and --model, with these helps.
+void add_dialect_model(CLI::App* sub, std::string& dialect, const std::string& dialect_help,
+                       std::string& model, const std::string& model_help);
 
-Run add_frame_command(CLI::App& app);
-Run add_read_command(CLI::App& app);
-Run add_stats_command(CLI::App& app);
-Run add_live_command(CLI::App& app);
-Run add_serial_command(CLI::App& app);
-Run add_report_command(CLI::App& app);
-Run add_wireshark_command(CLI::App& app);
+// --dialect and --model ("auto" or a name) as one setting: each checked by
+// the one check of a named value (topkit::cli::one_of), then that the model
+// speaks the dialect. False after the message.
+bool dialect_and_model(const std::string& dialect, const std::string& model, top::Dialect& d,
+                       top::Model& m);
+
+// The subcommands, each defined in its file; topdump adds them in this order.
+std::unique_ptr<topkit::cli::Subcommand> read_command(CLI::App& app);
+std::unique_ptr<topkit::cli::Subcommand> stats_command(CLI::App& app);
+std::unique_ptr<topkit::cli::Subcommand> frame_command(CLI::App& app);
+std::unique_ptr<topkit::cli::Subcommand> live_command(CLI::App& app);
+std::unique_ptr<topkit::cli::Subcommand> serial_command(CLI::App& app);
+std::unique_ptr<topkit::cli::Subcommand> report_command(CLI::App& app);
+std::unique_ptr<topkit::cli::Subcommand> wireshark_command(CLI::App& app);
 
 }  // namespace topdump

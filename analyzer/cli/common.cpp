@@ -20,6 +20,7 @@
 
 #include "capture/sources.hpp"
 #include "output/output.hpp"
+#include "topkit/model.hpp"
 
 namespace topdump {
 
@@ -42,11 +43,9 @@ std::string scanned_ports() {
 }  // namespace
 
 void add_common(CLI::App* sub, Common& o, bool outputs, bool ports) {
-  sub->add_option("--dialect", o.dialect, "auto, skydroid or topotek (forces every conversation)")
-      ->check(CLI::IsMember({"auto", "skydroid", "topotek"}));
-  sub->add_option("--model", o.model,
-                  "auto, " + top::model_list(", ", " or ") + " (unsupported-on-model checks)")
-      ->check(model_check());
+  add_dialect_model(sub, o.dialect, "auto, skydroid or topotek (forces every conversation)",
+                    o.model,
+                    "auto, " + top::model_list(", ", " or ") + " (unsupported-on-model checks)");
   if (ports)
     sub->add_option("--port", o.ports,
                     "another UDP/TCP port that carries TOP (repeatable); always scanned: " +
@@ -68,7 +67,6 @@ void add_common(CLI::App* sub, Common& o, bool outputs, bool ports) {
   sub->add_option("--severity", o.severity,
                   "only frames whose worst finding is at least this: info (every frame; a frame "
                   "without findings counts as info), warning or error")
-      ->check(CLI::IsMember({"info", "warning", "error"}))
       ->default_str("info");
   sub->add_option("--from", o.from,
                   "only frames at or after this time (ISO-8601, epoch seconds, or +SECONDS after "
@@ -110,8 +108,66 @@ void add_common(CLI::App* sub, Common& o, bool outputs, bool ports) {
   }
 }
 
-bool setup(const Common& o, Setup& s, std::string& err) {
-  if (!dialect_and_model(o.dialect, o.model, s.aopts.dialect, s.aopts.model, err)) return false;
+void add_file_options(CLI::App* sub, Common& o) {
+  sub->add_option("--format", o.format, kFormats);
+  sub->add_flag("--no-progress", o.no_progress,
+                "no progress bar (drawn on stderr when it is a terminal and stdout is not)")
+      ->default_str("");
+}
+
+void add_dialect_model(CLI::App* sub, std::string& dialect, const std::string& dialect_help,
+                       std::string& model, const std::string& model_help) {
+  sub->add_option("--dialect", dialect, dialect_help);
+  sub->add_option("--model", model, model_help);
+}
+
+bool dialect_and_model(const std::string& dialect, const std::string& model, top::Dialect& d,
+                       top::Model& m) {
+  if (!topkit::cli::one_of(kTool, "--dialect", dialect, {"auto", "skydroid", "topotek"}))
+    return false;
+  std::vector<std::string> models = topkit::cli::model_names();
+  models.insert(models.begin(), "auto");
+  if (!topkit::cli::one_of(kTool, "--model", model, models)) return false;
+  d = *top::dialect_from_string(dialect);
+  m = *top::model_from_string(model);
+  if (m != top::Model::unknown && d != top::Dialect::unknown && top::dialect_of(m) != d) {
+    error("model " + model + " speaks " + std::string(top::to_string(top::dialect_of(m))) +
+          ", not " + dialect);
+    return false;
+  }
+  return true;
+}
+
+namespace {
+
+// The --from or --to time `text` into `at` or `rel`; false after the message.
+bool time_arg(const char* name, const std::string& text, std::int64_t& at, std::int64_t& rel) {
+  if (text.empty()) return true;
+  if (text.front() == '+') {
+    auto d = parse_duration(std::string_view(text).substr(1));
+    if (!d) {
+      error(std::string(name) + " " + text + ": not +SECONDS (+1.5, +1.5s, +200ms)");
+      return false;
+    }
+    rel = *d;
+    return true;
+  }
+  auto t = parse_time(text);
+  if (!t) {
+    error(std::string(name) + " " + text +
+          ": not an ISO-8601 time, epoch seconds or +SECONDS after the start");
+    return false;
+  }
+  at = *t;
+  return true;
+}
+
+}  // namespace
+
+bool setup(const Common& o, Setup& s) {
+  if (!dialect_and_model(o.dialect, o.model, s.aopts.dialect, s.aopts.model)) return false;
+  if (!topkit::cli::one_of(kTool, "--format", o.format, kFormatNames)) return false;
+  s.format = *format_from_string(o.format);
   s.aopts.timeout_us = static_cast<std::int64_t>(o.timeout_ms * 1000);
   for (auto p : o.ports) {
     s.sopts.udp_ports.insert(p);
@@ -119,7 +175,7 @@ bool setup(const Common& o, Setup& s, std::string& err) {
   }
   for (const auto& i : o.idents) {
     if (i.size() != 3) {
-      err = "--ident " + i + ": an identifier has three characters";
+      error("--ident " + i + ": an identifier has three characters");
       return false;
     }
     s.filter.idents.push_back(i);  // matched case-insensitively
@@ -127,40 +183,23 @@ bool setup(const Common& o, Setup& s, std::string& err) {
   for (const auto& [names, muted] : {std::pair{&o.findings, false}, std::pair{&o.mute, true}})
     for (const auto& n : *names)
       if (!s.filter.add_code(n, muted)) {
-        err = std::string(muted ? "--mute " : "--finding ") + n +
-              ": no such finding code (docs/FINDINGS.md lists them)";
+        error(std::string(muted ? "--mute " : "--finding ") + n +
+              ": no such finding code (docs/FINDINGS.md lists them)");
         return false;
       }
   s.filter.max_frames = o.count;
   s.filter.addrs = o.addrs;
   if (!o.severity.empty()) {
+    const auto sev =
+        topkit::cli::one_of(kTool, "--severity", o.severity, {"info", "warning", "error"});
+    if (!sev) return false;
     s.filter.severity_set = true;
-    s.filter.min_severity = o.severity == "error"     ? top::Severity::error
-                            : o.severity == "warning" ? top::Severity::warning
-                                                      : top::Severity::info;
+    s.filter.min_severity = *sev == 2   ? top::Severity::error
+                            : *sev == 1 ? top::Severity::warning
+                                        : top::Severity::info;
   }
-  for (const auto& [name, text, at, rel] :
-       {std::tuple{"--from", &o.from, &s.filter.from, &s.filter.from_rel},
-        std::tuple{"--to", &o.to, &s.filter.to, &s.filter.to_rel}}) {
-    if (text->empty()) continue;
-    if (text->front() == '+') {
-      auto d = parse_duration(std::string_view(*text).substr(1));
-      if (!d) {
-        err = std::string(name) + " " + *text + ": not +SECONDS (+1.5, +1.5s, +200ms)";
-        return false;
-      }
-      *rel = *d;
-      continue;
-    }
-    auto t = parse_time(*text);
-    if (!t) {
-      err = std::string(name) + " " + *text +
-            ": not an ISO-8601 time, epoch seconds or +SECONDS after the start";
-      return false;
-    }
-    *at = *t;
-  }
-  return true;
+  return time_arg("--from", o.from, s.filter.from, s.filter.from_rel) &&
+         time_arg("--to", o.to, s.filter.to, s.filter.to_rel);
 }
 
 // A source finding on stderr, naming the file once: "topdump: FILE: !! ...",
@@ -185,14 +224,14 @@ bool stderr_is_stdout() {
          a.st_rdev == b.st_rdev;
 }
 
-std::unique_ptr<Sink> make_sink(const Common& o, Out& out, std::string& err) {
+std::unique_ptr<Sink> make_sink(const Common& o, Out& out) {
   if (!o.csv.empty()) {
     std::vector<std::string> cols;
     std::stringstream ss(o.csv);
     std::string c;
     while (std::getline(ss, c, ',')) {
       if (std::string why = csv_column_error(c); !why.empty()) {
-        err = "--csv: " + why;
+        error("--csv: " + why);
         return nullptr;
       }
       cols.push_back(c);
@@ -237,6 +276,26 @@ void print_final_stats(const Common& c, const Analyzer& a) {
     std::cout << "-- statistics\n" << stats_text(a.stats(), a.worst());
   }
   std::cout.flush();
+}
+
+int run_live_input(const Common& c, const std::string& name, const Capture& capture) {
+  Setup s;
+  if (!setup(c, s)) return 2;
+  Out out(stdout, true);
+  auto sink = make_sink(c, out);
+  if (!sink) return 2;
+  Tee tee(*sink, name);
+  Analyzer a(s.aopts, tee);
+  a.set_filter(s.filter);
+  install_signals();
+  if (std::string err; !capture(a, s.sopts, g_stop, err)) {
+    error(err);
+    return 2;
+  }
+  a.finish();
+  out.flush();
+  print_final_stats(c, a);
+  return status_of(a);
 }
 
 std::string output_help() {

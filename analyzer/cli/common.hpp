@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -46,15 +47,28 @@ struct Common {
 constexpr std::int64_t kReorderWindowUs = 1'000'000;
 
 void add_common(CLI::App* sub, Common& o, bool outputs, bool ports = true);
+// --format and --no-progress: the options of the commands that read files.
+void add_file_options(CLI::App* sub, Common& o);
 
 struct Setup {
   AnalyzerOptions aopts;
   Filter filter;
   SourceOptions sopts;
+  Format format = Format::automatic;
 };
 
-// Turns the options into analyzer settings; false (with a message) on bad usage.
-bool setup(const Common& o, Setup& s, std::string& err);
+// Turns the options into analyzer settings; false, after the message, on
+// bad usage.
+bool setup(const Common& o, Setup& s);
+
+// A subcommand with the common options (read, stats, live, serial).
+class CommonCommand : public topkit::cli::Subcommand {
+ public:
+  using Subcommand::Subcommand;
+
+ protected:
+  Common c_;
+};
 
 // A source finding on stderr, naming the file once: "topdump: FILE: !! ...",
 // the message without its own "FILE: ".
@@ -80,8 +94,9 @@ class Tee : public Sink {
   bool copy_;
 };
 
-// The sink of --csv, --json or text; null (with a message) on a bad column.
-std::unique_ptr<Sink> make_sink(const Common& o, Out& out, std::string& err);
+// The sink of --csv, --json or text; null, after the message, on a bad
+// column.
+std::unique_ptr<Sink> make_sink(const Common& o, Out& out);
 
 void progress_bar(std::uint64_t done, std::uint64_t total);
 // The progress bar goes to stderr when it is a terminal and stdout is not
@@ -94,7 +109,17 @@ int status_of(const Analyzer& a);
 // The statistics live and serial print at their end.
 void print_final_stats(const Common& c, const Analyzer& a);
 
+// Reads a live input (an interface, serial ports) named `name` with
+// `capture` until it ends or SIGINT / SIGTERM, its events printed as they
+// are decoded, then the statistics: live and serial. `capture` returns
+// false with `err` set when the input fails.
+using Capture = std::function<bool(Analyzer& a, SourceOptions& sopts, const std::atomic<bool>& stop,
+                                   std::string& err)>;
+int run_live_input(const Common& c, const std::string& name, const Capture& capture);
+
 inline constexpr const char* kFormats = "auto, pcap, pcapng, raw, socat, saleae or lines";
+inline const std::vector<std::string> kFormatNames{"auto",  "pcap",   "pcapng", "raw",
+                                                   "socat", "saleae", "lines"};
 
 // How read, live and serial print: the text line format, the order, and the
 // CSV columns (one list, from the column table).

@@ -13,11 +13,29 @@ namespace topdump {
 
 namespace {
 
-struct FrameOptions {
-  std::string dialect = "auto";
-  std::string model = "auto";
-  bool json = false;
-  std::vector<std::string> frames;
+class FrameCommand : public topkit::cli::Subcommand {
+ public:
+  explicit FrameCommand(CLI::App& app)
+      : Subcommand(
+            app, "frame",
+            "Decode frames given as arguments (C escapes \\xNN \\r \\n \\\\ give raw bytes)") {
+    add_dialect_model(sub_, dialect_, "auto, skydroid or topotek", model_,
+                      "auto, " + top::model_list(", ", " or "));
+    sub_->add_flag("--json", json_, "one JSON object per frame found")->default_str("");
+    sub_->add_option("FRAME", frames_, "byte streams holding frames")->required();
+    sub_->footer(
+        "Examples:\n"
+        "  topdump frame '#tpUG6wGAYEC78328D'\n"
+        "  topdump frame --json '#TPUD2rVER0051\\r\\n#tpDU6rVER0105025D'\n"
+        "  topdump frame --dialect topotek '#TPPG2rGIC0040'");
+  }
+  int run() override;
+
+ private:
+  std::string dialect_ = "auto";
+  std::string model_ = "auto";
+  bool json_ = false;
+  std::vector<std::string> frames_;
 };
 
 struct Found {
@@ -25,23 +43,20 @@ struct Found {
   top::StreamItem item;
 };
 
-int run_frame(const FrameOptions& o) {
+int FrameCommand::run() {
   top::Dialect dialect{};
   top::Model model{};
-  if (std::string why; !dialect_and_model(o.dialect, o.model, dialect, model, why)) {
-    std::cerr << "topdump frame: " << why << "\n";
-    return 2;
-  }
+  if (!dialect_and_model(dialect_, model_, dialect, model)) return 2;
   std::vector<Found> found;
-  std::vector<std::size_t> frames_per_arg(o.frames.size(), 0);
+  std::vector<std::size_t> frames_per_arg(frames_.size(), 0);
   top::DialectDetector detector;
   if (dialect != top::Dialect::unknown) detector.force(dialect);
   if (model != top::Model::unknown) detector.force(top::dialect_of(model));
-  for (std::size_t a = 0; a < o.frames.size(); ++a) {
+  for (std::size_t a = 0; a < frames_.size(); ++a) {
     std::string err;
-    auto bytes = unescape(o.frames[a], err);
+    auto bytes = unescape(frames_[a], err);
     if (!bytes) {
-      std::cerr << "topdump frame: argument " << a + 1 << ": " << err << "\n";
+      error("argument " + std::to_string(a + 1) + ": " + err);
       return 2;
     }
     top::StreamDecoder dec;
@@ -64,7 +79,7 @@ int run_frame(const FrameOptions& o) {
     if (x.item.kind == top::ItemKind::garbage) {
       const auto& g = x.item;
       if (g.finding.severity == top::Severity::error) status = 1;
-      if (o.json) {
+      if (json_) {
         std::string j;
         write_garbage_json(j, x.arg + 1, g);
         std::cout << j;
@@ -84,7 +99,7 @@ int run_frame(const FrameOptions& o) {
     top::Decoded d = top::decode(f, dopts);
     if (worst(f, d) == top::Severity::error) status = 1;
     ++n;
-    if (o.json) {
+    if (json_) {
       std::string j;
       write_frame_json(j, x.arg + 1, x.item.offset, f, d);
       std::cout << j;
@@ -94,9 +109,9 @@ int run_frame(const FrameOptions& o) {
                 << frame_tree(f, d);
     }
   }
-  for (std::size_t a = 0; a < o.frames.size(); ++a) {
+  for (std::size_t a = 0; a < frames_.size(); ++a) {
     if (frames_per_arg[a] == 0) {
-      std::cerr << "topdump frame: argument " << a + 1 << ": no frame found\n";
+      error("argument " + std::to_string(a + 1) + ": no frame found");
       status = 1;
     }
   }
@@ -105,22 +120,8 @@ int run_frame(const FrameOptions& o) {
 
 }  // namespace
 
-Run add_frame_command(CLI::App& app) {
-  auto o = std::make_shared<FrameOptions>();
-  CLI::App* sub = app.add_subcommand(
-      "frame", "Decode frames given as arguments (C escapes \\xNN \\r \\n \\\\ give raw bytes)");
-  sub->add_option("--dialect", o->dialect, "auto, skydroid or topotek")
-      ->check(CLI::IsMember({"auto", "skydroid", "topotek"}));
-  sub->add_option("--model", o->model, "auto, " + top::model_list(", ", " or "))
-      ->check(model_check());
-  sub->add_flag("--json", o->json, "one JSON object per frame found")->default_str("");
-  sub->add_option("FRAME", o->frames, "byte streams holding frames")->required();
-  sub->footer(
-      "Examples:\n"
-      "  topdump frame '#tpUG6wGAYEC78328D'\n"
-      "  topdump frame --json '#TPUD2rVER0051\\r\\n#tpDU6rVER0105025D'\n"
-      "  topdump frame --dialect topotek '#TPPG2rGIC0040'");
-  return [o, sub]() { return sub->parsed() ? run_frame(*o) : -1; };
+std::unique_ptr<topkit::cli::Subcommand> frame_command(CLI::App& app) {
+  return std::make_unique<FrameCommand>(app);
 }
 
 }  // namespace topdump

@@ -10,7 +10,7 @@
 #include <memory>
 
 #include "capture/sources.hpp"
-#include "commands.hpp"
+#include "common.hpp"
 #include "output/output.hpp"
 #include "report/report.hpp"
 
@@ -18,14 +18,44 @@ namespace topdump {
 
 namespace {
 
-struct ReportOptions {
-  std::vector<std::string> files;
-  std::string output;
-  bool json = false;
-  std::string dialect = "auto", model = "auto", format = "auto";
-  std::vector<std::uint16_t> ports;
-  double timeout_ms = 2000;
-  double tolerance = 0.5;
+class ReportCommand : public topkit::cli::Subcommand {
+ public:
+  explicit ReportCommand(CLI::App& app)
+      : Subcommand(app, "report",
+                   "A self-contained HTML diagnosis of captures: what went wrong, the gimbal's "
+                   "response to "
+                   "its commands, latency, streams, findings (docs/REPORT.md)") {
+    sub_->add_option("FILE", files_, "capture files (pcap, pcapng, serial logs)")->required();
+    sub_->add_option("-o,--output", output_, "write the report here (- for stdout)");
+    sub_->add_flag("--json", json_, "the same analysis as one JSON document");
+    sub_->add_option("--tolerance", tolerance_,
+                     "an angle command has settled when the attitude stays within this many "
+                     "degrees of the target")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    add_dialect_model(sub_, dialect_, "auto, skydroid or topotek (forces every conversation)",
+                      model_, top::model_list(", ", " or ") + " (ranges and traits)");
+    sub_->add_option("--format", format_, "auto, pcap, raw, socat, saleae or lines");
+    sub_->add_option("--port", ports_, "another UDP/TCP port that carries TOP (repeatable)")
+        ->allow_extra_args(false);
+    sub_->add_option("--timeout-ms", timeout_ms_, "a request is unanswered after this long")
+        ->check(CLI::PositiveNumber);
+    sub_->footer(
+        "Examples:\n"
+        "  topdump report captures/sample.pcap -o sample.html\n"
+        "  topdump report --model c12 --tolerance 0.2 flight.pcapng -o flight.html\n"
+        "  topdump report --json captures/tcp-c10.pcap | jq .overview");
+  }
+  int run() override;
+
+ private:
+  std::vector<std::string> files_;
+  std::string output_;
+  bool json_ = false;
+  std::string dialect_ = "auto", model_ = "auto", format_ = "auto";
+  std::vector<std::uint16_t> ports_;
+  double timeout_ms_ = 2000;
+  double tolerance_ = 0.5;
 };
 
 // Writes `text` to `path` ("-": stdout); false on any failed write.
@@ -57,29 +87,22 @@ void heap_for_bulk() {
   if (hi > lo) madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_HUGEPAGE);
 }
 
-int run_report(const ReportOptions& o) {
-  heap_for_bulk();
+int ReportCommand::run() {
   top::Dialect dialect{};
   top::Model model{};
-  if (std::string why; !dialect_and_model(o.dialect, o.model, dialect, model, why)) {
-    std::cerr << "topdump report: " << why << "\n";
+  if (!dialect_and_model(dialect_, model_, dialect, model)) return 2;
+  if (!topkit::cli::one_of(kTool, "--format", format_, kFormatNames)) return 2;
+  if (output_.empty() && !json_) {
+    error("give -o FILE.html (or --json)");
     return 2;
   }
-  auto fmt = format_from_string(o.format);
-  if (!fmt) {
-    std::cerr << "topdump report: bad --format\n";
-    return 2;
-  }
-  if (o.output.empty() && !o.json) {
-    std::cerr << "topdump report: give -o FILE.html (or --json)\n";
-    return 2;
-  }
+  heap_for_bulk();
   AnalyzerOptions aopts;
   aopts.dialect = dialect;
   aopts.model = model;
-  aopts.timeout_us = static_cast<std::int64_t>(o.timeout_ms * 1000);
+  aopts.timeout_us = static_cast<std::int64_t>(timeout_ms_ * 1000);
   SourceOptions sopts;
-  for (auto p : o.ports) {
+  for (auto p : ports_) {
     sopts.udp_ports.insert(p);
     sopts.tcp_ports.insert(p);
   }
@@ -92,27 +115,28 @@ int run_report(const ReportOptions& o) {
   } sink;
   Analyzer a(aopts, sink);
   std::string err;
-  for (const auto& f : o.files) {
+  for (const auto& f : files_) {
     sink.file = f;
-    if (!read_file(f, *fmt, a, sopts, err)) {
-      std::cerr << "topdump report: " << err << "\n";
+    if (!read_file(f, *format_from_string(format_), a, sopts, err)) {
+      error(err);
       return 2;
     }
     a.finish();
   }
   if (a.frames_seen() == 0) a.source_note(kNoTime, ACode::no_frames, "no TOP frame found", 0, 0);
   report::Options ropts;
-  ropts.tolerance_deg = o.tolerance;
-  ropts.files = o.files;
+  ropts.tolerance_deg = tolerance_;
+  ropts.files = files_;
   const report::Report r = report::analyze(sink, a.stats(), a.worst(), model, ropts);
   std::string text;
-  if (o.json)
+  if (json_)
     report::write_json(text, r);
   else
     report::write_html(text, r);
-  const std::string path = o.output.empty() ? "-" : o.output;
+  const std::string path = output_.empty() ? "-" : output_;
   if (!write_out(path, text)) {
-    std::cerr << "topdump report: cannot write " << path << "\n";
+    // run_selected names a failed write to stdout
+    if (path != "-") error("cannot write " + path);
     return 2;
   }
   return a.worst() == top::Severity::error ? 1 : 0;
@@ -120,36 +144,8 @@ int run_report(const ReportOptions& o) {
 
 }  // namespace
 
-Run add_report_command(CLI::App& app) {
-  auto o = std::make_shared<ReportOptions>();
-  CLI::App* sub = app.add_subcommand(
-      "report",
-      "A self-contained HTML diagnosis of captures: what went wrong, the gimbal's response to "
-      "its commands, latency, streams, findings (docs/REPORT.md)");
-  sub->add_option("FILE", o->files, "capture files (pcap, pcapng, serial logs)")->required();
-  sub->add_option("-o,--output", o->output, "write the report here (- for stdout)");
-  sub->add_flag("--json", o->json, "the same analysis as one JSON document");
-  sub->add_option("--tolerance", o->tolerance,
-                  "an angle command has settled when the attitude stays within this many "
-                  "degrees of the target")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  sub->add_option("--dialect", o->dialect, "auto, skydroid or topotek (forces every conversation)")
-      ->check(CLI::IsMember({"auto", "skydroid", "topotek"}));
-  sub->add_option("--model", o->model, top::model_list(", ", " or ") + " (ranges and traits)")
-      ->check(model_check());
-  sub->add_option("--format", o->format, "auto, pcap, raw, socat, saleae or lines")
-      ->check(CLI::IsMember({"auto", "pcap", "pcapng", "raw", "socat", "saleae", "lines"}));
-  sub->add_option("--port", o->ports, "another UDP/TCP port that carries TOP (repeatable)")
-      ->allow_extra_args(false);
-  sub->add_option("--timeout-ms", o->timeout_ms, "a request is unanswered after this long")
-      ->check(CLI::PositiveNumber);
-  sub->footer(
-      "Examples:\n"
-      "  topdump report captures/sample.pcap -o sample.html\n"
-      "  topdump report --model c12 --tolerance 0.2 flight.pcapng -o flight.html\n"
-      "  topdump report --json captures/tcp-c10.pcap | jq .overview");
-  return [o, sub]() { return sub->parsed() ? run_report(*o) : -1; };
+std::unique_ptr<topkit::cli::Subcommand> report_command(CLI::App& app) {
+  return std::make_unique<ReportCommand>(app);
 }
 
 }  // namespace topdump

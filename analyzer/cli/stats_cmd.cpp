@@ -9,19 +9,28 @@ namespace topdump {
 
 namespace {
 
-struct StatsOptions {
-  Common c;
-  std::vector<std::string> files;
+class StatsCommand : public CommonCommand {
+ public:
+  explicit StatsCommand(CLI::App& app)
+      : CommonCommand(app, "stats", "Statistics of one or more captures") {
+    add_common(sub_, c_, false);
+    sub_->add_flag("--json", c_.json, "one JSON object (docs/topdump-json.md)")->default_str("");
+    add_file_options(sub_, c_);
+    sub_->add_option("FILE", files_, "capture files")->required();
+    sub_->footer(
+        "Examples:\n"
+        "  topdump stats captures/sample.pcap\n"
+        "  topdump stats --json --ident GAY captures/sample.pcap captures/tcp-c10.pcap");
+  }
+  int run() override;
+
+ private:
+  std::vector<std::string> files_;
 };
 
-int run_stats(const StatsOptions& o) {
+int StatsCommand::run() {
   Setup s;
-  std::string err;
-  if (!setup(o.c, s, err)) {
-    std::cerr << "topdump stats: " << err << "\n";
-    return 2;
-  }
-  auto fmt = format_from_string(o.c.format);
+  if (!setup(c_, s)) return 2;
   // Nothing shows a frame or a session note: the sink only prints source
   // notes (one virtual call per frame, to the empty Sink::frame).
   struct SourceNotes : Sink {
@@ -33,19 +42,19 @@ int run_stats(const StatsOptions& o) {
   s.aopts.detail = false;
   Analyzer a(s.aopts, tee);
   a.set_filter(s.filter);
-  if (show_progress(o.c)) s.sopts.progress = progress_bar;
+  if (show_progress(c_)) s.sopts.progress = progress_bar;
   std::vector<InputInfo> inputs;
   s.sopts.on_input = [&](const InputInfo& i) { inputs.push_back(i); };
-  for (const auto& f : o.files) {
+  for (const auto& f : files_) {
     tee.file_ = f == "-" ? "stdin" : f;
-    if (!read_file(f, *fmt, a, s.sopts, err)) {
-      std::cerr << "topdump stats: " << err << "\n";
+    if (std::string err; !read_file(f, s.format, a, s.sopts, err)) {
+      error(err);
       return 2;
     }
     a.finish();
   }
   if (a.frames_seen() == 0) a.source_note(kNoTime, ACode::no_frames, "no TOP frame found", 0, 0);
-  if (o.c.json) {
+  if (c_.json) {
     std::string j;
     write_stats_json(j, a.stats(), a.worst(), 2, {}, &inputs);
     std::cout << j << "\n";
@@ -53,27 +62,13 @@ int run_stats(const StatsOptions& o) {
     for (const InputInfo& i : inputs) std::cout << "input: " << input_text(i) << "\n";
     std::cout << stats_text(a.stats(), a.worst());
   }
-  return status_of(a);  // main checks that stdout took it all
+  return status_of(a);  // run_selected checks that stdout took it all
 }
 
 }  // namespace
 
-Run add_stats_command(CLI::App& app) {
-  auto o = std::make_shared<StatsOptions>();
-  CLI::App* sub = app.add_subcommand("stats", "Statistics of one or more captures");
-  add_common(sub, o->c, false);
-  sub->add_flag("--json", o->c.json, "one JSON object (docs/topdump-json.md)")->default_str("");
-  sub->add_option("--format", o->c.format, kFormats)
-      ->check(CLI::IsMember({"auto", "pcap", "pcapng", "raw", "socat", "saleae", "lines"}));
-  sub->add_flag("--no-progress", o->c.no_progress,
-                "no progress bar (drawn on stderr when it is a terminal and stdout is not)")
-      ->default_str("");
-  sub->add_option("FILE", o->files, "capture files")->required();
-  sub->footer(
-      "Examples:\n"
-      "  topdump stats captures/sample.pcap\n"
-      "  topdump stats --json --ident GAY captures/sample.pcap captures/tcp-c10.pcap");
-  return [o, sub]() { return sub->parsed() ? run_stats(*o) : -1; };
+std::unique_ptr<topkit::cli::Subcommand> stats_command(CLI::App& app) {
+  return std::make_unique<StatsCommand>(app);
 }
 
 }  // namespace topdump

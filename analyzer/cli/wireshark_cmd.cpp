@@ -7,20 +7,29 @@
 
 namespace topdump {
 
-Run add_wireshark_command(CLI::App& app) {
-  CLI::App* sub = app.add_subcommand(
-      "wireshark", "write top.lua, a Wireshark dissector generated from the catalog, to stdout");
-  sub->footer(
-      "Examples:\n"
-      "  topdump wireshark > ~/.local/lib/wireshark/plugins/top.lua\n"
-      "  tshark -X lua_script:top.lua -r captures/sample.pcap -V -Y top (docs/WIRESHARK.md)");
-  return [sub]() -> int {
-    if (!sub->parsed()) return -1;
-    const std::string lua = wireshark_lua();
-    std::cout << lua;
-    std::cout.flush();
-    return std::cout ? 0 : 2;
-  };
+namespace {
+
+class WiresharkCommand : public topkit::cli::Subcommand {
+ public:
+  explicit WiresharkCommand(CLI::App& app)
+      : Subcommand(app, "wireshark",
+                   "write top.lua, a Wireshark dissector generated from the catalog, to stdout") {
+    sub_->footer(
+        "Examples:\n"
+        "  topdump wireshark > ~/.local/lib/wireshark/plugins/top.lua\n"
+        "  tshark -X lua_script:top.lua -r captures/sample.pcap -V -Y top (docs/WIRESHARK.md)");
+  }
+  // run_selected checks that stdout took it all.
+  int run() override {
+    std::cout << wireshark_lua();
+    return 0;
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<topkit::cli::Subcommand> wireshark_command(CLI::App& app) {
+  return std::make_unique<WiresharkCommand>(app);
 }
 
 }  // namespace topdump

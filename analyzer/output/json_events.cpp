@@ -206,8 +206,8 @@ void garbage_body(O& o, const top::StreamItem& g) {
 }
 
 // A time in seconds as a JSON number: nlohmann's digits of ts / 1e6 (the
-// garbage events and the statistics; frame and note events write
-// put_time's six decimals).
+// garbage events only; frame and finding events, the statistics and the
+// report write put_time's six decimals).
 template <class O>
 void put_seconds(O& o, std::int64_t ts) {
   if (ts == kNoTime)

@@ -4,7 +4,8 @@
 // (read --json, stats --json, frame --json) writes through these; the tests
 // parse the result with nlohmann and compare it with a reference built
 // there. Keys are written where each document is written (json_events.cpp,
-// stats_out.cpp), once.
+// stats_out.cpp, report/json.cpp), once; what two documents share is
+// written here: a time (put_time) and a latency summary (latency_members).
 #pragma once
 
 #include <algorithm>
@@ -151,6 +152,10 @@ void put_u(O& o, std::uint64_t v) {
   o.append(b, static_cast<std::size_t>(r.ptr - b));
 }
 
+// The one encoding of a time in topdump's JSON documents (read --json's
+// frame and finding events, stats --json, report --json): seconds since the
+// epoch with six decimals, exactly the microseconds ("1714564800.004000");
+// null for none.
 template <class O>
 void put_time(O& o, std::int64_t ts) {
   if (ts == kNoTime) {
@@ -378,5 +383,11 @@ class Doc {
   int indent_;
   std::vector<bool> first_;
 };
+
+// The members of one identifier's latency summary, in the open object of
+// `j`: count, min_ms, p50_ms, p90_ms, p95_ms, p99_ms, max_ms (milliseconds,
+// the microseconds / 1000). stats --json writes these; report --json
+// appends its histogram after them.
+void latency_members(Doc& j, const Latency& l);
 
 }  // namespace topdump::jsonw

@@ -13,19 +13,8 @@ using namespace jsonw;
 
 namespace {
 
-// A time in seconds as nlohmann writes the double ts / 1e6; null for none.
-void put_seconds(std::string& o, std::int64_t ts) {
-  if (ts == kNoTime)
-    app(o, "null");
-  else
-    put_double(o, static_cast<double>(ts) / 1e6);
-}
-
 void put_ms(std::string& o, std::int64_t us) { put_double(o, static_cast<double>(us) / 1000.0); }
 
-}  // namespace
-
-namespace {
 // The keys of an input: file, format, link (null for serial logs).
 void input_members(Doc& j, const InputInfo& i) {
   std::string& o = j.out();
@@ -40,6 +29,21 @@ void input_members(Doc& j, const InputInfo& i) {
     put_str(o, i.link);
 }
 }  // namespace
+
+void jsonw::latency_members(Doc& j, const Latency& l) {
+  std::string& o = j.out();
+  j.key("count");
+  put_u(o, l.count());
+  auto ms = [&](std::string_view k, std::int64_t us) {
+    j.key(k);
+    put_ms(o, us);
+  };
+  ms("min_ms", l.min());
+  for (auto [k, q] :
+       {std::pair{"p50_ms", 0.5}, {"p90_ms", 0.9}, {"p95_ms", 0.95}, {"p99_ms", 0.99}})
+    ms(k, l.quantile(q));
+  ms("max_ms", l.max());
+}
 
 void write_input_json(std::string& out, const InputInfo& i) {
   Doc j(out, -1);
@@ -92,9 +96,9 @@ void write_stats_json(std::string& out, const Stats& s, top::Severity worst, int
   count("records", s.records);
   count("records_skipped", s.records_skipped);
   j.key("first_time");
-  put_seconds(o, s.first);
+  put_time(o, s.first);
   j.key("last_time");
-  put_seconds(o, s.last);
+  put_time(o, s.last);
   text("worst", top::to_string(worst));
   table("per_ident", s.per_ident);
   table("per_finding", s.per_code);
@@ -108,15 +112,7 @@ void write_stats_json(std::string& out, const Stats& s, top::Severity worst, int
   j.key_object("latency");
   for (const auto& [k, l] : s.latency) {
     j.key_object(k);
-    count("count", l.count());
-    j.key("min_ms");
-    put_ms(o, l.min());
-    j.key("median_ms");
-    put_ms(o, l.quantile(0.5));
-    j.key("p95_ms");
-    put_ms(o, l.quantile(0.95));
-    j.key("max_ms");
-    put_ms(o, l.max());
+    latency_members(j, l);
     j.close_object();
   }
   j.close_object();

@@ -208,14 +208,7 @@ void Writer::latency() {
   j.key_object("latency");
   for (const auto& [ident, l] : s.latency) {
     j.key_object(ident);
-    u("count", l.count());
-    for (auto [k, q] :
-         {std::pair{"p50_ms", 0.5}, {"p90_ms", 0.9}, {"p95_ms", 0.95}, {"p99_ms", 0.99}}) {
-      j.key(k);
-      put_measure(o, static_cast<double>(l.quantile(q)) / 1000.0, false);
-    }
-    j.key("max_ms");
-    put_measure(o, static_cast<double>(l.max()) / 1000.0, false);
+    latency_members(j, l);
     j.key_array("histogram");
     auto it = d.latency_bins.find(ident);
     if (it != d.latency_bins.end())

@@ -317,6 +317,39 @@ TEST(Cli, VersionsAndUsageErrors) {
   EXPECT_EQ(run2(bin("topsim") + " --model nope", out, err), 2);
 }
 
+// Issue 27 item 4: topdump's failures in the one format of topkit/cli.hpp
+// ("topdump: error: ..."), a value of an enum option checked by its one
+// check (topkit::cli::one_of), every usage error exit status 2.
+TEST(Cli, TopdumpErrorsInTheOneFormat) {
+  std::string out, err;
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"read --severity bogus " + cap("sample.pcap"),
+       "topdump: error: --severity bogus: not one of info, warning, error\n"},
+      {"stats --format bogus " + cap("sample.pcap"),
+       "topdump: error: --format bogus: not one of auto, pcap, pcapng, raw, socat, saleae, "
+       "lines\n"},
+      {"frame --dialect bogus '#TPUD2rVER0051'",
+       "topdump: error: --dialect bogus: not one of auto, skydroid, topotek\n"},
+      {"report --json --model bogus " + cap("sample.pcap"),
+       "topdump: error: --model bogus: not one of auto, " + top::model_list(", ", ", ") + "\n"},
+      {"read --dialect topotek --model c12 " + cap("sample.pcap"),
+       "topdump: error: model c12 speaks skydroid, not topotek\n"},
+      {"read --bogus " + cap("sample.pcap"),
+       "topdump: error: The following argument was not expected: --bogus (--help for more)\n"},
+      {"read", "topdump: error: FILE is required (--help for more)\n"},
+      {"", "topdump: error: A subcommand is required (--help for more)\n"},
+      {"report " + cap("sample.pcap"), "topdump: error: give -o FILE.html (or --json)\n"},
+      {"read nonexist.pcap",
+       "topdump: error: nonexist.pcap: cannot open: No such file or directory\n"},
+  };
+  for (const auto& [args, want] : cases) {
+    SCOPED_TRACE(args);
+    EXPECT_EQ(run2(bin("topdump") + " " + args, out, err), 2);
+    EXPECT_EQ(err, want);
+    EXPECT_TRUE(out.empty()) << out;
+  }
+}
+
 // Item 18: --help states defaults and examples, explains the line format.
 TEST(Cli, HelpStatesDefaultsAndExamples) {
   std::string out, err;

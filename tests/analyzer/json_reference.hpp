@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -140,6 +141,30 @@ inline json time_json(std::int64_t ts) {
   return static_cast<double>(ts) / 1e6;
 }
 
+// A time as the documents write it, six decimals (docs/topdump-json.md),
+// which nlohmann cannot write: a string "@T<seconds>.<micros>" that dump()
+// below turns into that number.
+inline json time_exact(std::int64_t ts) {
+  if (ts == kNoTime) return nullptr;
+  const std::uint64_t mag =
+      ts < 0 ? 0 - static_cast<std::uint64_t>(ts) : static_cast<std::uint64_t>(ts);
+  char b[48];
+  std::snprintf(b, sizeof b, "@T%s%llu.%06llu", ts < 0 ? "-" : "",
+                static_cast<unsigned long long>(mag / 1000000),
+                static_cast<unsigned long long>(mag % 1000000));
+  return std::string(b);
+}
+
+// j.dump(indent) with each time_exact() string written as its number.
+inline std::string dump(const json& j, int indent = -1) {
+  std::string s = j.dump(indent);
+  for (std::size_t at; (at = s.find("\"@T")) != std::string::npos;) {
+    const std::size_t end = s.find('"', at + 1);
+    s = s.substr(0, at) + s.substr(at + 3, end - at - 3) + s.substr(end + 1);
+  }
+  return s;
+}
+
 template <class Event>
 void place_json(json& j, const Event& e) {
   j["transport"] = to_string(e.transport);
@@ -216,8 +241,8 @@ inline json stats_json(const Stats& s, top::Severity worst) {
   j["garbage"] = s.garbage;
   j["records"] = s.records;
   j["records_skipped"] = s.records_skipped;
-  j["first_time"] = time_json(s.first);
-  j["last_time"] = time_json(s.last);
+  j["first_time"] = time_exact(s.first);
+  j["last_time"] = time_exact(s.last);
   j["worst"] = top::to_string(worst);
   j["per_ident"] = s.per_ident;  // std::map: an object, {} when empty
   j["per_finding"] = s.per_code;
@@ -231,8 +256,10 @@ inline json stats_json(const Stats& s, top::Severity worst) {
     json x;
     x["count"] = l.count();
     x["min_ms"] = static_cast<double>(l.min()) / 1000.0;
-    x["median_ms"] = static_cast<double>(l.quantile(0.5)) / 1000.0;
+    x["p50_ms"] = static_cast<double>(l.quantile(0.5)) / 1000.0;
+    x["p90_ms"] = static_cast<double>(l.quantile(0.9)) / 1000.0;
     x["p95_ms"] = static_cast<double>(l.quantile(0.95)) / 1000.0;
+    x["p99_ms"] = static_cast<double>(l.quantile(0.99)) / 1000.0;
     x["max_ms"] = static_cast<double>(l.max()) / 1000.0;
     lat[k] = std::move(x);
   }

@@ -3,7 +3,7 @@
 // are 100-115), an unknown subcommand named, option defaults shown in
 // --help (and so in the man pages generated from it, docs/man/), and a
 // failed write to stdout turned into exit status 2. parse(), error(),
-// one_of() and Subcommand give topsim and topconf one error format
+// one_of() and Subcommand give the three tools one error format
 // ("TOOL: error: ..."), one check of a named value and one subcommand
 // pattern; topkit/log.hpp points spdlog at the same format.
 #pragma once
@@ -14,7 +14,9 @@
 #include <cstring>
 #include <initializer_list>
 #include <iostream>
+#include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -55,21 +57,19 @@ inline std::string subcommand_problem(CLI::App& app, int argc, char** argv) {
   return "unknown subcommand \"" + word + "\" (one of " + names + "; --help for more)";
 }
 
-// Parses the command line. Returns -1 to go on, or the exit status: 0 after
-// --help or --version, 2 on bad usage (with CLI11's message, and for a word
-// where a subcommand belongs, the subcommands there are).
-inline int parse_or_exit(CLI::App& app, int argc, char** argv) {
-  if (const std::string why = subcommand_problem(app, argc, argv); !why.empty()) {
-    std::fprintf(stderr, "%s: %s\n", app.get_name().c_str(), why.c_str());
-    return 2;
-  }
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int rc = app.exit(e);
-    return rc == 0 ? 0 : 2;
-  }
-  return -1;
+// ---------------------------------------------------------------------------
+// The one error format, the one parse, the one subcommand pattern.
+
+// "TOOL: error: MESSAGE" on stderr: the format of every message a tool
+// writes about a failure (no timestamp; topkit/log.hpp sets spdlog to it).
+inline void error(const std::string& tool, const std::string& message) {
+  std::fprintf(stderr, "%s: error: %s\n", tool.c_str(), message.c_str());
+}
+
+// "TOOL: warning: MESSAGE" on stderr: the same format for what went wrong
+// without failing the run.
+inline void warning(const std::string& tool, const std::string& message) {
+  std::fprintf(stderr, "%s: warning: %s\n", tool.c_str(), message.c_str());
 }
 
 // Flushes stdout (C and C++ streams) and returns `rc`, or 2 with a message
@@ -80,21 +80,11 @@ inline int close_stdout(const std::string& tool, int rc) {
   const bool bad = std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout;
   if (bad) {
     const int e = errno;
-    std::fprintf(stderr, "%s: write error on standard output%s%s\n", tool.c_str(), e ? ": " : "",
-                 e ? std::strerror(e) : "");
+    error(tool, std::string("write error on standard output") + (e ? ": " : "") +
+                    (e ? std::strerror(e) : ""));
     return 2;
   }
   return rc;
-}
-
-// ---------------------------------------------------------------------------
-// The one error format, the one parse, the one subcommand pattern (topsim and
-// topconf; topdump keeps parse_or_exit until it moves).
-
-// "TOOL: error: MESSAGE" on stderr: the format of every message a tool
-// writes about a failure (no timestamp; topkit/log.hpp sets spdlog to it).
-inline void error(const std::string& tool, const std::string& message) {
-  std::fprintf(stderr, "%s: error: %s\n", tool.c_str(), message.c_str());
 }
 
 // The index of `value` in `names`, or none with "TOOL: error: OPTION VALUE:
@@ -111,9 +101,10 @@ inline std::optional<std::size_t> one_of(const std::string& tool, const std::str
   return std::nullopt;
 }
 
-// Parses the command line as parse_or_exit does, with every usage error in
-// the one format ("TOOL: error: ..."), and stdout checked after --help and
-// --version. Returns -1 to go on, or the exit status (0, or 2).
+// Parses the command line. Returns -1 to go on, or the exit status: 0 after
+// --help or --version (stdout checked), 2 on bad usage, with every usage
+// error in the one format ("TOOL: error: ..."; for a word where a
+// subcommand belongs, the subcommands there are).
 inline int parse(CLI::App& app, int argc, char** argv) {
   const std::string tool = app.get_name();
   if (const std::string why = subcommand_problem(app, argc, argv); !why.empty()) {
@@ -151,6 +142,13 @@ class Subcommand {
 // Runs the subcommand the command line chose and checks stdout after it.
 inline int run_selected(const std::string& tool, std::initializer_list<Subcommand*> subs) {
   for (Subcommand* s : subs)
+    if (s->selected()) return close_stdout(tool, s->run());
+  error(tool, "a subcommand is required (--help for more)");
+  return 2;
+}
+inline int run_selected(const std::string& tool,
+                        std::span<const std::unique_ptr<Subcommand>> subs) {
+  for (const auto& s : subs)
     if (s->selected()) return close_stdout(tool, s->run());
   error(tool, "a subcommand is required (--help for more)");
   return 2;
