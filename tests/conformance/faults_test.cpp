@@ -80,7 +80,7 @@ TEST(Faults, FrameFaultsByteForByte) {
            Expected{"header-case=1", kGay, "#tpGU6wGAYEF073248"},
            Expected{"lying-length=1,header-case=1", kGay, "#tpGU5wGAYEF073247"},
            Expected{"bad-checksum=1", kGay, "#TPGU6wGAYEF073240"},
-           Expected{"header-case=1", "#tpDU6wGAYEF073288", "#TPDU6wGAYEF073288"},
+           Expected{"header-case=1", "#tpDU6wGAYEF073285", "#TPDU6wGAYEF073285"},
            Expected{"header-case=1", tmp, "#TPDU16wTMP0100200300400500600700AB"},
            Expected{"lying-length=1", tmp, tmp},
            Expected{"lying-length=1,header-case=1", ext8, ext8},
