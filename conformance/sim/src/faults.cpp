@@ -124,10 +124,10 @@ std::optional<FaultConfig> parse_faults(std::string_view spec, std::string& erro
       if (has_value) return bad("takes no value");
       cfg.answer_corrupt = true;
     } else {
-      return bad(
-          "unknown fault (known: drop delay duplicate bad-checksum "
-          "header-case no-swap lying-length tmp-quirk split garbage hang-on crash-on hang-s "
-          "slow-on slow-ms answer-corrupt)");
+      std::string known;
+      for (const std::string_view n : fault_names())
+        known += (known.empty() ? "" : " ") + std::string(n);
+      return bad("unknown fault (known: " + known + ")");
     }
   }
   return cfg;
