@@ -3,14 +3,12 @@
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
-#include <algorithm>
 #include <cstdio>
 #include <optional>
 #include <string>
-#include <string_view>
 #include <vector>
 
-#include "sim/faults.hpp"
+#include "fault_arg.hpp"
 #include "sim/server.hpp"
 #include "top/text.hpp"
 #include "topkit/cli.hpp"
@@ -120,22 +118,13 @@ std::vector<Choice> add_options(CLI::App& app, Options& o) {
 }
 
 // Each named value given is one of its list, and each fault's name one of
-// topsim's faults (its value is parse_faults' to check); false after the
-// message.
+// topsim's faults; false after the message.
 bool choices_valid(const CLI::App& app, const std::vector<Choice>& choices,
                    const std::string& faults) {
   for (const Choice& c : choices)
     if (app.count(c.option) > 0 && !topkit::cli::one_of(kTool, c.option, *c.value, c.names))
       return false;
-  const std::vector<std::string> kinds(topsim::fault_names().begin(), topsim::fault_names().end());
-  std::string_view rest = faults;
-  while (!rest.empty()) {
-    const std::string_view item = rest.substr(0, rest.find(','));
-    rest.remove_prefix(std::min(rest.size(), item.size() + 1));
-    const std::string name(item.substr(0, item.find('=')));
-    if (!item.empty() && !topkit::cli::one_of(kTool, "--fault", name, kinds)) return false;
-  }
-  return true;
+  return topsim::cli::fault_names_valid(kTool, "--fault", faults);
 }
 
 // The device's options from the traits given.

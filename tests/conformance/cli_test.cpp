@@ -110,6 +110,18 @@ TEST(CliErrors, TopsimEnumOptionsAreCheckedWithTheSameFormat) {
   }
 }
 
+// topconf's --sim-fault names go through topsim's check (conformance/cli/fault_arg.hpp).
+TEST(CliErrors, TopconfSimFaultNamesAreCheckedAsTopsimsAre) {
+  for (const char* args : {" run --model c12 -q --sim-fault drop=1,bogus",
+                           " fuzz --model c12 --target sim --cases 1 -q --sim-fault bogus=2"}) {
+    const Ran r = to_dev_full(bin("topconf") + args);
+    EXPECT_EQ(r.status, 2) << args << ": " << r.err;
+    EXPECT_NE(r.err.find("topconf: error: --sim-fault bogus: not one of drop, delay"),
+              std::string::npos)
+        << r.err;
+  }
+}
+
 // topsim -v on UDP: a datagram received and the reply sent, each logged on
 // stderr with its direction, the peer and the bytes.
 TEST(TopsimVerbose, LogsEachDatagramReceivedAndSent) {
