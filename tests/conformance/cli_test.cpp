@@ -110,6 +110,13 @@ TEST(CliErrors, TopsimEnumOptionsAreCheckedWithTheSameFormat) {
   }
 }
 
+// The build tree's topconf finds the default matrices copied next to it
+// (../share/topkit/matrices), as an installed one does.
+TEST(Matrices, TheBuildTreeTopconfFindsItsDefaultMatrices) {
+  const Ran r = to_dev_full(bin("topconf") + " run --model c12 --case 'skydroid/3.1/*' -q");
+  EXPECT_EQ(r.err.find("not found"), std::string::npos) << r.err;
+}
+
 // topconf's --sim-fault names go through topsim's check (conformance/cli/fault_arg.hpp).
 TEST(CliErrors, TopconfSimFaultNamesAreCheckedAsTopsimsAre) {
   for (const char* args : {" run --model c12 -q --sim-fault drop=1,bogus",
