@@ -28,15 +28,14 @@ std::string malformed(const std::string& frame, bool lie, bool flip) {
   if (r.status != top::ParseStatus::frame || !f.checksum_ok ||
       (f.header != top::Header::fixed && f.header != top::Header::variable))
     return frame;
-  top::BuildSpec spec;
-  spec.header = f.header;
-  spec.src = f.src;
-  spec.dst = f.dst;
-  spec.control = f.control;
-  spec.ident = f.ident_view();
-  spec.data = f.data();
-  // "#tpDU16wTMP...": the two-digit TMP form keeps its length.
-  spec.two_digit_length = f.data_offset > top::prefix_size;
+  top::BuildSpec spec{.header = f.header,
+                      .src = f.src,
+                      .dst = f.dst,
+                      .control = f.control,
+                      .ident = f.ident_view(),
+                      .data = f.data(),
+                      // "#tpDU16wTMP...": the two-digit TMP form keeps its length.
+                      .two_digit_length = f.data_offset > top::prefix_size};
   lie = lie && !spec.two_digit_length && spec.data.size() >= 2 &&
         spec.data.size() <= top::max_data_hex;
   if (!lie && !flip) return frame;
