@@ -12,6 +12,7 @@
 #include "conf/fuzz_report.hpp"
 #include "conf/runner.hpp"
 #include "conf/transport.hpp"
+#include "fault_arg.hpp"
 
 namespace topconf::cli {
 
@@ -174,6 +175,7 @@ int FuzzCommand::run(const Matrix& loaded) {
     spdlog::error("--sim-fault applies to --target sim only");
     return 2;
   }
+  if (!topsim::cli::fault_names_valid(kTool, "--sim-fault", t_.sim_faults)) return 2;
   std::unique_ptr<Transport> transport;
   try {
     transport = open_target(sim, t_.target, model, t_.sim_faults, t_.sim_seed, t_.bind_port);

@@ -11,6 +11,7 @@
 #include "conf/report.hpp"
 #include "conf/runner.hpp"
 #include "conf/transport.hpp"
+#include "fault_arg.hpp"
 
 namespace topconf::cli {
 
@@ -79,6 +80,7 @@ int RunCommand::run() {
     spdlog::error("--sim-fault applies to the in-process topsim only (no --target)");
     return 2;
   }
+  if (!topsim::cli::fault_names_valid(kTool, "--sim-fault", t_.sim_faults)) return 2;
   std::unique_ptr<Transport> transport;
   std::unique_ptr<pcapio::Recorder> pcap;
   try {

@@ -5,7 +5,10 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <optional>
+#include <string>
+#include <vector>
 
+#include "fault_arg.hpp"
 #include "sim/server.hpp"
 #include "top/text.hpp"
 #include "topkit/cli.hpp"
@@ -46,7 +49,23 @@ struct Options {
   bool udp_given = false, tcp_given = false;
 };
 
-void add_options(CLI::App& app, Options& o) {
+// An option whose value names one of a list. Checked after parsing by the
+// shared layer, as --model is (topkit::cli::one_of): one error format,
+// "topsim: error: --pitch-sign sideways: not one of normal, inverted", exit 2.
+struct Choice {
+  std::string option;
+  const std::string* value;
+  std::vector<std::string> names;
+};
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "" : "|") + n;
+  return s;
+}
+
+// The options; returns the named-value ones, to check once parsed.
+std::vector<Choice> add_options(CLI::App& app, Options& o) {
   app.add_option("--model", o.model_name, top::model_list("|", "|"))->capture_default_str();
   app.add_option("--udp", o.udp,
                  "serve UDP on HOST:PORT (default 127.0.0.1 and the model's port; the default "
@@ -71,33 +90,41 @@ void add_options(CLI::App& app, Options& o) {
                  "default 9004 for sip as the Topotek document says, 0 otherwise)");
   app.add_flag("-v,--verbose", o.verbose,
                "log every datagram received and sent (UDP, TCP, pty, serial) on stderr");
-  app.add_option("--profile", o.profile_name,
-                 "field: follow field evidence, then the document's examples, then its rules; "
-                 "document: the document's examples, then its rules")
-      ->check(CLI::IsMember({"field", "document"}))
-      ->capture_default_str();
-  // An option whose value is one of `values`.
-  auto choice = [&](const char* name, std::string& value, const char* help,
-                    std::vector<std::string> values) {
-    app.add_option(name, value, help)->check(CLI::IsMember(std::move(values)));
+  std::vector<Choice> choices;
+  // An option whose value is one of `names` (listed after its help).
+  auto choice = [&](const char* name, std::string& value, const std::string& help,
+                    std::vector<std::string> names) {
+    app.add_option(name, value, help + ": " + joined(names));
+    choices.push_back(Choice{name, &value, std::move(names)});
   };
-  choice("--push-order", o.push_order, "attitude push addresses: swapped|request-order",
-         {"swapped", "request-order"});
-  choice("--push-header", o.push_header, "attitude push header: TP|tp", {"TP", "tp"});
-  choice("--reply-order", o.reply_order, "read reply addresses: swapped|request-order",
-         {"swapped", "request-order"});
-  choice("--reply-header", o.reply_header, "read reply header (2-15 data chars): TP|tp",
-         {"TP", "tp"});
-  choice("--yaw-sign", o.yaw_sign, "attitude yaw against the command: normal|inverted",
-         {"normal", "inverted"});
-  choice("--pitch-sign", o.pitch_sign, "attitude pitch against the command: normal|inverted",
+  choice("--profile", o.profile_name,
+         "what the device follows (field: field evidence, then the document's examples, then "
+         "its rules; document: the document's examples, then its rules)",
+         {std::string(top::to_string(top::Profile::field)),
+          std::string(top::to_string(top::Profile::document))});
+  app.get_option("--profile")->capture_default_str();
+  choice("--push-order", o.push_order, "attitude push addresses", {"swapped", "request-order"});
+  choice("--push-header", o.push_header, "attitude push header", {"TP", "tp"});
+  choice("--reply-order", o.reply_order, "read reply addresses", {"swapped", "request-order"});
+  choice("--reply-header", o.reply_header, "read reply header (2-15 data chars)", {"TP", "tp"});
+  choice("--yaw-sign", o.yaw_sign, "attitude yaw against the command", {"normal", "inverted"});
+  choice("--pitch-sign", o.pitch_sign, "attitude pitch against the command",
          {"normal", "inverted"});
   choice("--field-codes", o.field_codes,
-         "accept the command values field evidence says the model takes (C13 PTZ): "
-         "on|off",
-         {"on", "off"});
+         "accept the command values field evidence says the model takes (C13 PTZ)", {"on", "off"});
   app.add_flag("--describe", o.describe,
                "print the device's traits with their sources (profile, options) and exit");
+  return choices;
+}
+
+// Each named value given is one of its list, and each fault's name one of
+// topsim's faults; false after the message.
+bool choices_valid(const CLI::App& app, const std::vector<Choice>& choices,
+                   const std::string& faults) {
+  for (const Choice& c : choices)
+    if (app.count(c.option) > 0 && !topkit::cli::one_of(kTool, c.option, *c.value, c.names))
+      return false;
+  return topsim::cli::fault_names_valid(kTool, "--fault", faults);
 }
 
 // The device's options from the traits given.
@@ -213,13 +240,13 @@ int main(int argc, char** argv) {
       "topsim: a TOP gimbal camera simulator (SkyDroid C10/C10Pro/C12/C13/C20, Topotek SIP)"};
   topkit::cli::setup_app(app, kTool);
   Options o;
-  add_options(app, o);
+  const std::vector<Choice> choices = add_options(app, o);
   if (int rc = topkit::cli::parse(app, argc, argv); rc >= 0) return rc;
   o.udp_given = app.count("--udp") > 0;
   o.tcp_given = app.count("--tcp") > 0;
 
   const auto model = topkit::cli::model_arg(kTool, o.model_name);
-  if (!model) return 2;
+  if (!model || !choices_valid(app, choices, o.faults)) return 2;
   if (o.describe) {
     const topsim::Device dev(*model, device_options(o));
     std::printf("topsim %s, profile %s\n", o.model_name.c_str(), o.profile_name.c_str());

@@ -88,6 +88,47 @@ TEST(CliErrors, ModelIsCheckedAgainstTheCatalogWithOneFormat) {
   }
 }
 
+// topsim's other named values (profile, traits, fault kinds) go through the
+// same check as --model: "topsim: error: OPTION VALUE: not one of ...", exit 2.
+TEST(CliErrors, TopsimEnumOptionsAreCheckedWithTheSameFormat) {
+  struct Bad {
+    const char* args;
+    const char* message;
+    const char* listed;
+  };
+  for (const Bad& b :
+       {Bad{" --profile lab", "--profile lab: not one of ", "field, document"},
+        Bad{" --pitch-sign sideways", "--pitch-sign sideways: not one of ", "normal, inverted"},
+        Bad{" --push-order any", "--push-order any: not one of ", "swapped, request-order"},
+        Bad{" --reply-header TQ", "--reply-header TQ: not one of ", "TP, tp"},
+        Bad{" --field-codes yes", "--field-codes yes: not one of ", "on, off"},
+        Bad{" --fault drop=0.5,bogus=1", "--fault bogus: not one of ", "drop, delay, duplicate"}}) {
+    const Ran r = to_dev_full(bin("topsim") + b.args);
+    EXPECT_EQ(r.status, 2) << b.args << ": " << r.err;
+    EXPECT_EQ(r.err.rfind(std::string("topsim: error: ") + b.message, 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(b.listed), std::string::npos) << r.err;
+  }
+}
+
+// The build tree's topconf finds the default matrices copied next to it
+// (../share/topkit/matrices), as an installed one does.
+TEST(Matrices, TheBuildTreeTopconfFindsItsDefaultMatrices) {
+  const Ran r = to_dev_full(bin("topconf") + " run --model c12 --case 'skydroid/3.1/*' -q");
+  EXPECT_EQ(r.err.find("not found"), std::string::npos) << r.err;
+}
+
+// topconf's --sim-fault names go through topsim's check (conformance/cli/fault_arg.hpp).
+TEST(CliErrors, TopconfSimFaultNamesAreCheckedAsTopsimsAre) {
+  for (const char* args : {" run --model c12 -q --sim-fault drop=1,bogus",
+                           " fuzz --model c12 --target sim --cases 1 -q --sim-fault bogus=2"}) {
+    const Ran r = to_dev_full(bin("topconf") + args);
+    EXPECT_EQ(r.status, 2) << args << ": " << r.err;
+    EXPECT_NE(r.err.find("topconf: error: --sim-fault bogus: not one of drop, delay"),
+              std::string::npos)
+        << r.err;
+  }
+}
+
 // topsim -v on UDP: a datagram received and the reply sent, each logged on
 // stderr with its direction, the peer and the bytes.
 TEST(TopsimVerbose, LogsEachDatagramReceivedAndSent) {

@@ -171,6 +171,18 @@ TEST(Device, NoSwapAndTmpQuirkOptions) {
   EXPECT_TRUE(tmp.has(top::FindingCode::tmp_quirk));
 }
 
+// The Topotek 12.2 firmware form byte for byte: a two-digit length, control
+// w, the addresses swapped (or not, with no-swap).
+TEST(Device, TmpQuirkIsTheFirmwareFormByteForByte) {
+  topsim::DeviceOptions o;
+  o.tmp_quirk = true;
+  Device swapped(top::Model::c12, o);
+  EXPECT_EQ(ask(swapped, "#tpUD0rTMP").at(0), "#tpDU16wTMP0100200300400500600700AB");
+  o.swap_addresses = false;
+  Device kept(top::Model::c12, o);
+  EXPECT_EQ(ask(kept, "#tpUD0rTMP").at(0), "#tpUD16wTMP0100200300400500600700AB");
+}
+
 TEST(Device, HandlerSurvivesHostileBytes) {
   Device d(top::Model::c12);
   std::string junk;

@@ -63,6 +63,35 @@ TEST(Faults, EachFaultChangesTheFrameAsNamed) {
   EXPECT_EQ(apply_fault("split", kGay, false).size(), 1u);  // datagrams stay whole
 }
 
+// The frame faults byte for byte: the length char lies with a checksum
+// right for the bytes sent; the header case flips after the checksum; both
+// at once; the checksum's last digit corrupted. Frames they do not apply
+// to (#tP, one data char, the two-digit TMP form for a lie) pass unchanged.
+TEST(Faults, FrameFaultsByteForByte) {
+  const std::string tmp = "#tpDU16wTMP0100200300400500600700AB";
+  const std::string ext8 = "#tPGU\x06wGAYEF073238";
+  const std::string one_char = top::with_checksum("#tpMU1wZMC1");
+  struct Expected {
+    const char* faults;
+    std::string in, out;
+  };
+  for (const Expected& e : {
+           Expected{"lying-length=1", kGay, "#TPGU5wGAYEF073247"},
+           Expected{"header-case=1", kGay, "#tpGU6wGAYEF073248"},
+           Expected{"lying-length=1,header-case=1", kGay, "#tpGU5wGAYEF073247"},
+           Expected{"bad-checksum=1", kGay, "#TPGU6wGAYEF073240"},
+           Expected{"header-case=1", "#tpDU6wGAYEF073285", "#TPDU6wGAYEF073285"},
+           Expected{"header-case=1", tmp, "#TPDU16wTMP0100200300400500600700AB"},
+           Expected{"lying-length=1", tmp, tmp},
+           Expected{"lying-length=1,header-case=1", ext8, ext8},
+           Expected{"lying-length=1", one_char, one_char},
+       }) {
+    const auto out = apply_fault(e.faults, e.in);
+    ASSERT_EQ(out.size(), 1u) << e.faults;
+    EXPECT_EQ(out[0].bytes, e.out) << e.faults << " on " << e.in;
+  }
+}
+
 TEST(Faults, HangOnSilencesEverythingAfterTheCommand) {
   FaultInjector fi(*parse("hang-on=REC"), 1);
   auto rec = top::parse_exact("#TPUD2wREC0155");

@@ -16,6 +16,7 @@
 #include "running_server.hpp"
 #include "sim/faults.hpp"
 #include "test_matrix_util.hpp"
+#include "top/text.hpp"
 
 namespace {
 
@@ -76,6 +77,66 @@ TEST(FuzzCases, TheCatalogFamiliesAreThere) {
   const auto mut = s.at(s.catalog_cases() + 7);
   EXPECT_TRUE(mut.mutated);
   EXPECT_EQ(mut.family, "mutation");
+}
+
+// The malformed frames the catalog families forge, byte for byte: lengths
+// that lie, checksums over another header or in lowercase, wrong and missing
+// checksums, odd addresses, control chars and identifiers.
+TEST(FuzzCases, TheForgedFramesByteForByte) {
+  using namespace std::string_literals;
+  struct Forged {
+    top::Model model;
+    char client;
+    std::string name, bytes;
+  };
+  const Forged forged[] = {
+      {top::Model::c12, 'U', "#Tp declares 65535, carries 100",
+       "#TpUG\xFF\xFF"s + "GAY" + std::string(100, '1') + "00"},
+      {top::Model::c12, 'U', "#tP declares 255, carries 10",
+       "#tPUG\xFF"s + "wGAY1111111111" + "00"},
+      {top::Model::c12, 'U', "#tp data of 40 chars under a one-digit length",
+       "#tpUGFwGAY" + std::string(40, '0') + "C1"},
+      {top::Model::c12, 'U', "bad identifier gay", "#TPUD2rgay00A5"},
+      {top::Model::c12, 'U', "bad identifier GA\\x01", "#TPUD2rGA\x01"s + "00ED"},
+      {top::Model::c12, 'U', "source \\x00", "#TP\0"s + "D2rAWB00E9"},
+      {top::Model::c12, 'U', "destination \\x7F", "#TPU\x7F"s + "2rAWB0079"},
+      {top::Model::c12, 'U', "control char \\x00", "#TPUD2\0"s + "AWB00CC"},
+      {top::Model::c12, 'U', "control char \\x00 in the data", "#TPUD2rAWB\0"s + "00E"},
+      {top::Model::c12, 'U', "a frame inside another's data",
+       "#tPUG\x0E"s + "wGAY#TPUD2rAWB003E9F"},
+      {top::Model::c12, 'U', "PTZ w lowercase checksum", "#TPUG2wPTZ146f"},
+      {top::Model::c12, 'U', "PTZ w checksum over the other header case", "#TPUG2wPTZ14AF"},
+      {top::Model::c12, 'U', "GAY w wrong checksum", "#TPUG6wGAY00003217"},
+      {top::Model::c12, 'U', "GAY w no checksum", "#TPUG6wGAY000032"},
+      {top::Model::c12, 'U', "GAY w checksum over the other header case", "#TPUG6wGAY00003256"},
+      {top::Model::c12, 'U', "IQE w length char one less", "#tpUDBwIQE038080808080A3"},
+      {top::Model::c12, 'U', "IQE w length char one more", "#tpUDDwIQE038080808080A5"},
+      {top::Model::c12, 'U', "IQE w lowercase checksum", "#tpUDCwIQE038080808080a4"},
+      {top::Model::c12, 'U', "IQE w checksum over the other header case",
+       "#tpUDCwIQE03808080808064"},
+      {top::Model::sip, 'P', "ZMC w length char one less", "#tpPM1wZMC0298"},
+      {top::Model::sip, 'P', "ZMC w length char one more", "#tpPM3wZMC029A"},
+      {top::Model::sip, 'P', "ZMC w checksum over the other header case", "#tpPM2wZMC0259"},
+      {top::Model::sip, 'P', "ZOM r lowercase checksum", "#tpPM2rZOM009e"},
+      {top::Model::sip, 'P', "TMP w lowercase checksum",
+       "#tPPD\x16"s + "wTMP0A08000000A080000000004b"},
+      // #tP and #Tp sum alike ('t' + 'P' == 'T' + 'p'): the same bytes.
+      {top::Model::sip, 'P', "TMP w checksum over the other header case",
+       "#tPPD\x16"s + "wTMP0A08000000A080000000004B"},
+  };
+  for (const Forged& f : forged) {
+    const topconf::CaseSource s(f.model, f.client, 1, nullptr);
+    // A command with two forms (TMP w) has two cases of the name.
+    std::string seen;
+    std::size_t found = 0;
+    for (std::uint64_t i = 0; i < s.catalog_cases(); ++i) {
+      const auto c = s.at(i);
+      if (c.name != f.name) continue;
+      found += c.bytes == f.bytes;
+      seen += " " + top::escape(c.bytes);
+    }
+    EXPECT_EQ(found, 1u) << f.name << ":" << seen;
+  }
 }
 
 struct FaultCase {

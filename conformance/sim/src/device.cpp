@@ -74,8 +74,8 @@ bool Device::accepts(const Frame& f, Link link) const noexcept {
   return top::answers_source(model_, opts_.profile, link, f.src);
 }
 
-std::string Device::make(top::Header h, const Frame& req, char control, std::string_view ident,
-                         std::string_view data) const {
+top::BuildSpec Device::reply_spec(top::Header h, const Frame& req, char control,
+                                  std::string_view ident, std::string_view data) const {
   top::BuildSpec spec;
   spec.header = h;
   spec.src = opts_.swap_addresses ? req.dst : req.src;
@@ -83,7 +83,12 @@ std::string Device::make(top::Header h, const Frame& req, char control, std::str
   spec.control = control;
   spec.ident = ident;
   spec.data = data;
-  return top::build_frame(spec);
+  return spec;
+}
+
+std::string Device::make(top::Header h, const Frame& req, char control, std::string_view ident,
+                         std::string_view data) const {
+  return top::build_frame(reply_spec(h, req, control, ident, data));
 }
 
 void Device::reply_error(const Frame& req, std::vector<std::string>& out) const {
@@ -221,18 +226,14 @@ void Device::handle(const Frame& req, Link link, std::uint64_t now_us,
       break;
     }
   if (!resp) resp = dec.form;
-  std::string data = read_data(cmd, *resp);
   if (opts_.tmp_quirk && id == "TMP") {
-    // The Topotek 12.2 firmware form: two-digit length, control w.
-    data = "0100200300400500600700";
-    std::string f = "#tp";
-    f += opts_.swap_addresses ? req.dst : req.src;
-    f += opts_.swap_addresses ? req.src : req.dst;
-    f += "16wTMP";
-    f += data;
-    out.push_back(top::with_checksum(f));
+    // The Topotek 12.2 firmware form: #tp with a two-digit length, control w.
+    top::BuildSpec tmp = reply_spec(top::Header::variable, req, 'w', id, "0100200300400500600700");
+    tmp.two_digit_length = true;
+    out.push_back(top::build_frame(tmp));
     return;
   }
+  const std::string data = read_data(cmd, *resp);
   const top::DeviceForm form = form_of(id, top::Sent::reply, data.size());
   out.push_back(build(form, req.src, req.dst, 'r', id, data));
 }

@@ -16,6 +16,37 @@ bool parse_prob(std::string_view v, double& out) {
 
 bool is_hex_upper(char c) noexcept { return (c >= '0' && c <= '9') || (c >= 'A' && c <= 'F'); }
 
+// `frame` built again through BuildSpec with a lying length (one data char
+// fewer declared, the checksum right for the bytes sent: the C12
+// "#tpDU3rVER010502" shape) and/or its header's case flipped after the
+// checksum (#TP sent, summed as #tp: the SkyDroid errata). Only a #TP/#tp
+// frame with a good checksum changes; a lie needs a one-digit length and
+// 2 to 15 data chars.
+std::string malformed(const std::string& frame, bool lie, bool flip) {
+  const top::ParseResult r = top::parse_exact(frame);
+  const top::Frame& f = r.frame;
+  if (r.status != top::ParseStatus::frame || !f.checksum_ok ||
+      (f.header != top::Header::fixed && f.header != top::Header::variable))
+    return frame;
+  top::BuildSpec spec{.header = f.header,
+                      .src = f.src,
+                      .dst = f.dst,
+                      .control = f.control,
+                      .ident = f.ident_view(),
+                      .data = f.data(),
+                      // "#tpDU16wTMP...": the two-digit TMP form keeps its length.
+                      .two_digit_length = f.data_offset > top::prefix_size};
+  lie = lie && !spec.two_digit_length && spec.data.size() >= 2 &&
+        spec.data.size() <= top::max_data_hex;
+  if (!lie && !flip) return frame;
+  if (lie) spec.declared_length = static_cast<std::uint32_t>(spec.data.size() - 1);
+  if (flip) {
+    spec.checksum_header = f.header;
+    spec.header = f.header == top::Header::fixed ? top::Header::variable : top::Header::fixed;
+  }
+  return top::build_frame(spec);
+}
+
 }  // namespace
 
 bool FaultConfig::any() const noexcept {
@@ -92,10 +123,10 @@ std::optional<FaultConfig> parse_faults(std::string_view spec, std::string& erro
       if (has_value) return bad("takes no value");
       cfg.answer_corrupt = true;
     } else {
-      return bad(
-          "unknown fault (known: drop delay duplicate bad-checksum "
-          "header-case no-swap lying-length tmp-quirk split garbage hang-on crash-on hang-s "
-          "slow-on slow-ms answer-corrupt)");
+      std::string known;
+      for (const std::string_view n : fault_names())
+        known += (known.empty() ? "" : " ") + std::string(n);
+      return bad("unknown fault (known: " + known + ")");
     }
   }
   return cfg;
@@ -121,29 +152,14 @@ bool FaultInjector::on_request(const top::Frame& request) {
 
 void FaultInjector::apply(const std::string& frame, bool stream_link, std::vector<Emission>& out) {
   if (hung() || chance(cfg_.drop)) return;
-  std::string f = frame;
-  const bool plain = f.size() >= top::prefix_size + 2 && f[0] == '#' &&
-                     (f[1] == 't' || f[1] == 'T') && (f[2] == 'p' || f[2] == 'P');
-  if (plain && chance(cfg_.lying_length)) {
-    // Declare one data byte fewer (or more for empty data), then checksum
-    // the bytes as sent: the C12 "#tpDU3rVER010502" shape.
-    if ((f[1] == 't' && f[2] == 'p') || (f[1] == 'T' && f[2] == 'P')) {
-      const std::size_t data_len = f.size() - top::prefix_size - 2;
-      if (data_len >= 2 && data_len <= 15) {
-        const std::size_t lie = data_len - 1;
-        f[5] = "0123456789ABCDEF"[lie];
-        f.resize(f.size() - 2);
-        f = top::with_checksum(f);
-      }
-    }
-  }
-  if (plain && chance(cfg_.header_case)) {
-    // Flip the header's case after the checksum was computed.
-    if (f[1] == 'T' && f[2] == 'P')
-      f[1] = 't', f[2] = 'p';
-    else if (f[1] == 't' && f[2] == 'p')
-      f[1] = 'T', f[2] = 'P';
-  }
+  // Draws for #TP/#tp/#tP/#Tp frames only, as it always has (the seed's
+  // sequence depends on it).
+  const bool plain = frame.size() >= top::prefix_size + 2 &&
+                     top::header_from_string(std::string_view(frame).substr(0, 3)).has_value();
+  const bool lie = plain && chance(cfg_.lying_length);
+  const bool flip = plain && chance(cfg_.header_case);
+  std::string f = lie || flip ? malformed(frame, lie, flip) : frame;
+  // forged by hand until BuildSpec has a checksum of the caller's choice
   if (chance(cfg_.bad_checksum) && f.size() >= 2 && is_hex_upper(f[f.size() - 1])) {
     char& c = f[f.size() - 1];
     c = c == '0' ? '1' : '0';

@@ -312,7 +312,8 @@ struct Generator {
     b.data = data;
     b.header = top::choose_header(d, c.address, data.size());
     std::string f = top::build_frame(b);
-    // Corrupt the checksum: add one to its value.
+    // Corrupt the checksum: add one to its value. Forged by hand until
+    // BuildSpec has a checksum of the caller's choice.
     const std::uint8_t bad_cs =
         static_cast<std::uint8_t>(top::checksum(f.substr(0, f.size() - 2)) + 1);
     char cs[2];

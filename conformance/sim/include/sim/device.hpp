@@ -103,6 +103,10 @@ class Device {
 
  private:
   bool accepts(const top::Frame& f, Link link) const noexcept;
+  // A reply to `req` under header `h`, its addresses swapped unless no-swap:
+  // the spec, for a reply with a malformation of its own, or the frame.
+  top::BuildSpec reply_spec(top::Header h, const top::Frame& req, char control,
+                            std::string_view ident, std::string_view data) const;
   std::string make(top::Header h, const top::Frame& req, char control, std::string_view ident,
                    std::string_view data) const;
   void reply_error(const top::Frame& req, std::vector<std::string>& out) const;
