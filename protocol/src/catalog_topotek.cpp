@@ -1178,7 +1178,7 @@ constexpr FormSpec kTrcForms[] = {
 // TRA (tracker fault query)
 constexpr FieldSpec kTraFields[] = {
     {.name = "fault",
-     .kind = FieldKind::hex_u,
+     .kind = FieldKind::text,
      .width = 2,
      .note = "11 in every reply of a SIP whose tracking worked (issue 28 log, PixEagle "
              "bench); the vendor's PDF says a reply means an abnormal tracker"},

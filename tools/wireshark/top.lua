@@ -648,8 +648,8 @@ CATALOG_FIELDS["top.TRC.state"] = ProtoField.new("TRC state", "top.TRC.state", f
 CATALOG_VTYPE["top.TRC.state"] = "uint"
 CATALOG_FIELDS["top.TRA.query"] = ProtoField.new("TRA query", "top.TRA.query", ftypes.UINT32, nil, base.DEC, nil, "tracker fault (field: a real SIP (issue 28), PixEagle bench notes)")
 CATALOG_VTYPE["top.TRA.query"] = "uint"
-CATALOG_FIELDS["top.TRA.fault"] = ProtoField.new("TRA fault", "top.TRA.fault", ftypes.UINT32, nil, base.DEC, nil, "tracker fault (field: a real SIP (issue 28), PixEagle bench notes): 11 in every reply of a SIP whose tracking worked (issue 28 log, PixEagle bench); the vendor's PDF says a reply means an abnormal tracker")
-CATALOG_VTYPE["top.TRA.fault"] = "uint"
+CATALOG_FIELDS["top.TRA.fault"] = ProtoField.new("TRA fault", "top.TRA.fault", ftypes.STRING, nil, base.ASCII, nil, "tracker fault (field: a real SIP (issue 28), PixEagle bench notes): 11 in every reply of a SIP whose tracking worked (issue 28 log, PixEagle bench); the vendor's PDF says a reply means an abnormal tracker")
+CATALOG_VTYPE["top.TRA.fault"] = "string"
 CATALOG_FIELDS["top.LOC.x"] = ProtoField.new("LOC x", "top.LOC.x", ftypes.INT32, nil, base.DEC, nil, "tracking point or rectangle (field: ArduPilot AP_Mount_Topotek (PR #27568)): centre, -1000 left to +1000 right of the image")
 CATALOG_VTYPE["top.LOC.x"] = "int"
 CATALOG_FIELDS["top.LOC.y"] = ProtoField.new("LOC y", "top.LOC.y", ftypes.INT32, nil, base.DEC, nil, "tracking point or rectangle (field: ArduPilot AP_Mount_Topotek (PR #27568)): centre, -1000 top to +1000 bottom")
@@ -2357,7 +2357,7 @@ CATALOG.topotek["TRA"] = {
       } },
     { control = "r", role = "response", min_length = 2, max_length = 2, note = "",
       fields = {
-        { name = "fault", kind = "hex_u", width = 2, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.TRA.fault" },
+        { name = "fault", kind = "text", width = 2, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.TRA.fault" },
       } },
   },
 }
