@@ -38,6 +38,8 @@ bool encodable(FieldKind k) {
     case FieldKind::le_i16:
     case FieldKind::le_u16:
     case FieldKind::le_i32:
+    case FieldKind::be_i16:
+    case FieldKind::be_u16:
       return true;
     default:
       return false;

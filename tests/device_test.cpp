@@ -76,10 +76,171 @@ TEST(DeviceRules, FieldEvidenceLiftsUnsupportedOnModel) {
   ASSERT_FALSE(d.findings.empty());
   EXPECT_EQ(rejection(d, Model::c13, true), Rejection::none);
   EXPECT_EQ(rejection(d, Model::c13, false), Rejection::unsupported);
-  // The evidence names the values it saw working: PTZ 06 (follow) is not
-  // one of them, so the C13 refuses it whatever the decoder's severity.
-  EXPECT_EQ(rejection(decode_text("#TPUG2wPTZ06", Model::c13), Model::c13, true),
+  // The evidence names the values it saw working: PTZ 00 (stop) is not one
+  // of them, so the C13 refuses it whatever the decoder's severity.
+  EXPECT_EQ(rejection(decode_text("#TPUG2wPTZ00", Model::c13), Model::c13, true),
             Rejection::unsupported);
+  EXPECT_EQ(rejection(decode_text("#TPUG2wPTZ09", Model::c13), Model::c13, true),
+            Rejection::unsupported);
+}
+
+// ---- The field (issue 28; docs/sources/ardupilot.md) ----
+
+// ArduPilot's SkyDroid driver drives the C13 with GAA, GSY, GSP and PTZ
+// 05/06/07 (PR #34155: SkyDroid confirmed the C11/C13 commands are the
+// same), and a C13 station reads GAC: the field profile takes them, the
+// document profile keeps the document's support lines.
+TEST(DeviceField, C13TakesTheAttitudeAndGimbalCommandsOfTheField) {
+  for (const char* text : {"#TPUG2wGAA32", "#TPUGCrGAC000000000000", "#TPUG2wGSY0A", "#TPUG2wGSPF6",
+                           "#TPUG2wPTZ05", "#TPUG2wPTZ06", "#TPUG2wPTZ07"}) {
+    const Decoded d = decode_text(text, Model::c13);
+    const Finding* u = nullptr;
+    for (const Finding& x : d.findings)
+      if (x.code == FindingCode::unsupported_on_model) u = &x;
+    ASSERT_NE(u, nullptr) << text;
+    EXPECT_EQ(u->severity, Severity::warning) << text;
+    EXPECT_FALSE(u->quirk.empty()) << text;
+    EXPECT_EQ(rejection(d, Model::c13, true), Rejection::none) << text;
+    EXPECT_EQ(rejection(d, Model::c13, false), Rejection::unsupported) << text;
+  }
+  const FieldSupport* gsy = field_supported(Dialect::skydroid, Model::c13, "GSY", 0x0A);
+  ASSERT_NE(gsy, nullptr);
+  EXPECT_NE(gsy->evidence.find("PR #34155"), std::string_view::npos);
+  EXPECT_EQ(field_supported(Dialect::skydroid, Model::c12, "GSY", 0x0A), nullptr);
+  // GAM is not in the field evidence for the C13.
+  EXPECT_EQ(field_supported(Dialect::skydroid, Model::c13, "GAM", std::nullopt), nullptr);
+}
+
+// The field's commands and forms: taken under the field profile, refused
+// under the document's.
+TEST(DeviceField, DocumentProfileRefusesTheFieldsCommandsAndForms) {
+  const Decoded trc = decode_text("#TPUD2rTRC00", Model::sip);
+  EXPECT_TRUE(trc.findings.empty());
+  EXPECT_EQ(rejection(trc, Model::sip, true), Rejection::none);
+  EXPECT_EQ(rejection(trc, Model::sip, false), Rejection::unsupported);
+  const Decoded pa2 = decode_text("#TPUG2rPA200", Model::sip);
+  EXPECT_EQ(rejection(pa2, Model::sip, false), Rejection::unsupported);
+  // A 12-char GIA is a field form of a document's command.
+  const Decoded reply = decode_text("#tpGUCrGIA00000BB80000", Model::sip);
+  ASSERT_NE(reply.form, nullptr);
+  EXPECT_TRUE(reply.form->from_field());
+  EXPECT_EQ(rejection(reply, Model::sip, true), Rejection::none);
+  EXPECT_EQ(rejection(reply, Model::sip, false), Rejection::invalid);
+  // The document's GIA switch stays clean under both.
+  const Decoded on = decode_text("#TPUG2wGIA01", Model::sip);
+  EXPECT_EQ(rejection(on, Model::sip, false), Rejection::none);
+}
+
+// GIA 01: the document pushes GIC (Topotek 4.3.6), the field GIA frames
+// (ArduPilot's driver, a real SIP). Without a profile the document's
+// stream answers stream_enabled_by(), and a reader of traffic takes both
+// GIC and GIA as pushes.
+TEST(DeviceField, GiaEnablePushesGiaUnderTheFieldProfile) {
+  const StreamSpec* doc = stream_enabled_by(Dialect::topotek, "GIA");
+  ASSERT_NE(doc, nullptr);
+  EXPECT_EQ(doc->push, "GIC");
+  EXPECT_FALSE(doc->from_field());
+  EXPECT_EQ(stream_enabled_by(Dialect::topotek, "GIA", Profile::document), doc);
+  const StreamSpec* field = stream_enabled_by(Dialect::topotek, "GIA", Profile::field);
+  ASSERT_NE(field, nullptr);
+  EXPECT_EQ(field->push, "GIA");
+  EXPECT_EQ(field->request, "GIA");
+  EXPECT_TRUE(field->from_field());
+  EXPECT_EQ(field->sender, Sender::device);
+  EXPECT_NE(field->evidence.find("PR #28455"), std::string_view::npos);
+  // GAA has no field stream: the field profile gives the document's.
+  EXPECT_EQ(stream_enabled_by(Dialect::topotek, "GAA", Profile::field)->push, "GAC");
+  // Which frames are pushes.
+  EXPECT_EQ(stream_of(Dialect::topotek, "GIC"), doc);
+  EXPECT_EQ(stream_of(Dialect::topotek, "GIA"), field);
+  EXPECT_EQ(stream_of(Dialect::topotek, "GIA", Profile::document), nullptr);
+  EXPECT_EQ(stream_of(Dialect::topotek, "GIA", Profile::field), field);
+  // The tracking box: pushed after LOC, a field stream only.
+  const StreamSpec* oft = stream_of(Dialect::topotek, "OFT");
+  ASSERT_NE(oft, nullptr);
+  EXPECT_EQ(oft->request, "LOC");
+  EXPECT_EQ(stream_enabled_by(Dialect::topotek, "LOC"), nullptr);
+  EXPECT_EQ(stream_enabled_by(Dialect::topotek, "LOC", Profile::field), oft);
+  // The stream table lists every field stream after the document's of the
+  // same request.
+  bool field_seen = false;
+  for (const StreamSpec& s : streams()) {
+    if (s.request == "GIA" && s.dialect == Dialect::topotek) {
+      if (s.from_field())
+        field_seen = true;
+      else
+        EXPECT_FALSE(field_seen);
+    }
+  }
+  // A GIA write is still echoed (the stream's frames come from the device).
+  const CommandSpec* gia = find_command(Dialect::topotek, "GIA");
+  ASSERT_NE(gia, nullptr);
+  EXPECT_EQ(write_reply(*gia), WriteReply::echo);
+}
+
+TEST(DeviceField, FormsAndTraitsOfTheFieldNameTheirSources) {
+  // #tp kept on a 2-char reply (issue 28: #tpPG2rGMS0089 -> #tpGP2rGMS018A).
+  const DeviceForm gms = device_form(Model::sip, "GMS", 'r', Sent::reply, 2, Profile::field);
+  EXPECT_EQ(gms.header, Header::variable);
+  EXPECT_EQ(gms.source, Source::field);
+  EXPECT_NE(gms.evidence.find("#tpGP2rGMS018A"), std::string_view::npos);
+  EXPECT_EQ(device_form(Model::sip, "GMS", 'r', Sent::reply, 2, Profile::document).header,
+            Header::fixed);
+  const Trait* keep = find_trait(TraitKind::keeps_request_header, Model::sip, Profile::field);
+  ASSERT_NE(keep, nullptr);
+  EXPECT_EQ(find_trait(TraitKind::keeps_request_header, Model::sip, Profile::document), nullptr);
+  // The GIA reply to a GIC query.
+  EXPECT_EQ(device_form(Model::sip, "GIA", 'r', Sent::reply, 12, Profile::field).source,
+            Source::field);
+  // C13 GSY sign: per identifier, field only.
+  const Trait* yaw = find_trait(TraitKind::yaw_inverted, Model::c13, Profile::field);
+  ASSERT_NE(yaw, nullptr);
+  EXPECT_EQ(yaw->idents, "GSY");
+  EXPECT_NE(yaw->evidence.find("custom-GCS"), std::string_view::npos);
+  EXPECT_EQ(find_trait(TraitKind::yaw_inverted, Model::c13, Profile::document), nullptr);
+  // The C12 pitch trait stays, and its evidence gives the sources against.
+  const Trait* pitch = find_trait(TraitKind::pitch_inverted, Model::c12, Profile::field);
+  ASSERT_NE(pitch, nullptr);
+  EXPECT_NE(pitch->evidence.find("Against"), std::string_view::npos);
+  EXPECT_NE(pitch->evidence.find("log114/PTZControl"), std::string_view::npos);
+  // The C10 Pro tool's double-checksum frame.
+  const Trait* dbl = find_trait(TraitKind::double_checksum, Model::c10pro, Profile::field);
+  ASSERT_NE(dbl, nullptr);
+  EXPECT_NE(dbl->evidence.find("#TPUG2wPTZ056FEB"), std::string_view::npos);
+  EXPECT_EQ(to_string(TraitKind::double_checksum), "double-checksum");
+  EXPECT_EQ(to_string(TraitKind::keeps_request_header), "keeps-request-header");
+  // Lengths that count bytes: the C12 palette and a C14 Pro's range.
+  const ParseResult img = parse_exact("#TPDU1rIMG0141");
+  ASSERT_EQ(img.status, ParseStatus::frame);
+  const DeviceForm* f = recorded_form(Dialect::skydroid, Model::c12, img.frame, Sent::reply);
+  ASSERT_NE(f, nullptr);
+  EXPECT_TRUE(f->length_in_bytes);
+  const ParseResult slr = parse_exact("#TPDU2rSLR0018BE");
+  ASSERT_EQ(slr.status, ParseStatus::frame);
+  EXPECT_EQ(slr.frame.data(), "0018");
+  const DeviceForm* s = recorded_form(Dialect::skydroid, Model::unknown, slr.frame, Sent::reply);
+  ASSERT_NE(s, nullptr);
+  EXPECT_TRUE(s->length_in_bytes);
+  EXPECT_EQ(s->models, 0);  // a C14 Pro: no model of the catalog
+}
+
+// A device frame of a recorded form decodes as the device sent it: the C12
+// palette's tp-length becomes info naming the evidence.
+TEST(DeviceField, LengthInBytesReplyDecodesWithItsEvidence) {
+  const ParseResult r = parse_exact("#TPDU1rIMG0141");
+  ASSERT_EQ(r.status, ParseStatus::frame);
+  DecodeOptions o;
+  o.model = Model::c12;
+  o.role = Role::response;
+  const Decoded d = decode(r.frame, o);
+  ASSERT_NE(d.form, nullptr);
+  for (const Finding& x : d.findings) {
+    EXPECT_NE(x.severity, Severity::error);
+    if (x.code == FindingCode::tp_length) {
+      EXPECT_EQ(x.severity, Severity::info);
+      EXPECT_NE(x.quirk.find("log114"), std::string_view::npos);
+    }
+  }
 }
 
 TEST(DeviceRules, UnsupportedWinsOverInvalid) {

@@ -38,7 +38,9 @@ int main() {
   std::printf(
       "Generated from `protocol/src/catalog_*.cpp` by `tools/catalog_md.cpp`; do not edit.\n"
       "Widths are in characters (bytes for binary fields); width 0 is the rest of the data.\n"
-      "Values are `raw * scale` in the unit given; ranges are in that unit.\n\n");
+      "Values are `raw * scale` in the unit given; ranges are in that unit.\n"
+      "Commands and forms of the field (neither document gives them) name their source;\n"
+      "topsim's document profile does not take them (docs/FIELD.md).\n\n");
   for (top::Dialect d : {top::Dialect::skydroid, top::Dialect::topotek}) {
     auto cmds = top::commands(d);
     std::printf("## %s (%zu commands)\n\n", d == top::Dialect::skydroid ? "SkyDroid" : "Topotek",
@@ -49,6 +51,9 @@ int main() {
       std::printf("%s; address class %c; models: %s.", std::string(c.section).c_str(), c.address,
                   models(c.models).c_str());
       if (!c.note.empty()) std::printf(" %s.", std::string(c.note).c_str());
+      if (c.from_field())
+        std::printf(" Neither document lists it; field evidence: %s.",
+                    std::string(c.evidence).c_str());
       std::printf("\n\n");
       for (const top::FormSpec& f : c.forms) {
         std::printf(
@@ -56,6 +61,8 @@ int main() {
             std::string(top::to_string(f.role)).c_str(), f.min_length,
             f.min_length == f.max_length ? "" : ("-" + std::to_string(f.max_length)).c_str(),
             f.note.empty() ? "" : ": ", std::string(f.note).c_str());
+        if (f.from_field() && !c.from_field())
+          std::printf("  - field form, not the document's: %s\n", cell(f.evidence).c_str());
         for (const top::FieldSpec& s : f.fields) {
           std::string line = "  - `" + std::string(s.name) + "` " +
                              std::string(top::to_string(s.kind)) + " width " +

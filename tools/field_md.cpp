@@ -48,19 +48,23 @@ int main() {
        "says the firmware takes a command the document does not list.\n\n";
   o += "## Streams\n\nWhich write turns on which frames (topdump counts them toward the "
        "stream's rate, never as requests to answer).\n\n";
-  o += "| dialect | write | frames | sent by | rate | section | note |\n";
-  o += "|---|---|---|---|---|---|---|\n";
+  o += "| dialect | write | frames | sent by | rate | source | section | note |\n";
+  o += "|---|---|---|---|---|---|---|---|\n";
   for (const top::StreamSpec& s : top::streams())
     o += "| " + std::string(top::to_string(s.dialect)) + " | " + std::string(s.request) + " | " +
          std::string(s.push) + " | " + (s.sender == top::Sender::device ? "device" : "client") +
-         " | " + (s.rate_in_data ? "data, Hz" : "on/off") + " | " + std::string(s.section) + " | " +
-         cell(s.note) + " |\n";
+         " | " + (s.rate_in_data ? "data, Hz" : "on/off") + " | " +
+         (s.from_field() ? "field: " + cell(s.evidence) : std::string("document")) + " | " +
+         std::string(s.section) + " | " + cell(s.note) + " |\n";
   o += "\n## What a device answers to a write\n\nEvery write is echoed with the addresses "
        "swapped (SkyDroid 2.3.1) except:\n\n";
   o += "| dialect | command | answer | section |\n|---|---|---|---|\n";
   for (top::Dialect d : {top::Dialect::skydroid, top::Dialect::topotek})
     for (const top::CommandSpec& c : top::commands(d)) {
       if (!c.has_control('w') || top::is_error_reply(c.ident)) continue;
+      // A push of the device (the field's OFT) is no write to answer.
+      const top::StreamSpec* pushed = top::stream_of(d, c.ident);
+      if (pushed && pushed->sender == top::Sender::device && pushed->request != c.ident) continue;
       const top::WriteReply r = top::write_reply(c);
       if (r == top::WriteReply::echo) continue;
       o += "| " + std::string(top::to_string(d)) + " | " + std::string(c.ident) + " | " +
@@ -72,16 +76,21 @@ int main() {
   o += "| dialect | models | frame | sent as | header | addresses | source | evidence |\n";
   o += "|---|---|---|---|---|---|---|---|\n";
   for (const top::DeviceForm& f : top::device_forms())
-    o += "| " + std::string(top::to_string(f.dialect)) + " | " + models(f.models) + " | " +
+    o += "| " + std::string(top::to_string(f.dialect)) + " | " +
+         (f.models ? models(f.models) : std::string("none of the catalog's")) + " | " +
          std::string(f.ident) + " `" + std::string(1, f.control) + "` | " +
          (f.sent == top::Sent::push ? "push" : "reply") + " | `" +
-         std::string(top::to_string(f.header)) + "` | " + std::string(top::to_string(f.order)) +
-         " | " + std::string(top::to_string(f.source)) + " | " + cell(f.evidence) + " |\n";
+         std::string(top::to_string(f.header)) + "`" +
+         (f.length_in_bytes ? ", length counts bytes" : "") + " | " +
+         std::string(top::to_string(f.order)) + " | " + std::string(top::to_string(f.source)) +
+         " | " + cell(f.evidence) + " |\n";
   o += "\n## Firmware traits\n\n";
-  o += "| trait | dialect | models | value | source | evidence |\n|---|---|---|---|---|---|\n";
+  o += "| trait | dialect | models | commands | value | source | evidence |\n"
+       "|---|---|---|---|---|---|---|\n";
   for (const top::Trait& t : top::traits())
     o += "| " + std::string(top::to_string(t.kind)) + " | " +
          std::string(top::to_string(t.dialect)) + " | " + models(t.models) + " | " +
+         (t.idents.empty() ? std::string("all") : std::string(t.idents)) + " | " +
          (t.value ? std::to_string(t.value) : std::string("on")) + " | " +
          std::string(top::to_string(t.source)) + " | " + cell(t.evidence) + " |\n";
   o += "\n## Ports\n\nFrom `top::known_ports()` (src/ports.cpp); topsim serves a port for the "
@@ -99,6 +108,24 @@ int main() {
     o += "| " + std::string(top::to_string(s.dialect)) + " | " + models(s.models) + " | " +
          std::string(s.ident) + " | " + (v.empty() ? "any" : v) + " | " + cell(s.evidence) + " |\n";
   }
+  o += "\n## Commands and forms of the field in the catalog\n\n"
+       "Neither document gives these; the catalog (docs/CATALOG.md) decodes them, and "
+       "topsim's document profile refuses them.\n\n";
+  o += "| dialect | command | form | data length | source |\n|---|---|---|---|---|\n";
+  for (top::Dialect d : {top::Dialect::skydroid, top::Dialect::topotek})
+    for (const top::CommandSpec& c : top::commands(d)) {
+      if (c.from_field())
+        o += "| " + std::string(top::to_string(d)) + " | " + std::string(c.ident) + " (" +
+             cell(c.title) + ") | every form | | " + cell(c.evidence) + " |\n";
+      for (const top::FormSpec& f : c.forms) {
+        if (!f.from_field()) continue;
+        o += "| " + std::string(top::to_string(d)) + " | " + std::string(c.ident) + " | `" +
+             std::string(1, f.control) + "` " + std::string(top::to_string(f.role)) + " | " +
+             std::to_string(f.min_length) +
+             (f.min_length == f.max_length ? "" : "-" + std::to_string(f.max_length)) + " | " +
+             cell(f.evidence) + " |\n";
+      }
+    }
   std::fwrite(o.data(), 1, o.size(), stdout);
   return std::fflush(stdout) == 0 && !std::ferror(stdout) ? 0 : 1;
 }

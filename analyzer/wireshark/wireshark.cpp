@@ -90,11 +90,13 @@ std::string value_type(const top::FieldSpec& s) {
     case K::dec_u:
       return s.scale == 1.0 && s.width > 0 && s.width <= 9 ? "uint" : "double";
     case K::le_u16:
+    case K::be_u16:
       return s.scale == 1.0 ? "uint" : "double";
     case K::hex_s:
       return s.scale == 1.0 && s.width > 0 && s.width <= 8 ? "int" : "double";
     case K::le_i16:
     case K::le_i32:
+    case K::be_i16:
       return s.scale == 1.0 ? "int" : "double";
   }
   return "string";

@@ -398,6 +398,41 @@ constexpr FormSpec kPushForms[] = {
      .fields = kPushFields},
 };
 
+// 4.3.6 GIA: the document's switch, and the field's attitude frame. A real
+// SIP answers the GIC query with GIA frames of 12 hex chars, and
+// ArduPilot's Topotek driver reads its attitude only from them.
+constexpr FieldSpec kGiaAttitudeFields[] = {
+    {.name = "yaw", .kind = FieldKind::hex_s, .width = 4, .scale = 0.01, .unit = "deg"},
+    {.name = "pitch",
+     .kind = FieldKind::hex_s,
+     .width = 4,
+     .scale = 0.01,
+     .unit = "deg",
+     .note = "down positive on the wire: AP_Mount_Topotek negates it on read, ArduPilot's "
+             "SIM_Topotek sends 30 deg down as 0BB8"},
+    {.name = "roll", .kind = FieldKind::hex_s, .width = 4, .scale = 0.01, .unit = "deg"},
+};
+constexpr FormSpec kGiaForms[] = {
+    {.control = 'w', .min_length = 2, .max_length = 2, .fields = kPushFields},
+    kQueryForm,
+    {.control = 'r',
+     .role = Role::response,
+     .min_length = 2,
+     .max_length = 2,
+     .fields = kPushFields},
+    {.control = 'r',
+     .role = Role::response,
+     .min_length = 12,
+     .max_length = 12,
+     .fields = kGiaAttitudeFields,
+     .note = "attitude: the reply to a GIC query and the frame pushed after GIA 01, yaw, "
+             "pitch, roll in 0.01 deg",
+     .evidence = "a real SIP (firmware 1.6.26.R.D) answers #TPPG2rGIC0035 with #tpGPCrGIA + "
+                 "12 hex (issue 28 log; PixEagle bench notes); AP_Mount_Topotek reads its "
+                 "attitude from GIA after #TPUG2wGIA013E (its header @02246a61 parsed GAC, "
+                 "@3d293ff8 GIA: ArduPilot PR #28455 per issue 28)"},
+};
+
 // 4.4 GMS (gimbal motors)
 constexpr FieldSpec kGmsFields[] = {
     {.name = "motors", .kind = FieldKind::enum_hex, .width = 2, .enums = kOnOffHex},
@@ -820,12 +855,28 @@ constexpr FieldSpec kLrfResultFields[] = {
      .none = "ERR",
      .note = "X1X2X3X4X5.X6, 0.1 m; ERR: measurement failed"},
 };
+constexpr FieldSpec kLrfFieldFields[] = {
+    {.name = "distance",
+     .kind = FieldKind::number,
+     .width = 5,
+     .note = "5 chars, no point in the one reply seen; its unit is not established "
+             "(ArduPilot's driver, expecting X1X2X3X4X5.X6, would read 50001.4 m from "
+             "#tpMU5wLRF500002E)"},
+};
 constexpr FormSpec kLrfForms[] = {
     {.control = 'w',
      .min_length = 2,
      .max_length = 2,
      .fields = kLrfControlFields,
      .note = "control, sent to M on long-range versions"},
+    {.control = 'w',
+     .role = Role::response,
+     .min_length = 5,
+     .max_length = 5,
+     .fields = kLrfFieldFields,
+     .note = "result in 5 digits, sent by M",
+     .evidence = "a real Topotek unit answered #tpMU5wLRF500002E (issue 28 log): 5 data chars, "
+                 "not the document's X1X2X3X4X5.X6"},
     {.control = 'w',
      .role = Role::response,
      .min_length = 3,
@@ -1053,6 +1104,168 @@ constexpr FieldSpec kEntFields[] = {
 };
 constexpr FormSpec kEntForms[] = {
     {.control = 'w', .min_length = 2, .max_length = 2, .fields = kEntFields},
+};
+
+// ---------------------------------------------------------------------------
+// The field: identifiers neither document lists, each with its source
+// (docs/sources/ardupilot.md).
+
+// PA2 (model name)
+constexpr FieldSpec kModelNameFields[] = {
+    {.name = "model",
+     .kind = FieldKind::text,
+     .width = 0,
+     .note = "000000000 on units whose name was not set at production (PR #27568)"},
+};
+constexpr FormSpec kPa2Forms[] = {
+    kQueryForm,
+    {.control = 'r',
+     .role = Role::response,
+     .min_length = 1,
+     .max_length = 15,
+     .fields = kModelNameFields,
+     .evidence = "AP_Mount_Topotek takes the reply's data as the model name (PR #27568); "
+                 "ArduPilot's SIM_Topotek answers #TPUG6rPA2SIM_TPBA"},
+};
+
+// TRC (tracking): writes, and the state in data char 1
+constexpr EnumValue kTrcAction[] = {
+    {0x00, "exit"},
+    {0x01, "cancel_to_waiting"},
+    {0x02, "prepare"},
+};
+constexpr FieldSpec kTrcActionFields[] = {
+    {.name = "action",
+     .kind = FieldKind::enum_hex,
+     .width = 2,
+     .enums = kTrcAction,
+     .note = "AP_Mount_Topotek sends 02 before a LOC when stopped, 01 to cancel while "
+             "tracking, else 00 (PR #27568); PixEagle's bench: 02 prepare, 01 cancel the "
+             "target, 00 exit"},
+};
+constexpr EnumValue kTrcState[] = {
+    {'0', "stopped"},          {'1', "waiting"},          {'2', "tracking"},
+    {'3', "temporarily_lost"}, {'4', "lens_unsupported"},
+};
+constexpr FieldSpec kTrcStateFields[] = {
+    {.name = "x0", .kind = FieldKind::dec_u, .width = 1, .note = "0 in every reply seen"},
+    {.name = "state",
+     .kind = FieldKind::enum_char,
+     .width = 1,
+     .enums = kTrcState,
+     .note = "0 stopped, 1 waiting, 2 tracking (AP_Mount_Topotek, PR #27568); 3 temporarily "
+             "lost (PixEagle bench on a SIP, the vendor's tracking PDF section 3; ArduPilot "
+             "ignores it); 4 this lens does not track (PR #31768)"},
+};
+constexpr FormSpec kTrcForms[] = {
+    {.control = 'w',
+     .min_length = 2,
+     .max_length = 2,
+     .fields = kTrcActionFields,
+     .evidence = "AP_Mount_Topotek sends #TPUD2wTRC0254, #TPUD2wTRC0153 and #TPUD2wTRC0052 "
+                 "(PR #27568); PixEagle sends the same to a real SIP"},
+    kQueryForm,
+    {.control = 'r',
+     .role = Role::response,
+     .min_length = 2,
+     .max_length = 2,
+     .fields = kTrcStateFields,
+     .evidence = "a real SIP answers #TPPD2rTRC0048 with #TPDP2rTRC0048 within 2 ms (issue 28 "
+                 "log); AP_Mount_Topotek reads the state from data char 1 (PR #27568, "
+                 "PR #31768)"},
+};
+
+// TRA (tracker fault query)
+constexpr FieldSpec kTraFields[] = {
+    {.name = "fault",
+     .kind = FieldKind::text,
+     .width = 2,
+     .note = "11 in every reply of a SIP whose tracking worked (issue 28 log, PixEagle "
+             "bench); the vendor's PDF says a reply means an abnormal tracker"},
+};
+constexpr FormSpec kTraForms[] = {
+    kQueryForm,
+    {.control = 'r',
+     .role = Role::response,
+     .min_length = 2,
+     .max_length = 2,
+     .fields = kTraFields,
+     .evidence = "a real SIP answers #TPPD2rTRA0046 with #TPDP2rTRA1148 (issue 28 log, "
+                 "PixEagle bench notes)"},
+};
+
+// LOC (tracking point or rectangle), 10 binary bytes, big-endian
+constexpr EnumValue kLocMode[] = {
+    {0x0001, "rectangle"},
+    {0x0009, "point"},
+};
+constexpr FieldSpec kLocFields[] = {
+    {.name = "x",
+     .kind = FieldKind::be_i16,
+     .width = 2,
+     .min = -1000,
+     .max = 1000,
+     .note = "centre, -1000 left to +1000 right of the image"},
+    {.name = "y",
+     .kind = FieldKind::be_i16,
+     .width = 2,
+     .min = -1000,
+     .max = 1000,
+     .note = "centre, -1000 top to +1000 bottom"},
+    {.name = "width",
+     .kind = FieldKind::be_u16,
+     .width = 2,
+     .min = 0,
+     .max = 2000,
+     .note = "0-2000 of the image width"},
+    {.name = "height",
+     .kind = FieldKind::be_u16,
+     .width = 2,
+     .min = 0,
+     .max = 2000,
+     .note = "0-2000 of the image height"},
+    {.name = "mode",
+     .kind = FieldKind::be_u16,
+     .width = 2,
+     .enums = kLocMode,
+     .note = "00 then 09 point (fuzzy click) or 01 rectangle (AP_Mount_Topotek, PixEagle); "
+             "the vendor PDF's example has 00 08, and 00 00 also works (PixEagle)"},
+};
+constexpr FormSpec kLocForms[] = {
+    {.control = 'w',
+     .role = Role::request,
+     .min_length = 10,
+     .max_length = 10,
+     .fields = kLocFields,
+     .evidence = "AP_Mount_Topotek sends #tpUDAwLOC + 10 bytes (PR #27568); PixEagle sent "
+                 "#tpPDAwLOC 00 00 00 00 00 3E 00 6F 00 09 E7 to a real SIP, which then "
+                 "tracked"},
+};
+
+// OFT (tracking box push), 9 binary bytes, little-endian
+constexpr EnumValue kOftStatus[] = {
+    {'1', "stopped"},
+    {'2', "tracking"},
+};
+constexpr FieldSpec kOftFields[] = {
+    {.name = "x", .kind = FieldKind::le_u16, .width = 2, .unit = "px", .note = "top left, of 1920"},
+    {.name = "y", .kind = FieldKind::le_u16, .width = 2, .unit = "px", .note = "top left, of 1080"},
+    {.name = "width", .kind = FieldKind::le_u16, .width = 2, .unit = "px"},
+    {.name = "height", .kind = FieldKind::le_u16, .width = 2, .unit = "px"},
+    {.name = "status",
+     .kind = FieldKind::enum_char,
+     .width = 1,
+     .enums = kOftStatus,
+     .note = "2 while tracking; 1 with an all-zero box after a cancel"},
+};
+constexpr FormSpec kOftForms[] = {
+    {.control = 'w',
+     .role = Role::response,
+     .min_length = 9,
+     .max_length = 9,
+     .fields = kOftFields,
+     .evidence = "a real SIP pushes #tpDP9wOFT + 9 bytes at about video rate while it tracks "
+                 "(PixEagle bench: 99 in one session; the vendor's tracking PDF section 7)"},
 };
 
 // Appendix II only (the checksum example): no layout.
@@ -1325,8 +1538,9 @@ constexpr CommandSpec kTable[] = {
      .title = "attitude push (gyroscope)",
      .section = "Topotek 4.3.6",
      .models = sip,
-     .forms = kPushForms,
-     .note = "01 enable, 00 disable"},
+     .forms = kGiaForms,
+     .note = "01 enable, 00 disable; the field: real units answer the GIC query with a "
+             "12-char GIA attitude frame, and push it after GIA 01"},
     {.ident = "GMS",
      .dialect = Dialect::topotek,
      .address = 'G',
@@ -1581,6 +1795,69 @@ constexpr CommandSpec kTable[] = {
      .forms = kAppendixForms,
      .note = "layout not documented (appendix only): appears only in the "
              "checksum example #TPUD2wAWB0144"},
+    // The field
+    {.ident = "PA2",
+     .dialect = Dialect::topotek,
+     .address = 'G',
+     .title = "model name",
+     .section = "field: ArduPilot AP_Mount_Topotek (PR #27568)",
+     .models = sip,
+     .forms = kPa2Forms,
+     .note = "read until answered by ArduPilot's driver, #TPUG2rPA2002A; the reply's data "
+             "is the model name",
+     .evidence = "AP_Mount_Topotek.cpp sends and parses PA2 (PR #27568, "
+                 "https://github.com/ArduPilot/ardupilot/pull/27568)"},
+    {.ident = "TRC",
+     .dialect = Dialect::topotek,
+     .address = 'D',
+     .title = "tracking",
+     .section = "field: ArduPilot AP_Mount_Topotek (PR #27568)",
+     .models = sip,
+     .forms = kTrcForms,
+     .note = "write 00 exit, 01 cancel to waiting, 02 prepare; the read's data char 1 is the "
+             "state: 0 stopped, 1 waiting, 2 tracking, 3 temporarily lost, 4 this lens does "
+             "not track; the state is not an acknowledgement (PixEagle: it changes ~0.4 s "
+             "after a LOC)",
+     .evidence = "AP_Mount_Topotek.cpp (PR #27568 https://github.com/ArduPilot/ardupilot/pull/"
+                 "27568, state 4: PR #31768 https://github.com/ArduPilot/ardupilot/pull/31768); "
+                 "a real SIP's log (issue 28); PixEagle bench notes and the vendor's tracking "
+                 "PDF (state 3)"},
+    {.ident = "TRA",
+     .dialect = Dialect::topotek,
+     .address = 'D',
+     .title = "tracker fault",
+     .section = "field: a real SIP (issue 28), PixEagle bench notes",
+     .models = sip,
+     .forms = kTraForms,
+     .note = "answered 11 on a healthy tracker: not a health acknowledgement",
+     .evidence = "a real SIP answered #TPPD2rTRA0046 with #TPDP2rTRA1148 (issue 28 log; "
+                 "PixEagle bench notes; the vendor's serial example #TPUD2rTRA004B -> "
+                 "#TPDU2rTRA114D)"},
+    {.ident = "LOC",
+     .dialect = Dialect::topotek,
+     .address = 'D',
+     .title = "tracking point or rectangle",
+     .section = "field: ArduPilot AP_Mount_Topotek (PR #27568)",
+     .models = sip,
+     .forms = kLocForms,
+     .note = "10 binary bytes: centre x, centre y, width, height as big-endian 16-bit on a "
+             "+/-1000 grid, then 00 and 09 point or 01 rectangle; tracking starts (TRC state "
+             "2) and OFT frames follow",
+     .evidence = "AP_Mount_Topotek.cpp set_tracking() (PR #27568 https://github.com/ArduPilot/"
+                 "ardupilot/pull/27568); PixEagle bench notes on a real SIP"},
+    {.ident = "OFT",
+     .dialect = Dialect::topotek,
+     .address = 'D',
+     .title = "tracking box",
+     .section = "field: PixEagle bench notes on a real SIP",
+     .models = sip,
+     .forms = kOftForms,
+     .note = "pushed at about 30 Hz while tracking: 9 binary bytes, x, y, width, height as "
+             "little-endian 16-bit pixels (LOC is big-endian), then status '2' tracking or "
+             "'1' stopped; never attitude",
+     .evidence = "PixEagle bench notes (a real SIP, firmware 1.6.26.R.D) and the vendor's "
+                 "tracking PDF section 7; issue 28: the unit pushes OFT at about 30 Hz while "
+                 "it tracks"},
 };
 
 }  // namespace

@@ -213,16 +213,20 @@ void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes, std::
     }
     case FieldKind::le_i16:
     case FieldKind::le_u16:
-    case FieldKind::le_i32: {
+    case FieldKind::le_i32:
+    case FieldKind::be_i16:
+    case FieldKind::be_u16: {
       std::size_t w = spec.kind == FieldKind::le_i32 ? 4 : 2;
       if (bytes.size() != w) return bad("needs ", std::to_string(w), " bytes");
+      const bool big = spec.kind == FieldKind::be_i16 || spec.kind == FieldKind::be_u16;
       std::uint32_t u = 0;
       for (std::size_t i = 0; i < w; ++i)
-        u |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i])) << (8 * i);
+        u |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i]))
+             << (8 * (big ? w - 1 - i : i));
       std::int64_t iv = 0;
-      if (spec.kind == FieldKind::le_i16)
+      if (spec.kind == FieldKind::le_i16 || spec.kind == FieldKind::be_i16)
         iv = static_cast<std::int16_t>(static_cast<std::uint16_t>(u));
-      else if (spec.kind == FieldKind::le_u16)
+      else if (spec.kind == FieldKind::le_u16 || spec.kind == FieldKind::be_u16)
         iv = static_cast<std::uint16_t>(u);
       else
         iv = static_cast<std::int32_t>(u);

@@ -25,6 +25,8 @@ bool exact_decimal(const FieldValue& f, std::int64_t& mantissa, int& decimals) n
     case FieldKind::le_i16:
     case FieldKind::le_u16:
     case FieldKind::le_i32:
+    case FieldKind::be_i16:
+    case FieldKind::be_u16:
       break;
     default:
       return false;

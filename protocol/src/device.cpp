@@ -32,9 +32,10 @@ constexpr std::string_view kWriteReply[] = {"echo", "data", "file index", "nothi
 static_assert(std::size(kWriteReply) == static_cast<std::size_t>(WriteReply::nothing) + 1);
 constexpr std::string_view kOrder[] = {"swapped", "request order"};
 static_assert(std::size(kOrder) == static_cast<std::size_t>(Order::request_order) + 1);
-constexpr std::string_view kTraitKind[] = {"yaw-inverted", "pitch-inverted", "answers-to-source",
-                                           "link-by-source", "speed-refresh"};
-static_assert(std::size(kTraitKind) == static_cast<std::size_t>(TraitKind::speed_refresh) + 1);
+constexpr std::string_view kTraitKind[] = {
+    "yaw-inverted",  "pitch-inverted",       "answers-to-source", "link-by-source",
+    "speed-refresh", "keeps-request-header", "double-checksum"};
+static_assert(std::size(kTraitKind) == static_cast<std::size_t>(TraitKind::double_checksum) + 1);
 constexpr std::string_view kLink[] = {"network", "uart"};
 static_assert(std::size(kLink) == static_cast<std::size_t>(Link::uart) + 1);
 constexpr std::string_view kRejection[] = {"none", "unsupported", "invalid"};
@@ -66,6 +67,29 @@ constexpr StreamSpec kStreams[] = {
      .section = "Topotek 3.6",
      .note = "GIA 01 switches the gyroscope attitude push on, 00 off; the rate "
              "is the device's"},
+    // The field: pushes the documents do not give. After the document's
+    // entry of the same request, so that stream_enabled_by() without a
+    // profile keeps the document's.
+    {.dialect = Dialect::topotek,
+     .request = "GIA",
+     .push = "GIA",
+     .section = "field: ArduPilot AP_Mount_Topotek (PR #28455); a real SIP (issue 28)",
+     .note = "GIA 01 pushes 12-char GIA attitude frames (yaw, pitch down positive, roll in "
+             "0.01 deg); ArduPilot's driver re-sends the enable once a second and is healthy "
+             "only while GIA frames arrive",
+     .evidence =
+         "AP_Mount_Topotek.cpp sends #TPUG2wGIA013E once a second and parses only GIA "
+         "for attitude (it parsed GAC before: PR #28455 per issue 28); ArduPilot's SIM_Topotek "
+         "pushes #TPUGCrGIA at 10 Hz; a real SIP answers the GIC query with a 12-char "
+         "GIA (issue 28 log, PixEagle bench notes)"},
+    {.dialect = Dialect::topotek,
+     .request = "LOC",
+     .push = "OFT",
+     .section = "field: PixEagle bench notes on a real SIP",
+     .note = "a tracking start (LOC) pushes OFT tracking boxes at about video rate while the "
+             "unit tracks; after a cancel one OFT with an all-zero box and status 1",
+     .evidence = "PixEagle bench notes (a real SIP: 99 OFT in one session; the vendor's "
+                 "tracking PDF section 7); issue 28: OFT at about 30 Hz while it tracks"},
 };
 
 constexpr DeviceForm kForms[] = {
@@ -148,6 +172,52 @@ constexpr DeviceForm kForms[] = {
      .order = Order::swapped,
      .source = Source::field,
      .evidence = "a Topotek device answered #tpGPCrGACFF36ED5A0048DE to a network client"},
+    {.dialect = Dialect::topotek,
+     .models = sip,
+     .ident = "GIA",
+     .control = 'r',
+     .sent = Sent::reply,
+     .header = Header::variable,
+     .order = Order::swapped,
+     .source = Source::field,
+     .evidence = "a real SIP (firmware 1.6.26.R.D) answered the GIC query #TPPG2rGIC0035 with "
+                 "#tpGPCrGIA + 12 hex (issue 28 log; PixEagle: GIC queries consistently got "
+                 "GIA replies)"},
+    {.dialect = Dialect::topotek,
+     .models = sip,
+     .ident = "GMS",
+     .control = 'r',
+     .sent = Sent::reply,
+     .header = Header::variable,
+     .order = Order::swapped,
+     .source = Source::field,
+     .evidence = "a real Topotek unit answered #tpPG2rGMS0089 with #tpGP2rGMS018A: #tp kept on "
+                 "a 2-data-char reply (issue 28 log)"},
+    // Lengths that count bytes. The SLR reply is of a C14 Pro, a model the
+    // catalog does not list: no model bit, so only a capture of unknown
+    // model matches it.
+    {.dialect = Dialect::skydroid,
+     .models = c12,
+     .ident = "IMG",
+     .control = 'r',
+     .sent = Sent::reply,
+     .header = Header::fixed,
+     .order = Order::swapped,
+     .source = Source::field,
+     .evidence = "a C12 Android app (log114/PTZControl C12Service.kt) waits for #TPDU1rIMG and "
+                 "takes the 2 chars after IMG as the palette: length 1 for 2 data chars",
+     .length_in_bytes = true},
+    {.dialect = Dialect::skydroid,
+     .ident = "SLR",
+     .control = 'r',
+     .sent = Sent::reply,
+     .header = Header::fixed,
+     .order = Order::swapped,
+     .source = Source::field,
+     .evidence = "a real device answered the range read with #TPDU2rSLR0018BE, data 0018 = 24 dm "
+                 "under length 2 (a Qt ground station's lgs::SkydroidSdkClient note; a C14 Pro "
+                 "per issue 28)",
+     .length_in_bytes = true},
 };
 
 constexpr Trait kTraits[] = {
@@ -155,14 +225,34 @@ constexpr Trait kTraits[] = {
      .dialect = Dialect::skydroid,
      .models = c12,
      .source = Source::field,
-     .evidence = "two public C12 clients negate yaw before GAY/GAM; one notes the attitude "
-                 "reports the opposite sign of the GAM input"},
+     .evidence = "for: two public C12 clients negate yaw before GAY/GAM; one notes the attitude "
+                 "reports the opposite sign of the GAM input. Against: a C12 Android app "
+                 "(log114/PTZControl) turns left with GSY E2, the document's sign",
+     .idents = "GAY GAM"},
     {.kind = TraitKind::pitch_inverted,
      .dialect = Dialect::skydroid,
      .models = c12,
      .source = Source::field,
-     .evidence = "one public C12 client negates pitch too before GAM (\"attitude telemetry "
-                 "reports yaw/pitch with opposite signs from GAM input\")"},
+     .evidence = "for: one public C12 client negates pitch before GAM (\"attitude telemetry "
+                 "reports yaw/pitch with opposite signs from GAM input\"; that client was not "
+                 "found again in docs/sources/ardupilot.md's search), and a C12 visual-servoing "
+                 "README's tuning example sets inv_y (image to pitch: weak). Against: a C12 "
+                 "Android app (log114/PTZControl) sends GAP DCD8 (-90.00) for down and GSP +30 "
+                 "for up, the document's signs; AP_Mount_SkyDroid (C11, PR #34155) and a C13 "
+                 "station (custom-GCS) keep pitch up positive, and SkyDroid told the driver's "
+                 "author the C11/C13 commands are the same; with it ArduPilot's driver drives "
+                 "pitch to +90 after a -30 target (issue 28). Unconfirmed",
+     .idents = "GAM"},
+    {.kind = TraitKind::yaw_inverted,
+     .dialect = Dialect::skydroid,
+     .models = c13,
+     .source = Source::field,
+     .evidence = "on the wire +GSY makes GAC yaw decrease, the reverse of SkyDroid 3.2.1: "
+                 "AP_Mount_SkyDroid negates GSY (\"a positive GSY value moves yaw LEFT\", real "
+                 "C11, PR #34155; SkyDroid says C11/C13 commands are the same) and a station "
+                 "used on a real C13 (custom-GCS, _LRF_C13_INVERT_GSY) agrees; which of GSY or "
+                 "GAC yaw differs from the document physically is not established",
+     .idents = "GSY"},
     {.kind = TraitKind::answers_to_source,
      .dialect = Dialect::skydroid,
      .models = c10 | c10pro | c12 | c13 | c20,
@@ -182,10 +272,27 @@ constexpr Trait kTraits[] = {
      .source = Source::field,
      .evidence = "autopilot drivers refresh speed commands at 10-50 Hz: without a refresh "
                  "the motors stop"},
+    {.kind = TraitKind::keeps_request_header,
+     .dialect = Dialect::topotek,
+     .models = sip,
+     .source = Source::field,
+     .evidence = "a real unit answers #tpPG2rGMS0089 with #tpGP2rGMS018A (#tp kept on 2 data "
+                 "chars) and #TPPD2rTRC0048 with #TPDP2rTRC0048 (issue 28 log)"},
+    {.kind = TraitKind::double_checksum,
+     .dialect = Dialect::skydroid,
+     .models = c10pro,
+     .source = Source::field,
+     .evidence = "a C10 Pro tool (DifferentialRobotics/C10Pro_Control README) sends "
+                 "#TPUG2wPTZ056FEB, #TPUG2wPTZ016BE3, #TPUG2wPTZ026CE5: a valid frame, then a "
+                 "checksum over it and its checksum; that the camera takes them is the tool "
+                 "author's claim",
+     .idents = "PTZ"},
 };
 
 // SkyDroid 3.1 lists PTZ for C10, C10Pro, C12 and C20, and 0E-13 as trim.
 constexpr std::int64_t kC13Ptz[] = {0x02, 0x05, 0x0E, 0x0F, 0x10, 0x11, 0x12, 0x13};
+// ArduPilot's SkyDroid driver sends these PTZ codes to C11 and C13 alike.
+constexpr std::int64_t kC13PtzDriver[] = {0x05, 0x06, 0x07};
 constexpr FieldSupport kFieldSupport[] = {
     {.dialect = Dialect::skydroid,
      .models = c13,
@@ -194,6 +301,36 @@ constexpr FieldSupport kFieldSupport[] = {
      .evidence = "a public C13 SDK (skydroid_c13_miniSDK) reports PTZ 02 (down), 05 "
                  "(center) and 0E/0F pitch +/-, 10/11 yaw +/-, 12/13 roll +/- working on a "
                  "real C13"},
+    {.dialect = Dialect::skydroid,
+     .models = c13,
+     .ident = "PTZ",
+     .values = kC13PtzDriver,
+     .evidence = "AP_Mount_SkyDroid (PR #34155, https://github.com/ArduPilot/ardupilot/pull/"
+                 "34155) sends PTZ 06 follow, 07 lock and 05 centre to C11 and C13 alike; its "
+                 "author: SkyDroid confirmed the C11/C13 commands are the same"},
+    {.dialect = Dialect::skydroid,
+     .models = c13,
+     .ident = "GAA",
+     .evidence = "AP_Mount_SkyDroid (PR #34155) turns the C13's attitude on with "
+                 "#TPUG2wGAA323A (SkyDroid confirmed the C11/C13 commands are the same); a "
+                 "station used on a real C13 (custom-GCS) sends GAA 1-100 Hz"},
+    {.dialect = Dialect::skydroid,
+     .models = c13,
+     .ident = "GAC",
+     .evidence = "a station used on a real C13 (custom-GCS) reads GAC attitude "
+                 "(#TPUG2rGAC00); AP_Mount_SkyDroid (PR #34155) reads the C13's GAC pushes"},
+    {.dialect = Dialect::skydroid,
+     .models = c13,
+     .ident = "GSY",
+     .evidence = "AP_Mount_SkyDroid (PR #34155) drives C11 and C13 yaw with GSY (SkyDroid "
+                 "confirmed the C11/C13 commands are the same); a station used on a real C13 "
+                 "(custom-GCS) sends GSY"},
+    {.dialect = Dialect::skydroid,
+     .models = c13,
+     .ident = "GSP",
+     .evidence = "AP_Mount_SkyDroid (PR #34155) drives C11 and C13 pitch with GSP (SkyDroid "
+                 "confirmed the C11/C13 commands are the same); a station used on a real C13 "
+                 "(custom-GCS) sends GSP, sign as documented"},
 };
 
 bool same(std::string_view a, std::string_view b) noexcept { return a == b; }
@@ -225,14 +362,27 @@ std::optional<unsigned> switch_value(std::string_view data) noexcept {
 }
 
 const StreamSpec* stream_enabled_by(Dialect d, std::string_view request) noexcept {
-  for (const StreamSpec& s : kStreams)
-    if (s.dialect == d && same(s.request, request)) return &s;
-  return nullptr;
+  return stream_enabled_by(d, request, Profile::document);
+}
+
+const StreamSpec* stream_enabled_by(Dialect d, std::string_view request, Profile profile) noexcept {
+  const StreamSpec* document = nullptr;
+  for (const StreamSpec& s : kStreams) {
+    if (s.dialect != d || !same(s.request, request)) continue;
+    if (s.from_field() && profile == Profile::field) return &s;
+    if (!s.from_field() && !document) document = &s;
+  }
+  return document;
 }
 
 const StreamSpec* stream_of(Dialect d, std::string_view push) noexcept {
+  return stream_of(d, push, Profile::field);
+}
+
+const StreamSpec* stream_of(Dialect d, std::string_view push, Profile profile) noexcept {
   for (const StreamSpec& s : kStreams)
-    if (s.dialect == d && same(s.push, push)) return &s;
+    if (s.dialect == d && same(s.push, push) && (!s.from_field() || profile == Profile::field))
+      return &s;
   return nullptr;
 }
 
@@ -405,6 +555,11 @@ bool rejects(FindingCode c) noexcept {
 
 Rejection rejection(const Decoded& dec, Model model, bool field_evidence) noexcept {
   Rejection r = Rejection::none;
+  // Without field evidence the device is the document's: it knows neither
+  // the field's commands nor the field's forms of its own.
+  if (!field_evidence && dec.command != nullptr && dec.command->from_field())
+    return Rejection::unsupported;
+  if (!field_evidence && dec.form != nullptr && dec.form->from_field()) r = Rejection::invalid;
   for (const Finding& f : dec.findings) {
     if (f.code == FindingCode::unsupported_on_model) {
       const bool lifted = field_evidence && f.severity != Severity::error &&

@@ -37,7 +37,8 @@ bool encode_fields(const FormSpec& form, std::span<const EncodeValue> values, st
     const EncodeValue& v = values[i];
     std::size_t w = s.width;
     if (v.use_text && !(s.kind == FieldKind::le_i16 || s.kind == FieldKind::le_u16 ||
-                        s.kind == FieldKind::le_i32)) {
+                        s.kind == FieldKind::le_i32 || s.kind == FieldKind::be_i16 ||
+                        s.kind == FieldKind::be_u16)) {
       if (w != 0 && v.text.size() != w) return false;
       out.append(v.text);
       continue;
@@ -91,6 +92,15 @@ bool encode_fields(const FormSpec& form, std::span<const EncodeValue> values, st
         if (iv < lo || iv > hi) return false;
         auto u = static_cast<std::uint32_t>(iv);
         for (std::size_t k = 0; k < n; ++k) out += static_cast<char>((u >> (8 * k)) & 0xFF);
+        break;
+      }
+      case FieldKind::be_i16:
+      case FieldKind::be_u16: {
+        const bool sign = s.kind == FieldKind::be_i16;
+        if (iv < (sign ? -32768 : 0) || iv > (sign ? 32767 : 65535)) return false;
+        const auto u = static_cast<std::uint16_t>(iv);
+        out += static_cast<char>(u >> 8);
+        out += static_cast<char>(u & 0xFF);
         break;
       }
       case FieldKind::text:

@@ -146,8 +146,9 @@ TEST(FieldProfile, C13TakesThePtzCodesTheFieldReports) {
   ASSERT_EQ(out.size(), 1u);
   field.advance(1'000'000);
   EXPECT_GT(field.yaw().angle, 1.0);  // 10: yaw +
-  // A code no evidence covers: ERE.
-  out = ask(field, "#TPUG2wPTZ06");
+  // A code no evidence covers (09 calibrate): ERE. 06/07 are ArduPilot's
+  // SkyDroid driver's follow/lock (PR #34155), taken too.
+  out = ask(field, "#TPUG2wPTZ09");
   ASSERT_EQ(out.size(), 1u);
   EXPECT_NE(out[0].find("ERE"), std::string::npos) << out[0];
   Device doc(top::Model::c13, profile(top::Profile::document));

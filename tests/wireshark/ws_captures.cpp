@@ -109,7 +109,16 @@ int write_forms(const std::string& dir) {
         b.control = f.control;
         b.ident = c.ident;
         b.data = data;
-        frames.push_back({d == top::Dialect::skydroid, request, top::build_frame(b)});
+        const std::string built = top::build_frame(b);
+        // A field form may take what a loose document form also covers
+        // (Topotek LRF: 5 digits, inside the document's 3-7 chars): that
+        // example shows the field form, which has a frame of its own.
+        const top::ParseResult parsed = top::parse_exact(built);
+        if (parsed.status == top::ParseStatus::frame && !f.from_field()) {
+          const top::Decoded dec = top::decode(parsed.frame, {.dialect = d});
+          if (dec.form != &f && dec.form != nullptr && dec.form->from_field()) continue;
+        }
+        frames.push_back({d == top::Dialect::skydroid, request, built});
         fields << c.ident;
         for (const top::FieldSpec& s : f.fields) fields << ' ' << s.name;
         fields << '\n';

@@ -500,6 +500,12 @@ CATALOG_FIELDS["top.GIA.state"] = ProtoField.new("GIA state", "top.GIA.state", f
 CATALOG_VTYPE["top.GIA.state"] = "uint"
 CATALOG_FIELDS["top.GIA.query"] = ProtoField.new("GIA query", "top.GIA.query", ftypes.UINT32, nil, base.DEC, nil, "attitude push (gyroscope) (Topotek 4.3.6)")
 CATALOG_VTYPE["top.GIA.query"] = "uint"
+CATALOG_FIELDS["top.GIA.yaw"] = ProtoField.new("GIA yaw (deg)", "top.GIA.yaw", ftypes.DOUBLE, nil, nil, nil, "attitude push (gyroscope) (Topotek 4.3.6)")
+CATALOG_VTYPE["top.GIA.yaw"] = "double"
+CATALOG_FIELDS["top.GIA.pitch"] = ProtoField.new("GIA pitch (deg)", "top.GIA.pitch", ftypes.DOUBLE, nil, nil, nil, "attitude push (gyroscope) (Topotek 4.3.6): down positive on the wire: AP_Mount_Topotek negates it on read, ArduPilot's SIM_Topotek sends 30 deg down as 0BB8")
+CATALOG_VTYPE["top.GIA.pitch"] = "double"
+CATALOG_FIELDS["top.GIA.roll"] = ProtoField.new("GIA roll (deg)", "top.GIA.roll", ftypes.DOUBLE, nil, nil, nil, "attitude push (gyroscope) (Topotek 4.3.6)")
+CATALOG_VTYPE["top.GIA.roll"] = "double"
 CATALOG_FIELDS["top.GMS.motors"] = ProtoField.new("GMS motors", "top.GMS.motors", ftypes.UINT32, { [0] = "off", [1] = "on", }, base.HEX, nil, "gimbal motor switch (Topotek 4.4)")
 CATALOG_VTYPE["top.GMS.motors"] = "uint"
 CATALOG_FIELDS["top.GMS.query"] = ProtoField.new("GMS query", "top.GMS.query", ftypes.UINT32, nil, base.DEC, nil, "gimbal motor switch (Topotek 4.4)")
@@ -564,7 +570,7 @@ CATALOG_FIELDS["top.UAV.flight_path"] = ProtoField.new("UAV flight_path (deg)", 
 CATALOG_VTYPE["top.UAV.flight_path"] = "double"
 CATALOG_FIELDS["top.LRF.action"] = ProtoField.new("LRF action", "top.LRF.action", ftypes.UINT32, { [0] = "stop", [1] = "on", [2] = "single", [3] = "continuous", }, base.HEX, nil, "laser rangefinder (Topotek 5.9)")
 CATALOG_VTYPE["top.LRF.action"] = "uint"
-CATALOG_FIELDS["top.LRF.distance"] = ProtoField.new("LRF distance (m)", "top.LRF.distance", ftypes.DOUBLE, nil, nil, nil, "laser rangefinder (Topotek 5.9): X1X2X3X4X5.X6, 0.1 m; ERR: measurement failed")
+CATALOG_FIELDS["top.LRF.distance"] = ProtoField.new("LRF distance", "top.LRF.distance", ftypes.DOUBLE, nil, nil, nil, "laser rangefinder (Topotek 5.9): 5 chars, no point in the one reply seen; its unit is not established (ArduPilot's driver, expecting X1X2X3X4X5.X6, would read 50001.4 m from #tpMU5wLRF500002E)")
 CATALOG_VTYPE["top.LRF.distance"] = "double"
 CATALOG_FIELDS["top.UTC.hour"] = ProtoField.new("UTC hour", "top.UTC.hour", ftypes.UINT32, nil, base.DEC, nil, "UTC time (Topotek 5.10)")
 CATALOG_VTYPE["top.UTC.hour"] = "uint"
@@ -628,6 +634,42 @@ CATALOG_FIELDS["top.ENT.codec"] = ProtoField.new("ENT codec", "top.ENT.codec", f
 CATALOG_VTYPE["top.ENT.codec"] = "uint"
 CATALOG_FIELDS["top.AWB.data"] = ProtoField.new("AWB data", "top.AWB.data", ftypes.STRING, nil, base.ASCII, nil, "white balance (Topotek appendix II)")
 CATALOG_VTYPE["top.AWB.data"] = "string"
+CATALOG_FIELDS["top.PA2.query"] = ProtoField.new("PA2 query", "top.PA2.query", ftypes.UINT32, nil, base.DEC, nil, "model name (field: ArduPilot AP_Mount_Topotek (PR #27568))")
+CATALOG_VTYPE["top.PA2.query"] = "uint"
+CATALOG_FIELDS["top.PA2.model"] = ProtoField.new("PA2 model", "top.PA2.model", ftypes.STRING, nil, base.ASCII, nil, "model name (field: ArduPilot AP_Mount_Topotek (PR #27568)): 000000000 on units whose name was not set at production (PR #27568)")
+CATALOG_VTYPE["top.PA2.model"] = "string"
+CATALOG_FIELDS["top.TRC.action"] = ProtoField.new("TRC action", "top.TRC.action", ftypes.UINT32, { [0] = "exit", [1] = "cancel_to_waiting", [2] = "prepare", }, base.HEX, nil, "tracking (field: ArduPilot AP_Mount_Topotek (PR #27568)): AP_Mount_Topotek sends 02 before a LOC when stopped, 01 to cancel while tracking, else 00 (PR #27568); PixEagle's bench: 02 prepare, 01 cancel the target, 00 exit")
+CATALOG_VTYPE["top.TRC.action"] = "uint"
+CATALOG_FIELDS["top.TRC.query"] = ProtoField.new("TRC query", "top.TRC.query", ftypes.UINT32, nil, base.DEC, nil, "tracking (field: ArduPilot AP_Mount_Topotek (PR #27568))")
+CATALOG_VTYPE["top.TRC.query"] = "uint"
+CATALOG_FIELDS["top.TRC.x0"] = ProtoField.new("TRC x0", "top.TRC.x0", ftypes.UINT32, nil, base.DEC, nil, "tracking (field: ArduPilot AP_Mount_Topotek (PR #27568)): 0 in every reply seen")
+CATALOG_VTYPE["top.TRC.x0"] = "uint"
+CATALOG_FIELDS["top.TRC.state"] = ProtoField.new("TRC state", "top.TRC.state", ftypes.UINT32, { [48] = "stopped", [49] = "waiting", [50] = "tracking", [51] = "temporarily_lost", [52] = "lens_unsupported", }, base.DEC, nil, "tracking (field: ArduPilot AP_Mount_Topotek (PR #27568)): 0 stopped, 1 waiting, 2 tracking (AP_Mount_Topotek, PR #27568); 3 temporarily lost (PixEagle bench on a SIP, the vendor's tracking PDF section 3; ArduPilot ignores it); 4 this lens does not track (PR #31768)")
+CATALOG_VTYPE["top.TRC.state"] = "uint"
+CATALOG_FIELDS["top.TRA.query"] = ProtoField.new("TRA query", "top.TRA.query", ftypes.UINT32, nil, base.DEC, nil, "tracker fault (field: a real SIP (issue 28), PixEagle bench notes)")
+CATALOG_VTYPE["top.TRA.query"] = "uint"
+CATALOG_FIELDS["top.TRA.fault"] = ProtoField.new("TRA fault", "top.TRA.fault", ftypes.STRING, nil, base.ASCII, nil, "tracker fault (field: a real SIP (issue 28), PixEagle bench notes): 11 in every reply of a SIP whose tracking worked (issue 28 log, PixEagle bench); the vendor's PDF says a reply means an abnormal tracker")
+CATALOG_VTYPE["top.TRA.fault"] = "string"
+CATALOG_FIELDS["top.LOC.x"] = ProtoField.new("LOC x", "top.LOC.x", ftypes.INT32, nil, base.DEC, nil, "tracking point or rectangle (field: ArduPilot AP_Mount_Topotek (PR #27568)): centre, -1000 left to +1000 right of the image")
+CATALOG_VTYPE["top.LOC.x"] = "int"
+CATALOG_FIELDS["top.LOC.y"] = ProtoField.new("LOC y", "top.LOC.y", ftypes.INT32, nil, base.DEC, nil, "tracking point or rectangle (field: ArduPilot AP_Mount_Topotek (PR #27568)): centre, -1000 top to +1000 bottom")
+CATALOG_VTYPE["top.LOC.y"] = "int"
+CATALOG_FIELDS["top.LOC.width"] = ProtoField.new("LOC width", "top.LOC.width", ftypes.UINT32, nil, base.DEC, nil, "tracking point or rectangle (field: ArduPilot AP_Mount_Topotek (PR #27568)): 0-2000 of the image width")
+CATALOG_VTYPE["top.LOC.width"] = "uint"
+CATALOG_FIELDS["top.LOC.height"] = ProtoField.new("LOC height", "top.LOC.height", ftypes.UINT32, nil, base.DEC, nil, "tracking point or rectangle (field: ArduPilot AP_Mount_Topotek (PR #27568)): 0-2000 of the image height")
+CATALOG_VTYPE["top.LOC.height"] = "uint"
+CATALOG_FIELDS["top.LOC.mode"] = ProtoField.new("LOC mode", "top.LOC.mode", ftypes.UINT32, { [1] = "rectangle", [9] = "point", }, base.DEC, nil, "tracking point or rectangle (field: ArduPilot AP_Mount_Topotek (PR #27568)): 00 then 09 point (fuzzy click) or 01 rectangle (AP_Mount_Topotek, PixEagle); the vendor PDF's example has 00 08, and 00 00 also works (PixEagle)")
+CATALOG_VTYPE["top.LOC.mode"] = "uint"
+CATALOG_FIELDS["top.OFT.x"] = ProtoField.new("OFT x (px)", "top.OFT.x", ftypes.UINT32, nil, base.DEC, nil, "tracking box (field: PixEagle bench notes on a real SIP): top left, of 1920")
+CATALOG_VTYPE["top.OFT.x"] = "uint"
+CATALOG_FIELDS["top.OFT.y"] = ProtoField.new("OFT y (px)", "top.OFT.y", ftypes.UINT32, nil, base.DEC, nil, "tracking box (field: PixEagle bench notes on a real SIP): top left, of 1080")
+CATALOG_VTYPE["top.OFT.y"] = "uint"
+CATALOG_FIELDS["top.OFT.width"] = ProtoField.new("OFT width (px)", "top.OFT.width", ftypes.UINT32, nil, base.DEC, nil, "tracking box (field: PixEagle bench notes on a real SIP)")
+CATALOG_VTYPE["top.OFT.width"] = "uint"
+CATALOG_FIELDS["top.OFT.height"] = ProtoField.new("OFT height (px)", "top.OFT.height", ftypes.UINT32, nil, base.DEC, nil, "tracking box (field: PixEagle bench notes on a real SIP)")
+CATALOG_VTYPE["top.OFT.height"] = "uint"
+CATALOG_FIELDS["top.OFT.status"] = ProtoField.new("OFT status", "top.OFT.status", ftypes.UINT32, { [49] = "stopped", [50] = "tracking", }, base.DEC, nil, "tracking box (field: PixEagle bench notes on a real SIP): 2 while tracking; 1 with an all-zero box after a cancel")
+CATALOG_VTYPE["top.OFT.status"] = "uint"
 
 -- The command catalog of both dialects (protocol/src/catalog_*.cpp).
 local CATALOG = { skydroid = {}, topotek = {} }
@@ -1817,6 +1859,12 @@ CATALOG.topotek["GIA"] = {
       fields = {
         { name = "state", kind = "enum_hex", width = 2, scale = 1, mul = 1, dec = 0, unit = "", enums = { [0] = "disable", [1] = "enable", }, abbrev = "top.GIA.state" },
       } },
+    { control = "r", role = "response", min_length = 12, max_length = 12, note = "attitude: the reply to a GIC query and the frame pushed after GIA 01, yaw, pitch, roll in 0.01 deg",
+      fields = {
+        { name = "yaw", kind = "hex_s", width = 4, scale = 0.01, mul = 1, dec = 2, unit = "deg", abbrev = "top.GIA.yaw" },
+        { name = "pitch", kind = "hex_s", width = 4, scale = 0.01, mul = 1, dec = 2, unit = "deg", abbrev = "top.GIA.pitch" },
+        { name = "roll", kind = "hex_s", width = 4, scale = 0.01, mul = 1, dec = 2, unit = "deg", abbrev = "top.GIA.roll" },
+      } },
   },
 }
 CATALOG.topotek["GMS"] = {
@@ -2075,6 +2123,10 @@ CATALOG.topotek["LRF"] = {
       fields = {
         { name = "action", kind = "enum_hex", width = 2, scale = 1, mul = 1, dec = 0, unit = "", enums = { [0] = "stop", [1] = "on", [2] = "single", [3] = "continuous", }, abbrev = "top.LRF.action" },
       } },
+    { control = "w", role = "response", min_length = 5, max_length = 5, note = "result in 5 digits, sent by M",
+      fields = {
+        { name = "distance", kind = "number", width = 5, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.LRF.distance" },
+      } },
     { control = "w", role = "response", min_length = 3, max_length = 7, note = "result, sent by D after each successful measurement",
       fields = {
         { name = "distance", kind = "number", width = 0, scale = 1, mul = 1, dec = 0, unit = "m", min = 0, max = 99999.899999999994, none = "ERR", abbrev = "top.LRF.distance" },
@@ -2259,6 +2311,81 @@ CATALOG.topotek["AWB"] = {
     { control = "w", role = "any", min_length = 0, max_length = 255, note = "",
       fields = {
         { name = "data", kind = "raw", width = 0, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.AWB.data" },
+      } },
+  },
+}
+CATALOG.topotek["PA2"] = {
+  dialect = "topotek", address = "G", title = "model name", section = "field: ArduPilot AP_Mount_Topotek (PR #27568)",
+  models = { sip = true, },
+  forms = {
+    { control = "r", role = "request", min_length = 2, max_length = 2, note = "",
+      fields = {
+        { name = "query", kind = "hex_u", width = 2, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.PA2.query" },
+      } },
+    { control = "r", role = "response", min_length = 1, max_length = 15, note = "",
+      fields = {
+        { name = "model", kind = "text", width = 0, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.PA2.model" },
+      } },
+  },
+}
+CATALOG.topotek["TRC"] = {
+  dialect = "topotek", address = "D", title = "tracking", section = "field: ArduPilot AP_Mount_Topotek (PR #27568)",
+  models = { sip = true, },
+  forms = {
+    { control = "w", role = "any", min_length = 2, max_length = 2, note = "",
+      fields = {
+        { name = "action", kind = "enum_hex", width = 2, scale = 1, mul = 1, dec = 0, unit = "", enums = { [0] = "exit", [1] = "cancel_to_waiting", [2] = "prepare", }, abbrev = "top.TRC.action" },
+      } },
+    { control = "r", role = "request", min_length = 2, max_length = 2, note = "",
+      fields = {
+        { name = "query", kind = "hex_u", width = 2, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.TRC.query" },
+      } },
+    { control = "r", role = "response", min_length = 2, max_length = 2, note = "",
+      fields = {
+        { name = "x0", kind = "dec_u", width = 1, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.TRC.x0" },
+        { name = "state", kind = "enum_char", width = 1, scale = 1, mul = 1, dec = 0, unit = "", enums = { [48] = "stopped", [49] = "waiting", [50] = "tracking", [51] = "temporarily_lost", [52] = "lens_unsupported", }, abbrev = "top.TRC.state" },
+      } },
+  },
+}
+CATALOG.topotek["TRA"] = {
+  dialect = "topotek", address = "D", title = "tracker fault", section = "field: a real SIP (issue 28), PixEagle bench notes",
+  models = { sip = true, },
+  forms = {
+    { control = "r", role = "request", min_length = 2, max_length = 2, note = "",
+      fields = {
+        { name = "query", kind = "hex_u", width = 2, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.TRA.query" },
+      } },
+    { control = "r", role = "response", min_length = 2, max_length = 2, note = "",
+      fields = {
+        { name = "fault", kind = "text", width = 2, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.TRA.fault" },
+      } },
+  },
+}
+CATALOG.topotek["LOC"] = {
+  dialect = "topotek", address = "D", title = "tracking point or rectangle", section = "field: ArduPilot AP_Mount_Topotek (PR #27568)",
+  models = { sip = true, },
+  forms = {
+    { control = "w", role = "request", min_length = 10, max_length = 10, note = "",
+      fields = {
+        { name = "x", kind = "be_i16", width = 2, scale = 1, mul = 1, dec = 0, unit = "", min = -1000, max = 1000, abbrev = "top.LOC.x" },
+        { name = "y", kind = "be_i16", width = 2, scale = 1, mul = 1, dec = 0, unit = "", min = -1000, max = 1000, abbrev = "top.LOC.y" },
+        { name = "width", kind = "be_u16", width = 2, scale = 1, mul = 1, dec = 0, unit = "", min = 0, max = 2000, abbrev = "top.LOC.width" },
+        { name = "height", kind = "be_u16", width = 2, scale = 1, mul = 1, dec = 0, unit = "", min = 0, max = 2000, abbrev = "top.LOC.height" },
+        { name = "mode", kind = "be_u16", width = 2, scale = 1, mul = 1, dec = 0, unit = "", enums = { [1] = "rectangle", [9] = "point", }, abbrev = "top.LOC.mode" },
+      } },
+  },
+}
+CATALOG.topotek["OFT"] = {
+  dialect = "topotek", address = "D", title = "tracking box", section = "field: PixEagle bench notes on a real SIP",
+  models = { sip = true, },
+  forms = {
+    { control = "w", role = "response", min_length = 9, max_length = 9, note = "",
+      fields = {
+        { name = "x", kind = "le_u16", width = 2, scale = 1, mul = 1, dec = 0, unit = "px", abbrev = "top.OFT.x" },
+        { name = "y", kind = "le_u16", width = 2, scale = 1, mul = 1, dec = 0, unit = "px", abbrev = "top.OFT.y" },
+        { name = "width", kind = "le_u16", width = 2, scale = 1, mul = 1, dec = 0, unit = "px", abbrev = "top.OFT.width" },
+        { name = "height", kind = "le_u16", width = 2, scale = 1, mul = 1, dec = 0, unit = "px", abbrev = "top.OFT.height" },
+        { name = "status", kind = "enum_char", width = 1, scale = 1, mul = 1, dec = 0, unit = "", enums = { [49] = "stopped", [50] = "tracking", }, abbrev = "top.OFT.status" },
       } },
   },
 }
@@ -2765,6 +2892,13 @@ local function decode_field(ctx, spec, bytes, offset)
     for i = w, 1, -1 do u = u * 256 + sbyte(bytes, i) end
     if k == "le_i16" and u >= 32768 then u = u - 65536 end
     if k == "le_i32" and u >= 2147483648 then u = u - 4294967296 end
+    fv.integer = u
+    fv.value = scaled(u, spec)
+    fv.valid = true
+  elseif k == "be_i16" or k == "be_u16" then
+    if #bytes ~= 2 then return bad("needs 2 bytes") end
+    local u = sbyte(bytes, 1) * 256 + sbyte(bytes, 2)
+    if k == "be_i16" and u >= 32768 then u = u - 65536 end
     fv.integer = u
     fv.value = scaled(u, spec)
     fv.valid = true

@@ -130,6 +130,13 @@ local function decode_field(ctx, spec, bytes, offset)
     fv.integer = u
     fv.value = scaled(u, spec)
     fv.valid = true
+  elseif k == "be_i16" or k == "be_u16" then
+    if #bytes ~= 2 then return bad("needs 2 bytes") end
+    local u = sbyte(bytes, 1) * 256 + sbyte(bytes, 2)
+    if k == "be_i16" and u >= 32768 then u = u - 65536 end
+    fv.integer = u
+    fv.value = scaled(u, spec)
+    fv.valid = true
   elseif k == "nmea" then
     if #bytes < 2 then return bad("too short for a hemisphere and a coordinate") end
     local hemi = ssub(bytes, 1, 1)

@@ -59,6 +59,8 @@ enum class FieldKind : std::uint8_t {
   le_i16,     // binary little-endian signed 16-bit
   le_u16,     // binary little-endian unsigned 16-bit
   le_i32,     // binary little-endian signed 32-bit
+  be_i16,     // binary big-endian signed 16-bit (field: Topotek LOC)
+  be_u16,     // binary big-endian unsigned 16-bit (field: Topotek LOC)
   nmea,       // hemisphere letter + NMEA dddmm.mmmm, decoded to degrees
   raw         // bytes shown as they are; no value
 };
@@ -99,6 +101,13 @@ struct FormSpec {
   // Whole data that means "no value" (SkyDroid SDC all zero: no card); the
   // note says what it means.
   std::string_view none;
+  // Empty for a form the document gives. A form only the field shows (real
+  // units, or the drivers written against them) names its source here: the
+  // driver file and PR, a real unit's log, a station's note
+  // (docs/sources/ardupilot.md). topsim's document profile does not take it.
+  std::string_view evidence;
+
+  bool from_field() const noexcept { return !evidence.empty(); }
 };
 
 struct CommandSpec {
@@ -110,6 +119,12 @@ struct CommandSpec {
   ModelSet models = 0;
   std::span<const FormSpec> forms;
   std::string_view note;  // errata, caveats
+  // Empty for a command of a document. A command neither document lists
+  // names the field's source here (its section starts "field: "); every
+  // one of its forms is then field evidence too.
+  std::string_view evidence;
+
+  bool from_field() const noexcept { return !evidence.empty(); }
 
   bool supports(Model m) const noexcept {
     return m == Model::unknown || (models & model_bit(m)) != 0;

@@ -47,20 +47,34 @@ struct StreamSpec {
   // The write's data is the rate in Hz (SkyDroid GAA 01-64); otherwise it is
   // on (01) or off (00) and the rate is the device's own.
   bool rate_in_data = false;
-  std::string_view section;  // where the document says so
+  std::string_view section;  // where the document (or the field) says so
   std::string_view note;
+  // Empty for a stream a document gives. A stream only the field shows
+  // (Topotek GIA 01 pushing GIA frames) names its source here; the field
+  // profile takes it, the document profile does not.
+  std::string_view evidence;
+
+  bool from_field() const noexcept { return !evidence.empty(); }
 };
 
-// Every stream of both dialects.
+// Every stream of both dialects: the documents' and the field's.
 std::span<const StreamSpec> streams() noexcept;
-// The stream a write of `request` switches, or nullptr.
+// The document's stream a write of `request` switches, or nullptr (Topotek
+// GIA: GIC, as Topotek 4.3.6 says).
 const StreamSpec* stream_enabled_by(Dialect d, std::string_view request) noexcept;
+// The same under `profile`: field takes the field's stream first (Topotek
+// GIA: GIA frames, LOC: OFT frames), then the document's; document only the
+// document's.
+const StreamSpec* stream_enabled_by(Dialect d, std::string_view request, Profile profile) noexcept;
 // What a stream switch's write carries (the hex data: the rate in Hz with
 // rate_in_data, else 00 off / 01 on), read from the frame without a
 // detailed decode; nullopt when the data is empty or not hex.
 std::optional<unsigned> switch_value(std::string_view data) noexcept;
-// The stream whose frames carry `push`, or nullptr.
+// The stream whose frames carry `push`, the document's or the field's (a
+// reader of traffic takes both: Topotek GIA frames are pushes), or nullptr.
 const StreamSpec* stream_of(Dialect d, std::string_view push) noexcept;
+// The same under `profile` (document: the documents' streams only).
+const StreamSpec* stream_of(Dialect d, std::string_view push, Profile profile) noexcept;
 
 // What a device answers to a valid write.
 enum class WriteReply : std::uint8_t {
@@ -96,6 +110,10 @@ struct DeviceForm {
   Order order = Order::swapped;
   Source source = Source::document_rule;
   std::string_view evidence;  // the example, or one line of field evidence
+  // The length char counts the bytes of a hex-coded value, half its chars
+  // (#TPDU1rIMG01, #TPDU2rSLR0018): the frame layer finds the data by the
+  // checksum and reports a length mismatch.
+  bool length_in_bytes = false;
 };
 
 // Every recorded form (document examples and field evidence; the rule is
@@ -117,11 +135,13 @@ const DeviceForm* recorded_form(Dialect d, Model model, const Frame& f, Sent sen
 
 // A trait of real firmware that is not a frame form.
 enum class TraitKind : std::uint8_t {
-  yaw_inverted,       // the attitude reports the opposite sign of the yaw commanded
-  pitch_inverted,     // the same for pitch
-  answers_to_source,  // the reply goes to the datagram's source address and port
-  link_by_source,     // Topotek: answers only the link the source byte names
-  speed_refresh       // a speed command must be refreshed or the motors stop
+  yaw_inverted,          // the attitude reports the opposite sign of the yaw commanded
+  pitch_inverted,        // the same for pitch
+  answers_to_source,     // the reply goes to the datagram's source address and port
+  link_by_source,        // Topotek: answers only the link the source byte names
+  speed_refresh,         // a speed command must be refreshed or the motors stop
+  keeps_request_header,  // a reply keeps the request's #TP or #tp, whatever its length
+  double_checksum        // takes a frame followed by a second checksum over it
 };
 std::string_view to_string(TraitKind k) noexcept;
 
@@ -131,7 +151,10 @@ struct Trait {
   ModelSet models = 0;
   std::uint32_t value = 0;  // speed_refresh: ms (ports: top/dialect.hpp known_ports())
   Source source = Source::field;
-  std::string_view evidence;
+  std::string_view evidence;  // every source for, and every source against
+  // The identifiers the evidence concerns, space separated ("GSY"); empty:
+  // every identifier (or a trait that is not about commands).
+  std::string_view idents;
 };
 std::span<const Trait> traits() noexcept;
 // The trait of `kind` for `model` under `profile` (a field trait only under
@@ -187,8 +210,10 @@ std::string_view to_string(Rejection r) noexcept;  // "none", "unsupported", "in
 // catalog findings). With `field_evidence` (the field profile), an
 // unsupported-on-model is lifted where field evidence says the model takes
 // the command with that first-field value (field_supported: C13 PTZ 0E);
-// without it (the document profile) it always rejects. unsupported wins
-// over invalid.
+// without it (the document profile) it always rejects, and so do the
+// field's own commands (unsupported: TRC, LOC) and forms (invalid: a
+// 12-char GIA, as the document's lengths make it). unsupported wins over
+// invalid.
 Rejection rejection(const Decoded& dec, Model model, bool field_evidence = true) noexcept;
 // True for the finding codes that can make a device reject a request.
 bool rejects(FindingCode c) noexcept;

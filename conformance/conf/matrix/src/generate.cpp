@@ -357,7 +357,8 @@ struct Generator {
   // GAA (rate in Hz), Topotek GAA and GIA (on/off, the device's rate).
   void stream_cases() {
     for (const top::StreamSpec& st : top::streams()) {
-      if (st.dialect != d || st.sender != top::Sender::device) continue;
+      // The document's streams (a field stream: top/device.hpp, from_field).
+      if (st.dialect != d || st.sender != top::Sender::device || st.from_field()) continue;
       const top::CommandSpec* gaa = top::find_command(d, st.request);
       if (!gaa || !gaa->supports(model)) continue;
       const std::string on = st.rate_in_data ? "0A" : "01";
@@ -390,7 +391,9 @@ json generate_matrix(top::Model model) {
   Generator g{model};
   json m = g.head();
   for (const top::CommandSpec& c : top::commands(g.d)) {
-    if (!c.supports(model) || top::is_error_reply(c.ident)) continue;
+    // The default matrices test the documents; the field's commands (TRC,
+    // LOC: top/catalog.hpp, from_field) are not theirs.
+    if (!c.supports(model) || top::is_error_reply(c.ident) || c.from_field()) continue;
     const Generator::Command k = g.command_of(c);
     g.positive(k);
     g.negative(k);
