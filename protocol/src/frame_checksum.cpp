@@ -121,7 +121,7 @@ Verdict wrong_checksum(Parse& p, std::size_t cs, unsigned prefix) {
                                                           hex2(expected),
                                                           ")"});
                                             }),
-                                            "skydroid-doc-header-case"));
+                                            quirk_id(FindingCode::checksum_header_case)));
         return finish(p, p.lay.declared, true, value, prefix);
       }
     }

@@ -233,7 +233,7 @@ void note_length_form(Parse& p) {
                       : "TMP frame with a two-digit length (Topotek 12.2: 22 data "
                         "chars do not fit one hex digit)";
     }),
-                                        "topotek-tmp-length"));
+                                        quirk_id(FindingCode::tmp_quirk)));
   } else if (lay.two_digit) {
     p.f.findings.push_back(make_finding(FindingCode::two_digit_length, 5, p.text([&] {
       return cat({"length written as two hex digits (0x", p.b.substr(5, 2), ")"});
