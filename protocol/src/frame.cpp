@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "byte_sum.hpp"
+#include "frame_parse.hpp"
 
 namespace top {
 
@@ -42,17 +43,7 @@ void put_hex2(std::uint8_t v, char out[2]) noexcept {
   out[1] = kDigits[v & 0x0F];
 }
 
-void reset_keep_capacity(Frame& f) noexcept {
-  f.header = Header::variable;
-  f.src = f.dst = f.control = 0;
-  f.ident[0] = f.ident[1] = f.ident[2] = 0;
-  f.declared_length = f.data_offset = f.data_length = 0;
-  f.checksum = f.expected_checksum = 0;
-  f.checksum_present = f.checksum_ok = false;
-  f.terminator = 0;
-  f.raw.clear();
-  f.findings.clear();
-}
+void reset_keep_capacity(Frame& f) noexcept { detail::reset_frame(f); }
 
 void swap(Frame& a, Frame& b) noexcept {
   using std::swap;

@@ -246,7 +246,7 @@ void note_length_form(Parse& p) {
 // status is frame.
 Verdict parse_into(std::string_view b, bool at_end, const ParseOptions& opts, Frame& f,
                    Finding& err) {
-  reset_keep_capacity(f);
+  reset_frame(f);
   Parse p{b, at_end, opts, f, err, b.size(), Layout{}};
   if (auto r = read_header(p)) return *r;
   f.header = p.lay.header;
@@ -283,7 +283,7 @@ void parse_frame(std::string_view bytes, bool at_end, const ParseOptions& opts, 
   const detail::Verdict r = detail::parse_into(bytes, at_end, opts, out.frame, out.error);
   out.status = r.status;
   out.consumed = r.consumed;
-  if (r.status != ParseStatus::frame) reset_keep_capacity(out.frame);
+  if (r.status != ParseStatus::frame) detail::reset_frame(out.frame);
 }
 
 void parse_exact(std::string_view bytes, const ParseOptions& opts, ParseResult& r) {

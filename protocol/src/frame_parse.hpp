@@ -15,6 +15,20 @@
 
 namespace top::detail {
 
+// reset_keep_capacity, inline for the parser: it resets the frame of every
+// general parse.
+inline void reset_frame(Frame& f) noexcept {
+  f.header = Header::variable;
+  f.src = f.dst = f.control = 0;
+  f.ident[0] = f.ident[1] = f.ident[2] = 0;
+  f.declared_length = f.data_offset = f.data_length = 0;
+  f.checksum = f.expected_checksum = 0;
+  f.checksum_present = f.checksum_ok = false;
+  f.terminator = 0;
+  f.raw.clear();
+  f.findings.clear();
+}
+
 inline std::string hex2(std::uint8_t v) {
   char b[2];
   put_hex2(v, b);
