@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "top/detail/text.hpp"
 #include "top/top.hpp"
 
 using namespace top;

@@ -26,7 +26,7 @@
 #include <string_view>
 #include <vector>
 
-#include "top/text.hpp"
+#include "top/detail/text.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size);
 extern "C" __attribute__((weak)) int LLVMFuzzerInitialize(int* argc, char*** argv);

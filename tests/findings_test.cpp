@@ -118,6 +118,32 @@ TEST(Findings, EveryCodeIsDocumented) {
   }
 }
 
+// The "Quirks" table of docs/FINDINGS.md has one row per quirk id of the
+// table, "| `quirk id` | `code` | behaviour |", and no other.
+TEST(Findings, EveryQuirkIsDocumented) {
+  std::ifstream in(std::string(TOPKIT_SOURCE_DIR) + "/docs/FINDINGS.md");
+  ASSERT_TRUE(in) << "docs/FINDINGS.md missing";
+  std::set<std::string> documented, expected;
+  bool in_quirks = false;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("## ", 0) == 0) in_quirks = line == "## Quirks";
+    if (!in_quirks || line.rfind("| `", 0) != 0) continue;
+    const auto second = line.find(" | ", 1);
+    ASSERT_NE(second, std::string::npos) << line;
+    const auto third = line.find(" | ", second + 3);
+    ASSERT_NE(third, std::string::npos) << line;
+    documented.insert(line.substr(0, third + 3));
+  }
+  for (std::size_t i = 0; i < finding_code_count; ++i) {
+    auto c = static_cast<FindingCode>(i);
+    if (quirk_id(c).empty()) continue;
+    expected.insert("| `" + std::string(quirk_id(c)) + "` | `" + std::string(to_string(c)) +
+                    "` | ");
+  }
+  EXPECT_FALSE(expected.empty());
+  EXPECT_EQ(documented, expected);
+}
+
 TEST(Findings, EveryCodeHasATrigger) { EXPECT_EQ(triggers().size(), finding_code_count); }
 
 class FindingFires : public ::testing::TestWithParam<std::size_t> {};
@@ -132,6 +158,11 @@ TEST_P(FindingFires, Fires) {
     if (f.code != code) continue;
     hit = true;
     EXPECT_FALSE(f.message.empty());
+    // A code with a quirk id names it; another code's finding names a quirk
+    // only as field evidence (decode's and the device rules').
+    if (!quirk_id(code).empty()) {
+      EXPECT_EQ(f.quirk, quirk_id(code));
+    }
   }
   std::string got;
   for (const auto& f : found) got += std::string(to_string(f.code)) + " ";

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "test_util.hpp"
-#include "top/text.hpp"
+#include "top/detail/text.hpp"
 
 using namespace top;
 using toptest::ExactBuffer;

@@ -10,6 +10,7 @@
 #include <set>
 
 #include "test_util.hpp"
+#include "top/detail/text.hpp"
 
 using namespace top;
 using json = nlohmann::json;

@@ -7,7 +7,7 @@
 #include "capture/time.hpp"
 #include "log_reader.hpp"
 #include "serial_logs.hpp"
-#include "top/text.hpp"
+#include "top/detail/text.hpp"
 
 namespace topdump {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <string_view>
 
-#include "top/text.hpp"
+#include "top/detail/text.hpp"
 
 namespace topdump {
 

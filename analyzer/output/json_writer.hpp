@@ -20,6 +20,7 @@
 #include "output/escape.hpp"
 #include "session/analyzer.hpp"
 #include "top/detail/decimal.hpp"
+#include "top/detail/text.hpp"
 #include "top/top.hpp"
 
 namespace topdump::jsonw {

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "output/escape.hpp"
+#include "top/detail/text.hpp"
 
 namespace topdump {
 

@@ -11,7 +11,7 @@
 #include "html_page.hpp"
 #include "report/report.hpp"
 #include "svg.hpp"
-#include "top/text.hpp"
+#include "top/detail/text.hpp"
 
 namespace topdump::report {
 

@@ -9,7 +9,7 @@
 #include <string_view>
 
 #include "report/report.hpp"
-#include "top/text.hpp"
+#include "top/detail/text.hpp"
 
 namespace topdump::report::html {
 

@@ -4,6 +4,7 @@
 
 #include "output/json_writer.hpp"
 #include "report/report.hpp"
+#include "top/detail/text.hpp"
 
 namespace topdump::report {
 

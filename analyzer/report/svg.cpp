@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <map>
 
-#include "top/text.hpp"
+#include "top/detail/text.hpp"
 
 namespace topdump::report::svg {
 

@@ -10,7 +10,7 @@
 #include <cstring>
 
 #include "session.hpp"
-#include "top/text.hpp"
+#include "top/detail/text.hpp"
 
 namespace topdump {
 

@@ -9,11 +9,12 @@ namespace {
 struct Row {
   std::string_view code;
   Severity severity;
+  std::string_view quirk;
   std::string_view when;
 };
 
 constexpr std::array<Row, finding_code_count> kRows = {{
-#define TOP_X(e, s, sev, when) {s, Severity::sev, when},
+#define TOP_X(e, s, sev, quirk, when) {s, Severity::sev, quirk, when},
     TOP_FINDINGS(TOP_X)
 #undef TOP_X
 }};
@@ -41,6 +42,11 @@ Severity default_severity(FindingCode c) noexcept {
 std::string_view description(FindingCode c) noexcept {
   auto i = static_cast<std::size_t>(c);
   return i < kRows.size() ? kRows[i].when : "";
+}
+
+std::string_view quirk_id(FindingCode c) noexcept {
+  auto i = static_cast<std::size_t>(c);
+  return i < kRows.size() ? kRows[i].quirk : "";
 }
 
 std::optional<FindingCode> finding_code_from_string(std::string_view s) noexcept {

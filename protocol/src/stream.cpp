@@ -1,8 +1,10 @@
 #include "top/stream.hpp"
 
 #include <algorithm>
+#include <memory>
 
 #include "chars.hpp"
+#include "top/detail/ring.hpp"
 
 namespace top {
 
@@ -25,11 +27,73 @@ constexpr std::size_t kNoLimit = static_cast<std::size_t>(-1);
 constexpr int kMaxInnerCandidates = 16;
 }  // namespace
 
-StreamDecoder::StreamDecoder(StreamOptions opts) : opts_(opts), quiet_(opts.parse) {
+// The decoder's state (StreamDecoder forwards to it).
+class StreamDecoder::Impl {
+ public:
+  explicit Impl(StreamOptions opts);
+  void feed(std::string_view chunk);
+  void finish();
+  void flush();
+  void settle();
+  void reset();
+  bool next(StreamItem& out);
+  std::uint64_t fed() const noexcept { return base_ + buf_.size(); }
+  std::size_t buffered() const noexcept { return buf_.size() - pos_; }
+
+ private:
+  // Decodes until `limit` items are ready or the bytes run out.
+  void pump(std::size_t limit);
+  void release_pending();
+  void add_garbage(std::size_t at, std::size_t len, Finding* why);
+  void flush_garbage();
+  void compact();
+
+  StreamOptions opts_;
+  std::string buf_;  // unconsumed bytes live in [pos_, size)
+  std::size_t pos_ = 0;
+  std::uint64_t base_ = 0;  // stream offset of buf_[0]
+  bool at_end_ = false;
+  bool flushing_ = false;  // inside settle(): judge as at the end, keep the stream open
+  // A frame held until we know what follows it: parsed_.frame, at stream
+  // offset pending_offset_.
+  bool has_pending_ = false;
+  std::uint64_t pending_offset_ = 0;
+  std::uint64_t pending_length_ = 0;
+  std::uint64_t garbage_start_ = 0;
+  std::uint64_t garbage_len_ = 0;
+  std::string garbage_preview_;
+  Finding garbage_reason_;
+  bool garbage_has_reason_ = false;
+  // Items ready for next(). The slots keep their buffers; next() swaps an
+  // item out.
+  detail::Ring<StreamItem> ready_;
+  // A complete frame that fails its checksum, held while a frame that
+  // starts inside it is still incomplete: its parse and the stream offset of
+  // the '#' to try next, so each new chunk costs only that inner parse
+  // rather than the whole frame again (which made small chunks quadratic).
+  bool has_held_ = false;
+  std::uint64_t held_at_ = 0;
+  std::uint64_t held_scan_ = 0;
+  int held_tried_ = 0;
+  ParseResult held_;
+  // A frame at stream offset wait_at_ that cannot be judged before the
+  // stream holds wait_until_ bytes (a serial link feeds a byte at a time:
+  // the header is not parsed again for each).
+  std::uint64_t wait_at_ = 0;
+  std::uint64_t wait_until_ = 0;
+  // The parse options without messages, the parse at the decoding position
+  // (which holds the pending frame) and the parse at a '#' inside a frame
+  // (its verdict is all that is used), kept to reuse their buffers.
+  ParseOptions quiet_;
+  ParseResult parsed_;
+  ParseResult inner_;
+};
+
+StreamDecoder::Impl::Impl(StreamOptions opts) : opts_(opts), quiet_(opts.parse) {
   quiet_.messages = false;
 }
 
-void StreamDecoder::reset() {
+void StreamDecoder::Impl::reset() {
   buf_.clear();
   pos_ = 0;
   base_ = 0;
@@ -43,23 +107,23 @@ void StreamDecoder::reset() {
   wait_at_ = wait_until_ = 0;
 }
 
-void StreamDecoder::feed(std::string_view chunk) {
+void StreamDecoder::Impl::feed(std::string_view chunk) {
   if (at_end_) return;  // nothing follows the end of a stream
   compact();
   buf_.append(chunk.data(), chunk.size());
 }
 
-void StreamDecoder::finish() {
+void StreamDecoder::Impl::finish() {
   at_end_ = true;
   has_held_ = false;  // judged again with no more bytes to come
 }
 
-void StreamDecoder::flush() {
+void StreamDecoder::Impl::flush() {
   pump(kNoLimit);
   release_pending();
 }
 
-void StreamDecoder::settle() {
+void StreamDecoder::Impl::settle() {
   // Judge the bytes held as if nothing followed them (a frame that fails its
   // checksum no longer waits for the look-ahead that could show another
   // length or a frame inside it), but keep the stream open: a frame cut
@@ -70,7 +134,7 @@ void StreamDecoder::settle() {
   release_pending();
 }
 
-bool StreamDecoder::next(StreamItem& out) {
+bool StreamDecoder::Impl::next(StreamItem& out) {
   if (ready_.empty()) pump(kReadyAhead);
   if (ready_.empty()) return false;
   swap(out, ready_.front());  // the slot takes out's old buffers, for a later item
@@ -79,7 +143,7 @@ bool StreamDecoder::next(StreamItem& out) {
   return true;
 }
 
-void StreamDecoder::compact() {
+void StreamDecoder::Impl::compact() {
   if (pos_ == 0) return;
   if (pos_ == buf_.size()) {
     base_ += pos_;
@@ -111,7 +175,7 @@ void note_terminator(Frame& f, std::size_t count, bool message) {
               : std::string()));
 }
 
-void StreamDecoder::release_pending() {
+void StreamDecoder::Impl::release_pending() {
   if (!has_pending_) return;
   Frame& f = parsed_.frame;
   note_terminator(f, f.terminator, opts_.parse.messages);
@@ -130,7 +194,7 @@ void StreamDecoder::release_pending() {
 }
 
 // `why` (when given) is taken: its contents may be exchanged.
-void StreamDecoder::add_garbage(std::size_t at, std::size_t len, Finding* why) {
+void StreamDecoder::Impl::add_garbage(std::size_t at, std::size_t len, Finding* why) {
   release_pending();
   // A run ends at exactly kMaxGarbageRun bytes however the bytes arrived
   // (adding a long span at once used to overshoot the cap, so the items
@@ -159,7 +223,7 @@ void StreamDecoder::add_garbage(std::size_t at, std::size_t len, Finding* why) {
   }
 }
 
-void StreamDecoder::flush_garbage() {
+void StreamDecoder::Impl::flush_garbage() {
   if (garbage_len_ == 0) return;
   StreamItem& it = ready_.push_back();  // a slot whose old buffers are reused
   it.kind = ItemKind::garbage;
@@ -184,7 +248,7 @@ void StreamDecoder::flush_garbage() {
   garbage_has_reason_ = false;
 }
 
-void StreamDecoder::pump(std::size_t limit) {
+void StreamDecoder::Impl::pump(std::size_t limit) {
   const std::string_view all(buf_);
   const bool judge = at_end_ || flushing_;  // parse as if no more bytes came
   while (pos_ < buf_.size() && ready_.size() < limit) {
@@ -295,5 +359,25 @@ void StreamDecoder::pump(std::size_t limit) {
   }
   compact();
 }
+
+StreamDecoder::StreamDecoder(StreamOptions opts) : impl_(std::make_unique<Impl>(opts)) {}
+StreamDecoder::~StreamDecoder() = default;
+StreamDecoder::StreamDecoder(const StreamDecoder& other)
+    : impl_(std::make_unique<Impl>(*other.impl_)) {}
+StreamDecoder& StreamDecoder::operator=(const StreamDecoder& other) {
+  if (this != &other) impl_ = std::make_unique<Impl>(*other.impl_);
+  return *this;
+}
+StreamDecoder::StreamDecoder(StreamDecoder&&) noexcept = default;
+StreamDecoder& StreamDecoder::operator=(StreamDecoder&&) noexcept = default;
+
+void StreamDecoder::feed(std::string_view chunk) { impl_->feed(chunk); }
+void StreamDecoder::finish() { impl_->finish(); }
+void StreamDecoder::flush() { impl_->flush(); }
+void StreamDecoder::settle() { impl_->settle(); }
+void StreamDecoder::reset() { impl_->reset(); }
+bool StreamDecoder::next(StreamItem& out) { return impl_->next(out); }
+std::uint64_t StreamDecoder::fed() const noexcept { return impl_->fed(); }
+std::size_t StreamDecoder::buffered() const noexcept { return impl_->buffered(); }
 
 }  // namespace top

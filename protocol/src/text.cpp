@@ -1,5 +1,7 @@
 #include "top/text.hpp"
 
+#include "top/detail/text.hpp"
+
 namespace top {
 
 namespace {

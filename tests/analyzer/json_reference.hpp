@@ -12,6 +12,7 @@
 #include "capture/sources.hpp"
 #include "output/escape.hpp"
 #include "output/output.hpp"
+#include "top/detail/text.hpp"
 
 namespace topdump::reference {
 

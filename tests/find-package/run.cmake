@@ -17,8 +17,8 @@ file(REMOVE_RECURSE "${work}-99")
 if(rc EQUAL 0)
   message(FATAL_ERROR "find_package(topkit 99) succeeded: no version file installed?")
 endif()
-if(EXISTS "${prefix}/include/top/detail/repair.hpp")
-  message(FATAL_ERROR "top/detail/repair.hpp is installed: it is not public")
+if(EXISTS "${prefix}/include/top/detail")
+  message(FATAL_ERROR "top/detail/ is installed: it is not public")
 endif()
 execute_process(COMMAND ${CMAKE_COMMAND} -S "${SOURCE_DIR}/tests/find-package" -B "${work}"
                 -DCMAKE_PREFIX_PATH=${prefix} -DTOPKIT_WANT_VERSION=0.1

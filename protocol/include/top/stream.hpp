@@ -10,10 +10,10 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <string_view>
 
-#include "top/detail/ring.hpp"
 #include "top/frame.hpp"
 
 namespace top {
@@ -49,6 +49,13 @@ struct StreamOptions {
 class StreamDecoder {
  public:
   explicit StreamDecoder(StreamOptions opts = {});
+  ~StreamDecoder();
+  // A copy decodes on from where the original stands. A decoder moved from
+  // may only be assigned to or destroyed.
+  StreamDecoder(const StreamDecoder& other);
+  StreamDecoder& operator=(const StreamDecoder& other);
+  StreamDecoder(StreamDecoder&&) noexcept;
+  StreamDecoder& operator=(StreamDecoder&&) noexcept;
 
   // Appends bytes; never fails. Drain next() after each feed: items of the
   // chunk queue up until pulled.
@@ -74,58 +81,14 @@ class StreamDecoder {
   bool next(StreamItem& out);
 
   // Bytes fed so far.
-  std::uint64_t fed() const noexcept { return base_ + buf_.size(); }
+  std::uint64_t fed() const noexcept;
   // Bytes held waiting for more input (bounded by max_frame_size plus the
   // look-ahead, however the input is split).
-  std::size_t buffered() const noexcept { return buf_.size() - pos_; }
+  std::size_t buffered() const noexcept;
 
  private:
-  // Decodes until `limit` items are ready or the bytes run out.
-  void pump(std::size_t limit);
-  void release_pending();
-  void add_garbage(std::size_t at, std::size_t len, Finding* why);
-  void flush_garbage();
-  void compact();
-
-  StreamOptions opts_;
-  std::string buf_;  // unconsumed bytes live in [pos_, size)
-  std::size_t pos_ = 0;
-  std::uint64_t base_ = 0;  // stream offset of buf_[0]
-  bool at_end_ = false;
-  bool flushing_ = false;  // inside settle(): judge as at the end, keep the stream open
-  // A frame held until we know what follows it: parsed_.frame, at stream
-  // offset pending_offset_.
-  bool has_pending_ = false;
-  std::uint64_t pending_offset_ = 0;
-  std::uint64_t pending_length_ = 0;
-  std::uint64_t garbage_start_ = 0;
-  std::uint64_t garbage_len_ = 0;
-  std::string garbage_preview_;
-  Finding garbage_reason_;
-  bool garbage_has_reason_ = false;
-  // Items ready for next(). The slots keep their buffers; next() swaps an
-  // item out.
-  detail::Ring<StreamItem> ready_;
-  // A complete frame that fails its checksum, held while a frame that
-  // starts inside it is still incomplete: its parse and the stream offset of
-  // the '#' to try next, so each new chunk costs only that inner parse
-  // rather than the whole frame again (which made small chunks quadratic).
-  bool has_held_ = false;
-  std::uint64_t held_at_ = 0;
-  std::uint64_t held_scan_ = 0;
-  int held_tried_ = 0;
-  ParseResult held_;
-  // A frame at stream offset wait_at_ that cannot be judged before the
-  // stream holds wait_until_ bytes (a serial link feeds a byte at a time:
-  // the header is not parsed again for each).
-  std::uint64_t wait_at_ = 0;
-  std::uint64_t wait_until_ = 0;
-  // The parse options without messages, the parse at the decoding position
-  // (which holds the pending frame) and the parse at a '#' inside a frame
-  // (its verdict is all that is used), kept to reuse their buffers.
-  ParseOptions quiet_;
-  ParseResult parsed_;
-  ParseResult inner_;
+  class Impl;  // stream.cpp
+  std::unique_ptr<Impl> impl_;
 };
 
 }  // namespace top

@@ -2,7 +2,7 @@
 
 #include "conf/report.hpp"
 #include "junit.hpp"
-#include "top/text.hpp"
+#include "top/detail/text.hpp"
 
 namespace topconf {
 namespace {

@@ -1,6 +1,6 @@
 #include "junit.hpp"
 
-#include "top/text.hpp"
+#include "top/detail/text.hpp"
 
 namespace topconf::detail {
 

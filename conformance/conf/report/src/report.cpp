@@ -4,7 +4,7 @@
 #include <iomanip>
 
 #include "junit.hpp"
-#include "top/text.hpp"
+#include "top/detail/text.hpp"
 
 namespace topconf {
 
