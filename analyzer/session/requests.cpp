@@ -64,7 +64,7 @@ void Analyzer::Impl::learn_device(Conversation& c, int d, const top::Frame& f,
     return;
   }
   if (f.control == 'w' && dialect != top::Dialect::unknown &&
-      top::stream_enabled_by(dialect, f.ident_view()))
+      top::stream_enabled_by(dialect, f.ident_view(), top::Profile::field))
     c.device_dir = 1 - d;
 }
 
@@ -210,7 +210,7 @@ void Analyzer::Impl::request(Conversation& c, int d, FrameEvent& ev) {
     }
   }
   const top::StreamSpec* switched =
-      f.control == 'w' ? top::stream_enabled_by(dialect, id) : nullptr;
+      f.control == 'w' ? top::stream_enabled_by(dialect, id, top::Profile::field) : nullptr;
   if (switched) {
     if (const std::optional<unsigned> value = top::switch_value(f.data())) {
       const unsigned v = *value;

@@ -161,6 +161,30 @@ TEST(Field, RolesOfADeviceThatKeepsTheRequestsAddressOrder) {
     for (const auto& code : fr.codes) EXPECT_NE(code, "value-out-of-range") << fr.raw;
 }
 
+// Issue 28: ArduPilot's Topotek driver turns attitude on with GIA 01 once a
+// second and reads 12-char GIA frames, as a real SIP sends them (field
+// stream, top/device.hpp): they are the GIA stream, not unsolicited.
+TEST(Field, TopotekGiaEnableStartsTheGiaStream) {
+  Fixture f;
+  f.device = ep4(2, 9003);
+  for (int i = 0; i < 30; ++i) {
+    if (i % 10 == 0) {
+      f.up(i * 100, top::with_checksum("#TPPG2wGIA01"));
+      f.down(i * 100 + 2, top::with_checksum("#TPGP2wGIA01"));
+    }
+    f.down(i * 100 + 50, top::with_checksum("#tpGPCrGIA00000BB80000"));
+  }
+  f.a->finish();
+  const Stats& s = f.a->stats();
+  EXPECT_EQ(s.unsolicited, 0u);
+  EXPECT_EQ(s.unanswered, 0u);
+  ASSERT_EQ(s.conversations.at(0).streams.size(), 1u);
+  EXPECT_EQ(s.conversations.at(0).streams[0].ident, "GIA");
+  EXPECT_EQ(s.conversations.at(0).streams[0].frames, 30u);
+  for (const auto& fr : f.rec.frames)
+    for (const auto& code : fr.codes) EXPECT_NE(code, "unknown-ident") << fr.raw;
+}
+
 TEST(Field, RecordedFormsNameTheirSource) {
   AnalyzerOptions o;
   o.model = top::Model::c13;
