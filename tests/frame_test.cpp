@@ -477,6 +477,33 @@ TEST(Build, ChecksumOverAnotherHeaderIsTheGayExample) {
   EXPECT_TRUE(parse_exact(build_frame(b)).frame.ok());
 }
 
+// The malformations topconf's fuzz cases and matrices send, each found by
+// the parser as what it is.
+TEST(Build, WrongMissingChecksumAndAOneDigitLengthPast15) {
+  BuildSpec b;
+  b.header = Header::fixed;
+  b.ident = "PTZ";
+  b.data = "05";
+  b.checksum = 0x70;  // the sum is 0x6F
+  EXPECT_EQ(build_frame(b), "#TPUG2wPTZ0570");
+  EXPECT_TRUE(parse_exact(build_frame(b)).frame.has(FindingCode::bad_checksum));
+  b.checksum.reset();
+  b.omit_checksum = true;
+  EXPECT_EQ(build_frame(b), "#TPUG2wPTZ05");
+  EXPECT_TRUE(parse_exact(build_frame(b)).frame.has(FindingCode::no_checksum));
+  b.omit_checksum = false;
+  const std::string zeros(40, '0');
+  b.header = Header::variable;
+  b.data = zeros;
+  b.keep_header = true;
+  b.declared_length = 0xF;
+  const std::string f = build_frame(b);
+  EXPECT_EQ(f.substr(0, 11), "#tpUGFwPTZ0");
+  EXPECT_EQ(f.size(), 11u + 40 - 1 + 2);  // the prefix, the data, the checksum
+  b.keep_header = false;
+  EXPECT_EQ(build_frame(b).substr(0, 3), "#tP");
+}
+
 TEST(Build, TwoDigitLengthIsTheTmpFirmwareForm) {
   BuildSpec b;
   b.src = 'D';

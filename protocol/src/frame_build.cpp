@@ -17,7 +17,8 @@ std::string build_frame(const BuildSpec& spec) {
 void build_frame(const BuildSpec& spec, std::string& out) {
   Header h = spec.header;
   const std::size_t len = spec.data.size();
-  if ((h == Header::fixed || h == Header::variable) && len > max_data_hex && !spec.two_digit_length)
+  if ((h == Header::fixed || h == Header::variable) && len > max_data_hex &&
+      !spec.two_digit_length && !spec.keep_header)
     h = Header::ext8;
   if (h == Header::ext8 && len > max_data_ext8) h = Header::ext16;
   if (h == Header::tmp_quirk) h = Header::variable;
@@ -48,12 +49,14 @@ void build_frame(const BuildSpec& spec, std::string& out) {
   }
   out.append(spec.ident.substr(0, 3));
   out.append(spec.data);
+  if (spec.omit_checksum) return;
   std::uint8_t sum = checksum(out);
   if (spec.checksum_header && *spec.checksum_header != h) {
     // The same bytes but the header's: the sum differs by the header chars.
     const std::string_view as = to_string(*spec.checksum_header), is = to_string(h);
     sum = static_cast<std::uint8_t>(sum - checksum(is) + checksum(as));
   }
+  if (spec.checksum) sum = *spec.checksum;
   char cs[2];
   put_hex2(sum, cs);
   if (spec.lowercase_checksum)

@@ -159,7 +159,8 @@ void FaultInjector::apply(const std::string& frame, bool stream_link, std::vecto
   const bool lie = plain && chance(cfg_.lying_length);
   const bool flip = plain && chance(cfg_.header_case);
   std::string f = lie || flip ? malformed(frame, lie, flip) : frame;
-  // forged by hand until BuildSpec has a checksum of the caller's choice
+  // Corruption on the line, not a frame form: the last checksum digit of
+  // whatever is sent (any header, the TMP form, a lying length) changes.
   if (chance(cfg_.bad_checksum) && f.size() >= 2 && is_hex_upper(f[f.size() - 1])) {
     char& c = f[f.size() - 1];
     c = c == '0' ? '1' : '0';

@@ -193,6 +193,13 @@ struct BuildSpec {
   // The length of a #tp frame as two hex digits: the Topotek 12.2 TMP
   // firmware form #tpDP16wTMP... (22 data chars).
   bool two_digit_length = false;
+  // #TP/#tp kept past 15 data chars, its one hex digit then the low digit
+  // of the length (or of declared_length), instead of switching to #tP.
+  bool keep_header = false;
+  // The checksum written instead of the sum: a wrong checksum.
+  std::optional<std::uint8_t> checksum;
+  // No checksum digits at all: the frame ends after its data.
+  bool omit_checksum = false;
 };
 
 // Builds a frame with the header's length encoding and the checksum. The

@@ -199,16 +199,33 @@ void CaseSource::add_global() {
       frame(top::Header::ext16, client_, gimbal, 'w', carried, std::string(1000, 'A')));
   add("oversized", "#Tp 4000 data bytes",
       frame(top::Header::ext16, client_, camera, 'r', "VER", std::string(4000, '7')));
-  // forged by hand until BuildSpec has a checksum of the caller's choice (these
-  // two end in "00"; declared_length would write the length)
-  add("oversized", "#Tp declares 65535, carries 100",
-      std::string("#Tp") + client_ + "G\xFF\xFFGAY" + std::string(100, '1') + "00");
-  add("oversized", "#tP declares 255, carries 10",
-      std::string("#tP") + client_ + "G\xFFwGAY" + std::string(10, '1') + "00");
-  // forged by hand until BuildSpec can keep #tp past 15 data chars (it builds
-  // #tP then)
-  add("oversized", "#tp data of 40 chars under a one-digit length",
-      top::with_checksum(std::string("#tp") + client_ + "GFwGAY" + std::string(40, '0')));
+  // Lengths that lie past what is carried, with a checksum of 00.
+  {
+    top::BuildSpec b{.header = top::Header::ext16,
+                     .src = client_,
+                     .dst = gimbal,
+                     .ident = carried,
+                     .declared_length = 0xFFFF,
+                     .checksum = 0};
+    const std::string ones(100, '1');
+    b.data = ones;
+    add("oversized", "#Tp declares 65535, carries 100", top::build_frame(b));
+    b.header = top::Header::ext8;
+    b.declared_length = 0xFF;
+    b.data = std::string_view(ones).substr(0, 10);
+    add("oversized", "#tP declares 255, carries 10", top::build_frame(b));
+  }
+  {
+    const std::string zeros(40, '0');
+    top::BuildSpec b{.header = top::Header::variable,
+                     .src = client_,
+                     .dst = gimbal,
+                     .ident = carried,
+                     .data = zeros,
+                     .declared_length = 0xF,
+                     .keep_header = true};
+    add("oversized", "#tp data of 40 chars under a one-digit length", top::build_frame(b));
+  }
   for (int c : {0x00, 0x01, 0x23, 0x7F, 0x80, 0xFF, 0x0D, 0x0A}) {
     std::string data = "\x10\x27";
     data += static_cast<char>(c);
@@ -292,16 +309,16 @@ void CaseSource::add_form(const top::CommandSpec& c, const top::FormSpec& form) 
           frame(hh, client_, c.address, ctl, id, ex));
   // Checksum variants.
   const std::string body = valid.substr(0, valid.size() - 2);
-  // forged by hand until BuildSpec has a checksum of the caller's choice
-  char cs[2];
-  top::put_hex2(static_cast<std::uint8_t>(top::checksum(body) + 1), cs);
-  add("checksum", tag + "wrong checksum", body + std::string(cs, 2));
+  top::BuildSpec wrong = valid_spec;
+  wrong.checksum = static_cast<std::uint8_t>(top::checksum(body) + 1);
+  add("checksum", tag + "wrong checksum", top::build_frame(wrong));
   top::BuildSpec lower = valid_spec;
   lower.lowercase_checksum = true;
   if (std::string f = top::build_frame(lower); f != valid)
     add("checksum", tag + "lowercase checksum", std::move(f));
-  // forged by hand until BuildSpec can leave the checksum out
-  add("checksum", tag + "no checksum", body);
+  top::BuildSpec none = valid_spec;
+  none.omit_checksum = true;
+  add("checksum", tag + "no checksum", top::build_frame(none));
   top::BuildSpec other = valid_spec;
   other.checksum_header = other_case(written);
   add("checksum", tag + "checksum over the other header case", top::build_frame(other));
