@@ -1,5 +1,6 @@
 // Analyzer-level findings: problems of the capture, the transport or the
-// session, not of a frame's bytes. Same shape as top::TOP_FINDINGS; the
+// session, not of a frame's bytes. Built like top::TOP_FINDINGS (without
+// its quirk column: no analyzer finding names a firmware quirk); the
 // table is documented in docs/topdump-json.md ("Analyzer findings") and
 // tests/analyzer keep both in step.
 #pragma once

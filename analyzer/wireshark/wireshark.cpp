@@ -223,8 +223,8 @@ void write_catalog(std::string& o) {
 void write_findings(std::string& o) {
   o += "\n-- The finding codes (protocol/include/top/findings.hpp) as expert infos:\n"
        "-- top.finding.<code> at the default severity, top.finding.<code>.<severity>\n"
-       "-- when a frame's finding has another one.\n";
-  o += "local FINDINGS, EXPERTS = {}, {}\n";
+       "-- when a frame's finding has another one; QUIRKS: the firmware quirk a code names.\n";
+  o += "local FINDINGS, EXPERTS, QUIRKS = {}, {}, {}\n";
   const char* sev_names[] = {"info", "warning", "error"};
   const char* sev_lua[] = {"expert.severity.NOTE", "expert.severity.WARN", "expert.severity.ERROR"};
   for (std::size_t i = 0; i < top::finding_code_count; ++i) {
@@ -237,6 +237,8 @@ void write_findings(std::string& o) {
     else if (name.rfind("bad-", 0) == 0 || name == "truncated" || name == "frame-too-long")
       group = "expert.group.MALFORMED";
     o += "FINDINGS[" + lua_str(name) + "] = " + lua_str(sev_names[def]) + "\n";
+    if (const std::string_view q = top::quirk_id(code); !q.empty())
+      o += "QUIRKS[" + lua_str(name) + "] = " + lua_str(std::string(q)) + "\n";
     o += "EXPERTS[" + lua_str(name) + "] = {\n";
     for (std::size_t s = 0; s < 3; ++s) {
       std::string ab = "top.finding." + name + (s == def ? "" : "." + std::string(sev_names[s]));

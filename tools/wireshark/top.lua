@@ -16,8 +16,8 @@ local MODEL_DIALECT = { c10 = "skydroid", c10pro = "skydroid", c12 = "skydroid",
 
 -- The finding codes (protocol/include/top/findings.hpp) as expert infos:
 -- top.finding.<code> at the default severity, top.finding.<code>.<severity>
--- when a frame's finding has another one.
-local FINDINGS, EXPERTS = {}, {}
+-- when a frame's finding has another one; QUIRKS: the firmware quirk a code names.
+local FINDINGS, EXPERTS, QUIRKS = {}, {}, {}
 FINDINGS["bad-checksum"] = "error"
 EXPERTS["bad-checksum"] = {
   ["info"] = ProtoExpert.new("top.finding.bad-checksum.info", "bad-checksum: the checksum digits do not match the byte sum; carries the expected value", expert.group.CHECKSUM, expert.severity.NOTE),
@@ -25,6 +25,7 @@ EXPERTS["bad-checksum"] = {
   ["error"] = ProtoExpert.new("top.finding.bad-checksum", "bad-checksum: the checksum digits do not match the byte sum; carries the expected value", expert.group.CHECKSUM, expert.severity.ERROR),
 }
 FINDINGS["checksum-header-case"] = "error"
+QUIRKS["checksum-header-case"] = "skydroid-doc-header-case"
 EXPERTS["checksum-header-case"] = {
   ["info"] = ProtoExpert.new("top.finding.checksum-header-case.info", "checksum-header-case: the checksum matches the sum of the frame with another case variant of the header (SkyDroid GAY/GOT examples: computed as #tp, sent as #TP)", expert.group.CHECKSUM, expert.severity.NOTE),
   ["warning"] = ProtoExpert.new("top.finding.checksum-header-case.warning", "checksum-header-case: the checksum matches the sum of the frame with another case variant of the header (SkyDroid GAY/GOT examples: computed as #tp, sent as #TP)", expert.group.CHECKSUM, expert.severity.WARN),
@@ -121,6 +122,7 @@ EXPERTS["frame-too-long"] = {
   ["error"] = ProtoExpert.new("top.finding.frame-too-long", "frame-too-long: the declared length exceeds the configured maximum", expert.group.MALFORMED, expert.severity.ERROR),
 }
 FINDINGS["tmp-quirk"] = "info"
+QUIRKS["tmp-quirk"] = "topotek-tmp-length"
 EXPERTS["tmp-quirk"] = {
   ["info"] = ProtoExpert.new("top.finding.tmp-quirk", "tmp-quirk: the malformed Topotek TMP frame (12.2): documented #PDP16TMP form or two-digit length #tpDP16wTMP; decoded, a known firmware quirk", expert.group.PROTOCOL, expert.severity.NOTE),
   ["warning"] = ProtoExpert.new("top.finding.tmp-quirk.warning", "tmp-quirk: the malformed Topotek TMP frame (12.2): documented #PDP16TMP form or two-digit length #tpDP16wTMP; decoded, a known firmware quirk", expert.group.PROTOCOL, expert.severity.WARN),
@@ -2557,10 +2559,10 @@ local function parse_frame(b, p0, at_end)
     if header == "tmp" then
       notes[#notes + 1] = finding("tmp-quirk", 1, "the malformed TMP form documented in Topotek 12.2 " ..
                                   "(#PDP16TMP: no 'tp', two-digit length, no control char)",
-                                  "topotek-tmp-length")
+                                  QUIRKS["tmp-quirk"])
     else
       notes[#notes + 1] = finding("tmp-quirk", 5, "TMP frame with a two-digit length (Topotek 12.2: " ..
-                                  "22 data chars do not fit one hex digit)", "topotek-tmp-length")
+                                  "22 data chars do not fit one hex digit)", QUIRKS["tmp-quirk"])
     end
   elseif two_digit then
     notes[#notes + 1] = finding("two-digit-length", 5, "length written as two hex digits (0x" ..
@@ -2661,7 +2663,8 @@ local function parse_frame(b, p0, at_end)
       if v ~= own and (base + sbyte(v, 1) + sbyte(v, 2)) % 256 == value then
         notes[#notes + 1] = finding("checksum-header-case", declared_cs, "checksum " .. got ..
                                     " is the sum with header #" .. v .. ", not #" .. own ..
-                                    " (expected " .. hex2(expected) .. ")", "skydroid-doc-header-case")
+                                    " (expected " .. hex2(expected) .. ")",
+                                    QUIRKS["checksum-header-case"])
         return finish(L, true, value, prefix_declared)
       end
     end

@@ -165,10 +165,10 @@ local function parse_frame(b, p0, at_end)
     if header == "tmp" then
       notes[#notes + 1] = finding("tmp-quirk", 1, "the malformed TMP form documented in Topotek 12.2 " ..
                                   "(#PDP16TMP: no 'tp', two-digit length, no control char)",
-                                  "topotek-tmp-length")
+                                  QUIRKS["tmp-quirk"])
     else
       notes[#notes + 1] = finding("tmp-quirk", 5, "TMP frame with a two-digit length (Topotek 12.2: " ..
-                                  "22 data chars do not fit one hex digit)", "topotek-tmp-length")
+                                  "22 data chars do not fit one hex digit)", QUIRKS["tmp-quirk"])
     end
   elseif two_digit then
     notes[#notes + 1] = finding("two-digit-length", 5, "length written as two hex digits (0x" ..
@@ -269,7 +269,8 @@ local function parse_frame(b, p0, at_end)
       if v ~= own and (base + sbyte(v, 1) + sbyte(v, 2)) % 256 == value then
         notes[#notes + 1] = finding("checksum-header-case", declared_cs, "checksum " .. got ..
                                     " is the sum with header #" .. v .. ", not #" .. own ..
-                                    " (expected " .. hex2(expected) .. ")", "skydroid-doc-header-case")
+                                    " (expected " .. hex2(expected) .. ")",
+                                    QUIRKS["checksum-header-case"])
         return finish(L, true, value, prefix_declared)
       end
     end
