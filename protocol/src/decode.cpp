@@ -45,44 +45,6 @@ const EnumValue* find_enum(std::span<const EnumValue> e, std::int64_t v) noexcep
   return nullptr;
 }
 
-bool all_printable(std::string_view s) noexcept {
-  for (unsigned char c : s)
-    if (c < 0x20 || c >= 0x7F) return false;
-  return true;
-}
-
-// Parses "[-+]digits[.digits]"; false on anything else.
-bool parse_number(std::string_view s, double& out) noexcept {
-  if (s.empty()) return false;
-  std::size_t i = 0;
-  bool neg = false;
-  if (s[0] == '-' || s[0] == '+') {
-    neg = s[0] == '-';
-    i = 1;
-  }
-  double v = 0, frac = 0.1;
-  bool digits = false, point = false;
-  for (; i < s.size(); ++i) {
-    char c = s[i];
-    if (c >= '0' && c <= '9') {
-      digits = true;
-      if (point) {
-        v += (c - '0') * frac;
-        frac /= 10;
-      } else {
-        v = v * 10 + (c - '0');
-      }
-    } else if (c == '.' && !point) {
-      point = true;
-    } else {
-      return false;
-    }
-  }
-  if (!digits) return false;
-  out = neg ? -v : v;
-  return true;
-}
-
 struct Ctx {
   const Frame& frame;
   Decoded& out;
@@ -195,7 +157,7 @@ void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes, std::
       break;
     }
     case FieldKind::text: {
-      if (!all_printable(bytes)) return bad("non-printable bytes in text");
+      if (!detail::all_printable(bytes)) return bad("non-printable bytes in text");
       ctx.keep(fv, bytes);
       fv.valid = true;
       return;
@@ -204,7 +166,7 @@ void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes, std::
       double v = 0;
       std::string_view t = bytes;
       while (!t.empty() && t.front() == ' ') t.remove_prefix(1);
-      if (!parse_number(t, v)) return bad("'", bytes, "' is not a number");
+      if (!detail::parse_number(t, v)) return bad("'", bytes, "' is not a number");
       fv.value = v * spec.scale;
       fv.integer = static_cast<std::int64_t>(v);
       ctx.keep(fv, bytes);
@@ -242,7 +204,7 @@ void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes, std::
       if (hemi != 'E' && hemi != 'W' && hemi != 'N' && hemi != 'S')
         return bad("hemisphere '", {&hemi, 1}, "' is not N S E W");
       double raw = 0;
-      if (!parse_number(bytes.substr(1), raw) || raw < 0)
+      if (!detail::parse_number(bytes.substr(1), raw) || raw < 0)
         return bad("'", bytes.substr(1), "' is not dddmm.mmmm");
       double deg = std::floor(raw / 100.0);
       double minutes = raw - deg * 100.0;
@@ -453,44 +415,6 @@ void decode_shape(Ctx& ctx, const Frame& frame, const DecodeOptions& opts, Diale
 
 }  // namespace
 
-namespace {
-
-// The cache's slot for this frame's shape, or null (no cache, or a shape it
-// does not key).
-detail::ShapeSlot* shape_slot(const DecodeOptions& opts, const Frame& f, Dialect d, Role role) {
-  if (!opts.cache) return nullptr;
-  const std::uint64_t key = detail::shape_key(f, d, role, opts.model);
-  return key ? &detail::CacheAccess::slot(*opts.cache, key) : nullptr;
-}
-
-void remember(detail::ShapeSlot& s, const Decoded& out) {
-  if (out.findings.size() > detail::ShapeSlot::kFindings) return;
-  s.dialect = out.dialect;
-  s.role = out.role;
-  s.command = out.command;
-  s.form = out.form;
-  s.plan = out.form ? &plan_of(*out.command, *out.form) : nullptr;
-  s.count = static_cast<std::uint8_t>(out.findings.size());
-  for (std::size_t i = 0; i < out.findings.size(); ++i) {
-    const Finding& f = out.findings[i];
-    s.findings[i] = {f.code, f.severity, f.offset, f.quirk};
-  }
-  s.known = true;
-}
-
-void replay(const detail::ShapeSlot& s, Decoded& out) {
-  out.dialect = s.dialect;
-  out.role = s.role;
-  out.command = s.command;
-  out.form = s.form;
-  for (std::size_t i = 0; i < s.count; ++i) {
-    const detail::ShapeSlot::Seen& x = s.findings[i];
-    out.findings.push_back(Finding{x.code, x.severity, x.offset, std::string(), x.quirk});
-  }
-}
-
-}  // namespace
-
 // The frame's command, form and findings, and its fields with detail.
 static void decode_frame(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
   out.fields.clear();
@@ -503,12 +427,13 @@ static void decode_frame(const Frame& frame, const DecodeOptions& opts, Decoded&
   if (d == Dialect::unknown && opts.model != Model::unknown) d = dialect_of(opts.model);
   if (d == Dialect::unknown) d = dialect_from_frame(frame);
   const FormPlan* plan = nullptr;  // the form's, when the shape cache knows it
-  if (detail::ShapeSlot* slot = ctx.detail ? nullptr : shape_slot(opts, frame, d, out.role)) {
+  if (detail::ShapeSlot* slot =
+          ctx.detail ? nullptr : detail::shape_slot(opts, frame, d, out.role)) {
     if (slot->known) {
-      replay(*slot, out);
+      detail::replay(*slot, out);
     } else {
       decode_shape(ctx, frame, opts, d, out);
-      remember(*slot, out);  // unless the shape has too many findings
+      detail::remember(*slot, out);  // unless the shape has too many findings
     }
     if (slot->known) plan = slot->plan;
   } else {
@@ -569,32 +494,6 @@ Decoded decode(const Frame& frame, const DecodeOptions& opts) {
   Decoded out;
   decode(frame, opts, out);
   return out;
-}
-
-Role role_from_layout(Dialect dialect, const Frame& f) noexcept {
-  const std::size_t n = f.data().size();
-  bool request = false, response = false;
-  for (Dialect d : {Dialect::skydroid, Dialect::topotek}) {
-    if (dialect != Dialect::unknown && d != dialect) continue;
-    const CommandSpec* cmd = find_command(d, f.ident_view());
-    if (!cmd) continue;
-    for (const FormSpec& form : cmd->forms) {
-      if (form.control != f.control || n < form.min_length || n > form.max_length) continue;
-      request |= form.role != Role::response;
-      response |= form.role != Role::request;
-    }
-  }
-  if (response && !request) return Role::response;
-  if (request && !response) return Role::request;
-  // A read in no request's layout of a device stream's push (the SkyDroid
-  // GAC push, which the document writes #TPUGCrGAC, client first).
-  if (response && f.control == 'r')
-    for (Dialect d : {Dialect::skydroid, Dialect::topotek}) {
-      if (dialect != Dialect::unknown && d != dialect) continue;
-      const StreamSpec* st = stream_of(d, f.ident_view());
-      if (st && st->sender == Sender::device) return Role::response;
-    }
-  return Role::any;
 }
 
 }  // namespace top

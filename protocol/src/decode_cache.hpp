@@ -113,4 +113,39 @@ struct CacheAccess {
   }
 };
 
+// Used by decode() for every frame, so inline.
+// The cache's slot for this frame's shape, or null (no cache, or a shape it
+// does not key).
+inline ShapeSlot* shape_slot(const DecodeOptions& opts, const Frame& f, Dialect d, Role role) {
+  if (!opts.cache) return nullptr;
+  const std::uint64_t key = shape_key(f, d, role, opts.model);
+  return key ? &CacheAccess::slot(*opts.cache, key) : nullptr;
+}
+
+inline void remember(ShapeSlot& s, const Decoded& out) {
+  if (out.findings.size() > ShapeSlot::kFindings) return;
+  s.dialect = out.dialect;
+  s.role = out.role;
+  s.command = out.command;
+  s.form = out.form;
+  s.plan = out.form ? &plan_of(*out.command, *out.form) : nullptr;
+  s.count = static_cast<std::uint8_t>(out.findings.size());
+  for (std::size_t i = 0; i < out.findings.size(); ++i) {
+    const Finding& f = out.findings[i];
+    s.findings[i] = {f.code, f.severity, f.offset, f.quirk};
+  }
+  s.known = true;
+}
+
+inline void replay(const ShapeSlot& s, Decoded& out) {
+  out.dialect = s.dialect;
+  out.role = s.role;
+  out.command = s.command;
+  out.form = s.form;
+  for (std::size_t i = 0; i < s.count; ++i) {
+    const ShapeSlot::Seen& x = s.findings[i];
+    out.findings.push_back(Finding{x.code, x.severity, x.offset, std::string(), x.quirk});
+  }
+}
+
 }  // namespace top::detail

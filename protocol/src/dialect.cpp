@@ -1,5 +1,8 @@
 #include "top/dialect.hpp"
 
+#include "top/decode.hpp"
+#include "top/device.hpp"
+
 namespace top {
 
 Dialect dialect_from_frame(const Frame& f) noexcept {
@@ -30,6 +33,32 @@ void DialectDetector::observe(const Frame& f) noexcept {
     case Dialect::unknown:
       break;
   }
+}
+
+Role role_from_layout(Dialect dialect, const Frame& f) noexcept {
+  const std::size_t n = f.data().size();
+  bool request = false, response = false;
+  for (Dialect d : {Dialect::skydroid, Dialect::topotek}) {
+    if (dialect != Dialect::unknown && d != dialect) continue;
+    const CommandSpec* cmd = find_command(d, f.ident_view());
+    if (!cmd) continue;
+    for (const FormSpec& form : cmd->forms) {
+      if (form.control != f.control || n < form.min_length || n > form.max_length) continue;
+      request |= form.role != Role::response;
+      response |= form.role != Role::request;
+    }
+  }
+  if (response && !request) return Role::response;
+  if (request && !response) return Role::request;
+  // A read in no request's layout of a device stream's push (the SkyDroid
+  // GAC push, which the document writes #TPUGCrGAC, client first).
+  if (response && f.control == 'r')
+    for (Dialect d : {Dialect::skydroid, Dialect::topotek}) {
+      if (dialect != Dialect::unknown && d != dialect) continue;
+      const StreamSpec* st = stream_of(d, f.ident_view());
+      if (st && st->sender == Sender::device) return Role::response;
+    }
+  return Role::any;
 }
 
 }  // namespace top

@@ -61,4 +61,41 @@ std::string fmt_number(double v, int decimals) {
   return s;
 }
 
+bool all_printable(std::string_view s) noexcept {
+  for (unsigned char c : s)
+    if (c < 0x20 || c >= 0x7F) return false;
+  return true;
+}
+
+bool parse_number(std::string_view s, double& out) noexcept {
+  if (s.empty()) return false;
+  std::size_t i = 0;
+  bool neg = false;
+  if (s[0] == '-' || s[0] == '+') {
+    neg = s[0] == '-';
+    i = 1;
+  }
+  double v = 0, frac = 0.1;
+  bool digits = false, point = false;
+  for (; i < s.size(); ++i) {
+    char c = s[i];
+    if (c >= '0' && c <= '9') {
+      digits = true;
+      if (point) {
+        v += (c - '0') * frac;
+        frac /= 10;
+      } else {
+        v = v * 10 + (c - '0');
+      }
+    } else if (c == '.' && !point) {
+      point = true;
+    } else {
+      return false;
+    }
+  }
+  if (!digits) return false;
+  out = neg ? -v : v;
+  return true;
+}
+
 }  // namespace top::detail

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 #include "top/detail/decimal.hpp"
 
@@ -33,5 +34,10 @@ inline double scaled(std::int64_t iv, double scale) noexcept {
 
 // printf("%.*f", decimals, v).
 std::string fmt_number(double v, int decimals);
+
+// Every byte printable ASCII (0x20-0x7E).
+bool all_printable(std::string_view s) noexcept;
+// Parses "[-+]digits[.digits]"; false on anything else.
+bool parse_number(std::string_view s, double& out) noexcept;
 
 }  // namespace top::detail

@@ -1,0 +1,321 @@
+// Device behaviour tables: streams, recorded frame forms, firmware traits
+// and field support, each with its source. See top/device.hpp; the rules
+// that read them are in device.cpp.
+#include <cstdint>
+#include <span>
+
+#include "catalog_data.hpp"
+#include "top/device.hpp"
+
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+
+namespace top {
+namespace {
+
+using detail::c10;
+using detail::c10pro;
+using detail::c12;
+using detail::c13;
+using detail::c20;
+using detail::sip;
+
+constexpr StreamSpec kStreams[] = {
+    {.dialect = Dialect::skydroid,
+     .request = "GAA",
+     .push = "GAC",
+     .rate_in_data = true,
+     .section = "SkyDroid 3.3.2",
+     .note = "GAA 01-64 (hex) pushes GAC at 1-100 Hz; 00 stops it"},
+    {.dialect = Dialect::skydroid,
+     .request = "FAE",
+     .push = "FAI",
+     .sender = Sender::client,
+     .section = "SkyDroid 3.3.6",
+     .note = "FAE 01 lets the flight controller send its attitude as FAI writes; "
+             "the document gives FAI no reply"},
+    {.dialect = Dialect::topotek,
+     .request = "GAA",
+     .push = "GAC",
+     .section = "Topotek 3.4",
+     .note = "GAA 01 switches the gimbal attitude push on, 00 off; the rate is "
+             "the device's"},
+    {.dialect = Dialect::topotek,
+     .request = "GIA",
+     .push = "GIC",
+     .section = "Topotek 3.6",
+     .note = "GIA 01 switches the gyroscope attitude push on, 00 off; the rate "
+             "is the device's"},
+    // The field: pushes the documents do not give. After the document's
+    // entry of the same request, so that stream_enabled_by() without a
+    // profile keeps the document's.
+    {.dialect = Dialect::topotek,
+     .request = "GIA",
+     .push = "GIA",
+     .section = "field: ArduPilot AP_Mount_Topotek (PR #28455); a real SIP (issue 28)",
+     .note = "GIA 01 pushes 12-char GIA attitude frames (yaw, pitch down positive, roll in "
+             "0.01 deg); ArduPilot's driver re-sends the enable once a second and is healthy "
+             "only while GIA frames arrive",
+     .evidence =
+         "AP_Mount_Topotek.cpp sends #TPUG2wGIA013E once a second and parses only GIA "
+         "for attitude (it parsed GAC before: PR #28455 per issue 28); ArduPilot's SIM_Topotek "
+         "pushes #TPUGCrGIA at 10 Hz; a real SIP answers the GIC query with a 12-char "
+         "GIA (issue 28 log, PixEagle bench notes)"},
+    {.dialect = Dialect::topotek,
+     .request = "LOC",
+     .push = "OFT",
+     .section = "field: PixEagle bench notes on a real SIP",
+     .note = "a tracking start (LOC) pushes OFT tracking boxes at about video rate while the "
+             "unit tracks; after a cancel one OFT with an all-zero box and status 1",
+     .evidence = "PixEagle bench notes (a real SIP: 99 OFT in one session; the vendor's "
+                 "tracking PDF section 7); issue 28: OFT at about 30 Hz while it tracks"},
+};
+
+constexpr DeviceForm kForms[] = {
+    // SkyDroid 3.3.2.2, receive example: "#TPUGCrGACY0Y1Y2Y3P0P1P2P3R0R1R2R3CC".
+    {.dialect = Dialect::skydroid,
+     .models = c10 | c10pro | c12 | c20,
+     .ident = "GAC",
+     .control = 'r',
+     .sent = Sent::push,
+     .header = Header::fixed,
+     .order = Order::request_order,
+     .source = Source::document_example,
+     .evidence = "SkyDroid 3.3.2.2 example #TPUGCrGACY0Y1Y2Y3P0P1P2P3R0R1R2R3CC: "
+                 "uppercase #TP, U first"},
+    {.dialect = Dialect::skydroid,
+     .models = c12,
+     .ident = "GAC",
+     .control = 'r',
+     .sent = Sent::push,
+     .header = Header::variable,
+     .order = Order::request_order,
+     .source = Source::field,
+     .evidence = "real C12s push #tpUGCrGAC<12 hex><cs>: an Android app and two Python "
+                 "C12 drivers (one checks the checksum) accept only that prefix"},
+    // SkyDroid 4.22, reply example: "#TPUD4rSLR0005BC".
+    {.dialect = Dialect::skydroid,
+     .models = c13,
+     .ident = "SLR",
+     .control = 'r',
+     .sent = Sent::reply,
+     .header = Header::fixed,
+     .order = Order::request_order,
+     .source = Source::document_example,
+     .evidence = "SkyDroid 4.22 reply example #TPUD4rSLR0005BC: #TP with length 4, U first"},
+    {.dialect = Dialect::skydroid,
+     .models = c13,
+     .ident = "SLR",
+     .control = 'r',
+     .sent = Sent::reply,
+     .header = Header::fixed,
+     .order = Order::swapped,
+     .source = Source::field,
+     .evidence = "a public C13 SDK takes a range only from a datagram holding #TPDU and "
+                 "SLR: #TP with length 4, addresses swapped"},
+    {.dialect = Dialect::skydroid,
+     .models = c12,
+     .ident = "IMG",
+     .control = 'r',
+     .sent = Sent::reply,
+     .header = Header::fixed,
+     .order = Order::swapped,
+     .source = Source::field,
+     .evidence = "a Python C12 console reads the thermal palette only from a reply that "
+                 "starts #TPDU and holds IMG"},
+    {.dialect = Dialect::skydroid,
+     .models = c12,
+     .ident = "VER",
+     .control = 'r',
+     .sent = Sent::reply,
+     .header = Header::variable,
+     .order = Order::swapped,
+     .source = Source::field,
+     .evidence = "a real C12 answered VER with #tpDU3rVER0105025A (its length char lies)"},
+    // Topotek 3.5: "receive: #tpGU C r GIC Y0Y1Y2Y3P0P1P2P3R0R1R2R3 CC".
+    {.dialect = Dialect::topotek,
+     .models = sip,
+     .ident = "GIC",
+     .control = 'r',
+     .sent = Sent::reply,
+     .header = Header::variable,
+     .order = Order::swapped,
+     .source = Source::document_example,
+     .evidence = "Topotek 3.5 example #tpGU C r GIC Y0Y1Y2Y3P0P1P2P3R0R1R2R3 CC"},
+    {.dialect = Dialect::topotek,
+     .models = sip,
+     .ident = "GAC",
+     .control = 'r',
+     .sent = Sent::reply,
+     .header = Header::variable,
+     .order = Order::swapped,
+     .source = Source::field,
+     .evidence = "a Topotek device answered #tpGPCrGACFF36ED5A0048DE to a network client"},
+    {.dialect = Dialect::topotek,
+     .models = sip,
+     .ident = "GIA",
+     .control = 'r',
+     .sent = Sent::reply,
+     .header = Header::variable,
+     .order = Order::swapped,
+     .source = Source::field,
+     .evidence = "a real SIP (firmware 1.6.26.R.D) answered the GIC query #TPPG2rGIC0035 with "
+                 "#tpGPCrGIA + 12 hex (issue 28 log; PixEagle: GIC queries consistently got "
+                 "GIA replies)"},
+    {.dialect = Dialect::topotek,
+     .models = sip,
+     .ident = "GMS",
+     .control = 'r',
+     .sent = Sent::reply,
+     .header = Header::variable,
+     .order = Order::swapped,
+     .source = Source::field,
+     .evidence = "a real Topotek unit answered #tpPG2rGMS0089 with #tpGP2rGMS018A: #tp kept on "
+                 "a 2-data-char reply (issue 28 log)"},
+    // Lengths that count bytes. The SLR reply is of a C14 Pro, a model the
+    // catalog does not list: no model bit, so only a capture of unknown
+    // model matches it.
+    {.dialect = Dialect::skydroid,
+     .models = c12,
+     .ident = "IMG",
+     .control = 'r',
+     .sent = Sent::reply,
+     .header = Header::fixed,
+     .order = Order::swapped,
+     .source = Source::field,
+     .evidence = "a C12 Android app (log114/PTZControl C12Service.kt) waits for #TPDU1rIMG and "
+                 "takes the 2 chars after IMG as the palette: length 1 for 2 data chars",
+     .length_in_bytes = true},
+    {.dialect = Dialect::skydroid,
+     .ident = "SLR",
+     .control = 'r',
+     .sent = Sent::reply,
+     .header = Header::fixed,
+     .order = Order::swapped,
+     .source = Source::field,
+     .evidence = "a real device answered the range read with #TPDU2rSLR0018BE, data 0018 = 24 dm "
+                 "under length 2 (a Qt ground station's lgs::SkydroidSdkClient note; a C14 Pro "
+                 "per issue 28)",
+     .length_in_bytes = true},
+};
+
+constexpr Trait kTraits[] = {
+    {.kind = TraitKind::yaw_inverted,
+     .dialect = Dialect::skydroid,
+     .models = c12,
+     .source = Source::field,
+     .evidence = "for: two public C12 clients negate yaw before GAY/GAM; one notes the attitude "
+                 "reports the opposite sign of the GAM input. Against: a C12 Android app "
+                 "(log114/PTZControl) turns left with GSY E2, the document's sign",
+     .idents = "GAY GAM"},
+    {.kind = TraitKind::pitch_inverted,
+     .dialect = Dialect::skydroid,
+     .models = c12,
+     .source = Source::field,
+     .evidence = "for: one public C12 client negates pitch before GAM (\"attitude telemetry "
+                 "reports yaw/pitch with opposite signs from GAM input\"; that client was not "
+                 "found again in docs/sources/ardupilot.md's search), and a C12 visual-servoing "
+                 "README's tuning example sets inv_y (image to pitch: weak). Against: a C12 "
+                 "Android app (log114/PTZControl) sends GAP DCD8 (-90.00) for down and GSP +30 "
+                 "for up, the document's signs; AP_Mount_SkyDroid (C11, PR #34155) and a C13 "
+                 "station (custom-GCS) keep pitch up positive, and SkyDroid told the driver's "
+                 "author the C11/C13 commands are the same; with it ArduPilot's driver drives "
+                 "pitch to +90 after a -30 target (issue 28). Unconfirmed",
+     .idents = "GAM"},
+    {.kind = TraitKind::yaw_inverted,
+     .dialect = Dialect::skydroid,
+     .models = c13,
+     .source = Source::field,
+     .evidence = "on the wire +GSY makes GAC yaw decrease, the reverse of SkyDroid 3.2.1: "
+                 "AP_Mount_SkyDroid negates GSY (\"a positive GSY value moves yaw LEFT\", real "
+                 "C11, PR #34155; SkyDroid says C11/C13 commands are the same) and a station "
+                 "used on a real C13 (custom-GCS, _LRF_C13_INVERT_GSY) agrees; which of GSY or "
+                 "GAC yaw differs from the document physically is not established",
+     .idents = "GSY"},
+    {.kind = TraitKind::answers_to_source,
+     .dialect = Dialect::skydroid,
+     .models = c10 | c10pro | c12 | c13 | c20,
+     .source = Source::field,
+     .evidence = "C12 clients send from UDP 5000 to 5000 (the vendor's app does) and read "
+                 "the replies on that socket: the device answers the datagram's source"},
+    {.kind = TraitKind::link_by_source,
+     .dialect = Dialect::topotek,
+     .models = sip,
+     .source = Source::document_rule,
+     .evidence = "Topotek 2: the source byte names the interface (P network, U UART); a "
+                 "UDP request with source U gets no answer (public Topotek clients agree)"},
+    {.kind = TraitKind::speed_refresh,
+     .dialect = Dialect::skydroid,
+     .models = c10 | c10pro | c12 | c20,
+     .value = 1000,
+     .source = Source::field,
+     .evidence = "autopilot drivers refresh speed commands at 10-50 Hz: without a refresh "
+                 "the motors stop"},
+    {.kind = TraitKind::keeps_request_header,
+     .dialect = Dialect::topotek,
+     .models = sip,
+     .source = Source::field,
+     .evidence = "a real unit answers #tpPG2rGMS0089 with #tpGP2rGMS018A (#tp kept on 2 data "
+                 "chars) and #TPPD2rTRC0048 with #TPDP2rTRC0048 (issue 28 log)"},
+    {.kind = TraitKind::double_checksum,
+     .dialect = Dialect::skydroid,
+     .models = c10pro,
+     .source = Source::field,
+     .evidence = "a C10 Pro tool (DifferentialRobotics/C10Pro_Control README) sends "
+                 "#TPUG2wPTZ056FEB, #TPUG2wPTZ016BE3, #TPUG2wPTZ026CE5: a valid frame, then a "
+                 "checksum over it and its checksum; that the camera takes them is the tool "
+                 "author's claim",
+     .idents = "PTZ"},
+};
+
+// SkyDroid 3.1 lists PTZ for C10, C10Pro, C12 and C20, and 0E-13 as trim.
+constexpr std::int64_t kC13Ptz[] = {0x02, 0x05, 0x0E, 0x0F, 0x10, 0x11, 0x12, 0x13};
+// ArduPilot's SkyDroid driver sends these PTZ codes to C11 and C13 alike.
+constexpr std::int64_t kC13PtzDriver[] = {0x05, 0x06, 0x07};
+constexpr FieldSupport kFieldSupport[] = {
+    {.dialect = Dialect::skydroid,
+     .models = c13,
+     .ident = "PTZ",
+     .values = kC13Ptz,
+     .evidence = "a public C13 SDK (skydroid_c13_miniSDK) reports PTZ 02 (down), 05 "
+                 "(center) and 0E/0F pitch +/-, 10/11 yaw +/-, 12/13 roll +/- working on a "
+                 "real C13"},
+    {.dialect = Dialect::skydroid,
+     .models = c13,
+     .ident = "PTZ",
+     .values = kC13PtzDriver,
+     .evidence = "AP_Mount_SkyDroid (PR #34155, https://github.com/ArduPilot/ardupilot/pull/"
+                 "34155) sends PTZ 06 follow, 07 lock and 05 centre to C11 and C13 alike; its "
+                 "author: SkyDroid confirmed the C11/C13 commands are the same"},
+    {.dialect = Dialect::skydroid,
+     .models = c13,
+     .ident = "GAA",
+     .evidence = "AP_Mount_SkyDroid (PR #34155) turns the C13's attitude on with "
+                 "#TPUG2wGAA323A (SkyDroid confirmed the C11/C13 commands are the same); a "
+                 "station used on a real C13 (custom-GCS) sends GAA 1-100 Hz"},
+    {.dialect = Dialect::skydroid,
+     .models = c13,
+     .ident = "GAC",
+     .evidence = "a station used on a real C13 (custom-GCS) reads GAC attitude "
+                 "(#TPUG2rGAC00); AP_Mount_SkyDroid (PR #34155) reads the C13's GAC pushes"},
+    {.dialect = Dialect::skydroid,
+     .models = c13,
+     .ident = "GSY",
+     .evidence = "AP_Mount_SkyDroid (PR #34155) drives C11 and C13 yaw with GSY (SkyDroid "
+                 "confirmed the C11/C13 commands are the same); a station used on a real C13 "
+                 "(custom-GCS) sends GSY"},
+    {.dialect = Dialect::skydroid,
+     .models = c13,
+     .ident = "GSP",
+     .evidence = "AP_Mount_SkyDroid (PR #34155) drives C11 and C13 pitch with GSP (SkyDroid "
+                 "confirmed the C11/C13 commands are the same); a station used on a real C13 "
+                 "(custom-GCS) sends GSP, sign as documented"},
+};
+
+}  // namespace
+
+std::span<const StreamSpec> streams() noexcept { return kStreams; }
+std::span<const DeviceForm> device_forms() noexcept { return kForms; }
+std::span<const Trait> traits() noexcept { return kTraits; }
+std::span<const FieldSupport> field_support() noexcept { return kFieldSupport; }
+
+}  // namespace top
