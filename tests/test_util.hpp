@@ -1,6 +1,8 @@
 // Helpers shared by the tests.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <cstring>
 #include <memory>
 #include <string>
@@ -76,6 +78,22 @@ inline std::string describe(const std::vector<top::StreamItem>& items) {
 // addresses D and P, length 0x16 = 22 data bytes), in 0.1 degC: hottest
 // point x 0x0A0, y 0x64 at 0x01F4 (50.0), coldest x 0x140, y 0x20 at 0xFF38
 // (-20.0), centre 0x0123 (29.1); checksum appended.
+// Parses `bytes` as one frame (a test failure if it is not) and decodes it.
+inline top::Decoded dec(std::string_view bytes, top::Dialect d = top::Dialect::unknown,
+                        top::Model m = top::Model::unknown) {
+  top::ParseResult r = top::parse_exact(bytes);
+  EXPECT_EQ(r.status, top::ParseStatus::frame) << bytes;
+  return top::decode(r.frame, {.dialect = d, .model = m});
+}
+
+inline const top::FieldValue& field(const top::Decoded& d, std::string_view name) {
+  for (const auto& f : d.fields)
+    if (f.name() == name) return f;
+  static top::FieldValue none;
+  ADD_FAILURE() << "no field " << name << " in " << d.summary();
+  return none;
+}
+
 inline std::string tmp_quirk_frame() {
   return top::with_checksum(
       "#PDP16TMP0A06401F4"

@@ -159,4 +159,52 @@ inline bool has_code(const Recorder::F& f, const std::string& c) {
   return false;
 }
 
+// An IPv4 endpoint 10.0.0.last:port.
+inline Endpoint ep4(std::uint8_t last, std::uint16_t port) {
+  Endpoint e;
+  e.family = 4;
+  e.addr[0] = 10;
+  e.addr[3] = last;
+  e.port = port;
+  return e;
+}
+
+inline constexpr std::int64_t T = 1714564800LL * 1000000;
+
+struct Fixture {
+  Recorder rec;
+  AnalyzerOptions opts;
+  std::unique_ptr<Analyzer> a;
+  Endpoint client = ep4(1, 40000), device = ep4(2, 5000);
+  std::uint64_t record = 0;
+  Fixture() { a = std::make_unique<Analyzer>(opts, rec); }
+  void reset(AnalyzerOptions o) {
+    opts = o;
+    a = std::make_unique<Analyzer>(opts, rec);
+  }
+  void up(std::int64_t ms, const std::string& p) {
+    a->datagram(T + ms * 1000, client, device, p, ++record, 42);
+  }
+  void down(std::int64_t ms, const std::string& p) {
+    a->datagram(T + ms * 1000, device, client, p, ++record, 42);
+  }
+  // `request` (checksum appended) at `ms`, echoed with the addresses swapped
+  // `after` ms later.
+  void echoed(std::int64_t ms, std::int64_t after, std::string request) {
+    up(ms, top::with_checksum(request));
+    std::swap(request[3], request[4]);
+    down(ms + after, top::with_checksum(request));
+  }
+};
+
+// Reads a capture file through an Analyzer into a Recorder.
+inline Recorder read(const std::string& path, SourceOptions o = {}, Format f = Format::automatic) {
+  Recorder r;
+  Analyzer a(AnalyzerOptions{}, r);
+  std::string err;
+  EXPECT_TRUE(read_file(path, f, a, o, err)) << err;
+  a.finish();
+  return r;
+}
+
 }  // namespace topdump::test
