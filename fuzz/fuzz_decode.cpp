@@ -29,22 +29,7 @@ namespace {
 
 constexpr Dialect kDialect = static_cast<Dialect>(TOPKIT_FUZZ_DIALECT);
 
-bool encodable(FieldKind k) {
-  switch (k) {
-    case FieldKind::hex_u:
-    case FieldKind::hex_s:
-    case FieldKind::enum_hex:
-    case FieldKind::dec_u:
-    case FieldKind::le_i16:
-    case FieldKind::le_u16:
-    case FieldKind::le_i32:
-    case FieldKind::be_i16:
-    case FieldKind::be_u16:
-      return true;
-    default:
-      return false;
-  }
-}
+bool encodable(FieldKind k) { return is_integer_kind(k) || k == FieldKind::enum_hex; }
 
 // The decoded values of a cleanly decoded numeric form, encoded again, give
 // the data back (uppercase hex, as encode_fields writes it).

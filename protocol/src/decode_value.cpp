@@ -18,19 +18,7 @@ namespace detail {
 
 bool exact_decimal(const FieldValue& f, std::int64_t& mantissa, int& decimals) noexcept {
   if (!f.spec || !f.valid || f.none) return false;
-  switch (f.spec->kind) {
-    case FieldKind::hex_u:
-    case FieldKind::hex_s:
-    case FieldKind::dec_u:
-    case FieldKind::le_i16:
-    case FieldKind::le_u16:
-    case FieldKind::le_i32:
-    case FieldKind::be_i16:
-    case FieldKind::be_u16:
-      break;
-    default:
-      return false;
-  }
+  if (!is_integer_kind(f.spec->kind)) return false;
   std::int64_t m = 0;
   if (!decimal_scale(f.spec->scale, m, decimals)) return false;
   constexpr std::int64_t kMax = 1'000'000'000'000'000;  // 10^15: 15 digits

@@ -65,6 +65,24 @@ enum class FieldKind : std::uint8_t {
   raw         // bytes shown as they are; no value
 };
 
+// Whether a kind holds an integer number: hex or decimal digits, or a
+// binary integer (not an enum, text, number text, NMEA or raw bytes).
+constexpr bool is_integer_kind(FieldKind k) noexcept {
+  switch (k) {
+    case FieldKind::hex_u:
+    case FieldKind::hex_s:
+    case FieldKind::dec_u:
+    case FieldKind::le_i16:
+    case FieldKind::le_u16:
+    case FieldKind::le_i32:
+    case FieldKind::be_i16:
+    case FieldKind::be_u16:
+      return true;
+    default:
+      return false;
+  }
+}
+
 std::string_view to_string(FieldKind k) noexcept;  // "hex_u", ...
 std::optional<FieldKind> field_kind_from_string(std::string_view s) noexcept;
 
