@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <deque>
 #include <filesystem>
@@ -20,6 +21,13 @@
 
 namespace topdump::test {
 namespace {
+
+// A finished session's pairing counts: requests, paired, unanswered and
+// unsolicited, checked as one.
+std::array<std::uint64_t, 4> pairing_counts(const Stats& s) {
+  return {s.requests, s.paired, s.unanswered, s.unsolicited};
+}
+using Counts = std::array<std::uint64_t, 4>;
 
 TEST(Pairing, RequestResponseLatencyAndStats) {
   Fixture f;
@@ -113,10 +121,7 @@ TEST(Field, RolesOfADeviceThatKeepsTheRequestsAddressOrder) {
   for (int i = 0; i < 10; ++i) f.down(200 + i * 100, push);
   f.a->finish();
   const Stats& s = f.a->stats();
-  EXPECT_EQ(s.unsolicited, 0u);
-  EXPECT_EQ(s.unanswered, 0u);
-  EXPECT_EQ(s.requests, 2u);
-  EXPECT_EQ(s.paired, 2u);
+  EXPECT_EQ(pairing_counts(s), (Counts{2, 2, 0, 0}));
   // the two pushes before the GAA were a stream asked for before the
   // capture; the GAA started the one that follows
   EXPECT_EQ(s.conversations.at(0).streams.at(0).frames, 10u);
@@ -394,10 +399,7 @@ TEST(Pairing, ManyIdentifiersInFlightEachPairsWithItsOwn) {
   for (int i = 0; i < 200; i += 2) f.down(900 + i, top::with_checksum("#TPUG2w" + ident(i) + "01"));
   f.a->finish();
   const Stats& s = f.a->stats();
-  EXPECT_EQ(s.requests, 200u);
-  EXPECT_EQ(s.paired, 200u);
-  EXPECT_EQ(s.unanswered, 0u);
-  EXPECT_EQ(s.unsolicited, 60u);
+  EXPECT_EQ(pairing_counts(s), (Counts{200, 200, 0, 60}));
   // latency per identifier (found through 64 hashed slots): one sample each
   ASSERT_EQ(s.latency.size(), 200u);
   for (int i = 0; i < 200; ++i) {

@@ -24,6 +24,16 @@ void expect_one_log_syntax_note(const Recorder& r, std::string_view what) {
 }
 
 // A byte as a Saleae export's data column writes it: 0x23.
+// A request from channel `from` to `to` and its reply: the two frames of a
+// two-channel log.
+void expect_request_and_reply(const Recorder& r, std::string_view from, std::string_view to) {
+  ASSERT_EQ(r.frames.size(), 2u);
+  EXPECT_EQ(r.frames[0].from, from);
+  EXPECT_EQ(r.frames[0].to, to);
+  EXPECT_EQ(r.frames[1].from, to);
+  EXPECT_EQ(r.frames[1].reply_to, 1u);
+}
+
 std::string saleae_byte(char c) {
   return std::string("0x") + "0123456789ABCDEF"[(c >> 4) & 15] + "0123456789ABCDEF"[c & 15];
 }
@@ -96,22 +106,16 @@ TEST(SerialLogs, SaleaeCsvTwoChannels) {
   TempDir tmp;
   std::string csv = "name,type,start_time,duration,data,error\n";
   auto add = [&](const char* ch, double t, const std::string& bytes) {
-    for (std::size_t i = 0; i < bytes.size(); ++i) {
-      char b[96];
-      std::snprintf(b, sizeof b, "%s,data,%.6f,8.68e-05,0x%02X,\n", ch,
-                    t + static_cast<double>(i) * 1e-4, static_cast<unsigned char>(bytes[i]));
-      csv += b;
-    }
+    for (std::size_t i = 0; i < bytes.size(); ++i)  // to_string: six decimals
+      csv += std::string(ch) + ",data," + std::to_string(t + static_cast<double>(i) * 1e-4) +
+             ",8.68e-05," + saleae_byte(bytes[i]) + ",\n";
   };
   add("TX", 1.0, top::with_checksum("#TPUG2wPTZ05"));
   add("RX", 1.01, top::with_checksum("#TPGU2wPTZ05"));
   csv += "RX,data,2.0,8.68e-05,0xZZ,\n";
   write_file(tmp.file("s.csv"), csv);
   Recorder r = read(tmp.file("s.csv"));
-  ASSERT_EQ(r.frames.size(), 2u);
-  EXPECT_EQ(r.frames[0].from, "TX");
-  EXPECT_EQ(r.frames[0].to, "RX");
-  EXPECT_EQ(r.frames[1].reply_to, 1u);
+  expect_request_and_reply(r, "TX", "RX");
   EXPECT_TRUE(r.has_note(ACode::log_syntax));
 }
 
@@ -131,11 +135,7 @@ TEST(SerialLogs, SaleaeCsvQuotedColumns) {
   add("\"T,X\"", "#", "\"framing, \"\"stop\"\" bit");  // open quote: the rest of the line
   write_file(tmp.file("q.csv"), csv);
   Recorder r = read(tmp.file("q.csv"), {}, Format::saleae);
-  ASSERT_EQ(r.frames.size(), 2u);
-  EXPECT_EQ(r.frames[0].from, "T,X");
-  EXPECT_EQ(r.frames[0].to, "R\"X");
-  EXPECT_EQ(r.frames[1].from, "R\"X");
-  EXPECT_EQ(r.frames[1].reply_to, 1u);
+  expect_request_and_reply(r, "T,X", "R\"X");
   expect_one_log_syntax_note(r, "line 30: the analyzer flagged this byte: framing, \"stop\" bit");
 }
 
@@ -154,10 +154,7 @@ TEST(SerialLogs, SaleaeCsvSeveralQuotedColumnsInARow) {
   csv += "\"data\",\"a,b\",2.0,,0x23,\"e,\"\"f\"\"\"\n";
   write_file(tmp.file("q.csv"), csv);
   Recorder r = read(tmp.file("q.csv"), {}, Format::saleae);
-  ASSERT_EQ(r.frames.size(), 2u);
-  EXPECT_EQ(r.frames[0].from, "a,b");
-  EXPECT_EQ(r.frames[0].to, "c,,d\"");
-  EXPECT_EQ(r.frames[1].from, "c,,d\"");
+  expect_request_and_reply(r, "a,b", "c,,d\"");
   expect_one_log_syntax_note(r, "line 30: the analyzer flagged this byte: e,\"f\"");
 }
 
