@@ -29,6 +29,15 @@ std::array<std::uint64_t, 4> pairing_counts(const Stats& s) {
 }
 using Counts = std::array<std::uint64_t, 4>;
 
+// The options of a session whose requests are unanswered after 100 ms, for
+// `model` (unknown: any).
+AnalyzerOptions unanswered_after_100ms(top::Model model = top::Model::unknown) {
+  AnalyzerOptions o;
+  o.timeout_us = 100000;
+  o.model = model;
+  return o;
+}
+
 TEST(Pairing, RequestResponseLatencyAndStats) {
   Fixture f;
   f.echoed(0, 12, "#tpUG6wGAYEC7832");
@@ -51,9 +60,7 @@ TEST(Pairing, RequestResponseLatencyAndStats) {
 
 TEST(Pairing, UnansweredByTimeoutAndAtEnd) {
   Fixture f;
-  AnalyzerOptions o;
-  o.timeout_us = 100000;
-  f.reset(o);
+  f.reset(unanswered_after_100ms());
   f.up(0, top::with_checksum("#TPUD2rVER00"));
   f.down(200, top::with_checksum("#TPGU2wPTZ05"));  // the device speaks after the VER request
   f.up(500, top::with_checksum("#TPUG2wPTZ05"));    // expires the VER request
@@ -177,10 +184,7 @@ TEST(Field, RecordedFormsNameTheirSource) {
 
 TEST(Field, UnansweredSaysWhyWhenTheCaptureShows) {
   Fixture f;
-  AnalyzerOptions o;
-  o.timeout_us = 100000;
-  o.model = top::Model::c10;
-  f.reset(o);
+  f.reset(unanswered_after_100ms(top::Model::c10));
   f.up(0, "#TPUG2wPTZ0500");                           // bad checksum: the device drops it
   f.up(10, top::with_checksum("#TPUG8wGOT02800168"));  // GOT is C12 only
   f.down(20, top::with_checksum("#TPGU2wGAY00"));      // the device is not silent
@@ -201,10 +205,7 @@ TEST(Field, UnansweredSaysWhyWhenTheCaptureShows) {
 // 0E-13): a PTZ 00 is refused as topsim's C13 refuses it (top::rejection).
 TEST(Field, C13PtzCausePerCodeOfTheFieldEvidence) {
   Fixture f;
-  AnalyzerOptions o;
-  o.timeout_us = 100000;
-  o.model = top::Model::c13;
-  f.reset(o);
+  f.reset(unanswered_after_100ms(top::Model::c13));
   f.up(0, top::with_checksum("#TPUG2wPTZ00"));
   f.up(10, top::with_checksum("#TPUG2wPTZ05"));
   f.down(20, top::with_checksum("#TPGU2wGAY00"));  // the device is not silent
@@ -242,9 +243,7 @@ TEST(Field, CopiesOfAnAnsweredRequestAreNotUnanswered) {
 
 TEST(Field, ASilentDeviceIsOneFindingForTheStretch) {
   Fixture f;
-  AnalyzerOptions o;
-  o.timeout_us = 100000;
-  f.reset(o);
+  f.reset(unanswered_after_100ms());
   for (int i = 0; i < 38; ++i)
     f.up(i * 500, top::with_checksum(i % 2 ? "#TPUG6wGAY03E832" : "#TPUD2rVER00"));
   f.down(30000, top::with_checksum("#TPGU2wPTZ05"));  // the device is back
