@@ -16,25 +16,26 @@ struct ProbeRow {
 
 // In the order to try them: a read that is answered by a reply of its own
 // first (a hung device may still stream), then the attitude stream's switch,
-// whose answer is a push. docs/sources/ardupilot.md §3, §4 and §8 give what
+// whose answer is a push. docs/sources/ardupilot.md sections 3, 4 and 8 give what
 // ArduPilot's simulators answer.
 constexpr ProbeRow kProbes[] = {
     {Dialect::skydroid, "AWB", 'r', "00",
      "SkyDroid 4.5.1: every model has the white-balance read (topsim answers it)"},
     {Dialect::skydroid, "VER", 'r', "00",
      "SkyDroid 4.11; ArduPilot's AP_Mount_SkyDroid reads it until answered and its "
-     "SIM_SkyDroid answers any VER (#TPUD6rVERV1.0.038; docs/sources/ardupilot.md §2.2, §4)"},
+     "SIM_SkyDroid answers any VER (#TPUD6rVERV1.0.038; docs/sources/ardupilot.md sections 2.2, "
+     "4)"},
     {Dialect::skydroid, "GAA", 'w', "01",
      "SkyDroid 3.3.2.1: GAA 01 asks GAC at 1 Hz; ArduPilot's driver sends #TPUG2wGAA323A once "
      "a second and SIM_SkyDroid answers any GAA with a GAC at once (docs/sources/ardupilot.md "
-     "§2.2, §4)"},
+     "sections 2.2, 4)"},
     {Dialect::topotek, "VER", 'r', "00",
      "Topotek 4.5.1: the serial number read (topsim answers it)"},
     {Dialect::topotek, "GIA", 'w', "01",
      "Topotek 4.3.6 (GIA 01 pushes GIC) and the field (GIA frames): ArduPilot's "
      "AP_Mount_Topotek sends #TPUG2wGIA013E once a second, SIM_Topotek answers any GIA with "
-     "a GIA frame at once, a real SIP answers with GIA (docs/sources/ardupilot.md §1.2, §3, "
-     "§8.1)"},
+     "a GIA frame at once, a real SIP answers with GIA (docs/sources/ardupilot.md sections 1.2, 3, "
+     "8.1)"},
 };
 
 }  // namespace

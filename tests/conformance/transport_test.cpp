@@ -283,8 +283,8 @@ TEST(Server, ServesASerialDevice) {
   close(master);
 }
 
-// ---- a device like ArduPilot's simulators (docs/sources/ardupilot.md §3,
-// §4): replies and pushes keep the request's address order, and VER and AWB
+// ---- a device like ArduPilot's simulators (docs/sources/ardupilot.md sections
+// 3, 4): replies and pushes keep the request's address order, and VER and AWB
 // go unanswered (they answer neither). topconf's probe falls back to what
 // the catalog says the model also answers (top/probe.hpp).
 
