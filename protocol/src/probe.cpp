@@ -58,7 +58,7 @@ std::vector<LivenessProbe> liveness_probes(Model model) {
     std::string_view answer = p.ident;
     if (p.control == 'w')
       if (const StreamSpec* s = stream_enabled_by(d, p.ident, Profile::field)) answer = s->push;
-    v.push_back({p.ident, p.control, p.data, answer, p.evidence});
+    v.push_back({p.ident, c->address, p.control, p.data, answer, p.evidence});
   }
   return v;
 }

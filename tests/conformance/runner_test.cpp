@@ -252,6 +252,7 @@ TEST(Liveness, TheProbesOfEachModelComeFromTheCatalog) {
       const top::CommandSpec* c = top::find_command(top::dialect_of(m), p.ident);
       ASSERT_NE(c, nullptr) << p.ident;
       EXPECT_TRUE(c->supports(m) && c->has_control(p.control)) << p.ident;
+      EXPECT_EQ(p.address, c->address) << p.ident;  // AWB to D, Topotek VER to G
       EXPECT_FALSE(p.evidence.empty()) << p.ident;
     }
   }

@@ -15,6 +15,7 @@ namespace top {
 
 struct LivenessProbe {
   std::string_view ident;  // the request's identifier ("VER")
+  char address = 0;        // its command's address class, where it is sent ('G')
   char control = 'r';      // 'r' a read, 'w' a stream switch
   std::string_view data;   // the request's data ("00"; "01" switches a stream on)
   // The identifier of the answer: the request's own for a read, the push

@@ -186,20 +186,10 @@ CaseSource::CaseSource(top::Model model, char client, std::uint64_t seed, const 
 void CaseSource::add_global() {
   const bool sky = dialect_ == top::Dialect::skydroid;
   // A read the device answers, for the framing and address cases: the
-  // first read among the catalog's liveness probes (top/probe.hpp), sent to
-  // its command's address.
-  std::string probe_ident;
-  std::string_view probe_data;
-  char probe_dst = 0;
-  for (const top::LivenessProbe& p : top::liveness_probes(model_))
-    if (const top::CommandSpec* c = top::find_command(dialect_, p.ident);
-        c && p.control == 'r' && probe_ident.empty()) {
-      probe_ident = p.ident;
-      probe_data = p.data;
-      probe_dst = c->address;
-    }
-  const std::string probe =
-      frame(top::Header::fixed, client_, probe_dst, 'r', probe_ident, probe_data);
+  // catalog's first liveness probe (top/probe.hpp: a read for every model).
+  const auto probes = top::liveness_probes(model_);
+  const top::LivenessProbe rd = probes.empty() ? top::LivenessProbe{} : probes[0];
+  const std::string probe = frame(top::Header::fixed, client_, rd.address, 'r', rd.ident, rd.data);
   // What the oversized, binary and nested cases carry (a gimbal write), and
   // where the unknown identifiers go (the camera), on both dialects.
   const char gimbal = 'G', camera = 'D';
@@ -256,19 +246,18 @@ void CaseSource::add_global() {
         frame(top::Header::fixed, client_, camera, 'r', id, "00"));
   for (char src : {'G', 'D', 'M', 'E', 'X', 'u', '#', '\0'})
     add("address", "source " + top::escape(std::string(1, src)),
-        frame(top::Header::fixed, src, probe_dst, 'r', probe_ident, probe_data));
+        frame(top::Header::fixed, src, rd.address, 'r', rd.ident, rd.data));
   for (char dst : {'U', 'P', 'G', 'M', 'E', 'Z', 'g', '\x7F'})
     add("address", "destination " + top::escape(std::string(1, dst)),
-        frame(top::Header::fixed, client_, dst, 'r', probe_ident, probe_data));
+        frame(top::Header::fixed, client_, dst, 'r', rd.ident, rd.data));
   add("address", "the other client address",
-      frame(top::Header::fixed, client_ == 'U' ? 'P' : 'U', probe_dst, 'r', probe_ident,
-            probe_data));
+      frame(top::Header::fixed, client_ == 'U' ? 'P' : 'U', rd.address, 'r', rd.ident, rd.data));
   for (char ctl : {'R', 'W', 'x', '0', '\0', '\x1B', '#'})
     add("control", "control char " + top::escape(std::string(1, ctl)),
-        frame(top::Header::fixed, client_, probe_dst, ctl, probe_ident, probe_data));
+        frame(top::Header::fixed, client_, rd.address, ctl, rd.ident, rd.data));
   for (char c : {'\x00', '\x07', '\x1B', '\x7F'})
     add("control", "control char " + top::escape(std::string(1, c)) + " in the data",
-        frame(top::Header::fixed, client_, probe_dst, 'r', probe_ident, std::string(1, c) + "0"));
+        frame(top::Header::fixed, client_, rd.address, 'r', rd.ident, std::string(1, c) + "0"));
   add("framing", "lone #", "#");
   add("framing", "header only", "#TP");
   add("framing", "cut after the identifier", probe.substr(0, 10));
