@@ -57,6 +57,8 @@ void Analyzer::Impl::item(Conversation& c, int d, top::StreamItem& it, Position 
                          .from = &D.from,
                          .to = &D.to,
                          .item = &it};
+    if (c.transport == Transport::serial)
+      c.watch.baud.garbage(it.length, it.preview, pos.record, ts);
     if (A.filtering_ && !A.filter_.selects(g)) return;
     ++A.stats_.garbage;
     ++codes[static_cast<std::size_t>(it.finding.code)];
@@ -163,6 +165,16 @@ void Analyzer::Impl::frame(Conversation& c, int d, top::Frame& f, Position pos, 
     request(c, d, ev);
   else if (decided == top::Role::response)
     response(c, d, ev);
+  // The conversation's diagnoses see every frame, as pairing does; what
+  // they find is reported at its end, through the filter.
+  {
+    const std::string_view id = fr.ident_view(), data = fr.data();
+    if (decided == top::Role::response && e.decoded.dialect != top::Dialect::unknown &&
+        fr.checksum_ok)
+      c.watch.device_frame(e.decoded.dialect, id, data, ev.n, ts, d);
+    c.watch.dated_frame(e.decoded.form, id, data, ev.n, ts, d);
+    c.watch.baud.frame();
+  }
 
   // Pairing saw the frame; what follows is reporting, which the filter
   // governs: a frame it leaves out is neither counted nor in the exit status.
