@@ -254,7 +254,9 @@ void progress_bar(std::uint64_t done, std::uint64_t total) {
   std::fflush(stderr);
 }
 
-int status_of(const Analyzer& a) { return a.worst() == top::Severity::error ? 1 : 0; }
+int status_of(const Analyzer& a) {
+  return a.worst() == top::Severity::error || a.diagnosed() ? 1 : 0;
+}
 
 bool show_progress(const Common& c) { return !c.no_progress && isatty(2) && !isatty(1); }
 

@@ -27,9 +27,8 @@ std::string date_text(std::int64_t s) {
   int y = 0, m = 0, d = 0;
   civil(days, y, m, d);
   char b[48];
-  std::snprintf(b, sizeof b, "%04d-%02d-%02d %02d:%02d:%02d", y, m, d,
-                static_cast<int>(sec / 3600), static_cast<int>(sec / 60 % 60),
-                static_cast<int>(sec % 60));
+  std::snprintf(b, sizeof b, "%04d-%02d-%02d %02d:%02d:%02d", y, m, d, static_cast<int>(sec / 3600),
+                static_cast<int>(sec / 60 % 60), static_cast<int>(sec % 60));
   return b;
 }
 

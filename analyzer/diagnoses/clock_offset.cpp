@@ -25,11 +25,10 @@ std::optional<Found> ClockWatch::verdict() const {
   if (!c_.any()) return std::nullopt;
   Found f{top::Diagnosis::clock_offset, c_, -1, {}};
   const std::int64_t off = camera_s_ - capture_s_;
-  const std::string why =
-      kind_ == 1   ? "exactly one month early: a 0-based month sent unconverted"
-      : kind_ == 2 ? "1970: the camera's clock was never set"
-                   : std::to_string(std::llabs(off) / kDay) + " days " +
-                         (off < 0 ? "early" : "late");
+  const std::string why = kind_ == 1   ? "exactly one month early: a 0-based month sent unconverted"
+                          : kind_ == 2 ? "1970: the camera's clock was never set"
+                                       : std::to_string(std::llabs(off) / kDay) + " days " +
+                                             (off < 0 ? "early" : "late");
   f.figure = std::string(c_.ident, 3) + " camera time " + date_text(camera_s_) + ", capture " +
              date_text(capture_s_) + ": " + why + " (frame " + std::to_string(c_.first_frame) +
              (c_.frames > 1 ? ", " + std::to_string(c_.frames) + " frames" : "") + ")";

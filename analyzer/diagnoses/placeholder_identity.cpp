@@ -16,8 +16,7 @@ std::optional<Found> IdentityWatch::verdict() const {
   Found f{top::Diagnosis::placeholder_identity, c_, -1, {}};
   f.figure = top::escape(std::string_view(c_.ident, 3)) + " reply \"" + top::escape(value_) +
              "\" is a factory placeholder (frame " + std::to_string(c_.first_frame) +
-             (c_.frames > 1 ? ", " + std::to_string(c_.frames) + " placeholder replies" : "") +
-             ")";
+             (c_.frames > 1 ? ", " + std::to_string(c_.frames) + " placeholder replies" : "") + ")";
   return f;
 }
 

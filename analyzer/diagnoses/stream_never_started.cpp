@@ -6,8 +6,7 @@ namespace topdump::diag {
 
 std::optional<Found> NeverStartedWatch::verdict(std::string_view push, std::uint64_t pushes,
                                                 double asked_hz, std::int64_t end) const {
-  if (pushes || !answered_ || !switches_.any() || switches_.first_ts == kNoTime ||
-      end == kNoTime)
+  if (pushes || !answered_ || !switches_.any() || switches_.first_ts == kNoTime || end == kNoTime)
     return std::nullopt;
   const double wait_us = std::max(1e6, asked_hz > 0 ? 3e6 / asked_hz : 0.0);
   const std::int64_t waited = end - switches_.first_ts;

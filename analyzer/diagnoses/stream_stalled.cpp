@@ -17,6 +17,7 @@ void StallWatch::push(std::uint64_t n, std::int64_t ts, double asked_hz) noexcep
   const double period = std::max(asked_us, typical_us_);
   if (intervals_ >= 4 && period > 0 && dt > kPeriods * period) {
     stalls_.add(n, last_, {}, 0);
+    stalled_us_ += ts - last_;
     if (ts - last_ > longest_us_) {
       longest_us_ = ts - last_;
       longest_at_ = last_;

@@ -18,6 +18,10 @@ class StallWatch {
   // The diagnosis for the stream `ident`, when it stalled.
   std::optional<Found> verdict(std::string_view ident) const;
   std::uint64_t first_push() const noexcept { return first_n_; }
+  // The time the stream spent stalled, microseconds (the stream's rate
+  // without it is what stream-rate judges when it stalled: one cause, one
+  // item).
+  std::int64_t stalled_us() const noexcept { return stalled_us_; }
 
  private:
   static constexpr int kPeriods = 3;
@@ -26,7 +30,7 @@ class StallWatch {
   std::uint32_t intervals_ = 0;
   std::uint64_t first_n_ = 0;
   Case stalls_;  // one frame per stall: the push that resumed it
-  std::int64_t longest_us_ = 0, longest_at_ = kNoTime;
+  std::int64_t longest_us_ = 0, longest_at_ = kNoTime, stalled_us_ = 0;
   double period_us_ = 0;  // the period the longest stall was judged by
 };
 

@@ -23,8 +23,8 @@ struct Watch {
   BaudWatch baud;
 
   // A frame of the device (reply or push), its data and form.
-  void device_frame(top::Dialect d, std::string_view ident, std::string_view data,
-                    std::uint64_t n, std::int64_t ts, int dir) {
+  void device_frame(top::Dialect d, std::string_view ident, std::string_view data, std::uint64_t n,
+                    std::int64_t ts, int dir) {
     identity.reply(d, ident, data, n, ts, dir);
     tracking.reply(d, ident, data, n, ts, dir);
   }

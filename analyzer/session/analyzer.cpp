@@ -43,6 +43,7 @@ void Analyzer::Impl::note_event(std::int64_t ts, Position pos, Transport t, cons
   if (A.filtering_ && !A.filter_.selects(e)) return;
   ++acodes[static_cast<std::size_t>(e.note.code)];
   if (e.note.severity > A.worst_) A.worst_ = e.note.severity;
+  if (e.note.severity != top::Severity::info && diagnosis_of(e.note.code)) A.diagnosed_ = true;
   if (emit) A.sink_.note(e);
 }
 

@@ -28,10 +28,10 @@ enum class Cause : std::uint8_t {
   none,
   bad_checksum,   // devices drop frames they cannot trust
   checksum_case,  // a lowercase checksum: strict parsers drop it
-  uart_source,   // Topotek: source U over the network, answers go to the UART
-  unsupported,   // not in the catalog, or not on the model
-  invalid,       // a wrong length or value: Topotek ignores it, SkyDroid answers ERE
-  silent         // the device sent nothing while several requests went unanswered
+  uart_source,    // Topotek: source U over the network, answers go to the UART
+  unsupported,    // not in the catalog, or not on the model
+  invalid,        // a wrong length or value: Topotek ignores it, SkyDroid answers ERE
+  silent          // the device sent nothing while several requests went unanswered
 };
 // What the capture shows of that cause, for people ("" for none).
 std::string_view describe(Cause c) noexcept;

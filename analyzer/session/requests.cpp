@@ -130,6 +130,7 @@ void Analyzer::Impl::unanswered(Conversation& c, const Pending& p, bool at_end) 
       s.single = std::move(msg);
     }
     ++s.count;
+    s.timed_out |= !at_end;
     s.last_n = p.n;
     s.last_ts = p.ts;
     const std::string id = top::escape(std::string_view(p.ident, 3));
@@ -155,7 +156,8 @@ void Analyzer::Impl::emit_silence(Conversation& c) {
            " over " + span + " s got no response";
   });
   Note n = s.about;  // the first request's identifier and addresses
-  if (s.count > 1) {
+  if (s.count > 1) n.cause = Cause::silent;
+  if (s.count > 1 && s.timed_out) {
     // the silent-device diagnosis: its case is the stretch
     n.code = acode_of(top::Diagnosis::silent_device);
     n.severity = top::severity(top::Diagnosis::silent_device);

@@ -48,6 +48,9 @@ struct Silence {
   std::string idents;  // "GAY, VER, PTZ"
   std::string single;  // the message when the stretch holds one request
   Note about;          // the first request's identifier and addresses
+  // One of them waited the whole timeout inside the capture: the device
+  // was silent (silent-device), not just cut off by the capture's end.
+  bool timed_out = false;
 };
 
 struct Direction {

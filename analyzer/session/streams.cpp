@@ -23,13 +23,32 @@ void Analyzer::Impl::diagnose(Conversation& c, diag::Found f) {
 }
 
 void Analyzer::Impl::check_stream(Conversation& c, const StreamStat& s) {
+  bool stalled = false;
   if (!s.from_client) {
-    if (std::optional<diag::Found> f = s.stall.verdict(s.ident)) diagnose(c, std::move(*f));
-    if (std::optional<diag::Found> f = s.never.verdict(s.ident, s.frames, s.asked_hz, last_ts(c)))
+    if (std::optional<diag::Found> f = s.stall.verdict(s.ident)) {
+      diagnose(c, std::move(*f));
+      stalled = true;
+    }
+    // Pushes of any stream the same switch turns on count (Topotek GIA 01:
+    // GIA frames in the field, GIC by the document).
+    std::uint64_t pushes = s.frames;
+    const top::Dialect dialect = c.det.current();
+    for (const StreamStat& o : c.st.streams)
+      if (&o != &s && o.frames && !o.from_client)
+        for (const top::StreamSpec& spec : top::streams())
+          if (spec.dialect == dialect && spec.request == s.asked_by && spec.push == o.ident)
+            pushes += o.frames;
+    if (std::optional<diag::Found> f = s.never.verdict(s.ident, pushes, s.asked_hz, last_ts(c)))
       diagnose(c, std::move(*f));
   }
   if (s.asked_hz <= 0 || s.frames < 2) return;
   if (!s.off_rate()) return;
+  if (stalled && s.last != kNoTime && s.first != kNoTime) {
+    // the rate without the stalls: at the rate asked, the stall is the cause
+    const auto span = static_cast<double>(s.last - s.first - s.stall.stalled_us());
+    const double active = span > 0 ? static_cast<double>(s.frames - 1) * 1e6 / span : 0;
+    if (std::fabs(active - s.asked_hz) <= top::stream_rate_tolerance * s.asked_hz) return;
+  }
   const double m = s.measured_hz();
   // printf's "%.1f" and "%.0f" through to_chars (the same text, without
   // printf's cost on every re-asked stream)

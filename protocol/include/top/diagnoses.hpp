@@ -79,13 +79,13 @@ struct FormSpec;
     "select a lens or camera that tracks, or turn tracking off for this payload")                \
   X(dropped_bad_checksum, "dropped-bad-checksum", warning,                                       \
     "requests with a bad checksum went unanswered: the device dropped them",                     \
-    "field note: ArduPilot's Topotek and SkyDroid parsers and SITL simulators drop a frame "      \
+    "field note: ArduPilot's Topotek and SkyDroid parsers and SITL simulators drop a frame "     \
     "whose checksum does not match (docs/sources/ardupilot.md section 7)",                       \
     "fix the sender's checksum: the byte sum of every char before it, mod 256, as two "          \
     "uppercase hex digits")                                                                      \
   X(dropped_checksum_case, "dropped-checksum-case", warning,                                     \
     "requests whose checksum is right but lowercase went unanswered: the device dropped them",   \
-    "field note: ArduPilot's parsers compare the checksum with uppercase hex only and drop "      \
+    "field note: ArduPilot's parsers compare the checksum with uppercase hex only and drop "     \
     "the frame silently (docs/sources/ardupilot.md section 7)",                                  \
     "write the checksum digits in uppercase")                                                    \
   X(baud_mismatch, "baud-mismatch", error,                                                       \
@@ -95,7 +95,7 @@ struct FormSpec;
     "set both ends and the logger to the same line speed (115200 per the documents)")            \
   X(refresh_gap, "refresh-gap", warning,                                                         \
     "a rate command was not refreshed within the model's limit: the motors stop",                \
-    "the speed-refresh trait (docs/FIELD.md): the firmware stops a rate command that is not "     \
+    "the speed-refresh trait (docs/FIELD.md): the firmware stops a rate command that is not "    \
     "sent again in time; ArduPilot's SkyDroid driver re-sends every update",                     \
     "re-send rate commands faster than the limit for as long as the axis should move")
 
