@@ -74,7 +74,7 @@ void add_common(CLI::App* sub, Common& o, bool outputs, bool ports) {
   sub->add_option("--to", o.to, "only frames at or before this time (as --from)");
   sub->add_option("--finding", o.findings,
                   "only frames and events with this finding code (comma list, repeatable; "
-                  "docs/FINDINGS.md)")
+                  "docs/FINDINGS.md; diagnoses: docs/DIAGNOSES.md)")
       ->delimiter(',')
       ->allow_extra_args(false);
   sub->add_option("--mute", o.mute,
@@ -184,7 +184,7 @@ bool setup(const Common& o, Setup& s) {
     for (const auto& n : *names)
       if (!s.filter.add_code(n, muted)) {
         error(std::string(muted ? "--mute " : "--finding ") + n +
-              ": no such finding code (docs/FINDINGS.md lists them)");
+              ": no such finding code (docs/FINDINGS.md and docs/DIAGNOSES.md list them)");
         return false;
       }
   s.filter.max_frames = o.count;

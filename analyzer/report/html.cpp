@@ -114,7 +114,7 @@ void Page::overview() {
       o += markup_escape(f.text) + " <a href=\"#" + markup_escape(f.anchor) + "\">details</a>";
       if (f.code) {
         o += "<div class=\"why\"><b>Evidence:</b> " +
-             markup_escape(std::string(top::evidence(*f.code))) + "<br><b>Remedy:</b> " +
+             markup_escape(std::string(top::evidence(*f.code))) + "<br/><b>Remedy:</b> " +
              markup_escape(std::string(top::remedy(*f.code)));
         if (f.frame) o += " (first frame " + frame_ref(f.frame) + ")";
         o += "</div>";
