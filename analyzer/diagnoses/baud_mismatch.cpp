@@ -14,7 +14,7 @@ void BaudWatch::garbage(std::uint64_t length, std::string_view sample, std::uint
 }
 
 std::optional<Found> BaudWatch::verdict() const {
-  if (frames_ || bytes_ < kMinBytes || sampled_ == 0 || binary_ * 4 < sampled_) return std::nullopt;
+  if (bytes_ < kMinBytes || sampled_ == 0 || binary_ * 4 < sampled_) return std::nullopt;
   Found f{top::Diagnosis::baud_mismatch, runs_, -1, {}};
   f.c.first_frame = 0;  // no frame: the figure names the record
   f.figure = "no TOP frame in " + std::to_string(bytes_) + " bytes of the serial line, " +

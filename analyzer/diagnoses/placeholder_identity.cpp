@@ -4,9 +4,9 @@
 
 namespace topdump::diag {
 
-void IdentityWatch::reply(top::Dialect d, std::string_view ident, std::string_view data,
-                          std::uint64_t n, std::int64_t ts, int dir) {
-  if (!top::is_identity_reply(d, ident) || !top::is_placeholder_identity(data)) return;
+void IdentityWatch::placeholder(std::string_view ident, std::string_view data, std::uint64_t n,
+                                std::int64_t ts, int dir) {
+  if (!top::is_placeholder_identity(data)) return;
   if (!c_.any()) value_ = std::string(data.substr(0, 32));
   c_.add(n, ts, ident, dir);
 }

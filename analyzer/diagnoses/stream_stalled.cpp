@@ -25,9 +25,13 @@ void StallWatch::push(std::uint64_t n, std::int64_t ts, double asked_hz) noexcep
     }
   } else {
     // a running mean over the first 16 intervals, then a slow follower
-    ++intervals_;
-    const double w = 1.0 / std::min<double>(intervals_, 16);
-    typical_us_ += (dt - typical_us_) * w;
+    // (a weight of 1/16, without a division per push)
+    if (intervals_ < 16) {
+      ++intervals_;
+      typical_us_ += (dt - typical_us_) / intervals_;
+    } else {
+      typical_us_ += (dt - typical_us_) * (1.0 / 16);
+    }
   }
   last_ = ts;
 }

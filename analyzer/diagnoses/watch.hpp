@@ -15,7 +15,32 @@
 
 namespace topdump::diag {
 
+// A frame's identifier as one integer, for the prefilter below.
+constexpr std::uint32_t ident_key(const char* id) noexcept {
+  return static_cast<std::uint32_t>(static_cast<unsigned char>(id[0])) |
+         static_cast<std::uint32_t>(static_cast<unsigned char>(id[1])) << 8 |
+         static_cast<std::uint32_t>(static_cast<unsigned char>(id[2])) << 16;
+}
+
 struct Watch {
+  // Whether a frame of `ident` can matter to a detector: the identity
+  // replies (top::is_identity_reply), TRC (top::refuses_tracking) and the
+  // dated frames (top::carries_date), which decide; one switch per frame
+  // instead of their string compares (diagnoses_test checks it covers them).
+  static bool watched(const char* ident) noexcept {
+    switch (ident_key(ident)) {
+      case ident_key("PA2"):
+      case ident_key("VSN"):
+      case ident_key("VER"):
+      case ident_key("TRC"):
+      case ident_key("TIM"):
+      case ident_key("UTC"):
+        return true;
+      default:
+        return false;
+    }
+  }
+
   IdentityWatch identity;
   TrackingWatch tracking;
   ClockWatch clock;
@@ -33,13 +58,14 @@ struct Watch {
                    std::uint64_t n, std::int64_t ts, int dir) noexcept {
     if (form && top::carries_date(ident)) clock.frame(*form, data, ident, n, ts, dir);
   }
+  // `frames`: whether the conversation carried any TOP frame.
   template <class Out>
-  void verdicts(Out&& out, bool serial) const {
+  void verdicts(Out&& out, bool serial, bool frames) const {
     if (auto f = identity.verdict()) out(std::move(*f));
     if (auto f = clock.verdict()) out(std::move(*f));
     if (auto f = tracking.verdict()) out(std::move(*f));
     dropped.verdicts(out);
-    if (serial)
+    if (serial && !frames)
       if (auto f = baud.verdict()) out(std::move(*f));
   }
 };

@@ -168,13 +168,12 @@ void Analyzer::Impl::frame(Conversation& c, int d, top::Frame& f, Position pos, 
     response(c, d, ev);
   // The conversation's diagnoses see every frame, as pairing does; what
   // they find is reported at its end, through the filter.
-  {
+  if (diag::Watch::watched(fr.ident)) {
     const std::string_view id = fr.ident_view(), data = fr.data();
     if (decided == top::Role::response && e.decoded.dialect != top::Dialect::unknown &&
         fr.checksum_ok)
       c.watch.device_frame(e.decoded.dialect, id, data, ev.n, ts, d);
     c.watch.dated_frame(e.decoded.form, id, data, ev.n, ts, d);
-    c.watch.baud.frame();
   }
 
   // Pairing saw the frame; what follows is reporting, which the filter

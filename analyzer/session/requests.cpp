@@ -321,7 +321,7 @@ void Analyzer::Impl::response(Conversation& c, int d, FrameEvent& ev) {
           ev.n});
     if (m->control == 'w')  // a stream's switch answered (stream-never-started)
       for (StreamStat& s : c.st.streams)
-        if (s.asked_by == std::string_view(m->ident, 3)) s.never.answered();
+        if (s.frames == 0 && s.asked_by == std::string_view(m->ident, 3)) s.never.answered();
     c.pairing.answer(mt->index);
     return;
   }

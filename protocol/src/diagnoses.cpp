@@ -61,24 +61,6 @@ bool is_placeholder_identity(std::string_view v) noexcept {
   return v == "123" || v == "1.2.3" || iequals(v, "unknown");
 }
 
-bool is_identity_reply(Dialect d, std::string_view id) noexcept {
-  switch (d) {
-    case Dialect::topotek:
-      return id == "PA2" || id == "VSN" || id == "VER";
-    case Dialect::skydroid:
-      return id == "VER";
-    case Dialect::unknown:
-      break;
-  }
-  return false;
-}
-
-bool refuses_tracking(Dialect d, std::string_view id, std::string_view data) noexcept {
-  return d == Dialect::topotek && id == "TRC" && data.size() == 2 && data[1] == '4';
-}
-
-bool carries_date(std::string_view id) noexcept { return id == "TIM" || id == "UTC"; }
-
 std::optional<DateTime> date_time_of(const FormSpec& form, std::string_view data) noexcept {
   DateTime t;
   bool year = false, month = false, day = false;

@@ -129,17 +129,24 @@ bool is_placeholder_identity(std::string_view value) noexcept;
 // Whether the device's reply to `ident` names the device: Topotek PA2
 // (model name), VSN (version), VER (serial number); SkyDroid VER
 // (software version).
-bool is_identity_reply(Dialect d, std::string_view ident) noexcept;
+// Inline: the session asks it of every device frame.
+inline bool is_identity_reply(Dialect d, std::string_view id) noexcept {
+  if (id.size() != 3) return false;
+  if (d == Dialect::topotek) return id == "PA2" || id == "VSN" || id == "VER";
+  return d == Dialect::skydroid && id == "VER";
+}
 
 // Whether a device's reply refuses tracking: Topotek TRC with state '4'
 // (data char 1; ArduPilot PR #31768). State 3 (temporarily lost) is not a
 // refusal.
-bool refuses_tracking(Dialect d, std::string_view ident, std::string_view data) noexcept;
+inline bool refuses_tracking(Dialect d, std::string_view id, std::string_view data) noexcept {
+  return data.size() == 2 && data[1] == '4' && d == Dialect::topotek && id == "TRC";
+}
 
 // Whether frames of `ident` may carry a date (a form with year, month and
 // day fields): TIM and UTC in both dialects' catalogs (a test checks the
 // catalog has no other).
-bool carries_date(std::string_view ident) noexcept;
+inline bool carries_date(std::string_view id) noexcept { return id == "TIM" || id == "UTC"; }
 
 // A date and time carried by a frame: the fields named year, month, day,
 // hour, minute and second of its form (Topotek TIM and UTC, SkyDroid TIM),
