@@ -279,6 +279,19 @@ TEST(DiagnosesCaptures, EachFiresOnItsCapture) {
 }
 
 // The figures the issue asks for, measured.
+// The finding selection applies to diagnoses: identifier and time.
+TEST(DiagnosesCaptures, SelectedByIdentAndTime) {
+  EXPECT_EQ(read_json("diag-tracking-refused.pcap", "--ident TRC").diagnoses.size(), 1u);
+  const Seen other = read_json("diag-tracking-refused.pcap", "--ident VSN");
+  EXPECT_TRUE(other.diagnoses.empty());
+  EXPECT_EQ(other.status, 0);
+  // the stall began at 12:00:03
+  EXPECT_EQ(read_json("diag-stream-stalled.pcap", "--to 2024-05-01T12:00:02Z").diagnoses.size(),
+            0u);
+  EXPECT_EQ(read_json("diag-stream-stalled.pcap", "--from 2024-05-01T12:00:02Z").diagnoses.size(),
+            1u);
+}
+
 TEST(DiagnosesCaptures, CarryTheirMeasuredFigure) {
   auto msg = [](const char* file, const char* code) {
     const Seen s = read_json(file);
