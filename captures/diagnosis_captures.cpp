@@ -19,7 +19,7 @@ Udp topotek(const char* name) { return Udp(name, 1, 9004, 9003); }
 
 // A Topotek 12-char GIA push (attitude), as a real SIP and ArduPilot's
 // SIM_Topotek send after GIA 01 (docs/FIELD.md "Streams").
-std::string gia() { return F("#TPGPCrGIA" + std::string("FF36ED5A0048")); }
+std::string gia() { return F("#tpGPCrGIA" + std::string("FF36ED5A0048")); }
 
 // "2024-05-01T12:00:00.100Z TX frame": a line of topdump's line log at
 // T0 + ms (T0 is 2024-05-01T12:00:00Z; ms < 60000).
@@ -88,7 +88,7 @@ void identity_captures() {
   {
     Udp u = topotek("diag-placeholder-identity.pcap");
     u.up(0, F("#TPPG2rPA200"));
-    u.down(8, F("#TPGP9rPA2000000000"));  // model name not set at production
+    u.down(8, F("#tpGP9rPA2000000000"));  // model name not set at production
     u.up(100, F("#TPPD2rVSN00"));
     u.down(106, F("#TPDP2rVSN28"));
   }
@@ -102,7 +102,7 @@ void identity_captures() {
   }
   {  // TIM with the 0-based month: 2024-04-01 on 2024-05-01
     Udp u = topotek("diag-clock-offset.pcap");
-    u.echoed(0, 7, "#TPPDEwTIM20240401200000");
+    u.echoed(0, 7, "#tpPDEwTIM20240401200000");
   }
 }
 
@@ -161,21 +161,21 @@ void healthy_captures() {
     for (int s = 0; s < 6; ++s) u.echoed(s * 1000, 5, "#TPPG2wGIA01");
     for (int i = 0; i < 55; ++i) u.down(50 + i * 100, gia());
     u.up(200, F("#TPPG2rPA200"));
-    u.down(208, F("#TPGP6rPA2SIP-T1"));
+    u.down(208, F("#tpGP6rPA2SIP-T1"));
     u.up(300, F("#TPPD2rVSN00"));
     u.down(306, F("#TPDP2rVSN28"));
     u.echoed(400, 6, "#TPPD2wTRC02");
     u.up(450, F("#TPPD2rTRC00"));
     u.down(452, F("#TPDP2rTRC02"));                // tracking
-    u.echoed(500, 7, "#TPPDEwTIM20240501200000");  // Beijing time, 8 h ahead of UTC
+    u.echoed(500, 7, "#tpPDEwTIM20240501200000");  // Beijing time, 8 h ahead of UTC
   }
   {  // SkyDroid over a serial line: the stream, the time, an angle
     std::string log = kLineHeader;
     log += line(0, "TX", F("#TPUG2wGAA0A"));
     log += line(6, "RX", F("#TPGU2wGAA0A"));
     for (int i = 0; i < 40; ++i) log += line(100 + i * 100, "RX", gac(i));
-    log += line(150, "TX", F("#TPUDFwTIM120000.00010524"));
-    log += line(160, "RX", F("#TPDUFwTIM120000.00010524"));
+    log += line(150, "TX", F("#tpUDFwTIM120000.00010524"));
+    log += line(160, "RX", F("#tpDUFwTIM120000.00010524"));
     log += line(250, "TX", F("#tpUG6wGAYEC7832"));
     log += line(262, "RX", F("#tpGU6wGAYEC7832"));
     write_file(path("diag-healthy-serial.log"), log);

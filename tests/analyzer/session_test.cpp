@@ -204,7 +204,10 @@ TEST(Stats, WithoutDetailEqualsWithDetail) {
     for (int i = 0; i < 2; ++i) write_stats_json(j[i], as[i]->stats(), as[i]->worst(), 2);
     EXPECT_EQ(j[0], j[1]);
     EXPECT_EQ(as[0]->worst(), as[1]->worst());
-    EXPECT_GT(as[0]->stats().frames, 0u);
+    // (diag-baud-mismatch.bin is made to hold no TOP frame)
+    if (in.find("diag-baud-mismatch") == std::string::npos) {
+      EXPECT_GT(as[0]->stats().frames, 0u);
+    }
   }
 }
 
