@@ -73,7 +73,7 @@ void add_common(CLI::App* sub, Common& o, CommandSpec::Outputs outputs, bool por
   sub->add_option("--to", o.to, "only frames at or before this time (as --from)");
   sub->add_option("--finding", o.findings,
                   "only frames and events with this finding code (comma list, repeatable; "
-                  "docs/FINDINGS.md)")
+                  "docs/FINDINGS.md; diagnoses: docs/DIAGNOSES.md)")
       ->delimiter(',')
       ->allow_extra_args(false);
   sub->add_option("--mute", o.mute,
@@ -241,7 +241,7 @@ bool setup(const Common& o, Setup& s) {
     for (const auto& n : *names)
       if (!s.filter.add_code(n, muted)) {
         error(std::string(muted ? "--mute " : "--finding ") + n +
-              ": no such finding code (docs/FINDINGS.md lists them)");
+              ": no such finding code (docs/FINDINGS.md and docs/DIAGNOSES.md list them)");
         return false;
       }
   s.filter.max_frames = o.count;
@@ -311,7 +311,9 @@ void progress_bar(std::uint64_t done, std::uint64_t total) {
   std::fflush(stderr);
 }
 
-int status_of(const Analyzer& a) { return a.worst() == top::Severity::error ? 1 : 0; }
+int status_of(const Analyzer& a) {
+  return a.worst() == top::Severity::error || a.diagnosed() ? 1 : 0;
+}
 
 bool show_progress(const Common& c) { return !c.no_progress && isatty(2) && !isatty(1); }
 
