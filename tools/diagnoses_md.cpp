@@ -5,15 +5,12 @@
 #include <cstdio>
 #include <string>
 
+#include "markdown.hpp"
 #include "top/diagnoses.hpp"
 
-namespace {
-std::string cell(std::string_view s) {
-  std::string o;
-  for (char c : s) o += c == '|' ? '/' : c;
-  return o;
-}
-}  // namespace
+using mdtable::cell;
+
+namespace {}  // namespace
 
 int main() {
   std::string o;

@@ -6,7 +6,10 @@
 #include <cstdio>
 #include <string>
 
+#include "markdown.hpp"
 #include "top/top.hpp"
+
+using mdtable::cell;
 
 namespace {
 
@@ -15,12 +18,6 @@ std::string models(top::ModelSet m) {
   for (top::Model x : top::all_models())
     if (m & top::model_bit(x)) s += (s.empty() ? "" : " ") + std::string(top::to_string(x));
   return s;
-}
-
-std::string cell(std::string_view s) {
-  std::string o;
-  for (char c : s) o += c == '|' ? '/' : c;
-  return o;
 }
 
 std::string hex2(std::int64_t v) {

@@ -12,34 +12,14 @@
 #include "diagnoses/placeholder_identity.hpp"
 #include "diagnoses/tracking_refused.hpp"
 #include "top/catalog.hpp"
+#include "top/diagnoses.hpp"
 
 namespace topdump::diag {
 
-// A frame's identifier as one integer, for the prefilter below.
-constexpr std::uint32_t ident_key(const char* id) noexcept {
-  return static_cast<std::uint32_t>(static_cast<unsigned char>(id[0])) |
-         static_cast<std::uint32_t>(static_cast<unsigned char>(id[1])) << 8 |
-         static_cast<std::uint32_t>(static_cast<unsigned char>(id[2])) << 16;
-}
-
 struct Watch {
-  // Whether a frame of `ident` can matter to a detector: the identity
-  // replies (top::is_identity_reply), TRC (top::refuses_tracking) and the
-  // dated frames (top::carries_date), which decide; one switch per frame
-  // instead of their string compares (diagnoses_test checks it covers them).
-  static bool watched(const char* ident) noexcept {
-    switch (ident_key(ident)) {
-      case ident_key("PA2"):
-      case ident_key("VSN"):
-      case ident_key("VER"):
-      case ident_key("TRC"):
-      case ident_key("TIM"):
-      case ident_key("UTC"):
-        return true;
-      default:
-        return false;
-    }
-  }
+  // Whether a frame of `ident` can matter to a detector (the rules'
+  // prefilter, top::may_matter_to_diagnoses).
+  static bool watched(const char* ident) noexcept { return top::may_matter_to_diagnoses(ident); }
 
   IdentityWatch identity;
   TrackingWatch tracking;
