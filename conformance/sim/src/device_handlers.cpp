@@ -109,6 +109,12 @@ struct Handlers {
       } else if (const top::FieldValue* spd = field(c.dec, x.value)) {
         turn(c, a, spd->value);
       }
+      // A sign trait (or --yaw-sign/--pitch-sign) for this command: the
+      // gimbal moves the other way from what the attitude reports.
+      if (d.inverted(static_cast<std::size_t>(x.axis), c.req.ident_view())) {
+        a.target = std::clamp(-a.target, a.min, a.max);
+        a.rate = -a.rate;
+      }
     }
     return true;
   }
@@ -131,7 +137,8 @@ struct Handlers {
     } else if (p.move == top::PtzMove::turn &&
                (!trim || (d.field_ptz_ &&
                           top::field_supported(d.dialect_, d.model_, c.req.ident_view(), act)))) {
-      turn(c, d.axes_[static_cast<std::size_t>(p.axis)], p.sign * kPtzRate);
+      const auto axis = static_cast<std::size_t>(p.axis);
+      turn(c, d.axes_[axis], (d.inverted(axis, c.req.ident_view()) ? -1 : 1) * p.sign * kPtzRate);
     } else if (p.move == top::PtzMove::centre) {
       for (Axis& x : d.axes_) x.target = 0, x.target_speed = 9.9, x.has_target = true, x.rate = 0;
     }
@@ -158,6 +165,17 @@ struct Handlers {
   static bool capture(const Call& c) {
     ++c.dev.file_index_;
     return true;
+  }
+
+  // SkyDroid SLR: under field evidence a range is read only after a trigger
+  // write (a station used on a real C13 sends #TPUD2wSLR015B first); an
+  // untriggered read gets no answer. The document's device answers every read.
+  static bool range_trigger(const Call& c) {
+    c.dev.range_ready_ = true;
+    return true;
+  }
+  static bool range_read(const Call& c) {
+    return c.dev.opts_.profile == top::Profile::field && !c.dev.range_ready_;  // silence
   }
 
   static bool zoom(const Call& c) {
@@ -198,6 +216,8 @@ constexpr Entry kHandlers[] = {
     {kSky, "REC", 'w', Handlers::record, true},
     {kSky, "CAP", 'w', Handlers::capture, true},
     {kSky, "ZMC", 'w', Handlers::zoom, true},
+    {kSky, "SLR", 'w', Handlers::range_trigger, true},
+    {kSky, "SLR", 'r', Handlers::range_read},
 };
 
 }  // namespace

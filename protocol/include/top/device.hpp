@@ -153,13 +153,23 @@ struct Trait {
   Source source = Source::field;
   std::string_view evidence;  // every source for, and every source against
   // The identifiers the evidence concerns, space separated ("GSY"); empty:
-  // every identifier (or a trait that is not about commands).
+  // every identifier (or a trait that is not about commands). A sign trait
+  // applies to the commands it names only.
   std::string_view idents;
+  // The sources conflict, and the reading that serves the autopilot is the
+  // document's: recorded and shown with every source, applied only when
+  // asked for (topsim --pitch-sign inverted), never by a profile.
+  bool contested = false;
+
+  // Whether the trait concerns commands of `ident` (every one when idents is empty).
+  bool names(std::string_view ident) const noexcept;
 };
 std::span<const Trait> traits() noexcept;
 // The trait of `kind` for `model` under `profile` (a field trait only under
-// the field profile), or nullptr.
-const Trait* find_trait(TraitKind kind, Model model, Profile profile) noexcept;
+// the field profile), or nullptr. A contested trait is found only with
+// `contested_too` (to show it), never applied.
+const Trait* find_trait(TraitKind kind, Model model, Profile profile,
+                        bool contested_too = false) noexcept;
 
 // A command value the document does not list for a model but field
 // evidence says the firmware takes (C13 PTZ codes).
