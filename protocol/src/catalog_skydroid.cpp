@@ -788,8 +788,8 @@ constexpr FormSpec kSlrForms[] = {
      .max_length = 2,
      .fields = kSlrTriggerFields,
      .evidence = "a station used on a real C13 (vamaskylight/custom-GCS, vgcs/skydroid) sends "
-                 "the trigger #TPUD2wSLR015B before each range read #TPUD2rSLR0055: the C13 "
-                 "measures only when triggered"},
+                 "the trigger #TPUD2wSLR015B before each range read #TPUD2rSLR0055 (a C13 SDK, "
+                 "skydroid_c13_miniSDK, reads without one)"},
 };
 
 // ---------------------------------------------------------------------------

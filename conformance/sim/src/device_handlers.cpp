@@ -167,16 +167,11 @@ struct Handlers {
     return true;
   }
 
-  // SkyDroid SLR: under field evidence a range is read only after a trigger
-  // write (a station used on a real C13 sends #TPUD2wSLR015B first); an
-  // untriggered read gets no answer. The document's device answers every read.
-  static bool range_trigger(const Call& c) {
-    c.dev.range_ready_ = true;
-    return true;
-  }
-  static bool range_read(const Call& c) {
-    return c.dev.opts_.profile == top::Profile::field && !c.dev.range_ready_;  // silence
-  }
+  // SkyDroid SLR trigger: a station used on a real C13 (custom-GCS) writes
+  // #TPUD2wSLR015B before each range read; the C13 SDK (skydroid_c13_miniSDK)
+  // reads without one. So the trigger is taken and echoed, and every read
+  // answered with the range (a measurement per read).
+  static bool range_trigger(const Call&) { return true; }
 
   static bool zoom(const Call& c) {
     Device& d = c.dev;
@@ -217,7 +212,6 @@ constexpr Entry kHandlers[] = {
     {kSky, "CAP", 'w', Handlers::capture, true},
     {kSky, "ZMC", 'w', Handlers::zoom, true},
     {kSky, "SLR", 'w', Handlers::range_trigger, true},
-    {kSky, "SLR", 'r', Handlers::range_read},
 };
 
 }  // namespace

@@ -139,7 +139,6 @@ class Device {
   bool inverted(std::size_t axis, std::string_view ident) const noexcept;
   const top::Trait* sign_trait_[2] = {nullptr, nullptr};
   bool field_ptz_ = false;
-  bool range_ready_ = false;  // SkyDroid SLR: a measurement was triggered
   Axis axes_[3];
   std::uint64_t now_us_ = 0;
   bool recording_ = false;
