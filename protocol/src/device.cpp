@@ -149,6 +149,15 @@ const DeviceForm* recorded_form(Dialect d, Model model, const Frame& f, Sent sen
   return best;
 }
 
+const DeviceForm* length_in_bytes_form(const Frame& f) noexcept {
+  const Order order = is_client_address(f.src) ? Order::request_order : Order::swapped;
+  for (const DeviceForm& x : device_forms())
+    if (x.length_in_bytes && x.ident == f.ident_view() && x.control == f.control &&
+        x.header == f.header && x.order == order)
+      return &x;
+  return nullptr;
+}
+
 void detail::note_device_form(const Frame& f, Model model, bool detail, Decoded& dec) {
   const bool unswapped = role_from_addresses(f) == Role::request;
   Finding* tp = nullptr;

@@ -133,6 +133,11 @@ DeviceForm device_form(Model model, std::string_view ident, char control, Sent s
 // deviates from the rule. `model` unknown matches every model.
 const DeviceForm* recorded_form(Dialect d, Model model, const Frame& f, Sent sent) noexcept;
 
+// The recorded form whose length char counts bytes (length_in_bytes) that
+// `f` has: its identifier, control, header and address order, any model.
+// Asked by the frame parser when a frame's data is twice its length.
+const DeviceForm* length_in_bytes_form(const Frame& f) noexcept;
+
 // A trait of real firmware that is not a frame form.
 enum class TraitKind : std::uint8_t {
   yaw_inverted,          // the attitude reports the opposite sign of the yaw commanded
