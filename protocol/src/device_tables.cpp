@@ -114,16 +114,6 @@ constexpr DeviceForm kForms[] = {
                  "SLR: #TP with length 4, addresses swapped"},
     {.dialect = Dialect::skydroid,
      .models = c12,
-     .ident = "IMG",
-     .control = 'r',
-     .sent = Sent::reply,
-     .header = Header::fixed,
-     .order = Order::swapped,
-     .source = Source::field,
-     .evidence = "a Python C12 console reads the thermal palette only from a reply that "
-                 "starts #TPDU and holds IMG"},
-    {.dialect = Dialect::skydroid,
-     .models = c12,
      .ident = "VER",
      .control = 'r',
      .sent = Sent::reply,
@@ -183,7 +173,9 @@ constexpr DeviceForm kForms[] = {
      .order = Order::swapped,
      .source = Source::field,
      .evidence = "a C12 Android app (log114/PTZControl C12Service.kt) waits for #TPDU1rIMG and "
-                 "takes the 2 chars after IMG as the palette: length 1 for 2 data chars",
+                 "takes the 2 chars after IMG as the palette: length 1 for 2 data chars; a "
+                 "Python C12 console reads the palette only from a reply that starts #TPDU "
+                 "and holds IMG",
      .length_in_bytes = true},
     {.dialect = Dialect::skydroid,
      .ident = "SLR",

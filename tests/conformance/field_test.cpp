@@ -86,7 +86,9 @@ TEST(FieldProfile, C12PaletteAndVersionRepliesSwapTheAddresses) {
     Device d(top::Model::c12, profile(p));
     auto img = ask(d, "#TPUD2rIMG00");
     ASSERT_EQ(img.size(), 1u);
-    EXPECT_TRUE(strict(img[0], "#TPDU2rIMG")) << img[0];
+    // Field: the C12 app waits for #TPDU1rIMG (the length counts bytes), the
+    // console for #TPDU..IMG; the document counts chars.
+    EXPECT_TRUE(strict(img[0], p == top::Profile::field ? "#TPDU1rIMG" : "#TPDU2rIMG")) << img[0];
     auto ver = ask(d, "#TPUD2rVER00");
     ASSERT_EQ(ver.size(), 1u);
     EXPECT_TRUE(strict(ver[0], "#tpDU")) << ver[0];
@@ -349,7 +351,7 @@ void strict_client_session(const char* server_host, std::uint16_t server_port,
   auto att = c.wait_for("#tpUGCrGAC", 2000);
   ASSERT_TRUE(att) << "no attitude push a C12 client accepts";
   c.send(top::with_checksum("#TPUD2rIMG00"), server_host, port);
-  EXPECT_TRUE(c.wait_for("#TPDU2rIMG", 2000)) << "no palette reply a C12 client accepts";
+  EXPECT_TRUE(c.wait_for("#TPDU1rIMG", 2000)) << "no palette reply a C12 client accepts";
   c.send(top::with_checksum("#TPUG2wGAA00"), server_host, port);
 
   topsim::ServerConfig c13 = cfg;

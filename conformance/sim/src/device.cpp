@@ -141,6 +141,9 @@ std::string Device::build(const top::DeviceForm& form, char client, char device,
   spec.control = control;
   spec.ident = ident;
   spec.data = data;
+  // A length that counts the bytes of the hex value (the C12 palette).
+  if (form.length_in_bytes && data.size() % 2 == 0)
+    spec.declared_length = static_cast<std::uint32_t>(data.size() / 2);
   return top::build_frame(spec);
 }
 
