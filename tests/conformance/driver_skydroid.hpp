@@ -52,9 +52,15 @@ class SkyDroidDriver : public DriverClient {
   std::vector<std::string> errors;  // ERE frames received, as text
   std::uint64_t start_us = 0;
   int fai_sent = 0;
+  // Updates since the first attitude, and those at which it was healthy.
+  int ticks_since_attitude = 0, healthy_ticks = 0;
 
   std::uint64_t tick(std::uint64_t now_us, std::vector<std::string>& out) override {
     if (start_us == 0) start_us = now_us;
+    if (!attitude.empty()) {
+      ++ticks_since_attitude;
+      if (healthy(now_us)) ++healthy_ticks;
+    }
     const std::uint64_t t = now_us - start_us;
     if (!mode_sent_) {
       out.push_back(frame(top::Header::fixed, 'G', 'w', "PTZ", "06"));  // follow

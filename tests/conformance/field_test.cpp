@@ -189,7 +189,7 @@ TEST(FieldProfile, DescribeNamesEverySourceOfTheModel) {
     // The C12 pitch inversion: recorded with its sources, off (contested).
     if (t.name == "pitch-inverted") {
       pitch = t.value == "off (recorded for GAM)";
-      EXPECT_NE(t.source.find("contested"), std::string::npos) << t.source;
+      EXPECT_EQ(t.source, "contested");
       EXPECT_NE(t.evidence.find("Against"), std::string::npos);
     }
   }
@@ -272,11 +272,11 @@ TEST(FieldProfile, C13AnswersWhatTheSkyDroidDriverSends) {
     Device doc(top::Model::c13, profile(top::Profile::document));
     EXPECT_EQ(top::parse_exact(ask(doc, body).at(0)).frame.ident_view(), "ERE") << body;
   }
-  // FAI: 12 chars is the document's form and gets no reply; the driver's 14
-  // is refused on both models (no evidence a unit takes it).
+  // FAI: 12 chars is the document's form, taken; the driver's 14 is
+  // refused on both models (no evidence a unit takes it).
   for (top::Model m : {top::Model::c12, top::Model::c13}) {
     Device d(m);
-    EXPECT_TRUE(ask(d, "#tpUGCwFAI000000000000").empty());
+    EXPECT_EQ(top::parse_exact(ask(d, "#tpUGCwFAI000000000000").at(0)).frame.ident_view(), "FAI");
     EXPECT_EQ(top::parse_exact(ask(d, "#tpUGEwFAI00000000000000").at(0)).frame.ident_view(), "ERE");
   }
 }

@@ -222,8 +222,6 @@ void Device::handle(const Frame& req, Link link, std::uint64_t now_us,
   if (req.control == 'w') {
     // Settings (image, network, ...) are stored, never applied to the host.
     settings_[std::string(id)] = std::string(req.data());
-    // A client's stream (SkyDroid FAI) gets no reply (top::write_reply).
-    if (top::write_reply(cmd) == top::WriteReply::nothing) return;
     // A write with a reply layout of its own (Topotek 5.8.7 LON/LAT target
     // output, 5.9 LRF result) is answered in that layout; others are echoed.
     for (const auto& f : cmd.forms) {

@@ -48,7 +48,9 @@ std::vector<Device::TraitLine> Device::describe() const {
         top::device_form(model_, r.ident, r.control, top::Sent::reply, len, opts_.profile);
     const top::DeviceForm f = form_of(r.ident, top::Sent::reply, len);
     out.push_back(
-        {std::string(r.ident) + "-reply", header(f.header) + " " + order(f.order),
+        {std::string(r.ident) + "-reply",
+         header(f.header) + " " + order(f.order) +
+             (f.length_in_bytes ? ", length counts bytes" : ""),
          opts_.reply_header || opts_.reply_order || !opts_.swap_addresses ? "option" : src(p),
          std::string(p.evidence)});
   }
@@ -74,7 +76,7 @@ std::vector<Device::TraitLine> Device::describe() const {
       source = std::string(top::to_string(applied->source));
     } else if (t->contested && opts_.profile == top::Profile::field) {
       value = "off (recorded for " + std::string(t->idents) + ")";
-      source = "contested: the autopilot's reading";
+      source = "contested";
     }
     out.push_back({std::string(top::to_string(k)), value, source,
                    t ? std::string(t->evidence) : std::string()});
