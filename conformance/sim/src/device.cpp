@@ -34,11 +34,11 @@ Device::Device(top::Model model, DeviceOptions opts)
   axes_[2].min = -45;
   axes_[2].max = 45;
   // Read-only values a real device reports.
-  settings_["VER"] = dialect_ == Dialect::topotek ? "SIP0001V113TK0" : "V1.0.78";
-  if (dialect_ == Dialect::skydroid) {
-    // The form AP_Mount_SkyDroid parses ("V1.0.78", PR #34155) and the
-    // model's name, as ArduPilot's SIM_SkyDroid answers MOD (C11, C13).
-    if (!opts_.version.empty()) settings_["VER"] = opts_.version;
+  // SkyDroid: the form AP_Mount_SkyDroid parses ("V1.0.78", PR #34155) and
+  // the model's name, as ArduPilot's SIM_SkyDroid answers MOD (C11, C13).
+  const bool sky = dialect_ == Dialect::skydroid;
+  settings_["VER"] = !sky ? "SIP0001V113TK0" : opts_.version.empty() ? "V1.0.78" : opts_.version;
+  if (sky) {
     std::string name(top::to_string(model));
     for (char& ch : name) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
     const std::size_t pro = name.find("PRO");
