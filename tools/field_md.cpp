@@ -81,15 +81,23 @@ int main() {
          (f.length_in_bytes ? ", length counts bytes" : "") + " | " +
          std::string(top::to_string(f.order)) + " | " + std::string(top::to_string(f.source)) +
          " | " + cell(f.evidence) + " |\n";
-  o += "\n## Firmware traits\n\n";
+  o += "\n## Firmware traits\n\nA sign trait (yaw-inverted, pitch-inverted) says that the "
+       "attitude (GAC) reports the opposite sign of what the named commands move: it applies "
+       "to those identifiers only. Where the sources conflict, the default serves the "
+       "autopilot (ArduPilot's SkyDroid driver closes its loop on GAC with GSY and GSP), and "
+       "the other reading stays a switch: a contested trait is recorded with every source for "
+       "and against, off unless topsim's `--yaw-sign`/`--pitch-sign inverted` asks for it "
+       "(every command of the axis). `topsim --describe` shows each as applied.\n\n";
   o += "| trait | dialect | models | commands | value | source | evidence |\n"
        "|---|---|---|---|---|---|---|\n";
   for (const top::Trait& t : top::traits())
     o += "| " + std::string(top::to_string(t.kind)) + " | " +
          std::string(top::to_string(t.dialect)) + " | " + models(t.models) + " | " +
          (t.idents.empty() ? std::string("all") : std::string(t.idents)) + " | " +
-         (t.value ? std::to_string(t.value) : std::string("on")) + " | " +
-         std::string(top::to_string(t.source)) + " | " + cell(t.evidence) + " |\n";
+         (t.value       ? std::to_string(t.value)
+          : t.contested ? std::string("off by default (contested; a switch)")
+                        : std::string("on")) +
+         " | " + std::string(top::to_string(t.source)) + " | " + cell(t.evidence) + " |\n";
   o += "\n## Ports\n\nFrom `top::known_ports()` (src/ports.cpp); topsim serves a port for the "
        "models marked served, topdump takes the device to be the end on a device port.\n\n";
   o += "| port | transport | dialect | end | served for | source |\n|---|---|---|---|---|---|\n";

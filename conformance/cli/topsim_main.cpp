@@ -46,6 +46,7 @@ struct Options {
   unsigned baud = 115200;
   std::string profile_name = "field", push_order, push_header, reply_order, reply_header;
   std::string yaw_sign, pitch_sign, field_codes;
+  std::string fw_version, device_name;  // SkyDroid VER and MOD ("": the defaults)
   bool udp_given = false, tcp_given = false;
 };
 
@@ -108,9 +109,18 @@ std::vector<Choice> add_options(CLI::App& app, Options& o) {
   choice("--push-header", o.push_header, "attitude push header", {"TP", "tp"});
   choice("--reply-order", o.reply_order, "read reply addresses", {"swapped", "request-order"});
   choice("--reply-header", o.reply_header, "read reply header (2-15 data chars)", {"TP", "tp"});
-  choice("--yaw-sign", o.yaw_sign, "attitude yaw against the command", {"normal", "inverted"});
-  choice("--pitch-sign", o.pitch_sign, "attitude pitch against the command",
+  choice("--yaw-sign", o.yaw_sign,
+         "attitude yaw against every yaw command (default: the model's sign traits, each for "
+         "the commands its evidence names; see --describe)",
          {"normal", "inverted"});
+  choice("--pitch-sign", o.pitch_sign,
+         "attitude pitch against every pitch command (default: the model's sign traits)",
+         {"normal", "inverted"});
+  app.add_option("--fw-version", o.fw_version,
+                 "SkyDroid: the version VER answers (default V1.0.78, the form ArduPilot's "
+                 "SkyDroid driver parses)");
+  app.add_option("--model-name", o.device_name,
+                 "SkyDroid: the model name MOD answers (default the model's, C12)");
   choice("--field-codes", o.field_codes,
          "accept the command values field evidence says the model takes (C13 PTZ)", {"on", "off"});
   app.add_flag("--describe", o.describe,
@@ -145,6 +155,8 @@ topsim::DeviceOptions device_options(const Options& o) {
   if (!o.yaw_sign.empty()) dopt.yaw_inverted = o.yaw_sign == "inverted";
   if (!o.pitch_sign.empty()) dopt.pitch_inverted = o.pitch_sign == "inverted";
   if (!o.field_codes.empty()) dopt.field_ptz = o.field_codes == "on";
+  dopt.version = o.fw_version;
+  dopt.model_name = o.device_name;
   return dopt;
 }
 

@@ -40,6 +40,9 @@ bool parse_plain(std::string_view b, const ParseOptions& opts, Frame& f, Verdict
   const unsigned prefix = byte_sum8(b.data(), cs);  // cs >= prefix_size
   std::uint8_t value = 0;
   if (!checksum_at(b, cs, prefix, value)) return false;
+  // A second checksum follows (double_checksum): the general parse's.
+  if (std::uint8_t second = 0; n >= cs + 4 && second_checksum(b, cs + 2, prefix, second))
+    return false;
   f.header = fixed ? Header::fixed : Header::variable;
   f.src = b[3];
   f.dst = b[4];
