@@ -194,14 +194,8 @@ class SkyDroidDriver : public DriverClient {
 
   std::string frame(top::Header h, char dst, char control, std::string_view ident,
                     std::string_view data) const {
-    top::BuildSpec b;
-    b.header = h;
-    b.src = client;
-    b.dst = dst;
-    b.control = control;
-    b.ident = ident;
-    b.data = data;
-    return top::build_frame(b);
+    return top::build_frame(
+        {.header = h, .src = client, .dst = dst, .control = control, .ident = ident, .data = data});
   }
 
   bool mode_sent_ = false;
