@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "chars.hpp"
+#include "frame_parse.hpp"
 #include "top/detail/ring.hpp"
 
 namespace top {
@@ -170,6 +171,18 @@ void pump(Decoding& d, std::size_t limit) {
       ++d.parsed.frame.terminator;
       ++d.pos;
       continue;
+    }
+    // A frame held may take its second checksum from bytes that came after
+    // it (the C10 Pro tool's double checksum): the same frame as in one piece.
+    if (d.has_pending && c != '#') {
+      const auto second = detail::take_second_checksum(d.parsed.frame, all.substr(d.pos), judge,
+                                                       d.opts.parse.messages);
+      if (second == detail::SecondChecksum::undecided) break;
+      if (second == detail::SecondChecksum::yes) {
+        d.pending_length += 2;
+        d.pos += 2;
+        continue;
+      }
     }
     release_pending(d);
     if (c != '#') {
