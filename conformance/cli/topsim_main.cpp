@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fault_arg.hpp"
@@ -46,6 +47,8 @@ struct Options {
   unsigned baud = 115200;
   std::string profile_name = "field", push_order, push_header, reply_order, reply_header;
   std::string yaw_sign, pitch_sign, field_codes;
+  std::string fw_version, device_name;  // Topotek VSN and PA2 ("": the defaults)
+  bool no_tracking = false;
   bool udp_given = false, tcp_given = false;
 };
 
@@ -112,6 +115,12 @@ std::vector<Choice> add_options(CLI::App& app, Options& o) {
          {"normal", "inverted"});
   choice("--field-codes", o.field_codes,
          "accept the command values field evidence says the model takes (C13 PTZ)", {"on", "off"});
+  app.add_option("--fw-version", o.fw_version,
+                 "Topotek: the version VSN answers (default 1.6.26.R.D, a real SIP's)");
+  app.add_option("--model-name", o.device_name,
+                 "Topotek: the model name PA2 answers (default SIP)");
+  app.add_flag("--no-tracking", o.no_tracking,
+               "Topotek: a lens that cannot track (TRC answers state 4)");
   app.add_flag("--describe", o.describe,
                "print the device's traits with their sources (profile, options) and exit");
   return choices;
@@ -144,7 +153,26 @@ topsim::DeviceOptions device_options(const Options& o) {
   if (!o.yaw_sign.empty()) dopt.yaw_inverted = o.yaw_sign == "inverted";
   if (!o.pitch_sign.empty()) dopt.pitch_inverted = o.pitch_sign == "inverted";
   if (!o.field_codes.empty()) dopt.field_ptz = o.field_codes == "on";
+  dopt.version = o.fw_version;
+  dopt.model_name = o.device_name;
+  dopt.tracking = !o.no_tracking;
   return dopt;
+}
+
+// --fw-version and --model-name fit a one-char length (1-15 printable
+// chars, no '#' that would start a frame); false after the message.
+bool identity_valid(const Options& o) {
+  for (const auto& [name, v] :
+       {std::pair{"--fw-version", &o.fw_version}, std::pair{"--model-name", &o.device_name}}) {
+    if (v->empty()) continue;
+    bool ok = v->size() <= top::max_data_hex;
+    for (char c : *v) ok = ok && c > ' ' && c < 0x7F && c != '#';
+    if (!ok) {
+      spdlog::error("{} {}: 1-15 printable chars without spaces or '#'", name, *v);
+      return false;
+    }
+  }
+  return true;
 }
 
 // The server's configuration, or the exit status (2) after a message.
@@ -246,7 +274,7 @@ int main(int argc, char** argv) {
   o.tcp_given = app.count("--tcp") > 0;
 
   const auto model = topkit::cli::model_arg(kTool, o.model_name);
-  if (!model || !choices_valid(app, choices, o.faults)) return 2;
+  if (!model || !choices_valid(app, choices, o.faults) || !identity_valid(o)) return 2;
   if (o.describe) {
     const topsim::Device dev(*model, device_options(o));
     std::printf("topsim %s, profile %s\n", o.model_name.c_str(), o.profile_name.c_str());
