@@ -2048,6 +2048,10 @@ CATALOG.topotek["LON"] = {
       fields = {
         { name = "longitude", kind = "nmea", width = 11, scale = 1, mul = 1, dec = 0, unit = "deg", abbrev = "top.LON.longitude" },
       } },
+    { control = "w", role = "response", min_length = 11, max_length = 11, note = "the write's echo: the field's answer, taken before the 5.8.7 layout of the same length (a frame's form is chosen by its length, not its content)",
+      fields = {
+        { name = "longitude", kind = "nmea", width = 11, scale = 1, mul = 1, dec = 0, unit = "deg", abbrev = "top.LON.longitude" },
+      } },
     { control = "w", role = "response", min_length = 11, max_length = 11, note = "5.8.7: target longitude solved from attitude and range",
       fields = {
         { name = "hemisphere", kind = "enum_char", width = 1, scale = 1, mul = 1, dec = 0, unit = "", enums = { [69] = "east", [87] = "west", }, abbrev = "top.LON.hemisphere" },
@@ -2060,6 +2064,10 @@ CATALOG.topotek["LAT"] = {
   models = { sip = true, },
   forms = {
     { control = "w", role = "request", min_length = 10, max_length = 10, note = "",
+      fields = {
+        { name = "latitude", kind = "nmea", width = 10, scale = 1, mul = 1, dec = 0, unit = "deg", abbrev = "top.LAT.latitude" },
+      } },
+    { control = "w", role = "response", min_length = 10, max_length = 10, note = "the write's echo: the field's answer, taken before the 5.8.7 layout of the same length (a frame's form is chosen by its length, not its content)",
       fields = {
         { name = "latitude", kind = "nmea", width = 10, scale = 1, mul = 1, dec = 0, unit = "deg", abbrev = "top.LAT.latitude" },
       } },
