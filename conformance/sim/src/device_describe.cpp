@@ -28,6 +28,9 @@ std::vector<Device::TraitLine> Device::describe() const {
     if (!push || (s.from_field() && !push->from_field())) push = &s;
   }
   if (push) {
+    out.push_back({std::string(push->request) + "-enables", std::string(push->push),
+                   push->from_field() ? "field" : "document rule",
+                   std::string(push->from_field() ? push->evidence : push->note)});
     const top::DeviceForm f = form_of(push->push, top::Sent::push, 12);
     const top::DeviceForm p =
         top::device_form(model_, push->push, 'r', top::Sent::push, 12, opts_.profile);
@@ -114,11 +117,6 @@ void Device::describe_topotek(std::vector<TraitLine>& out) const {
     out.push_back({std::string(m.ident) + "-motion", v.empty() ? "as the document" : v,
                    field() ? "field" : "document rule", std::string(m.field_evidence)});
   }
-  const top::StreamSpec* gia = top::stream_enabled_by(dialect_, "GIA", opts_.profile);
-  if (gia)
-    out.push_back({"GIA-enables", std::string(gia->push),
-                   gia->from_field() ? "field" : "document rule",
-                   gia->from_field() ? std::string(gia->evidence) : std::string(gia->note)});
   out.push_back({"version", setting("VSN"), opts_.version.empty() ? "field" : "option",
                  "a real SIP answers #tpDPArVSN1.6.26.R.D62 (issue 28 log, PixEagle bench)"});
   out.push_back({"model-name", setting("PA2"), opts_.model_name.empty() ? "default" : "option",

@@ -81,9 +81,10 @@ struct TopotekHandlers {
   static bool attitude_read(const Call& c) {
     Device& d = c.dev;
     d.advance(c.now_us);
+    constexpr std::string_view kGia = "GIA";
     const top::DeviceForm gia =
-        top::device_form(d.model_, "GIA", 'r', top::Sent::reply, 12, d.opts_.profile);
-    const std::string_view id = gia.source == top::Source::field ? "GIA" : c.req.ident_view();
+        top::device_form(d.model_, kGia, 'r', top::Sent::reply, 12, d.opts_.profile);
+    const std::string_view id = gia.source == top::Source::field ? kGia : c.req.ident_view();
     const std::string data = d.attitude_data(id);
     c.out.push_back(
         d.build(d.reply_form(c.req, id, data.size()), c.req.src, c.req.dst, 'r', id, data));
@@ -110,7 +111,8 @@ struct TopotekHandlers {
   static bool tracking_read(const Call& c) {
     Device& d = c.dev;
     const std::string data{'0', d.tracking_.state};
-    c.out.push_back(d.build(d.reply_form(c.req, "TRC", 2), c.req.src, c.req.dst, 'r', "TRC", data));
+    const std::string_view id = c.req.ident_view();
+    c.out.push_back(d.build(d.reply_form(c.req, id, 2), c.req.src, c.req.dst, 'r', id, data));
     return true;
   }
 
@@ -124,13 +126,17 @@ struct TopotekHandlers {
     const auto* y = field(c.dec, "y");
     const auto* w = field(c.dec, "width");
     const auto* h = field(c.dec, "height");
-    if (!x || !y || !w || !h) return false;
+    const top::StreamSpec* s =
+        top::stream_enabled_by(d.dialect_, c.req.ident_view(), d.opts_.profile);
+    if (!x || !y || !w || !h || !s) return false;
     if (t.state == '1' || t.state == '2' || t.state == '3') {
       t.x = static_cast<std::int16_t>(x->integer);
       t.y = static_cast<std::int16_t>(y->integer);
       t.w = static_cast<std::uint16_t>(w->integer);
       t.h = static_cast<std::uint16_t>(h->integer);
       t.dst = c.req.src;
+      t.device = c.req.dst;
+      t.push = s->push;
       if (t.state != '2') t.starts_us = c.now_us + kTrackStartUs;
     }
     return echo(c);
@@ -183,7 +189,8 @@ void Device::push_box(const Tracking& t, char status, std::vector<std::string>& 
     data.assign(8, '\0');
   }
   data.push_back(status);
-  out.push_back(build(form_of("OFT", top::Sent::push, data.size()), t.dst, 'D', 'w', "OFT", data));
+  out.push_back(
+      build(form_of(t.push, top::Sent::push, data.size()), t.dst, t.device, 'w', t.push, data));
 }
 
 void Device::poll_topotek(std::uint64_t now_us, std::vector<std::string>& out) {

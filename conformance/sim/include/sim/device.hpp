@@ -77,7 +77,8 @@ struct Tracking {
   std::uint64_t next_box_us = 0;
   std::int16_t x = 0, y = 0;  // LOC centre on the +/-1000 grid
   std::uint16_t w = 0, h = 0;
-  char dst = 'U';  // client address the OFT pushes go to
+  char dst = 0, device = 0;  // the LOC's source and destination: where OFT goes, from whom
+  std::string_view push;     // the frames of the LOC's stream (top::stream_enabled_by: OFT)
 };
 
 class Device {
