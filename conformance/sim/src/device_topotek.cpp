@@ -76,15 +76,12 @@ struct TopotekHandlers {
     return echo(c);
   }
 
-  // The GIC query: the attitude now. A real SIP answers it with a 12-char
-  // GIA (the field reply form of GIA, top/device.hpp), the document with GIC.
+  // The GIC query: the attitude now, in the identifier top::reply_ident
+  // gives (a real SIP answers with a 12-char GIA, the document with GIC).
   static bool attitude_read(const Call& c) {
     Device& d = c.dev;
     d.advance(c.now_us);
-    constexpr std::string_view kGia = "GIA";
-    const top::DeviceForm gia =
-        top::device_form(d.model_, kGia, 'r', top::Sent::reply, 12, d.opts_.profile);
-    const std::string_view id = gia.source == top::Source::field ? kGia : c.req.ident_view();
+    const std::string_view id = top::reply_ident(d.model_, c.req.ident_view(), d.opts_.profile);
     const std::string data = d.attitude_data(id);
     c.out.push_back(
         d.build(d.reply_form(c.req, id, data.size()), c.req.src, c.req.dst, 'r', id, data));

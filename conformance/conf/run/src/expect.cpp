@@ -99,7 +99,8 @@ bool Matcher::reply_matches(const Alternative& a, const top::Frame* req, const t
                             std::string& why) const {
   const Expectation& e = a.e;
   const std::string ident = !e.ident.empty() ? e.ident : req ? std::string(req->ident_view()) : "";
-  if (f.ident_view() != ident) {
+  // The identifier, or the one a recorded form answers it with (GIC -> GIA).
+  if (!top::answers_query(m_.dialect, ident, f.ident_view())) {
     if (is_error_reply(f.ident_view())) why = "the device answered ERE";
     return false;
   }

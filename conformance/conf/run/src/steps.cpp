@@ -93,7 +93,8 @@ void CaseRunner::watch(const Step& s, const std::vector<Alternative>& alts, cons
     if (!seen.stream_ident.empty() && id == seen.stream_ident && r.frame.ok() &&
         r.t_us <= seen.start + std::uint64_t{seen.stream_ms} * 1000)
       seen.push_times.push_back(r.t_us);
-    const bool push = is_push(m_.dialect, id) && !(rq && rq->ident_view() == id);
+    const bool push =
+        is_push(m_.dialect, id) && !(rq && top::answers_query(m_.dialect, rq->ident_view(), id));
     if (!push && !seen.answered) {
       seen.answered = true;
       seen.first_answer = r.t_us;
