@@ -41,7 +41,9 @@ endfunction()
 topkit_generated(NAME catalog_md OUTPUT docs/CATALOG.md COMMAND $<TARGET_FILE:catalog_md>
   LABELS docs)
 topkit_generated(NAME field_md OUTPUT docs/FIELD.md COMMAND $<TARGET_FILE:field_md> LABELS docs)
-add_dependencies(regenerate catalog_md field_md)
+topkit_generated(NAME diagnoses_md OUTPUT docs/DIAGNOSES.md COMMAND $<TARGET_FILE:diagnoses_md>
+  LABELS docs)
+add_dependencies(regenerate catalog_md field_md diagnoses_md)
 
 if(TOPKIT_TOOLS)
   topkit_generated(NAME wireshark_top_lua OUTPUT tools/wireshark/top.lua

@@ -10,6 +10,7 @@
 #include "check.hpp"
 #include "mutator.hpp"
 #include "reuse.hpp"
+#include "top/detail/parse_paths.hpp"
 #include "top/top.hpp"
 
 using namespace top;
@@ -127,10 +128,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
 
   // The one-pass path for clean frames builds what the general parse builds.
-  ParseOptions general = no_text;
-  general.fast_path = false;
   for (const ParseResult* fast : {&open, &closed}) {
-    parse_frame(in, fast == &closed, general, slow);
+    detail::parse_frame_general(in, fast == &closed, no_text, slow);
     bool same = slow.status == fast->status && slow.consumed == fast->consumed;
     if (same && slow.status == ParseStatus::frame) {
       const Frame &a = fast->frame, &b = slow.frame;

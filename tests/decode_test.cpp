@@ -288,3 +288,28 @@ TEST(Decode, EnumCodesAreThoseOfPrintf) {
     }
   EXPECT_EQ(checked, 18u * 7u);
 }
+
+// LAT/LON answers: the field's echo (N/S E/W + ddmm.mmmm) and 5.8.7's output
+// (hemisphere + degrees) share a length; the decoder takes the form whose
+// fields validate, so neither raises a false alarm.
+TEST(Decode, SameLengthFormsAreChosenByContent) {
+  const Decoded echo = dec(with_checksum("#tpDUAwLATN2232.7680"), Dialect::topotek, Model::sip);
+  ASSERT_NE(echo.form, nullptr);
+  EXPECT_TRUE(echo.findings.empty()) << echo.findings.front().message;
+  EXPECT_NEAR(field(echo, "latitude").value, 22.5461, 1e-4);
+  const Decoded out = dec(with_checksum("#tpDUBwLONW 74.00600"), Dialect::topotek, Model::sip);
+  ASSERT_NE(out.form, nullptr);
+  EXPECT_TRUE(out.findings.empty()) << out.findings.front().message;
+  EXPECT_EQ(field(out, "hemisphere").text, "W");
+  EXPECT_NEAR(field(out, "longitude").value, 74.006, 1e-6);
+  // Without detail (the shape cache's path) the same form and no finding.
+  top::ParseResult r = top::parse_exact(with_checksum("#tpDUBwLONW 74.00600"));
+  top::DecodeCache cache;
+  for (int i = 0; i < 2; ++i) {
+    const Decoded fast = decode(
+        r.frame,
+        {.dialect = Dialect::topotek, .model = Model::sip, .detail = false, .cache = &cache});
+    EXPECT_EQ(fast.form, out.form);
+    EXPECT_TRUE(fast.findings.empty());
+  }
+}

@@ -198,9 +198,21 @@ TEST(DeviceField, FormsAndTraitsOfTheFieldNameTheirSources) {
   EXPECT_EQ(yaw->idents, "GSY");
   EXPECT_NE(yaw->evidence.find("custom-GCS"), std::string_view::npos);
   EXPECT_EQ(find_trait(TraitKind::yaw_inverted, Model::c13, Profile::document), nullptr);
-  // The C12 pitch trait stays, and its evidence gives the sources against.
-  const Trait* pitch = find_trait(TraitKind::pitch_inverted, Model::c12, Profile::field);
+  // The C12 pitch trait stays, contested: shown with the sources against,
+  // never applied by a profile (the default serves the autopilot).
+  EXPECT_EQ(find_trait(TraitKind::pitch_inverted, Model::c12, Profile::field), nullptr);
+  const Trait* pitch = find_trait(TraitKind::pitch_inverted, Model::c12, Profile::field, true);
   ASSERT_NE(pitch, nullptr);
+  EXPECT_TRUE(pitch->contested);
+  EXPECT_TRUE(pitch->names("GAM"));
+  EXPECT_FALSE(pitch->names("GSP"));
+  // The C12 yaw trait: GSY (the driver's reading) and the GAY/GAM clients'.
+  const Trait* yaw12 = find_trait(TraitKind::yaw_inverted, Model::c12, Profile::field);
+  ASSERT_NE(yaw12, nullptr);
+  EXPECT_TRUE(yaw12->names("GSY"));
+  EXPECT_TRUE(yaw12->names("GAM"));
+  EXPECT_FALSE(yaw12->names("GA"));
+  EXPECT_FALSE(yaw12->names("PTZ"));
   EXPECT_NE(pitch->evidence.find("Against"), std::string_view::npos);
   EXPECT_NE(pitch->evidence.find("log114/PTZControl"), std::string_view::npos);
   // The C10 Pro tool's double-checksum frame.

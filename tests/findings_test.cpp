@@ -59,6 +59,8 @@ const std::map<FindingCode, Trigger>& triggers() {
       {FindingCode::value_out_of_range, {with_checksum("#tpUG6wGAY2EE032"), Dialect::skydroid}},
       {FindingCode::error_reply, {"#TPMU2wERE!!30", Dialect::skydroid}},
       {FindingCode::unswapped_addresses, {"#tpUDDrIPV192.168.31.22D2", Dialect::skydroid}},
+      {FindingCode::length_in_bytes, {with_checksum("#TPDU1rIMG01")}},
+      {FindingCode::double_checksum, {"#TPUG2wPTZ056FEB"}},
   };
   return t;
 }

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "test_util.hpp"
+#include "top/detail/parse_paths.hpp"
 #include "top/detail/text.hpp"
 
 using namespace top;
@@ -124,8 +125,6 @@ TEST(Parse, FastPathAgreesWithTheGeneralParse) {
   bases.emplace_back("#TPUD2wAWB0144");
   bases.emplace_back("#PDP16TMP0000000000000000000000");
   static constexpr std::string_view kChars = "#TtPpUMDEPGXrw09AFafZ\r\n \x00\xff";
-  ParseOptions general;
-  general.fast_path = false;
   ParseOptions quiet;
   quiet.messages = false;
   ParseResult reused, quiet_reused;
@@ -134,7 +133,8 @@ TEST(Parse, FastPathAgreesWithTheGeneralParse) {
     ExactBuffer buf(in);
     for (bool at_end : {true, false}) {
       parse_frame(buf.view(), at_end, ParseOptions{}, reused);
-      const ParseResult slow = parse_frame(buf.view(), at_end, general);
+      ParseResult slow;
+      detail::parse_frame_general(buf.view(), at_end, ParseOptions{}, slow);
       ASSERT_EQ(describe_parse(reused), describe_parse(slow))
           << testing::PrintToString(in) << " " << at_end;
       parse_frame(buf.view(), at_end, quiet, quiet_reused);
@@ -396,4 +396,54 @@ TEST(Addresses, EveryAddressHasItsDescriptionAndNothingElseDoes) {
   EXPECT_EQ(describe_address('U'), "UART/UDP client");
   EXPECT_EQ(describe_address('P'), "network client");
   EXPECT_EQ(describe_address('G'), "gimbal");
+}
+
+// Lengths that count bytes: the recorded field forms (the C12 palette, a
+// range reply) are decoded as a quirk, info; a random wrong length is not.
+TEST(Parse, LengthThatCountsBytesIsAQuirkOnlyInARecordedForm) {
+  for (const char* body : {"#TPDU1rIMG01", "#TPDU2rSLR0018"}) {
+    const ParseResult r = parse_exact(with_checksum(body));
+    ASSERT_EQ(r.status, ParseStatus::frame) << body;
+    EXPECT_EQ(r.frame.data_length, 2 * r.frame.declared_length) << body;
+    EXPECT_TRUE(has_code(r.frame.findings, FindingCode::length_in_bytes)) << body;
+    EXPECT_FALSE(has_code(r.frame.findings, FindingCode::length_mismatch)) << body;
+    for (const Finding& f : r.frame.findings)
+      if (f.code == FindingCode::length_in_bytes) {
+        EXPECT_EQ(f.severity, Severity::info);
+        EXPECT_EQ(f.quirk, "skydroid-length-in-bytes");
+      }
+  }
+  const std::string sdr = with_checksum("#TPDU2rSLR0018");
+  EXPECT_EQ(sdr, "#TPDU2rSLR0018BE");  // the station's own quote
+  // Twice the length in a form no device is recorded with (a write, the
+  // request's address order, another identifier): a length mismatch.
+  for (const char* body : {"#TPDU1wIMG01", "#TPUD1rIMG01", "#TPDU1rVID01", "#tpDU3rVER010502"}) {
+    const ParseResult r = parse_exact(with_checksum(body));
+    ASSERT_EQ(r.status, ParseStatus::frame) << body;
+    EXPECT_TRUE(has_code(r.frame.findings, FindingCode::length_mismatch)) << body;
+    EXPECT_FALSE(has_code(r.frame.findings, FindingCode::length_in_bytes)) << body;
+  }
+}
+
+// The C10 Pro tool's double-checksum frames: the second checksum is the
+// frame's (a quirk, info), not two garbage or trailing bytes; a wrong
+// second checksum still is trailing bytes.
+TEST(Parse, DoubleChecksumIsTheFramesNotGarbage) {
+  for (const char* raw : {"#TPUG2wPTZ056FEB", "#TPUG2wPTZ016BE3", "#TPUG2wPTZ026CE5"}) {
+    const ParseResult r = parse_exact(raw);
+    ASSERT_EQ(r.status, ParseStatus::frame) << raw;
+    EXPECT_TRUE(r.frame.ok()) << raw;
+    EXPECT_EQ(r.frame.data(), std::string_view(raw).substr(10, 2));
+    EXPECT_TRUE(has_code(r.frame.findings, FindingCode::double_checksum)) << raw;
+    EXPECT_FALSE(has_code(r.frame.findings, FindingCode::trailing_bytes)) << raw;
+    // In a stream of frames: the next frame starts right after it.
+    const std::string two = std::string(raw) + "#TPUD2wCAP013E";
+    const ParseResult first = parse_frame(two, false);
+    ASSERT_EQ(first.status, ParseStatus::frame);
+    EXPECT_EQ(first.consumed, 16u);
+  }
+  const ParseResult wrong = parse_exact("#TPUG2wPTZ056FEC");
+  ASSERT_EQ(wrong.status, ParseStatus::frame);
+  EXPECT_FALSE(has_code(wrong.frame.findings, FindingCode::double_checksum));
+  EXPECT_TRUE(has_code(wrong.frame.findings, FindingCode::trailing_bytes));
 }

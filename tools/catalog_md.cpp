@@ -5,7 +5,10 @@
 #include <cstdio>
 #include <string>
 
+#include "markdown.hpp"
 #include "top/top.hpp"
+
+using mdtable::cell;
 
 namespace {
 
@@ -23,12 +26,6 @@ std::string num(double v) {
   char b[32];
   std::snprintf(b, sizeof b, "%g", v);
   return b;
-}
-
-std::string cell(std::string_view s) {
-  std::string o;
-  for (char c : s) o += c == '|' ? '/' : c;
-  return o;
 }
 
 }  // namespace

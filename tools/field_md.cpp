@@ -6,7 +6,10 @@
 #include <cstdio>
 #include <string>
 
+#include "markdown.hpp"
 #include "top/top.hpp"
+
+using mdtable::cell;
 
 namespace {
 
@@ -15,12 +18,6 @@ std::string models(top::ModelSet m) {
   for (top::Model x : top::all_models())
     if (m & top::model_bit(x)) s += (s.empty() ? "" : " ") + std::string(top::to_string(x));
   return s;
-}
-
-std::string cell(std::string_view s) {
-  std::string o;
-  for (char c : s) o += c == '|' ? '/' : c;
-  return o;
 }
 
 std::string hex2(std::int64_t v) {
@@ -84,15 +81,23 @@ int main() {
          (f.length_in_bytes ? ", length counts bytes" : "") + " | " +
          std::string(top::to_string(f.order)) + " | " + std::string(top::to_string(f.source)) +
          " | " + cell(f.evidence) + " |\n";
-  o += "\n## Firmware traits\n\n";
+  o += "\n## Firmware traits\n\nA sign trait (yaw-inverted, pitch-inverted) says that the "
+       "attitude (GAC) reports the opposite sign of what the named commands move: it applies "
+       "to those identifiers only. Where the sources conflict, the default serves the "
+       "autopilot (ArduPilot's SkyDroid driver closes its loop on GAC with GSY and GSP), and "
+       "the other reading stays a switch: a contested trait is recorded with every source for "
+       "and against, off unless topsim's `--yaw-sign`/`--pitch-sign inverted` asks for it "
+       "(every command of the axis). `topsim --describe` shows each as applied.\n\n";
   o += "| trait | dialect | models | commands | value | source | evidence |\n"
        "|---|---|---|---|---|---|---|\n";
   for (const top::Trait& t : top::traits())
     o += "| " + std::string(top::to_string(t.kind)) + " | " +
          std::string(top::to_string(t.dialect)) + " | " + models(t.models) + " | " +
          (t.idents.empty() ? std::string("all") : std::string(t.idents)) + " | " +
-         (t.value ? std::to_string(t.value) : std::string("on")) + " | " +
-         std::string(top::to_string(t.source)) + " | " + cell(t.evidence) + " |\n";
+         (t.value       ? std::to_string(t.value)
+          : t.contested ? std::string("off by default (contested; a switch)")
+                        : std::string("on")) +
+         " | " + std::string(top::to_string(t.source)) + " | " + cell(t.evidence) + " |\n";
   o += "\n## Motion in the field\n\nWhere field evidence gives a motion command or an "
        "attitude report another sign or unit than the document (`top::motion_of`, "
        "protocol/src/motion.cpp); topsim's field profile moves its axes by them, its "

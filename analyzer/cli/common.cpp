@@ -40,9 +40,8 @@ std::string scanned_ports() {
   return "UDP " + list(known_ports(false)) + "; TCP " + list(known_ports(true));
 }
 
-}  // namespace
-
-void add_common(CLI::App* sub, Common& o, bool outputs, bool ports) {
+// --dialect, --model, --port, the filters, --timeout-ms and the outputs.
+void add_common(CLI::App* sub, Common& o, CommandSpec::Outputs outputs, bool ports) {
   add_dialect_model(sub, o.dialect, "auto, skydroid or topotek (forces every conversation)",
                     o.model,
                     "auto, " + top::model_list(", ", " or ") + " (unsupported-on-model checks)");
@@ -74,7 +73,7 @@ void add_common(CLI::App* sub, Common& o, bool outputs, bool ports) {
   sub->add_option("--to", o.to, "only frames at or before this time (as --from)");
   sub->add_option("--finding", o.findings,
                   "only frames and events with this finding code (comma list, repeatable; "
-                  "docs/FINDINGS.md)")
+                  "docs/FINDINGS.md; diagnoses: docs/DIAGNOSES.md)")
       ->delimiter(',')
       ->allow_extra_args(false);
   sub->add_option("--mute", o.mute,
@@ -94,7 +93,9 @@ void add_common(CLI::App* sub, Common& o, bool outputs, bool ports) {
             return {};
           },
           "MS"));
-  if (outputs) {
+  if (outputs == CommandSpec::Outputs::stats) {
+    sub->add_flag("--json", o.json, "one JSON object (docs/topdump-json.md)")->default_str("");
+  } else {
     auto* json = sub->add_flag("--json", o.json, "JSON Lines (docs/topdump-json.md)");
     auto* verbose = sub->add_flag("-V,--verbose", o.verbose, "the field tree of every frame");
     auto* csv = sub->add_option(
@@ -108,11 +109,67 @@ void add_common(CLI::App* sub, Common& o, bool outputs, bool ports) {
   }
 }
 
+// --format and --no-progress: the options of the commands that read files.
 void add_file_options(CLI::App* sub, Common& o) {
   sub->add_option("--format", o.format, kFormats);
   sub->add_flag("--no-progress", o.no_progress,
                 "no progress bar (drawn on stderr when it is a terminal and stdout is not)")
       ->default_str("");
+}
+
+// The subcommands with the common options, in CommandId's order: one table
+// of what each declares besides its own options, and its --help footer.
+const CommandSpec kCommands[] = {
+    {"read", "Decode a capture: pcap, pcapng, or a serial log (raw, socat, saleae, lines)",
+     CommandSpec::Outputs::events, CommandSpec::Input::files, true,
+     "Order: events are printed in capture-time order, across TCP connections and serial lines, "
+     "within a reorder window of 1 s of capture time and at most 131072 events; an event that "
+     "arrives later (an unanswered finding found at the timeout) is printed ahead of those still "
+     "held.\n"
+     "On a terminal, a summary line (frames, errors, warnings, unanswered, garbage, time span) "
+     "ends the output, on stderr.\n",
+     "  topdump read captures/sample.pcap\n"
+     "  topdump read -V --ident GAY,ERE captures/sample.pcap\n"
+     "  topdump read --json captures/tcp-c10.pcap | jq -r .ident\n"
+     "  topdump read --csv n,time,ident,field.pitch,field.pitch.unit captures/serial-lines.log\n"
+     "  topdump read --severity error --from 2024-05-01T12:00:00.5Z capture.pcapng\n"
+     "  topdump read --ident gay --from +1.5s -c 20 --mute tp-length capture.pcap\n"
+     "  cat capture.pcap | topdump read -\n"
+     "  topdump read tx.log rx.log   # two taps of one UART, merged by time\n"
+     "  topdump read --ident GAY -w gay.pcap big-capture.pcapng"},
+    {"stats", "Statistics of one or more captures", CommandSpec::Outputs::stats,
+     CommandSpec::Input::files, true, "",
+     "  topdump stats captures/sample.pcap\n"
+     "  topdump stats --json --ident GAY captures/sample.pcap captures/tcp-c10.pcap"},
+    {"live", "Decode live traffic on an interface (libpcap); Ctrl-C ends",
+     CommandSpec::Outputs::events, CommandSpec::Input::live, true, "",
+     "  sudo topdump live -i eth0\n"
+     "  sudo topdump live -i lo --json udp port 5000"},
+    {"serial", "Decode a serial port as bytes arrive (8N1); Ctrl-C ends",
+     CommandSpec::Outputs::events, CommandSpec::Input::live, false, "",
+     "  topdump serial /dev/ttyUSB0\n"
+     "  topdump serial --baud 57600 --model c12 /dev/ttyUSB0\n"
+     "  topdump serial /dev/ttyUSB0 /dev/ttyUSB1   # one tap per direction"},
+};
+
+}  // namespace
+
+void add_taps(CLI::App& sub, const char* name, std::vector<std::string>& inputs,
+              const std::string& help) {
+  sub.add_option(name, inputs, help)->required()->expected(1, 2);
+}
+
+const CommandSpec& spec_of(CommandId id) { return kCommands[static_cast<int>(id)]; }
+
+void declare_common(CLI::App& sub, Common& o, const CommandSpec& spec) {
+  add_common(&sub, o, spec.outputs, spec.ports);
+  const bool files = spec.input == CommandSpec::Input::files;
+  if (files) add_file_options(&sub, o);
+  std::string footer;
+  if (spec.outputs == CommandSpec::Outputs::events) footer += output_help();
+  if (!files)
+    footer += "Events are printed as they are decoded; Ctrl-C prints the statistics and ends.\n";
+  sub.footer(footer + spec.notes + "Examples:\n" + spec.examples);
 }
 
 void add_dialect_model(CLI::App* sub, std::string& dialect, const std::string& dialect_help,
@@ -184,7 +241,7 @@ bool setup(const Common& o, Setup& s) {
     for (const auto& n : *names)
       if (!s.filter.add_code(n, muted)) {
         error(std::string(muted ? "--mute " : "--finding ") + n +
-              ": no such finding code (docs/FINDINGS.md lists them)");
+              ": no such finding code (docs/FINDINGS.md and docs/DIAGNOSES.md list them)");
         return false;
       }
   s.filter.max_frames = o.count;
@@ -254,7 +311,9 @@ void progress_bar(std::uint64_t done, std::uint64_t total) {
   std::fflush(stderr);
 }
 
-int status_of(const Analyzer& a) { return a.worst() == top::Severity::error ? 1 : 0; }
+int status_of(const Analyzer& a) {
+  return a.worst() == top::Severity::error || a.diagnosed() ? 1 : 0;
+}
 
 bool show_progress(const Common& c) { return !c.no_progress && isatty(2) && !isatty(1); }
 

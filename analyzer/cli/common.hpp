@@ -46,9 +46,23 @@ struct Common {
 // request) is beyond its reach.
 constexpr std::int64_t kReorderWindowUs = 1'000'000;
 
-void add_common(CLI::App* sub, Common& o, bool outputs, bool ports = true);
-// --format and --no-progress: the options of the commands that read files.
-void add_file_options(CLI::App* sub, Common& o);
+// What a subcommand with the common options is (read, stats, live, serial):
+// its name and help line, what it prints, where it reads, whether it takes
+// --port, and its --help footer's own notes and examples.
+struct CommandSpec {
+  // events: --json (JSON Lines), -V and --csv, and output_help() in the
+  // footer; stats: --json, one JSON object.
+  enum class Outputs { events, stats };
+  // files: --format and --no-progress; live: the note that Ctrl-C ends.
+  enum class Input { files, live };
+  const char* name;
+  const char* help;
+  Outputs outputs;
+  Input input;
+  bool ports;
+  const char* notes;     // the footer's text before "Examples:"
+  const char* examples;  // the footer's example lines
+};
 
 struct Setup {
   AnalyzerOptions aopts;
@@ -61,14 +75,40 @@ struct Setup {
 // bad usage.
 bool setup(const Common& o, Setup& s);
 
-// A subcommand with the common options (read, stats, live, serial).
-class CommonCommand : public topkit::cli::Subcommand {
- public:
-  using Subcommand::Subcommand;
+// The subcommands with the common options, and their specs (one table,
+// common.cpp).
+enum class CommandId { read, stats, live, serial };
+const CommandSpec& spec_of(CommandId id);
 
- protected:
+// The positional input of read and serial: one, or two taps of one UART
+// (one per direction) read as one conversation.
+void add_taps(CLI::App& sub, const char* name, std::vector<std::string>& inputs,
+              const std::string& help);
+
+// Adds the common options of `spec` to `sub` and sets its footer.
+void declare_common(CLI::App& sub, Common& o, const CommandSpec& spec);
+
+// A subcommand with the common options (read, stats, live, serial): `Own`
+// holds only what is the command's own, its options (added by
+// declare(CLI::App&) after the common ones) and run(const Common&).
+template <class Own>
+class CommonCommand final : public topkit::cli::Subcommand {
+ public:
+  CommonCommand(CLI::App& app, const CommandSpec& spec) : Subcommand(app, spec.name, spec.help) {
+    declare_common(*sub_, c_, spec);
+    own_.declare(*sub_);
+  }
+  int run() override { return own_.run(c_); }
+
+ private:
   Common c_;
+  Own own_;
 };
+
+template <class Own>
+std::unique_ptr<topkit::cli::Subcommand> make_command(CLI::App& app, CommandId id) {
+  return std::make_unique<CommonCommand<Own>>(app, spec_of(id));
+}
 
 // A source finding on stderr, naming the file once: "topdump: FILE: !! ...",
 // the message without its own "FILE: ".

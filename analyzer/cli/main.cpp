@@ -9,8 +9,10 @@ int main(int argc, char** argv) {
   topkit::cli::setup_app(app, kTool);
   app.require_subcommand(1);
   app.footer(
-      "Exit status: 0 no error finding, 1 an error finding, 2 unreadable input, a failed "
-      "write or bad usage.\nEach subcommand's --help lists its options and examples; man "
+      "Exit status: 0 no error finding, 1 an error finding or a warning diagnosis (the field "
+      "failures of docs/DIAGNOSES.md: silent-device, stream-stalled, clock-offset...), 2 "
+      "unreadable input, a failed write or bad usage.\nEach subcommand's --help lists its options "
+      "and examples; man "
       "topdump has them all.");
   // in this order in --help
   const std::unique_ptr<topkit::cli::Subcommand> commands[] = {

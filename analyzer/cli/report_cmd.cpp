@@ -139,7 +139,7 @@ int ReportCommand::run() {
     if (path != "-") error("cannot write " + path);
     return 2;
   }
-  return a.worst() == top::Severity::error ? 1 : 0;
+  return status_of(a);
 }
 
 }  // namespace

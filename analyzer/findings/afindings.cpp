@@ -10,7 +10,9 @@ struct Row {
 };
 constexpr Row kRows[] = {
 #define TOPDUMP_X(e, s, sev, when) {s, top::Severity::sev, when},
-    TOPDUMP_FINDINGS(TOPDUMP_X)
+#define TOPDUMP_D(e, s, sev, title, evidence, remedy) {s, top::Severity::sev, title},
+    TOPDUMP_FINDINGS(TOPDUMP_X) TOP_DIAGNOSES(TOPDUMP_D)
+#undef TOPDUMP_D
 #undef TOPDUMP_X
 };
 static_assert(sizeof kRows / sizeof kRows[0] == acode_count);

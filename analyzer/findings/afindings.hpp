@@ -9,6 +9,7 @@
 #include <optional>
 #include <string_view>
 
+#include "top/diagnoses.hpp"
 #include "top/findings.hpp"
 
 namespace topdump {
@@ -62,21 +63,37 @@ namespace topdump {
   X(repeated, "repeated", info,                                                                   \
     "the same request again within the repeat window (some senders send "                         \
     "each frame three times, 30 ms apart)")                                                       \
-  X(stream_rate, "stream-rate", warning,                                                          \
-    "a GAC/GIC stream runs at a rate more than 25% off the rate GAA asked")                       \
   X(no_frames, "no-frames", error, "the input held no TOP frame at all")
 
+// The analyzer's codes: its findings, then the diagnoses of
+// top/diagnoses.hpp (the one home of their codes, severities, evidence and
+// remedies), so that a diagnosis is a session finding like the others:
+// selected, muted, counted and in the exit status by the same code.
 enum class ACode : std::uint16_t {
 #define TOPDUMP_X(e, s, sev, when) e,
-  TOPDUMP_FINDINGS(TOPDUMP_X)
+#define TOPDUMP_D(e, s, sev, title, evidence, remedy) e,
+  TOPDUMP_FINDINGS(TOPDUMP_X) TOP_DIAGNOSES(TOPDUMP_D)
+#undef TOPDUMP_D
 #undef TOPDUMP_X
 };
 
-inline constexpr std::size_t acode_count = 0
+// The analyzer findings proper (before the diagnoses).
+inline constexpr std::size_t afinding_count = 0
 #define TOPDUMP_X(e, s, sev, when) +1
     TOPDUMP_FINDINGS(TOPDUMP_X)
 #undef TOPDUMP_X
     ;
+inline constexpr std::size_t acode_count = afinding_count + top::diagnosis_count;
+
+// A diagnosis as an analyzer code, and back (nullopt for a finding).
+constexpr ACode acode_of(top::Diagnosis d) noexcept {
+  return static_cast<ACode>(afinding_count + static_cast<std::size_t>(d));
+}
+constexpr std::optional<top::Diagnosis> diagnosis_of(ACode c) noexcept {
+  const auto i = static_cast<std::size_t>(c);
+  if (i < afinding_count) return std::nullopt;
+  return static_cast<top::Diagnosis>(i - afinding_count);
+}
 
 std::string_view to_string(ACode c) noexcept;
 top::Severity default_severity(ACode c) noexcept;

@@ -319,6 +319,22 @@ void write_note_json(std::string& out, const NoteEvent& e) {
     put_u(o, e.note.frame);
   else
     app(o, "null");
+  if (const std::optional<top::Diagnosis> d = diagnosis_of(e.note.code)) {
+    // a diagnosis's case (docs/DIAGNOSES.md)
+    app(o, ",\"count\":");
+    put_u(o, e.note.count);
+    app(o, ",\"until\":");
+    put_time(o, e.note.until);
+    app(o, ",\"ident\":");
+    if (e.note.ident[0])
+      put_text(o, std::string_view(e.note.ident, 3));
+    else
+      app(o, "null");
+    app(o, ",\"evidence\":");
+    put_text(o, top::evidence(*d));
+    app(o, ",\"remedy\":");
+    put_text(o, top::remedy(*d));
+  }
   app(o, "}\n");
 }
 

@@ -191,6 +191,14 @@ void ReportSink::note(const NoteEvent& e) {
     if (e.from) x->from = *e.from;
     if (e.to) x->to = *e.to;
   }
+  if (const std::optional<top::Diagnosis> dg = diagnosis_of(e.note.code)) {
+    if (diagnoses.size() < kMaxDiagnosisItems)
+      diagnoses.push_back({*dg, e.note.severity, e.ts, e.note.until, e.note.frame, e.note.count,
+                           e.conv ? e.conv_id() : 0, file, e.note.message,
+                           top::escape(std::string_view(e.note.ident, 3))});
+    else
+      ++diagnoses_dropped;
+  }
   if (e.note.code == ACode::unanswered)
     unanswered.push_back({e.ts, e.note.frame, e.conv ? e.conv_id() : 0, file, e.note.message,
                           top::escape(std::string_view(e.note.ident, 3)), e.note.cause});

@@ -23,11 +23,10 @@ void unanswered_facts(const ReportSink& d, Report& rep) {
   };
   std::map<std::string, Group> groups;
   for (const auto& u : d.unanswered) {
-    if (u.cause == Cause::silent) {
-      add(rep, 85, top::Severity::warning, u.message + " (from " + clock_text(u.ts) + ")",
-          "unanswered");
+    // a cause that is a diagnosis is its item (diagnosis_facts)
+    if (u.cause == Cause::silent || u.cause == Cause::bad_checksum ||
+        u.cause == Cause::checksum_case || u.cause == Cause::uart_source)
       continue;
-    }
     const std::string_view cause = describe(u.cause);
     Group& g = groups[u.ident + "\x01" + std::string(cause)];
     ++g.n;
@@ -45,21 +44,21 @@ void unanswered_facts(const ReportSink& d, Report& rep) {
   }
 }
 
-// Streams off their rate or with gaps.
-void stream_facts(Report& rep) {
-  for (const auto& s : rep.streams) {
-    const double m = s.stat.measured_hz();
-    if (s.stat.off_rate())
-      add(rep, 75, top::Severity::warning,
-          s.stat.ident + " push at " + fmt("%.1f", m) + " Hz, asked " + fmt("%g", s.stat.asked_hz) +
-              " Hz (" + s.stat.asked_by + ", conversation " + std::to_string(s.conv) + ")",
-          "streams");
-    if (s.gap_count)
-      add(rep, 55, top::Severity::warning,
-          s.stat.ident + " push stopped " + std::to_string(s.gap_count) +
-              (s.gap_count == 1 ? " time" : " times") + " for more than 3 periods; longest " +
-              fmt("%.3f", s.gaps.front().ms / 1000) + " s at " + clock_text(s.gaps.front().t),
-          "streams");
+// The diagnoses the session reported (streams off their rate or stalled,
+// silent devices, dropped requests...): one item each, with its code.
+void diagnosis_facts(const ReportSink& d, Report& rep) {
+  for (const DiagnosisItem& x : d.diagnoses) {
+    const bool stream = x.code == top::Diagnosis::stream_rate ||
+                        x.code == top::Diagnosis::stream_stalled ||
+                        x.code == top::Diagnosis::stream_never_started;
+    std::string t = x.message;
+    if (x.ts != kNoTime) t += " (from " + clock_text(x.ts) + ")";
+    if (x.conv) t += ", conversation " + std::to_string(x.conv);
+    add(rep, x.severity == top::Severity::error ? 88 : 75, x.severity, std::move(t),
+        stream ? "streams" : "code-" + std::string(top::to_string(x.code)));
+    rep.facts.back().code = x.code;
+    rep.facts.back().frame = x.frame;
+    rep.facts.back().count = x.count;
   }
 }
 
@@ -133,6 +132,9 @@ void rate_facts(Report& rep) {
             fmt("%.0f", g.gap_ms) + " ms after the " + g.ident + " at " + clock_text(g.t) +
             "): the motors stop",
         "rates");
+    rep.facts.back().code = top::Diagnosis::refresh_gap;
+    rep.facts.back().frame = rep.gaps.front().frame;
+    rep.facts.back().count = rep.gaps.size();
   }
   if (!rep.scale_verdict.empty())
     add(rep, 25, top::Severity::info,
@@ -148,7 +150,8 @@ void rate_facts(Report& rep) {
 // Frame findings: errors and warnings by code, with who sent them.
 void code_facts(const ReportSink& d, Report& rep) {
   for (const auto& [code, c] : d.codes) {
-    if (c.severity == top::Severity::info || code == "unanswered" || code == "stream-rate")
+    if (c.severity == top::Severity::info || code == "unanswered" ||
+        top::diagnosis_from_string(code))
       continue;
     std::string t = code + ": " + std::to_string(c.count) + (c.count == 1 ? " time" : " times");
     if (c.senders.size() == 1)
@@ -165,7 +168,7 @@ void code_facts(const ReportSink& d, Report& rep) {
 
 void facts(const ReportSink& d, Report& rep) {
   unanswered_facts(d, rep);
-  stream_facts(rep);
+  diagnosis_facts(d, rep);
   response_facts(rep);
   rate_facts(rep);
   code_facts(d, rep);

@@ -42,6 +42,7 @@ code,.raw{font-family:"DejaVu Sans Mono",Menlo,Consolas,monospace;font-size:12px
 .sev-warning{color:#b35c00;font-weight:600}
 .sev-info{color:#45617a}
 ol.facts li{margin:3px 0}
+ol.facts .why{font-size:90%;color:#555;margin:2px 0 6px 1em}
 .flag{display:inline-block;padding:0 6px;border-radius:8px;font-size:12px;margin-right:3px;
 background:#fde2e1;color:#8a1111}
 .flag.info{background:#e5edf5;color:#2d4a66}
@@ -108,8 +109,17 @@ void Page::overview() {
   } else {
     // the first twelve at once, the rest a click away
     auto item = [&](const Fact& f) {
-      o += "<li>" + sev_span(f.severity) + " " + markup_escape(f.text) + " <a href=\"#" +
-           markup_escape(f.anchor) + "\">details</a></li>";
+      o += "<li>" + sev_span(f.severity) + " ";
+      if (f.code) o += "<code>" + std::string(top::to_string(*f.code)) + "</code> ";
+      o += markup_escape(f.text) + " <a href=\"#" + markup_escape(f.anchor) + "\">details</a>";
+      if (f.code) {
+        o += "<div class=\"why\"><b>Evidence:</b> " +
+             markup_escape(std::string(top::evidence(*f.code))) + "<br/><b>Remedy:</b> " +
+             markup_escape(std::string(top::remedy(*f.code)));
+        if (f.frame) o += " (first frame " + frame_ref(f.frame) + ")";
+        o += "</div>";
+      }
+      o += "</li>";
     };
     constexpr std::size_t kShown = 12;
     o += "<ol class=\"facts\">";

@@ -92,8 +92,23 @@ void Writer::overview() {
   for (const Fact& f : r.facts) {
     j.item_object();
     text("severity", top::to_string(f.severity));
+    j.key("code");
+    if (f.code)
+      put_str(o, top::to_string(*f.code));
+    else
+      o += "null";
     text("text", f.text);
     text("section", f.anchor);
+    if (f.code) {
+      text("evidence", top::evidence(*f.code));
+      text("remedy", top::remedy(*f.code));
+      j.key("frame");
+      if (f.frame)
+        put_u(o, f.frame);
+      else
+        o += "null";
+      u("count", f.count);
+    }
     j.close_object();
   }
   j.close_array();

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <deque>
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -128,6 +129,17 @@ struct Unanswered {
   Cause cause = Cause::none;
 };
 
+// A diagnosis the session reported (a note whose code is a diagnosis):
+// its case, for "What went wrong".
+struct DiagnosisItem {
+  top::Diagnosis code{};
+  top::Severity severity{};
+  std::int64_t ts = kNoTime, until = kNoTime;
+  std::uint64_t frame = 0, count = 0, conv = 0;
+  std::string file, message, ident;
+};
+inline constexpr std::size_t kMaxDiagnosisItems = 256;
+
 struct Slow {
   std::int64_t latency_us = 0;
   std::uint64_t request = 0, response = 0, conv = 0;
@@ -148,6 +160,8 @@ class ReportSink : public Sink {
   std::map<std::string, CodeStat, std::less<>> codes;
   std::array<TimeHist, 3> finding_times;  // per severity
   std::vector<Unanswered> unanswered;
+  std::vector<DiagnosisItem> diagnoses;  // at most kMaxDiagnosisItems
+  std::uint64_t diagnoses_dropped = 0;
   std::map<std::string, std::array<std::uint64_t, kLatencyBins>, std::less<>> latency_bins;
   std::vector<Slow> slowest;  // a min-heap on latency, at most kSlowest
   // The identifier of recent requests by frame number (direct-mapped: an
@@ -237,6 +251,10 @@ struct Fact {
   int rank = 0;  // higher first
   top::Severity severity{};
   std::string text, anchor;
+  // The diagnosis it is (top/diagnoses.hpp; its evidence and remedy), with
+  // its first frame and the frames that show it; none for the other facts.
+  std::optional<top::Diagnosis> code;
+  std::uint64_t frame = 0, count = 0;
 };
 
 struct Report {

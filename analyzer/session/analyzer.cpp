@@ -43,6 +43,7 @@ void Analyzer::Impl::note_event(std::int64_t ts, Position pos, Transport t, cons
   if (A.filtering_ && !A.filter_.selects(e)) return;
   ++acodes[static_cast<std::size_t>(e.note.code)];
   if (e.note.severity > A.worst_) A.worst_ = e.note.severity;
+  if (e.note.severity != top::Severity::info && diagnosis_of(e.note.code)) A.diagnosed_ = true;
   if (emit) A.sink_.note(e);
 }
 
@@ -57,6 +58,8 @@ void Analyzer::Impl::item(Conversation& c, int d, top::StreamItem& it, Position 
                          .from = &D.from,
                          .to = &D.to,
                          .item = &it};
+    if (c.transport == Transport::serial)
+      c.watch.baud.garbage(it.length, it.preview, pos.record, ts);
     if (A.filtering_ && !A.filter_.selects(g)) return;
     ++A.stats_.garbage;
     ++codes[static_cast<std::size_t>(it.finding.code)];
@@ -163,6 +166,15 @@ void Analyzer::Impl::frame(Conversation& c, int d, top::Frame& f, Position pos, 
     request(c, d, ev);
   else if (decided == top::Role::response)
     response(c, d, ev);
+  // The conversation's diagnoses see every frame, as pairing does; what
+  // they find is reported at its end, through the filter.
+  if (diag::Watch::watched(fr.ident)) {
+    const std::string_view id = fr.ident_view(), data = fr.data();
+    if (decided == top::Role::response && e.decoded.dialect != top::Dialect::unknown &&
+        fr.checksum_ok)
+      c.watch.device_frame(e.decoded.dialect, id, data, ev.n, ts, d);
+    c.watch.dated_frame(e.decoded.form, id, data, ev.n, ts, d);
+  }
 
   // Pairing saw the frame; what follows is reporting, which the filter
   // governs: a frame it leaves out is neither counted nor in the exit status.

@@ -80,6 +80,9 @@ class Analyzer final : public CaptureSink {
   const Stats& stats() const;
   // The worst severity of any finding seen (for the exit status).
   top::Severity worst() const noexcept { return worst_; }
+  // A warning or error diagnosis (top/diagnoses.hpp) was reported: the exit
+  // status is 1, as for an error finding.
+  bool diagnosed() const noexcept { return diagnosed_; }
   std::uint64_t frames_seen() const noexcept { return frame_no_; }
 
  private:
@@ -101,6 +104,7 @@ class Analyzer final : public CaptureSink {
   bool filtering_ = false;  // filter_.active(), asked once per frame
   mutable Stats stats_;
   top::Severity worst_ = top::Severity::info;
+  bool diagnosed_ = false;
   std::uint64_t frame_no_ = 0;
   std::uint64_t selected_ = 0;  // frames the filter selected
   bool started_ = false;        // the first timestamp seen (relative filter times)

@@ -26,11 +26,12 @@ struct Position {
 // Why a request may go unanswered, as far as the capture shows.
 enum class Cause : std::uint8_t {
   none,
-  bad_checksum,  // devices drop frames they cannot trust
-  uart_source,   // Topotek: source U over the network, answers go to the UART
-  unsupported,   // not in the catalog, or not on the model
-  invalid,       // a wrong length or value: Topotek ignores it, SkyDroid answers ERE
-  silent         // the device sent nothing while several requests went unanswered
+  bad_checksum,   // devices drop frames they cannot trust
+  checksum_case,  // a lowercase checksum: strict parsers drop it
+  uart_source,    // Topotek: source U over the network, answers go to the UART
+  unsupported,    // not in the catalog, or not on the model
+  invalid,        // a wrong length or value: Topotek ignores it, SkyDroid answers ERE
+  silent          // the device sent nothing while several requests went unanswered
 };
 // What the capture shows of that cause, for people ("" for none).
 std::string_view describe(Cause c) noexcept;
@@ -45,6 +46,12 @@ struct Note {
   char ident[3] = {};
   char src = 0, dst = 0;
   Cause cause = Cause::none;  // unanswered: why, as far as the capture shows
+  // A diagnosis's case (diagnosis_of(code)): `frame` is its first frame,
+  // `count` the frames that show it, `until` the time of the last; the
+  // measured figure is the message.
+  std::uint64_t count = 0;
+  std::int64_t until = kNoTime;
+  std::int8_t axis = -1;  // 0 yaw, 1 pitch, 2 roll; -1 none
 };
 
 // A decoded frame with its findings summarised.

@@ -19,6 +19,7 @@ namespace {
 constexpr std::string_view kCauseText[] = {
     "",
     "its checksum is bad, and devices drop such frames",
+    "its checksum is in lowercase hex, which strict parsers drop",
     "a Topotek request with source U over the network; the device answers U requests on its "
     "UART only (the network client is P)",
     "the identifier is not supported on the model",
@@ -74,6 +75,19 @@ void Analyzer::Impl::unanswered(Conversation& c, const Pending& p, bool at_end) 
   // several times) is not unanswered: the device answered one of them.
   if (c.pairing.copy_of_answered(p, A.opts_.repeat_window_us)) return;
   const Direction& D = c.dir[p.dir];
+  switch (p.cause) {
+    case Cause::bad_checksum:
+      c.watch.dropped.add(top::Diagnosis::dropped_bad_checksum, p.n, p.ts, p.ident, p.dir);
+      break;
+    case Cause::checksum_case:
+      c.watch.dropped.add(top::Diagnosis::dropped_checksum_case, p.n, p.ts, p.ident, p.dir);
+      break;
+    case Cause::uart_source:
+      c.watch.dropped.add(top::Diagnosis::reply_interface, p.n, p.ts, p.ident, p.dir);
+      break;
+    default:
+      break;
+  }
   Note about{ACode::unanswered, default_severity(ACode::unanswered), std::string(), p.n};
   std::memcpy(about.ident, p.ident, 3);
   about.src = p.src;
@@ -116,6 +130,7 @@ void Analyzer::Impl::unanswered(Conversation& c, const Pending& p, bool at_end) 
       s.single = std::move(msg);
     }
     ++s.count;
+    s.timed_out |= !at_end;
     s.last_n = p.n;
     s.last_ts = p.ts;
     const std::string id = top::escape(std::string_view(p.ident, 3));
@@ -142,6 +157,14 @@ void Analyzer::Impl::emit_silence(Conversation& c) {
   });
   Note n = s.about;  // the first request's identifier and addresses
   if (s.count > 1) n.cause = Cause::silent;
+  if (s.count > 1 && s.timed_out) {
+    // the silent-device diagnosis: its case is the stretch
+    n.code = acode_of(top::Diagnosis::silent_device);
+    n.severity = top::severity(top::Diagnosis::silent_device);
+    n.cause = Cause::silent;
+    n.count = s.count;
+    n.until = s.last_ts;
+  }
   n.message = std::move(msg);
   note_event(s.first_ts, s.pos, c.transport, &c, &D.from, &D.to, std::move(n));
   s = Silence{};
@@ -154,6 +177,10 @@ Cause Analyzer::Impl::cause_of(const Conversation& c, const DecodedEntry& e, top
   Cause cause = Cause::none;
   if (e.bad_checksum) {
     cause = Cause::bad_checksum;
+  } else if (std::any_of(f.findings.begin(), f.findings.end(), [](const top::Finding& x) {
+               return x.code == top::FindingCode::checksum_case;
+             })) {
+    cause = Cause::checksum_case;
   } else if (!top::answers_source(
                  dialect, top::Profile::field,
                  c.transport == Transport::serial ? top::Link::uart : top::Link::network, f.src)) {
@@ -225,6 +252,7 @@ void Analyzer::Impl::request(Conversation& c, int d, FrameEvent& ev) {
       } else if (s != streams.end() && s->enabled && s->asked_hz == hz) {
         // asked again for what runs (drivers re-send the enable once a
         // second): the stream goes on
+        if (s->frames == 0) s->never.asked(ev.n, ev.ts, id);
       } else {
         if (s == streams.end()) {
           streams.push_back(StreamStat{});
@@ -237,6 +265,7 @@ void Analyzer::Impl::request(Conversation& c, int d, FrameEvent& ev) {
         s->asked_by = std::string(switched->request);
         s->from_client = switched->sender == top::Sender::client;
         s->asked_hz = hz;
+        s->never.asked(ev.n, ev.ts, id);
       }
     }
   }
@@ -290,12 +319,16 @@ void Analyzer::Impl::response(Conversation& c, int d, FrameEvent& ev) {
                    top::escape(f.data()) + "\", the write carried \"" + top::escape(m->data) + "\"";
           }),
           ev.n});
+    if (m->control == 'w')  // a stream's switch answered (stream-never-started)
+      for (StreamStat& s : c.st.streams)
+        if (s.frames == 0 && s.asked_by == std::string_view(m->ident, 3)) s.never.answered();
     c.pairing.answer(mt->index);
     return;
   }
   for (StreamStat& s : c.st.streams) {
     if (s.ident == id) {
       ++s.frames;
+      s.stall.push(ev.n, ev.ts, s.asked_hz);
       if (ev.ts != kNoTime) {
         if (s.first == kNoTime) s.first = ev.ts;
         s.last = ev.ts;
@@ -313,6 +346,7 @@ void Analyzer::Impl::response(Conversation& c, int d, FrameEvent& ev) {
     StreamStat& s = c.st.streams.emplace_back();
     s.ident = std::string(id);
     s.frames = 1;
+    s.stall.push(ev.n, ev.ts, 0);
     s.first = s.last = ev.ts;
     return;
   }

@@ -21,6 +21,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "diagnoses/watch.hpp"
 #include "session/analyzer.hpp"
 #include "session/pairing.hpp"
 #include "session/tcp_reassembly.hpp"
@@ -47,6 +48,9 @@ struct Silence {
   std::string idents;  // "GAY, VER, PTZ"
   std::string single;  // the message when the stretch holds one request
   Note about;          // the first request's identifier and addresses
+  // One of them waited the whole timeout inside the capture: the device
+  // was silent (silent-device), not just cut off by the capture's end.
+  bool timed_out = false;
 };
 
 struct Direction {
@@ -82,6 +86,7 @@ struct Conversation {
   top::DialectDetector det;
   std::uint32_t observed = 0;
   Pairing pairing;
+  diag::Watch watch;  // the conversation's diagnoses (analyzer/diagnoses/)
   std::uint64_t last_used = 0;
   ConvStats st;
 };
@@ -245,6 +250,11 @@ struct Analyzer::Impl {
   }
   void emit_silence(Conversation& c);
   void check_stream(Conversation& c, const StreamStat& s);
+  // --- the diagnoses (analyzer/diagnoses/), reported as session notes ---
+  void diagnose(Conversation& c, diag::Found f);
+  static std::int64_t last_ts(const Conversation& c) noexcept {
+    return std::max(c.dir[0].last_frame_ts, c.dir[1].last_frame_ts);
+  }
 
   // --- byte_streams.cpp: byte streams --------------------------------------
   Position map_position(Direction& D, std::uint64_t off, std::uint64_t len,

@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "capture/sink.hpp"
+#include "diagnoses/stream_never_started.hpp"
+#include "diagnoses/stream_stalled.hpp"
 #include "top/top.hpp"
 
 namespace topdump {
@@ -44,6 +46,9 @@ struct StreamStat {
   bool enabled = true;       // no switch turned it off since it was asked for
   std::uint64_t frames = 0;
   std::int64_t first = kNoTime, last = kNoTime;
+  // The stream's diagnoses as it streams by (analyzer/diagnoses/).
+  diag::StallWatch stall;
+  diag::NeverStartedWatch never;
   double measured_hz() const;
   // The one stream-rate verdict (stream-rate finding, stats, report): asked
   // a rate, measured one, and more than top::stream_rate_tolerance off it.

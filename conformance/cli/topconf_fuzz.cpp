@@ -52,8 +52,9 @@ FuzzCommand::FuzzCommand(CLI::App& app)
                    "in-process topsim)")
       ->required();
   sub_->add_option("--matrix", matrix_path_,
-                   "matrix JSON for the probe and the levels (default: <model>.json in "
-                   "share/topkit/matrices next to the binary; topconf models --paths)");
+                   "matrix JSON for the levels and a probe of its own (without one, the catalog's "
+                   "probes for the model; default: <model>.json in share/topkit/matrices next "
+                   "to the binary; topconf models --paths)");
   seed_opt_ = sub_->add_option("--seed", seed_, "seed of the mutations")->capture_default_str();
   cases_opt_ = sub_->add_option("--cases", cases_, "run this many cases (default 10000)");
   start_opt_ = sub_->add_option("--start", start_, "first case index (default 0)");

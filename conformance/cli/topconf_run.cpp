@@ -6,12 +6,14 @@
 #include <iostream>
 #include <memory>
 #include <sstream>
+#include <string>
 
 #include "commands.hpp"
 #include "conf/report.hpp"
 #include "conf/runner.hpp"
 #include "conf/transport.hpp"
 #include "fault_arg.hpp"
+#include "top/probe.hpp"
 
 namespace topconf::cli {
 
@@ -45,6 +47,19 @@ RunCommand::RunCommand(CLI::App& app)
                    "matrix JSON (default: <model>.json in share/topkit/matrices next to the "
                    "binary; topconf models --paths)");
   sub_->add_option("--case", case_ids_, "run only these case ids (globs with * and ?)");
+  std::string probes;  // from the catalog (top/probe.hpp)
+  for (const top::Model m : top::all_models()) {
+    probes += std::string(probes.empty() ? "" : "; ") + std::string(top::to_string(m)) + ":";
+    for (const top::LivenessProbe& p : top::liveness_probes(m))
+      probes += " " + std::string(p.ident);
+  }
+  sub_->footer(
+      "Liveness: before the run, the matrix's probe, or else the catalog's probes for "
+      "the model (" +
+      probes +
+      "), are tried in order until one is answered; it is sent again after every "
+      "case. \"probe unanswered: IDENT\" names those a reachable device left "
+      "unanswered; a target that sends no frame at all is unreachable (exit 2).");
   sub_->add_option("--tag", tags_, "run only cases with one of these tags");
   sub_->add_option("--level", levels_, "run only cases of these levels (must, should, may)");
   seed_opt_ = sub_->add_option("--seed", seed_, "shuffle the case order with this seed");

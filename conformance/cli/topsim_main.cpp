@@ -47,7 +47,8 @@ struct Options {
   unsigned baud = 115200;
   std::string profile_name = "field", push_order, push_header, reply_order, reply_header;
   std::string yaw_sign, pitch_sign, field_codes;
-  std::string fw_version, device_name;  // Topotek VSN and PA2 ("": the defaults)
+  // Identity: SkyDroid VER and MOD, Topotek VSN and PA2 ("": the model's defaults)
+  std::string fw_version, device_name;
   bool no_tracking = false;
   bool udp_given = false, tcp_given = false;
 };
@@ -83,7 +84,8 @@ std::vector<Choice> add_options(CLI::App& app, Options& o) {
   app.add_option("--baud", o.baud, "serial baud rate")->capture_default_str();
   app.add_option("--fault", o.faults,
                  "faults: drop=P,delay=MS,duplicate=P,bad-checksum=P,header-case=P,no-swap,"
-                 "lying-length=P,tmp-quirk,split,garbage=P,hang-on=IDENT; firmware faults (SIGHUP "
+                 "lying-length=P,tmp-quirk,split,garbage=P,hang-on=IDENT,ignore=CLASS[+CLASS] (no "
+                 "answer to those requests, e.g. ignore=VER+AWB); firmware faults (SIGHUP "
                  "restarts the device): crash-on=CLASS,hang-on=CLASS,hang-s=S,slow-on=CLASS,"
                  "slow-ms=MS,answer-corrupt, CLASS = ident:ID|len:N|byte:HH");
   app.add_option("--seed", o.seed, "seed of the fault injection")->capture_default_str();
@@ -110,15 +112,21 @@ std::vector<Choice> add_options(CLI::App& app, Options& o) {
   choice("--push-header", o.push_header, "attitude push header", {"TP", "tp"});
   choice("--reply-order", o.reply_order, "read reply addresses", {"swapped", "request-order"});
   choice("--reply-header", o.reply_header, "read reply header (2-15 data chars)", {"TP", "tp"});
-  choice("--yaw-sign", o.yaw_sign, "attitude yaw against the command", {"normal", "inverted"});
-  choice("--pitch-sign", o.pitch_sign, "attitude pitch against the command",
+  choice("--yaw-sign", o.yaw_sign,
+         "attitude yaw against every yaw command (default: the model's sign traits, each for "
+         "the commands its evidence names; see --describe)",
          {"normal", "inverted"});
+  choice("--pitch-sign", o.pitch_sign,
+         "attitude pitch against every pitch command (default: the model's sign traits)",
+         {"normal", "inverted"});
+  app.add_option("--fw-version", o.fw_version,
+                 "the version SkyDroid VER / Topotek VSN answers (default: SkyDroid V1.0.78, "
+                 "the form ArduPilot's SkyDroid driver parses; Topotek 1.6.26.R.D, a real SIP's)");
+  app.add_option("--model-name", o.device_name,
+                 "the model name SkyDroid MOD / Topotek PA2 answers (default the model's: "
+                 "C12, SIP)");
   choice("--field-codes", o.field_codes,
          "accept the command values field evidence says the model takes (C13 PTZ)", {"on", "off"});
-  app.add_option("--fw-version", o.fw_version,
-                 "Topotek: the version VSN answers (default 1.6.26.R.D, a real SIP's)");
-  app.add_option("--model-name", o.device_name,
-                 "Topotek: the model name PA2 answers (default SIP)");
   app.add_flag("--no-tracking", o.no_tracking,
                "Topotek: a lens that cannot track (TRC answers state 4)");
   app.add_flag("--describe", o.describe,

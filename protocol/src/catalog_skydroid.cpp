@@ -765,6 +765,12 @@ constexpr FieldSpec kSlrFields[] = {
      .min = 5,
      .max = 1000},
 };
+constexpr EnumValue kSlrTrigger[] = {
+    {0x01, "measure"},
+};
+constexpr FieldSpec kSlrTriggerFields[] = {
+    {.name = "action", .kind = FieldKind::enum_hex, .width = 2, .enums = kSlrTrigger},
+};
 constexpr FormSpec kSlrForms[] = {
     {.control = 'r',
      .role = Role::request,
@@ -776,9 +782,39 @@ constexpr FormSpec kSlrForms[] = {
      .min_length = 4,
      .max_length = 4,
      .fields = kSlrFields},
+    {.control = 'w',
+     .role = Role::any,
+     .min_length = 2,
+     .max_length = 2,
+     .fields = kSlrTriggerFields,
+     .evidence = "a station used on a real C13 (vamaskylight/custom-GCS, vgcs/skydroid) sends "
+                 "the trigger #TPUD2wSLR015B before each range read #TPUD2rSLR0055 (a C13 SDK, "
+                 "skydroid_c13_miniSDK, reads without one)"},
 };
 
 // ---------------------------------------------------------------------------
+
+// The field: identifiers the document does not list, each with its source
+// (docs/sources/ardupilot.md).
+
+// MOD (model name)
+constexpr FieldSpec kModelFields[] = {
+    {.name = "model", .kind = FieldKind::text, .width = 0, .note = "C11, C13 on real units"},
+};
+constexpr FormSpec kModForms[] = {
+    {.control = 'r',
+     .role = Role::request,
+     .min_length = 2,
+     .max_length = 2,
+     .fields = kQueryFields},
+    {.control = 'r',
+     .role = Role::response,
+     .min_length = 1,
+     .max_length = 15,
+     .fields = kModelFields,
+     .evidence = "AP_Mount_SkyDroid takes the reply's data as the model name (C11, C13; PR "
+                 "#34155); ArduPilot's SIM_SkyDroid answers #TPUD3rMODC118A / #TPUD3rMODC138C"},
+};
 
 constexpr CommandSpec kTable[] = {
     // 2.3.2
@@ -1247,6 +1283,20 @@ constexpr CommandSpec kTable[] = {
      .forms = kAppendixForms,
      .note = "layout not documented (appendix only); no support line: all "
              "five models assumed; address class D assumed"},
+    // The field
+    {.ident = "MOD",
+     .dialect = Dialect::skydroid,
+     .address = 'D',
+     .title = "model name",
+     .section = "field: ArduPilot AP_Mount_SkyDroid (PR #34155)",
+     .models = c12 | c13,
+     .forms = kModForms,
+     .note = "read once a second until answered by ArduPilot's driver, #TPUD2rMOD0044; the "
+             "reply's data is the model name; real units took from under a second to 8+ "
+             "minutes to answer (the driver's header)",
+     .evidence = "AP_Mount_SkyDroid.cpp sends and parses MOD (PR #34155, "
+                 "https://github.com/ArduPilot/ardupilot/pull/34155, written against real "
+                 "C11/C13 units); ArduPilot's SIM_SkyDroid answers it for C11 and C13"},
 };
 
 }  // namespace

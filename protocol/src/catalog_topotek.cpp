@@ -700,8 +700,8 @@ constexpr FormSpec kLonForms[] = {
      .min_length = 11,
      .max_length = 11,
      .fields = kLonInFields,
-     .note = "the write's echo: the field's answer, taken before the 5.8.7 layout of the same "
-             "length (a frame's form is chosen by its length, not its content)",
+     .note = "the write's echo: the field's answer; the 5.8.7 layout has the same length, "
+             "the decoder takes the first of the two whose fields validate",
      .evidence = kPositionEcho},
     {.control = 'w',
      .role = Role::response,
@@ -738,8 +738,8 @@ constexpr FormSpec kLatForms[] = {
      .min_length = 10,
      .max_length = 10,
      .fields = kLatInFields,
-     .note = "the write's echo: the field's answer, taken before the 5.8.7 layout of the same "
-             "length (a frame's form is chosen by its length, not its content)",
+     .note = "the write's echo: the field's answer; the 5.8.7 layout has the same length, "
+             "the decoder takes the first of the two whose fields validate",
      .evidence = kPositionEcho},
     {.control = 'w',
      .role = Role::response,

@@ -170,6 +170,15 @@ const DeviceForm* recorded_form(Dialect d, Model model, const Frame& f, Sent sen
   return best;
 }
 
+const DeviceForm* length_in_bytes_form(const Frame& f) noexcept {
+  const Order order = is_client_address(f.src) ? Order::request_order : Order::swapped;
+  for (const DeviceForm& x : device_forms())
+    if (x.length_in_bytes && x.ident == f.ident_view() && x.control == f.control &&
+        x.header == f.header && x.order == order)
+      return &x;
+  return nullptr;
+}
+
 void detail::note_device_form(const Frame& f, Model model, bool detail, Decoded& dec) {
   const bool unswapped = role_from_addresses(f) == Role::request;
   Finding* tp = nullptr;
@@ -211,10 +220,21 @@ void detail::note_device_form(const Frame& f, Model model, bool detail, Decoded&
 
 std::string_view to_string(TraitKind k) noexcept { return enum_name(kTraitKind, k); }
 
-const Trait* find_trait(TraitKind kind, Model model, Profile profile) noexcept {
+bool Trait::names(std::string_view ident) const noexcept {
+  if (idents.empty()) return true;
+  for (std::size_t at = 0; at < idents.size();) {
+    const std::size_t end = std::min(idents.find(' ', at), idents.size());
+    if (idents.substr(at, end - at) == ident) return true;
+    at = end + 1;
+  }
+  return false;
+}
+
+const Trait* find_trait(TraitKind kind, Model model, Profile profile, bool contested_too) noexcept {
   for (const Trait& t : traits()) {
     if (t.kind != kind || t.dialect != dialect_of(model) || !model_in(t.models, model)) continue;
     if (t.source == Source::field && profile != Profile::field) continue;
+    if (t.contested && !contested_too) continue;
     return &t;
   }
   return nullptr;

@@ -114,16 +114,6 @@ constexpr DeviceForm kForms[] = {
                  "SLR: #TP with length 4, addresses swapped"},
     {.dialect = Dialect::skydroid,
      .models = c12,
-     .ident = "IMG",
-     .control = 'r',
-     .sent = Sent::reply,
-     .header = Header::fixed,
-     .order = Order::swapped,
-     .source = Source::field,
-     .evidence = "a Python C12 console reads the thermal palette only from a reply that "
-                 "starts #TPDU and holds IMG"},
-    {.dialect = Dialect::skydroid,
-     .models = c12,
      .ident = "VER",
      .control = 'r',
      .sent = Sent::reply,
@@ -184,7 +174,9 @@ constexpr DeviceForm kForms[] = {
      .order = Order::swapped,
      .source = Source::field,
      .evidence = "a C12 Android app (log114/PTZControl C12Service.kt) waits for #TPDU1rIMG and "
-                 "takes the 2 chars after IMG as the palette: length 1 for 2 data chars",
+                 "takes the 2 chars after IMG as the palette: length 1 for 2 data chars; a "
+                 "Python C12 console reads the palette only from a reply that starts #TPDU "
+                 "and holds IMG",
      .length_in_bytes = true},
     {.dialect = Dialect::skydroid,
      .ident = "SLR",
@@ -200,14 +192,21 @@ constexpr DeviceForm kForms[] = {
 };
 
 constexpr Trait kTraits[] = {
+    // Signs, per identifier: what the attitude (GAC) reports against the
+    // command. Where the sources conflict the default serves the autopilot
+    // (ArduPilot's SkyDroid driver closes its loop on GAC with GSY/GSP).
     {.kind = TraitKind::yaw_inverted,
      .dialect = Dialect::skydroid,
      .models = c12,
      .source = Source::field,
-     .evidence = "for: two public C12 clients negate yaw before GAY/GAM; one notes the attitude "
-                 "reports the opposite sign of the GAM input. Against: a C12 Android app "
-                 "(log114/PTZControl) turns left with GSY E2, the document's sign",
-     .idents = "GAY GAM"},
+     .evidence = "for: AP_Mount_SkyDroid negates GSY (\"a positive GSY value moves yaw LEFT\", "
+                 "real C11, PR #34155; SkyDroid told its author the commands are the same across "
+                 "models) and a station used on a real C13 (custom-GCS) agrees: on the wire +GSY "
+                 "makes GAC yaw decrease; two public C12 clients negate yaw before GAY/GAM, one "
+                 "noting the attitude reports the opposite sign of the GAM input. Against: a C12 "
+                 "Android app (log114/PTZControl) turns left with GSY E2, the document's sign "
+                 "(topsim --yaw-sign normal). The default serves the autopilot",
+     .idents = "GSY GAY GAM"},
     {.kind = TraitKind::pitch_inverted,
      .dialect = Dialect::skydroid,
      .models = c12,
@@ -218,10 +217,12 @@ constexpr Trait kTraits[] = {
                  "README's tuning example sets inv_y (image to pitch: weak). Against: a C12 "
                  "Android app (log114/PTZControl) sends GAP DCD8 (-90.00) for down and GSP +30 "
                  "for up, the document's signs; AP_Mount_SkyDroid (C11, PR #34155) and a C13 "
-                 "station (custom-GCS) keep pitch up positive, and SkyDroid told the driver's "
-                 "author the C11/C13 commands are the same; with it ArduPilot's driver drives "
-                 "pitch to +90 after a -30 target (issue 28). Unconfirmed",
-     .idents = "GAM"},
+                 "station (custom-GCS) keep GSP and GAC pitch up positive, and SkyDroid told the "
+                 "driver's author the commands are the same; with it ArduPilot's driver drives "
+                 "pitch to +90 after a -30 target (issue 28). Unconfirmed: not applied by "
+                 "default (topsim --pitch-sign inverted inverts every pitch command)",
+     .idents = "GAM",
+     .contested = true},
     {.kind = TraitKind::yaw_inverted,
      .dialect = Dialect::skydroid,
      .models = c13,
@@ -230,7 +231,8 @@ constexpr Trait kTraits[] = {
                  "AP_Mount_SkyDroid negates GSY (\"a positive GSY value moves yaw LEFT\", real "
                  "C11, PR #34155; SkyDroid says C11/C13 commands are the same) and a station "
                  "used on a real C13 (custom-GCS, _LRF_C13_INVERT_GSY) agrees; which of GSY or "
-                 "GAC yaw differs from the document physically is not established",
+                 "GAC yaw differs from the document physically is not established. Against: "
+                 "none found for the C13",
      .idents = "GSY"},
     {.kind = TraitKind::answers_to_source,
      .dialect = Dialect::skydroid,
@@ -310,6 +312,57 @@ constexpr FieldSupport kFieldSupport[] = {
      .evidence = "AP_Mount_SkyDroid (PR #34155) drives C11 and C13 pitch with GSP (SkyDroid "
                  "confirmed the C11/C13 commands are the same); a station used on a real C13 "
                  "(custom-GCS) sends GSP, sign as documented"},
+    // What the SkyDroid driver sends the C13 as the C11 beyond the gimbal
+    // commands: the document's support lines leave the C13 out.
+    {.dialect = Dialect::skydroid,
+     .models = c13,
+     .ident = "VER",
+     .evidence = "AP_Mount_SkyDroid (PR #34155, written against real C11/C13 units; "
+                 "SkyDroid confirmed the C11/C13 commands are the same) sends the C13 "
+                 "its version read (answered by ArduPilot's SIM_SkyDroid for its C13) as the C11"},
+    {.dialect = Dialect::skydroid,
+     .models = c13,
+     .ident = "SDC",
+     .evidence = "AP_Mount_SkyDroid (PR #34155, written against real C11/C13 units; "
+                 "SkyDroid confirmed the C11/C13 commands are the same) sends the C13 "
+                 "its SD card read (answered by ArduPilot's SIM_SkyDroid for its C13) as the C11"},
+    {.dialect = Dialect::skydroid,
+     .models = c13,
+     .ident = "TIM",
+     .evidence = "AP_Mount_SkyDroid (PR #34155, written against real C11/C13 units; "
+                 "SkyDroid confirmed the C11/C13 commands are the same) sends the C13 "
+                 "its time write as the C11"},
+    {.dialect = Dialect::skydroid,
+     .models = c13,
+     .ident = "FAE",
+     .evidence = "AP_Mount_SkyDroid (PR #34155, written against real C11/C13 units; "
+                 "SkyDroid confirmed the C11/C13 commands are the same) sends the C13 "
+                 "its attitude input enable as the C11"},
+    {.dialect = Dialect::skydroid,
+     .models = c13,
+     .ident = "FAI",
+     .evidence =
+         "AP_Mount_SkyDroid (PR #34155, written against real C11/C13 units; "
+         "SkyDroid confirmed the C11/C13 commands are the same) sends the C13 "
+         "its own attitude (its 14-char form still fails SkyDroid 3.3.6.2's length) as the C11"},
+    {.dialect = Dialect::skydroid,
+     .models = c13,
+     .ident = "REC",
+     .evidence = "AP_Mount_SkyDroid (PR #34155, written against real C11/C13 units; "
+                 "SkyDroid confirmed the C11/C13 commands are the same) sends the C13 "
+                 "its recording as the C11"},
+    {.dialect = Dialect::skydroid,
+     .models = c13,
+     .ident = "CAP",
+     .evidence = "AP_Mount_SkyDroid (PR #34155, written against real C11/C13 units; "
+                 "SkyDroid confirmed the C11/C13 commands are the same) sends the C13 "
+                 "its photo as the C11"},
+    {.dialect = Dialect::skydroid,
+     .models = c13,
+     .ident = "DZM",
+     .evidence = "AP_Mount_SkyDroid (PR #34155, written against real C11/C13 units; "
+                 "SkyDroid confirmed the C11/C13 commands are the same) sends the C13 "
+                 "its digital zoom as the C11"},
 };
 
 }  // namespace

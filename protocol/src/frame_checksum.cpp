@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "frame_parse.hpp"
+#include "top/device.hpp"
 
 namespace top::detail {
 
@@ -44,7 +45,21 @@ std::optional<Verdict> declared_checksum(Parse& p, std::size_t cs, unsigned pref
           return cat({"checksum ", b.substr(cs, 2),
                       " is right but lowercase; strict receivers expect ", hex2(v)});
         })));
-  return finish(p, p.lay.declared, true, v, prefix);
+  Verdict r = finish(p, p.lay.declared, true, v, prefix);
+  // A second checksum over the frame and its checksum, then the end or a
+  // boundary: the C10 Pro tool's double-checksum frame.
+  std::uint8_t second = 0;
+  const std::size_t end = cs + 2;
+  if (second_checksum(b, end, prefix, second)) {
+    p.f.findings.push_back(
+        make_finding(FindingCode::double_checksum, static_cast<std::uint32_t>(end), p.text([&] {
+          return cat({"a second checksum ", b.substr(end, 2),
+                      " over the frame and its checksum follows it"});
+        }),
+                     quirk_id(FindingCode::double_checksum)));
+    r.consumed = end + 2;
+  }
+  return r;
 }
 
 // The declared length fails: the one other one-digit data length whose
@@ -76,6 +91,16 @@ std::optional<Verdict> recover_length(Parse& p) {
     found_prefix = s;
   }
   if (count != 1) return std::nullopt;
+  // A length that counts bytes, in a form real devices are recorded with.
+  if (found == 2 * L && L > 0)
+    if (const DeviceForm* rf = length_in_bytes_form(p.f)) {
+      p.f.findings.push_back(make_finding(FindingCode::length_in_bytes, 5, p.text([&] {
+        return cat({"length ", std::to_string(L), " counts the bytes of ", std::to_string(found),
+                    " hex data chars, as recorded: ", rf->evidence});
+      }),
+                                          quirk_id(FindingCode::length_in_bytes)));
+      return finish(p, found, true, found_value, found_prefix);
+    }
   p.f.findings.push_back(make_finding(FindingCode::length_mismatch, 5, p.text([&] {
     return cat({"declared length ", std::to_string(L), " but the checksum validates with ",
                 std::to_string(found), " data bytes; decoded with ", std::to_string(found)});

@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <optional>
 
+#include "top/detail/parse_paths.hpp"
+
 namespace top {
 
 namespace detail {
@@ -38,6 +40,9 @@ bool parse_plain(std::string_view b, const ParseOptions& opts, Frame& f, Verdict
   const unsigned prefix = byte_sum8(b.data(), cs);  // cs >= prefix_size
   std::uint8_t value = 0;
   if (!checksum_at(b, cs, prefix, value)) return false;
+  // A second checksum follows (double_checksum): the general parse's.
+  if (std::uint8_t second = 0; n >= cs + 4 && second_checksum(b, cs + 2, prefix, second))
+    return false;
   f.header = fixed ? Header::fixed : Header::variable;
   f.src = b[3];
   f.dst = b[4];
@@ -271,15 +276,21 @@ ParseResult parse_frame(std::string_view bytes, bool at_end, const ParseOptions&
 }
 
 void parse_frame(std::string_view bytes, bool at_end, const ParseOptions& opts, ParseResult& out) {
-  // the error of an earlier parse goes (most parses have none to write)
-  if (out.error.code != FindingCode{} || !out.error.message.empty()) out.error = Finding{};
   // the common frame here, without parse_into's entry (it saves the
   // registers of the whole general parse)
-  if (detail::Verdict plain; opts.fast_path && detail::parse_plain(bytes, opts, out.frame, plain)) {
+  if (detail::Verdict plain; detail::parse_plain(bytes, opts, out.frame, plain)) {
+    // the error of an earlier parse goes (most parses have none to write)
+    if (out.error.code != FindingCode{} || !out.error.message.empty()) out.error = Finding{};
     out.status = plain.status;
     out.consumed = plain.consumed;
     return;
   }
+  detail::parse_frame_general(bytes, at_end, opts, out);
+}
+
+void detail::parse_frame_general(std::string_view bytes, bool at_end, const ParseOptions& opts,
+                                 ParseResult& out) {
+  if (out.error.code != FindingCode{} || !out.error.message.empty()) out.error = Finding{};
   const detail::Verdict r = detail::parse_into(bytes, at_end, opts, out.frame, out.error);
   out.status = r.status;
   out.consumed = r.consumed;

@@ -86,6 +86,19 @@ inline bool checksum_at(std::string_view b, std::size_t p, unsigned prefix_sum,
   return value == static_cast<std::uint8_t>(prefix_sum & 0xFF);
 }
 
+// Two checksum digits at `end`, right after a frame's valid checksum (the
+// sum of the bytes before that checksum: `prefix`), that are the sum of the
+// frame with its checksum, followed by the end of input or a boundary: a
+// double checksum (the C10 Pro tool's #TPUG2wPTZ056FEB).
+inline bool second_checksum(std::string_view b, std::size_t end, unsigned prefix,
+                            std::uint8_t& value) noexcept {
+  if (end + 2 > b.size() || end < 2) return false;
+  if (end + 2 < b.size() && !is_boundary(b[end + 2])) return false;
+  const unsigned sum =
+      prefix + static_cast<unsigned char>(b[end - 2]) + static_cast<unsigned char>(b[end - 1]);
+  return checksum_at(b, end, sum, value);
+}
+
 // Where the parts of a frame lie, as its header and length field say.
 struct Layout {
   Header header = Header::variable;

@@ -128,7 +128,7 @@ TEST(Cli, TerminalGetsSummaryAndNoProgressBarInTheLines) {
   EXPECT_NE(shown.find("-- summary: 70000 frames"), std::string::npos) << shown;
 
   run_pty(bin("topdump") + " read " + cap("sample.pcap"), shown);
-  EXPECT_NE(shown.find("-- summary: 33 frames, 1 error, 5 warnings, 2 unanswered, 0 garbage, "
+  EXPECT_NE(shown.find("-- summary: 33 frames, 1 error, 6 warnings, 2 unanswered, 0 garbage, "
                        "2024-05-01T12:00:00.000000Z to 2024-05-01T12:00:01.200000Z (1.200 s)"),
             std::string::npos)
       << shown;

@@ -231,6 +231,15 @@ inline json note_event_json(const NoteEvent& e) {
     j["frame"] = e.note.frame;
   else
     j["frame"] = nullptr;
+  if (const std::optional<top::Diagnosis> d = diagnosis_of(e.note.code)) {
+    // a diagnosis's case (docs/topdump-json.md "Diagnoses")
+    j["count"] = e.note.count;
+    j["until"] = time_json(e.note.until);
+    j["ident"] =
+        e.note.ident[0] ? json(ascii_text(std::string_view(e.note.ident, 3))) : json(nullptr);
+    j["evidence"] = std::string(top::evidence(*d));
+    j["remedy"] = std::string(top::remedy(*d));
+  }
   return j;
 }
 

@@ -24,6 +24,23 @@ void expect_one_log_syntax_note(const Recorder& r, std::string_view what) {
 }
 
 // A byte as a Saleae export's data column writes it: 0x23.
+// A request from channel `from` to `to` and its reply: the two frames of a
+// two-channel log.
+void expect_request_and_reply(const Recorder& r, std::string_view from, std::string_view to) {
+  ASSERT_EQ(r.frames.size(), 2u);
+  EXPECT_EQ(r.frames[0].from, from);
+  EXPECT_EQ(r.frames[0].to, to);
+  EXPECT_EQ(r.frames[1].from, to);
+  EXPECT_EQ(r.frames[1].reply_to, 1u);
+}
+
+// `csv` read as a Saleae Logic export.
+Recorder read_saleae(const std::string& csv) {
+  TempDir tmp;
+  write_file(tmp.file("s.csv"), csv);
+  return read(tmp.file("s.csv"), {}, Format::saleae);
+}
+
 std::string saleae_byte(char c) {
   return std::string("0x") + "0123456789ABCDEF"[(c >> 4) & 15] + "0123456789ABCDEF"[c & 15];
 }
@@ -96,22 +113,16 @@ TEST(SerialLogs, SaleaeCsvTwoChannels) {
   TempDir tmp;
   std::string csv = "name,type,start_time,duration,data,error\n";
   auto add = [&](const char* ch, double t, const std::string& bytes) {
-    for (std::size_t i = 0; i < bytes.size(); ++i) {
-      char b[96];
-      std::snprintf(b, sizeof b, "%s,data,%.6f,8.68e-05,0x%02X,\n", ch,
-                    t + static_cast<double>(i) * 1e-4, static_cast<unsigned char>(bytes[i]));
-      csv += b;
-    }
+    for (std::size_t i = 0; i < bytes.size(); ++i)  // to_string: six decimals
+      csv += std::string(ch) + ",data," + std::to_string(t + static_cast<double>(i) * 1e-4) +
+             ",8.68e-05," + saleae_byte(bytes[i]) + ",\n";
   };
   add("TX", 1.0, top::with_checksum("#TPUG2wPTZ05"));
   add("RX", 1.01, top::with_checksum("#TPGU2wPTZ05"));
   csv += "RX,data,2.0,8.68e-05,0xZZ,\n";
   write_file(tmp.file("s.csv"), csv);
   Recorder r = read(tmp.file("s.csv"));
-  ASSERT_EQ(r.frames.size(), 2u);
-  EXPECT_EQ(r.frames[0].from, "TX");
-  EXPECT_EQ(r.frames[0].to, "RX");
-  EXPECT_EQ(r.frames[1].reply_to, 1u);
+  expect_request_and_reply(r, "TX", "RX");
   EXPECT_TRUE(r.has_note(ACode::log_syntax));
 }
 
@@ -120,7 +131,6 @@ TEST(SerialLogs, SaleaeCsvTwoChannels) {
 // to the end of the line. The reader splits a row a run of plain bytes at a
 // time; each case lands in the column it belongs to.
 TEST(SerialLogs, SaleaeCsvQuotedColumns) {
-  TempDir tmp;
   std::string csv = "name,type,start_time,duration,data,error\n";
   auto add = [&](const std::string& name, const std::string& bytes, const std::string& tail) {
     for (char c : bytes)
@@ -129,13 +139,8 @@ TEST(SerialLogs, SaleaeCsvQuotedColumns) {
   add("\"T,X\"", top::with_checksum("#TPUG2wPTZ05"), "");
   add("\"R\"\"X\"", top::with_checksum("#TPGU2wPTZ05"), "");
   add("\"T,X\"", "#", "\"framing, \"\"stop\"\" bit");  // open quote: the rest of the line
-  write_file(tmp.file("q.csv"), csv);
-  Recorder r = read(tmp.file("q.csv"), {}, Format::saleae);
-  ASSERT_EQ(r.frames.size(), 2u);
-  EXPECT_EQ(r.frames[0].from, "T,X");
-  EXPECT_EQ(r.frames[0].to, "R\"X");
-  EXPECT_EQ(r.frames[1].from, "R\"X");
-  EXPECT_EQ(r.frames[1].reply_to, 1u);
+  const Recorder r = read_saleae(csv);
+  expect_request_and_reply(r, "T,X", "R\"X");
   expect_one_log_syntax_note(r, "line 30: the analyzer flagged this byte: framing, \"stop\" bit");
 }
 
@@ -144,7 +149,6 @@ TEST(SerialLogs, SaleaeCsvQuotedColumns) {
 // a quote right after a comma, "" at a column's end and empty columns all
 // split as before.
 TEST(SerialLogs, SaleaeCsvSeveralQuotedColumnsInARow) {
-  TempDir tmp;
   std::string csv = "type,name,start_time,duration,data,error\n";
   auto add = [&](const std::string& name, const std::string& bytes) {
     for (char c : bytes) csv += "\"data\"," + name + ",1.0,," + saleae_byte(c) + ",\n";
@@ -152,12 +156,8 @@ TEST(SerialLogs, SaleaeCsvSeveralQuotedColumnsInARow) {
   add("\"a,b\"", top::with_checksum("#TPUG2wPTZ05"));
   add("\"c,,d\"\"\"", top::with_checksum("#TPGU2wPTZ05"));
   csv += "\"data\",\"a,b\",2.0,,0x23,\"e,\"\"f\"\"\"\n";
-  write_file(tmp.file("q.csv"), csv);
-  Recorder r = read(tmp.file("q.csv"), {}, Format::saleae);
-  ASSERT_EQ(r.frames.size(), 2u);
-  EXPECT_EQ(r.frames[0].from, "a,b");
-  EXPECT_EQ(r.frames[0].to, "c,,d\"");
-  EXPECT_EQ(r.frames[1].from, "c,,d\"");
+  const Recorder r = read_saleae(csv);
+  expect_request_and_reply(r, "a,b", "c,,d\"");
   expect_one_log_syntax_note(r, "line 30: the analyzer flagged this byte: e,\"f\"");
 }
 
@@ -165,18 +165,13 @@ TEST(SerialLogs, SaleaeCsvSeveralQuotedColumnsInARow) {
 // the line is never looked at): columns past it, an unterminated quote among
 // them or hundreds of commas, change nothing.
 TEST(SerialLogs, SaleaeCsvColumnsPastTheHeadersAreNotRead) {
-  TempDir tmp;
   std::string csv = "name,type,start_time,duration,data,error\n";
   const std::string req = top::with_checksum("#TPUG2wPTZ05");
   const std::string tails[] = {"", ",extra", ",\"open, quote", "," + std::string(500, ',')};
-  for (std::size_t i = 0; i < req.size(); ++i) {
-    char b[96];
-    std::snprintf(b, sizeof b, "TX,data,%.6f,8.68e-05,0x%02X,", 1.0 + static_cast<double>(i) * 1e-4,
-                  static_cast<unsigned char>(req[i]));
-    csv += b + tails[i % 4] + "\n";
-  }
-  write_file(tmp.file("x.csv"), csv);
-  Recorder r = read(tmp.file("x.csv"), {}, Format::saleae);
+  for (std::size_t i = 0; i < req.size(); ++i)  // to_string: six decimals
+    csv += "TX,data," + std::to_string(1.0 + static_cast<double>(i) * 1e-4) + ",8.68e-05," +
+           saleae_byte(req[i]) + "," + tails[i % 4] + "\n";
+  const Recorder r = read_saleae(csv);
   ASSERT_EQ(r.frames.size(), 1u);
   EXPECT_EQ(r.frames[0].raw, req);
   EXPECT_EQ(r.frames[0].from, "TX");
@@ -241,12 +236,10 @@ TEST(FuzzRegression, SaleaeCsvNonUtf8BytesInMessagesAreEscapedInJson) {
 // an undefined conversion (the asan preset adds -fsanitize=float-cast-overflow,
 // which GCC leaves out of "undefined", to catch it).
 TEST(SerialLogs, SaleaeCsvHugeTimeIsNoTime) {
-  TempDir tmp;
   std::string csv = "name,type,start_time,duration,data,error\n";
   for (char c : top::with_checksum("#TPUG2wPTZ05"))
     csv += "TX,data,1e300,8.68e-05," + saleae_byte(c) + ",\n";
-  write_file(tmp.file("h.csv"), csv);
-  Recorder r = read(tmp.file("h.csv"), {}, Format::saleae);
+  const Recorder r = read_saleae(csv);
   ASSERT_EQ(r.frames.size(), 1u);
   EXPECT_EQ(r.frames[0].ts, kNoTime);
 }

@@ -204,7 +204,10 @@ TEST(Stats, WithoutDetailEqualsWithDetail) {
     for (int i = 0; i < 2; ++i) write_stats_json(j[i], as[i]->stats(), as[i]->worst(), 2);
     EXPECT_EQ(j[0], j[1]);
     EXPECT_EQ(as[0]->worst(), as[1]->worst());
-    EXPECT_GT(as[0]->stats().frames, 0u);
+    // (diag-baud-mismatch.bin is made to hold no TOP frame)
+    if (in.find("diag-baud-mismatch") == std::string::npos) {
+      EXPECT_GT(as[0]->stats().frames, 0u);
+    }
   }
 }
 
@@ -295,6 +298,8 @@ TEST(Latency, ExactThenHistogramWithinOnePercent) {
 
 TEST(AnalyzerFindings, TableIsConsistentAndDocumented) {
   std::string doc = slurp(std::string(TOPKIT_SOURCE_DIR) + "/docs/topdump-json.md");
+  // the diagnoses are documented in docs/DIAGNOSES.md (generated)
+  const std::string diag = slurp(std::string(TOPKIT_SOURCE_DIR) + "/docs/DIAGNOSES.md");
   std::set<std::string> seen;
   for (std::size_t i = 0; i < acode_count; ++i) {
     auto c = static_cast<ACode>(i);
@@ -304,7 +309,8 @@ TEST(AnalyzerFindings, TableIsConsistentAndDocumented) {
     EXPECT_FALSE(description(c).empty());
     EXPECT_FALSE(top::finding_code_from_string(code).has_value())
         << code << " clashes with a protocol code";
-    EXPECT_NE(doc.find("`" + code + "`"), std::string::npos) << code << " is not documented";
+    EXPECT_NE((diagnosis_of(c) ? diag : doc).find("`" + code + "`"), std::string::npos)
+        << code << " is not documented";
   }
 }
 

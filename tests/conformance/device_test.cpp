@@ -38,7 +38,7 @@ TEST(Device, ReadIsAnsweredWithData) {
   EXPECT_EQ(f.src, 'D');
   EXPECT_EQ(f.dst, 'U');
   EXPECT_EQ(f.ident_view(), "VER");
-  EXPECT_EQ(f.data(), "V1.1.5");
+  EXPECT_EQ(f.data(), "V1.0.78");  // the form ArduPilot's SkyDroid driver parses
 }
 
 TEST(Device, InvalidCommandGetsEreOnSkyDroid) {
@@ -87,8 +87,16 @@ TEST(Device, TopotekRecAndCapReplyWithFileIndex) {
   EXPECT_EQ(d.file_index(), 2u);
 }
 
+// The document's signs (the C12's field sign traits: field_test.cpp).
+topsim::DeviceOptions document_signs() {
+  topsim::DeviceOptions o;
+  o.yaw_inverted = false;
+  o.pitch_inverted = false;
+  return o;
+}
+
 TEST(Device, GimbalMovesTowardTargetAtCommandedSpeed) {
-  Device d(top::Model::c12);
+  Device d(top::Model::c12, document_signs());
   // GAY +10.00 deg (03E8) at 5.0 deg/s (32).
   ask(d, "#TPUG6wGAY03E832", 0);
   d.advance(1000000);
@@ -104,7 +112,7 @@ TEST(Device, GimbalMovesTowardTargetAtCommandedSpeed) {
 }
 
 TEST(Device, SpeedCommandsIntegrateWithinLimitsAndExpire) {
-  topsim::DeviceOptions o;
+  topsim::DeviceOptions o = document_signs();
   o.speed_hold_ms = 1000;
   Device d(top::Model::c12, o);
   // GSY +20 steps = +10 deg/s.

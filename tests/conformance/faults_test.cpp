@@ -38,7 +38,7 @@ TEST(Faults, ParsesEveryNameAndRejectsBadOnes) {
   EXPECT_FALSE(topsim::parse_faults("delay=x", err).has_value());
   EXPECT_FALSE(topsim::parse_faults("no-swap=1", err).has_value());
   EXPECT_FALSE(topsim::parse_faults("hang-on=GA", err).has_value());
-  EXPECT_EQ(topsim::fault_names().size(), 16u);
+  EXPECT_EQ(topsim::fault_names().size(), 17u);
 }
 
 TEST(Faults, EachFaultChangesTheFrameAsNamed) {
@@ -102,6 +102,36 @@ TEST(Faults, HangOnSilencesEverythingAfterTheCommand) {
   std::vector<topsim::Emission> out;
   fi.apply(kGay, false, out);
   EXPECT_TRUE(out.empty());
+}
+
+// ignore=: a device without those commands (ArduPilot's simulators answer
+// neither VER nor AWB): no answer to them, the rest as before, no hang.
+TEST(Faults, IgnoreDropsTheRequestsOfItsClassesOnly) {
+  auto c = parse("ignore=VER+ident:AWB,ignore=len:20");
+  ASSERT_TRUE(c.has_value());
+  ASSERT_EQ(c->ignore.size(), 3u);
+  EXPECT_EQ(c->ignore[0].to_string(), "ident:VER");
+  EXPECT_EQ(c->ignore[1].to_string(), "ident:AWB");
+  EXPECT_EQ(c->ignore[2].to_string(), "len:20");
+  EXPECT_TRUE(c->any());
+  std::string err;
+  for (const char* bad : {"ignore", "ignore=", "ignore=VE", "ignore=VER+", "ignore=VER+len:x"}) {
+    EXPECT_FALSE(topsim::parse_faults(bad, err).has_value()) << bad;
+    EXPECT_NE(err.find("ignore needs"), std::string::npos) << bad << ": " << err;
+  }
+  FaultInjector fi(*parse("ignore=VER+AWB"), 1);
+  auto ver = top::parse_exact("#TPUD2rVER0051");
+  auto awb = top::parse_exact(top::with_checksum("#TPUD2rAWB00"));
+  auto rec = top::parse_exact("#TPUD2wREC0155");
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_FALSE(fi.on_request(ver.frame));
+    EXPECT_FALSE(fi.on_request(awb.frame));
+    EXPECT_TRUE(fi.on_request(rec.frame));  // the device did not hang
+  }
+  EXPECT_FALSE(fi.hung());
+  std::vector<topsim::Emission> out;
+  fi.apply(kGay, false, out);
+  EXPECT_EQ(out.size(), 1u);
 }
 
 TEST(Faults, SeededProbabilitiesRepeat) {

@@ -12,7 +12,9 @@
 
 #include <chrono>
 #include <optional>
+#include <string>
 #include <thread>
+#include <utility>
 
 #include "running_server.hpp"
 #include "sim/device.hpp"
@@ -84,7 +86,9 @@ TEST(FieldProfile, C12PaletteAndVersionRepliesSwapTheAddresses) {
     Device d(top::Model::c12, profile(p));
     auto img = ask(d, "#TPUD2rIMG00");
     ASSERT_EQ(img.size(), 1u);
-    EXPECT_TRUE(strict(img[0], "#TPDU2rIMG")) << img[0];
+    // Field: the C12 app waits for #TPDU1rIMG (the length counts bytes), the
+    // console for #TPDU..IMG; the document counts chars.
+    EXPECT_TRUE(strict(img[0], p == top::Profile::field ? "#TPDU1rIMG" : "#TPDU2rIMG")) << img[0];
     auto ver = ask(d, "#TPUD2rVER00");
     ASSERT_EQ(ver.size(), 1u);
     EXPECT_TRUE(strict(ver[0], "#tpDU")) << ver[0];
@@ -176,15 +180,22 @@ TEST(FieldProfile, TraitSwitchesOverrideTheProfile) {
 
 TEST(FieldProfile, DescribeNamesEverySourceOfTheModel) {
   Device d(top::Model::c12);
-  bool push = false, yaw = false;
+  bool push = false, yaw = false, pitch = false;
   for (const auto& t : d.describe()) {
     EXPECT_FALSE(t.source.empty()) << t.name;
     EXPECT_FALSE(t.evidence.empty()) << t.name;
     if (t.name == "GAC-push-header") push = t.value == "#tp" && t.source == "field";
-    if (t.name == "yaw-inverted") yaw = t.value == "on" && t.source == "field";
+    if (t.name == "yaw-inverted") yaw = t.value == "on (GSY GAY GAM)" && t.source == "field";
+    // The C12 pitch inversion: recorded with its sources, off (contested).
+    if (t.name == "pitch-inverted") {
+      pitch = t.value == "off (recorded for GAM)";
+      EXPECT_EQ(t.source, "contested");
+      EXPECT_NE(t.evidence.find("Against"), std::string::npos);
+    }
   }
   EXPECT_TRUE(push);
   EXPECT_TRUE(yaw);
+  EXPECT_TRUE(pitch);
   Device doc(top::Model::c12, profile(top::Profile::document));
   for (const auto& t : doc.describe()) {
     if (t.name == "GAC-push-header") {
@@ -195,6 +206,94 @@ TEST(FieldProfile, DescribeNamesEverySourceOfTheModel) {
       EXPECT_EQ(t.value, "off");
     }
   }
+}
+
+// --- signs per identifier, ArduPilot's SkyDroid driver -------------------
+
+// The GAC push's yaw and pitch (deg) after `cmd` held for 1 s.
+std::pair<double, double> after(Device& d, std::string_view cmd) {
+  ask(d, cmd);
+  ask(d, "#TPUG2wGAA0A");
+  auto out = pushes(d, 1'000'000, 1'000'000);
+  out.clear();
+  for (std::uint64_t t = 0; t <= 1'000'000; t += 20'000) ask(d, cmd, t);
+  out = pushes(d, 1'000'000, 1'100'000);
+  if (out.empty()) return {0, 0};
+  const top::ParseResult r = top::parse_exact(out.back());
+  const auto v = [&](std::size_t at) {
+    return static_cast<std::int16_t>(
+               std::stoi(std::string(r.frame.data().substr(at, 4)), nullptr, 16)) /
+           100.0;
+  };
+  return {v(0), v(4)};
+}
+
+TEST(FieldProfile, SignsFollowEachIdentifiersEvidence) {
+  // +GSY makes GAC yaw decrease on C12 and C13 (AP_Mount_SkyDroid, C13
+  // station); +GSP makes GAC pitch increase (C11 driver, C12 app, C13
+  // station): the driver's -30 target settles there.
+  for (top::Model m : {top::Model::c12, top::Model::c13}) {
+    Device y(m);
+    EXPECT_LT(after(y, "#TPUG2wGSY14").first, -5) << top::to_string(m);
+    Device p(m);
+    EXPECT_GT(after(p, "#TPUG2wGSP14").second, 5) << top::to_string(m);
+  }
+  // C12 GAM: the pitch inversion is contested and off; yaw (GAY GAM) on.
+  Device gam(top::Model::c12);
+  ask(gam, "#TPUGCwGAM03E8630BB863");
+  gam.advance(20'000'000);
+  EXPECT_NEAR(gam.pitch().angle, 30.0, 1e-6);
+  EXPECT_NEAR(gam.yaw().angle, -10.0, 1e-6);
+  // The switches: every command of the axis, either way.
+  DeviceOptions inv;
+  inv.pitch_inverted = true;
+  Device p(top::Model::c12, inv);
+  EXPECT_LT(after(p, "#TPUG2wGSP14").second, -5);
+  DeviceOptions normal;
+  normal.yaw_inverted = false;
+  Device y(top::Model::c13, normal);
+  EXPECT_GT(after(y, "#TPUG2wGSY14").first, 5);
+  // The document's device: no trait.
+  Device doc(top::Model::c12, profile(top::Profile::document));
+  EXPECT_GT(after(doc, "#TPUG2wGSY14").first, 5);
+}
+
+TEST(FieldProfile, C13AnswersWhatTheSkyDroidDriverSends) {
+  // The driver sends these to C11 and C13 alike (PR #34155); the
+  // document's support lines leave the C13 out (ERE under its profile).
+  for (const char* body :
+       {"#TPUD2rVER00", "#TPUD2rMOD00", "#TPUD2rSDC00", "#TPUD2wREC01", "#TPUD2wCAP01",
+        "#TPUM2wDZM0A", "#tpUDFwTIM143005.00261026", "#TPUG2wFAE01", "#TPUD2wSLR01"}) {
+    Device field(top::Model::c13);
+    const auto out = ask(field, body);
+    ASSERT_EQ(out.size(), 1u) << body;
+    EXPECT_EQ(top::parse_exact(out[0]).frame.ident_view(), std::string_view(body).substr(7, 3))
+        << body << " -> " << out[0];
+    Device doc(top::Model::c13, profile(top::Profile::document));
+    EXPECT_EQ(top::parse_exact(ask(doc, body).at(0)).frame.ident_view(), "ERE") << body;
+  }
+  // FAI: 12 chars is the document's form, taken; the driver's 14 is
+  // refused on both models (no evidence a unit takes it).
+  for (top::Model m : {top::Model::c12, top::Model::c13}) {
+    Device d(m);
+    EXPECT_EQ(top::parse_exact(ask(d, "#tpUGCwFAI000000000000").at(0)).frame.ident_view(), "FAI");
+    EXPECT_EQ(top::parse_exact(ask(d, "#tpUGEwFAI00000000000000").at(0)).frame.ident_view(), "ERE");
+  }
+}
+
+TEST(FieldProfile, IdentityIsPlausibleAndSettable) {
+  Device c13(top::Model::c13);
+  EXPECT_EQ(top::parse_exact(ask(c13, "#TPUD2rMOD00").at(0)).frame.data(), "C13");
+  EXPECT_EQ(top::parse_exact(ask(c13, "#TPUD2rVER00").at(0)).frame.data(), "V1.0.78");
+  DeviceOptions o;
+  o.model_name = "C12S";
+  o.version = "V2.1.0";
+  Device c12(top::Model::c12, o);
+  EXPECT_EQ(top::parse_exact(ask(c12, "#TPUD2rMOD00").at(0)).frame.data(), "C12S");
+  EXPECT_EQ(top::parse_exact(ask(c12, "#TPUD2rVER00").at(0)).frame.data(), "V2.1.0");
+  // MOD is the field's: the document's device does not know it.
+  Device doc(top::Model::c12, profile(top::Profile::document));
+  EXPECT_EQ(top::parse_exact(ask(doc, "#TPUD2rMOD00").at(0)).frame.ident_view(), "ERE");
 }
 
 // --- a strict client over real UDP --------------------------------------
@@ -252,7 +351,7 @@ void strict_client_session(const char* server_host, std::uint16_t server_port,
   auto att = c.wait_for("#tpUGCrGAC", 2000);
   ASSERT_TRUE(att) << "no attitude push a C12 client accepts";
   c.send(top::with_checksum("#TPUD2rIMG00"), server_host, port);
-  EXPECT_TRUE(c.wait_for("#TPDU2rIMG", 2000)) << "no palette reply a C12 client accepts";
+  EXPECT_TRUE(c.wait_for("#TPDU1rIMG", 2000)) << "no palette reply a C12 client accepts";
   c.send(top::with_checksum("#TPUG2wGAA00"), server_host, port);
 
   topsim::ServerConfig c13 = cfg;

@@ -12,9 +12,12 @@
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <thread>
+#include <utility>
 
 #include "binaries.hpp"
+#include "conf/report.hpp"
 #include "conf/runner.hpp"
 #include "running_server.hpp"
 #include "sim/server.hpp"
@@ -281,6 +284,55 @@ TEST(Server, ServesASerialDevice) {
   close(master);
 }
 
+// ---- a device like ArduPilot's simulators (docs/sources/ardupilot.md sections
+// 3, 4): replies and pushes keep the request's address order, and VER and AWB
+// go unanswered (they answer neither). topconf's probe falls back to what
+// the catalog says the model also answers (top/probe.hpp).
+
+topconf::RunResult run_like_arduPilots_simulators(top::Model m, topconf::RunOptions o = {}) {
+  topsim::ServerConfig cfg;
+  cfg.model = m;
+  cfg.device_options.reply_order = top::Order::request_order;
+  cfg.device_options.push_order = top::Order::request_order;
+  std::string err;
+  cfg.faults = topsim::parse_faults("ignore=VER+AWB", err).value();
+  RunningServer s(cfg);
+  auto t = topconf::open_transport("udp://127.0.0.1:" + std::to_string(s.server.port()), m, 0);
+  o.settle_ms = 3;
+  return topconf::run_matrix(default_matrix(m), *t, o);
+}
+
+std::string console(const topconf::RunResult& r) {
+  std::ostringstream os;
+  topconf::write_console(os, r, false);
+  return os.str();
+}
+
+TEST(LikeArduPilotsSimulators, SipAndC12AreReachedOverUdp) {
+  for (const auto& [m, note] : {std::pair{top::Model::sip, "probe unanswered: VER"},
+                                std::pair{top::Model::c12, "probe unanswered: AWB, VER"}}) {
+    const topconf::RunResult r = run_like_arduPilots_simulators(m);
+    EXPECT_FALSE(r.unreachable) << r.unreachable_reason;
+    EXPECT_EQ(r.probe_note, note);
+    EXPECT_FALSE(r.cases.empty());
+    EXPECT_EQ(r.count(Verdict::error), 0u);  // alive between cases
+    const std::string out = console(r);
+    EXPECT_EQ(out.find("unreachable"), std::string::npos) << out;
+    EXPECT_NE(out.find(note), std::string::npos) << out;
+  }
+}
+
+TEST(LikeArduPilotsSimulators, AnUnansweredProbeIsReportedWhenNothingElseFails) {
+  topconf::RunOptions o;
+  o.tags = {"negative"};  // Topotek: silence for what it does not take
+  const topconf::RunResult r = run_like_arduPilots_simulators(top::Model::sip, o);
+  EXPECT_EQ(r.exit_code(), 0) << console(r);
+  EXPECT_EQ(r.count(Verdict::fail), 0u);
+  const std::string out = console(r);
+  EXPECT_NE(out.find("\nprobe unanswered: VER\nPASS"), std::string::npos) << out;
+  EXPECT_EQ(topconf::to_json(r)["probe_note"], "probe unanswered: VER");
+}
+
 // ---- the binaries
 
 TEST(Binaries, TopconfAgainstTopsimOverUdpAndExitCodes) {
@@ -307,6 +359,7 @@ TEST(Binaries, TopconfAgainstTopsimOverUdpAndExitCodes) {
   EXPECT_EQ(run_cmd(bin("topconf") + " run --model c99"), 2);
   EXPECT_EQ(run_cmd(bin("topconf") + " run"), 2);
   EXPECT_EQ(run_cmd(bin("topsim") + " --fault nonsense"), 2);
+  EXPECT_EQ(run_cmd(bin("topsim") + " --fault ignore=VE"), 2);
   // In process with a fault: the run fails.
   EXPECT_EQ(run_cmd(bin("topconf") + " run --model c12 --sim-fault bad-checksum=1"), 1);
   EXPECT_EQ(run_cmd(bin("topconf") + " run --model sip"), 0);

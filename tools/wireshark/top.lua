@@ -188,6 +188,20 @@ EXPERTS["unswapped-addresses"] = {
   ["warning"] = ProtoExpert.new("top.finding.unswapped-addresses.warning", "unswapped-addresses: a response that keeps the request's address order (some simulators)", expert.group.PROTOCOL, expert.severity.WARN),
   ["error"] = ProtoExpert.new("top.finding.unswapped-addresses.error", "unswapped-addresses: a response that keeps the request's address order (some simulators)", expert.group.PROTOCOL, expert.severity.ERROR),
 }
+FINDINGS["length-in-bytes"] = "info"
+QUIRKS["length-in-bytes"] = "skydroid-length-in-bytes"
+EXPERTS["length-in-bytes"] = {
+  ["info"] = ProtoExpert.new("top.finding.length-in-bytes", "length-in-bytes: the length char counts the bytes of a hex-coded value, half its chars, in a form recorded from real devices (#TPDU1rIMG palette, #TPDU2rSLR0018BE range); decoded by the checksum. Another wrong length stays length-mismatch", expert.group.PROTOCOL, expert.severity.NOTE),
+  ["warning"] = ProtoExpert.new("top.finding.length-in-bytes.warning", "length-in-bytes: the length char counts the bytes of a hex-coded value, half its chars, in a form recorded from real devices (#TPDU1rIMG palette, #TPDU2rSLR0018BE range); decoded by the checksum. Another wrong length stays length-mismatch", expert.group.PROTOCOL, expert.severity.WARN),
+  ["error"] = ProtoExpert.new("top.finding.length-in-bytes.error", "length-in-bytes: the length char counts the bytes of a hex-coded value, half its chars, in a form recorded from real devices (#TPDU1rIMG palette, #TPDU2rSLR0018BE range); decoded by the checksum. Another wrong length stays length-mismatch", expert.group.PROTOCOL, expert.severity.ERROR),
+}
+FINDINGS["double-checksum"] = "info"
+QUIRKS["double-checksum"] = "c10pro-double-checksum"
+EXPERTS["double-checksum"] = {
+  ["info"] = ProtoExpert.new("top.finding.double-checksum", "double-checksum: a valid frame followed by a second checksum over it and its checksum (a C10 Pro tool's #TPUG2wPTZ056FEB); the two digits are taken as the frame's, not as garbage", expert.group.CHECKSUM, expert.severity.NOTE),
+  ["warning"] = ProtoExpert.new("top.finding.double-checksum.warning", "double-checksum: a valid frame followed by a second checksum over it and its checksum (a C10 Pro tool's #TPUG2wPTZ056FEB); the two digits are taken as the frame's, not as garbage", expert.group.CHECKSUM, expert.severity.WARN),
+  ["error"] = ProtoExpert.new("top.finding.double-checksum.error", "double-checksum: a valid frame followed by a second checksum over it and its checksum (a C10 Pro tool's #TPUG2wPTZ056FEB); the two digits are taken as the frame's, not as garbage", expert.group.CHECKSUM, expert.severity.ERROR),
+}
 
 local CATALOG_VTYPE = {}
 -- Every catalog field as top.<ident>.<field>.
@@ -390,6 +404,8 @@ CATALOG_FIELDS["top.SLR.query"] = ProtoField.new("SLR query", "top.SLR.query", f
 CATALOG_VTYPE["top.SLR.query"] = "uint"
 CATALOG_FIELDS["top.SLR.distance"] = ProtoField.new("SLR distance (dm)", "top.SLR.distance", ftypes.UINT32, nil, base.DEC, nil, "single laser ranging (SkyDroid 4.22)")
 CATALOG_VTYPE["top.SLR.distance"] = "uint"
+CATALOG_FIELDS["top.SLR.action"] = ProtoField.new("SLR action", "top.SLR.action", ftypes.UINT32, { [1] = "measure", }, base.HEX, nil, "single laser ranging (SkyDroid 4.22)")
+CATALOG_VTYPE["top.SLR.action"] = "uint"
 CATALOG_FIELDS["top.ZMC.data"] = ProtoField.new("ZMC data", "top.ZMC.data", ftypes.STRING, nil, base.ASCII, nil, "zoom control (SkyDroid appendix I)")
 CATALOG_VTYPE["top.ZMC.data"] = "string"
 CATALOG_FIELDS["top.FCC.data"] = ProtoField.new("FCC data", "top.FCC.data", ftypes.STRING, nil, base.ASCII, nil, "focus control (SkyDroid appendix I)")
@@ -414,6 +430,10 @@ CATALOG_FIELDS["top.RST.data"] = ProtoField.new("RST data", "top.RST.data", ftyp
 CATALOG_VTYPE["top.RST.data"] = "string"
 CATALOG_FIELDS["top.RTF.data"] = ProtoField.new("RTF data", "top.RTF.data", ftypes.STRING, nil, base.ASCII, nil, "reboot, restore factory settings (SkyDroid appendix I)")
 CATALOG_VTYPE["top.RTF.data"] = "string"
+CATALOG_FIELDS["top.MOD.query"] = ProtoField.new("MOD query", "top.MOD.query", ftypes.UINT32, nil, base.DEC, nil, "model name (field: ArduPilot AP_Mount_SkyDroid (PR #34155))")
+CATALOG_VTYPE["top.MOD.query"] = "uint"
+CATALOG_FIELDS["top.MOD.model"] = ProtoField.new("MOD model", "top.MOD.model", ftypes.STRING, nil, base.ASCII, nil, "model name (field: ArduPilot AP_Mount_SkyDroid (PR #34155)): C11, C13 on real units")
+CATALOG_VTYPE["top.MOD.model"] = "string"
 CATALOG_FIELDS["top.ZMC.action"] = ProtoField.new("ZMC action", "top.ZMC.action", ftypes.UINT32, { [0] = "stop", [1] = "zoom_out", [2] = "zoom_in", }, base.HEX, nil, "zoom control (Topotek 3.1.1)")
 CATALOG_VTYPE["top.ZMC.action"] = "uint"
 CATALOG_FIELDS["top.ZOM.query"] = ProtoField.new("ZOM query", "top.ZOM.query", ftypes.UINT32, nil, base.DEC, nil, "zoom position (Topotek 3.1.2)")
@@ -1307,6 +1327,10 @@ CATALOG.skydroid["SLR"] = {
       fields = {
         { name = "distance", kind = "hex_u", width = 4, scale = 1, mul = 1, dec = 0, unit = "dm", min = 5, max = 1000, abbrev = "top.SLR.distance" },
       } },
+    { control = "w", role = "any", min_length = 2, max_length = 2, note = "",
+      fields = {
+        { name = "action", kind = "enum_hex", width = 2, scale = 1, mul = 1, dec = 0, unit = "", enums = { [1] = "measure", }, abbrev = "top.SLR.action" },
+      } },
   },
 }
 CATALOG.skydroid["ZMC"] = {
@@ -1474,6 +1498,20 @@ CATALOG.skydroid["RTF"] = {
     { control = "w", role = "any", min_length = 0, max_length = 255, note = "",
       fields = {
         { name = "data", kind = "raw", width = 0, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.RTF.data" },
+      } },
+  },
+}
+CATALOG.skydroid["MOD"] = {
+  dialect = "skydroid", address = "D", title = "model name", section = "field: ArduPilot AP_Mount_SkyDroid (PR #34155)",
+  models = { c12 = true, c13 = true, },
+  forms = {
+    { control = "r", role = "request", min_length = 2, max_length = 2, note = "",
+      fields = {
+        { name = "query", kind = "hex_u", width = 2, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.MOD.query" },
+      } },
+    { control = "r", role = "response", min_length = 1, max_length = 15, note = "",
+      fields = {
+        { name = "model", kind = "text", width = 0, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.MOD.model" },
       } },
   },
 }

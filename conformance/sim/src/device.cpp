@@ -1,6 +1,7 @@
 #include "sim/device.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 
@@ -22,10 +23,8 @@ using detail::hex_s16;
 Device::Device(top::Model model, DeviceOptions opts)
     : model_(model), dialect_(top::dialect_of(model)), opts_(opts) {
   const top::Profile p = opts_.profile;
-  yaw_inverted_ = opts_.yaw_inverted.value_or(
-      top::find_trait(top::TraitKind::yaw_inverted, model, p) != nullptr);
-  pitch_inverted_ = opts_.pitch_inverted.value_or(
-      top::find_trait(top::TraitKind::pitch_inverted, model, p) != nullptr);
+  sign_trait_[0] = top::find_trait(top::TraitKind::yaw_inverted, model, p);
+  sign_trait_[1] = top::find_trait(top::TraitKind::pitch_inverted, model, p);
   field_ptz_ = opts_.field_ptz.value_or(p == top::Profile::field);
   if (opts_.speed_hold_ms == 0) opts_.speed_hold_ms = top::speed_hold_ms(model, p);
   if (dialect_ == Dialect::topotek) {
@@ -35,7 +34,17 @@ Device::Device(top::Model model, DeviceOptions opts)
   axes_[2].min = -45;
   axes_[2].max = 45;
   // Read-only values a real device reports.
-  settings_["VER"] = dialect_ == Dialect::topotek ? "SIP0001V113TK0" : "V1.1.5";
+  // SkyDroid: the form AP_Mount_SkyDroid parses ("V1.0.78", PR #34155) and
+  // the model's name, as ArduPilot's SIM_SkyDroid answers MOD (C11, C13).
+  const bool sky = dialect_ == Dialect::skydroid;
+  settings_["VER"] = !sky ? "SIP0001V113TK0" : opts_.version.empty() ? "V1.0.78" : opts_.version;
+  if (sky) {
+    std::string name(top::to_string(model));
+    for (char& ch : name) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+    const std::size_t pro = name.find("PRO");
+    if (pro != std::string::npos) name.replace(pro, 3, "Pro");
+    settings_["MOD"] = opts_.model_name.empty() ? name : opts_.model_name;
+  }
   settings_["SDC"] = "0EA601D4C0";  // 60000 MB free of 120000 MB
   settings_["IPV"] = "192.168.144.108";
   settings_["GTW"] = "192.168.144.1";
@@ -81,6 +90,12 @@ void Device::advance(std::uint64_t now_us) noexcept {
   }
 }
 
+bool Device::inverted(std::size_t axis, std::string_view ident) const noexcept {
+  const std::optional<bool>& opt = axis == 0 ? opts_.yaw_inverted : opts_.pitch_inverted;
+  if (opt) return *opt;
+  return axis < 2 && sign_trait_[axis] != nullptr && sign_trait_[axis]->names(ident);
+}
+
 bool Device::accepts(const Frame& f, Link link) const noexcept {
   return top::answers_source(model_, opts_.profile, link, f.src);
 }
@@ -110,11 +125,10 @@ void Device::reply_error(const Frame& req, std::vector<std::string>& out) const 
 }
 
 std::string Device::attitude_data(std::string_view ident) const {
-  // C12 field trait: the attitude reports the opposite sign of the command.
-  double yaw = yaw_inverted_ ? -axes_[0].angle : axes_[0].angle;
-  double pitch = pitch_inverted_ ? -axes_[1].angle : axes_[1].angle;
-  double roll = axes_[2].angle;
-  // The report's own signs (Topotek GIA: pitch down positive in the field).
+  // The sign traits act on the commands (Device::inverted): the attitude
+  // reports where the gimbal is, in the report's own signs (Topotek GIA:
+  // pitch down positive in the field).
+  double yaw = axes_[0].angle, pitch = axes_[1].angle, roll = axes_[2].angle;
   if (const top::MotionSpec* m = top::motion_of(dialect_, ident))
     for (const top::MotionAxis& a : m->fields()) {
       const double s = a.sign_in(field());
@@ -155,6 +169,9 @@ std::string Device::build(const top::DeviceForm& form, char client, char device,
   spec.control = control;
   spec.ident = ident;
   spec.data = data;
+  // A length that counts the bytes of the hex value (the C12 palette).
+  if (form.length_in_bytes && data.size() % 2 == 0)
+    spec.declared_length = static_cast<std::uint32_t>(data.size() / 2);
   return top::build_frame(spec);
 }
 

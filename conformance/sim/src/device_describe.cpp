@@ -55,7 +55,9 @@ std::vector<Device::TraitLine> Device::describe() const {
         top::device_form(model_, r.ident, r.control, top::Sent::reply, len, opts_.profile);
     const top::DeviceForm f = form_of(r.ident, top::Sent::reply, len);
     out.push_back(
-        {std::string(r.ident) + "-reply", header(f.header) + " " + order(f.order),
+        {std::string(r.ident) + "-reply",
+         header(f.header) + " " + order(f.order) +
+             (f.length_in_bytes ? ", length counts bytes" : ""),
          opts_.reply_header || opts_.reply_order || !opts_.swap_addresses ? "option" : src(p),
          std::string(p.evidence)});
   }
@@ -65,18 +67,29 @@ std::vector<Device::TraitLine> Device::describe() const {
     out.push_back({"reply", opts_.swap_addresses ? "swapped" : "request-order",
                    opts_.swap_addresses ? "document rule" : "option", std::string(rule.evidence)});
   }
-  auto trait = [&](top::TraitKind k, const std::optional<bool>& opt, bool on) {
-    const top::Trait* t = top::find_trait(k, model_, top::Profile::field);
-    if (!t && !on) return;
-    const bool from_profile = top::find_trait(k, model_, opts_.profile) != nullptr;
-    out.push_back({std::string(top::to_string(k)), on ? "on" : "off",
-                   opt            ? "option"
-                   : from_profile ? std::string(top::to_string(t->source))
-                                  : "document rule",
+  // A sign trait: the identifiers it applies to, or the option's every
+  // command; a contested one is shown with its sources, off.
+  auto sign = [&](top::TraitKind k, const std::optional<bool>& opt) {
+    const top::Trait* t = top::find_trait(k, model_, top::Profile::field, true);
+    if (!t && !opt) return;
+    const top::Trait* applied = top::find_trait(k, model_, opts_.profile);
+    std::string value = "off", source = "document rule";
+    if (opt) {
+      value = *opt ? "on (every command)" : "off";
+      source = "option";
+    } else if (applied) {
+      value =
+          "on (" + std::string(applied->idents.empty() ? "every command" : applied->idents) + ")";
+      source = std::string(top::to_string(applied->source));
+    } else if (t->contested && opts_.profile == top::Profile::field) {
+      value = "off (recorded for " + std::string(t->idents) + ")";
+      source = "contested";
+    }
+    out.push_back({std::string(top::to_string(k)), value, source,
                    t ? std::string(t->evidence) : std::string()});
   };
-  trait(top::TraitKind::yaw_inverted, opts_.yaw_inverted, yaw_inverted_);
-  trait(top::TraitKind::pitch_inverted, opts_.pitch_inverted, pitch_inverted_);
+  sign(top::TraitKind::yaw_inverted, opts_.yaw_inverted);
+  sign(top::TraitKind::pitch_inverted, opts_.pitch_inverted);
   for (const top::FieldSupport& fs : top::field_support()) {
     if (fs.dialect != dialect_ || !(fs.models & top::model_bit(model_))) continue;
     std::string v;

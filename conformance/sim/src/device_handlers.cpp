@@ -90,6 +90,12 @@ struct Handlers {
       } else if (const top::FieldValue* spd = field(c.dec, x.value)) {
         turn(c, a, spd->value);
       }
+      // A sign trait (or --yaw-sign/--pitch-sign) for this command: the
+      // gimbal moves the other way from what the attitude reports.
+      if (d.inverted(static_cast<std::size_t>(x.axis), c.req.ident_view())) {
+        a.target = std::clamp(-a.target, a.min, a.max);
+        a.rate = -a.rate;
+      }
     }
     return true;
   }
@@ -112,7 +118,8 @@ struct Handlers {
     } else if (p.move == top::PtzMove::turn &&
                (!trim || (d.field_ptz_ &&
                           top::field_supported(d.dialect_, d.model_, c.req.ident_view(), act)))) {
-      turn(c, d.axes_[static_cast<std::size_t>(p.axis)], p.sign * kPtzRate);
+      const auto axis = static_cast<std::size_t>(p.axis);
+      turn(c, d.axes_[axis], (d.inverted(axis, c.req.ident_view()) ? -1 : 1) * p.sign * kPtzRate);
     } else if (p.move == top::PtzMove::centre) {
       for (Axis& x : d.axes_) x.target = 0, x.target_speed = 9.9, x.has_target = true, x.rate = 0;
     }
@@ -140,6 +147,12 @@ struct Handlers {
     ++c.dev.file_index_;
     return true;
   }
+
+  // SkyDroid SLR trigger: a station used on a real C13 (custom-GCS) writes
+  // #TPUD2wSLR015B before each range read; the C13 SDK (skydroid_c13_miniSDK)
+  // reads without one. So the trigger is taken and echoed, and every read
+  // answered with the range (a measurement per read).
+  static bool range_trigger(const Call&) { return true; }
 
   static bool zoom(const Call& c) {
     Device& d = c.dev;
@@ -177,6 +190,7 @@ constexpr Entry kHandlers[] = {
     {kSky, "REC", 'w', Handlers::record, true},
     {kSky, "CAP", 'w', Handlers::capture, true},
     {kSky, "ZMC", 'w', Handlers::zoom, true},
+    {kSky, "SLR", 'w', Handlers::range_trigger, true},
 };
 
 }  // namespace

@@ -52,14 +52,14 @@ std::string malformed(const std::string& frame, bool lie, bool flip) {
 bool FaultConfig::any() const noexcept {
   return drop > 0 || delay_ms > 0 || duplicate > 0 || bad_checksum > 0 || header_case > 0 ||
          no_swap || lying_length > 0 || tmp_quirk || split || garbage > 0 || !hang_on.empty() ||
-         crash_on || hang_class || slow_on || answer_corrupt;
+         !ignore.empty() || crash_on || hang_class || slow_on || answer_corrupt;
 }
 
 const std::vector<std::string_view>& fault_names() {
   static const std::vector<std::string_view> names = {
-      "drop",         "delay",     "duplicate", "bad-checksum",  "header-case", "no-swap",
-      "lying-length", "tmp-quirk", "split",     "garbage",       "hang-on",     "crash-on",
-      "hang-s",       "slow-on",   "slow-ms",   "answer-corrupt"};
+      "drop",         "delay",     "duplicate", "bad-checksum",   "header-case", "no-swap",
+      "lying-length", "tmp-quirk", "split",     "garbage",        "hang-on",     "crash-on",
+      "hang-s",       "slow-on",   "slow-ms",   "answer-corrupt", "ignore"};
   return names;
 }
 
@@ -119,6 +119,17 @@ std::optional<FaultConfig> parse_faults(std::string_view spec, std::string& erro
       if (!has_value || ec != std::errc{} || p != value.data() + value.size() || n > 600000)
         return bad("needs a whole number, 0-600000");
       (name == "hang-s" ? cfg.hang_s : cfg.slow_ms) = n;
+    } else if (name == "ignore") {
+      // CLASS+CLASS...: several classes in one item (a comma ends the item)
+      for (std::size_t start = 0;;) {
+        const std::size_t plus = value.find('+', start);
+        auto c = parse_input_class(value.substr(
+            start, plus == std::string_view::npos ? std::string_view::npos : plus - start));
+        if (!c) return bad("ignore needs IDENT, ident:ID, len:N or byte:HH, joined by +");
+        cfg.ignore.push_back(*c);
+        if (plus == std::string_view::npos) break;
+        start = plus + 1;
+      }
     } else if (name == "answer-corrupt") {
       if (has_value) return bad("takes no value");
       cfg.answer_corrupt = true;
@@ -143,6 +154,8 @@ bool FaultInjector::chance(double p) {
 
 bool FaultInjector::on_request(const top::Frame& request) {
   if (hung_) return false;
+  for (const InputClass& c : cfg_.ignore)
+    if (c.matches(request)) return false;
   if (!cfg_.hang_on.empty() && request.ident_view() == cfg_.hang_on) {
     hung_ = true;
     return false;

@@ -144,6 +144,10 @@ std::string_view reply_ident(Model model, std::string_view request, Profile prof
 // identifier, or a recorded form of any model and profile: a reader of
 // traffic takes both the document's and the field's answer).
 bool answers_query(Dialect d, std::string_view request, std::string_view reply) noexcept;
+// The recorded form whose length char counts bytes (length_in_bytes) that
+// `f` has: its identifier, control, header and address order, any model.
+// Asked by the frame parser when a frame's data is twice its length.
+const DeviceForm* length_in_bytes_form(const Frame& f) noexcept;
 
 // A trait of real firmware that is not a frame form.
 enum class TraitKind : std::uint8_t {
@@ -165,13 +169,23 @@ struct Trait {
   Source source = Source::field;
   std::string_view evidence;  // every source for, and every source against
   // The identifiers the evidence concerns, space separated ("GSY"); empty:
-  // every identifier (or a trait that is not about commands).
+  // every identifier (or a trait that is not about commands). A sign trait
+  // applies to the commands it names only.
   std::string_view idents;
+  // The sources conflict, and the reading that serves the autopilot is the
+  // document's: recorded and shown with every source, applied only when
+  // asked for (topsim --pitch-sign inverted), never by a profile.
+  bool contested = false;
+
+  // Whether the trait concerns commands of `ident` (every one when idents is empty).
+  bool names(std::string_view ident) const noexcept;
 };
 std::span<const Trait> traits() noexcept;
 // The trait of `kind` for `model` under `profile` (a field trait only under
-// the field profile), or nullptr.
-const Trait* find_trait(TraitKind kind, Model model, Profile profile) noexcept;
+// the field profile), or nullptr. A contested trait is found only with
+// `contested_too` (to show it), never applied.
+const Trait* find_trait(TraitKind kind, Model model, Profile profile,
+                        bool contested_too = false) noexcept;
 
 // A command value the document does not list for a model but field
 // evidence says the firmware takes (C13 PTZ codes).

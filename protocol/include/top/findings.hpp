@@ -85,7 +85,14 @@ std::string_view to_string(Severity s) noexcept;
   X(error_reply, "error-reply", warning, "",                                                      \
     "the device answered ERE: it rejected a command as invalid")                                  \
   X(unswapped_addresses, "unswapped-addresses", info, "",                                         \
-    "a response that keeps the request's address order (some simulators)")
+    "a response that keeps the request's address order (some simulators)")                        \
+  X(length_in_bytes, "length-in-bytes", info, "skydroid-length-in-bytes",                         \
+    "the length char counts the bytes of a hex-coded value, half its chars, in a form recorded "  \
+    "from real devices (#TPDU1rIMG palette, #TPDU2rSLR0018BE range); decoded by the checksum. "   \
+    "Another wrong length stays length-mismatch")                                                 \
+  X(double_checksum, "double-checksum", info, "c10pro-double-checksum",                           \
+    "a valid frame followed by a second checksum over it and its checksum (a C10 Pro tool's "     \
+    "#TPUG2wPTZ056FEB); the two digits are taken as the frame's, not as garbage")
 
 enum class FindingCode : std::uint16_t {
 #define TOP_X(e, s, sev, quirk, when) e,

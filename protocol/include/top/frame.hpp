@@ -134,10 +134,6 @@ struct ParseOptions {
   std::size_t max_data_length = max_data_ext16;
   // Try other data lengths when the declared one fails the checksum.
   bool recover_lying_length = true;
-  // Accept the common clean frame in one pass before the general parse (the
-  // result is the same either way; false is for tests and fuzzers that
-  // compare the two).
-  bool fast_path = true;
   // Write the text of the findings and of the error. False leaves every
   // message empty (codes, severities and offsets are the same): for callers
   // that look only at the verdict, such as the stream decoder trying a '#'

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "conf/link.hpp"
+#include "conf/liveness.hpp"
 #include "conf/probe.hpp"
 #include "conf/runner.hpp"
 #include "top/device.hpp"
@@ -35,7 +36,7 @@ struct Session {
   bool alive(int tries) {
     for (int i = 0; i < tries; ++i) {
       ++probes;
-      if (probe_answered(link, probe, probe_timeout_us())) return true;
+      if (probe_once(link, probe, probe_timeout_us()) == ProbeHeard::answer) return true;
     }
     return false;
   }
@@ -101,11 +102,14 @@ struct Session {
     link.send(c.bytes);
     std::vector<Received> got;
     Received rx;
-    auto own = [&](const top::Frame& f) {
-      return (!c.ident.empty() && f.ident_view() == c.ident) || is_error_reply(f.ident_view());
+    // The case's answer: its identifier or a recorded reply form of it (a
+    // real SIP answers GIC with GIA), as the runner takes it.
+    auto answers = [&](const top::Frame& f) {
+      return !c.ident.empty() && top::answers_query(m.dialect, c.ident, f.ident_view());
     };
+    auto own = [&](const top::Frame& f) { return answers(f) || is_error_reply(f.ident_view()); };
     auto keep = [&](Received&& x) {
-      if (is_push(m.dialect, x.frame.ident_view()) && x.frame.ident_view() != c.ident) return;
+      if (is_push(m.dialect, x.frame.ident_view()) && !answers(x.frame)) return;
       got.push_back(std::move(x));
     };
     if (!t.datagram() && c.open_end) {
@@ -136,7 +140,8 @@ struct Session {
       const std::uint64_t deadline =
           link.now() + std::max(probe_timeout_us(), std::uint64_t{o.slow_ms} * 1000 + 100000);
       while (link.next(deadline, rx)) {
-        if (rx.frame.ident_view() == p.ident && rx.frame.ok() && rx.frame.control == 'r') {
+        if (p.answered_by(rx.frame) && !is_error_reply(rx.frame) && rx.frame.ok() &&
+            rx.frame.control == 'r') {
           synced = true;
           if (!answered_at) answered_at = rx.t_us;
           break;
@@ -153,7 +158,7 @@ struct Session {
     const bool promised = c.level != Level::may;
     bool answered_ident = false, answered_ere = false;
     for (const Received& x : got) {
-      answered_ident |= !c.ident.empty() && x.frame.ident_view() == c.ident;
+      answered_ident |= answers(x.frame);
       answered_ere |= is_error_reply(x.frame.ident_view());
     }
     if (c.promise == Promise::silence && promised && (answered_ident || answered_ere)) {
@@ -319,23 +324,20 @@ struct Session {
   }
 };
 
-// The probe, and a second sync frame for cases that contain the probe's
-// identifier: the first must-level read of the matrix with another one.
-void set_probes(const Matrix& m, Transport& t, Session& s) {
-  const bool sky = m.dialect == top::Dialect::skydroid;
-  const SendSpec fallback = [&] {
-    SendSpec p;
-    p.command = sky ? "AWB" : "VER";
-    p.control = 'r';
-    p.data = "00";
-    if (!sky) p.dst = 'G';
-    return p;
-  }();
-  std::string err;
-  std::string probe_bytes;
-  resolve_send(m.probe ? *m.probe : fallback, m.dialect, t.client_address(), probe_bytes, err);
-  s.probe = Probe::of(std::move(probe_bytes), false);
+// The probe, the first the device answers (conf/liveness.hpp: the matrix's,
+// else the catalog's for the model), and a second sync frame for cases that
+// contain the probe's identifier: the first must-level read of the matrix
+// with another one.
+ProbeChoice set_probes(const Matrix& m, Transport& t, Session& s) {
+  const ProbeChoice choice =
+      choose_probe(probes_for(m, t.client_address()), 3, [&](const Probe& p) {
+        ++s.probes;
+        return probe_once(s.link, p, s.probe_timeout_us());
+      });
+  if (!choice.probe) return choice;
+  s.probe = *choice.probe;
   s.alt = s.probe;
+  std::string err;
   for (const Case& k : m.cases) {
     if (k.level != Level::must || !k.applies_to(m.model) || k.steps.size() != 1 ||
         !k.steps[0].send || k.steps[0].send->raw || k.steps[0].send->control != 'r' ||
@@ -349,6 +351,7 @@ void set_probes(const Matrix& m, Transport& t, Session& s) {
       break;
     }
   }
+  return choice;
 }
 
 }  // namespace
@@ -394,14 +397,15 @@ FuzzResult run_fuzz(const Matrix& m, Transport& t, const FuzzOptions& o) {
   res.catalog_cases = src.catalog_cases();
   Session s{m, t, o, src, FrameLink(t, o.pcap, 4096), {}, {}, 0, t.now_us()};
 
-  set_probes(m, t, s);
-
   try {
-    if (!s.alive(3)) {
+    const ProbeChoice choice = set_probes(m, t, s);
+    res.probe_note = choice.note();
+    if (!choice.probe) {
       res.unusable = true;
-      res.unusable_reason = t.describe() + ": no answer to the liveness probe " +
-                            top::escape(s.probe.bytes) + " (3 tries, " +
-                            std::to_string(m.probe_timeout_ms) + " ms each)";
+      res.unusable_reason = t.describe() + ": " +
+                            (choice.heard ? "answered none of the liveness probes, " + choice.note()
+                                          : "no frame came back to the liveness probes") +
+                            " (3 tries each, " + std::to_string(m.probe_timeout_ms) + " ms each)";
     }
   } catch (const TransportError& e) {
     res.unusable = true;

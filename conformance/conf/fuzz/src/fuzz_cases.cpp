@@ -8,6 +8,7 @@
 #include "top/detail/repair.hpp"
 #include "top/device.hpp"
 #include "top/enum_names.hpp"
+#include "top/probe.hpp"
 
 namespace topconf {
 namespace {
@@ -184,10 +185,11 @@ CaseSource::CaseSource(top::Model model, char client, std::uint64_t seed, const 
 // Global families first: short, and they reach the parser's corners.
 void CaseSource::add_global() {
   const bool sky = dialect_ == top::Dialect::skydroid;
-  // A command every device answers, for the framing and address cases.
-  const std::string probe_ident = sky ? "AWB" : "VER";
-  const char probe_dst = sky ? 'D' : 'G';
-  const std::string probe = frame(top::Header::fixed, client_, probe_dst, 'r', probe_ident, "00");
+  // A read the device answers, for the framing and address cases: the
+  // catalog's first liveness probe (top/probe.hpp: a read for every model).
+  const auto probes = top::liveness_probes(model_);
+  const top::LivenessProbe rd = probes.empty() ? top::LivenessProbe{} : probes[0];
+  const std::string probe = frame(top::Header::fixed, client_, rd.address, 'r', rd.ident, rd.data);
   // What the oversized, binary and nested cases carry (a gimbal write), and
   // where the unknown identifiers go (the camera), on both dialects.
   const char gimbal = 'G', camera = 'D';
@@ -244,18 +246,18 @@ void CaseSource::add_global() {
         frame(top::Header::fixed, client_, camera, 'r', id, "00"));
   for (char src : {'G', 'D', 'M', 'E', 'X', 'u', '#', '\0'})
     add("address", "source " + top::escape(std::string(1, src)),
-        frame(top::Header::fixed, src, probe_dst, 'r', probe_ident, "00"));
+        frame(top::Header::fixed, src, rd.address, 'r', rd.ident, rd.data));
   for (char dst : {'U', 'P', 'G', 'M', 'E', 'Z', 'g', '\x7F'})
     add("address", "destination " + top::escape(std::string(1, dst)),
-        frame(top::Header::fixed, client_, dst, 'r', probe_ident, "00"));
+        frame(top::Header::fixed, client_, dst, 'r', rd.ident, rd.data));
   add("address", "the other client address",
-      frame(top::Header::fixed, client_ == 'U' ? 'P' : 'U', probe_dst, 'r', probe_ident, "00"));
+      frame(top::Header::fixed, client_ == 'U' ? 'P' : 'U', rd.address, 'r', rd.ident, rd.data));
   for (char ctl : {'R', 'W', 'x', '0', '\0', '\x1B', '#'})
     add("control", "control char " + top::escape(std::string(1, ctl)),
-        frame(top::Header::fixed, client_, probe_dst, ctl, probe_ident, "00"));
+        frame(top::Header::fixed, client_, rd.address, ctl, rd.ident, rd.data));
   for (char c : {'\x00', '\x07', '\x1B', '\x7F'})
     add("control", "control char " + top::escape(std::string(1, c)) + " in the data",
-        frame(top::Header::fixed, client_, probe_dst, 'r', probe_ident, std::string(1, c) + "0"));
+        frame(top::Header::fixed, client_, rd.address, 'r', rd.ident, std::string(1, c) + "0"));
   add("framing", "lone #", "#");
   add("framing", "header only", "#TP");
   add("framing", "cut after the identifier", probe.substr(0, 10));

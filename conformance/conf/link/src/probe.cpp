@@ -18,16 +18,23 @@ Probe Probe::of(std::string bytes, bool match_control) {
   return p;
 }
 
-bool probe_answered(FrameLink& link, const Probe& p, std::uint64_t timeout_us) {
+bool Probe::answered_by(const top::Frame& f) const {
+  const std::string_view id = f.ident_view();
+  if (top::is_error_reply(id)) return true;
+  if (liveness && liveness->switches_push(dialect, id)) return true;
+  return id == ident && (!control || f.control == control);
+}
+
+ProbeHeard probe_once(FrameLink& link, const Probe& p, std::uint64_t timeout_us) {
   link.send(p.bytes);
   const std::uint64_t deadline = link.now() + timeout_us;
   Received r;
+  ProbeHeard heard = ProbeHeard::nothing;
   while (link.next(deadline, r)) {
-    const std::string_view id = r.frame.ident_view();
-    if ((id == p.ident && (!p.control || r.frame.control == p.control)) || top::is_error_reply(id))
-      return true;
+    if (p.answered_by(r.frame)) return ProbeHeard::answer;
+    heard = ProbeHeard::other;
   }
-  return false;
+  return heard;
 }
 
 }  // namespace topconf

@@ -105,6 +105,7 @@ void write_console(std::ostream& os, const FuzzResult& r) {
      << r.failures.size() << " failure(s)\n";
   for (const auto& f : r.failures) os << failure_line(f) << "\n";
   if (r.aborted) os << "aborted: " << r.aborted_reason << "\n";
+  if (!r.probe_note.empty()) os << r.probe_note << "\n";
   os << (r.exit_code() == 0 ? "PASS" : "FAIL") << ": exit status " << r.exit_code() << "\n";
 }
 

@@ -67,6 +67,7 @@ void write_console(std::ostream& os, const RunResult& r, bool color) {
   char secs[32];
   std::snprintf(secs, sizeof secs, "%.2f", r.seconds);
   os << " in " << secs << " s\n";
+  if (!r.probe_note.empty()) os << r.probe_note << "\n";
   os << (r.exit_code() == 0 ? "PASS" : "FAIL") << ": every must/should case "
      << (r.exit_code() == 0 ? "passed or is not applicable" : "did not pass") << "\n";
 }
@@ -82,6 +83,7 @@ nlohmann::json to_json(const RunResult& r) {
   if (r.seeded) j["seed"] = r.seed;
   j["exit_code"] = r.exit_code();
   if (r.unreachable) j["unreachable"] = r.unreachable_reason;
+  if (!r.probe_note.empty()) j["probe_note"] = r.probe_note;
   nlohmann::json counts;
   for (Verdict v : {Verdict::pass, Verdict::non_strict, Verdict::fail, Verdict::not_applicable,
                     Verdict::inconclusive, Verdict::error})
@@ -186,6 +188,7 @@ void write_html(std::ostream& os, const RunResult& r) {
   if (r.unreachable)
     os << "<p class=\"fail\"><b>Target unreachable:</b> " << markup_escape(r.unreachable_reason)
        << "</p>\n";
+  if (!r.probe_note.empty()) os << "<p>" << markup_escape(r.probe_note) << "</p>\n";
   os << "<p class=\"sum\">";
   for (Verdict v : {Verdict::pass, Verdict::non_strict, Verdict::fail, Verdict::not_applicable,
                     Verdict::inconclusive, Verdict::error}) {

@@ -21,6 +21,8 @@ const top::DeviceForm* recorded_departure(const Matrix& m, const top::Frame& f) 
 std::string frame_deviation(const Received& r) {
   if (r.after_garbage) return "garbage preceded the frame";
   for (const auto& f : r.frame.findings) {
+    // A length that counts bytes in a form recorded from real devices.
+    if (f.code == top::FindingCode::length_in_bytes) return std::string(kFieldForm) + f.message;
     if (f.severity == top::Severity::error || f.severity == top::Severity::warning ||
         !f.quirk.empty() || f.code == top::FindingCode::tmp_quirk)
       return std::string(top::to_string(f.code)) + ": " + f.message;

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "conf/link.hpp"
+#include "conf/liveness.hpp"
 #include "conf/probe.hpp"
 #include "steps.hpp"
 #include "top/enum_names.hpp"
@@ -85,21 +86,19 @@ std::vector<const Case*> select_cases(const Matrix& m, const RunOptions& o, RunR
   return order;
 }
 
-// The liveness probe, up to `tries` times (true when the matrix has none).
-bool alive(const Matrix& m, Transport& t, Wire& w, int tries) {
-  if (!m.probe) return true;
-  std::string bytes, err;
-  if (!resolve_send(*m.probe, m.dialect, t.client_address(), bytes, err)) return true;
-  const Probe p = Probe::of(std::move(bytes), true);
+// The liveness probe, up to `tries` times (true without one: the device
+// answered none, conf/liveness.hpp).
+bool alive(const std::optional<Probe>& p, Wire& w, int tries) {
+  if (!p) return true;
   for (int i = 0; i < tries; ++i)
-    if (w.probe(p)) return true;
+    if (w.probe(*p) == ProbeHeard::answer) return true;
   return false;
 }
 
 // The retry loop of one case, then the liveness probe after it; `dead`
 // is set once the device stopped answering.
-void run_case(const Matrix& m, Transport& t, const RunOptions& o, Wire& w, CaseRunner& run,
-              const Case& c, CaseResult& cr, std::string& dead) {
+void run_case(const Matrix& m, const std::optional<Probe>& probe, const RunOptions& o, Wire& w,
+              CaseRunner& run, const Case& c, CaseResult& cr, std::string& dead) {
   const std::uint32_t retries = o.retries        ? *o.retries
                                 : c.retries >= 0 ? static_cast<std::uint32_t>(c.retries)
                                                  : m.retries;
@@ -127,7 +126,7 @@ void run_case(const Matrix& m, Transport& t, const RunOptions& o, Wire& w, CaseR
   // Liveness between cases.
   bool ok = true;
   try {
-    ok = alive(m, t, w, 5);
+    ok = alive(probe, w, 5);
   } catch (const TransportError&) {
     ok = false;
   }
@@ -157,14 +156,24 @@ RunResult run_matrix(const Matrix& matrix, Transport& t, const RunOptions& o) {
   auto finish = [&] {
     res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   };
+  std::optional<Probe> probe;
   try {
-    if (!alive(m, t, w, 3)) {
+    const std::vector<Probe> probes = probes_for(m, t.client_address());
+    const ProbeChoice choice = choose_probe(probes, 3, [&](const Probe& p) { return w.probe(p); });
+    res.probe_note = choice.note();
+    probe = choice.probe;
+    if (!probes.empty() && !choice.heard) {
+      std::string names;
+      for (const Probe& p : probes) names += (names.empty() ? "" : ", ") + p.ident;
       res.unreachable = true;
-      res.unreachable_reason = t.describe() + ": no answer to the liveness probe (3 tries, " +
-                               std::to_string(m.probe_timeout_ms) + " ms each)";
+      res.unreachable_reason = t.describe() + ": no frame came back to the liveness probe " +
+                               names + " (3 tries each, " + std::to_string(m.probe_timeout_ms) +
+                               " ms each)";
       finish();
       return res;
     }
+    if (!probes.empty() && !probe)
+      res.probe_note += " (the device sends other frames: no liveness check between cases)";
   } catch (const TransportError& e) {
     res.unreachable = true;
     res.unreachable_reason = e.what();
@@ -186,7 +195,7 @@ RunResult run_matrix(const Matrix& matrix, Transport& t, const RunOptions& o) {
       cr.verdict = Verdict::error;
       cr.reason = dead;
     } else {
-      run_case(m, t, o, w, run, *c, cr, dead);
+      run_case(m, probe, o, w, run, *c, cr, dead);
     }
     cr.duration_us = t.now_us() - t0 - cr.start_us;
     w.begin_case(nullptr);

@@ -240,6 +240,7 @@ StepResult CaseRunner::run_readback(const Case& c, const Step& s, const std::str
                  : !swapped    ? "read-back reply does not swap the addresses"
                  : e.tolerated ? "only a tolerated alternative matched (readback)"
                                : "";
+    res.field_form = dev.starts_with(kFieldForm);
     return res;
   }
   res.reason = "no answer to the read-back within " + std::to_string(timeout) + " ms";

@@ -43,7 +43,7 @@ class Wire {
     while (n < o_.max_frames_per_step && next(d, r)) {
       ++n;
       const std::string_view id = r.frame.ident_view();
-      if (!is_push(m_.dialect, id)) ++late;  // pushes (GAC, GIC) are expected
+      if (!is_push(m_.dialect, id)) ++late;  // pushes (the stream table's) are expected
     }
     link_.clear();
     if (late > 0)
@@ -51,11 +51,11 @@ class Wire {
   }
 
   // The liveness probe, once, between drains.
-  bool probe(const Probe& p) {
+  ProbeHeard probe(const Probe& p) {
     drain();
-    const bool alive = probe_answered(link_, p, std::uint64_t{m_.probe_timeout_ms} * 1000);
-    if (alive) drain();
-    return alive;
+    const ProbeHeard heard = probe_once(link_, p, std::uint64_t{m_.probe_timeout_ms} * 1000);
+    if (heard == ProbeHeard::answer) drain();
+    return heard;
   }
 
  private:

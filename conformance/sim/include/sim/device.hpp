@@ -29,18 +29,23 @@ struct DeviceOptions {
   std::optional<top::Header> push_header;  // fixed (#TP) or variable (#tp)
   std::optional<top::Order> reply_order;   // replies to reads
   std::optional<top::Header> reply_header;
-  std::optional<bool> yaw_inverted;    // attitude reports -yaw of the command
-  std::optional<bool> pitch_inverted;  // the same for pitch
-  std::optional<bool> field_ptz;       // C13: PTZ codes the field says work
-  bool swap_addresses = true;          // false: the no-swap fault (client first)
-  bool tmp_quirk = false;              // answer TMP in the malformed #tpDU16wTMP form
+  // The attitude reports the opposite sign of every yaw (pitch) command
+  // (true), of none (false); unset: the model's sign traits, each for the
+  // identifiers its evidence names (top::Trait::idents).
+  std::optional<bool> yaw_inverted;
+  std::optional<bool> pitch_inverted;
+  std::optional<bool> field_ptz;  // C13: PTZ codes the field says work
+  bool swap_addresses = true;     // false: the no-swap fault (client first)
+  bool tmp_quirk = false;         // answer TMP in the malformed #tpDU16wTMP form
   // A speed command holds for this long unless refreshed; 0: the model's
   // (top::speed_hold_ms, from the speed_refresh trait).
   std::uint32_t speed_hold_ms = 0;
   // Push rate of Topotek GIC/GAC streams, which GIA/GAA only switch on.
   std::uint32_t topotek_stream_hz = 10;
-  // Topotek identity: the VSN and PA2 replies (empty: a real SIP's version
-  // 1.6.26.R.D, issue 28 log and PixEagle bench notes; model name SIP).
+  // Identity: SkyDroid's VER and MOD replies, Topotek's VSN and PA2 (empty:
+  // the model's defaults: SkyDroid V1.0.78, the form ArduPilot's SkyDroid
+  // driver parses, and the model's name, C12; Topotek a real SIP's version
+  // 1.6.26.R.D, issue 28 log and PixEagle bench notes, model name SIP).
   std::string version;
   std::string model_name;
   // Topotek tracking: false for a lens that cannot track (TRC state 4,
@@ -164,7 +169,11 @@ class Device {
   top::Model model_;
   top::Dialect dialect_;
   DeviceOptions opts_;
-  bool yaw_inverted_ = false, pitch_inverted_ = false, field_ptz_ = false;
+  // Whether a command of `ident` moves `axis` (0 yaw, 1 pitch) the other
+  // way from what the attitude reports.
+  bool inverted(std::size_t axis, std::string_view ident) const noexcept;
+  const top::Trait* sign_trait_[2] = {nullptr, nullptr};
+  bool field_ptz_ = false;
   Axis axes_[3];
   std::uint64_t now_us_ = 0;
   bool recording_ = false;

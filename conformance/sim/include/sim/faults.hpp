@@ -3,12 +3,13 @@
 //
 //   drop=P  delay=MS  duplicate=P  bad-checksum=P  header-case=P  no-swap
 //   lying-length=P  tmp-quirk  split  garbage=P  hang-on=IDENT|CLASS
+//   ignore=CLASS[+CLASS...] (repeatable)
 //
 // Firmware faults (sim/firmware_faults.cpp; what `topconf fuzz` hunts):
 //   crash-on=CLASS  hang-on=CLASS hang-s=S  slow-on=CLASS slow-ms=MS
 //   answer-corrupt
-// where CLASS is ident:GAY, len:N (data length) or byte:HH (a byte value
-// anywhere in the frame).
+// where CLASS is ident:GAY (or a bare GAY), len:N (data length) or byte:HH (a
+// byte value anywhere in the frame).
 #pragma once
 
 #include <cstdint>
@@ -51,6 +52,10 @@ struct FaultConfig {
   bool split = false;          // frames cut in two writes (streams only)
   double garbage = 0;          // probability junk bytes precede a frame
   std::string hang_on;         // after this identifier, the device goes silent
+  // ignore=: requests of these classes get no answer and change nothing, as
+  // from firmware that does not implement them (ArduPilot's simulators
+  // answer neither VER nor AWB); the device goes on answering the rest.
+  std::vector<InputClass> ignore;
   // Firmware faults (docs/TOPCONF-FUZZ.md).
   InputClass crash_on;           // silent until restarted (SIGHUP, restart())
   InputClass hang_class;         // hang-on=CLASS: silent for hang_s seconds
@@ -80,8 +85,8 @@ class FaultInjector {
   FaultInjector(FaultConfig cfg, std::uint64_t seed);
 
   const FaultConfig& config() const noexcept { return cfg_; }
-  // Sees every request frame; returns false once the device has hung (the
-  // request must then get no answer and streams stop).
+  // Sees every request frame; returns false when the request must get no
+  // answer: the device ignores its class, or has hung (streams stop).
   bool on_request(const top::Frame& request);
   // The firmware faults as well (sim/firmware_faults.cpp), at `now_us` on
   // the device's clock: false when the request gets no answer (hung,

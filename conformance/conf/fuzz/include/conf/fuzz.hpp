@@ -98,6 +98,9 @@ struct FuzzResult {
   std::vector<FuzzFailure> failures;
   bool unusable = false;  // the target did not answer the probe at the start
   std::string unusable_reason;
+  // "probe unanswered: VER": probes tried before the one the device answered
+  // (conf/liveness.hpp); empty when none.
+  std::string probe_note;
   bool aborted = false;  // the device stopped and could not be brought back
   std::string aborted_reason;
   double rate() const noexcept {

@@ -3,9 +3,11 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "conf/link.hpp"
+#include "top/probe.hpp"
 
 namespace topconf {
 
@@ -13,13 +15,28 @@ struct Probe {
   std::string bytes;  // the frame sent
   std::string ident;  // what an answer carries
   char control = 0;   // and with this control (0: any)
+  // A probe of the catalog (top/probe.hpp) is also answered by the frames
+  // it names, such as the push of the stream it switches on (GAA: GAC).
+  std::optional<top::LivenessProbe> liveness;
+  top::Dialect dialect = top::Dialect::unknown;
   // From a frame's bytes: its identifier, and its control when `match_control`.
   static Probe of(std::string bytes, bool match_control);
+  // Whether the device frame `f` answers the probe (an ERE does: the device
+  // is alive).
+  bool answered_by(const top::Frame& f) const;
+};
+
+// What came back to one probe.
+enum class ProbeHeard {
+  answer,  // a frame that answers it
+  other,   // frames, none of them an answer (the device is reachable)
+  nothing  // no frame at all
 };
 
 // Sends `p` once over `link` and waits up to `timeout_us` for its answer:
-// a frame of its identifier (and control), even damaged, or the error
-// reply. Pushes do not count: a hung device may still stream.
-bool probe_answered(FrameLink& link, const Probe& p, std::uint64_t timeout_us);
+// a frame of its identifier (and control) or one the catalog's probe names,
+// even damaged, or the error reply. Another frame, a push too, is no answer
+// (a hung device may still stream) but shows the device is reachable.
+ProbeHeard probe_once(FrameLink& link, const Probe& p, std::uint64_t timeout_us);
 
 }  // namespace topconf

@@ -65,6 +65,9 @@ struct RunResult {
   std::vector<CaseResult> cases;
   bool unreachable = false;
   std::string unreachable_reason;
+  // "probe unanswered: VER": liveness probes the device left unanswered
+  // although it is reachable (conf/liveness.hpp); empty when none.
+  std::string probe_note;
   std::string started_at;
   double seconds = 0;  // wall time of the run
   std::uint64_t seed = 0;

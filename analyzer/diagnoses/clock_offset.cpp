@@ -1,0 +1,38 @@
+#include "diagnoses/clock_offset.hpp"
+
+#include <cstdlib>
+
+namespace topdump::diag {
+
+void ClockWatch::frame(const top::FormSpec& form, std::string_view data, std::string_view ident,
+                       std::uint64_t n, std::int64_t ts, int dir) noexcept {
+  if (ts == kNoTime) return;
+  const std::optional<top::DateTime> t = top::date_time_of(form, data);
+  if (!t) return;
+  const std::int64_t cam = top::epoch_seconds(*t), cap = ts / 1'000'000;
+  if (std::llabs(cam - cap) <= kDay) return;
+  if (!c_.any()) {
+    camera_s_ = cam;
+    capture_s_ = cap;
+    top::DateTime next = *t;
+    ++next.month;  // the month a 0-based month meant
+    kind_ = std::llabs(top::epoch_seconds(next) - cap) <= kDay ? 1 : t->year <= 1970 ? 2 : 0;
+  }
+  c_.add(n, ts, ident, dir);
+}
+
+std::optional<Found> ClockWatch::verdict() const {
+  if (!c_.any()) return std::nullopt;
+  Found f{top::Diagnosis::clock_offset, c_, -1, {}};
+  const std::int64_t off = camera_s_ - capture_s_;
+  const std::string why = kind_ == 1   ? "exactly one month early: a 0-based month sent unconverted"
+                          : kind_ == 2 ? "1970: the camera's clock was never set"
+                                       : std::to_string(std::llabs(off) / kDay) + " days " +
+                                             (off < 0 ? "early" : "late");
+  f.figure = std::string(c_.ident, 3) + " camera time " + date_text(camera_s_) + ", capture " +
+             date_text(capture_s_) + ": " + why + " (frame " + std::to_string(c_.first_frame) +
+             (c_.frames > 1 ? ", " + std::to_string(c_.frames) + " frames" : "") + ")";
+  return f;
+}
+
+}  // namespace topdump::diag

@@ -1,0 +1,29 @@
+// clock-offset: the date a frame sets on the camera or reports from it
+// (the year/month/day fields of its form: Topotek TIM and UTC, SkyDroid
+// TIM; top::date_time_of) is more than a day off the capture's clock.
+// Named: exactly one month early (a 0-based month sent unconverted) and
+// 1970 (the camera's clock was never set). Whole hours are a time zone.
+#pragma once
+
+#include <optional>
+
+#include "diagnoses/case.hpp"
+
+namespace topdump::diag {
+
+class ClockWatch {
+ public:
+  // A frame whose form may carry a date, at capture time ts.
+  void frame(const top::FormSpec& form, std::string_view data, std::string_view ident,
+             std::uint64_t n, std::int64_t ts, int dir) noexcept;
+  std::optional<Found> verdict() const;
+
+  static constexpr std::int64_t kDay = 86400;
+
+ private:
+  Case c_;
+  std::int64_t camera_s_ = 0, capture_s_ = 0;  // of the first frame off
+  int kind_ = 0;                               // 1 one month early, 2 1970, 0 other
+};
+
+}  // namespace topdump::diag

@@ -1,0 +1,37 @@
+// stream-stalled: a push stream stops for more than 3 periods and resumes.
+// The period is the one asked for or, when the stream runs slower than
+// asked (stream-rate's case) or no rate was asked, the stream's own typical
+// interval, so that one cause gives one item: a steady 10 Hz stream asked
+// for at 50 Hz is off its rate, never stalled.
+#pragma once
+
+#include <optional>
+
+#include "diagnoses/case.hpp"
+
+namespace topdump::diag {
+
+class StallWatch {
+ public:
+  // A push of the stream, frame n at ts; asked_hz 0 when no rate was asked.
+  void push(std::uint64_t n, std::int64_t ts, double asked_hz) noexcept;
+  // The diagnosis for the stream `ident`, when it stalled.
+  std::optional<Found> verdict(std::string_view ident) const;
+  std::uint64_t first_push() const noexcept { return first_n_; }
+  // The time the stream spent stalled, microseconds (the stream's rate
+  // without it is what stream-rate judges when it stalled: one cause, one
+  // item).
+  std::int64_t stalled_us() const noexcept { return stalled_us_; }
+
+ private:
+  static constexpr int kPeriods = 3;
+  std::int64_t last_ = kNoTime;
+  double typical_us_ = 0;  // running mean of the intervals that were no stall
+  std::uint32_t intervals_ = 0;
+  std::uint64_t first_n_ = 0;
+  Case stalls_;  // one frame per stall: the push that resumed it
+  std::int64_t longest_us_ = 0, longest_at_ = kNoTime, stalled_us_ = 0;
+  double period_us_ = 0;  // the period the longest stall was judged by
+};
+
+}  // namespace topdump::diag

@@ -1,0 +1,53 @@
+// The detectors of one conversation, in one place: the session holds one
+// Watch per conversation (and a StallWatch and NeverStartedWatch per
+// stream, session/stats.hpp) and hands it the frames it already decoded;
+// at the conversation's end verdicts() yields what was found. Every
+// detector registered here has its row in top/diagnoses.hpp; its state is
+// a few numbers, whatever the capture's length.
+#pragma once
+
+#include "diagnoses/baud_mismatch.hpp"
+#include "diagnoses/clock_offset.hpp"
+#include "diagnoses/dropped_requests.hpp"
+#include "diagnoses/placeholder_identity.hpp"
+#include "diagnoses/tracking_refused.hpp"
+#include "top/catalog.hpp"
+#include "top/diagnoses.hpp"
+
+namespace topdump::diag {
+
+struct Watch {
+  // Whether a frame of `ident` can matter to a detector (the rules'
+  // prefilter, top::may_matter_to_diagnoses).
+  static bool watched(const char* ident) noexcept { return top::may_matter_to_diagnoses(ident); }
+
+  IdentityWatch identity;
+  TrackingWatch tracking;
+  ClockWatch clock;
+  DroppedWatch dropped;
+  BaudWatch baud;
+
+  // A frame of the device (reply or push), its data and form.
+  void device_frame(top::Dialect d, std::string_view ident, std::string_view data, std::uint64_t n,
+                    std::int64_t ts, int dir) {
+    identity.reply(d, ident, data, n, ts, dir);
+    tracking.reply(d, ident, data, n, ts, dir);
+  }
+  // Any frame with a form: a date set on or reported by the camera.
+  void dated_frame(const top::FormSpec* form, std::string_view ident, std::string_view data,
+                   std::uint64_t n, std::int64_t ts, int dir) noexcept {
+    if (form && top::carries_date(ident)) clock.frame(*form, data, ident, n, ts, dir);
+  }
+  // `frames`: whether the conversation carried any TOP frame.
+  template <class Out>
+  void verdicts(Out&& out, bool serial, bool frames) const {
+    if (auto f = identity.verdict()) out(std::move(*f));
+    if (auto f = clock.verdict()) out(std::move(*f));
+    if (auto f = tracking.verdict()) out(std::move(*f));
+    dropped.verdicts(out);
+    if (serial && !frames)
+      if (auto f = baud.verdict()) out(std::move(*f));
+  }
+};
+
+}  // namespace topdump::diag

@@ -1,0 +1,371 @@
+// The diagnoses (issue 29): the table and its device rules, each detector on
+// its own, and every bundled capture through the real topdump: each
+// diag-CODE capture shows exactly its diagnosis, in read, stats and report,
+// and no warning or error diagnosis fires on any other bundled capture.
+#include "top/diagnoses.hpp"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "diagnoses/baud_mismatch.hpp"
+#include "diagnoses/clock_offset.hpp"
+#include "diagnoses/stream_never_started.hpp"
+#include "diagnoses/stream_stalled.hpp"
+#include "diagnoses/watch.hpp"
+#include "findings/afindings.hpp"
+#include "test_support.hpp"
+#include "top/catalog.hpp"
+
+namespace topdump {
+namespace {
+
+using test::captures_dir;
+using test::run;
+using test::slurp;
+using test::topdump_bin;
+
+constexpr std::int64_t kT0 = 1714564800LL * 1'000'000;  // 2024-05-01T12:00:00Z
+
+// ---- the table ------------------------------------------------------------
+
+TEST(DiagnosesTable, CodesAreStableDistinctAndDocumented) {
+  const std::string doc = slurp(std::string(TOPKIT_SOURCE_DIR) + "/docs/DIAGNOSES.md");
+  std::set<std::string_view> seen;
+  for (std::size_t i = 0; i < top::diagnosis_count; ++i) {
+    const auto d = static_cast<top::Diagnosis>(i);
+    const std::string_view code = top::to_string(d);
+    EXPECT_TRUE(seen.insert(code).second) << code;
+    EXPECT_EQ(top::diagnosis_from_string(code), d);
+    EXPECT_FALSE(top::title(d).empty()) << code;
+    EXPECT_FALSE(top::evidence(d).empty()) << code;
+    EXPECT_FALSE(top::remedy(d).empty()) << code;
+    EXPECT_FALSE(top::finding_code_from_string(code)) << code << " is a frame finding's code";
+    // the analyzer's code of the same name is this diagnosis
+    const std::optional<ACode> a = acode_from_string(code);
+    ASSERT_TRUE(a) << code;
+    EXPECT_EQ(*a, acode_of(d));
+    EXPECT_EQ(diagnosis_of(*a), d);
+    EXPECT_EQ(default_severity(*a), top::severity(d));
+    EXPECT_NE(doc.find("| `" + std::string(code) + "` |"), std::string::npos) << code;
+  }
+  EXPECT_FALSE(diagnosis_of(ACode::unanswered));
+  EXPECT_EQ(top::diagnosis_from_string("unanswered"), std::nullopt);
+}
+
+// ---- the device rules -----------------------------------------------------
+
+TEST(DiagnosesRules, PlaceholderIdentities) {
+  for (const char* v :
+       {"000000000", "0.0.0", "V0.0.0", "123", "1.2.3", "Unknown", "UNKNOWN", "", "   "})
+    EXPECT_TRUE(top::is_placeholder_identity(v)) << v;
+  for (const char* v : {"SIP-T1", "1.0.0", "SIM_TP", "M3326", "V1.0.0", "C13", "010502", "1230"})
+    EXPECT_FALSE(top::is_placeholder_identity(v)) << v;
+}
+
+TEST(DiagnosesRules, TrackingRefusedIsState4Only) {
+  EXPECT_TRUE(top::refuses_tracking(top::Dialect::topotek, "TRC", "04"));
+  EXPECT_FALSE(top::refuses_tracking(top::Dialect::topotek, "TRC", "03"));  // temporarily lost
+  EXPECT_FALSE(top::refuses_tracking(top::Dialect::topotek, "TRC", "02"));
+  EXPECT_FALSE(top::refuses_tracking(top::Dialect::skydroid, "TRC", "04"));
+}
+
+// carries_date() names every identifier whose catalog form has a date.
+TEST(DiagnosesRules, CarriesDateMatchesTheCatalog) {
+  for (top::Dialect d : {top::Dialect::skydroid, top::Dialect::topotek})
+    for (const top::CommandSpec& c : top::commands(d))
+      for (const top::FormSpec& f : c.forms) {
+        bool year = false;
+        for (const top::FieldSpec& x : f.fields) year |= x.name == "year";
+        if (year) {
+          EXPECT_TRUE(top::carries_date(c.ident)) << c.ident;
+        }
+      }
+}
+
+// The session's prefilter lets through every frame a detector's rule
+// could take.
+TEST(DiagnosesRules, WatchPrefilterCoversTheRules) {
+  for (top::Dialect d : {top::Dialect::skydroid, top::Dialect::topotek})
+    for (const top::CommandSpec& c : top::commands(d)) {
+      const std::string id(c.ident);
+      const bool ruled = top::is_identity_reply(d, id) || top::carries_date(id) ||
+                         top::refuses_tracking(d, id, "04");
+      if (ruled) {
+        EXPECT_TRUE(diag::Watch::watched(id.c_str())) << id;
+      }
+    }
+}
+
+const top::FormSpec& date_form(top::Dialect d, std::string_view id, std::size_t len) {
+  const top::CommandSpec* c = top::find_command(d, id);
+  EXPECT_TRUE(c) << id;
+  for (const top::FormSpec& f : c->forms)
+    if (f.min_length <= len && len <= f.max_length) return f;
+  ADD_FAILURE() << id << " has no form of length " << len;
+  return c->forms.front();
+}
+
+TEST(DiagnosesRules, DatesReadByTheCatalogsFields) {
+  // Topotek TIM: YYYYMMDDhhmmss; UTC: hhmmssDDMMYY; SkyDroid TIM (4.6
+  // example): hhmmss.ssDDMMYY, 142832.00031218 = 2018-12-03 14:28:32
+  auto t = top::date_time_of(date_form(top::Dialect::topotek, "TIM", 14), "20261126093005");
+  ASSERT_TRUE(t);
+  EXPECT_EQ(t->year, 2026);
+  EXPECT_EQ(t->month, 11);
+  EXPECT_EQ(t->day, 26);
+  EXPECT_EQ(t->second, 5);
+  t = top::date_time_of(date_form(top::Dialect::topotek, "UTC", 12), "093005261126");
+  ASSERT_TRUE(t);
+  EXPECT_EQ(t->year, 2026);
+  EXPECT_EQ(t->month, 11);
+  EXPECT_EQ(t->hour, 9);
+  t = top::date_time_of(date_form(top::Dialect::skydroid, "TIM", 15), "142832.00031218");
+  ASSERT_TRUE(t);
+  EXPECT_EQ(top::epoch_seconds(*t), 1543847312);  // 2018-12-03T14:28:32Z
+  EXPECT_FALSE(top::date_time_of(date_form(top::Dialect::topotek, "TIM", 14), "2026112609300x"));
+  // month 0 is the December before
+  EXPECT_EQ(top::epoch_seconds({2026, 0, 1, 0, 0, 0}), top::epoch_seconds({2025, 12, 1, 0, 0, 0}));
+  EXPECT_EQ(top::epoch_seconds({1970, 1, 1, 0, 0, 0}), 0);
+}
+
+// ---- the detectors on their own ----------------------------------------------
+
+// A steady 10 Hz stream asked for at 50 Hz is off its rate (stream-rate),
+// never stalled: one cause, one item (issue 29, "Bugs found on the way").
+TEST(DiagnosesStall, SlowSteadyStreamIsNoStall) {
+  diag::StallWatch w;
+  for (int i = 0; i < 300; ++i) w.push(static_cast<std::uint64_t>(i + 1), kT0 + i * 100'000, 50);
+  EXPECT_FALSE(w.verdict("GAC"));
+}
+
+TEST(DiagnosesStall, GapOfMoreThanThreePeriodsThatResumes) {
+  diag::StallWatch w;
+  std::uint64_t n = 0;
+  for (int i = 0; i < 30; ++i) w.push(++n, kT0 + i * 100'000, 10);
+  w.push(++n, kT0 + 29 * 100'000 + 2'000'000, 10);  // 2 s later
+  for (int i = 1; i < 10; ++i) w.push(++n, kT0 + 49 * 100'000 + i * 100'000, 10);
+  const auto f = w.verdict("GAC");
+  ASSERT_TRUE(f);
+  EXPECT_EQ(f->code, top::Diagnosis::stream_stalled);
+  EXPECT_EQ(f->c.frames, 1u);
+  EXPECT_EQ(f->c.first_frame, 31u);
+  EXPECT_EQ(f->c.first_ts, kT0 + 29 * 100'000);
+  EXPECT_NE(f->figure.find("2.000 s"), std::string::npos) << f->figure;
+  EXPECT_EQ(w.stalled_us(), 2'000'000);
+}
+
+TEST(DiagnosesStall, JitterWithinThreePeriodsIsNoStall) {
+  diag::StallWatch w;
+  std::int64_t t = kT0;
+  for (int i = 0; i < 100; ++i) {
+    t += (i % 5 == 0) ? 250'000 : 100'000;  // a late push now and then
+    w.push(static_cast<std::uint64_t>(i + 1), t, 10);
+  }
+  EXPECT_FALSE(w.verdict("GAC"));
+}
+
+TEST(DiagnosesNeverStarted, NeedsAnAnsweredSwitchAndTime) {
+  diag::NeverStartedWatch w;
+  w.asked(1, kT0, "GAA");
+  EXPECT_FALSE(w.verdict("GAC", 0, 10, kT0 + 5'000'000));  // never answered
+  w.answered();
+  EXPECT_FALSE(w.verdict("GAC", 0, 10, kT0 + 500'000));    // too soon to tell
+  EXPECT_FALSE(w.verdict("GAC", 3, 10, kT0 + 5'000'000));  // it came
+  const auto f = w.verdict("GAC", 0, 10, kT0 + 5'000'000);
+  ASSERT_TRUE(f);
+  EXPECT_EQ(f->c.first_frame, 1u);
+}
+
+TEST(DiagnosesClock, OneMonthEarly1970AndTimeZones) {
+  const top::FormSpec& tim = date_form(top::Dialect::topotek, "TIM", 14);
+  {
+    diag::ClockWatch w;  // Beijing time: 8 h ahead is no offset
+    w.frame(tim, "20240501200000", "TIM", 1, kT0, 0);
+    EXPECT_FALSE(w.verdict());
+  }
+  {
+    diag::ClockWatch w;
+    w.frame(tim, "20240401120000", "TIM", 7, kT0, 0);
+    const auto f = w.verdict();
+    ASSERT_TRUE(f);
+    EXPECT_EQ(f->c.first_frame, 7u);
+    EXPECT_NE(f->figure.find("exactly one month"), std::string::npos) << f->figure;
+  }
+  {
+    diag::ClockWatch w;
+    w.frame(tim, "19700101000512", "TIM", 3, kT0, 1);
+    const auto f = w.verdict();
+    ASSERT_TRUE(f);
+    EXPECT_NE(f->figure.find("1970"), std::string::npos) << f->figure;
+  }
+  {
+    diag::ClockWatch w;  // a serial log without times judges nothing
+    w.frame(tim, "19700101000512", "TIM", 3, kNoTime, 1);
+    EXPECT_FALSE(w.verdict());
+  }
+}
+
+TEST(DiagnosesBaud, TextNoiseIsNoBaudMismatch) {
+  diag::BaudWatch text;
+  text.garbage(200, "$GPGGA,123519,4807.038,N,01131.0", 1, kNoTime);
+  EXPECT_FALSE(text.verdict());
+  diag::BaudWatch binary;
+  binary.garbage(200, "\xE8\xF7\x99\x9D \x08\xBD[\x08jF\xF9?\xBE\xCE\x08", 1, kNoTime);
+  EXPECT_TRUE(binary.verdict());
+}
+
+// ---- every bundled capture through topdump ---------------------------------
+
+// The warning and error diagnoses `topdump read --json` reports, by code,
+// with the exit status.
+struct Seen {
+  std::map<std::string, nlohmann::json> diagnoses;
+  int status = 0;
+};
+
+Seen read_json(const std::string& file, const std::string& extra = "") {
+  std::string out;
+  Seen s;
+  s.status = run("cd '" + captures_dir() + "' && '" + topdump_bin() + "' read --json " + extra +
+                     " '" + file + "' 2>/dev/null",
+                 out);
+  std::istringstream in(out);
+  std::string line;
+  while (std::getline(in, line)) {
+    const auto j = nlohmann::json::parse(line);
+    if (j["type"] != "finding") continue;
+    const std::string code = j["code"];
+    if (top::diagnosis_from_string(code) && j["severity"] != "info") s.diagnoses[code] = j;
+  }
+  return s;
+}
+
+// Each diag-CODE capture: exactly its diagnosis, with its case.
+TEST(DiagnosesCaptures, EachFiresOnItsCapture) {
+  const std::map<std::string, std::string> made = {
+      {"diag-stream-stalled.pcap", "stream-stalled"},
+      {"diag-stream-never-started.pcap", "stream-never-started"},
+      {"diag-placeholder-identity.pcap", "placeholder-identity"},
+      {"diag-tracking-refused.pcap", "tracking-refused"},
+      {"diag-clock-offset.pcap", "clock-offset"},
+      {"diag-reply-interface.pcap", "reply-interface"},
+      {"diag-silent-device.pcap", "silent-device"},
+      {"diag-dropped-bad-checksum.log", "dropped-bad-checksum"},
+      {"diag-dropped-checksum-case.log", "dropped-checksum-case"},
+      {"diag-baud-mismatch.bin", "baud-mismatch"},
+  };
+  for (const auto& [file, code] : made) {
+    const Seen s = read_json(file);
+    ASSERT_EQ(s.diagnoses.size(), 1u) << file;
+    ASSERT_TRUE(s.diagnoses.count(code)) << file << ": " << s.diagnoses.begin()->first;
+    const auto& j = s.diagnoses.at(code);
+    EXPECT_EQ(s.status, 1) << file;
+    EXPECT_GE(j["count"].get<int>(), 1) << file;
+    EXPECT_FALSE(j["evidence"].get<std::string>().empty()) << file;
+    EXPECT_FALSE(j["remedy"].get<std::string>().empty()) << file;
+    if (code != "baud-mismatch") {
+      EXPECT_TRUE(j["frame"].is_number()) << file;
+      EXPECT_TRUE(j["conversation"].is_number()) << file;
+    }
+    // --mute CODE takes it out, and with it the exit status it caused
+    const Seen muted = read_json(file, "--mute " + code);
+    EXPECT_EQ(muted.diagnoses.count(code), 0u) << file;
+  }
+}
+
+// The figures the issue asks for, measured.
+// The finding selection applies to diagnoses: identifier and time.
+TEST(DiagnosesCaptures, SelectedByIdentAndTime) {
+  EXPECT_EQ(read_json("diag-tracking-refused.pcap", "--ident TRC").diagnoses.size(), 1u);
+  const Seen other = read_json("diag-tracking-refused.pcap", "--ident VSN");
+  EXPECT_TRUE(other.diagnoses.empty());
+  EXPECT_EQ(other.status, 0);
+  // the stall began at 12:00:03
+  EXPECT_EQ(read_json("diag-stream-stalled.pcap", "--to 2024-05-01T12:00:02Z").diagnoses.size(),
+            0u);
+  EXPECT_EQ(read_json("diag-stream-stalled.pcap", "--from 2024-05-01T12:00:02Z").diagnoses.size(),
+            1u);
+}
+
+TEST(DiagnosesCaptures, CarryTheirMeasuredFigure) {
+  auto msg = [](const char* file, const char* code) {
+    const Seen s = read_json(file);
+    return s.diagnoses.count(code) ? s.diagnoses.at(code)["message"].get<std::string>() : "";
+  };
+  EXPECT_NE(msg("diag-clock-offset.pcap", "clock-offset")
+                .find("camera time 2024-04-01 20:00:00, capture 2024-05-01 12:00:00: exactly one "
+                      "month early"),
+            std::string::npos);
+  EXPECT_NE(msg("diag-placeholder-identity.pcap", "placeholder-identity").find("\"000000000\""),
+            std::string::npos);
+  EXPECT_NE(msg("diag-stream-stalled.pcap", "stream-stalled").find("longest 2.100 s"),
+            std::string::npos);
+  EXPECT_NE(msg("diag-reply-interface.pcap", "reply-interface").find("5 requests"),
+            std::string::npos);
+}
+
+// No warning or error diagnosis on any other bundled capture, except the
+// ones they were made to show before diagnoses existed (sample.pcap's
+// dropped bad-checksum GAY; ipv6.pcap's and the socat logs' stream-rate).
+TEST(DiagnosesCaptures, SilentOnEveryOtherCapture) {
+  const std::map<std::string, std::set<std::string>> known = {
+      {"sample.pcap", {"dropped-bad-checksum"}},
+      {"ipv6.pcap", {"stream-rate"}},
+      {"serial-socat-v.log", {"stream-rate"}},
+      {"serial-socat-xv.log", {"stream-rate"}},
+  };
+  std::string listing;
+  run("cd '" + captures_dir() + "' && ls *.pcap *.pcapng *.bin *.log *.csv", listing);
+  std::istringstream in(listing);
+  std::string file;
+  int checked = 0;
+  while (std::getline(in, file)) {
+    if (file.rfind("diag-", 0) == 0 && file.rfind("diag-healthy-", 0) != 0) continue;
+    const Seen s = read_json(file);
+    std::set<std::string> codes;
+    for (const auto& [c, j] : s.diagnoses) codes.insert(c);
+    const auto k = known.find(file);
+    EXPECT_EQ(codes, k == known.end() ? std::set<std::string>{} : k->second) << file;
+    ++checked;
+  }
+  EXPECT_GE(checked, 19);
+}
+
+TEST(DiagnosesCaptures, CountedByStatsAndItemsOfTheReport) {
+  std::string out;
+  run("cd '" + captures_dir() + "' && '" + topdump_bin() +
+          "' stats --json diag-tracking-refused.pcap",
+      out);
+  const auto st = nlohmann::json::parse(out);
+  EXPECT_EQ(st["per_finding"]["tracking-refused"], 1) << out;
+  run("cd '" + captures_dir() + "' && '" + topdump_bin() + "' stats diag-stream-stalled.pcap", out);
+  EXPECT_NE(out.find("stream-stalled 1"), std::string::npos) << out;
+
+  const int rc = run("cd '" + captures_dir() + "' && '" + topdump_bin() +
+                         "' report --json -o - diag-stream-stalled.pcap",
+                     out);
+  EXPECT_EQ(rc, 1);
+  const auto r = nlohmann::json::parse(out);
+  int stalled = 0, gaps = 0;
+  for (const auto& w : r["overview"]["what_went_wrong"]) {
+    if (w["code"] == "stream-stalled") {
+      ++stalled;
+      EXPECT_EQ(w["frame"], 43);
+      EXPECT_EQ(w["evidence"], std::string(top::evidence(top::Diagnosis::stream_stalled)));
+      EXPECT_EQ(w["remedy"], std::string(top::remedy(top::Diagnosis::stream_stalled)));
+    }
+    // one cause, one item: no stream-rate for the stall, no second gap item
+    EXPECT_NE(w["code"], "stream-rate") << w;
+    gaps += w["text"].get<std::string>().find("push stopped") != std::string::npos;
+  }
+  EXPECT_EQ(stalled, 1) << out;
+  EXPECT_EQ(gaps, 1) << out;
+}
+
+}  // namespace
+}  // namespace topdump

@@ -1,0 +1,197 @@
+// A client that does what ArduPilot's SkyDroid mount driver does
+// (AP_Mount_SkyDroid, PR #34155, https://github.com/ArduPilot/ardupilot/pull/34155),
+// written from the facts of docs/sources/ardupilot.md section 2, not from
+// its code: what it sends and when, and how it reads the replies.
+//
+// Sends: GSY and GSP every update (about 50 Hz) at 0.5 deg/s per LSB, in
+// angle mode closing its own loop on the GAC attitude (kP 1 deg/s per deg,
+// saturating at 63.5 deg/s, dead zone 0.05 deg; GSY carries the negated yaw
+// rate: "a positive GSY value moves yaw LEFT"), both 00 while not healthy;
+// PTZ 06 (follow) first; FAI (14 data chars, #tp) at 10 Hz; a 1 Hz round
+// robin of ten 100 ms steps: 0 VER (until parsed), 1 TIM, 2 GAA 32 (50 Hz),
+// 3 MOD (until parsed), 4 SDC, 6 FAE. Camera commands on request.
+// Parses: GAC (>= 12 data chars: yaw, pitch up positive, roll, int16 in
+// 0.01 deg), REC (data char 1), SDC (>= 10 chars, all 0: no card), VER
+// ("V1.0.78"), MOD (the model name).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "driver_harness.hpp"
+#include "top/top.hpp"
+
+class SkyDroidDriver : public DriverClient {
+ public:
+  // Targets of the angle loop (deg, pitch up positive).
+  double target_yaw = 0, target_pitch = -30;
+  // A camera command to send at a time after the start.
+  struct Timed {
+    std::uint64_t at_us;
+    char dst;
+    std::string ident, data;
+    bool sent = false;
+  };
+  std::vector<Timed> camera;
+
+  // What the driver learnt.
+  struct Attitude {
+    std::uint64_t t_us;
+    double yaw, pitch, roll;
+  };
+  std::vector<Attitude> attitude;  // from full GAC frames
+  std::string version;             // "1.0.78" from "V1.0.78"
+  std::string model;
+  std::optional<bool> sd_present;
+  std::vector<bool> recording;      // every REC state parsed, in order
+  std::vector<std::string> errors;  // ERE frames received, as text
+  std::uint64_t start_us = 0;
+  int fai_sent = 0;
+  // Updates since the first attitude, and those at which it was healthy.
+  int ticks_since_attitude = 0, healthy_ticks = 0;
+
+  std::uint64_t tick(std::uint64_t now_us, std::vector<std::string>& out) override {
+    if (start_us == 0) start_us = now_us;
+    if (!attitude.empty()) {
+      ++ticks_since_attitude;
+      if (healthy(now_us)) ++healthy_ticks;
+    }
+    const std::uint64_t t = now_us - start_us;
+    if (!mode_sent_) {
+      out.push_back(frame(top::Header::fixed, 'G', 'w', "PTZ", "06"));  // follow
+      mode_sent_ = true;
+    }
+    rates(now_us, out);
+    if (now_us >= next_10hz_) {
+      next_10hz_ = now_us + 100000;
+      out.push_back(frame(top::Header::variable, 'G', 'w', "FAI", "00000000000000"));
+      ++fai_sent;
+      step_ = (step_ + 1) % 10;
+      switch (step_) {
+        case 0:
+          if (version.empty()) out.push_back(frame(top::Header::fixed, 'D', 'r', "VER", "00"));
+          break;
+        case 1:
+          // 14:30:05.00 on 26 Nov 2026, the month as the driver sends it (0-based).
+          out.push_back(frame(top::Header::variable, 'D', 'w', "TIM", "143005.00261026"));
+          break;
+        case 2:
+          out.push_back(frame(top::Header::fixed, 'G', 'w', "GAA", "32"));
+          break;
+        case 3:
+          if (model.empty()) out.push_back(frame(top::Header::fixed, 'D', 'r', "MOD", "00"));
+          break;
+        case 4:
+          out.push_back(frame(top::Header::fixed, 'D', 'r', "SDC", "00"));
+          break;
+        case 6:
+          out.push_back(frame(top::Header::fixed, 'G', 'w', "FAE", "01"));
+          break;
+        default:
+          break;
+      }
+    }
+    for (Timed& c : camera)
+      if (!c.sent && t >= c.at_us) {
+        out.push_back(frame(top::Header::fixed, c.dst, 'w', c.ident, c.data));
+        c.sent = true;
+      }
+    return now_us + 20000;  // AP_Mount's 50 Hz update
+  }
+
+  void on_frame(const top::Frame& f, std::uint64_t now_us) override {
+    if (!f.ok()) return;
+    const std::string_view id = f.ident_view();
+    const std::string_view d = f.data();
+    if (id == "ERE") {
+      errors.emplace_back(f.raw);
+    } else if (id == "GAC" && d.size() >= 12) {
+      int v[3];
+      for (int i = 0; i < 3; ++i) {
+        const auto x = hex16(d.substr(static_cast<std::size_t>(i) * 4, 4));
+        if (!x) return;
+        v[i] = *x;
+      }
+      double yaw = v[0] / 100.0;
+      while (yaw > 180) yaw -= 360;
+      while (yaw < -180) yaw += 360;
+      attitude.push_back({now_us, yaw, v[1] / 100.0, v[2] / 100.0});
+    } else if (id == "REC" && d.size() >= 2) {
+      recording.push_back(d[1] == '1');
+    } else if (id == "SDC" && d.size() >= 10) {
+      sd_present = d.substr(0, 10) != "0000000000";
+    } else if (id == "VER" && !d.empty() && d[0] == 'V') {
+      version = std::string(d.substr(1));
+    } else if (id == "MOD" && !d.empty()) {
+      model = std::string(d.substr(0, std::min<std::size_t>(d.size(), 7)));
+    }
+  }
+
+  // Healthy: a full GAC within the last second.
+  bool healthy(std::uint64_t now_us) const {
+    return !attitude.empty() && now_us - attitude.back().t_us <= 1000000;
+  }
+
+ private:
+  static std::optional<int> hex16(std::string_view s) {
+    unsigned v = 0;
+    for (char c : s) {
+      const int x = top::hex_value(c);
+      if (x < 0) return std::nullopt;
+      v = v * 16 + static_cast<unsigned>(x);
+    }
+    return static_cast<int>(static_cast<std::int16_t>(static_cast<std::uint16_t>(v)));
+  }
+
+  static std::string byte_hex(int v) {
+    char b[4];
+    std::snprintf(b, sizeof b, "%02X", static_cast<unsigned>(static_cast<std::uint8_t>(v)));
+    return b;
+  }
+
+  // A rate in deg/s as the signed LSB count at 0.5 deg/s, clamped to +-127.
+  static int lsb(double rate) {
+    return static_cast<int>(std::clamp(std::lround(rate / 0.5), -127L, 127L));
+  }
+
+  // The angle loop's rate for an error in deg: kP 1, +-63.5 deg/s, dead zone.
+  static double loop_rate(double error) {
+    if (std::fabs(error) < 0.05) return 0;
+    return std::clamp(error * 1.0, -63.5, 63.5);
+  }
+
+  void rates(std::uint64_t now_us, std::vector<std::string>& out) {
+    int gsy = 0, gsp = 0;
+    if (healthy(now_us)) {
+      const Attitude& a = attitude.back();
+      double ey = target_yaw - a.yaw;
+      while (ey > 180) ey -= 360;
+      while (ey < -180) ey += 360;
+      gsy = -lsb(loop_rate(ey));  // +GSY turns yaw left
+      gsp = lsb(loop_rate(target_pitch - a.pitch));
+    }
+    out.push_back(frame(top::Header::fixed, 'G', 'w', "GSY", byte_hex(gsy)));
+    out.push_back(frame(top::Header::fixed, 'G', 'w', "GSP", byte_hex(gsp)));
+  }
+
+  std::string frame(top::Header h, char dst, char control, std::string_view ident,
+                    std::string_view data) const {
+    top::BuildSpec b;
+    b.header = h;
+    b.src = client;
+    b.dst = dst;
+    b.control = control;
+    b.ident = ident;
+    b.data = data;
+    return top::build_frame(b);
+  }
+
+  bool mode_sent_ = false;
+  std::uint64_t next_10hz_ = 0;
+  int step_ = 0;
+};
