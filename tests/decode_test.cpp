@@ -297,13 +297,13 @@ TEST(Decode, SameLengthFormsAreChosenByContent) {
   ASSERT_NE(echo.form, nullptr);
   EXPECT_TRUE(echo.findings.empty()) << echo.findings.front().message;
   EXPECT_NEAR(field(echo, "latitude").value, 22.5461, 1e-4);
-  const Decoded out = dec(with_checksum("#tpDUBwLONW 74.00600"), Dialect::topotek, Model::sip);
+  const Decoded out = dec(with_checksum("#tpDUBwLONW 74.006000"), Dialect::topotek, Model::sip);
   ASSERT_NE(out.form, nullptr);
   EXPECT_TRUE(out.findings.empty()) << out.findings.front().message;
   EXPECT_EQ(field(out, "hemisphere").text, "W");
   EXPECT_NEAR(field(out, "longitude").value, 74.006, 1e-6);
   // Without detail (the shape cache's path) the same form and no finding.
-  top::ParseResult r = top::parse_exact(with_checksum("#tpDUBwLONW 74.00600"));
+  top::ParseResult r = top::parse_exact(with_checksum("#tpDUBwLONW 74.006000"));
   top::DecodeCache cache;
   for (int i = 0; i < 2; ++i) {
     const Decoded fast = decode(
