@@ -2086,7 +2086,7 @@ CATALOG.topotek["LON"] = {
       fields = {
         { name = "longitude", kind = "nmea", width = 11, scale = 1, mul = 1, dec = 0, unit = "deg", abbrev = "top.LON.longitude" },
       } },
-    { control = "w", role = "response", min_length = 11, max_length = 11, note = "the write's echo: the field's answer, taken before the 5.8.7 layout of the same length (a frame's form is chosen by its length, not its content)",
+    { control = "w", role = "response", min_length = 11, max_length = 11, note = "the write's echo: the field's answer; the 5.8.7 layout has the same length, the decoder takes the first of the two whose fields validate",
       fields = {
         { name = "longitude", kind = "nmea", width = 11, scale = 1, mul = 1, dec = 0, unit = "deg", abbrev = "top.LON.longitude" },
       } },
@@ -2105,7 +2105,7 @@ CATALOG.topotek["LAT"] = {
       fields = {
         { name = "latitude", kind = "nmea", width = 10, scale = 1, mul = 1, dec = 0, unit = "deg", abbrev = "top.LAT.latitude" },
       } },
-    { control = "w", role = "response", min_length = 10, max_length = 10, note = "the write's echo: the field's answer, taken before the 5.8.7 layout of the same length (a frame's form is chosen by its length, not its content)",
+    { control = "w", role = "response", min_length = 10, max_length = 10, note = "the write's echo: the field's answer; the 5.8.7 layout has the same length, the decoder takes the first of the two whose fields validate",
       fields = {
         { name = "latitude", kind = "nmea", width = 10, scale = 1, mul = 1, dec = 0, unit = "deg", abbrev = "top.LAT.latitude" },
       } },
