@@ -314,6 +314,19 @@ TEST(Decode, DocumentOutputIsNotTakenForTheFieldsEcho) {
     const Decoded w = dec(with_checksum(raw), Dialect::topotek, Model::sip);
     EXPECT_TRUE(toptest::has_code(w.findings, FindingCode::bad_field)) << raw;
   }
+  // 5 digits are the real unit's LRF and also fit the document's
+  // X1X2X3X4X5.X6 (3-7 chars): the catalog's order takes the field's form,
+  // document_first the document's; neither with a finding.
+  const top::ParseResult lrf = top::parse_exact(with_checksum("#tpMU5wLRF50000"));
+  for (bool document_first : {false, true}) {
+    const Decoded d = decode(lrf.frame, {.dialect = Dialect::topotek,
+                                         .model = Model::sip,
+                                         .role = Role::response,
+                                         .document_first = document_first});
+    ASSERT_NE(d.form, nullptr);
+    EXPECT_TRUE(d.findings.empty()) << d.findings.front().message;
+    EXPECT_EQ(d.form->from_field(), !document_first);
+  }
   for (const char* id : {"LAT", "LON"}) {
     const top::CommandSpec* c = top::find_command(Dialect::topotek, id);
     ASSERT_NE(c, nullptr);

@@ -395,10 +395,11 @@ void check_fields(Ctx& ctx, const FormSpec& form, const Frame& frame) {
 }
 
 // Among the forms of the frame's shape (control, role, length) from `form`
-// on, the first whose fields validate: LAT/LON's field echo and 5.8.7 output
-// share a length. `form` when it is alone in its shape or none validates.
+// on, the first whose fields validate (a document's first with
+// `document_first`): LAT/LON's field echo and 5.8.7 output share a length.
+// `form` when it is alone in its shape or none validates.
 const FormSpec* by_content(const Frame& frame, const CommandSpec& cmd, const FormSpec* form,
-                           Role role) {
+                           Role role, bool document_first) {
   const std::size_t len = frame.data_length;
   const std::span<const FormSpec> rest(form, cmd.forms.data() + cmd.forms.size());
   auto same = [&](const FormSpec& f) {
@@ -407,13 +408,14 @@ const FormSpec* by_content(const Frame& frame, const CommandSpec& cmd, const For
   };
   if (std::count_if(rest.begin(), rest.end(), same) < 2) return form;
   Decoded trial;
-  for (const FormSpec& f : rest) {
-    if (!same(f)) continue;
-    trial.findings.clear();
-    Ctx t{frame, trial, false};
-    check_fields(t, f, frame);
-    if (trial.findings.empty()) return &f;
-  }
+  for (int pass = document_first ? 0 : 1; pass < 2; ++pass)
+    for (const FormSpec& f : rest) {
+      if (!same(f) || (pass == 0 && f.from_field())) continue;
+      trial.findings.clear();
+      Ctx t{frame, trial, false};
+      check_fields(t, f, frame);
+      if (trial.findings.empty()) return &f;
+    }
   return form;
 }
 
@@ -445,7 +447,8 @@ static void decode_frame(const Frame& frame, const DecodeOptions& opts, Decoded&
   }
   if (!out.form) return;
   const FormSpec* shaped = out.form;
-  const FormSpec* form = out.form = by_content(frame, *out.command, shaped, out.role);
+  const FormSpec* form = out.form =
+      by_content(frame, *out.command, shaped, out.role, opts.document_first);
   if (form != shaped) plan = nullptr;  // the plan is the shape's form's
 
   std::string_view data = frame.data();

@@ -24,6 +24,7 @@ std::string field_reply_form(const Matrix& m, const top::Frame& f) {
   o.model = m.model;
   o.role = top::Role::response;
   o.detail = false;
+  o.document_first = true;  // a reply the document allows is no field form
   const top::Decoded dec = top::decode(f, o);
   if (!dec.form || !dec.form->from_field()) return {};
   return std::string(kFieldForm) + std::string(dec.form->evidence);

@@ -22,7 +22,8 @@ const top::DeviceForm* recorded_departure(const Matrix& m, const top::Frame& f);
 
 // kFieldForm and the evidence when the device frame `f` decodes as a reply
 // in a form only the field gives (top/catalog.hpp from_field: a LAT/LON
-// write's echo, the LRF's 5 digits, GIA answering GIC), else "".
+// write's echo, GIA answering GIC) and in none of the document's (the LRF's
+// 5 digits fit both), else "".
 std::string field_reply_form(const Matrix& m, const top::Frame& f);
 // kFieldForm and the evidence when the pushes of `ident` are a stream only
 // the field gives (top/device.hpp: Topotek GIA 01 pushing GIA), else "".
