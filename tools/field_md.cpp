@@ -40,7 +40,9 @@ int main() {
        "document's examples, then its rules; `--profile document` follows the\n"
        "examples, then the rules. `topsim --describe --model M` prints what a\n"
        "model does under a profile. topdump names the recorded form a device\n"
-       "frame matches in its `unswapped-addresses` and `tp-length` findings, and\n"
+       "frame matches in its `unswapped-addresses` and `tp-length` findings (a\n"
+       "push in the order its recorded form has, as the C12's `#tpUGCrGAC`, is\n"
+       "that device's own form and gets no `unswapped-addresses`), and\n"
        "`unsupported-on-model` is a warning naming the evidence when the field\n"
        "says the firmware takes a command the document does not list.\n\n";
   o += "## Streams\n\nWhich write turns on which frames (topdump counts them toward the "

@@ -73,10 +73,7 @@ int ReadCommand::run(const Common& c) const {
     return 2;
   }
   a.finish();
-  if (a.frames_seen() == 0)
-    a.source_note(kNoTime, ACode::no_frames,
-                  (files.size() == 1 ? name : name + ", " + files[1]) + ": no TOP frame found", 0,
-                  0);
+  a.note_if_no_frames((files.size() == 1 ? name : name + ", " + files[1]) + ": no TOP frame found");
   out.flush();
   if (out.failed()) return 2;  // run_selected names the write error
   if (cut && !cut->finish(err)) {

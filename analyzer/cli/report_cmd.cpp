@@ -123,7 +123,7 @@ int ReportCommand::run() {
     }
     a.finish();
   }
-  if (a.frames_seen() == 0) a.source_note(kNoTime, ACode::no_frames, "no TOP frame found", 0, 0);
+  a.note_if_no_frames("no TOP frame found");
   report::Options ropts;
   ropts.tolerance_deg = tolerance_;
   ropts.files = files_;

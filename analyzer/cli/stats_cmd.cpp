@@ -41,7 +41,7 @@ int StatsCommand::run(const Common& c) const {
     }
     a.finish();
   }
-  if (a.frames_seen() == 0) a.source_note(kNoTime, ACode::no_frames, "no TOP frame found", 0, 0);
+  a.note_if_no_frames("no TOP frame found");
   if (c.json) {
     std::string j;
     write_stats_json(j, a.stats(), a.worst(), 2, {}, &inputs);

@@ -282,4 +282,9 @@ void Analyzer::source_note(std::int64_t ts, ACode code, std::string message, std
                     Note{code, default_severity(code), std::move(message), 0});
 }
 
+void Analyzer::note_if_no_frames(std::string what) {
+  if (frame_no_ > 0 || impl_->acodes[static_cast<std::size_t>(ACode::baud_mismatch)] > 0) return;
+  source_note(kNoTime, ACode::no_frames, std::move(what), 0, 0);
+}
+
 }  // namespace topdump

@@ -84,6 +84,10 @@ class Analyzer final : public CaptureSink {
   // status is 1, as for an error finding.
   bool diagnosed() const noexcept { return diagnosed_; }
   std::uint64_t frames_seen() const noexcept { return frame_no_; }
+  // After finish(): no-frames (`what`: the input, "no TOP frame found")
+  // when no frame was seen, unless a diagnosis already named why (a serial
+  // line read at the wrong speed, baud-mismatch): one cause, one item.
+  void note_if_no_frames(std::string what);
 
  private:
   // With a filter: false once -c is reached (the record is skipped); the

@@ -194,7 +194,16 @@ void detail::note_device_form(const Frame& f, Model model, bool detail, Decoded&
   // The evidence itself goes in the finding's quirk; the message says
   // which kind of source records the form.
   auto source = [&] { return "; as recorded (" + std::string(to_string(rf->source)) + ")"; };
-  if (unswapped && !un) {
+  // A push in the order the document's example and the field record for it
+  // (the C12's #tpUGCrGAC at 10 Hz and more) is that device's own form, not
+  // a reply that failed to swap: no note on every frame of the stream.
+  if (unswapped && push && rf) {
+    if (un) dec.findings.erase(dec.findings.begin() + (un - dec.findings.data()));
+    un = nullptr;
+    tp = nullptr;
+    for (Finding& x : dec.findings)
+      if (x.code == FindingCode::tp_length && x.severity != Severity::info) tp = &x;
+  } else if (unswapped && !un) {
     std::string msg;
     if (detail)
       msg = rf ? std::string(f.ident_view()) + (push ? " push" : " reply") + " addressed " + f.src +

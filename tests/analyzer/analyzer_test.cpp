@@ -93,9 +93,12 @@ TEST(Field, RealC12AttitudePushIsAStreamNotARequest) {
   EXPECT_NEAR(s.conversations[0].streams[0].measured_hz(), 10.0, 1e-9);
   ASSERT_EQ(f.rec.frames.size(), 32u);
   EXPECT_EQ(f.rec.frames[2].role, top::Role::response);
-  // The order is named with its source, as info.
-  EXPECT_TRUE(has_code(f.rec.frames[2], "unswapped-addresses"));
-  EXPECT_EQ(f.a->worst(), top::Severity::info);
+  // The C12's own push order (recorded from the field, as the document's
+  // example has it) is not noted on every push (issue 29: it was, 10 times a
+  // second); a reply in the request's order still is (below).
+  for (std::size_t i = 2; i < f.rec.frames.size(); ++i)
+    EXPECT_FALSE(has_code(f.rec.frames[i], "unswapped-addresses")) << i;
+  EXPECT_LE(f.a->worst(), top::Severity::info);
 }
 
 TEST(Field, RolesFromTheAnswerWhenBothEndsUsePort5000) {
