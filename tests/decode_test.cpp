@@ -288,3 +288,77 @@ TEST(Decode, EnumCodesAreThoseOfPrintf) {
     }
   EXPECT_EQ(checked, 18u * 7u);
 }
+
+// topsim's document profile answers LAT/LON writes in 5.8.7's layout
+// (W0000000090, S000000045): no digits-and-point coordinate of 5.8.1/5.8.2,
+// so they decode as the output, not as the field's echo (they did: every
+// digit string passed as dddmm.mmmm). The echo of AP_Mount_Topotek's writes
+// stays the echo, and the catalog's example data is a valid coordinate.
+TEST(Decode, DocumentOutputIsNotTakenForTheFieldsEcho) {
+  for (const char* raw : {"#tpDUBwLONW0000000090", "#tpDUAwLATS000000045"}) {
+    const Decoded out = dec(with_checksum(raw), Dialect::topotek, Model::sip);
+    ASSERT_NE(out.form, nullptr) << raw;
+    EXPECT_TRUE(out.findings.empty()) << raw << ": " << out.findings.front().message;
+    EXPECT_FALSE(out.form->from_field()) << raw;
+    EXPECT_EQ(field(out, "hemisphere").text, std::string(1, raw[10])) << raw;
+  }
+  for (const char* raw : {"#tpDUAwLATN3520.1206", "#tpDUBwLONE13843.6200"}) {
+    const Decoded echo = dec(with_checksum(raw), Dialect::topotek, Model::sip);
+    ASSERT_NE(echo.form, nullptr) << raw;
+    EXPECT_TRUE(echo.findings.empty()) << raw << ": " << echo.findings.front().message;
+    EXPECT_TRUE(echo.form->from_field()) << raw;
+  }
+  // The writes themselves: a coordinate out of shape is a bad field.
+  for (const char* raw : {"#tpUDAwLATN35201.206", "#tpUDAwLATE3520.1206", "#tpUDBwLONE13883.6200",
+                          "#tpUDBwLONE1384362000"}) {
+    const Decoded w = dec(with_checksum(raw), Dialect::topotek, Model::sip);
+    EXPECT_TRUE(toptest::has_code(w.findings, FindingCode::bad_field)) << raw;
+  }
+  // 5 digits are the real unit's LRF and also fit the document's
+  // X1X2X3X4X5.X6 (3-7 chars): the catalog's order takes the field's form,
+  // document_first the document's; neither with a finding.
+  const top::ParseResult lrf = top::parse_exact(with_checksum("#tpMU5wLRF50000"));
+  for (bool document_first : {false, true}) {
+    const Decoded d = decode(lrf.frame, {.dialect = Dialect::topotek,
+                                         .model = Model::sip,
+                                         .role = Role::response,
+                                         .document_first = document_first});
+    ASSERT_NE(d.form, nullptr);
+    EXPECT_TRUE(d.findings.empty()) << d.findings.front().message;
+    EXPECT_EQ(d.form->from_field(), !document_first);
+  }
+  for (const char* id : {"LAT", "LON"}) {
+    const top::CommandSpec* c = top::find_command(Dialect::topotek, id);
+    ASSERT_NE(c, nullptr);
+    const std::string data = top::example_data(c->forms[0]);
+    const Decoded w =
+        dec(with_checksum(std::string("#tpUD") + (data.size() == 10 ? "A" : "B") + "w" + id + data),
+            Dialect::topotek, Model::sip);
+    EXPECT_TRUE(w.findings.empty()) << id << " " << data;
+  }
+}
+
+// LAT/LON answers: the field's echo (N/S E/W + ddmm.mmmm) and 5.8.7's output
+// (hemisphere + degrees) share a length; the decoder takes the form whose
+// fields validate, so neither raises a false alarm.
+TEST(Decode, SameLengthFormsAreChosenByContent) {
+  const Decoded echo = dec(with_checksum("#tpDUAwLATN2232.7680"), Dialect::topotek, Model::sip);
+  ASSERT_NE(echo.form, nullptr);
+  EXPECT_TRUE(echo.findings.empty()) << echo.findings.front().message;
+  EXPECT_NEAR(field(echo, "latitude").value, 22.5461, 1e-4);
+  const Decoded out = dec(with_checksum("#tpDUBwLONW 74.006000"), Dialect::topotek, Model::sip);
+  ASSERT_NE(out.form, nullptr);
+  EXPECT_TRUE(out.findings.empty()) << out.findings.front().message;
+  EXPECT_EQ(field(out, "hemisphere").text, "W");
+  EXPECT_NEAR(field(out, "longitude").value, 74.006, 1e-6);
+  // Without detail (the shape cache's path) the same form and no finding.
+  top::ParseResult r = top::parse_exact(with_checksum("#tpDUBwLONW 74.006000"));
+  top::DecodeCache cache;
+  for (int i = 0; i < 2; ++i) {
+    const Decoded fast = decode(
+        r.frame,
+        {.dialect = Dialect::topotek, .model = Model::sip, .detail = false, .cache = &cache});
+    EXPECT_EQ(fast.form, out.form);
+    EXPECT_TRUE(fast.findings.empty());
+  }
+}

@@ -97,3 +97,38 @@ TEST(Motion, PtzActions) {
   EXPECT_EQ(ptz_action(0x12).sign, 1);
   EXPECT_EQ(ptz_action(0x06).move, PtzMove::none);  // follow/lock: no motion
 }
+
+// The field's Topotek signs and units (ArduPilot's AP_Mount_Topotek, PR
+// #29002): GIP and the GIA attitude down positive, YPR and the angle speed
+// in the driver's deg/s x 1.2207; the document's stay for its profile.
+TEST(Motion, TopotekFieldSignsAndUnits) {
+  const MotionSpec* gip = motion_of(Dialect::topotek, "GIP");
+  ASSERT_NE(gip, nullptr);
+  EXPECT_EQ(gip->fields()[0].sign_in(false), 1);
+  EXPECT_EQ(gip->fields()[0].sign_in(true), -1);
+  EXPECT_FALSE(gip->field_evidence.empty());
+  const MotionSpec* gia = motion_of(Dialect::topotek, "GIA");
+  ASSERT_NE(gia, nullptr);
+  EXPECT_EQ(gia->kind, MotionKind::attitude);
+  EXPECT_EQ(gia->fields()[1].axis, Axis::pitch);
+  EXPECT_EQ(gia->fields()[1].sign_in(true), -1);
+  const MotionSpec* ypr = motion_of(Dialect::topotek, "YPR");
+  ASSERT_NE(ypr, nullptr);
+  // 12 counts: 12 deg/s in the document, 12 / 1.2207 in the field.
+  EXPECT_DOUBLE_EQ(motion_speed(*ypr, 12, 12, false), 12);
+  EXPECT_NEAR(motion_speed(*ypr, 12, 12, true), 12 / 1.220740379, 1e-9);
+  // The angle speed byte 99 (0.1 deg/s in the document).
+  EXPECT_DOUBLE_EQ(motion_speed(*gip, 9.9, 99, false), 9.9);
+  EXPECT_NEAR(motion_speed(*gip, 9.9, 99, true), 99 / 1.220740379, 1e-9);
+  // Every row with a field sign or unit names its evidence; SkyDroid has none.
+  for (const MotionSpec& m : motions()) {
+    bool field = m.field_unit != 0;
+    for (const MotionAxis& a : m.fields()) field = field || a.field_sign != 0;
+    if (field) {
+      EXPECT_FALSE(m.field_evidence.empty()) << m.ident;
+    }
+    if (m.dialect == Dialect::skydroid) {
+      EXPECT_FALSE(field) << m.ident;
+    }
+  }
+}

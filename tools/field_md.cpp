@@ -100,6 +100,25 @@ int main() {
           : t.contested ? std::string("off by default (contested; a switch)")
                         : std::string("on")) +
          " | " + std::string(top::to_string(t.source)) + " | " + cell(t.evidence) + " |\n";
+  o += "\n## Motion in the field\n\nWhere field evidence gives a motion command or an "
+       "attitude report another sign or unit than the document (`top::motion_of`, "
+       "protocol/src/motion.cpp); topsim's field profile moves its axes by them, its "
+       "document profile by the document's.\n\n";
+  o += "| dialect | command | kind | pitch | unit | section | evidence |\n"
+       "|---|---|---|---|---|---|---|\n";
+  for (const top::MotionSpec& m : top::motions()) {
+    if (m.field_evidence.empty()) continue;
+    std::string pitch = "-";
+    for (const top::MotionAxis& a : m.fields())
+      if (a.axis == top::Axis::pitch)
+        pitch = std::string(a.sign_in(true) < 0 ? "down" : "up") + " positive" +
+                (a.sign_in(true) != a.sign ? " (document: up)" : "");
+    char unit[48] = "the document's";
+    if (m.field_unit != 0) std::snprintf(unit, sizeof unit, "%.4f deg/s a count", m.field_unit);
+    o += "| " + std::string(top::to_string(m.dialect)) + " | " + std::string(m.ident) + " | " +
+         std::string(top::to_string(m.kind)) + " | " + pitch + " | " + unit + " | " +
+         cell(m.section) + " | " + cell(m.field_evidence) + " |\n";
+  }
   o += "\n## Ports\n\nFrom `top::known_ports()` (src/ports.cpp); topsim serves a port for the "
        "models marked served, topdump takes the device to be the end on a device port.\n\n";
   o += "| port | transport | dialect | end | served for | source |\n|---|---|---|---|---|---|\n";

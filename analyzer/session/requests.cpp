@@ -300,7 +300,17 @@ void Analyzer::Impl::response(Conversation& c, int d, FrameEvent& ev) {
   bool ere = top::is_error_reply(id);
   // The newest pending request it answers, preferring one whose data it
   // echoes (Pairing::match).
-  if (const std::optional<Pairing::Match> mt = c.pairing.match(id, f.data(), f.src, d, ere)) {
+  std::optional<Pairing::Match> mt = c.pairing.match(id, f.data(), f.src, d, ere);
+  // A reply of another identifier that a recorded form names as the answer
+  // to a read (a real SIP answers the GIC query with GIA): the newest such
+  // read pending.
+  for (std::size_t i = c.pairing.size(); !mt && !ere && i-- > 0;) {
+    const Pending& p = c.pairing[i];
+    if (p.dir != d && p.control == 'r' && !same_ident(p.ident, id) &&
+        top::answers_query(ev.entry->decoded.dialect, std::string_view(p.ident, 3), id))
+      mt = Pairing::Match{i, false};
+  }
+  if (mt) {
     const Pending* m = &c.pairing[mt->index];
     ev.reply_to = m->n;
     if (ev.ts != kNoTime && m->ts != kNoTime) {

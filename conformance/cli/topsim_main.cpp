@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fault_arg.hpp"
@@ -46,7 +47,9 @@ struct Options {
   unsigned baud = 115200;
   std::string profile_name = "field", push_order, push_header, reply_order, reply_header;
   std::string yaw_sign, pitch_sign, field_codes;
-  std::string fw_version, device_name;  // SkyDroid VER and MOD ("": the defaults)
+  // Identity: SkyDroid VER and MOD, Topotek VSN and PA2 ("": the model's defaults)
+  std::string fw_version, device_name;
+  bool no_tracking = false;
   bool udp_given = false, tcp_given = false;
 };
 
@@ -117,12 +120,15 @@ std::vector<Choice> add_options(CLI::App& app, Options& o) {
          "attitude pitch against every pitch command (default: the model's sign traits)",
          {"normal", "inverted"});
   app.add_option("--fw-version", o.fw_version,
-                 "SkyDroid: the version VER answers (default V1.0.78, the form ArduPilot's "
-                 "SkyDroid driver parses)");
+                 "the version SkyDroid VER / Topotek VSN answers (default: SkyDroid V1.0.78, "
+                 "the form ArduPilot's SkyDroid driver parses; Topotek 1.6.26.R.D, a real SIP's)");
   app.add_option("--model-name", o.device_name,
-                 "SkyDroid: the model name MOD answers (default the model's, C12)");
+                 "the model name SkyDroid MOD / Topotek PA2 answers (default the model's: "
+                 "C12, SIP)");
   choice("--field-codes", o.field_codes,
          "accept the command values field evidence says the model takes (C13 PTZ)", {"on", "off"});
+  app.add_flag("--no-tracking", o.no_tracking,
+               "Topotek: a lens that cannot track (TRC answers state 4)");
   app.add_flag("--describe", o.describe,
                "print the device's traits with their sources (profile, options) and exit");
   return choices;
@@ -157,7 +163,24 @@ topsim::DeviceOptions device_options(const Options& o) {
   if (!o.field_codes.empty()) dopt.field_ptz = o.field_codes == "on";
   dopt.version = o.fw_version;
   dopt.model_name = o.device_name;
+  dopt.tracking = !o.no_tracking;
   return dopt;
+}
+
+// --fw-version and --model-name fit a one-char length (1-15 printable
+// chars, no '#' that would start a frame); false after the message.
+bool identity_valid(const Options& o) {
+  for (const auto& [name, v] :
+       {std::pair{"--fw-version", &o.fw_version}, std::pair{"--model-name", &o.device_name}}) {
+    if (v->empty()) continue;
+    bool ok = v->size() <= top::max_data_hex;
+    for (char c : *v) ok = ok && c > ' ' && c < 0x7F && c != '#';
+    if (!ok) {
+      spdlog::error("{} {}: 1-15 printable chars without spaces or '#'", name, *v);
+      return false;
+    }
+  }
+  return true;
 }
 
 // The server's configuration, or the exit status (2) after a message.
@@ -259,7 +282,7 @@ int main(int argc, char** argv) {
   o.tcp_given = app.count("--tcp") > 0;
 
   const auto model = topkit::cli::model_arg(kTool, o.model_name);
-  if (!model || !choices_valid(app, choices, o.faults)) return 2;
+  if (!model || !choices_valid(app, choices, o.faults) || !identity_valid(o)) return 2;
   if (o.describe) {
     const topsim::Device dev(*model, device_options(o));
     std::printf("topsim %s, profile %s\n", o.model_name.c_str(), o.profile_name.c_str());

@@ -683,12 +683,26 @@ constexpr FieldSpec kLonOutFields[] = {
      .max = 180,
      .note = "ddd.ddddd per the text; bytes 1-10 per the byte count"},
 };
+// A real unit answers the position writes with their echo (issue 28: the
+// driver's LAT/LON/ALT/AZI writes "get example filler instead of their
+// echo"); AP_Mount_Topotek sends them 10 times a second and parses no answer.
+constexpr std::string_view kPositionEcho =
+    "issue 28: a real unit echoes AP_Mount_Topotek's LAT/LON writes (#tpUDAwLAT..., 10 Hz, "
+    "docs/sources/ardupilot.md 8.1)";
 constexpr FormSpec kLonForms[] = {
     {.control = 'w',
      .role = Role::request,
      .min_length = 11,
      .max_length = 11,
      .fields = kLonInFields},
+    {.control = 'w',
+     .role = Role::response,
+     .min_length = 11,
+     .max_length = 11,
+     .fields = kLonInFields,
+     .note = "the write's echo: the field's answer; the 5.8.7 layout has the same length, "
+             "the decoder takes the first of the two whose fields validate",
+     .evidence = kPositionEcho},
     {.control = 'w',
      .role = Role::response,
      .min_length = 11,
@@ -719,6 +733,14 @@ constexpr FormSpec kLatForms[] = {
      .min_length = 10,
      .max_length = 10,
      .fields = kLatInFields},
+    {.control = 'w',
+     .role = Role::response,
+     .min_length = 10,
+     .max_length = 10,
+     .fields = kLatInFields,
+     .note = "the write's echo: the field's answer; the 5.8.7 layout has the same length, "
+             "the decoder takes the first of the two whose fields validate",
+     .evidence = kPositionEcho},
     {.control = 'w',
      .role = Role::response,
      .min_length = 10,
@@ -1645,8 +1667,9 @@ constexpr CommandSpec kTable[] = {
      .models = sip,
      .forms = kLonForms,
      .note = "input E/W dddmm.mmmm; 5.8.7 output (rangefinder models) is "
-             "E/W + degrees, 11 bytes though \"ddd.ddddd\" has 9 chars; "
-             "an echo of the input would decode as an out-of-range output"},
+             "E/W + degrees, 11 bytes though \"ddd.ddddd\" has 9 chars; the field: "
+             "a device answers the input with its echo, which takes the length before the "
+             "output"},
     {.ident = "LAT",
      .dialect = Dialect::topotek,
      .address = 'D',

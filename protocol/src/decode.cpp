@@ -11,6 +11,7 @@
 
 #include "chars.hpp"
 #include "decode_cache.hpp"
+#include "decode_ctx.hpp"
 #include "decode_plan.hpp"
 #include "device_form.hpp"
 #include "numbers.hpp"
@@ -34,60 +35,6 @@ using detail::scaled;
 using detail::word_before;
 
 namespace {
-
-bool role_fits(Role form, Role frame) noexcept {
-  return form == Role::any || frame == Role::any || form == frame;
-}
-
-const EnumValue* find_enum(std::span<const EnumValue> e, std::int64_t v) noexcept {
-  for (const EnumValue& x : e)
-    if (x.value == v) return &x;
-  return nullptr;
-}
-
-struct Ctx {
-  const Frame& frame;
-  Decoded& out;
-  bool detail = true;  // DecodeOptions::detail
-  bool lowercase_reported = false;
-  // `message()` builds the text, only with detail (topdump stats keeps the
-  // code, severity and offset of a finding, never its text).
-  template <class Message>
-  void add(FindingCode code, std::uint32_t offset, Message&& message) {
-    out.findings.push_back(make_finding(code, offset, detail ? message() : std::string()));
-  }
-  // The field's text (text, number, nmea and raw kinds; the bytes of an
-  // invalid or "none" field), kept only with detail.
-  void keep(FieldValue& fv, std::string_view bytes) const {
-    if (detail) fv.text.assign(bytes);
-  }
-};
-
-// The enum and range checks of a field's number (`value()` gives it scaled,
-// asked for only when the field has a range); the enum name when known.
-template <class Value>
-std::string_view judge(Ctx& ctx, const FieldSpec& spec, std::string_view bytes,
-                       std::uint32_t offset, std::int64_t integer, Value&& value) {
-  if (!spec.enums.empty()) {
-    if (const EnumValue* e = find_enum(spec.enums, integer)) return e->name;
-    if (spec.kind == FieldKind::enum_hex || spec.kind == FieldKind::enum_char) {
-      ctx.add(FindingCode::value_out_of_range, offset, [&] {
-        return cat({spec.name, ": '", bytes, "' is not a documented value"});
-      });
-      return {};
-    }
-  }
-  if (spec.min > spec.max) return {};
-  const double v = value();
-  if (v < spec.min - 1e-9 || v > spec.max + 1e-9) {
-    int d = decimals_of(spec.scale);
-    ctx.add(FindingCode::value_out_of_range, offset, [&] {
-      return cat({spec.name, " ", fmt_number(v, d), spec.unit.empty() ? "" : " ", spec.unit,
-                  " outside [", fmt_number(spec.min, d), ", ", fmt_number(spec.max, d), "]"});
-    });
-  }
-  return {};
-}
 
 void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes, std::uint32_t offset,
                   FieldValue& fv) {
@@ -203,9 +150,18 @@ void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes, std::
       char hemi = bytes[0];
       if (hemi != 'E' && hemi != 'W' && hemi != 'N' && hemi != 'S')
         return bad("hemisphere '", {&hemi, 1}, "' is not N S E W");
+      // Degrees in 3 digits east or west, 2 north or south, leading zeros
+      // sent (Topotek 5.8.1, 5.8.2), then minutes mm.mmmm: the 5.8.7
+      // output's ddd.ddddd (same length) is no such coordinate.
+      const std::size_t deg_digits = hemi == 'E' || hemi == 'W' ? 3 : 2;
+      const std::string_view coord = bytes.substr(1);
+      bool shaped = coord.size() == deg_digits + 7 && coord[deg_digits + 2] == '.';
+      for (std::size_t i = 0; shaped && i < coord.size(); ++i)
+        shaped = i == deg_digits + 2 || (coord[i] >= '0' && coord[i] <= '9');
       double raw = 0;
-      if (!detail::parse_number(bytes.substr(1), raw) || raw < 0)
-        return bad("'", bytes.substr(1), "' is not dddmm.mmmm");
+      if (!shaped || !detail::parse_number(coord, raw) ||
+          raw - std::floor(raw / 100.0) * 100.0 >= 60.0)
+        return bad("'", coord, deg_digits == 3 ? "' is not dddmm.mmmm" : "' is not ddmm.mmmm");
       double deg = std::floor(raw / 100.0);
       double minutes = raw - deg * 100.0;
       double v = deg + minutes / 60.0;
@@ -413,6 +369,56 @@ void decode_shape(Ctx& ctx, const Frame& frame, const DecodeOptions& opts, Diale
   if (form->role != Role::any && out.role == Role::any) out.role = form->role;
 }
 
+// Each field of `form` on the frame's data: decoded with detail, else
+// validated and dropped.
+void check_fields(Ctx& ctx, const FormSpec& form, const Frame& frame) {
+  std::string_view data = frame.data();
+  std::size_t pos = 0;
+  FieldValue scratch;
+  for (const FieldSpec& fs : form.fields) {
+    if (pos >= data.size() && fs.width != 0) break;
+    std::size_t w = fs.width == 0 ? data.size() - pos : fs.width;
+    if (pos + w > data.size()) {
+      ctx.add(FindingCode::data_length, static_cast<std::uint32_t>(frame.data_offset + pos), [&] {
+        return cat({fs.name, " needs ", std::to_string(w), " byte(s), ",
+                    std::to_string(data.size() - pos), " left"});
+      });
+      break;
+    }
+    const auto at = static_cast<std::uint32_t>(frame.data_offset + pos);
+    if (ctx.detail)
+      decode_field(ctx, fs, data.substr(pos, w), at, ctx.out.fields.emplace_back());
+    else
+      check_field(ctx, fs, data.substr(pos, w), at, scratch);
+    pos += w;
+  }
+}
+
+// Among the forms of the frame's shape (control, role, length) from `form`
+// on, the first whose fields validate (a document's first with
+// `document_first`): LAT/LON's field echo and 5.8.7 output share a length.
+// `form` when it is alone in its shape or none validates.
+const FormSpec* by_content(const Frame& frame, const CommandSpec& cmd, const FormSpec* form,
+                           Role role, bool document_first) {
+  const std::size_t len = frame.data_length;
+  const std::span<const FormSpec> rest(form, cmd.forms.data() + cmd.forms.size());
+  auto same = [&](const FormSpec& f) {
+    return f.control == form->control && role_fits(f.role, role) && len >= f.min_length &&
+           len <= f.max_length;
+  };
+  if (std::count_if(rest.begin(), rest.end(), same) < 2) return form;
+  Decoded trial;
+  for (int pass = document_first ? 0 : 1; pass < 2; ++pass)
+    for (const FormSpec& f : rest) {
+      if (!same(f) || (pass == 0 && f.from_field())) continue;
+      trial.findings.clear();
+      Ctx t{frame, trial, false};
+      check_fields(t, f, frame);
+      if (trial.findings.empty()) return &f;
+    }
+  return form;
+}
+
 }  // namespace
 
 // The frame's command, form and findings, and its fields with detail.
@@ -440,7 +446,10 @@ static void decode_frame(const Frame& frame, const DecodeOptions& opts, Decoded&
     decode_shape(ctx, frame, opts, d, out);
   }
   if (!out.form) return;
-  const FormSpec* form = out.form;
+  const FormSpec* shaped = out.form;
+  const FormSpec* form = out.form =
+      by_content(frame, *out.command, shaped, out.role, opts.document_first);
+  if (form != shaped) plan = nullptr;  // the plan is the shape's form's
 
   std::string_view data = frame.data();
   std::size_t pos = 0;
@@ -462,25 +471,7 @@ static void decode_frame(const Frame& frame, const DecodeOptions& opts, Decoded&
     if (!plan) plan = &plan_of(*out.command, *form);
     if (plan->fast && plan->width == data.size() && judge_planned(ctx, *plan, frame)) return;
   }
-  FieldValue scratch;  // without detail: each field is validated here, then dropped
-  for (const FieldSpec& fs : form->fields) {
-    if (pos >= data.size() && fs.width != 0) break;
-    std::size_t w = fs.width == 0 ? data.size() - pos : fs.width;
-    if (pos + w > data.size()) {
-      ctx.add(FindingCode::data_length, static_cast<std::uint32_t>(frame.data_offset + pos), [&] {
-        return cat({fs.name, " needs ", std::to_string(w), " byte(s), ",
-                    std::to_string(data.size() - pos), " left"});
-      });
-      break;
-    }
-    const auto at = static_cast<std::uint32_t>(frame.data_offset + pos);
-    if (ctx.detail)
-      decode_field(ctx, fs, data.substr(pos, w), at, out.fields.emplace_back());
-    else
-      check_field(ctx, fs, data.substr(pos, w), at, scratch);
-    pos += w;
-  }
-  return;
+  check_fields(ctx, *form, frame);
 }
 
 void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {

@@ -103,6 +103,27 @@ WriteReply write_reply(const CommandSpec& cmd) noexcept {
 
 std::string_view to_string(Order o) noexcept { return enum_name(kOrder, o); }
 
+std::string_view reply_ident(Model model, std::string_view request, Profile profile) noexcept {
+  const Dialect d = dialect_of(model);
+  const DeviceForm* example = nullptr;
+  for (const DeviceForm& f : device_forms()) {
+    if (f.dialect != d || !model_in(f.models, model) || f.sent != Sent::reply ||
+        f.answers != request)
+      continue;
+    if (f.source == Source::field && profile == Profile::field) return f.ident;
+    if (f.source == Source::document_example && !example) example = &f;
+  }
+  return example ? example->ident : request;
+}
+
+bool answers_query(Dialect d, std::string_view request, std::string_view reply) noexcept {
+  if (request == reply) return true;
+  for (const DeviceForm& f : device_forms())
+    if (f.dialect == d && f.sent == Sent::reply && f.ident == reply && f.answers == request)
+      return true;
+  return false;
+}
+
 DeviceForm device_form(Model model, std::string_view ident, char control, Sent sent,
                        std::size_t data_length, Profile profile) noexcept {
   const Dialect d = dialect_of(model);

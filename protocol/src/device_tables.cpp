@@ -150,7 +150,8 @@ constexpr DeviceForm kForms[] = {
      .source = Source::field,
      .evidence = "a real SIP (firmware 1.6.26.R.D) answered the GIC query #TPPG2rGIC0035 with "
                  "#tpGPCrGIA + 12 hex (issue 28 log; PixEagle: GIC queries consistently got "
-                 "GIA replies)"},
+                 "GIA replies)",
+     .answers = "GIC"},
     {.dialect = Dialect::topotek,
      .models = sip,
      .ident = "GMS",

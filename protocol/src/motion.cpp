@@ -44,6 +44,34 @@ constexpr Reference E = Reference::earth;
 // positive); SkyDroid 3.2 gives pitch speed up positive.
 constexpr std::int8_t kDown = -1;
 
+// A row with field evidence of its own (see MotionSpec::field_evidence).
+constexpr MotionSpec field(MotionSpec m, double unit, std::string_view evidence) {
+  m.field_unit = unit;
+  m.field_evidence = evidence;
+  return m;
+}
+constexpr MotionAxis down_in_field(MotionAxis a) {
+  a.field_sign = kDown;
+  return a;
+}
+// ArduPilot's AP_Mount_Topotek sends a YPR rate as deg/s x 1.220740379
+// (ANGULAR_VELOCITY_CONVERSION), tested on real units (PR #29002): one count
+// is 0.8192 deg/s, not the document's 1 deg/s (table) or 0.1 deg/s (text).
+constexpr double kTopotekRateUnit = 1.0 / 1.220740379;
+constexpr std::string_view kYprField =
+    "AP_Mount_Topotek sends YPR as yaw, pitch (down positive), roll in deg/s x 1.220740379, "
+    "pitch negated since PR #29002 (https://github.com/ArduPilot/ardupilot/pull/29002, tested "
+    "on real hardware)";
+constexpr std::string_view kAngleField =
+    "AP_Mount_Topotek sends GAY/GIP/GIR targets at 10 Hz with speed 63 (99, its maximum) and "
+    "negates pitch (GIP down positive; PR #29002: angle control works on real units); the "
+    "speed byte is read in the YPR rate unit (inference: ArduPilot's SIM_Topotek moves to "
+    "angle targets without a speed limit)";
+constexpr std::string_view kGiaField =
+    "AP_Mount_Topotek reads yaw, pitch, roll from GIA and negates pitch (down positive on the "
+    "wire); ArduPilot's SIM_Topotek sends 30 deg down as 0BB8; a real SIP answers the GIC "
+    "query with a 12-char GIA (issue 28 log, PixEagle bench notes)";
+
 constexpr MotionSpec kMotions[] = {
     // SkyDroid 3.1-3.3
     {S, "PTZ", MotionKind::ptz, B, {}, 0, "SkyDroid 3.1"},
@@ -64,20 +92,29 @@ constexpr MotionSpec kMotions[] = {
     row(T, "GSR", kRate, B, {roll("speed")}, "Topotek 4.2"),
     row(T, "GSM", kRate, B, {yaw("yaw_speed"), pitch("pitch_speed", {}, kDown)}, "Topotek 4.2"),
     row(T, "RPS", kRate, B, {roll("roll_speed"), pitch("pitch_speed", {}, kDown)}, "Topotek 4.2"),
-    row(T, "YPR", kRate, B, {yaw("yaw_speed"), pitch("pitch_speed", {}, kDown), roll("roll_speed")},
-        "Topotek 4.2"),
-    row(T, "GAY", kAngle, B, {yaw("angle", "speed")}, "Topotek 4.3.1"),
+    field(
+        row(T, "YPR", kRate, B,
+            {yaw("yaw_speed"), pitch("pitch_speed", {}, kDown), roll("roll_speed")}, "Topotek 4.2"),
+        kTopotekRateUnit, kYprField),
+    field(row(T, "GAY", kAngle, B, {yaw("angle", "speed")}, "Topotek 4.3.1"), kTopotekRateUnit,
+          kAngleField),
     row(T, "GAP", kAngle, B, {pitch("angle", "speed")}, "Topotek 4.3.1"),
     row(T, "GAR", kAngle, B, {roll("angle", "speed")}, "Topotek 4.3.1"),
     row(T, "GAM", kAngle, B, {yaw("yaw", "yaw_speed"), pitch("pitch", "pitch_speed")},
         "Topotek 4.3.1"),
     row(T, "GIY", kAngle, E, {yaw("angle", "speed")}, "Topotek 4.3.2"),
-    row(T, "GIP", kAngle, E, {pitch("angle", "speed")}, "Topotek 4.3.2"),
-    row(T, "GIR", kAngle, E, {roll("angle", "speed")}, "Topotek 4.3.2"),
+    field(row(T, "GIP", kAngle, E, {down_in_field(pitch("angle", "speed"))}, "Topotek 4.3.2"),
+          kTopotekRateUnit, kAngleField),
+    field(row(T, "GIR", kAngle, E, {roll("angle", "speed")}, "Topotek 4.3.2"), kTopotekRateUnit,
+          kAngleField),
     row(T, "GIM", kAngle, E, {yaw("yaw", "yaw_speed"), pitch("pitch", "pitch_speed")},
         "Topotek 4.3.2"),
     row(T, "GAC", kAtt, B, {yaw("yaw"), pitch("pitch"), roll("roll")}, "Topotek 4.3.3"),
     row(T, "GIC", kAtt, E, {yaw("yaw"), pitch("pitch"), roll("roll")}, "Topotek 4.3.5"),
+    // The field: GIA frames of 12 chars carry the attitude (pitch down positive).
+    field(row(T, "GIA", kAtt, E, {yaw("yaw"), pitch("pitch", {}, kDown), roll("roll")},
+              "field: ArduPilot AP_Mount_Topotek (PR #28455); a real SIP (issue 28)"),
+          0, kGiaField),
 };
 
 }  // namespace
@@ -92,6 +129,10 @@ const MotionSpec* motion_of(Dialect d, std::string_view ident) noexcept {
   for (const MotionSpec& m : kMotions)
     if (m.dialect == d && m.ident == ident) return &m;
   return nullptr;
+}
+
+double motion_speed(const MotionSpec& spec, double value, std::int64_t raw, bool field) noexcept {
+  return field && spec.field_unit != 0 ? static_cast<double>(raw) * spec.field_unit : value;
 }
 
 std::string_view attitude_for(const MotionSpec& spec) noexcept {

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+
 #include "sim/intake.hpp"
 
 namespace {
@@ -148,8 +150,12 @@ TEST(Device, GaaStreamsGacAtTheRequestedRate) {
   EXPECT_EQ(d.next_timer(), std::numeric_limits<std::uint64_t>::max());
 }
 
-TEST(Device, TopotekGiaStreamsGic) {
-  Device d(top::Model::sip);
+// The document: GIA 01 switches GIC pushes on (Topotek 4.3.6). The field:
+// GIA frames (ArduPilot's driver, a real SIP; device_topotek_test.cpp).
+TEST(Device, TopotekGiaStreamsGicInTheDocument) {
+  topsim::DeviceOptions o;
+  o.profile = top::Profile::document;
+  Device d(top::Model::sip, o);
   ask(d, "#TPPG2wGIA01", 0);
   std::vector<std::string> out;
   d.poll(d.next_timer(), out);
@@ -214,6 +220,222 @@ namespace {
 TEST(Device, TopotekStateCommandsAreCatalogued) {
   for (const char* id : {"REC", "CAP", "GIA", "GIC", "GAA"})
     EXPECT_NE(top::find_command(top::Dialect::topotek, id), nullptr) << id;
+}
+
+}  // namespace
+
+// ---- Topotek as ArduPilot's AP_Mount_Topotek and a real SIP show it
+// (docs/sources/ardupilot.md sections 1 and 8.1; sim/src/device_topotek.cpp).
+namespace {
+
+// The frames a device pushes up to `t`, polled at every timer.
+std::vector<std::string> run_until(Device& d, std::uint64_t t) {
+  std::vector<std::string> out;
+  while (d.next_timer() <= t) d.poll(d.next_timer(), out);
+  d.advance(t);
+  return out;
+}
+
+// Yaw, pitch, roll in 0.01 deg of a 12-char attitude frame.
+std::array<int, 3> angles(const top::Frame& f) {
+  std::array<int, 3> a{};
+  for (int i = 0; i < 3; ++i)
+    a[i] =
+        static_cast<std::int16_t>(std::stoi(std::string(f.data().substr(i * 4, 4)), nullptr, 16));
+  return a;
+}
+
+// The driver's pitch target, down positive on the wire (-30 deg AP pitch ->
+// GIP +3000), speed 99: the GIA push reports it down positive within 1 s.
+TEST(DeviceTopotek, GipMovesPitchAndGiaReportsItDownPositive) {
+  Device d(top::Model::sip);
+  EXPECT_EQ(ask(d, "#TPUG2wGIA01", 0, Link::uart).at(0), top::with_checksum("#TPGU2wGIA01"));
+  EXPECT_EQ(ask(d, "#tpUG6wGIP0BB863", 0, Link::uart).at(0),
+            top::with_checksum("#tpGU6wGIP0BB863"));
+  const auto out = run_until(d, 1000000);
+  ASSERT_GE(out.size(), 9u);
+  const top::Frame last = parsed(out.back());
+  EXPECT_EQ(last.ident_view(), "GIA");
+  EXPECT_EQ(last.header, top::Header::variable);
+  EXPECT_EQ(last.src, 'G');
+  EXPECT_EQ(last.dst, 'U');
+  EXPECT_EQ(angles(last)[1], 3000);
+  EXPECT_NEAR(d.pitch().angle, -30, 0.01);  // up positive inside
+  // The document: GIP is up positive, and the attitude (GIC) too.
+  topsim::DeviceOptions o;
+  o.profile = top::Profile::document;
+  Device doc(top::Model::sip, o);
+  ask(doc, "#tpUG6wGIP0BB863", 0, Link::uart);
+  doc.advance(5000000);
+  EXPECT_NEAR(doc.pitch().angle, 30, 0.01);
+}
+
+// YPR: one count is 1/1.2207 deg/s (the driver's conversion), pitch down
+// positive; PTZ 00 stops the turn.
+TEST(DeviceTopotek, YprTurnsInTheDriversUnitAndPtzStops) {
+  Device d(top::Model::sip);
+  ask(d, "#tpUG6wYPR0A0C00", 0, Link::uart);  // yaw +10, pitch +12 (down)
+  d.advance(500000);
+  EXPECT_NEAR(d.yaw().angle, 10 / 1.220740379 * 0.5, 0.01);
+  EXPECT_NEAR(d.pitch().angle, -12 / 1.220740379 * 0.5, 0.01);
+  EXPECT_EQ(ask(d, "#TPUG2wPTZ00", 500000, Link::uart).at(0), top::with_checksum("#TPGU2wPTZ00"));
+  const double stopped = d.pitch().angle;
+  d.advance(900000);
+  EXPECT_EQ(d.pitch().angle, stopped);
+}
+
+// The driver re-sends GIA 01 once a second: the stream keeps its timing.
+TEST(DeviceTopotek, ResentGiaEnableKeepsTheStreamTiming) {
+  Device d(top::Model::sip);
+  ask(d, "#TPUG2wGIA01", 0, Link::uart);
+  EXPECT_EQ(d.next_timer(), 100000u);
+  ask(d, "#TPUG2wGIA01", 50000, Link::uart);
+  EXPECT_EQ(d.next_timer(), 100000u);
+  EXPECT_EQ(run_until(d, 1000000).size(), 10u);
+  ask(d, "#TPUG2wGIA00", 1000000, Link::uart);
+  EXPECT_TRUE(run_until(d, 2000000).empty());
+}
+
+// A real SIP answers the GIC query with a 12-char GIA (issue 28 log).
+TEST(DeviceTopotek, GicQueryIsAnsweredWithGiaInTheField) {
+  Device d(top::Model::sip);
+  const top::Frame f = parsed(ask(d, "#TPPG2rGIC00").at(0));
+  EXPECT_EQ(f.ident_view(), "GIA");
+  EXPECT_EQ(f.data().size(), 12u);
+  EXPECT_EQ(f.header, top::Header::variable);
+  EXPECT_EQ(f.src, 'G');
+  EXPECT_EQ(f.dst, 'P');
+  topsim::DeviceOptions o;
+  o.profile = top::Profile::document;
+  Device doc(top::Model::sip, o);
+  EXPECT_EQ(parsed(ask(doc, "#TPPG2rGIC00").at(0)).ident_view(), "GIC");
+}
+
+TEST(DeviceTopotek, IdentityIsPlausibleAndSettable) {
+  Device d(top::Model::sip);
+  EXPECT_EQ(ask(d, "#TPPD2rVSN00").at(0), "#tpDPArVSN1.6.26.R.D62");  // the real unit's frame
+  const top::Frame pa2 = parsed(ask(d, "#TPUG2rPA200", 0, Link::uart).at(0));
+  EXPECT_EQ(pa2.data(), "SIP");
+  topsim::DeviceOptions o;
+  o.version = "2.1.0";
+  o.model_name = "FL-30";
+  Device set(top::Model::sip, o);
+  EXPECT_EQ(parsed(ask(set, "#TPPD2rVSN00").at(0)).data(), "2.1.0");
+  EXPECT_EQ(parsed(ask(set, "#TPPG2rPA200").at(0)).data(), "FL-30");
+}
+
+// The real unit's frames byte for byte: TRA, TRC, and #tp kept on a short reply.
+TEST(DeviceTopotek, ShortRepliesAsTheRealUnit) {
+  Device d(top::Model::sip);
+  EXPECT_EQ(ask(d, "#TPPD2rTRA00").at(0), "#TPDP2rTRA1148");
+  EXPECT_EQ(ask(d, "#TPPD2rTRC00").at(0), "#TPDP2rTRC0048");
+  EXPECT_EQ(parsed(ask(d, "#tpPG2rGMS00").at(0)).header, top::Header::variable);
+  // An option overrides the trait.
+  topsim::DeviceOptions o;
+  o.reply_header = top::Header::fixed;
+  Device fixed(top::Model::sip, o);
+  EXPECT_EQ(parsed(ask(fixed, "#tpPG2rGMS00").at(0)).header, top::Header::fixed);
+}
+
+std::string loc(std::int16_t x, std::int16_t y, std::uint16_t w, std::uint16_t h,
+                std::uint16_t mode) {
+  std::string s = "#tpUDAwLOC";
+  for (std::uint16_t v :
+       {static_cast<std::uint16_t>(x), static_cast<std::uint16_t>(y), w, h, mode}) {
+    s.push_back(static_cast<char>(v >> 8));
+    s.push_back(static_cast<char>(v & 0xFF));
+  }
+  return s;
+}
+
+// TRC 02 -> waiting, LOC -> tracking ~0.4 s later with OFT at ~30 Hz, TRC 01
+// -> one all-zero OFT with status 1 and waiting, TRC 00 -> stopped.
+TEST(DeviceTopotek, TrackingStateMachine) {
+  Device d(top::Model::sip);
+  auto state = [&](std::uint64_t t) {
+    return parsed(ask(d, "#TPUD2rTRC00", t, Link::uart).at(0)).data();
+  };
+  EXPECT_EQ(state(0), "00");
+  ask(d, "#TPUD2wTRC02", 0, Link::uart);
+  EXPECT_EQ(state(0), "01");
+  EXPECT_EQ(ask(d, loc(0, 0, 62, 111, 9), 100000, Link::uart).size(), 1u);
+  EXPECT_TRUE(run_until(d, 400000).empty());
+  EXPECT_EQ(state(400000), "01");
+  const auto boxes = run_until(d, 1500000);
+  EXPECT_EQ(state(1500000), "02");
+  EXPECT_GE(boxes.size(), 30u);
+  EXPECT_LE(boxes.size(), 35u);
+  const top::Frame oft = parsed(boxes.front());
+  EXPECT_EQ(oft.ident_view(), "OFT");
+  EXPECT_EQ(oft.header, top::Header::variable);
+  EXPECT_EQ(oft.control, 'w');
+  EXPECT_EQ(oft.src, 'D');
+  EXPECT_EQ(oft.dst, 'U');
+  ASSERT_EQ(oft.data().size(), 9u);
+  auto le = [&](int i) {
+    return static_cast<unsigned char>(oft.data()[i]) | static_cast<unsigned char>(oft.data()[i + 1])
+                                                           << 8;
+  };
+  EXPECT_NEAR(le(0) + le(4) / 2.0, 960, 1);  // the box is centred on the LOC point
+  EXPECT_NEAR(le(2) + le(6) / 2.0, 540, 1);
+  EXPECT_EQ(oft.data()[8], '2');
+  const auto cancel = ask(d, "#TPUD2wTRC01", 1500000, Link::uart);
+  ASSERT_EQ(cancel.size(), 2u);
+  EXPECT_EQ(parsed(cancel[0]).data(), std::string(8, '\0') + "1");
+  EXPECT_EQ(state(1500000), "01");
+  EXPECT_TRUE(run_until(d, 2000000).empty());
+  ask(d, "#TPUD2wTRC00", 2000000, Link::uart);
+  EXPECT_EQ(state(2000000), "00");
+  // A LOC while stopped starts nothing.
+  ask(d, loc(0, 0, 62, 111, 9), 2000000, Link::uart);
+  EXPECT_TRUE(run_until(d, 3000000).empty());
+}
+
+TEST(DeviceTopotek, LensWithoutTrackingAnswersState4) {
+  topsim::DeviceOptions o;
+  o.tracking = false;
+  Device d(top::Model::sip, o);
+  ask(d, "#TPUD2wTRC02", 0, Link::uart);
+  ask(d, loc(0, 0, 62, 111, 9), 0, Link::uart);
+  EXPECT_TRUE(run_until(d, 1000000).empty());
+  EXPECT_EQ(parsed(ask(d, "#TPUD2rTRC00", 1000000, Link::uart).at(0)).data(), "04");
+}
+
+// Position and time writes come back as they went (issue 28); the document
+// profile keeps 5.8.7's output layout for LAT.
+TEST(DeviceTopotek, PositionAndTimeWritesAreEchoed) {
+  Device d(top::Model::sip);
+  for (const char* w : {"#tpUDAwLATN3520.1234", "#tpUDBwLONE13845.6789", "#tpUD8wALT000123.4",
+                        "#tpUD5wAZI045.0", "#tpUDCwUTC143005261126"}) {
+    std::string echo = w;
+    std::swap(echo[3], echo[4]);
+    EXPECT_EQ(ask(d, w, 0, Link::uart).at(0), top::with_checksum(echo)) << w;
+  }
+  topsim::DeviceOptions o;
+  o.profile = top::Profile::document;
+  Device doc(top::Model::sip, o);
+  EXPECT_NE(parsed(ask(doc, "#tpUDAwLATN3520.1234", 0, Link::uart).at(0)).data(), "N3520.1234");
+}
+
+// The rangefinder answers in the real unit's 5-char form in the field, in
+// the document's X1X2X3X4X5.X6 layout otherwise.
+TEST(DeviceTopotek, LrfAnswersInTheFieldForm) {
+  auto reply = [](top::Profile p) {
+    topsim::DeviceOptions o;
+    o.profile = p;
+    Device d(top::Model::sip, o);
+    const top::Frame f = parsed(ask(d, "#TPUM2wLRF03", 0, Link::uart).at(0));
+    EXPECT_EQ(f.ident_view(), "LRF");
+    EXPECT_EQ(f.src, 'M');
+    return std::string(f.data());
+  };
+  const top::FormSpec *fld = nullptr, *doc = nullptr;
+  for (const top::FormSpec& f : top::find_command(top::Dialect::topotek, "LRF")->forms)
+    if (f.control == 'w' && f.role == top::Role::response) (f.from_field() ? fld : doc) = &f;
+  ASSERT_TRUE(fld && doc);
+  EXPECT_EQ(reply(top::Profile::field), top::example_data(*fld));
+  EXPECT_EQ(reply(top::Profile::field).size(), 5u);
+  EXPECT_EQ(reply(top::Profile::document), top::example_data(*doc));
 }
 
 }  // namespace

@@ -2086,6 +2086,10 @@ CATALOG.topotek["LON"] = {
       fields = {
         { name = "longitude", kind = "nmea", width = 11, scale = 1, mul = 1, dec = 0, unit = "deg", abbrev = "top.LON.longitude" },
       } },
+    { control = "w", role = "response", min_length = 11, max_length = 11, note = "the write's echo: the field's answer; the 5.8.7 layout has the same length, the decoder takes the first of the two whose fields validate",
+      fields = {
+        { name = "longitude", kind = "nmea", width = 11, scale = 1, mul = 1, dec = 0, unit = "deg", abbrev = "top.LON.longitude" },
+      } },
     { control = "w", role = "response", min_length = 11, max_length = 11, note = "5.8.7: target longitude solved from attitude and range",
       fields = {
         { name = "hemisphere", kind = "enum_char", width = 1, scale = 1, mul = 1, dec = 0, unit = "", enums = { [69] = "east", [87] = "west", }, abbrev = "top.LON.hemisphere" },
@@ -2098,6 +2102,10 @@ CATALOG.topotek["LAT"] = {
   models = { sip = true, },
   forms = {
     { control = "w", role = "request", min_length = 10, max_length = 10, note = "",
+      fields = {
+        { name = "latitude", kind = "nmea", width = 10, scale = 1, mul = 1, dec = 0, unit = "deg", abbrev = "top.LAT.latitude" },
+      } },
+    { control = "w", role = "response", min_length = 10, max_length = 10, note = "the write's echo: the field's answer; the 5.8.7 layout has the same length, the decoder takes the first of the two whose fields validate",
       fields = {
         { name = "latitude", kind = "nmea", width = 10, scale = 1, mul = 1, dec = 0, unit = "deg", abbrev = "top.LAT.latitude" },
       } },
@@ -2949,8 +2957,15 @@ local function decode_field(ctx, spec, bytes, offset)
     if hemi ~= "E" and hemi ~= "W" and hemi ~= "N" and hemi ~= "S" then
       return bad("hemisphere '" .. hemi .. "' is not N S E W")
     end
-    local raw = parse_number(ssub(bytes, 2))
-    if raw == nil or raw < 0 then return bad("'" .. ssub(bytes, 2) .. "' is not dddmm.mmmm") end
+    -- Degrees in 3 digits east or west, 2 north or south, then mm.mmmm
+    -- (decode.cpp: the 5.8.7 output is no such coordinate).
+    local dd = (hemi == "E" or hemi == "W") and 3 or 2
+    local coord = ssub(bytes, 2)
+    local pattern = "^" .. string.rep("%d", dd + 2) .. "%.%d%d%d%d$"
+    local raw = coord:match(pattern) and parse_number(coord) or nil
+    if raw == nil or raw - math.floor(raw / 100.0) * 100.0 >= 60.0 then
+      return bad("'" .. coord .. "' is not " .. (dd == 3 and "dddmm.mmmm" or "ddmm.mmmm"))
+    end
     local deg = math.floor(raw / 100.0)
     local v = deg + (raw - deg * 100.0) / 60.0
     if hemi == "W" or hemi == "S" then v = -v end
@@ -3075,10 +3090,39 @@ local function decode(f, dialect, role, model)
             "' takes " .. table.concat(allowed, ", "))
     return out
   end
+  local data = ssub(f.raw, f.data_offset + 1, f.data_offset + f.data_length)
+  -- Among the forms of this shape from `form` on, the first whose fields
+  -- validate (decode.cpp by_content: LAT/LON's field echo and 5.8.7 output).
+  local same, first = {}, nil
+  for i, fm in ipairs(cmd.forms) do
+    if fm == form then first = i end
+    if first and fm.control == form.control and role_fits(fm.role, out.role) and
+       len >= fm.min_length and len <= fm.max_length then
+      same[#same + 1] = fm
+    end
+  end
+  if #same >= 2 then
+    for _, fm in ipairs(same) do
+      local trial = { findings = {}, fields = {} }
+      local tctx = { lowercase_reported = false }
+      function tctx.add(code, offset, message) trial.findings[#trial.findings + 1] = code end
+      local p = 0
+      for _, fs in ipairs(fm.fields) do
+        if p >= #data and fs.width ~= 0 then break end
+        local w = fs.width == 0 and (#data - p) or fs.width
+        if p + w > #data then tctx.add("data-length", 0, "") break end
+        decode_field(tctx, fs, ssub(data, p + 1, p + w), f.data_offset + p)
+        p = p + w
+      end
+      if #trial.findings == 0 then
+        form = fm
+        break
+      end
+    end
+  end
   out.form = form
   if form.role ~= "any" and out.role == "any" then out.role = form.role end
 
-  local data = ssub(f.raw, f.data_offset + 1, f.data_offset + f.data_length)
   local pos = 0
   if form.none and data == form.none then
     for _, fs in ipairs(form.fields) do

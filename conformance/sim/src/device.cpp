@@ -48,6 +48,17 @@ Device::Device(top::Model model, DeviceOptions opts)
   settings_["SDC"] = "0EA601D4C0";  // 60000 MB free of 120000 MB
   settings_["IPV"] = "192.168.144.108";
   settings_["GTW"] = "192.168.144.1";
+  if (dialect_ == Dialect::topotek) {
+    // A real SIP's version (issue 28 log: #tpDPArVSN1.6.26.R.D62; PixEagle
+    // bench notes) and a model name that is no placeholder (000000000 and
+    // Unknown were seen: ArduPilot PRs #27568, #27053).
+    settings_["VSN"] = opts_.version.empty() ? "1.6.26.R.D" : opts_.version;
+    settings_["PA2"] = opts_.model_name.empty() ? "SIP" : opts_.model_name;
+    settings_["TRA"] = "11";  // every reply of a real SIP (issue 28 log)
+    if (!opts_.tracking) tracking_.state = '4';
+  }
+  keeps_header_ = !opts_.reply_header &&
+                  top::find_trait(top::TraitKind::keeps_request_header, model, p) != nullptr;
 }
 
 std::string Device::setting(std::string_view ident) const {
@@ -113,10 +124,17 @@ void Device::reply_error(const Frame& req, std::vector<std::string>& out) const 
   out.push_back(top::build_frame(ere));
 }
 
-std::string Device::attitude_data() const {
+std::string Device::attitude_data(std::string_view ident) const {
   // The sign traits act on the commands (Device::inverted): the attitude
-  // reports where the gimbal is.
-  return hex_s16(axes_[0].angle) + hex_s16(axes_[1].angle) + hex_s16(axes_[2].angle);
+  // reports where the gimbal is, in the report's own signs (Topotek GIA:
+  // pitch down positive in the field).
+  double yaw = axes_[0].angle, pitch = axes_[1].angle, roll = axes_[2].angle;
+  if (const top::MotionSpec* m = top::motion_of(dialect_, ident))
+    for (const top::MotionAxis& a : m->fields()) {
+      const double s = a.sign_in(field());
+      (a.axis == top::Axis::yaw ? yaw : a.axis == top::Axis::pitch ? pitch : roll) *= s;
+    }
+  return hex_s16(yaw) + hex_s16(pitch) + hex_s16(roll);
 }
 
 top::DeviceForm Device::form_of(std::string_view ident, top::Sent sent, std::size_t length) const {
@@ -128,6 +146,16 @@ top::DeviceForm Device::form_of(std::string_view ident, top::Sent sent, std::siz
   if (!opts_.swap_addresses) f.order = top::Order::request_order;
   // A header the length cannot take (#TP/#tp past 15 chars) is the rule's.
   if (length > top::max_data_hex) f.header = top::choose_header(dialect_, 'G', length);
+  return f;
+}
+
+top::DeviceForm Device::reply_form(const Frame& req, std::string_view ident,
+                                   std::size_t length) const {
+  top::DeviceForm f = form_of(ident, top::Sent::reply, length);
+  const bool fits = req.header == top::Header::fixed ? length == 2 : length <= top::max_data_hex;
+  if (keeps_header_ && fits &&
+      (req.header == top::Header::fixed || req.header == top::Header::variable))
+    f.header = req.header;
   return f;
 }
 
@@ -156,7 +184,11 @@ void Device::start_stream(std::string_view ident, std::uint32_t hz, char dst,
     it = streams_.end() - 1;
   }
   it->dst = dst;
-  it->period_us = hz == 0 ? 0 : 1000000u / hz;
+  const std::uint32_t period = hz == 0 ? 0 : 1000000u / hz;
+  // A re-sent enable keeps the stream going on its timing (ArduPilot's
+  // Topotek driver re-sends GIA 01 once a second).
+  if (period != 0 && it->period_us == period) return;
+  it->period_us = period;
   it->next_us = now_us + it->period_us;
 }
 
@@ -164,6 +196,8 @@ std::uint64_t Device::next_timer() const noexcept {
   std::uint64_t t = kNever;
   for (const Stream& s : streams_)
     if (s.period_us != 0) t = std::min(t, s.next_us);
+  if (tracking_.starts_us != 0) t = std::min(t, tracking_.starts_us);
+  if (tracking_.state == '2') t = std::min(t, tracking_.next_box_us);
   return t;
 }
 
@@ -173,18 +207,19 @@ void Device::poll(std::uint64_t now_us, std::vector<std::string>& out) {
     if (s.period_us == 0) continue;
     // Never emit a backlog: a late poll sends one frame and catches up.
     if (s.next_us > now_us) continue;
-    const std::string data = attitude_data();
+    const std::string data = attitude_data(s.ident);
     out.push_back(
         build(form_of(s.ident, top::Sent::push, data.size()), s.dst, 'G', 'r', s.ident, data));
     s.next_us += s.period_us;
     if (s.next_us <= now_us) s.next_us = now_us + s.period_us;
   }
+  if (dialect_ == Dialect::topotek) poll_topotek(now_us, out);
 }
 
 std::string Device::read_data(const top::CommandSpec& cmd, const top::FormSpec& form) const {
   const std::string_view ident = cmd.ident;
   if (ident == "REC") return recording_ ? "01" : "00";
-  if (ident == "GAC" || ident == "GIC") return attitude_data();
+  if (ident == "GAC" || ident == "GIC") return attitude_data(ident);
   auto it = settings_.find(ident);
   if (it != settings_.end()) {
     const std::string& v = it->second;
@@ -224,8 +259,16 @@ void Device::handle(const Frame& req, Link link, std::uint64_t now_us,
     settings_[std::string(id)] = std::string(req.data());
     // A write with a reply layout of its own (Topotek 5.8.7 LON/LAT target
     // output, 5.9 LRF result) is answered in that layout; others are echoed.
+    // The field's layout first under the field profile (a real unit's 5-char
+    // LRF), never under the document's.
+    const top::FormSpec* layout = nullptr;
     for (const auto& f : cmd.forms) {
       if (f.control != 'w' || f.role != top::Role::response || &f == dec.form) continue;
+      if (f.from_field() && !field()) continue;
+      if (!layout || (f.from_field() && !layout->from_field())) layout = &f;
+    }
+    if (layout) {
+      const top::FormSpec& f = *layout;
       const std::string data = top::example_data(f);
       out.push_back(
           make(top::choose_header(dialect_, cmd.address, data.size()), req, 'w', id, data));
@@ -251,7 +294,7 @@ void Device::handle(const Frame& req, Link link, std::uint64_t now_us,
     return;
   }
   const std::string data = read_data(cmd, *resp);
-  const top::DeviceForm form = form_of(id, top::Sent::reply, data.size());
+  const top::DeviceForm form = reply_form(req, id, data.size());
   out.push_back(build(form, req.src, req.dst, 'r', id, data));
 }
 

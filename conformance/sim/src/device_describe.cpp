@@ -1,5 +1,6 @@
 // topsim --describe: every trait of the device with its source.
 #include <algorithm>
+#include <cstdio>
 
 #include "device_util.hpp"
 #include "sim/device.hpp"
@@ -15,15 +16,21 @@ std::vector<Device::TraitLine> Device::describe() const {
   auto order = [](top::Order o) {
     return o == top::Order::swapped ? std::string("swapped") : std::string("request-order");
   };
+  // The attitude stream the profile pushes (field: Topotek GIA frames).
   const top::StreamSpec* push = nullptr;
   for (const top::StreamSpec& s : top::streams()) {
     const top::CommandSpec* req = top::find_command(dialect_, s.request);
-    if (s.dialect == dialect_ && s.sender == top::Sender::device && req && req->supports(model_)) {
-      push = &s;
-      break;
-    }
+    const top::MotionSpec* m = top::motion_of(dialect_, s.push);
+    if (s.dialect != dialect_ || s.sender != top::Sender::device || !req ||
+        !req->supports(model_) || (s.from_field() && !field()) || !m ||
+        m->kind != top::MotionKind::attitude)
+      continue;
+    if (!push || (s.from_field() && !push->from_field())) push = &s;
   }
   if (push) {
+    out.push_back({std::string(push->request) + "-enables", std::string(push->push),
+                   push->from_field() ? "field" : "document rule",
+                   std::string(push->from_field() ? push->evidence : push->note)});
     const top::DeviceForm f = form_of(push->push, top::Sent::push, 12);
     const top::DeviceForm p =
         top::device_form(model_, push->push, 'r', top::Sent::push, 12, opts_.profile);
@@ -95,7 +102,7 @@ std::vector<Device::TraitLine> Device::describe() const {
                    std::string(fs.evidence)});
   }
   for (top::TraitKind k : {top::TraitKind::answers_to_source, top::TraitKind::link_by_source,
-                           top::TraitKind::speed_refresh}) {
+                           top::TraitKind::speed_refresh, top::TraitKind::keeps_request_header}) {
     const top::Trait* t = top::find_trait(k, model_, opts_.profile);
     if (!t) continue;
     std::string value = t->value ? std::to_string(t->value) : "on";
@@ -103,7 +110,36 @@ std::vector<Device::TraitLine> Device::describe() const {
     out.push_back({std::string(top::to_string(k)), value, std::string(top::to_string(t->source)),
                    std::string(t->evidence)});
   }
+  if (dialect_ == top::Dialect::topotek) describe_topotek(out);
   return out;
+}
+
+void Device::describe_topotek(std::vector<TraitLine>& out) const {
+  // Motion: the field's signs and units where they differ from the document.
+  for (const top::MotionSpec& m : top::motions()) {
+    if (m.dialect != dialect_ || m.field_evidence.empty()) continue;
+    if (!field() && m.section.starts_with("field")) continue;  // a row only the field gives
+    std::string v;
+    for (const top::MotionAxis& a : m.fields())
+      if (a.axis == top::Axis::pitch && a.sign_in(field()) < 0) v = "pitch down positive";
+    if (field() && m.field_unit != 0) {
+      char buf[48];
+      std::snprintf(buf, sizeof buf, "%s%.4f deg/s a count", v.empty() ? "" : ", ", m.field_unit);
+      v += buf;
+    }
+    out.push_back({std::string(m.ident) + "-motion", v.empty() ? "as the document" : v,
+                   field() ? "field" : "document rule", std::string(m.field_evidence)});
+  }
+  out.push_back({"version", setting("VSN"), opts_.version.empty() ? "field" : "option",
+                 "a real SIP answers #tpDPArVSN1.6.26.R.D62 (issue 28 log, PixEagle bench)"});
+  out.push_back({"model-name", setting("PA2"), opts_.model_name.empty() ? "default" : "option",
+                 "AP_Mount_Topotek reads PA2 as the model name (PR #27568); placeholders seen: "
+                 "000000000 (PR #27568), Unknown (PR #27053)"});
+  out.push_back({"tracking", opts_.tracking ? "on" : "off (TRC state 4)",
+                 opts_.tracking ? "field" : "option",
+                 "TRC 02 prepare/01 cancel -> waiting, 00 exit -> stopped, LOC -> tracking in "
+                 "~0.4 s with OFT at ~30 Hz (AP_Mount_Topotek PR #27568, PR #31768: state 4; "
+                 "PixEagle bench notes on a real SIP)"});
 }
 
 }  // namespace topsim

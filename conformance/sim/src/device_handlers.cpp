@@ -70,25 +70,6 @@ struct Handlers {
     return true;
   }
 
-  // Topotek GIA and GAA writes: the stream on (at the device's rate) or off.
-  static bool topotek_stream_write(const Call& c) {
-    Device& d = c.dev;
-    const int v = data_byte(c.req.data());
-    if (v != 0 && v != 1) return false;
-    d.start_stream(top::stream_enabled_by(d.dialect_, c.req.ident_view())->push,
-                   v ? d.opts_.topotek_stream_hz : 0, c.req.src, c.now_us);
-    echo(c);
-    return true;
-  }
-
-  // Topotek GIC read: the attitude now.
-  static bool topotek_attitude_read(const Call& c) {
-    c.dev.advance(c.now_us);
-    c.out.push_back(
-        c.dev.make(top::Header::variable, c.req, 'r', c.req.ident_view(), c.dev.attitude_data()));
-    return true;
-  }
-
   // SkyDroid angle and speed commands (top/motion.hpp).
   static bool motion(const Call& c) {
     Device& d = c.dev;
@@ -203,9 +184,7 @@ constexpr Entry kHandlers[] = {
     {kTopotek, "REC", 'r', Handlers::topotek_state_read},
     {kTopotek, "GIA", 'r', Handlers::topotek_state_read},
     {kTopotek, "GAA", 'r', Handlers::topotek_state_read},
-    {kTopotek, "GIA", 'w', Handlers::topotek_stream_write},
-    {kTopotek, "GAA", 'w', Handlers::topotek_stream_write},
-    {kTopotek, "GIC", 'r', Handlers::topotek_attitude_read},
+    {kTopotek, "PTZ", 'w', Handlers::ptz, true},
     {kSky, "PTZ", 'w', Handlers::ptz, true},
     {kSky, "GAA", 'w', Handlers::stream_rate, true},
     {kSky, "REC", 'w', Handlers::record, true},
@@ -218,6 +197,8 @@ constexpr Entry kHandlers[] = {
 
 bool Device::dispatch(const top::Frame& req, const top::Decoded& dec, std::uint64_t now_us,
                       std::vector<std::string>& out) {
+  // Topotek's motion, streams, tracking and position: device_topotek.cpp.
+  if (dialect_ == kTopotek && dispatch_topotek(req, dec, now_us, out)) return true;
   const Handlers::Call call{*this, req, dec, now_us, out};
   const std::string_view id = req.ident_view();
   const Entry* entry = nullptr;
@@ -227,7 +208,7 @@ bool Device::dispatch(const top::Frame& req, const top::Decoded& dec, std::uint6
       break;
     }
   static constexpr Entry kMotion{kSky, "", 'w', Handlers::motion, true};
-  // SkyDroid angle and rate commands move the axes (Topotek's do not yet).
+  // SkyDroid angle and rate commands move the axes (Topotek's: device_topotek.cpp).
   if (!entry && dialect_ == kSky && req.control == 'w')
     if (const top::MotionSpec* m = top::motion_of(dialect_, id))
       if (m->kind == top::MotionKind::angle || m->kind == top::MotionKind::rate) entry = &kMotion;

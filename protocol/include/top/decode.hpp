@@ -83,6 +83,11 @@ struct DecodeOptions {
   bool detail = true;
   // Used only without detail (messages are not remembered); null: none.
   DecodeCache* cache = nullptr;
+  // Among the forms of one shape whose fields validate, a document's before
+  // one only the field gives (false: the catalog's order, the field's echo
+  // of a LAT/LON write first). A reply in both (the LRF's 5 digits) is then
+  // the document's: for a reader asking whether the document allows it.
+  bool document_first = false;
 };
 
 struct Decoded {

@@ -114,6 +114,9 @@ struct DeviceForm {
   // (#TPDU1rIMG01, #TPDU2rSLR0018): the frame layer finds the data by the
   // checksum and reports a length mismatch.
   bool length_in_bytes = false;
+  // A reply of `ident` that answers a read of another identifier (a real
+  // SIP answers the GIC query with GIA); empty: a read of `ident` itself.
+  std::string_view answers;
 };
 
 // Every recorded form (document examples and field evidence; the rule is
@@ -133,6 +136,14 @@ DeviceForm device_form(Model model, std::string_view ident, char control, Sent s
 // deviates from the rule. `model` unknown matches every model.
 const DeviceForm* recorded_form(Dialect d, Model model, const Frame& f, Sent sent) noexcept;
 
+// The identifier a device of `model` answers a read of `request` with under
+// `profile`: a recorded reply form that answers it (field: GIC -> GIA), else
+// `request` itself.
+std::string_view reply_ident(Model model, std::string_view request, Profile profile) noexcept;
+// Whether a device frame of `reply` answers a read of `request` (the same
+// identifier, or a recorded form of any model and profile: a reader of
+// traffic takes both the document's and the field's answer).
+bool answers_query(Dialect d, std::string_view request, std::string_view reply) noexcept;
 // The recorded form whose length char counts bytes (length_in_bytes) that
 // `f` has: its identifier, control, header and address order, any model.
 // Asked by the frame parser when a frame's data is twice its length.

@@ -41,6 +41,13 @@ struct MotionAxis {
   // The sign of a positive value as the document writes it: +1 when a
   // positive value turns right (yaw) or up (pitch), -1 when it turns down.
   std::int8_t sign = 1;
+  // The sign field evidence gives where it differs from the document's
+  // (0: the same); the row's field_evidence names the source.
+  std::int8_t field_sign = 0;
+  // The sign under field evidence (`field`, the field profile) or the document.
+  constexpr std::int8_t sign_in(bool field) const noexcept {
+    return field && field_sign != 0 ? field_sign : sign;
+  }
 };
 
 struct MotionSpec {
@@ -51,8 +58,19 @@ struct MotionSpec {
   std::array<MotionAxis, axis_count> axes{};
   std::uint8_t count = 0;    // axes used
   std::string_view section;  // where the document says so
+  // Under field evidence: deg/s of one raw count of the speed (angles) or
+  // rate fields, where the field's unit is not the catalog's (0: the
+  // catalog's scale).
+  double field_unit = 0;
+  // The source of every field_sign, of field_unit and of a row only the
+  // field gives (Topotek GIA attitude); empty: the document alone.
+  std::string_view field_evidence;
   std::span<const MotionAxis> fields() const noexcept { return {axes.data(), count}; }
 };
+
+// The speed or rate in deg/s of a decoded field of `spec` (`value` scaled by
+// the catalog, `raw` its integer) under field evidence or the document.
+double motion_speed(const MotionSpec& spec, double value, std::int64_t raw, bool field) noexcept;
 
 // Every motion command and attitude report of both dialects.
 std::span<const MotionSpec> motions() noexcept;

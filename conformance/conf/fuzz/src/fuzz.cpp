@@ -102,11 +102,14 @@ struct Session {
     link.send(c.bytes);
     std::vector<Received> got;
     Received rx;
-    auto own = [&](const top::Frame& f) {
-      return (!c.ident.empty() && f.ident_view() == c.ident) || is_error_reply(f.ident_view());
+    // The case's answer: its identifier or a recorded reply form of it (a
+    // real SIP answers GIC with GIA), as the runner takes it.
+    auto answers = [&](const top::Frame& f) {
+      return !c.ident.empty() && top::answers_query(m.dialect, c.ident, f.ident_view());
     };
+    auto own = [&](const top::Frame& f) { return answers(f) || is_error_reply(f.ident_view()); };
     auto keep = [&](Received&& x) {
-      if (is_push(m.dialect, x.frame.ident_view()) && x.frame.ident_view() != c.ident) return;
+      if (is_push(m.dialect, x.frame.ident_view()) && !answers(x.frame)) return;
       got.push_back(std::move(x));
     };
     if (!t.datagram() && c.open_end) {
@@ -155,7 +158,7 @@ struct Session {
     const bool promised = c.level != Level::may;
     bool answered_ident = false, answered_ere = false;
     for (const Received& x : got) {
-      answered_ident |= !c.ident.empty() && x.frame.ident_view() == c.ident;
+      answered_ident |= answers(x.frame);
       answered_ere |= is_error_reply(x.frame.ident_view());
     }
     if (c.promise == Promise::silence && promised && (answered_ident || answered_ere)) {

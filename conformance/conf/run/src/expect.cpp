@@ -18,6 +18,25 @@ const top::DeviceForm* recorded_departure(const Matrix& m, const top::Frame& f) 
   return rule ? nullptr : rf;
 }
 
+std::string field_reply_form(const Matrix& m, const top::Frame& f) {
+  top::DecodeOptions o;
+  o.dialect = m.dialect;
+  o.model = m.model;
+  o.role = top::Role::response;
+  o.detail = false;
+  o.document_first = true;  // a reply the document allows is no field form
+  const top::Decoded dec = top::decode(f, o);
+  if (!dec.form || !dec.form->from_field()) return {};
+  return std::string(kFieldForm) + std::string(dec.form->evidence);
+}
+
+std::string field_stream(top::Dialect d, std::string_view ident) {
+  if (top::stream_of(d, ident, top::Profile::document)) return {};
+  const top::StreamSpec* s = top::stream_of(d, ident);
+  if (!s || !s->from_field()) return {};
+  return std::string(kFieldForm) + std::string(s->evidence);
+}
+
 std::string frame_deviation(const Received& r) {
   if (r.after_garbage) return "garbage preceded the frame";
   for (const auto& f : r.frame.findings) {
@@ -101,7 +120,8 @@ bool Matcher::reply_matches(const Alternative& a, const top::Frame* req, const t
                             std::string& why) const {
   const Expectation& e = a.e;
   const std::string ident = !e.ident.empty() ? e.ident : req ? std::string(req->ident_view()) : "";
-  if (f.ident_view() != ident) {
+  // The identifier, or the one a recorded form answers it with (GIC -> GIA).
+  if (!top::answers_query(m_.dialect, ident, f.ident_view())) {
     if (is_error_reply(f.ident_view())) why = "the device answered ERE";
     return false;
   }

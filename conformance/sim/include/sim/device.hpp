@@ -42,10 +42,15 @@ struct DeviceOptions {
   std::uint32_t speed_hold_ms = 0;
   // Push rate of Topotek GIC/GAC streams, which GIA/GAA only switch on.
   std::uint32_t topotek_stream_hz = 10;
-  // Identity: SkyDroid's VER and MOD replies (empty: V1.0.78, the form
-  // ArduPilot's SkyDroid driver parses, and the model's name, C12).
+  // Identity: SkyDroid's VER and MOD replies, Topotek's VSN and PA2 (empty:
+  // the model's defaults: SkyDroid V1.0.78, the form ArduPilot's SkyDroid
+  // driver parses, and the model's name, C12; Topotek a real SIP's version
+  // 1.6.26.R.D, issue 28 log and PixEagle bench notes, model name SIP).
   std::string version;
   std::string model_name;
+  // Topotek tracking: false for a lens that cannot track (TRC state 4,
+  // ArduPilot PR #31768).
+  bool tracking = true;
 };
 
 // One gimbal axis: an angle moving toward a target at a speed, or turning
@@ -67,6 +72,18 @@ struct Stream {
   std::uint32_t period_us = 0;  // 0: off
   std::uint64_t next_us = 0;
   char dst = 'U';  // client address the pushes go to
+};
+
+// The Topotek tracker (field: ArduPilot AP_Mount_Topotek PR #27568 and
+// #31768, PixEagle bench notes on a real SIP; sim/src/device_topotek.cpp).
+struct Tracking {
+  char state = '0';             // TRC data char 1: 0 stopped, 1 waiting, 2 tracking, 4 no lens
+  std::uint64_t starts_us = 0;  // a LOC while waiting: tracking from then (0: none)
+  std::uint64_t next_box_us = 0;
+  std::int16_t x = 0, y = 0;  // LOC centre on the +/-1000 grid
+  std::uint16_t w = 0, h = 0;
+  char dst = 0, device = 0;  // the LOC's source and destination: where OFT goes, from whom
+  std::string_view push;     // the frames of the LOC's stream (top::stream_enabled_by: OFT)
 };
 
 class Device {
@@ -106,6 +123,7 @@ class Device {
   // The stored data of a setting (written value or default), "" if none.
   std::string setting(std::string_view ident) const;
   const std::vector<Stream>& streams() const noexcept { return streams_; }
+  const Tracking& tracking() const noexcept { return tracking_; }
   std::uint64_t requests() const noexcept { return requests_; }
 
  private:
@@ -122,8 +140,25 @@ class Device {
   bool dispatch(const top::Frame& req, const top::Decoded& dec, std::uint64_t now_us,
                 std::vector<std::string>& out);
   friend struct Handlers;
+  // The Topotek commands of sim/src/device_topotek.cpp, asked first: true
+  // when one answered `req`.
+  bool dispatch_topotek(const top::Frame& req, const top::Decoded& dec, std::uint64_t now_us,
+                        std::vector<std::string>& out);
+  // Tracking's state changes and OFT pushes due at `now_us`.
+  void poll_topotek(std::uint64_t now_us, std::vector<std::string>& out);
+  // One OFT tracking box of `t` with `status` ('2' tracking, '1' stopped).
+  void push_box(const Tracking& t, char status, std::vector<std::string>& out) const;
+  void describe_topotek(std::vector<TraitLine>& out) const;
+  friend struct TopotekHandlers;
+  // The form of a reply to `req`: form_of, and the request's header kept
+  // where the keeps_request_header trait applies and the length fits it.
+  top::DeviceForm reply_form(const top::Frame& req, std::string_view ident,
+                             std::size_t length) const;
+  bool field() const noexcept { return opts_.profile == top::Profile::field; }
   void start_stream(std::string_view ident, std::uint32_t hz, char dst, std::uint64_t now_us);
-  std::string attitude_data() const;
+  // The attitude as the report `ident` carries it (GAC, GIC, GIA: the
+  // signs of top::motion_of under the profile).
+  std::string attitude_data(std::string_view ident) const;
   std::string read_data(const top::CommandSpec& cmd, const top::FormSpec& form) const;
   // The form of a reply or push of `ident` with `length` data chars: the
   // profile's, then the options' overrides, then the no-swap fault.
@@ -147,6 +182,8 @@ class Device {
   std::map<std::string, std::string, std::less<>> settings_;
   std::vector<Stream> streams_;
   std::uint64_t requests_ = 0;
+  Tracking tracking_;
+  bool keeps_header_ = false;
 };
 
 // The request handler as a function (the fuzz entry point): one datagram's

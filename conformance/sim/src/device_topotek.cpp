@@ -1,0 +1,216 @@
+// The Topotek commands with state behind them, as ArduPilot's AP_Mount_Topotek
+// and a real SIP show them (docs/sources/ardupilot.md sections 1, 8.1, 8.3):
+// angle and rate commands move the axes (top::motion_of, with the field's
+// signs and units under the field profile), GIA switches the attitude
+// stream (GIA frames in the field, GIC in the document), the GIC query is
+// answered as a real SIP does, tracking is a small state machine (TRC, LOC,
+// OFT), and position writes are echoed. Asked before device_handlers.cpp's
+// table (Device::dispatch).
+#include <algorithm>
+#include <cmath>
+
+#include "device_util.hpp"
+#include "sim/device.hpp"
+
+namespace topsim {
+
+using detail::data_byte;
+using detail::field;
+
+struct TopotekHandlers {
+  struct Call {
+    Device& dev;
+    const top::Frame& req;
+    const top::Decoded& dec;
+    std::uint64_t now_us;
+    std::vector<std::string>& out;
+  };
+  using Fn = bool (*)(const Call&);
+
+  // The write back, its header kept (a real SIP answers #tp with #tp).
+  static bool echo(const Call& c) {
+    c.out.push_back(
+        c.dev.make(c.req.header, c.req, c.req.control, c.req.ident_view(), c.req.data()));
+    return true;
+  }
+
+  // Angle and rate commands (top/motion.hpp): the field's signs and units
+  // under the field profile (GIP down positive, YPR in deg/s x 1.2207).
+  static bool motion(const Call& c) {
+    Device& d = c.dev;
+    const top::MotionSpec* m = top::motion_of(d.dialect_, c.req.ident_view());
+    if (!m || (m->kind != top::MotionKind::angle && m->kind != top::MotionKind::rate)) return false;
+    const bool fld = d.field();
+    for (const top::MotionAxis& x : m->fields()) {
+      Axis& a = d.axes_[static_cast<std::size_t>(x.axis)];
+      const top::FieldValue* v = field(c.dec, x.value);
+      if (!v) continue;
+      const double sign = x.sign_in(fld);
+      if (m->kind == top::MotionKind::angle) {
+        const top::FieldValue* spd = field(c.dec, x.speed);
+        const double s = spd ? top::motion_speed(*m, spd->value, spd->integer, fld) : 0;
+        a.target = std::clamp(sign * v->value, a.min, a.max);
+        // 0: the document gives no meaning; the full speed (99)
+        a.target_speed = s > 0 ? s : top::motion_speed(*m, 9.9, 99, fld);
+        a.has_target = true;
+        a.rate = 0;
+        a.rate_until = 0;
+      } else {
+        a.rate = sign * top::motion_speed(*m, v->value, v->integer, fld);
+        a.rate_until = c.now_us + std::uint64_t{d.opts_.speed_hold_ms} * 1000;
+        a.has_target = false;
+      }
+    }
+    return echo(c);
+  }
+
+  // GIA and GAA writes: the stream on (at the device's rate) or off. In the
+  // field GIA 01 pushes GIA frames (top::stream_enabled_by under the profile).
+  static bool stream_write(const Call& c) {
+    Device& d = c.dev;
+    const int v = data_byte(c.req.data());
+    const top::StreamSpec* s =
+        top::stream_enabled_by(d.dialect_, c.req.ident_view(), d.opts_.profile);
+    if ((v != 0 && v != 1) || !s) return false;
+    d.start_stream(s->push, v ? d.opts_.topotek_stream_hz : 0, c.req.src, c.now_us);
+    return echo(c);
+  }
+
+  // The GIC query: the attitude now, in the identifier top::reply_ident
+  // gives (a real SIP answers with a 12-char GIA, the document with GIC).
+  static bool attitude_read(const Call& c) {
+    Device& d = c.dev;
+    d.advance(c.now_us);
+    const std::string_view id = top::reply_ident(d.model_, c.req.ident_view(), d.opts_.profile);
+    const std::string data = d.attitude_data(id);
+    c.out.push_back(
+        d.build(d.reply_form(c.req, id, data.size()), c.req.src, c.req.dst, 'r', id, data));
+    return true;
+  }
+
+  // TRC write: 02 prepare and 01 cancel go to waiting, 00 exits; a lens that
+  // cannot track stays in state 4. A cancel while tracking pushes one OFT
+  // with an all-zero box and status 1 (PixEagle bench notes).
+  static bool tracking_write(const Call& c) {
+    Device& d = c.dev;
+    Tracking& t = d.tracking_;
+    const int v = data_byte(c.req.data());
+    if (v < 0 || v > 2) return false;
+    if (t.state != '4') {
+      if (t.state == '2' && v != 2) d.push_box(t, '1', c.out);
+      t.state = v == 0 ? '0' : '1';
+      t.starts_us = 0;
+    }
+    return echo(c);
+  }
+
+  // TRC read: 0 and the state char.
+  static bool tracking_read(const Call& c) {
+    Device& d = c.dev;
+    const std::string data{'0', d.tracking_.state};
+    const std::string_view id = c.req.ident_view();
+    c.out.push_back(d.build(d.reply_form(c.req, id, 2), c.req.src, c.req.dst, 'r', id, data));
+    return true;
+  }
+
+  // LOC: a point or rectangle while waiting (or tracking: a new target)
+  // starts tracking about 0.4 s later (PixEagle: the first active state
+  // ~400 ms after LOC).
+  static bool tracking_target(const Call& c) {
+    Device& d = c.dev;
+    Tracking& t = d.tracking_;
+    const auto* x = field(c.dec, "x");
+    const auto* y = field(c.dec, "y");
+    const auto* w = field(c.dec, "width");
+    const auto* h = field(c.dec, "height");
+    const top::StreamSpec* s =
+        top::stream_enabled_by(d.dialect_, c.req.ident_view(), d.opts_.profile);
+    if (!x || !y || !w || !h || !s) return false;
+    if (t.state == '1' || t.state == '2' || t.state == '3') {
+      t.x = static_cast<std::int16_t>(x->integer);
+      t.y = static_cast<std::int16_t>(y->integer);
+      t.w = static_cast<std::uint16_t>(w->integer);
+      t.h = static_cast<std::uint16_t>(h->integer);
+      t.dst = c.req.src;
+      t.device = c.req.dst;
+      t.push = s->push;
+      if (t.state != '2') t.starts_us = c.now_us + kTrackStartUs;
+    }
+    return echo(c);
+  }
+
+  // LAT/LON writes: echoed in the field (issue 28: a real unit's answer is
+  // the write back); the document's 5.8.7 output layout otherwise.
+  static bool position_write(const Call& c) { return c.dev.field() ? echo(c) : false; }
+
+  static constexpr std::uint64_t kTrackStartUs = 400000;
+};
+
+namespace {
+
+struct Entry {
+  std::string_view ident;
+  char control;
+  TopotekHandlers::Fn fn;
+};
+
+constexpr Entry kTopotek[] = {
+    {"GIA", 'w', TopotekHandlers::stream_write},   {"GAA", 'w', TopotekHandlers::stream_write},
+    {"GIC", 'r', TopotekHandlers::attitude_read},  {"TRC", 'w', TopotekHandlers::tracking_write},
+    {"TRC", 'r', TopotekHandlers::tracking_read},  {"LOC", 'w', TopotekHandlers::tracking_target},
+    {"LAT", 'w', TopotekHandlers::position_write}, {"LON", 'w', TopotekHandlers::position_write},
+};
+
+// OFT at about video rate while tracking (issue 28: ~30 Hz).
+constexpr std::uint64_t kBoxPeriodUs = 1000000 / 30;
+
+void put_le16(std::string& s, long v) {
+  const auto u = static_cast<std::uint16_t>(std::clamp(v, 0L, 65535L));
+  s.push_back(static_cast<char>(u & 0xFF));
+  s.push_back(static_cast<char>(u >> 8));
+}
+
+}  // namespace
+
+// One OFT: the LOC box in pixels of 1920x1080, little-endian (top left x, y,
+// width, height), then the status char; '1' sends an all-zero box.
+void Device::push_box(const Tracking& t, char status, std::vector<std::string>& out) const {
+  std::string data;
+  if (status == '2') {
+    const double w = t.w * 0.96, h = t.h * 0.54;
+    put_le16(data, std::lround(960 + t.x * 0.96 - w / 2));
+    put_le16(data, std::lround(540 + t.y * 0.54 - h / 2));
+    put_le16(data, std::lround(w));
+    put_le16(data, std::lround(h));
+  } else {
+    data.assign(8, '\0');
+  }
+  data.push_back(status);
+  out.push_back(
+      build(form_of(t.push, top::Sent::push, data.size()), t.dst, t.device, 'w', t.push, data));
+}
+
+void Device::poll_topotek(std::uint64_t now_us, std::vector<std::string>& out) {
+  Tracking& t = tracking_;
+  if (t.starts_us != 0 && t.starts_us <= now_us) {
+    t.starts_us = 0;
+    t.state = '2';
+    t.next_box_us = now_us;
+  }
+  if (t.state != '2' || t.next_box_us > now_us) return;
+  push_box(t, '2', out);
+  t.next_box_us += kBoxPeriodUs;
+  if (t.next_box_us <= now_us) t.next_box_us = now_us + kBoxPeriodUs;
+}
+
+bool Device::dispatch_topotek(const top::Frame& req, const top::Decoded& dec, std::uint64_t now_us,
+                              std::vector<std::string>& out) {
+  const TopotekHandlers::Call call{*this, req, dec, now_us, out};
+  const std::string_view id = req.ident_view();
+  for (const Entry& e : kTopotek)
+    if (e.control == req.control && e.ident == id) return e.fn(call);
+  if (req.control == 'w' && top::motion_of(dialect_, id)) return TopotekHandlers::motion(call);
+  return false;
+}
+
+}  // namespace topsim
