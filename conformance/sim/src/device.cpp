@@ -56,18 +56,29 @@ std::string month_early(const top::FormSpec& form, std::string data) {
   return data;
 }
 
-// A factory placeholder in place of an identity value (placeholder-identity;
-// top::is_placeholder_identity is the rule): a model name reads 000000000,
-// as a real Topotek unit's did (ArduPilot PR #27568); a version or serial
-// number keeps its shape, every digit and letter 0 (a SkyDroid version its
-// leading V, the form ArduPilot's driver parses).
-std::string placeholder(std::string_view ident, const std::string& value) {
-  if (ident == "MOD" || ident == "PA2") return "000000000";
-  std::string v = value;
-  for (std::size_t i = 0; i < v.size(); ++i)
-    if (std::isalnum(static_cast<unsigned char>(v[i])) && !(i == 0 && v[i] == 'V' && v.size() > 1))
-      v[i] = '0';
-  return v;
+// A factory placeholder in place of what a read that names the device
+// answers (placeholder-identity; top::is_placeholder_identity is the rule):
+// a model name reads 000000000, as a real Topotek unit's did (ArduPilot PR
+// #27568); a version or serial number keeps its shape, every digit and
+// letter 0 (a leading V kept: the version form ArduPilot's SkyDroid driver
+// parses). Which reads name the device, the catalog says: the one field of
+// their reply is the model, version or serial_number. Empty: not one.
+std::string placeholder(top::Dialect d, std::string_view ident, const std::string& value) {
+  const top::CommandSpec* c = top::find_command(d, ident);
+  if (!c) return {};
+  for (const top::FormSpec& f : c->forms) {
+    if (f.control != 'r' || f.role != top::Role::response || f.fields.size() != 1) continue;
+    const std::string_view name = f.fields[0].name;
+    if (name == "model") return "000000000";
+    if (name != "version" && name != "serial_number") return {};
+    std::string v = value;
+    for (std::size_t i = 0; i < v.size(); ++i)
+      if (std::isalnum(static_cast<unsigned char>(v[i])) &&
+          !(i == 0 && v[i] == 'V' && v.size() > 1))
+        v[i] = '0';
+    return v;
+  }
+  return {};
 }
 
 }  // namespace
@@ -110,9 +121,8 @@ Device::Device(top::Model model, DeviceOptions opts)
     if (!opts_.tracking || opts_.faults.refuse_tracking) tracking_.state = '4';
   }
   if (opts_.faults.placeholder_identity)
-    for (const char* id : {"VER", "MOD", "VSN", "PA2"})
-      if (auto it = settings_.find(std::string_view(id)); it != settings_.end())
-        it->second = placeholder(id, it->second);
+    for (auto& [id, value] : settings_)
+      if (std::string z = placeholder(dialect_, id, value); !z.empty()) value = std::move(z);
   keeps_header_ = !opts_.reply_header &&
                   top::find_trait(top::TraitKind::keeps_request_header, model, p) != nullptr;
 }

@@ -63,8 +63,10 @@ struct Handlers {
     const std::string_view id = c.req.ident_view();
     std::string v = id == "REC" ? (d.recording_ ? "01" : "00") : "00";
     if (id != "REC") {
+      // the profile's stream (field: GIA 01 pushes GIA frames)
+      const top::StreamSpec* on = top::stream_enabled_by(d.dialect_, id, d.opts_.profile);
       for (const Stream& s : d.streams_)
-        if (s.ident == top::stream_enabled_by(d.dialect_, id)->push && s.period_us) v = "01";
+        if (on && s.ident == on->push && s.period_us) v = "01";
     }
     c.out.push_back(d.make(top::Header::fixed, c.req, 'r', id, v));
     return true;
