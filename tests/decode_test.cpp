@@ -289,6 +289,42 @@ TEST(Decode, EnumCodesAreThoseOfPrintf) {
   EXPECT_EQ(checked, 18u * 7u);
 }
 
+// topsim's document profile answers LAT/LON writes in 5.8.7's layout
+// (W0000000090, S000000045): no digits-and-point coordinate of 5.8.1/5.8.2,
+// so they decode as the output, not as the field's echo (they did: every
+// digit string passed as dddmm.mmmm). The echo of AP_Mount_Topotek's writes
+// stays the echo, and the catalog's example data is a valid coordinate.
+TEST(Decode, DocumentOutputIsNotTakenForTheFieldsEcho) {
+  for (const char* raw : {"#tpDUBwLONW0000000090", "#tpDUAwLATS000000045"}) {
+    const Decoded out = dec(with_checksum(raw), Dialect::topotek, Model::sip);
+    ASSERT_NE(out.form, nullptr) << raw;
+    EXPECT_TRUE(out.findings.empty()) << raw << ": " << out.findings.front().message;
+    EXPECT_FALSE(out.form->from_field()) << raw;
+    EXPECT_EQ(field(out, "hemisphere").text, std::string(1, raw[10])) << raw;
+  }
+  for (const char* raw : {"#tpDUAwLATN3520.1206", "#tpDUBwLONE13843.6200"}) {
+    const Decoded echo = dec(with_checksum(raw), Dialect::topotek, Model::sip);
+    ASSERT_NE(echo.form, nullptr) << raw;
+    EXPECT_TRUE(echo.findings.empty()) << raw << ": " << echo.findings.front().message;
+    EXPECT_TRUE(echo.form->from_field()) << raw;
+  }
+  // The writes themselves: a coordinate out of shape is a bad field.
+  for (const char* raw : {"#tpUDAwLATN35201.206", "#tpUDAwLATE3520.1206", "#tpUDBwLONE13883.6200",
+                          "#tpUDBwLONE1384362000"}) {
+    const Decoded w = dec(with_checksum(raw), Dialect::topotek, Model::sip);
+    EXPECT_TRUE(toptest::has_code(w.findings, FindingCode::bad_field)) << raw;
+  }
+  for (const char* id : {"LAT", "LON"}) {
+    const top::CommandSpec* c = top::find_command(Dialect::topotek, id);
+    ASSERT_NE(c, nullptr);
+    const std::string data = top::example_data(c->forms[0]);
+    const Decoded w =
+        dec(with_checksum(std::string("#tpUD") + (data.size() == 10 ? "A" : "B") + "w" + id + data),
+            Dialect::topotek, Model::sip);
+    EXPECT_TRUE(w.findings.empty()) << id << " " << data;
+  }
+}
+
 // LAT/LON answers: the field's echo (N/S E/W + ddmm.mmmm) and 5.8.7's output
 // (hemisphere + degrees) share a length; the decoder takes the form whose
 // fields validate, so neither raises a false alarm.

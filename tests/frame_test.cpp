@@ -436,6 +436,10 @@ TEST(Parse, DoubleChecksumIsTheFramesNotGarbage) {
     EXPECT_EQ(r.frame.data(), std::string_view(raw).substr(10, 2));
     EXPECT_TRUE(has_code(r.frame.findings, FindingCode::double_checksum)) << raw;
     EXPECT_FALSE(has_code(r.frame.findings, FindingCode::trailing_bytes)) << raw;
+    // Its bytes are all it consumed, the second checksum too (they were two
+    // short, and the stream decoder's items then missed two bytes).
+    EXPECT_EQ(r.frame.raw, raw);
+    EXPECT_EQ(r.consumed, r.frame.raw.size()) << raw;
     // In a stream of frames: the next frame starts right after it.
     const std::string two = std::string(raw) + "#TPUD2wCAP013E";
     const ParseResult first = parse_frame(two, false);

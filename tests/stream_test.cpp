@@ -398,3 +398,20 @@ TEST(Stream, SettleDecidesOnAFrameWaitingForLookAhead) {
   ASSERT_TRUE(f.next(it));
   EXPECT_EQ(it.frame.raw, "#TPUD2wCAP013E");
 }
+
+// The C10 Pro tool's double-checksum frame is one item whose bytes are the
+// stream's, second checksum included, however the stream is cut (the frame
+// was two bytes short of its item: found by fuzz_stream in CI).
+TEST(Stream, DoubleChecksumFrameIsTheStreamsBytes) {
+  const std::string s = "#TPUD2wCAP013E#TPUG2wPTZ056FEB#TPUD2rREC003E";
+  for (std::size_t chunk : {std::size_t{1}, std::size_t{3}, std::size_t{7}, s.size()}) {
+    const auto items = decode_chunked(s, {chunk});
+    ASSERT_EQ(frames_of(items),
+              (std::vector<std::string>{"#TPUD2wCAP013E", "#TPUG2wPTZ056FEB", "#TPUD2rREC003E"}))
+        << chunk << ": " << describe(items);
+    EXPECT_EQ(items[1].offset, 14u);
+    EXPECT_EQ(items[1].length, 16u);
+    EXPECT_EQ(items[2].offset, 30u);
+    EXPECT_TRUE(toptest::has_code(items[1].frame.findings, FindingCode::double_checksum));
+  }
+}

@@ -150,9 +150,18 @@ void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes, std::
       char hemi = bytes[0];
       if (hemi != 'E' && hemi != 'W' && hemi != 'N' && hemi != 'S')
         return bad("hemisphere '", {&hemi, 1}, "' is not N S E W");
+      // Degrees in 3 digits east or west, 2 north or south, leading zeros
+      // sent (Topotek 5.8.1, 5.8.2), then minutes mm.mmmm: the 5.8.7
+      // output's ddd.ddddd (same length) is no such coordinate.
+      const std::size_t deg_digits = hemi == 'E' || hemi == 'W' ? 3 : 2;
+      const std::string_view coord = bytes.substr(1);
+      bool shaped = coord.size() == deg_digits + 7 && coord[deg_digits + 2] == '.';
+      for (std::size_t i = 0; shaped && i < coord.size(); ++i)
+        shaped = i == deg_digits + 2 || (coord[i] >= '0' && coord[i] <= '9');
       double raw = 0;
-      if (!detail::parse_number(bytes.substr(1), raw) || raw < 0)
-        return bad("'", bytes.substr(1), "' is not dddmm.mmmm");
+      if (!shaped || !detail::parse_number(coord, raw) ||
+          raw - std::floor(raw / 100.0) * 100.0 >= 60.0)
+        return bad("'", coord, deg_digits == 3 ? "' is not dddmm.mmmm" : "' is not ddmm.mmmm");
       double deg = std::floor(raw / 100.0);
       double minutes = raw - deg * 100.0;
       double v = deg + minutes / 60.0;

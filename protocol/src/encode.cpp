@@ -135,10 +135,10 @@ std::string example_data(const FormSpec& form) {
         continue;
       }
       case FieldKind::nmea: {
-        std::string t = "E12030.1234";
-        if (w != 0) {
-          t.resize(w, '0');
-        }
+        // E/W + dddmm.mmmm in 11 chars, N/S + ddmm.mmmm in 10 (Topotek
+        // 5.8.1, 5.8.2).
+        std::string t = w == 10 ? "N3012.1234" : "E12030.1234";
+        if (w != 0) t.resize(w, '0');
         out += t;
         continue;
       }

@@ -2,6 +2,8 @@
 
 #include <array>
 
+#include "swap_members.hpp"
+
 namespace top {
 
 namespace {
@@ -56,12 +58,8 @@ std::optional<FindingCode> finding_code_from_string(std::string_view s) noexcept
 }
 
 void swap(Finding& a, Finding& b) noexcept {
-  using std::swap;
-  swap(a.code, b.code);
-  swap(a.severity, b.severity);
-  swap(a.offset, b.offset);
-  a.message.swap(b.message);
-  swap(a.quirk, b.quirk);
+  detail::swap_members(a, b, &Finding::code, &Finding::severity, &Finding::offset,
+                       &Finding::message, &Finding::quirk);
 }
 
 Finding make_finding(FindingCode code, std::uint32_t offset, std::string message,

@@ -7,6 +7,7 @@
 
 #include "byte_sum.hpp"
 #include "frame_parse.hpp"
+#include "swap_members.hpp"
 
 namespace top {
 
@@ -46,22 +47,11 @@ void put_hex2(std::uint8_t v, char out[2]) noexcept {
 void reset_keep_capacity(Frame& f) noexcept { detail::reset_frame(f); }
 
 void swap(Frame& a, Frame& b) noexcept {
-  using std::swap;
-  swap(a.header, b.header);
-  swap(a.src, b.src);
-  swap(a.dst, b.dst);
-  swap(a.control, b.control);
-  swap(a.ident, b.ident);
-  swap(a.declared_length, b.declared_length);
-  swap(a.data_offset, b.data_offset);
-  swap(a.data_length, b.data_length);
-  swap(a.checksum, b.checksum);
-  swap(a.expected_checksum, b.expected_checksum);
-  swap(a.checksum_present, b.checksum_present);
-  swap(a.checksum_ok, b.checksum_ok);
-  swap(a.terminator, b.terminator);
-  a.raw.swap(b.raw);
-  a.findings.swap(b.findings);
+  detail::swap_members(a, b, &Frame::header, &Frame::src, &Frame::dst, &Frame::control,
+                       &Frame::ident, &Frame::declared_length, &Frame::data_offset,
+                       &Frame::data_length, &Frame::checksum, &Frame::expected_checksum,
+                       &Frame::checksum_present, &Frame::checksum_ok, &Frame::terminator,
+                       &Frame::raw, &Frame::findings);
 }
 
 std::string with_checksum(std::string_view s) {

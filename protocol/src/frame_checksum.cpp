@@ -46,19 +46,8 @@ std::optional<Verdict> declared_checksum(Parse& p, std::size_t cs, unsigned pref
                       " is right but lowercase; strict receivers expect ", hex2(v)});
         })));
   Verdict r = finish(p, p.lay.declared, true, v, prefix);
-  // A second checksum over the frame and its checksum, then the end or a
-  // boundary: the C10 Pro tool's double-checksum frame.
-  std::uint8_t second = 0;
-  const std::size_t end = cs + 2;
-  if (second_checksum(b, end, prefix, second)) {
-    p.f.findings.push_back(
-        make_finding(FindingCode::double_checksum, static_cast<std::uint32_t>(end), p.text([&] {
-          return cat({"a second checksum ", b.substr(end, 2),
-                      " over the frame and its checksum follows it"});
-        }),
-                     quirk_id(FindingCode::double_checksum)));
-    r.consumed = end + 2;
-  }
+  if (take_second_checksum(p.f, b.substr(cs + 2), p.at_end, p.opts.messages) == SecondChecksum::yes)
+    r.consumed += 2;
   return r;
 }
 
@@ -164,6 +153,32 @@ Verdict wrong_checksum(Parse& p, std::size_t cs, unsigned prefix) {
 }
 
 }  // namespace
+
+SecondChecksum take_second_checksum(Frame& f, std::string_view rest, bool at_end, bool messages) {
+  // Only after a checksum that validates at the declared boundary, once.
+  const std::size_t end = f.raw.size();
+  if (!f.checksum_ok || f.data_length != f.declared_length || f.terminator != 0 ||
+      end != std::size_t{f.data_offset} + f.data_length + 2 || f.has(FindingCode::double_checksum))
+    return SecondChecksum::no;
+  const auto sum =
+      static_cast<std::uint8_t>(f.expected_checksum + static_cast<unsigned char>(f.raw[end - 2]) +
+                                static_cast<unsigned char>(f.raw[end - 1]));
+  const int want[2] = {sum >> 4, sum & 0xF};
+  for (std::size_t i = 0; i < 2; ++i) {
+    if (i >= rest.size()) return at_end ? SecondChecksum::no : SecondChecksum::undecided;
+    if (hex_value(rest[i]) != want[i]) return SecondChecksum::no;
+  }
+  if (rest.size() == 2 && !at_end) return SecondChecksum::undecided;
+  if (rest.size() > 2 && !is_boundary(rest[2])) return SecondChecksum::no;
+  f.findings.push_back(make_finding(FindingCode::double_checksum, static_cast<std::uint32_t>(end),
+                                    messages ? cat({"a second checksum ", rest.substr(0, 2),
+                                                    " over the frame and its checksum follows it"})
+                                             : std::string(),
+                                    quirk_id(FindingCode::double_checksum)));
+  // The frame's bytes are all it consumed, the second checksum too.
+  f.raw.append(rest.data(), 2);
+  return SecondChecksum::yes;
+}
 
 Verdict judge_checksum(Parse& p) {
   const std::size_t n = p.n;

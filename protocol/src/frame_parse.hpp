@@ -89,7 +89,9 @@ inline bool checksum_at(std::string_view b, std::size_t p, unsigned prefix_sum,
 // Two checksum digits at `end`, right after a frame's valid checksum (the
 // sum of the bytes before that checksum: `prefix`), that are the sum of the
 // frame with its checksum, followed by the end of input or a boundary: a
-// double checksum (the C10 Pro tool's #TPUG2wPTZ056FEB).
+// double checksum (the C10 Pro tool's #TPUG2wPTZ056FEB). The fast path's
+// test: true sends the frame to the general parse, which decides with
+// take_second_checksum.
 inline bool second_checksum(std::string_view b, std::size_t end, unsigned prefix,
                             std::uint8_t& value) noexcept {
   if (end + 2 > b.size() || end < 2) return false;
@@ -98,6 +100,16 @@ inline bool second_checksum(std::string_view b, std::size_t end, unsigned prefix
       prefix + static_cast<unsigned char>(b[end - 2]) + static_cast<unsigned char>(b[end - 1]);
   return checksum_at(b, end, sum, value);
 }
+
+// Whether `rest`, the bytes after frame `f`, begins with its second checksum
+// (see second_checksum): yes, no, or undecided while the bytes that came
+// still agree and more may come (not `at_end`). On yes the two digits join
+// the frame: its raw bytes and a double-checksum finding (texts when
+// `messages`). The one home of the rule, for the parse (the bytes it has)
+// and the stream decoder (the bytes that come after a frame it holds), so
+// that the frame is the same however the stream is cut.
+enum class SecondChecksum : std::uint8_t { no, yes, undecided };
+SecondChecksum take_second_checksum(Frame& f, std::string_view rest, bool at_end, bool messages);
 
 // Where the parts of a frame lie, as its header and length field say.
 struct Layout {

@@ -13,14 +13,12 @@ namespace {
 class AskVersion : public DriverClient {
  public:
   std::uint64_t tick(std::uint64_t now_us, std::vector<std::string>& out) override {
-    top::BuildSpec b;
-    b.header = top::Header::fixed;
-    b.src = client;
-    b.dst = 'D';
-    b.control = 'r';
-    b.ident = "VER";
-    b.data = "00";
-    out.push_back(top::build_frame(b));
+    out.push_back(top::build_frame({.header = top::Header::fixed,
+                                    .src = client,
+                                    .dst = 'D',
+                                    .control = 'r',
+                                    .ident = "VER",
+                                    .data = "00"}));
     ++asked;
     return now_us + 100000;
   }

@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <ctime>
 #include <optional>
 #include <string>
 #include <vector>
@@ -77,8 +78,7 @@ class SkyDroidDriver : public DriverClient {
           if (version.empty()) out.push_back(frame(top::Header::fixed, 'D', 'r', "VER", "00"));
           break;
         case 1:
-          // 14:30:05.00 on 26 Nov 2026, the month as the driver sends it (0-based).
-          out.push_back(frame(top::Header::variable, 'D', 'w', "TIM", "143005.00261026"));
+          out.push_back(frame(top::Header::variable, 'D', 'w', "TIM", time_data()));
           break;
         case 2:
           out.push_back(frame(top::Header::fixed, 'G', 'w', "GAA", "32"));
@@ -179,16 +179,23 @@ class SkyDroidDriver : public DriverClient {
     out.push_back(frame(top::Header::fixed, 'G', 'w', "GSP", byte_hex(gsp)));
   }
 
+  // TIM's data as the driver writes it from its UTC clock (hhmmss.ccDDMMYY,
+  // 15 chars), with the driver's month: 0-based, unconverted (review of
+  // ArduPilot PR #34155; docs/sources/ardupilot.md section 2.2, "TIM (month bug)").
+  static std::string time_data() {
+    const std::time_t t = std::time(nullptr);
+    std::tm u{};
+    gmtime_r(&t, &u);
+    char b[32];
+    std::snprintf(b, sizeof b, "%02d%02d%02d.00%02d%02d%02d", u.tm_hour, u.tm_min, u.tm_sec,
+                  u.tm_mday, u.tm_mon, u.tm_year % 100);
+    return b;
+  }
+
   std::string frame(top::Header h, char dst, char control, std::string_view ident,
                     std::string_view data) const {
-    top::BuildSpec b;
-    b.header = h;
-    b.src = client;
-    b.dst = dst;
-    b.control = control;
-    b.ident = ident;
-    b.data = data;
-    return top::build_frame(b);
+    return top::build_frame(
+        {.header = h, .src = client, .dst = dst, .control = control, .ident = ident, .data = data});
   }
 
   bool mode_sent_ = false;

@@ -82,16 +82,23 @@ TEST_P(SkyDroidDriverRun, ServedAsTheDriverNeeds) {
   // real unit is known to take it), none for anything else.
   EXPECT_EQ(static_cast<int>(c.errors.size()), c.fai_sent) << ctx;
 
-  // topdump on topsim's recording: no warning but the 14-char FAI's, a real
-  // deviation from the document (3.3.6.2: 12) with no field evidence that a
-  // unit takes it: its data-length, and the ERE that refuses it.
+  // topdump on topsim's recording: no warning but two real deviations of
+  // the driver. The 14-char FAI (SkyDroid 3.3.6.2 has 12, no field evidence
+  // that a unit takes it): its data-length, and the ERE that refuses it.
+  // And the driver's TIM, which sends the month 0-based (review of
+  // ArduPilot PR #34155): clock-offset names it, exactly one month early.
   const Dump d = topdump_findings(rec);
   std::map<std::string, int> seen;  // "code ident": count
-  for (const DumpFinding& f : d.findings) ++seen[f.code + " " + f.ident];
+  for (const DumpFinding& f : d.findings) {
+    ++seen[f.code + " " + f.ident];
+    if (f.code == "clock-offset") {
+      EXPECT_NE(f.message.find("exactly one month early"), std::string::npos) << f.message;
+    }
+  }
   std::string all;
   for (const auto& [k, n] : seen) all += " " + k + " x" + std::to_string(n) + ";";
-  const std::map<std::string, int> expected = {{"data-length FAI", c.fai_sent},
-                                               {"error-reply ERE", c.fai_sent}};
+  const std::map<std::string, int> expected = {
+      {"clock-offset ", 1}, {"data-length FAI", c.fai_sent}, {"error-reply ERE", c.fai_sent}};
   EXPECT_EQ(seen, expected) << ctx << ":" << all << "\n" << describe(d);
   std::remove(rec.c_str());
 }

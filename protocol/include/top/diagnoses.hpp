@@ -99,17 +99,9 @@ struct FormSpec;
     "sent again in time; ArduPilot's SkyDroid driver re-sends every update",                     \
     "re-send rate commands faster than the limit for as long as the axis should move")
 
-enum class Diagnosis : std::uint8_t {
-#define TOP_X(e, s, sev, title, evidence, remedy) e,
-  TOP_DIAGNOSES(TOP_X)
-#undef TOP_X
-};
+enum class Diagnosis : std::uint8_t { TOP_DIAGNOSES(TOP_ROW_ENUMERATOR) };
 
-inline constexpr std::size_t diagnosis_count = 0
-#define TOP_X(e, s, sev, title, evidence, remedy) +1  // NOLINT(bugprone-macro-parentheses)
-    TOP_DIAGNOSES(TOP_X)
-#undef TOP_X
-    ;
+inline constexpr std::size_t diagnosis_count = 0 TOP_DIAGNOSES(TOP_ROW_COUNT);
 
 // The stable code, e.g. "stream-stalled".
 std::string_view to_string(Diagnosis d) noexcept;

@@ -94,17 +94,15 @@ std::string_view to_string(Severity s) noexcept;
     "a valid frame followed by a second checksum over it and its checksum (a C10 Pro tool's "     \
     "#TPUG2wPTZ056FEB); the two digits are taken as the frame's, not as garbage")
 
-enum class FindingCode : std::uint16_t {
-#define TOP_X(e, s, sev, quirk, when) e,
-  TOP_FINDINGS(TOP_X)
-#undef TOP_X
-};
+// A table row's enumerator, and 1 for each row: what every X-macro table
+// (this one, TOP_DIAGNOSES) derives its enum and count from, whatever its
+// columns.
+#define TOP_ROW_ENUMERATOR(e, ...) e,
+#define TOP_ROW_COUNT(...) +1  // NOLINT(bugprone-macro-parentheses)
 
-inline constexpr std::size_t finding_code_count = 0
-#define TOP_X(e, s, sev, quirk, when) +1  // NOLINT(bugprone-macro-parentheses)
-    TOP_FINDINGS(TOP_X)
-#undef TOP_X
-    ;
+enum class FindingCode : std::uint16_t { TOP_FINDINGS(TOP_ROW_ENUMERATOR) };
+
+inline constexpr std::size_t finding_code_count = 0 TOP_FINDINGS(TOP_ROW_COUNT);
 
 // The stable code string, e.g. "bad-checksum".
 std::string_view to_string(FindingCode c) noexcept;

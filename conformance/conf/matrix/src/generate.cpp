@@ -251,7 +251,7 @@ struct Generator {
     // index) is answered in that layout; any other write is echoed.
     const top::FormSpec* wr = nullptr;
     for (const auto& f : c.forms)
-      if (f.control == 'w' && f.role == top::Role::response) wr = &f;
+      if (f.control == 'w' && f.role == top::Role::response && !f.from_field()) wr = &f;
     if (k.w) {
       json expect = echo_alts();
       std::string answer = "echoed with the addresses swapped";
@@ -262,6 +262,7 @@ struct Generator {
         expect = reply_alts(reply);
         answer = "answered in its reply layout";
       }
+      field_write_replies(k, expect);
       json cs = k.head("/write", ": a write is " + answer, k.level, k.tags({"positive", "write"}));
       cs["steps"] = json::array({{{"send", send(c, 'w', k.wdata)}, {"expect", expect}}});
       cases.push_back(std::move(cs));
@@ -288,6 +289,26 @@ struct Generator {
           {{{"send", send(c, 'w', alt)},
             {"expect", json::array({json{{"readback", {{"send", send(c, 'r', k.rdata)}}}}})}}});
       cases.push_back(std::move(cs));
+    }
+  }
+
+  // The answers to a write that only the field gives (top/catalog.hpp
+  // from_field), after the document's: its echo where the field's form has
+  // the request's layout (a real unit echoes the LAT/LON writes), else a
+  // reply in the field's layout (LRF's 5 digits). topconf reports a match
+  // as the field's form, with its evidence.
+  void field_write_replies(const Command& k, json& expect) const {
+    for (const auto& f : k.c.forms) {
+      if (f.control != 'w' || f.role != top::Role::response || !f.from_field()) continue;
+      json alt = json{{"echo", true}};
+      if (!same_layout(*k.w, f)) {
+        json reply = {{"control", "w"}};
+        json checks = reply_checks(f);
+        if (!checks.empty()) reply["fields"] = checks;
+        alt = json{{"reply", reply}};
+      }
+      alt["note"] = "the field's answer: " + std::string(f.evidence);
+      expect.push_back(std::move(alt));
     }
   }
 
@@ -365,10 +386,22 @@ struct Generator {
       const std::string on = st.rate_in_data ? "0A" : "01";
       const double hz = 10;
       const std::string push(st.push);
-      const json stream = {{"ident", push},
-                           {"rate_hz", hz},
-                           {"tolerance", top::stream_rate_tolerance},
-                           {"duration_ms", 450}};
+      auto stream_of = [&](std::string_view ident) {
+        return json{{"stream",
+                     {{"ident", std::string(ident)},
+                      {"rate_hz", hz},
+                      {"tolerance", top::stream_rate_tolerance},
+                      {"duration_ms", 450}}}};
+      };
+      json pushes = json::array({stream_of(st.push)});
+      // The field's stream of the same switch (Topotek GIA 01 pushing GIA
+      // frames), reported as the field's form.
+      const top::StreamSpec* fs = top::stream_enabled_by(d, st.request, top::Profile::field);
+      if (fs && fs->push != st.push) {
+        json alt = stream_of(fs->push);
+        alt["note"] = "the field's stream: " + std::string(fs->evidence);
+        pushes.push_back(std::move(alt));
+      }
       cases.push_back(
           {{"id",
             dn + "/" + section_number(gaa->section) + "/" + std::string(gaa->ident) + "/stream"},
@@ -379,7 +412,7 @@ struct Generator {
            {"tags", json::array({"stream", "class-G", std::string(gaa->ident)})},
            {"steps", json::array({
                          {{"send", send(*gaa, 'w', on)}, {"expect", echo_alts()}},
-                         {{"expect", json::array({json{{"stream", stream}}})}},
+                         {{"expect", pushes}},
                          {{"send", send(*gaa, 'w', "00")}, {"expect", echo_alts()}},
                      })}});
     }

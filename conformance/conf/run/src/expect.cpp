@@ -18,6 +18,24 @@ const top::DeviceForm* recorded_departure(const Matrix& m, const top::Frame& f) 
   return rule ? nullptr : rf;
 }
 
+std::string field_reply_form(const Matrix& m, const top::Frame& f) {
+  top::DecodeOptions o;
+  o.dialect = m.dialect;
+  o.model = m.model;
+  o.role = top::Role::response;
+  o.detail = false;
+  const top::Decoded dec = top::decode(f, o);
+  if (!dec.form || !dec.form->from_field()) return {};
+  return std::string(kFieldForm) + std::string(dec.form->evidence);
+}
+
+std::string field_stream(top::Dialect d, std::string_view ident) {
+  if (top::stream_of(d, ident, top::Profile::document)) return {};
+  const top::StreamSpec* s = top::stream_of(d, ident);
+  if (!s || !s->from_field()) return {};
+  return std::string(kFieldForm) + std::string(s->evidence);
+}
+
 std::string frame_deviation(const Received& r) {
   if (r.after_garbage) return "garbage preceded the frame";
   for (const auto& f : r.frame.findings) {

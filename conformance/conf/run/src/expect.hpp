@@ -20,6 +20,14 @@ inline constexpr std::string_view kFieldForm = "the field's form, not the docume
 // or nullptr.
 const top::DeviceForm* recorded_departure(const Matrix& m, const top::Frame& f);
 
+// kFieldForm and the evidence when the device frame `f` decodes as a reply
+// in a form only the field gives (top/catalog.hpp from_field: a LAT/LON
+// write's echo, the LRF's 5 digits, GIA answering GIC), else "".
+std::string field_reply_form(const Matrix& m, const top::Frame& f);
+// kFieldForm and the evidence when the pushes of `ident` are a stream only
+// the field gives (top/device.hpp: Topotek GIA 01 pushing GIA), else "".
+std::string field_stream(top::Dialect d, std::string_view ident);
+
 // A deviation that a strict match must not have: a warning or error at the
 // frame level, or a named firmware quirk ("" for none).
 std::string frame_deviation(const Received& r);

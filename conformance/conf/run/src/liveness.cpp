@@ -1,5 +1,7 @@
 #include "conf/liveness.hpp"
 
+#include "top/device.hpp"
+
 namespace topconf {
 
 std::vector<Probe> probes_for(const Matrix& m, char client) {
@@ -19,6 +21,12 @@ std::vector<Probe> probes_for(const Matrix& m, char client) {
     Probe p = Probe::of(std::move(bytes), true);
     p.liveness = lp;
     p.dialect = m.dialect;
+    // A stream switch's probe turns the stream off again (00: off, or a rate
+    // of 0 Hz; top/device.hpp StreamSpec).
+    if (lp.control == 'w' && top::stream_enabled_by(m.dialect, lp.ident)) {
+      s.data = "00";
+      if (!resolve_send(s, m.dialect, client, p.off, err)) p.off.clear();
+    }
     v.push_back(std::move(p));
   }
   return v;

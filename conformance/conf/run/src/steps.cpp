@@ -14,10 +14,9 @@ struct CaseRunner::Watch {
   std::uint64_t start = 0;   // when the request went out
   std::uint64_t window = 0;  // ms watched
   std::uint32_t stream_ms = 0;
-  std::string stream_ident;
-  std::vector<std::optional<Received>> matched;  // per alternative
-  std::vector<std::uint64_t> push_times;         // of the stream's frames
-  std::uint64_t first_answer = 0;                // time of the first non-push frame
+  std::vector<std::optional<Received>> matched;        // per alternative
+  std::vector<std::vector<std::uint64_t>> push_times;  // per stream alternative
+  std::uint64_t first_answer = 0;                      // time of the first non-push frame
   bool answered = false;
   bool duplicate = false;  // the matching reply arrived again
   std::string near_miss;
@@ -60,7 +59,6 @@ StepResult CaseRunner::run_step(const Case& c, const Step& s) {
       silence_ms = std::max(silence_ms, e.silence_ms);
     } else if (e.kind == ExpectKind::stream) {
       seen.stream_ms = std::max(seen.stream_ms, e.duration_ms);
-      seen.stream_ident = e.ident;
     } else if (e.kind != ExpectKind::readback) {
       has_frame_alt = true;
     }
@@ -71,6 +69,7 @@ StepResult CaseRunner::run_step(const Case& c, const Step& s) {
   seen.window = std::max<std::uint64_t>(seen.window, silence_ms);
   seen.window = std::max<std::uint64_t>(seen.window, seen.stream_ms);
   seen.matched.resize(s.expect.size());
+  seen.push_times.resize(s.expect.size());
   watch(s, alts, rq, seen);
   return verdict(s, seen);
 }
@@ -90,9 +89,14 @@ void CaseRunner::watch(const Step& s, const std::vector<Alternative>& alts, cons
       break;
     }
     const std::string_view id = r.frame.ident_view();
-    if (!seen.stream_ident.empty() && id == seen.stream_ident && r.frame.ok() &&
-        r.t_us <= seen.start + std::uint64_t{seen.stream_ms} * 1000)
-      seen.push_times.push_back(r.t_us);
+    // Each stream alternative counts its own push (the document's GIC, the
+    // field's GIA).
+    for (std::size_t i = 0; i < s.expect.size(); ++i) {
+      const Expectation& e = s.expect[i];
+      if (e.kind == ExpectKind::stream && id == e.ident && r.frame.ok() &&
+          r.t_us <= seen.start + std::uint64_t{e.duration_ms} * 1000)
+        seen.push_times[i].push_back(r.t_us);
+    }
     const bool push =
         is_push(m_.dialect, id) && !(rq && top::answers_query(m_.dialect, rq->ident_view(), id));
     if (!push && !seen.answered) {
@@ -145,11 +149,12 @@ StepResult CaseRunner::verdict(const Step& s, const Watch& seen) const {
           near_miss = "expected silence for " + std::to_string(e.silence_ms) + " ms";
         break;
       case ExpectKind::stream: {
-        const std::size_t n = seen.push_times.size();
+        const std::vector<std::uint64_t>& times = seen.push_times[i];
+        const std::size_t n = times.size();
         double rate = 0;
         if (n >= 2)
-          rate = static_cast<double>(n - 1) * 1e6 /
-                 static_cast<double>(seen.push_times.back() - seen.push_times.front());
+          rate =
+              static_cast<double>(n - 1) * 1e6 / static_cast<double>(times.back() - times.front());
         ok = n >= 2 && std::fabs(rate - e.rate_hz) <= e.tolerance * e.rate_hz;
         if (!ok) {
           char buf[160];
@@ -158,6 +163,7 @@ StepResult CaseRunner::verdict(const Step& s, const Watch& seen) const {
                         e.ident.c_str(), n, e.duration_ms, rate, e.rate_hz, e.tolerance * 100);
           if (near_miss.empty() || n > 0) near_miss = buf;
         }
+        if (ok) dev = field_stream(m_.dialect, e.ident);
         break;
       }
       default:
@@ -167,6 +173,7 @@ StepResult CaseRunner::verdict(const Step& s, const Watch& seen) const {
           if (const top::DeviceForm* rf = recorded_departure(m_, seen.matched[i]->frame);
               rf && rf->source == top::Source::field)
             dev = std::string(kFieldForm) + std::string(rf->evidence);
+        if (ok && dev.empty()) dev = field_reply_form(m_, seen.matched[i]->frame);
         if (ok && seen.duplicate) dev = "the reply arrived more than once";
         break;
     }
