@@ -127,13 +127,15 @@ class TopoClient : public TopotekClient {
 };
 
 // Reads the version ten times a second (SkyDroid VER, Topotek VSN), each
-// frame's checksum spoiled when `bad_checksum` (its last digit changed).
+// frame's checksum spoiled when `bad_checksum` (its last digit changed), with
+// source `source` when given (U over the network: ArduPilot before PR #33803).
 class VersionClient : public DriverClient {
  public:
-  explicit VersionClient(bool skydroid, bool bad_checksum = false)
-      : sky_(skydroid), bad_(bad_checksum) {}
+  explicit VersionClient(bool skydroid, bool bad_checksum = false, char source = 0)
+      : sky_(skydroid), bad_(bad_checksum), source_(source) {}
   std::uint64_t tick(std::uint64_t now_us, std::vector<std::string>& out) override {
-    std::string fr = build(client, top::Header::fixed, 'D', 'r', sky_ ? "VER" : "VSN", "00");
+    std::string fr =
+        build(source_ ? source_ : client, top::Header::fixed, 'D', 'r', sky_ ? "VER" : "VSN", "00");
     if (bad_) fr.back() = fr.back() == '0' ? '1' : '0';
     out.push_back(std::move(fr));
     return now_us + 100000;
@@ -143,6 +145,7 @@ class VersionClient : public DriverClient {
 
  private:
   bool sky_, bad_;
+  char source_;
 };
 
 // One frame of a recording as `topdump read --json` gives it: its time (s),

@@ -19,7 +19,7 @@ namespace {
 
 using faultclients::DumpFrame;
 
-enum class Client { sky, topotek, version, bad_checksum };
+enum class Client { sky, topotek, version, bad_checksum, uart_source };
 
 std::unique_ptr<DriverClient> make_client(Client c, top::Model m) {
   const bool sky = top::dialect_of(m) == top::Dialect::skydroid;
@@ -32,6 +32,8 @@ std::unique_ptr<DriverClient> make_client(Client c, top::Model m) {
       return std::make_unique<faultclients::VersionClient>(sky);
     case Client::bad_checksum:
       return std::make_unique<faultclients::VersionClient>(sky, true);
+    case Client::uart_source:
+      return std::make_unique<faultclients::VersionClient>(sky, false, 'U');
   }
   return nullptr;
 }
@@ -149,8 +151,10 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"ignore_sip", top::Model::sip, Client::version, "ignore=VSN", "silent-device"},
         // requests with a bad checksum: the device drops them (no fault needed)
         Case{"bad_checksum_c12", top::Model::c12, Client::bad_checksum, "", "dropped-bad-checksum"},
-        Case{"bad_checksum_sip", top::Model::sip, Client::bad_checksum, "",
-             "dropped-bad-checksum"}),
+        Case{"bad_checksum_sip", top::Model::sip, Client::bad_checksum, "", "dropped-bad-checksum"},
+        // Topotek requests with source U over UDP: the device answers its UART
+        // only (no fault needed)
+        Case{"uart_source_sip", top::Model::sip, Client::uart_source, "", "reply-interface"}),
     [](const auto& i) { return std::string(i.param.name); });
 
 // ---- the motion faults, on the recording ----------------------------------
