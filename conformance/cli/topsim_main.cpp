@@ -82,12 +82,7 @@ std::vector<Choice> add_options(CLI::App& app, Options& o) {
   app.add_flag("--pty", o.pty, "serve on a new pseudo-terminal and print its path");
   app.add_option("--serial", o.serial, "serve on a serial device");
   app.add_option("--baud", o.baud, "serial baud rate")->capture_default_str();
-  app.add_option("--fault", o.faults,
-                 "faults: drop=P,delay=MS,duplicate=P,bad-checksum=P,header-case=P,no-swap,"
-                 "lying-length=P,tmp-quirk,split,garbage=P,hang-on=IDENT,ignore=CLASS[+CLASS] (no "
-                 "answer to those requests, e.g. ignore=VER+AWB); firmware faults (SIGHUP "
-                 "restarts the device): crash-on=CLASS,hang-on=CLASS,hang-s=S,slow-on=CLASS,"
-                 "slow-ms=MS,answer-corrupt, CLASS = ident:ID|len:N|byte:HH");
+  app.add_option("--fault", o.faults, std::string(topsim::fault_usage()));
   app.add_option("--seed", o.seed, "seed of the fault injection")->capture_default_str();
   app.add_option("--record", o.record, "write every frame received and sent to FILE.pcap");
   app.add_option("--reply-port", o.reply_port,

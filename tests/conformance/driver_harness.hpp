@@ -41,17 +41,19 @@ struct DriverRun {
   std::uint64_t start_us = 0;            // on the client's clock
 };
 
-// Runs `client` against topsim for `duration_ms` over `kind` (udp or pty).
-// The server records the run to `record` (empty: none). Throws on a link
-// that cannot be opened.
+// Runs `client` against topsim for `duration_ms` over `kind` (udp or pty),
+// with `faults` (topsim --fault). The server records the run to `record`
+// (empty: none). Throws on a link that cannot be opened.
 inline DriverRun run_driver(DriverClient& client, top::Model model, topsim::TransportKind kind,
                             std::uint64_t duration_ms, const std::string& record,
-                            topsim::DeviceOptions options = {}) {
+                            topsim::DeviceOptions options = {},
+                            const topsim::FaultConfig& faults = {}) {
   topsim::ServerConfig cfg;
   cfg.model = model;
   cfg.kind = kind;
   cfg.record = record;
   cfg.device_options = options;
+  cfg.faults = faults;
   RunningServer s(cfg);
   const std::string target = kind == topsim::TransportKind::udp
                                  ? "udp://127.0.0.1:" + std::to_string(s.server.port())

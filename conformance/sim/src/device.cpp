@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "device_util.hpp"
+#include "top/diagnoses.hpp"
 
 namespace topsim {
 namespace {
@@ -17,6 +18,68 @@ using top::Frame;
 constexpr std::uint64_t kNever = std::numeric_limits<std::uint64_t>::max();
 
 using detail::hex_s16;
+
+// `data` of a dated form (top::carries_date: TIM, UTC) one month earlier, as
+// a camera whose clock was set with a 0-based month reports it (review of
+// ArduPilot PR #34155): the month field less one, January the December of
+// the year before. The fields are found by the form's widths, as
+// top::date_time_of reads them; data it cannot read stays as it is.
+std::string month_early(const top::FormSpec& form, std::string data) {
+  constexpr std::size_t npos = std::string::npos;
+  std::size_t at = 0, month_at = npos, month_w = 0, year_at = npos, year_w = 0;
+  for (const top::FieldSpec& f : form.fields) {
+    const std::size_t w = f.width ? f.width : data.size() - std::min(at, data.size());
+    if (f.name == "month") month_at = at, month_w = w;
+    if (f.name == "year") year_at = at, year_w = w;
+    at += w;
+  }
+  if (month_at == npos || year_at == npos || at > data.size()) return data;
+  auto number = [&](std::size_t p, std::size_t w) {
+    int v = 0;
+    for (std::size_t i = p; i < p + w; ++i) {
+      if (data[i] < '0' || data[i] > '9') return -1;
+      v = v * 10 + (data[i] - '0');
+    }
+    return w ? v : -1;
+  };
+  auto put = [&](std::size_t p, std::size_t w, int v) {
+    for (std::size_t i = p + w; i-- > p; v /= 10) data[i] = static_cast<char>('0' + v % 10);
+  };
+  int month = number(month_at, month_w), year = number(year_at, year_w);
+  if (month < 1 || year < 0) return data;
+  if (--month == 0) {
+    month = 12;
+    year = year > 0 ? year - 1 : year_w == 2 ? 99 : 0;
+  }
+  put(month_at, month_w, month);
+  put(year_at, year_w, year);
+  return data;
+}
+
+// A factory placeholder in place of what a read that names the device
+// answers (placeholder-identity; top::is_placeholder_identity is the rule):
+// a model name reads 000000000, as a real Topotek unit's did (ArduPilot PR
+// #27568); a version or serial number keeps its shape, every digit and
+// letter 0 (a leading V kept: the version form ArduPilot's SkyDroid driver
+// parses). Which reads name the device, the catalog says: the one field of
+// their reply is the model, version or serial_number. Empty: not one.
+std::string placeholder(top::Dialect d, std::string_view ident, const std::string& value) {
+  const top::CommandSpec* c = top::find_command(d, ident);
+  if (!c) return {};
+  for (const top::FormSpec& f : c->forms) {
+    if (f.control != 'r' || f.role != top::Role::response || f.fields.size() != 1) continue;
+    const std::string_view name = f.fields[0].name;
+    if (name == "model") return "000000000";
+    if (name != "version" && name != "serial_number") return {};
+    std::string v = value;
+    for (std::size_t i = 0; i < v.size(); ++i)
+      if (std::isalnum(static_cast<unsigned char>(v[i])) &&
+          !(i == 0 && v[i] == 'V' && v.size() > 1))
+        v[i] = '0';
+    return v;
+  }
+  return {};
+}
 
 }  // namespace
 
@@ -55,8 +118,11 @@ Device::Device(top::Model model, DeviceOptions opts)
     settings_["VSN"] = opts_.version.empty() ? "1.6.26.R.D" : opts_.version;
     settings_["PA2"] = opts_.model_name.empty() ? "SIP" : opts_.model_name;
     settings_["TRA"] = "11";  // every reply of a real SIP (issue 28 log)
-    if (!opts_.tracking) tracking_.state = '4';
+    if (!opts_.tracking || opts_.faults.refuse_tracking) tracking_.state = '4';
   }
+  if (opts_.faults.placeholder_identity)
+    for (auto& [id, value] : settings_)
+      if (std::string z = placeholder(dialect_, id, value); !z.empty()) value = std::move(z);
   keeps_header_ = !opts_.reply_header &&
                   top::find_trait(top::TraitKind::keeps_request_header, model, p) != nullptr;
 }
@@ -94,6 +160,17 @@ bool Device::inverted(std::size_t axis, std::string_view ident) const noexcept {
   const std::optional<bool>& opt = axis == 0 ? opts_.yaw_inverted : opts_.pitch_inverted;
   if (opt) return *opt;
   return axis < 2 && sign_trait_[axis] != nullptr && sign_trait_[axis]->names(ident);
+}
+
+bool Device::ignores_motion(std::string_view ident) const noexcept {
+  const auto& v = opts_.faults.ignore_motion;
+  return std::find(v.begin(), v.end(), ident) != v.end();
+}
+
+bool Device::fault_inverts(std::size_t axis, top::MotionKind kind) const noexcept {
+  const std::uint8_t bit =
+      kind == top::MotionKind::angle ? DeviceFaults::kInvertAngle : DeviceFaults::kInvertRate;
+  return axis < 3 && (opts_.faults.invert[axis] & bit) != 0;
 }
 
 bool Device::accepts(const Frame& f, Link link) const noexcept {
@@ -188,6 +265,7 @@ void Device::start_stream(std::string_view ident, std::uint32_t hz, char dst,
   // A re-sent enable keeps the stream going on its timing (ArduPilot's
   // Topotek driver re-sends GIA 01 once a second).
   if (period != 0 && it->period_us == period) return;
+  if (it->period_us == 0) it->on_us = now_us;
   it->period_us = period;
   it->next_us = now_us + it->period_us;
 }
@@ -207,9 +285,12 @@ void Device::poll(std::uint64_t now_us, std::vector<std::string>& out) {
     if (s.period_us == 0) continue;
     // Never emit a backlog: a late poll sends one frame and catches up.
     if (s.next_us > now_us) continue;
-    const std::string data = attitude_data(s.ident);
-    out.push_back(
-        build(form_of(s.ident, top::Sent::push, data.size()), s.dst, 'G', 'r', s.ident, data));
+    // A stalled or never-started stream keeps its timing and sends nothing.
+    if (!opts_.faults.muted(s.ident, now_us - std::min(now_us, s.on_us))) {
+      const std::string data = attitude_data(s.ident);
+      out.push_back(
+          build(form_of(s.ident, top::Sent::push, data.size()), s.dst, 'G', 'r', s.ident, data));
+    }
     s.next_us += s.period_us;
     if (s.next_us <= now_us) s.next_us = now_us + s.period_us;
   }
@@ -255,8 +336,12 @@ void Device::handle(const Frame& req, Link link, std::uint64_t now_us,
 
   const top::CommandSpec& cmd = *dec.command;
   if (req.control == 'w') {
-    // Settings (image, network, ...) are stored, never applied to the host.
-    settings_[std::string(id)] = std::string(req.data());
+    // Settings (image, network, ...) are stored, never applied to the host;
+    // a date set is answered with the camera's clock (clock=month-early).
+    std::string stored(req.data());
+    if (opts_.faults.clock_month_early && top::carries_date(id))
+      stored = month_early(*dec.form, std::move(stored));
+    settings_[std::string(id)] = stored;
     // A write with a reply layout of its own (Topotek 5.8.7 LON/LAT target
     // output, 5.9 LRF result) is answered in that layout; others are echoed.
     // The field's layout first under the field profile (a real unit's 5-char
@@ -274,7 +359,7 @@ void Device::handle(const Frame& req, Link link, std::uint64_t now_us,
           make(top::choose_header(dialect_, cmd.address, data.size()), req, 'w', id, data));
       return;
     }
-    out.push_back(make(req.header, req, 'w', id, req.data()));
+    out.push_back(make(req.header, req, 'w', id, stored));
     return;
   }
   // A read: find the response form (or the request's own when the command

@@ -63,8 +63,10 @@ struct Handlers {
     const std::string_view id = c.req.ident_view();
     std::string v = id == "REC" ? (d.recording_ ? "01" : "00") : "00";
     if (id != "REC") {
+      // the profile's stream (field: GIA 01 pushes GIA frames)
+      const top::StreamSpec* on = top::stream_enabled_by(d.dialect_, id, d.opts_.profile);
       for (const Stream& s : d.streams_)
-        if (s.ident == top::stream_enabled_by(d.dialect_, id)->push && s.period_us) v = "01";
+        if (on && s.ident == on->push && s.period_us) v = "01";
     }
     c.out.push_back(d.make(top::Header::fixed, c.req, 'r', id, v));
     return true;
@@ -75,6 +77,7 @@ struct Handlers {
     Device& d = c.dev;
     const top::MotionSpec* m = top::motion_of(d.dialect_, c.req.ident_view());
     if (!m) return false;
+    if (d.ignores_motion(c.req.ident_view())) return true;  // echoed; nothing moves
     for (const top::MotionAxis& x : m->fields()) {
       Axis& a = d.axes_[static_cast<std::size_t>(x.axis)];
       if (m->kind == top::MotionKind::angle) {
@@ -91,8 +94,10 @@ struct Handlers {
         turn(c, a, spd->value);
       }
       // A sign trait (or --yaw-sign/--pitch-sign) for this command: the
-      // gimbal moves the other way from what the attitude reports.
-      if (d.inverted(static_cast<std::size_t>(x.axis), c.req.ident_view())) {
+      // gimbal moves the other way from what the attitude reports; the
+      // invert= fault turns the axis the other way from that.
+      const auto axis = static_cast<std::size_t>(x.axis);
+      if (d.inverted(axis, c.req.ident_view()) != d.fault_inverts(axis, m->kind)) {
         a.target = std::clamp(-a.target, a.min, a.max);
         a.rate = -a.rate;
       }
@@ -108,6 +113,7 @@ struct Handlers {
 
   static bool ptz(const Call& c) {
     Device& d = c.dev;
+    if (d.ignores_motion(c.req.ident_view())) return true;  // echoed; nothing moves
     const int act = action(c);
     constexpr double kPtzRate = 10.0;
     const top::PtzAction p = top::ptz_action(act);
@@ -119,7 +125,9 @@ struct Handlers {
                (!trim || (d.field_ptz_ &&
                           top::field_supported(d.dialect_, d.model_, c.req.ident_view(), act)))) {
       const auto axis = static_cast<std::size_t>(p.axis);
-      turn(c, d.axes_[axis], (d.inverted(axis, c.req.ident_view()) ? -1 : 1) * p.sign * kPtzRate);
+      const bool inv =
+          d.inverted(axis, c.req.ident_view()) != d.fault_inverts(axis, top::MotionKind::rate);
+      turn(c, d.axes_[axis], (inv ? -1 : 1) * p.sign * kPtzRate);
     } else if (p.move == top::PtzMove::centre) {
       for (Axis& x : d.axes_) x.target = 0, x.target_speed = 9.9, x.has_target = true, x.rate = 0;
     }

@@ -40,12 +40,15 @@ struct TopotekHandlers {
     Device& d = c.dev;
     const top::MotionSpec* m = top::motion_of(d.dialect_, c.req.ident_view());
     if (!m || (m->kind != top::MotionKind::angle && m->kind != top::MotionKind::rate)) return false;
+    if (d.ignores_motion(c.req.ident_view())) return echo(c);  // nothing moves
     const bool fld = d.field();
     for (const top::MotionAxis& x : m->fields()) {
-      Axis& a = d.axes_[static_cast<std::size_t>(x.axis)];
+      const auto axis = static_cast<std::size_t>(x.axis);
+      Axis& a = d.axes_[axis];
       const top::FieldValue* v = field(c.dec, x.value);
       if (!v) continue;
-      const double sign = x.sign_in(fld);
+      // invert=: this kind of command turns the axis the other way.
+      const double sign = x.sign_in(fld) * (d.fault_inverts(axis, m->kind) ? -1 : 1);
       if (m->kind == top::MotionKind::angle) {
         const top::FieldValue* spd = field(c.dec, x.speed);
         const double s = spd ? top::motion_speed(*m, spd->value, spd->integer, fld) : 0;
@@ -196,9 +199,11 @@ void Device::poll_topotek(std::uint64_t now_us, std::vector<std::string>& out) {
     t.starts_us = 0;
     t.state = '2';
     t.next_box_us = now_us;
+    t.on_us = now_us;
   }
   if (t.state != '2' || t.next_box_us > now_us) return;
-  push_box(t, '2', out);
+  // A stalled OFT push keeps its timing and sends nothing.
+  if (!opts_.faults.muted(t.push, now_us - std::min(now_us, t.on_us))) push_box(t, '2', out);
   t.next_box_us += kBoxPeriodUs;
   if (t.next_box_us <= now_us) t.next_box_us = now_us + kBoxPeriodUs;
 }

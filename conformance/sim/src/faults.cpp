@@ -3,6 +3,8 @@
 #include <charconv>
 #include <cstdlib>
 
+#include "device_faults.hpp"
+
 namespace topsim {
 namespace {
 
@@ -52,15 +54,32 @@ std::string malformed(const std::string& frame, bool lie, bool flip) {
 bool FaultConfig::any() const noexcept {
   return drop > 0 || delay_ms > 0 || duplicate > 0 || bad_checksum > 0 || header_case > 0 ||
          no_swap || lying_length > 0 || tmp_quirk || split || garbage > 0 || !hang_on.empty() ||
-         !ignore.empty() || crash_on || hang_class || slow_on || answer_corrupt;
+         !ignore.empty() || crash_on || hang_class || slow_on || answer_corrupt || device.any();
 }
 
 const std::vector<std::string_view>& fault_names() {
   static const std::vector<std::string_view> names = {
-      "drop",         "delay",     "duplicate", "bad-checksum",   "header-case", "no-swap",
-      "lying-length", "tmp-quirk", "split",     "garbage",        "hang-on",     "crash-on",
-      "hang-s",       "slow-on",   "slow-ms",   "answer-corrupt", "ignore"};
+      "drop", "delay", "duplicate", "bad-checksum", "header-case", "no-swap", "lying-length",
+      "tmp-quirk", "split", "garbage", "hang-on", "crash-on", "hang-s", "slow-on", "slow-ms",
+      "answer-corrupt", "ignore",
+      // the device faults (device_faults.cpp)
+      "stall", "no-stream", "ignore-motion", "invert", "placeholder-identity", "refuse-tracking",
+      "clock"};
   return names;
+}
+
+std::string_view fault_usage() noexcept {
+  return "faults: drop=P,delay=MS,duplicate=P,bad-checksum=P,header-case=P,no-swap,"
+         "lying-length=P,tmp-quirk,split,garbage=P,hang-on=IDENT,ignore=CLASS[+CLASS] (no "
+         "answer to those requests, e.g. ignore=VER+AWB); firmware faults (SIGHUP "
+         "restarts the device): crash-on=CLASS,hang-on=CLASS,hang-s=S,slow-on=CLASS,"
+         "slow-ms=MS,answer-corrupt, CLASS = ident:ID|len:N|byte:HH; device faults (each "
+         "shows a diagnosis of topdump): stall=IDENT@T+S (the push IDENT stops T s after its "
+         "switch-on, for S s), no-stream=IDENT (the switch is answered, no push comes), "
+         "ignore-motion=IDENT[+IDENT] (echoed, nothing moves), invert=yaw|pitch|roll[:angle|:rate] "
+         "(the axis moves opposite to the command), placeholder-identity (VER/MOD/VSN/PA2 "
+         "answer 000000000, 0.0.0), refuse-tracking (TRC state 4), clock=month-early (TIM/UTC "
+         "answered one month early)";
 }
 
 std::optional<FaultConfig> parse_faults(std::string_view spec, std::string& error) {
@@ -134,6 +153,11 @@ std::optional<FaultConfig> parse_faults(std::string_view spec, std::string& erro
       if (has_value) return bad("takes no value");
       cfg.answer_corrupt = true;
     } else {
+      // the device faults (device_faults.cpp), then an unknown name
+      std::string why;
+      const auto p = detail::parse_device_fault(name, has_value, value, cfg.device, why);
+      if (p == detail::Parsed::bad) return bad(why);
+      if (p == detail::Parsed::ok) continue;
       std::string known;
       for (const std::string_view n : fault_names())
         known += (known.empty() ? "" : " ") + std::string(n);

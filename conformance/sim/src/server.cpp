@@ -127,6 +127,7 @@ struct Server::Impl {
     DeviceOptions o = cfg.device_options;
     o.swap_addresses = !cfg.faults.no_swap;
     o.tmp_quirk = o.tmp_quirk || cfg.faults.tmp_quirk;
+    o.faults = cfg.faults.device;
     return o;
   }
 

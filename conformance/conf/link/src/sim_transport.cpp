@@ -15,6 +15,7 @@ SimTransport::SimTransport(top::Model model, topsim::FaultConfig faults, std::ui
         o.profile = profile;
         o.swap_addresses = !faults.no_swap;
         o.tmp_quirk = faults.tmp_quirk;
+        o.faults = faults.device;
         return o;
       }()),
       device_(model, options_),

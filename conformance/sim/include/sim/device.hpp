@@ -20,6 +20,48 @@ namespace topsim {
 // link its source byte names).
 using Link = top::Link;
 
+// What a faulty device does that topdump names as a field diagnosis
+// (docs/DIAGNOSES.md; topsim --fault, parsed by sim/faults.hpp). Applied by
+// the device itself: it stops a push, moves an axis the wrong way, reports
+// a placeholder identity.
+struct DeviceFaults {
+  static constexpr std::uint64_t kForever = std::numeric_limits<std::uint64_t>::max();
+  // A push stream that stops: no push of `ident` from `from_us` to
+  // `until_us` after the stream was switched on (stall=: it resumes;
+  // no-stream=: from 0, forever, while its switch is still answered).
+  struct Mute {
+    std::string ident;
+    std::uint64_t from_us = 0, until_us = kForever;
+  };
+  std::vector<Mute> mutes;
+  // Motion commands echoed but not applied (ignore-motion=): the field's
+  // firmware that ignores GAM/GSM/GAY (DESIGN.md field notes).
+  std::vector<std::string> ignore_motion;
+  // Per axis (yaw, pitch, roll): the commands that move it the other way
+  // from the healthy device (invert=): kInvertAngle, kInvertRate.
+  static constexpr std::uint8_t kInvertAngle = 1, kInvertRate = 2;
+  std::uint8_t invert[3] = {0, 0, 0};
+  // Identity replies are factory placeholders (placeholder-identity).
+  bool placeholder_identity = false;
+  // The TRC start answered with state 4 (refuse-tracking; --no-tracking).
+  bool refuse_tracking = false;
+  // TIM/UTC writes answered with the camera's clock one month early, as a
+  // clock set with a 0-based month (clock=month-early).
+  bool clock_month_early = false;
+
+  bool any() const noexcept {
+    return !mutes.empty() || !ignore_motion.empty() || invert[0] || invert[1] || invert[2] ||
+           placeholder_identity || refuse_tracking || clock_month_early;
+  }
+  // Whether a push of `ident` is withheld `since_on_us` after its stream
+  // was switched on.
+  bool muted(std::string_view ident, std::uint64_t since_on_us) const noexcept {
+    for (const Mute& m : mutes)
+      if (m.ident == ident && since_on_us >= m.from_us && since_on_us < m.until_us) return true;
+    return false;
+  }
+};
+
 struct DeviceOptions {
   // Where the device's behaviour comes from (top/device.hpp): field
   // evidence, then the document's examples, then its rules; or the
@@ -51,6 +93,7 @@ struct DeviceOptions {
   // Topotek tracking: false for a lens that cannot track (TRC state 4,
   // ArduPilot PR #31768).
   bool tracking = true;
+  DeviceFaults faults;
 };
 
 // One gimbal axis: an angle moving toward a target at a speed, or turning
@@ -71,7 +114,8 @@ struct Stream {
   std::string ident;            // GAC or GIC
   std::uint32_t period_us = 0;  // 0: off
   std::uint64_t next_us = 0;
-  char dst = 'U';  // client address the pushes go to
+  char dst = 'U';           // client address the pushes go to
+  std::uint64_t on_us = 0;  // when it was switched on
 };
 
 // The Topotek tracker (field: ArduPilot AP_Mount_Topotek PR #27568 and
@@ -80,6 +124,7 @@ struct Tracking {
   char state = '0';             // TRC data char 1: 0 stopped, 1 waiting, 2 tracking, 4 no lens
   std::uint64_t starts_us = 0;  // a LOC while waiting: tracking from then (0: none)
   std::uint64_t next_box_us = 0;
+  std::uint64_t on_us = 0;    // when tracking (and the OFT push) started
   std::int16_t x = 0, y = 0;  // LOC centre on the +/-1000 grid
   std::uint16_t w = 0, h = 0;
   char dst = 0, device = 0;  // the LOC's source and destination: where OFT goes, from whom
@@ -172,6 +217,10 @@ class Device {
   // Whether a command of `ident` moves `axis` (0 yaw, 1 pitch) the other
   // way from what the attitude reports.
   bool inverted(std::size_t axis, std::string_view ident) const noexcept;
+  // The faults' motion (DeviceFaults): commands of `ident` move nothing;
+  // commands of `kind` move `axis` the other way.
+  bool ignores_motion(std::string_view ident) const noexcept;
+  bool fault_inverts(std::size_t axis, top::MotionKind kind) const noexcept;
   const top::Trait* sign_trait_[2] = {nullptr, nullptr};
   bool field_ptz_ = false;
   Axis axes_[3];

@@ -10,6 +10,12 @@
 //   answer-corrupt
 // where CLASS is ident:GAY (or a bare GAY), len:N (data length) or byte:HH (a
 // byte value anywhere in the frame).
+//
+// Device faults (sim/device.hpp DeviceFaults; each shows one field diagnosis
+// of docs/DIAGNOSES.md, conformance/README.md "Faults for the diagnoses"):
+//   stall=IDENT@T+S  no-stream=IDENT  ignore-motion=IDENT[+IDENT...]
+//   invert=AXIS[:angle|:rate]  placeholder-identity  refuse-tracking
+//   clock=month-early
 #pragma once
 
 #include <cstdint>
@@ -19,6 +25,7 @@
 #include <string_view>
 #include <vector>
 
+#include "sim/device.hpp"
 #include "top/frame.hpp"
 
 namespace topsim {
@@ -63,6 +70,8 @@ struct FaultConfig {
   InputClass slow_on;            // answers (and all after) wait slow_ms
   std::uint32_t slow_ms = 1000;  //
   bool answer_corrupt = false;   // a frame failing its checksum is answered
+  // What the device itself does wrong (handed to it as DeviceOptions::faults).
+  DeviceFaults device;
 
   bool any() const noexcept;
 };
@@ -73,6 +82,8 @@ struct FaultConfig {
 std::optional<FaultConfig> parse_faults(std::string_view spec, std::string& error);
 // The list of fault names, for --help and tests.
 const std::vector<std::string_view>& fault_names();
+// Every fault with its value, for --help (topsim --fault).
+std::string_view fault_usage() noexcept;
 
 // One write: bytes to send `delay_us` after the frame was produced.
 struct Emission {
