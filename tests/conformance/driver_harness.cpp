@@ -17,26 +17,36 @@ std::string text(const nlohmann::json& j, const char* key) {
 
 }  // namespace
 
-Dump topdump_findings(const std::string& pcap, const std::string& min_severity) {
-  Dump d;
+JsonLines topdump_read_json(const std::string& pcap) {
+  JsonLines r;
   const std::string cmd =
       "'" + std::string(TOPKIT_BINARY_DIR) + "/analyzer/topdump' read --json '" + pcap + "'";
   FILE* f = ::popen(cmd.c_str(), "r");
-  if (!f) return d;
+  if (!f) return r;
   std::string out;
   char buf[65536];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) out.append(buf, n);
+  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, f)) > 0;) out.append(buf, n);
   const int st = ::pclose(f);
-  d.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  const int floor = rank(min_severity);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
   for (std::size_t start = 0; start < out.size();) {
     const std::size_t end = std::min(out.find('\n', start), out.size());
-    const auto j = nlohmann::json::parse(out.substr(start, end - start), nullptr, false);
+    std::string line = out.substr(start, end - start);
+    auto j = nlohmann::json::parse(line, nullptr, false);
+    r.lines.emplace_back(std::move(line), std::move(j));
     start = end + 1;
+  }
+  return r;
+}
+
+Dump topdump_findings(const std::string& pcap, const std::string& min_severity) {
+  Dump d;
+  const JsonLines run = topdump_read_json(pcap);
+  d.status = run.status;
+  const int floor = rank(min_severity);
+  for (const auto& [line, j] : run.lines) {
     ++d.lines;
     if (j.is_discarded()) {
-      d.findings.push_back({"unparsable-json-line", "error", out.substr(start, 80), "", -1});
+      d.findings.push_back({"unparsable-json-line", "error", line.substr(0, 80), "", -1});
       continue;
     }
     const auto add = [&](const nlohmann::json& x, const std::string& ident, long long frame) {

@@ -9,7 +9,9 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "conf/link.hpp"
@@ -95,6 +97,14 @@ struct Dump {
   std::vector<DumpFinding> findings;
   std::size_t lines = 0;
 };
+
+// Runs the built `topdump read --json FILE`: its exit status (-1 when it
+// could not run) and each line as JSON (discarded when it does not parse).
+struct JsonLines {
+  int status = -1;
+  std::vector<std::pair<std::string, nlohmann::json>> lines;  // text, parsed
+};
+JsonLines topdump_read_json(const std::string& pcap);
 
 // Runs the built `topdump read --json FILE` and collects its findings of
 // `min_severity` or worse ("info", "warning", "error").

@@ -24,14 +24,8 @@ namespace faultclients {
 
 inline std::string build(char src, top::Header h, char dst, char control, std::string_view ident,
                          std::string_view data) {
-  top::BuildSpec b;
-  b.header = h;
-  b.src = src;
-  b.dst = dst;
-  b.control = control;
-  b.ident = ident;
-  b.data = data;
-  return top::build_frame(b);
+  return top::build_frame(
+      {.header = h, .src = src, .dst = dst, .control = control, .ident = ident, .data = data});
 }
 
 // The time now as SkyDroid TIM (hhmmss.ssDDMMYY, SkyDroid 4.6) or Topotek UTC
@@ -160,19 +154,8 @@ struct DumpFrame {
 
 inline std::vector<DumpFrame> dump_frames(const std::string& pcap) {
   std::vector<DumpFrame> v;
-  const std::string cmd =
-      "'" + std::string(TOPKIT_BINARY_DIR) + "/analyzer/topdump' read --json '" + pcap + "'";
-  FILE* p = ::popen(cmd.c_str(), "r");
-  if (!p) return v;
-  std::string out;
-  char buf[65536];
-  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
-  ::pclose(p);
   std::string device;  // the endpoint the client's first frame went to
-  for (std::size_t start = 0; start < out.size();) {
-    const std::size_t end = std::min(out.find('\n', start), out.size());
-    const auto j = nlohmann::json::parse(out.substr(start, end - start), nullptr, false);
-    start = end + 1;
+  for (const auto& [line, j] : topdump_read_json(pcap).lines) {
     if (j.is_discarded() || j.value("type", "") != "frame") continue;
     if (device.empty()) device = j.value("to", "");
     DumpFrame f;

@@ -141,14 +141,8 @@ class TopotekClient : public DriverClient {
   }
   std::string frame(top::Header h, char dst, char ctl, std::string_view id,
                     std::string_view data) const {
-    top::BuildSpec b;
-    b.header = h;
-    b.src = client;
-    b.dst = dst;
-    b.control = ctl;
-    b.ident = id;
-    b.data = data;
-    return top::build_frame(b);
+    return top::build_frame(
+        {.header = h, .src = client, .dst = dst, .control = ctl, .ident = id, .data = data});
   }
   // The driver's only #TP sender: one byte as 2 hex chars.
   std::string fixed(char dst, char ctl, std::string_view id, int v) const {

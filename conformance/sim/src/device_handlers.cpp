@@ -14,14 +14,8 @@ using detail::field;
 using detail::hex_u;
 
 struct Handlers {
-  struct Call {
-    Device& dev;
-    const top::Frame& req;
-    const top::Decoded& dec;
-    std::uint64_t now_us;
-    std::vector<std::string>& out;
-  };
-  using Fn = bool (*)(const Call&);
+  using Call = detail::HandlerCall;
+  using Fn = detail::HandlerFn;
 
   // An axis turning at `rate` deg/s until the speed hold ends, unless refreshed.
   static void turn(const Call& c, Axis& a, double rate) {

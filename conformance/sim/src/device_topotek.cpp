@@ -18,14 +18,8 @@ using detail::data_byte;
 using detail::field;
 
 struct TopotekHandlers {
-  struct Call {
-    Device& dev;
-    const top::Frame& req;
-    const top::Decoded& dec;
-    std::uint64_t now_us;
-    std::vector<std::string>& out;
-  };
-  using Fn = bool (*)(const Call&);
+  using Call = detail::HandlerCall;
+  using Fn = detail::HandlerFn;
 
   // The write back, its header kept (a real SIP answers #tp with #tp).
   static bool echo(const Call& c) {

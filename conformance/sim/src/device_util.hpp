@@ -7,10 +7,23 @@
 #include <cstdio>
 #include <string>
 #include <string_view>
+#include <vector>
 
+#include "sim/device.hpp"
 #include "top/top.hpp"
 
 namespace topsim::detail {
+
+// What a request handler of either dialect's table is given: the device,
+// the request as framed and decoded, the time, and where its frames go.
+struct HandlerCall {
+  Device& dev;
+  const top::Frame& req;
+  const top::Decoded& dec;
+  std::uint64_t now_us;
+  std::vector<std::string>& out;
+};
+using HandlerFn = bool (*)(const HandlerCall&);
 
 // An angle in degrees as signed 16-bit hex in 0.01 deg.
 inline std::string hex_s16(double deg) {

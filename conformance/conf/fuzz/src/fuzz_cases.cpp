@@ -134,14 +134,7 @@ namespace {
 
 top::BuildSpec spec(top::Header h, char src, char dst, char ctl, std::string_view ident,
                     std::string_view data) {
-  top::BuildSpec b;
-  b.header = h;
-  b.src = src;
-  b.dst = dst;
-  b.control = ctl;
-  b.ident = ident;
-  b.data = data;
-  return b;
+  return {.header = h, .src = src, .dst = dst, .control = ctl, .ident = ident, .data = data};
 }
 
 std::string frame(top::Header h, char src, char dst, char ctl, std::string_view ident,
