@@ -70,41 +70,25 @@ void check_decoded(const Frame& f, const Decoded& d) {
   (void)d.summary();
 }
 
-}  // namespace
+// Two parses that found the same frame: raw bytes, and the codes and
+// offsets of the first `findings` findings.
+bool same_frame(const ParseResult& a, const ParseResult& b, std::size_t findings) {
+  if (a.status != ParseStatus::frame || b.status != ParseStatus::frame ||
+      a.frame.raw != b.frame.raw || a.frame.findings.size() < findings ||
+      b.frame.findings.size() < findings)
+    return false;
+  for (std::size_t i = 0; i < findings; ++i)
+    if (a.frame.findings[i].code != b.frame.findings[i].code ||
+        a.frame.findings[i].offset != b.frame.findings[i].offset)
+      return false;
+  return true;
+}
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  size = topfuzz::capped(size);
-  const std::string_view in(reinterpret_cast<const char*>(data), size);
-  // Kept across inputs (reuse.hpp).
-  static ParseResult r = topfuzz::reused_parse_result(), open = topfuzz::reused_parse_result(),
-                     closed = topfuzz::reused_parse_result(), slow = topfuzz::reused_parse_result();
-  static Decoded decoded = topfuzz::reused_decoded();
-  const topfuzz::ReleaseAtEnd release(r, open, closed, slow, decoded);
-  const ParseOptions defaults;
-  parse_exact(in, defaults, r);
-  FUZZ_CHECK(r.status != ParseStatus::need_more, "parse_exact asked for more bytes");
-
-  // The parses below write no messages (as the stream decoder parses inside
-  // a frame): the texts come from parse_exact above, and each parse without
-  // them must give its verdict, codes and offsets.
-  ParseOptions no_text;
-  no_text.messages = false;
-  parse_frame(in, false, no_text, open);
-  parse_frame(in, true, no_text, closed);
-  FUZZ_CHECK(closed.status != ParseStatus::need_more, "at_end parse asked for more bytes");
+// The verdicts on `in` with more bytes possibly to come (`open`) and at
+// the end of input (`closed`).
+void check_open_closed(std::string_view in, const ParseResult& open, const ParseResult& closed) {
   // The verdict with more bytes possibly to come is either "need more" or
   // the verdict at the end.
-  auto same_frame = [](const ParseResult& a, const ParseResult& b, std::size_t findings) {
-    if (a.status != ParseStatus::frame || b.status != ParseStatus::frame ||
-        a.frame.raw != b.frame.raw || a.frame.findings.size() < findings ||
-        b.frame.findings.size() < findings)
-      return false;
-    for (std::size_t i = 0; i < findings; ++i)
-      if (a.frame.findings[i].code != b.frame.findings[i].code ||
-          a.frame.findings[i].offset != b.frame.findings[i].offset)
-        return false;
-    return true;
-  };
   // One exception: the two digits of a second checksum at the very end (the
   // C10 Pro tool's double checksum) join the frame only at the end of input;
   // before it, the stream decoder gives them to the frame it holds when the
@@ -130,6 +114,31 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                    closed.error.offset == open.error.offset,
                "an invalid verdict changed at the end of input: \"" + show(in) + "\"");
   }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  size = topfuzz::capped(size);
+  const std::string_view in(reinterpret_cast<const char*>(data), size);
+  // Kept across inputs (reuse.hpp).
+  static ParseResult r = topfuzz::reused_parse_result(), open = topfuzz::reused_parse_result(),
+                     closed = topfuzz::reused_parse_result(), slow = topfuzz::reused_parse_result();
+  static Decoded decoded = topfuzz::reused_decoded();
+  const topfuzz::ReleaseAtEnd release(r, open, closed, slow, decoded);
+  const ParseOptions defaults;
+  parse_exact(in, defaults, r);
+  FUZZ_CHECK(r.status != ParseStatus::need_more, "parse_exact asked for more bytes");
+
+  // The parses below write no messages (as the stream decoder parses inside
+  // a frame): the texts come from parse_exact above, and each parse without
+  // them must give its verdict, codes and offsets.
+  ParseOptions no_text;
+  no_text.messages = false;
+  parse_frame(in, false, no_text, open);
+  parse_frame(in, true, no_text, closed);
+  FUZZ_CHECK(closed.status != ParseStatus::need_more, "at_end parse asked for more bytes");
+  check_open_closed(in, open, closed);
   // With messages (parse_exact: the parse at the end, then any CR/LF and
   // trailing-bytes findings) the same verdict, codes and offsets.
   bool same_texts = r.status == closed.status;

@@ -26,6 +26,44 @@ std::string hex2(std::int64_t v) {
   return b;
 }
 
+// The ports, the commands the field says a model takes, and the catalog's
+// commands and forms that only the field gives.
+void write_ports_and_field_commands(std::string& o) {
+  o += "\n## Ports\n\nFrom `top::known_ports()` (src/ports.cpp); topsim serves a port for the "
+       "models marked served, topdump takes the device to be the end on a device port.\n\n";
+  o += "| port | transport | dialect | end | served for | source |\n|---|---|---|---|---|---|\n";
+  for (const top::PortSpec& p : top::known_ports())
+    o += "| " + std::to_string(p.port) + " | " + (p.tcp ? "TCP" : "UDP") + " | " +
+         std::string(top::to_string(p.dialect)) + " | " + (p.client ? "client" : "device") + " | " +
+         models(p.served) + " | " + cell(p.source) + " |\n";
+  o += "\n## Commands the field says a model takes\n\n";
+  o += "| dialect | models | command | values | evidence |\n|---|---|---|---|---|\n";
+  for (const top::FieldSupport& s : top::field_support()) {
+    std::string v;
+    for (std::int64_t x : s.values) v += (v.empty() ? "" : " ") + hex2(x);
+    o += "| " + std::string(top::to_string(s.dialect)) + " | " + models(s.models) + " | " +
+         std::string(s.ident) + " | " + (v.empty() ? "any" : v) + " | " + cell(s.evidence) + " |\n";
+  }
+  o += "\n## Commands and forms of the field in the catalog\n\n"
+       "Neither document gives these; the catalog (docs/CATALOG.md) decodes them, and "
+       "topsim's document profile refuses them.\n\n";
+  o += "| dialect | command | form | data length | source |\n|---|---|---|---|---|\n";
+  for (top::Dialect d : {top::Dialect::skydroid, top::Dialect::topotek})
+    for (const top::CommandSpec& c : top::commands(d)) {
+      if (c.from_field())
+        o += "| " + std::string(top::to_string(d)) + " | " + std::string(c.ident) + " (" +
+             cell(c.title) + ") | every form | | " + cell(c.evidence) + " |\n";
+      for (const top::FormSpec& f : c.forms) {
+        if (!f.from_field()) continue;
+        o += "| " + std::string(top::to_string(d)) + " | " + std::string(c.ident) + " | `" +
+             std::string(1, f.control) + "` " + std::string(top::to_string(f.role)) + " | " +
+             std::to_string(f.min_length) +
+             (f.min_length == f.max_length ? "" : "-" + std::to_string(f.max_length)) + " | " +
+             cell(f.evidence) + " |\n";
+      }
+    }
+}
+
 }  // namespace
 
 int main() {
@@ -119,39 +157,7 @@ int main() {
          std::string(top::to_string(m.kind)) + " | " + pitch + " | " + unit + " | " +
          cell(m.section) + " | " + cell(m.field_evidence) + " |\n";
   }
-  o += "\n## Ports\n\nFrom `top::known_ports()` (src/ports.cpp); topsim serves a port for the "
-       "models marked served, topdump takes the device to be the end on a device port.\n\n";
-  o += "| port | transport | dialect | end | served for | source |\n|---|---|---|---|---|---|\n";
-  for (const top::PortSpec& p : top::known_ports())
-    o += "| " + std::to_string(p.port) + " | " + (p.tcp ? "TCP" : "UDP") + " | " +
-         std::string(top::to_string(p.dialect)) + " | " + (p.client ? "client" : "device") + " | " +
-         models(p.served) + " | " + cell(p.source) + " |\n";
-  o += "\n## Commands the field says a model takes\n\n";
-  o += "| dialect | models | command | values | evidence |\n|---|---|---|---|---|\n";
-  for (const top::FieldSupport& s : top::field_support()) {
-    std::string v;
-    for (std::int64_t x : s.values) v += (v.empty() ? "" : " ") + hex2(x);
-    o += "| " + std::string(top::to_string(s.dialect)) + " | " + models(s.models) + " | " +
-         std::string(s.ident) + " | " + (v.empty() ? "any" : v) + " | " + cell(s.evidence) + " |\n";
-  }
-  o += "\n## Commands and forms of the field in the catalog\n\n"
-       "Neither document gives these; the catalog (docs/CATALOG.md) decodes them, and "
-       "topsim's document profile refuses them.\n\n";
-  o += "| dialect | command | form | data length | source |\n|---|---|---|---|---|\n";
-  for (top::Dialect d : {top::Dialect::skydroid, top::Dialect::topotek})
-    for (const top::CommandSpec& c : top::commands(d)) {
-      if (c.from_field())
-        o += "| " + std::string(top::to_string(d)) + " | " + std::string(c.ident) + " (" +
-             cell(c.title) + ") | every form | | " + cell(c.evidence) + " |\n";
-      for (const top::FormSpec& f : c.forms) {
-        if (!f.from_field()) continue;
-        o += "| " + std::string(top::to_string(d)) + " | " + std::string(c.ident) + " | `" +
-             std::string(1, f.control) + "` " + std::string(top::to_string(f.role)) + " | " +
-             std::to_string(f.min_length) +
-             (f.min_length == f.max_length ? "" : "-" + std::to_string(f.max_length)) + " | " +
-             cell(f.evidence) + " |\n";
-      }
-    }
+  write_ports_and_field_commands(o);
   std::fwrite(o.data(), 1, o.size(), stdout);
   return std::fflush(stdout) == 0 && !std::ferror(stdout) ? 0 : 1;
 }

@@ -36,6 +36,55 @@ using detail::word_before;
 
 namespace {
 
+// A little- or big-endian binary integer field of 2 or 4 bytes (the
+// size checked), signed or not as its kind says.
+std::int64_t binary_int(FieldKind kind, std::string_view bytes) {
+  const bool big = kind == FieldKind::be_i16 || kind == FieldKind::be_u16;
+  const std::size_t w = bytes.size();
+  std::uint32_t u = 0;
+  for (std::size_t i = 0; i < w; ++i)
+    u |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i]))
+         << (8 * (big ? w - 1 - i : i));
+  if (kind == FieldKind::le_i16 || kind == FieldKind::be_i16)
+    return static_cast<std::int16_t>(static_cast<std::uint16_t>(u));
+  if (kind == FieldKind::le_u16 || kind == FieldKind::be_u16) return static_cast<std::uint16_t>(u);
+  return static_cast<std::int32_t>(u);
+}
+
+// A coordinate, "E" + dddmm.mmmm or "N" + ddmm.mmmm (as in $GPGGA), into
+// signed degrees `v`; false after `bad` (the field's complaint) when it is
+// no such coordinate.
+template <class Bad>
+bool decode_nmea(std::string_view bytes, double& v, Bad& bad) {
+  if (bytes.size() < 2) {
+    bad("too short for a hemisphere and a coordinate");
+    return false;
+  }
+  const char hemi = bytes[0];
+  if (hemi != 'E' && hemi != 'W' && hemi != 'N' && hemi != 'S') {
+    bad("hemisphere '", {&hemi, 1}, "' is not N S E W");
+    return false;
+  }
+  // Degrees in 3 digits east or west, 2 north or south, leading zeros
+  // sent (Topotek 5.8.1, 5.8.2), then minutes mm.mmmm: the 5.8.7
+  // output's ddd.ddddd (same length) is no such coordinate.
+  const std::size_t deg_digits = hemi == 'E' || hemi == 'W' ? 3 : 2;
+  const std::string_view coord = bytes.substr(1);
+  bool shaped = coord.size() == deg_digits + 7 && coord[deg_digits + 2] == '.';
+  for (std::size_t i = 0; shaped && i < coord.size(); ++i)
+    shaped = i == deg_digits + 2 || (coord[i] >= '0' && coord[i] <= '9');
+  double raw = 0;
+  if (!shaped || !detail::parse_number(coord, raw) ||
+      raw - std::floor(raw / 100.0) * 100.0 >= 60.0) {
+    bad("'", coord, deg_digits == 3 ? "' is not dddmm.mmmm" : "' is not ddmm.mmmm");
+    return false;
+  }
+  const double deg = std::floor(raw / 100.0);
+  v = deg + (raw - deg * 100.0) / 60.0;
+  if (hemi == 'W' || hemi == 'S') v = -v;
+  return true;
+}
+
 void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes, std::uint32_t offset,
                   FieldValue& fv) {
   fv.spec = &spec;
@@ -125,48 +174,16 @@ void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes, std::
     case FieldKind::le_i32:
     case FieldKind::be_i16:
     case FieldKind::be_u16: {
-      std::size_t w = spec.kind == FieldKind::le_i32 ? 4 : 2;
+      const std::size_t w = spec.kind == FieldKind::le_i32 ? 4 : 2;
       if (bytes.size() != w) return bad("needs ", std::to_string(w), " bytes");
-      const bool big = spec.kind == FieldKind::be_i16 || spec.kind == FieldKind::be_u16;
-      std::uint32_t u = 0;
-      for (std::size_t i = 0; i < w; ++i)
-        u |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i]))
-             << (8 * (big ? w - 1 - i : i));
-      std::int64_t iv = 0;
-      if (spec.kind == FieldKind::le_i16 || spec.kind == FieldKind::be_i16)
-        iv = static_cast<std::int16_t>(static_cast<std::uint16_t>(u));
-      else if (spec.kind == FieldKind::le_u16 || spec.kind == FieldKind::be_u16)
-        iv = static_cast<std::uint16_t>(u);
-      else
-        iv = static_cast<std::int32_t>(u);
+      const std::int64_t iv = binary_int(spec.kind, bytes);
       fv.integer = iv;
       fv.value = scaled(iv, spec.scale);
       fv.valid = true;
       break;
     }
     case FieldKind::nmea: {
-      // "E" + dddmm.mmmm or "N" + ddmm.mmmm (as in $GPGGA).
-      if (bytes.size() < 2) return bad("too short for a hemisphere and a coordinate");
-      char hemi = bytes[0];
-      if (hemi != 'E' && hemi != 'W' && hemi != 'N' && hemi != 'S')
-        return bad("hemisphere '", {&hemi, 1}, "' is not N S E W");
-      // Degrees in 3 digits east or west, 2 north or south, leading zeros
-      // sent (Topotek 5.8.1, 5.8.2), then minutes mm.mmmm: the 5.8.7
-      // output's ddd.ddddd (same length) is no such coordinate.
-      const std::size_t deg_digits = hemi == 'E' || hemi == 'W' ? 3 : 2;
-      const std::string_view coord = bytes.substr(1);
-      bool shaped = coord.size() == deg_digits + 7 && coord[deg_digits + 2] == '.';
-      for (std::size_t i = 0; shaped && i < coord.size(); ++i)
-        shaped = i == deg_digits + 2 || (coord[i] >= '0' && coord[i] <= '9');
-      double raw = 0;
-      if (!shaped || !detail::parse_number(coord, raw) ||
-          raw - std::floor(raw / 100.0) * 100.0 >= 60.0)
-        return bad("'", coord, deg_digits == 3 ? "' is not dddmm.mmmm" : "' is not ddmm.mmmm");
-      double deg = std::floor(raw / 100.0);
-      double minutes = raw - deg * 100.0;
-      double v = deg + minutes / 60.0;
-      if (hemi == 'W' || hemi == 'S') v = -v;
-      fv.value = v;
+      if (!decode_nmea(bytes, fv.value, bad)) return;
       ctx.keep(fv, bytes);
       fv.valid = true;
       break;
@@ -238,6 +255,33 @@ bool judge_planned(Ctx& ctx, const FormPlan& plan, const Frame& frame) {
   return true;
 }
 
+// A #TP frame whose length is not 2 (tp-length): info for a SkyDroid
+// G-class command, which SkyDroid puts under #TP whatever its length.
+void note_tp_length(Ctx& ctx, const Frame& frame, const CommandSpec* cmd, Dialect d, Decoded& out) {
+  bool g_class = cmd && cmd->address == 'G' && d == Dialect::skydroid;
+  // Every SkyDroid GAC stream frame has this finding: its 32 possible
+  // messages (length 0-F, G class or not) are built once.
+  auto message = [](std::uint32_t length, bool g) {
+    return "#TP frame with length " + std::to_string(length) + " (the fixed header implies 2)" +
+           (g ? "; SkyDroid puts every G-class command under #TP" : "");
+  };
+  static const std::array<std::string, 32> kMessages = [&] {
+    std::array<std::string, 32> m;
+    for (std::uint32_t i = 0; i < m.size(); ++i) m[i] = message(i % 16, i >= 16);
+    return m;
+  }();
+  Finding& f = out.findings.emplace_back();
+  f.code = FindingCode::tp_length;
+  f.severity = g_class ? Severity::info : default_severity(FindingCode::tp_length);
+  f.offset = 5;
+  // (Not a ?: of the two: its result would be a copy of the kept message,
+  // then assigned, two allocations instead of one.)
+  if (ctx.detail && frame.declared_length < 16)  // two-digit lengths (TMP quirk) go past F
+    f.message = kMessages[frame.declared_length + (g_class ? 16 : 0)];
+  else if (ctx.detail)
+    f.message = message(frame.declared_length, g_class);
+}
+
 // What a frame's dialect, role, identifier, header, lengths and control
 // decide: the command, the form and their findings, in `out` (out.form stays
 // null when no form applies: the decode ends there).
@@ -251,30 +295,8 @@ void decode_shape(Ctx& ctx, const Frame& frame, const DecodeOptions& opts, Diale
   out.dialect = d;
   out.command = cmd;
 
-  if (frame.header == Header::fixed && frame.declared_length != 2) {
-    bool g_class = cmd && cmd->address == 'G' && d == Dialect::skydroid;
-    // Every SkyDroid GAC stream frame has this finding: its 32 possible
-    // messages (length 0-F, G class or not) are built once.
-    auto message = [](std::uint32_t length, bool g) {
-      return "#TP frame with length " + std::to_string(length) + " (the fixed header implies 2)" +
-             (g ? "; SkyDroid puts every G-class command under #TP" : "");
-    };
-    static const std::array<std::string, 32> kMessages = [&] {
-      std::array<std::string, 32> m;
-      for (std::uint32_t i = 0; i < m.size(); ++i) m[i] = message(i % 16, i >= 16);
-      return m;
-    }();
-    Finding& f = out.findings.emplace_back();
-    f.code = FindingCode::tp_length;
-    f.severity = g_class ? Severity::info : default_severity(FindingCode::tp_length);
-    f.offset = 5;
-    // (Not a ?: of the two: its result would be a copy of the kept message,
-    // then assigned, two allocations instead of one.)
-    if (ctx.detail && frame.declared_length < 16)  // two-digit lengths (TMP quirk) go past F
-      f.message = kMessages[frame.declared_length + (g_class ? 16 : 0)];
-    else if (ctx.detail)
-      f.message = message(frame.declared_length, g_class);
-  }
+  if (frame.header == Header::fixed && frame.declared_length != 2)
+    note_tp_length(ctx, frame, cmd, d, out);
   if (d == Dialect::skydroid && (frame.header == Header::ext8 || frame.header == Header::ext16))
     ctx.add(FindingCode::ext_header_skydroid, 0, [&] {
       return cat({to_string(frame.header),

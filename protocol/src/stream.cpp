@@ -160,6 +160,44 @@ void add_garbage(Decoding& d, std::size_t at, std::size_t len, Finding* why) {
   }
 }
 
+// What a frame that fails its checksum (`r`, at d.pos) does about the
+// '#'s inside it, from `scan_from` with `tried` candidates tried: none
+// validates (keep it), one does (its bytes before that one become garbage,
+// d.pos moves there), or one needs more bytes (hold the parse: d.held_*).
+enum class Inner : std::uint8_t { keep, yielded, wait };
+Inner yield_to_inner(Decoding& d, const ParseResult& r, std::string_view all, bool judge,
+                     std::size_t scan_from, int tried) {
+  const std::string_view outer = all.substr(0, d.pos + r.consumed);
+  for (std::size_t q = outer.find('#', scan_from);
+       q != std::string_view::npos && tried < kMaxInnerCandidates; q = outer.find('#', q + 1)) {
+    ParseResult& inner = d.inner;  // only its verdict is looked at
+    parse_frame(all.substr(q), judge, d.quiet, inner);
+    if (inner.status == ParseStatus::need_more) {
+      // Hold the outer parse; resume at this '#' when more bytes come.
+      d.has_held = true;
+      d.held_at = d.base + d.pos;
+      d.held_scan = d.base + q;
+      d.held_tried = tried;
+      return Inner::wait;
+    }
+    ++tried;
+    if (inner.status == ParseStatus::frame && inner.frame.checksum_ok) {
+      Finding why = make_finding(
+          r.frame.has(FindingCode::no_checksum) ? FindingCode::no_checksum
+                                                : FindingCode::bad_checksum,
+          0,
+          d.opts.parse.messages
+              ? detail::cat({"abandoned a frame that fails its checksum for a valid frame at +",
+                             std::to_string(q - d.pos)})
+              : std::string());
+      add_garbage(d, d.pos, q - d.pos, &why);
+      d.pos = q;
+      return Inner::yielded;
+    }
+  }
+  return Inner::keep;
+}
+
 void pump(Decoding& d, std::size_t limit) {
   const std::string_view all(d.buf);
   const bool judge = d.at_end || d.flushing;  // parse as if no more bytes came
@@ -231,42 +269,12 @@ void pump(Decoding& d, std::size_t limit) {
     // A frame that does not validate yields to a validated frame starting
     // inside it: trust a validated length over an unvalidated one.
     if (!r.frame.checksum_ok) {
-      bool wait = false, yielded = false;
-      const std::string_view outer = all.substr(0, d.pos + r.consumed);
-      for (std::size_t q = outer.find('#', scan_from);
-           q != std::string_view::npos && tried < kMaxInnerCandidates; q = outer.find('#', q + 1)) {
-        ParseResult& inner = d.inner;  // only its verdict is looked at
-        parse_frame(all.substr(q), judge, d.quiet, inner);
-        if (inner.status == ParseStatus::need_more) {
-          // Hold the outer parse; resume at this '#' when more bytes come.
-          wait = true;
-          d.has_held = true;
-          d.held_at = d.base + d.pos;
-          d.held_scan = d.base + q;
-          d.held_tried = tried;
-          break;
-        }
-        ++tried;
-        if (inner.status == ParseStatus::frame && inner.frame.checksum_ok) {
-          Finding why = make_finding(
-              r.frame.has(FindingCode::no_checksum) ? FindingCode::no_checksum
-                                                    : FindingCode::bad_checksum,
-              0,
-              d.opts.parse.messages
-                  ? detail::cat({"abandoned a frame that fails its checksum for a valid frame at +",
-                                 std::to_string(q - d.pos)})
-                  : std::string());
-          add_garbage(d, d.pos, q - d.pos, &why);
-          d.pos = q;
-          yielded = true;
-          break;
-        }
-      }
-      if (wait) {
+      const Inner inner = yield_to_inner(d, r, all, judge, scan_from, tried);
+      if (inner == Inner::wait) {
         std::swap(d.held, r);
         break;
       }
-      if (yielded) continue;
+      if (inner == Inner::yielded) continue;
     }
     release_pending(d);
     flush_garbage(d);
