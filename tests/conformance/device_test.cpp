@@ -353,7 +353,8 @@ std::string loc(std::int16_t x, std::int16_t y, std::uint16_t w, std::uint16_t h
 TEST(DeviceTopotek, TrackingStateMachine) {
   Device d(top::Model::sip);
   auto state = [&](std::uint64_t t) {
-    return parsed(ask(d, "#TPUD2rTRC00", t, Link::uart).at(0)).data();
+    // A copy: the frame parsed here is gone at the end of the statement.
+    return std::string(parsed(ask(d, "#TPUD2rTRC00", t, Link::uart).at(0)).data());
   };
   EXPECT_EQ(state(0), "00");
   ask(d, "#TPUD2wTRC02", 0, Link::uart);
