@@ -9,6 +9,7 @@
 #include "diagnoses/baud_mismatch.hpp"
 #include "diagnoses/clock_offset.hpp"
 #include "diagnoses/dropped_requests.hpp"
+#include "diagnoses/motion_track.hpp"
 #include "diagnoses/placeholder_identity.hpp"
 #include "diagnoses/tracking_refused.hpp"
 #include "top/catalog.hpp"
@@ -26,6 +27,7 @@ struct Watch {
   ClockWatch clock;
   DroppedWatch dropped;
   BaudWatch baud;
+  MotionTrack motion;  // direction-inverted, command-ignored, attitude-stale, axis-left-moving
 
   // A frame of the device (reply or push), its data and form.
   void device_frame(top::Dialect d, std::string_view ident, std::string_view data, std::uint64_t n,
@@ -45,6 +47,7 @@ struct Watch {
     if (auto f = clock.verdict()) out(std::move(*f));
     if (auto f = tracking.verdict()) out(std::move(*f));
     dropped.verdicts(out);
+    motion.verdicts(out);
     if (serial && !frames)
       if (auto f = baud.verdict()) out(std::move(*f));
   }

@@ -3,6 +3,7 @@
 // frames and garbage of frame --json.
 #include "output/json_writer.hpp"
 #include "output/output.hpp"
+#include "top/motion.hpp"
 
 namespace topdump {
 
@@ -328,6 +329,11 @@ void write_note_json(std::string& out, const NoteEvent& e) {
     app(o, ",\"ident\":");
     if (e.note.ident[0])
       put_text(o, std::string_view(e.note.ident, 3));
+    else
+      app(o, "null");
+    app(o, ",\"axis\":");
+    if (e.note.axis >= 0)
+      put_plain(o, top::to_string(static_cast<top::Axis>(e.note.axis)));
     else
       app(o, "null");
     app(o, ",\"evidence\":");

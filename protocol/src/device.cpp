@@ -249,6 +249,17 @@ const Trait* find_trait(TraitKind kind, Model model, Profile profile, bool conte
   return nullptr;
 }
 
+int sign_trait_factor(Dialect d, Model model, int axis, std::string_view ident) noexcept {
+  const TraitKind kind = axis == 0 ? TraitKind::yaw_inverted : TraitKind::pitch_inverted;
+  if (axis > 1) return 1;
+  for (const Trait& t : traits()) {
+    if (t.kind != kind || t.dialect != d || t.contested || !t.names(ident)) continue;
+    if (model == Model::unknown) return 0;
+    if (model_in(t.models, model)) return -1;
+  }
+  return 1;
+}
+
 const FieldSupport* field_supported(Dialect d, Model model, std::string_view ident,
                                     std::optional<std::int64_t> value) noexcept {
   for (const FieldSupport& s : field_support()) {

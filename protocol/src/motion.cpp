@@ -4,7 +4,10 @@
 
 #include <initializer_list>
 #include <iterator>
+#include <vector>
 
+#include "chars.hpp"
+#include "numbers.hpp"
 #include "top/enum_names.hpp"
 
 namespace top {
@@ -129,6 +132,110 @@ const MotionSpec* motion_of(Dialect d, std::string_view ident) noexcept {
   for (const MotionSpec& m : kMotions)
     if (m.dialect == d && m.ident == ident) return &m;
   return nullptr;
+}
+
+namespace {
+
+// Per dialect, the row of each command by its place in commands(): built
+// once at start-up, so that motion_of(cmd) is an index and a load.
+struct ByCommand {
+  std::array<std::span<const CommandSpec>, 2> cmds;
+  std::array<std::vector<const MotionSpec*>, 2> rows;
+  ByCommand() {
+    for (const Dialect d : {Dialect::skydroid, Dialect::topotek}) {
+      const std::size_t i = d == Dialect::topotek;
+      cmds[i] = commands(d);
+      for (const CommandSpec& c : cmds[i]) rows[i].push_back(motion_of(d, c.ident));
+    }
+  }
+};
+const ByCommand kByCommand;
+
+}  // namespace
+
+const MotionSpec* motion_of(const CommandSpec& cmd) noexcept {
+  const auto p = reinterpret_cast<std::uintptr_t>(&cmd);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const auto base = reinterpret_cast<std::uintptr_t>(kByCommand.cmds[i].data());
+    const std::size_t at = (p - base) / sizeof(CommandSpec);
+    if (p >= base && at < kByCommand.cmds[i].size()) return kByCommand.rows[i][at];
+  }
+  return nullptr;
+}
+
+namespace {
+
+// The integer of a number field's chars; false when they are not its digits.
+bool read_integer(const FieldSpec& f, std::string_view bytes, std::int64_t& out) noexcept {
+  if (bytes.empty() || bytes.size() > 15) return false;
+  std::uint64_t v = 0;
+  switch (f.kind) {
+    case FieldKind::hex_u:
+    case FieldKind::hex_s:
+    case FieldKind::enum_hex:
+      for (const char c : bytes) {
+        const int h = detail::hex_value(c);
+        if (h < 0) return false;
+        v = v * 16 + static_cast<unsigned>(h);
+      }
+      out = static_cast<std::int64_t>(v);
+      if (f.kind == FieldKind::hex_s && (v >> (bytes.size() * 4 - 1)) & 1u)
+        out -= std::int64_t{1} << (bytes.size() * 4);
+      return true;
+    case FieldKind::dec_u:
+      for (const char c : bytes) {
+        if (c < '0' || c > '9') return false;
+        v = v * 10 + static_cast<unsigned>(c - '0');
+      }
+      out = static_cast<std::int64_t>(v);
+      return true;
+    default:
+      return false;
+  }
+}
+
+// The field `name` of `form` in `data`: its spec and bytes, or nullptr.
+const FieldSpec* field_in(const FormSpec& form, std::string_view name, std::string_view data,
+                          std::string_view& bytes) noexcept {
+  std::size_t at = 0;
+  for (const FieldSpec& f : form.fields) {
+    const std::size_t w = f.width ? f.width : data.size() - std::min(at, data.size());
+    if (f.name == name) {
+      if (at + w > data.size()) return nullptr;
+      bytes = data.substr(at, w);
+      return &f;
+    }
+    at += w;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+bool read_motion(const MotionSpec& spec, const FormSpec& form, std::string_view data,
+                 MotionReading& out) noexcept {
+  for (const MotionAxis& a : spec.fields()) {
+    const auto i = static_cast<std::size_t>(a.axis);
+    std::string_view bytes;
+    const FieldSpec* f = field_in(form, a.value, data, bytes);
+    if (!f || !read_integer(*f, bytes, out.raw[i])) return false;
+    out.value[i] = detail::scaled(out.raw[i], f->scale);
+    out.min[i] = f->min;
+    out.max[i] = f->max;
+    out.has[i] = true;
+    if (a.speed.empty()) continue;
+    f = field_in(form, a.speed, data, bytes);
+    if (!f || !read_integer(*f, bytes, out.speed_raw[i])) return false;
+    out.speed[i] = detail::scaled(out.speed_raw[i], f->scale);
+  }
+  return true;
+}
+
+std::int64_t ptz_code(const FormSpec& form, std::string_view data) noexcept {
+  std::string_view bytes;
+  std::int64_t v = -1;
+  const FieldSpec* f = field_in(form, "action", data, bytes);
+  return f && read_integer(*f, bytes, v) ? v : -1;
 }
 
 double motion_speed(const MotionSpec& spec, double value, std::int64_t raw, bool field) noexcept {

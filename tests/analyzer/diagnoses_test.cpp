@@ -258,6 +258,10 @@ TEST(DiagnosesCaptures, EachFiresOnItsCapture) {
       {"diag-dropped-bad-checksum.log", "dropped-bad-checksum"},
       {"diag-dropped-checksum-case.log", "dropped-checksum-case"},
       {"diag-baud-mismatch.bin", "baud-mismatch"},
+      {"diag-direction-inverted.pcap", "direction-inverted"},
+      {"diag-command-ignored.log", "command-ignored"},
+      {"diag-attitude-stale.pcap", "attitude-stale"},
+      {"diag-axis-left-moving.log", "axis-left-moving"},
   };
   for (const auto& [file, code] : made) {
     const Seen s = read_json(file);
@@ -307,6 +311,31 @@ TEST(DiagnosesCaptures, CarryTheirMeasuredFigure) {
             std::string::npos);
   EXPECT_NE(msg("diag-reply-interface.pcap", "reply-interface").find("5 requests"),
             std::string::npos);
+  // the motion diagnoses: commanded against measured
+  EXPECT_NE(msg("diag-direction-inverted.pcap", "direction-inverted")
+                .find("GSP 20 (up): pitch moved -9.5 deg/s (down)"),
+            std::string::npos);
+  EXPECT_NE(msg("diag-command-ignored.log", "command-ignored")
+                .find("GAY to +30.0 deg was acknowledged; yaw stayed at +0.0 deg"),
+            std::string::npos);
+  EXPECT_NE(msg("diag-attitude-stale.pcap", "attitude-stale").find("20 non-zero motion commands"),
+            std::string::npos);
+  EXPECT_NE(msg("diag-axis-left-moving.log", "axis-left-moving")
+                .find("yaw moved +49.0 deg in the 4.850 s to the end"),
+            std::string::npos);
+}
+
+// A motion diagnosis names its axis (the JSON's `axis`), and none where a
+// diagnosis has no axis.
+TEST(DiagnosesCaptures, MotionDiagnosesNameTheirAxis) {
+  auto axis = [](const char* file, const char* code) {
+    const Seen s = read_json(file);
+    return s.diagnoses.count(code) ? s.diagnoses.at(code)["axis"] : nlohmann::json("missing");
+  };
+  EXPECT_EQ(axis("diag-direction-inverted.pcap", "direction-inverted"), "pitch");
+  EXPECT_EQ(axis("diag-command-ignored.log", "command-ignored"), "yaw");
+  EXPECT_EQ(axis("diag-axis-left-moving.log", "axis-left-moving"), "yaw");
+  EXPECT_TRUE(axis("diag-attitude-stale.pcap", "attitude-stale").is_null());
 }
 
 // No warning or error diagnosis on any other bundled capture, except the

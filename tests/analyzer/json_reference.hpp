@@ -13,6 +13,7 @@
 #include "output/escape.hpp"
 #include "output/output.hpp"
 #include "top/detail/text.hpp"
+#include "top/motion.hpp"
 
 namespace topdump::reference {
 
@@ -237,6 +238,9 @@ inline json note_event_json(const NoteEvent& e) {
     j["until"] = time_json(e.note.until);
     j["ident"] =
         e.note.ident[0] ? json(ascii_text(std::string_view(e.note.ident, 3))) : json(nullptr);
+    j["axis"] = e.note.axis >= 0
+                    ? json(std::string(top::to_string(static_cast<top::Axis>(e.note.axis))))
+                    : json(nullptr);
     j["evidence"] = std::string(top::evidence(*d));
     j["remedy"] = std::string(top::remedy(*d));
   }

@@ -187,6 +187,15 @@ std::span<const Trait> traits() noexcept;
 const Trait* find_trait(TraitKind kind, Model model, Profile profile,
                         bool contested_too = false) noexcept;
 
+// How a positive command of `ident` on `axis` (0 yaw, 1 pitch) turns a
+// device of `model` relative to the motion table's sign (top/motion.hpp):
+// +1 as the table says; -1 where a field sign trait (yaw_inverted,
+// pitch_inverted) inverts it for this model and identifier; 0 when `model`
+// is unknown and such a trait inverts it on some model of `d`: which way
+// the gimbal should turn cannot be told. A contested trait is never
+// applied. For judging a capture's directions (topdump's direction-inverted).
+int sign_trait_factor(Dialect d, Model model, int axis, std::string_view ident) noexcept;
+
 // A command value the document does not list for a model but field
 // evidence says the firmware takes (C13 PTZ codes).
 struct FieldSupport {

@@ -29,74 +29,103 @@ struct FormSpec;
 // document section, the public driver's PR or issue, or the field note
 // (docs/sources/ardupilot.md section 7 quotes each); the remedy says what to
 // check or change.
-#define TOP_DIAGNOSES(X)                                                                         \
-  X(silent_device, "silent-device", warning,                                                     \
-    "the device sent nothing while several requests to it went unanswered",                      \
-    "field note: SkyDroid cameras take commands only once they output video (AP_Mount_SkyDroid " \
-    "header, ArduPilot PR #34155); the capture's own timing shows the silence",                  \
-    "check the device's power, IP address or serial port, the port number and line speed, and "  \
-    "that the capture sees the device's side of the link")                                       \
-  X(reply_interface, "reply-interface", warning,                                                 \
-    "Topotek requests over the network with source U get no answer",                             \
-    "ArduPilot PR #33803: a Topotek gimbal answers on the interface the request's source "       \
-    "letter names; U is its UART, so a network client sending U hears nothing",                  \
-    "send source P on UDP/TCP links (ArduPilot with PR #33803, 4.7 or later)")                   \
-  X(stream_rate, "stream-rate", warning,                                                         \
-    "a GAC/GIC push stream runs more than 25% off the rate its switch asked",                    \
-    "document: the GAA/GIA switch (docs/FIELD.md \"Streams\") asks the device to push at a "     \
-    "rate; top::stream_rate_tolerance",                                                          \
-    "ask for a rate the model pushes; check the camera's load and the link when it pushes "      \
-    "slower")                                                                                    \
-  X(stream_stalled, "stream-stalled", warning,                                                   \
-    "a push stream stopped for more than 3 periods and then resumed",                            \
-    "field note: ArduPilot's SkyDroid driver counts more than 1 s without GAC as unhealthy "     \
-    "and stops both axes (PR #34155 review); a running stream pushes until switched off",        \
-    "check the link (Wi-Fi or UART load, lost datagrams) and the camera (reboot, video "         \
-    "start) at the stall; a driver must not steer on the attitude of a stalled stream")          \
-  X(stream_never_started, "stream-never-started", warning,                                       \
-    "a stream was asked for and its switch answered, but no push ever came",                     \
-    "field note: camera-side commands take effect only once the camera outputs video "           \
-    "(AP_Mount_SkyDroid header, ArduPilot PR #34155); drivers re-send the switch every second",  \
-    "start the camera's video before asking for the push, and check that the model pushes this " \
-    "stream at the rate asked")                                                                  \
-  X(placeholder_identity, "placeholder-identity", warning,                                       \
-    "an identity reply (model name, serial number, version) is a factory placeholder",           \
-    "ArduPilot PR #27568: a real unit's model name reads 000000000 (not set at production); "    \
-    "PR #27053: the model version is reported as Unknown",                                       \
-    "have the vendor set the identity at production or update the firmware; do not choose "      \
-    "model-specific behaviour from this reply")                                                  \
-  X(clock_offset, "clock-offset", warning,                                                       \
-    "the time set on or reported by the camera is more than a day off the capture's clock",      \
-    "review of ArduPilot PR #34155: TIM sent with the 0-based month (every date one month "      \
-    "early, month 00 in January); the camera's default time is 1970-01-01 (AP_Mount_SkyDroid "   \
-    "header, confirmed on real hardware)",                                                       \
-    "send the month 1-based and set the time from GPS after boot; whole hours off are a time "   \
-    "zone (SkyDroid takes UTC), not this")                                                       \
-  X(tracking_refused, "tracking-refused", warning,                                               \
-    "a tracking request was answered with a state that refuses it (Topotek TRC state 4)",        \
-    "ArduPilot PR #31768: TRC state 4 (0x34) means this lens does not support tracking; PR "     \
-    "#27568 reads the state from TRC's data char 1",                                             \
-    "select a lens or camera that tracks, or turn tracking off for this payload")                \
-  X(dropped_bad_checksum, "dropped-bad-checksum", warning,                                       \
-    "requests with a bad checksum went unanswered: the device dropped them",                     \
-    "field note: ArduPilot's Topotek and SkyDroid parsers and SITL simulators drop a frame "     \
-    "whose checksum does not match (docs/sources/ardupilot.md section 7)",                       \
-    "fix the sender's checksum: the byte sum of every char before it, mod 256, as two "          \
-    "uppercase hex digits")                                                                      \
-  X(dropped_checksum_case, "dropped-checksum-case", warning,                                     \
-    "requests whose checksum is right but lowercase went unanswered: the device dropped them",   \
-    "field note: ArduPilot's parsers compare the checksum with uppercase hex only and drop "     \
-    "the frame silently (docs/sources/ardupilot.md section 7)",                                  \
-    "write the checksum digits in uppercase")                                                    \
-  X(baud_mismatch, "baud-mismatch", error,                                                       \
-    "a serial log holds no TOP framing, only bytes that look like a mis-set line speed",         \
-    "ArduPilot's SERIALn_BAUD defaults to 57600 while the documents and the Topotek wiki set "   \
-    "115200 (SERIAL2_BAUD 115; docs/sources/ardupilot.md section 7)",                            \
-    "set both ends and the logger to the same line speed (115200 per the documents)")            \
-  X(refresh_gap, "refresh-gap", warning,                                                         \
-    "a rate command was not refreshed within the model's limit: the motors stop",                \
-    "the speed-refresh trait (docs/FIELD.md): the firmware stops a rate command that is not "    \
-    "sent again in time; ArduPilot's SkyDroid driver re-sends every update",                     \
+#define TOP_DIAGNOSES(X)                                                                           \
+  X(silent_device, "silent-device", warning,                                                       \
+    "the device sent nothing while several requests to it went unanswered",                        \
+    "field note: SkyDroid cameras take commands only once they output video (AP_Mount_SkyDroid "   \
+    "header, ArduPilot PR #34155); the capture's own timing shows the silence",                    \
+    "check the device's power, IP address or serial port, the port number and line speed, and "    \
+    "that the capture sees the device's side of the link")                                         \
+  X(reply_interface, "reply-interface", warning,                                                   \
+    "Topotek requests over the network with source U get no answer",                               \
+    "ArduPilot PR #33803: a Topotek gimbal answers on the interface the request's source "         \
+    "letter names; U is its UART, so a network client sending U hears nothing",                    \
+    "send source P on UDP/TCP links (ArduPilot with PR #33803, 4.7 or later)")                     \
+  X(stream_rate, "stream-rate", warning,                                                           \
+    "a GAC/GIC push stream runs more than 25% off the rate its switch asked",                      \
+    "document: the GAA/GIA switch (docs/FIELD.md \"Streams\") asks the device to push at a "       \
+    "rate; top::stream_rate_tolerance",                                                            \
+    "ask for a rate the model pushes; check the camera's load and the link when it pushes "        \
+    "slower")                                                                                      \
+  X(stream_stalled, "stream-stalled", warning,                                                     \
+    "a push stream stopped for more than 3 periods and then resumed",                              \
+    "field note: ArduPilot's SkyDroid driver counts more than 1 s without GAC as unhealthy "       \
+    "and stops both axes (PR #34155 review); a running stream pushes until switched off",          \
+    "check the link (Wi-Fi or UART load, lost datagrams) and the camera (reboot, video "           \
+    "start) at the stall; a driver must not steer on the attitude of a stalled stream")            \
+  X(stream_never_started, "stream-never-started", warning,                                         \
+    "a stream was asked for and its switch answered, but no push ever came",                       \
+    "field note: camera-side commands take effect only once the camera outputs video "             \
+    "(AP_Mount_SkyDroid header, ArduPilot PR #34155); drivers re-send the switch every second",    \
+    "start the camera's video before asking for the push, and check that the model pushes this "   \
+    "stream at the rate asked")                                                                    \
+  X(direction_inverted, "direction-inverted", warning,                                             \
+    "angle or rate commands on an axis move the gimbal opposite to their sign",                    \
+    "the C12 pitch-sign trait (docs/FIELD.md); SkyDroid 3.2 makes pitch rates up positive, "       \
+    "Topotek 4.2's text down positive; ArduPilot PR #29002 negates Topotek pitch (down positive "  \
+    "on the wire), tested on real units",                                                          \
+    "negate that axis and kind of command in the driver, or set the model's sign switch; check "   \
+    "the firmware's convention per axis and per command kind (angle and rate may differ)")         \
+  X(command_ignored, "command-ignored", warning,                                                   \
+    "angle commands were acknowledged but the gimbal did not move, while other commands moved it", \
+    "field notes: firmware that echoes GAM, GSM or GAY and does not move (a C12 ground "           \
+    "station: GSM drops its yaw part while GSY and GSP work; issue 28's field notes)",             \
+    "use the per-axis commands this firmware moves on (GAY/GAP rather than GAM), or update the "   \
+    "firmware")                                                                                    \
+  X(attitude_stale, "attitude-stale", warning,                                                     \
+    "non-zero motion commands kept coming while the attitude feedback had stopped for more "       \
+    "than 1 s",                                                                                    \
+    "review of ArduPilot PR #34155: its SkyDroid driver counts more than 1 s without GAC as "      \
+    "unhealthy and stops both axes; a driver closing its loop on a frozen attitude slews the "     \
+    "gimbal",                                                                                      \
+    "stop the axes (zero rates) when the attitude is older than 1 s, and find why the "            \
+    "feedback stopped (stream-stalled, the link)")                                                 \
+  X(axis_left_moving, "axis-left-moving", warning,                                                 \
+    "the last rate command on an axis was non-zero, no stop followed, and the gimbal kept "        \
+    "moving to the end",                                                                           \
+    "QGroundControl issue #13580: after both rate buttons are released, one axis keeps its "       \
+    "+40 deg/s and the gimbal keeps spinning; ArduPilot PR #30872: without a new rate command "    \
+    "the last one stays with the gimbal, which keeps spinning (a zero rate after a timeout)",      \
+    "send a zero rate (or PTZ stop) when the axis should stop; do not rely on the firmware's "     \
+    "refresh timeout, which not every model has")                                                  \
+  X(placeholder_identity, "placeholder-identity", warning,                                         \
+    "an identity reply (model name, serial number, version) is a factory placeholder",             \
+    "ArduPilot PR #27568: a real unit's model name reads 000000000 (not set at production); "      \
+    "PR #27053: the model version is reported as Unknown",                                         \
+    "have the vendor set the identity at production or update the firmware; do not choose "        \
+    "model-specific behaviour from this reply")                                                    \
+  X(clock_offset, "clock-offset", warning,                                                         \
+    "the time set on or reported by the camera is more than a day off the capture's clock",        \
+    "review of ArduPilot PR #34155: TIM sent with the 0-based month (every date one month "        \
+    "early, month 00 in January); the camera's default time is 1970-01-01 (AP_Mount_SkyDroid "     \
+    "header, confirmed on real hardware)",                                                         \
+    "send the month 1-based and set the time from GPS after boot; whole hours off are a time "     \
+    "zone (SkyDroid takes UTC), not this")                                                         \
+  X(tracking_refused, "tracking-refused", warning,                                                 \
+    "a tracking request was answered with a state that refuses it (Topotek TRC state 4)",          \
+    "ArduPilot PR #31768: TRC state 4 (0x34) means this lens does not support tracking; PR "       \
+    "#27568 reads the state from TRC's data char 1",                                               \
+    "select a lens or camera that tracks, or turn tracking off for this payload")                  \
+  X(dropped_bad_checksum, "dropped-bad-checksum", warning,                                         \
+    "requests with a bad checksum went unanswered: the device dropped them",                       \
+    "field note: ArduPilot's Topotek and SkyDroid parsers and SITL simulators drop a frame "       \
+    "whose checksum does not match (docs/sources/ardupilot.md section 7)",                         \
+    "fix the sender's checksum: the byte sum of every char before it, mod 256, as two "            \
+    "uppercase hex digits")                                                                        \
+  X(dropped_checksum_case, "dropped-checksum-case", warning,                                       \
+    "requests whose checksum is right but lowercase went unanswered: the device dropped them",     \
+    "field note: ArduPilot's parsers compare the checksum with uppercase hex only and drop "       \
+    "the frame silently (docs/sources/ardupilot.md section 7)",                                    \
+    "write the checksum digits in uppercase")                                                      \
+  X(baud_mismatch, "baud-mismatch", error,                                                         \
+    "a serial log holds no TOP framing, only bytes that look like a mis-set line speed",           \
+    "ArduPilot's SERIALn_BAUD defaults to 57600 while the documents and the Topotek wiki set "     \
+    "115200 (SERIAL2_BAUD 115; docs/sources/ardupilot.md section 7)",                              \
+    "set both ends and the logger to the same line speed (115200 per the documents)")              \
+  X(refresh_gap, "refresh-gap", warning,                                                           \
+    "a rate command was not refreshed within the model's limit: the motors stop",                  \
+    "the speed-refresh trait (docs/FIELD.md): the firmware stops a rate command that is not "      \
+    "sent again in time; ArduPilot's SkyDroid driver re-sends every update",                       \
     "re-send rate commands faster than the limit for as long as the axis should move")
 
 enum class Diagnosis : std::uint8_t { TOP_DIAGNOSES(TOP_ROW_ENUMERATOR) };
@@ -177,5 +206,10 @@ std::optional<DateTime> date_time_of(const FormSpec& form, std::string_view data
 // Seconds since 1970-01-01 of a date (proleptic Gregorian, UTC); months
 // outside 1..12 are taken as they come (month 0 is the December before).
 std::int64_t epoch_seconds(const DateTime& t) noexcept;
+
+// How long without an attitude report a driver takes its attitude as stale:
+// ArduPilot's SkyDroid driver counts more than 1 s without GAC as unhealthy
+// (review of PR #34155).
+inline constexpr std::int64_t attitude_stale_ms = 1000;
 
 }  // namespace top

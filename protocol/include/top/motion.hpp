@@ -10,6 +10,7 @@
 #include <span>
 #include <string_view>
 
+#include "top/catalog.hpp"
 #include "top/dialect.hpp"
 
 namespace top {
@@ -76,6 +77,35 @@ double motion_speed(const MotionSpec& spec, double value, std::int64_t raw, bool
 std::span<const MotionSpec> motions() noexcept;
 // The row of `ident` in dialect `d`, or nullptr.
 const MotionSpec* motion_of(Dialect d, std::string_view ident) noexcept;
+// The row of a decoded frame's command (the catalog entry decode() found),
+// or nullptr: constant time, for callers that ask it of every frame.
+const MotionSpec* motion_of(const CommandSpec& cmd) noexcept;
+
+// The values a motion frame carries, read from its data by its form's
+// fields without decoding the rest (a detector reads only the frames it
+// judges). Per axis: `value` scaled by the catalog (deg, deg/s), `raw` its
+// integer, and for angles `speed` (scaled) and `speed_raw`.
+struct MotionReading {
+  std::array<double, axis_count> value{}, speed{};
+  // the value field's range (min > max: none), scaled
+  std::array<double, axis_count> min{}, max{};
+  std::array<std::int64_t, axis_count> raw{}, speed_raw{};
+  std::array<bool, axis_count> has{};
+};
+// false when a field of `spec` is missing from `form`, or is not a number
+// (hex_u, hex_s or dec_u digits) in `data`.
+bool read_motion(const MotionSpec& spec, const FormSpec& form, std::string_view data,
+                 MotionReading& out) noexcept;
+// A PTZ frame's action code (its "action" field), or -1.
+std::int64_t ptz_code(const FormSpec& form, std::string_view data) noexcept;
+// Whether `attitude`'s readings follow field evidence (Topotek GIA: a row
+// only the field gives). Commands judged against it are then read with
+// their field signs (MotionAxis::sign_in), against a document's report
+// with the document's: a client and device of one convention agree.
+inline bool field_convention(const MotionSpec& attitude) noexcept {
+  return !attitude.field_evidence.empty() && attitude.kind == MotionKind::attitude;
+}
+
 // The attitude report a command of `spec` is judged against: the one of the
 // same reference frame (Topotek GIC for GI* commands, GAC otherwise).
 std::string_view attitude_for(const MotionSpec& spec) noexcept;

@@ -1,0 +1,43 @@
+// axis-left-moving: the last rate command on an axis was non-zero, no stop
+// followed, and the gimbal kept moving to the end of the conversation: it
+// moved kMinMoved deg or more in the commanded direction after that last
+// command, at least top::attitude_stale_ms later, and was still moving in
+// the last half second or more of reports.
+#pragma once
+
+#include <array>
+#include <optional>
+
+#include "diagnoses/case.hpp"
+#include "diagnoses/judged.hpp"
+
+namespace topdump::diag {
+
+struct LeftMoving {
+  const top::MotionSpec* spec = nullptr;
+  int axis = 0, sign = 0, dir = 0;
+  std::int64_t raw = 0;
+  std::uint64_t last_n = 0;  // the last command
+  std::int64_t last_ts = kNoTime;
+  double at_last = 0, at_mark = 0,
+         at_end = 0;  // the attitude then, a little before the end, at the end
+  std::int64_t mark_ts = kNoTime, end_ts = kNoTime;
+  std::string_view attitude;
+};
+
+class LeftMovingWatch {
+ public:
+  static constexpr double kMinMoved = 3.0, kStillMoving = 1.0;
+  // The open rate window of an axis at the conversation's end.
+  void at_end(const LeftMoving& m);
+  template <class Out>
+  void verdicts(Out&& out) const {
+    for (const auto& f : found_)
+      if (f) out(Found(*f));
+  }
+
+ private:
+  std::array<std::optional<Found>, top::axis_count> found_{};
+};
+
+}  // namespace topdump::diag

@@ -1,0 +1,45 @@
+// A motion command window as the motion track (motion_track.hpp) closes it:
+// what was commanded on one axis from its first command to the next
+// command of another value, and where the attitude was at its start and
+// end. Angles are up and right positive, in the convention of the attitude
+// the window is judged against (top::field_convention).
+#pragma once
+
+#include <cstdint>
+#include <string_view>
+
+#include "capture/sink.hpp"
+#include "top/motion.hpp"
+
+namespace topdump::diag {
+
+struct Judged {
+  const top::MotionSpec* spec = nullptr;
+  int axis = 0;                // top::Axis
+  std::uint64_t first_n = 0;   // the window's first command
+  std::uint64_t commands = 0;  // commands in it, refreshes included
+  std::int64_t open_ts = kNoTime;
+  int dir = 0;  // the direction the commands came from
+  // rate and PTZ: the commanded direction (+1, -1; 0 a stop) and the raw
+  // count; angle: the target in degrees (clamped to the field's range)
+  int sign = 0;
+  std::int64_t raw = 0;
+  double target = 0;
+  double from = 0, to = 0;  // the attitude at the window's start and end, deg
+  double seconds = 0;       // between those two reports
+  bool acked = false;       // the device echoed one of its commands
+  // the model's sign trait is unknown (top::sign_trait_factor 0): which way
+  // the command should turn the gimbal cannot be told
+  bool ambiguous = false;
+  std::string_view attitude;      // the attitude's identifier ("GAC", "GIA")
+  double moved() const noexcept;  // to - from, yaw taken the short way round
+};
+
+// b - a in degrees, the short way round for yaw (axis 0).
+double angle_delta(int axis, double a, double b) noexcept;
+// "up", "down", "right", "left" for a direction on an axis.
+std::string_view direction_word(int axis, int sign) noexcept;
+// "+10.0", "-3.5"
+std::string signed_text(double v);
+
+}  // namespace topdump::diag

@@ -1,0 +1,184 @@
+#include "diagnoses/motion_track.hpp"
+
+#include <algorithm>
+
+#include "top/device.hpp"
+#include "top/diagnoses.hpp"
+
+namespace topdump::diag {
+
+namespace {
+
+constexpr std::int64_t kStaleUs = top::attitude_stale_ms * 1000;
+
+int sign_of(std::int64_t v) noexcept { return v > 0 ? 1 : v < 0 ? -1 : 0; }
+
+const top::MotionAxis* axis_of(const top::MotionSpec& m, int axis) noexcept {
+  for (const top::MotionAxis& a : m.fields())
+    if (static_cast<int>(a.axis) == axis) return &a;
+  return nullptr;
+}
+
+}  // namespace
+
+bool Snap::angle(int axis, double& out) const noexcept {
+  top::MotionReading r;
+  if (!spec || !form || !top::read_motion(*spec, *form, view(), r)) return false;
+  const top::MotionAxis* a = axis_of(*spec, axis);
+  if (!a || !r.has[static_cast<std::size_t>(axis)]) return false;
+  out = r.value[static_cast<std::size_t>(axis)] * a->sign_in(top::field_convention(*spec));
+  return true;
+}
+
+int MotionTrack::ref_for(const top::MotionSpec& m) const noexcept {
+  const int want = m.reference == top::Reference::earth ? 1 : 0;
+  return att_[static_cast<std::size_t>(want)].set() ||
+                 !att_[static_cast<std::size_t>(1 - want)].set()
+             ? want
+             : 1 - want;
+}
+
+void MotionTrack::command(const top::MotionSpec& m, const top::FormSpec* form,
+                          std::string_view data, std::uint64_t n, std::int64_t ts, int dir) {
+  const bool stale = reports_ >= StaleWatch::kMinReports && ts - last_report_ > kStaleUs;
+  if (m.kind == top::MotionKind::ptz) {
+    const top::PtzAction a = top::ptz_action(form ? top::ptz_code(*form, data) : -1);
+    if (a.move == top::PtzMove::stop || a.move == top::PtzMove::centre) {
+      for (Window& w : win_) {
+        close(w);
+        w = Window{};
+      }
+    } else if (a.move == top::PtzMove::turn) {
+      if (stale) stale_.command(n, ts, m.ident, dir, last_report_, last_attitude_->ident);
+      on_axis(static_cast<int>(a.axis), a.sign, m, form, data, n, ts, dir);
+    }
+    return;
+  }
+  // Angles are read only when judged; rates for their direction, unless
+  // every axis's window has this very data (a refresh).
+  top::MotionReading r;
+  bool read = false;
+  if (stale || m.kind == top::MotionKind::rate) {
+    bool refresh = !stale;
+    for (const top::MotionAxis& a : m.fields())
+      refresh = refresh && win_[static_cast<std::size_t>(a.axis)].cmd.same(m, data);
+    if (!refresh) {
+      if (!form || !top::read_motion(m, *form, data, r)) return;
+      read = true;
+    }
+  }
+  if (stale && read &&
+      std::any_of(m.fields().begin(), m.fields().end(), [&](const top::MotionAxis& a) {
+        return r.raw[static_cast<std::size_t>(a.axis)] != 0;
+      }))
+    stale_.command(n, ts, m.ident, dir, last_report_, last_attitude_->ident);
+  for (const top::MotionAxis& a : m.fields()) {
+    const auto i = static_cast<std::size_t>(a.axis);
+    const int sign = read && m.kind == top::MotionKind::rate ? sign_of(r.raw[i]) : 0;
+    on_axis(static_cast<int>(a.axis), sign, m, form, data, n, ts, dir);
+  }
+}
+
+void MotionTrack::on_axis(int axis, int sign, const top::MotionSpec& m, const top::FormSpec* form,
+                          std::string_view data, std::uint64_t n, std::int64_t ts, int dir) {
+  Window& w = win_[static_cast<std::size_t>(axis)];
+  auto refresh = [&] {
+    w.last_ts = ts;
+    w.last_n = n;
+    ++w.commands;
+    // where the attitude was at the last command (axis-left-moving: rates)
+    if (m.kind != top::MotionKind::angle) w.at_last = att_[static_cast<std::size_t>(w.ref)];
+  };
+  if (w.cmd.same(m, data)) return refresh();
+  if (w.cmd.spec == &m &&
+      (m.kind == top::MotionKind::angle ? ts - w.open_ts < kMinWindow : sign == w.sign)) {
+    w.cmd.take(m, form, data, n, ts);  // a new target or speed, the same window
+    return refresh();
+  }
+  close(w);
+  w = Window{};
+  if (!w.cmd.take(m, form, data, n, ts)) return;
+  w.ref = ref_for(m);
+  w.start = w.at_last = att_[static_cast<std::size_t>(w.ref)];
+  w.open_ts = w.last_ts = ts;
+  w.first_n = w.last_n = n;
+  w.commands = 1;
+  w.dir = dir;
+  w.sign = sign;
+}
+
+void MotionTrack::close(Window& w) {
+  const top::MotionSpec* m = w.cmd.spec;
+  if (!m) return;
+  const Snap& end = att_[static_cast<std::size_t>(w.ref)];
+  // judged on reports of one attitude, fresh when it opened, over kMinWindow
+  if (!w.start.set() || end.spec != w.start.spec || end.ts < w.open_ts ||
+      end.ts - w.start.ts < kMinWindow || w.open_ts - w.start.ts > kStaleUs)
+    return;
+  const int axis = static_cast<int>(&w - win_.data());
+  Judged j;
+  j.spec = m;
+  j.axis = axis;
+  j.first_n = w.first_n;
+  j.commands = w.commands;
+  j.open_ts = w.open_ts;
+  j.dir = w.dir;
+  j.acked = w.acked;
+  j.attitude = end.spec->ident;
+  j.seconds = static_cast<double>(end.ts - w.start.ts) / 1e6;
+  if (!w.start.angle(axis, j.from) || !end.angle(axis, j.to)) return;
+  const bool field = top::field_convention(*end.spec);
+  if (m->kind == top::MotionKind::ptz) {
+    j.sign = w.sign;
+  } else {
+    top::MotionReading r;
+    const top::MotionAxis* a = axis_of(*m, axis);
+    if (!a || !top::read_motion(*m, *w.cmd.form, w.cmd.view(), r)) return;
+    const auto i = static_cast<std::size_t>(axis);
+    const int s = a->sign_in(field);
+    j.raw = r.raw[i];
+    // the model's sign trait: a C12 turns GAY +10 to GAC yaw -10 (docs/FIELD.md)
+    const int t = top::sign_trait_factor(m->dialect, model_, axis, m->ident);
+    j.ambiguous = t == 0;
+    j.sign = sign_of(r.raw[i]) * s * (t == 0 ? 1 : t);
+    double target = r.value[i];
+    if (r.min[i] <= r.max[i]) target = std::clamp(target, r.min[i], r.max[i]);
+    j.target = target * s * (t == 0 ? 1 : t);
+  }
+  direction_.window(j);
+  ignored_.window(j);
+}
+
+void MotionTrack::finish() {
+  for (Window& w : win_) {
+    const top::MotionSpec* m = w.cmd.spec;
+    const auto ref = static_cast<std::size_t>(w.ref);
+    const Snap& end = att_[ref];
+    if (m && m->kind != top::MotionKind::angle && w.sign != 0 && w.at_last.set() &&
+        end.spec == w.at_last.spec) {
+      const auto& mk = marks_[ref];
+      const Snap& mark = mk[1].set() && end.ts - mk[1].ts >= kMinWindow ? mk[1] : mk[0];
+      LeftMoving lm;
+      lm.spec = m;
+      lm.axis = static_cast<int>(&w - win_.data());
+      lm.dir = w.dir;
+      lm.last_n = w.last_n;
+      lm.last_ts = w.last_ts;
+      lm.mark_ts = mark.ts;
+      lm.end_ts = end.ts;
+      lm.attitude = end.spec->ident;
+      const top::MotionAxis* a = axis_of(*m, lm.axis);
+      lm.sign = a ? w.sign * a->sign_in(top::field_convention(*end.spec)) : w.sign;
+      top::MotionReading r;
+      if (a && top::read_motion(*m, *w.cmd.form, w.cmd.view(), r))
+        lm.raw = r.raw[static_cast<std::size_t>(lm.axis)];
+      if (mark.spec == end.spec && w.at_last.angle(lm.axis, lm.at_last) &&
+          mark.angle(lm.axis, lm.at_mark) && end.angle(lm.axis, lm.at_end))
+        left_.at_end(lm);
+    }
+    close(w);
+    w = Window{};
+  }
+}
+
+}  // namespace topdump::diag

@@ -1,0 +1,156 @@
+// The motion diagnoses' common state for one conversation: the latest
+// attitude report of each reference frame, kept as a copy of its raw data
+// (read only when a window is judged), and per axis the open command
+// window: from a command to the next command of another value on that axis.
+// A rate refreshed with the same data, or a new angle target within
+// kMinWindow of the window's start, keeps the window open; a window is
+// judged (its command and the two attitude reports read) only when it
+// closes after kMinWindow of attitude, so a capture's commands cost a byte
+// compare each and its attitude reports a copy of a few bytes.
+#pragma once
+
+#include <array>
+#include <cstring>
+
+#include "diagnoses/attitude_stale.hpp"
+#include "diagnoses/axis_left_moving.hpp"
+#include "diagnoses/command_ignored.hpp"
+#include "diagnoses/direction_inverted.hpp"
+
+namespace topdump::diag {
+
+// A copy of a motion frame's data (at most 16 chars: every motion form).
+struct Snap {
+  const top::MotionSpec* spec = nullptr;  // none yet
+  const top::FormSpec* form = nullptr;
+  std::int64_t ts = kNoTime;
+  std::uint64_t n = 0;
+  std::uint8_t len = 0;
+  std::uint64_t w[2] = {0, 0};  // the data (words())
+  bool set() const noexcept { return spec != nullptr; }
+  std::string_view view() const noexcept { return {reinterpret_cast<const char*>(w), len}; }
+  bool take(const top::MotionSpec& m, const top::FormSpec* f, std::string_view d, std::uint64_t nn,
+            std::int64_t t) noexcept {
+    if (!f || d.size() > sizeof w) return false;
+    spec = &m, form = f, ts = t, n = nn, len = static_cast<std::uint8_t>(d.size());
+    words(d, w);
+    return true;
+  }
+  // Whether `d` of `m` is this data: two word compares.
+  bool same(const top::MotionSpec& m, std::string_view d) const noexcept {
+    if (spec != &m || d.size() != len) return false;
+    std::uint64_t o[2];
+    words(d, o);
+    return ((o[0] ^ w[0]) | (o[1] ^ w[1])) == 0;
+  }
+  // The data as two little-endian words, zero-padded, by fixed-size loads:
+  // `d` is a frame's data (2-16 chars for motion), and every header puts
+  // eight bytes before the data (top's decode plan reads them the same way),
+  // so a short datum is the top of the word that ends with it.
+  static void words(std::string_view d, std::uint64_t (&out)[2]) noexcept {
+    const std::size_t k = d.size();
+    if (k == 0) {
+      out[0] = out[1] = 0;
+    } else if (k <= 8) {
+      std::memcpy(&out[0], d.data() + k - 8, 8);
+      out[0] >>= 8 * (8 - k);
+      out[1] = 0;
+    } else {
+      std::memcpy(&out[0], d.data(), 8);
+      std::memcpy(&out[1], d.data() + k - 8, 8);  // overlaps the first below 16
+      out[1] >>= 8 * (16 - k);                    // keeps chars 8 to k - 1
+    }
+  }
+  // An attitude report's angle on `axis`, up and right positive.
+  bool angle(int axis, double& out) const noexcept;
+};
+
+class MotionTrack {
+ public:
+  static constexpr std::int64_t kMinWindow = 500'000;  // us
+
+  // A frame of a motion identifier with a good checksum: `request` from the
+  // client, else the device's.
+  // `model`: the one topdump was told (--model), or unknown.
+  void frame(const top::MotionSpec& m, const top::FormSpec* form, bool request, char control,
+             std::string_view data, std::uint64_t n, std::int64_t ts, int dir, top::Model model);
+  // The conversation ended: judge the open windows.
+  void finish();
+  template <class Out>
+  void verdicts(Out&& out) const {
+    direction_.verdicts(out);
+    ignored_.verdicts(out);
+    if (auto f = stale_.verdict()) out(std::move(*f));
+    left_.verdicts(out);
+  }
+
+ private:
+  struct Window {
+    Snap cmd;             // its latest command (cmd.spec null: none open)
+    int ref = 0;          // the attitude it is judged against (0 body, 1 earth)
+    Snap start, at_last;  // the attitude when it opened, and at its latest command
+    std::int64_t open_ts = kNoTime, last_ts = kNoTime;
+    std::uint64_t first_n = 0, last_n = 0, commands = 0;
+    int dir = 0, sign = 0;  // rates and PTZ: the raw direction commanded
+    bool acked = false;
+  };
+  void command(const top::MotionSpec& m, const top::FormSpec* form, std::string_view data,
+               std::uint64_t n, std::int64_t ts, int dir);
+  void on_axis(int axis, int sign, const top::MotionSpec& m, const top::FormSpec* form,
+               std::string_view data, std::uint64_t n, std::int64_t ts, int dir);
+  void attitude(const top::MotionSpec& m, const top::FormSpec* form, std::string_view data,
+                std::uint64_t n, std::int64_t ts);
+  void close(Window& w);
+  int ref_for(const top::MotionSpec& m) const noexcept;
+
+  std::array<Snap, 2> att_{};                   // the latest report: body, earth
+  std::array<std::array<Snap, 2>, 2> marks_{};  // per frame: reports about 0.5 s apart
+  std::uint64_t reports_ = 0;
+  std::int64_t last_report_ = kNoTime;
+  const top::MotionSpec* last_attitude_ = nullptr;
+  top::Model model_ = top::Model::unknown;
+  std::array<Window, top::axis_count> win_{};
+  DirectionWatch direction_;
+  IgnoredWatch ignored_;
+  StaleWatch stale_;
+  LeftMovingWatch left_;
+};
+
+// Inline: the session calls it for every motion frame, most of them
+// attitude reports.
+inline void MotionTrack::frame(const top::MotionSpec& m, const top::FormSpec* form, bool request,
+                               char control, std::string_view data, std::uint64_t n,
+                               std::int64_t ts, int dir, top::Model model) {
+  if (ts == kNoTime) return;
+  model_ = model;
+  if (m.kind == top::MotionKind::attitude) {
+    // a report: a push or the answer to a read (the Topotek GIA switch's
+    // echo, a write, carries no angles)
+    if (!request && control == 'r') attitude(m, form, data, n, ts);
+    return;
+  }
+  if (control != 'w') return;
+  if (request) {
+    command(m, form, data, n, ts, dir);
+    return;
+  }
+  // the device's echo acknowledges the window of its identifier
+  for (Window& w : win_)
+    if (w.cmd.spec == &m) w.acked = true;
+}
+
+inline void MotionTrack::attitude(const top::MotionSpec& m, const top::FormSpec* form,
+                                  std::string_view data, std::uint64_t n, std::int64_t ts) {
+  const std::size_t slot = m.reference == top::Reference::earth ? 1 : 0;
+  if (!att_[slot].take(m, form, data, n, ts)) return;
+  ++reports_;
+  last_report_ = ts;
+  last_attitude_ = &m;
+  auto& mk = marks_[slot];
+  if (!mk[1].set() || ts - mk[1].ts >= kMinWindow) {
+    mk[0] = mk[1];
+    mk[1] = att_[slot];
+  }
+}
+
+}  // namespace topdump::diag
