@@ -163,6 +163,36 @@ TEST(Field, TopotekGiaEnableStartsTheGiaStream) {
     for (const auto& code : fr.codes) EXPECT_NE(code, "unknown-ident") << fr.raw;
 }
 
+// Issue 28: a real SIP (firmware 1.6.26.R.D) answers the GIC query
+// #TPPG2rGIC0035 with #tpGPCrGIA + 12 hex (the recorded form, device_tables).
+// The GIA is the GIC's reply: paired with it, not a push of a stream nobody
+// asked for while the GIC goes unanswered (what topdump did without
+// answers_query's rule in requests.cpp).
+TEST(Field, TopotekGicQueryAnsweredWithGiaIsPaired) {
+  Fixture f;
+  f.reset(unanswered_after_100ms());
+  f.device = ep4(2, 9003);
+  f.client = ep4(1, 9004);
+  const std::string gic = top::with_checksum("#TPPG2rGIC00");
+  ASSERT_EQ(gic, "#TPPG2rGIC0035");  // the bytes of the log
+  for (int i = 0; i < 3; ++i) {
+    f.up(i * 200, gic);
+    f.down(i * 200 + 2, top::with_checksum("#tpGPCrGIA00000BB80000"));
+  }
+  f.a->finish();
+  EXPECT_EQ(pairing_counts(f.a->stats()), (Counts{3, 3, 0, 0}));
+  EXPECT_FALSE(f.rec.has_note(ACode::unanswered));
+  EXPECT_FALSE(f.rec.has_note(ACode::unsolicited));
+  ASSERT_EQ(f.rec.frames.size(), 6u);
+  for (std::size_t i = 1; i < f.rec.frames.size(); i += 2) {
+    EXPECT_EQ(f.rec.frames[i].role, top::Role::response) << i;
+    EXPECT_EQ(f.rec.frames[i].reply_to, i) << i;  // frame numbers count from 1
+    EXPECT_EQ(f.rec.frames[i].latency, 2000) << i;
+  }
+  // a reply, not the start of a GIA stream
+  EXPECT_TRUE(f.a->stats().conversations.at(0).streams.empty());
+}
+
 TEST(Field, RecordedFormsNameTheirSource) {
   AnalyzerOptions o;
   o.model = top::Model::c13;
