@@ -82,6 +82,18 @@ void write_ports_and_field_commands(std::string& o) {
     }
 }
 
+// What field sources say that nothing models (top::field_notes()).
+void write_field_notes(std::string& o) {
+  o += "\n## Field notes recorded, not modelled\n\n"
+       "What a field source says of a model that the catalog, topsim and topdump do not act "
+       "on, with the source and why.\n\n";
+  o += "| dialect | models | command | note | source |\n|---|---|---|---|---|\n";
+  for (const top::FieldNote& n : top::field_notes())
+    o += "| " + std::string(top::to_string(n.dialect)) + " | " + models(n.models) + " | " +
+         (n.ident.empty() ? std::string("-") : std::string(n.ident)) + " | " + cell(n.note) +
+         " | " + cell(n.evidence) + " |\n";
+}
+
 }  // namespace
 
 int main() {
@@ -176,6 +188,7 @@ int main() {
          cell(m.section) + " | " + cell(m.field_evidence) + " |\n";
   }
   write_ports_and_field_commands(o);
+  write_field_notes(o);
   std::fwrite(o.data(), 1, o.size(), stdout);
   return std::fflush(stdout) == 0 && !std::ferror(stdout) ? 0 : 1;
 }
