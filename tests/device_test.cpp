@@ -236,6 +236,28 @@ TEST(DeviceField, FormsAndTraitsOfTheFieldNameTheirSources) {
   EXPECT_EQ(s->models, 0);  // a C14 Pro: no model of the catalog
 }
 
+// Issue 28's C13 station notes are recorded with their source, and stay out
+// of the rules: UDP 9003 remains the Topotek device port, 19853 no TOP port.
+TEST(DeviceField, C13StationNotesAreRecordedNotModelled) {
+  bool gac = false, ports = false;
+  for (const FieldNote& n : field_notes()) {
+    EXPECT_FALSE(n.note.empty());
+    EXPECT_FALSE(n.evidence.empty()) << n.note;
+    EXPECT_NE(n.models, 0) << n.note;
+    const bool c13 = n.dialect == Dialect::skydroid && (n.models & model_bit(Model::c13));
+    gac |= c13 && n.ident == "GAC" && n.note.find("0.0") != std::string_view::npos &&
+           n.evidence.find("custom-GCS") != std::string_view::npos;
+    ports |= c13 && n.note.find("9003") != std::string_view::npos &&
+             n.note.find("19853") != std::string_view::npos &&
+             n.evidence.find("_ZOOM_EXTRA_PORTS") != std::string_view::npos;
+  }
+  EXPECT_TRUE(gac);
+  EXPECT_TRUE(ports);
+  EXPECT_EQ(dialect_from_port(9003), Dialect::topotek);
+  EXPECT_EQ(port_role(9003), PortRole::device);
+  EXPECT_FALSE(is_top_port(19853));
+}
+
 // A device frame of a recorded form decodes as the device sent it: the C12
 // palette's tp-length becomes info naming the evidence.
 TEST(DeviceField, LengthInBytesReplyDecodesWithItsEvidence) {

@@ -36,6 +36,24 @@ void write_ports_and_field_commands(std::string& o) {
     o += "| " + std::to_string(p.port) + " | " + (p.tcp ? "TCP" : "UDP") + " | " +
          std::string(top::to_string(p.dialect)) + " | " + (p.client ? "client" : "device") + " | " +
          models(p.served) + " | " + cell(p.source) + " |\n";
+  // Which links the rows above give each model: TCP only where a document
+  // or the field puts it (issue 28 item 2 serves the drivers over TCP
+  // "where the link rules allow").
+  o += "\nThe network links each model has by the rows above; topsim serves any model over TCP "
+       "when asked (`--tcp`), but a model without a TCP port has none in either document or "
+       "the field. The drivers' models (sip, c12, c13) have none, so their driver clients "
+       "(tests/conformance) run over a pty and UDP only.\n\n";
+  o += "| model | UDP ports | TCP ports |\n|---|---|---|\n";
+  for (top::Model m : top::all_models()) {
+    std::string udp, tcp;
+    for (const top::PortSpec& p : top::known_ports())
+      if (!p.client && (p.models & top::model_bit(m))) {
+        std::string& list = p.tcp ? tcp : udp;
+        list += (list.empty() ? "" : " ") + std::to_string(p.port);
+      }
+    o += "| " + std::string(top::to_string(m)) + " | " + udp + " | " +
+         (tcp.empty() ? "none" : tcp) + " |\n";
+  }
   o += "\n## Commands the field says a model takes\n\n";
   o += "| dialect | models | command | values | evidence |\n|---|---|---|---|---|\n";
   for (const top::FieldSupport& s : top::field_support()) {
@@ -62,6 +80,18 @@ void write_ports_and_field_commands(std::string& o) {
              cell(f.evidence) + " |\n";
       }
     }
+}
+
+// What field sources say that nothing models (top::field_notes()).
+void write_field_notes(std::string& o) {
+  o += "\n## Field notes recorded, not modelled\n\n"
+       "What a field source says of a model that the catalog, topsim and topdump do not act "
+       "on, with the source and why.\n\n";
+  o += "| dialect | models | command | note | source |\n|---|---|---|---|---|\n";
+  for (const top::FieldNote& n : top::field_notes())
+    o += "| " + std::string(top::to_string(n.dialect)) + " | " + models(n.models) + " | " +
+         (n.ident.empty() ? std::string("-") : std::string(n.ident)) + " | " + cell(n.note) +
+         " | " + cell(n.evidence) + " |\n";
 }
 
 }  // namespace
@@ -158,6 +188,7 @@ int main() {
          cell(m.section) + " | " + cell(m.field_evidence) + " |\n";
   }
   write_ports_and_field_commands(o);
+  write_field_notes(o);
   std::fwrite(o.data(), 1, o.size(), stdout);
   return std::fflush(stdout) == 0 && !std::ferror(stdout) ? 0 : 1;
 }

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <iterator>
 #include <map>
 #include <string>
 #include <string_view>
@@ -274,6 +275,60 @@ void write_ports(std::string& o) {
   o += "local MODEL_DIALECT = {" + model_dialect + " }\n";
 }
 
+// What the dissector needs to tell the device end of a conversation as
+// topdump does (analyzer/session: learn_device) and to name the form a
+// device frame is recorded in (top::note_device_form): the role of each
+// known port, the streams (which identifier a device pushes, which write
+// switches one) and every recorded device form.
+void write_roles(std::string& o) {
+  o += "\n-- The end of a conversation each known port belongs to (top::port_role).\n";
+  std::string roles;
+  std::map<std::uint16_t, bool> done;
+  for (const top::PortSpec& p : top::known_ports()) {
+    if (done[p.port]) continue;
+    done[p.port] = true;
+    const top::PortRole r = top::port_role(p.port);
+    if (r != top::PortRole::unknown)
+      roles += " [" + std::to_string(p.port) +
+               "] = " + lua_str(r == top::PortRole::device ? "device" : "client") + ",";
+  }
+  o += "local PORT_ROLE = {" + roles + " }\n";
+  o += "\n-- The streams (top::streams()): the sender of each pushed identifier (the first\n"
+       "-- stream that names it, as top::stream_of), and the writes that switch one.\n";
+  o +=
+      "local STREAMS = { skydroid = { push = {}, switch = {} }, topotek = { push = {}, switch = {} "
+      "} }\n";
+  std::map<std::string, bool> pushed;
+  for (const top::StreamSpec& s : top::streams()) {
+    const std::string d(top::to_string(s.dialect));
+    if (!pushed[d + " " + std::string(s.push)]) {
+      pushed[d + " " + std::string(s.push)] = true;
+      o += "STREAMS." + d + ".push[" + lua_str(s.push) +
+           "] = " + lua_str(s.sender == top::Sender::device ? "device" : "client") + "\n";
+    }
+    o += "STREAMS." + d + ".switch[" + lua_str(s.request) + "] = true\n";
+  }
+  o += "\n-- Every recorded device form (top::device_forms()): document examples and\n"
+       "-- field evidence of the header and address order a device frame comes in.\n";
+  o += "local RECORDED = {\n";
+  // top::Header as frame.lua names it
+  constexpr const char* kHeaderName[] = {"fixed", "variable", "ext8", "ext16", "tmp"};
+  static_assert(std::size(kHeaderName) == static_cast<std::size_t>(top::Header::tmp_quirk) + 1);
+  for (const top::DeviceForm& f : top::device_forms()) {
+    std::string models;
+    for (top::Model m : top::all_models())
+      if (f.models & top::model_bit(m)) models += " " + std::string(top::to_string(m)) + " = true,";
+    o += "  { dialect = " + lua_str(top::to_string(f.dialect)) + ", models = {" + models +
+         " }, ident = " + lua_str(f.ident) + ", control = " + lua_str(std::string(1, f.control)) +
+         ", sent = " + lua_str(f.sent == top::Sent::push ? "push" : "reply") +
+         ", header = " + lua_str(kHeaderName[static_cast<std::size_t>(f.header)]) +
+         ", order = " + lua_str(top::to_string(f.order)) +
+         ", source = " + lua_str(top::to_string(f.source)) + ", evidence = " + lua_str(f.evidence) +
+         " },\n";
+  }
+  o += "}\n";
+}
+
 }  // namespace
 
 std::string wireshark_lua() {
@@ -287,6 +342,7 @@ std::string wireshark_lua() {
        "-- Needs Wireshark 3.6 or later (Lua 5.2).\n\n"
        "local top = Proto(\"top\", \"TOP gimbal-camera protocol\")\n";
   write_ports(o);
+  write_roles(o);
   write_findings(o);
   o += "\nlocal CATALOG_VTYPE = {}\n";
   write_fields(o);

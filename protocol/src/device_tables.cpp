@@ -365,11 +365,37 @@ constexpr FieldSupport kFieldSupport[] = {
                  "its digital zoom as the C11"},
 };
 
+constexpr ModelSet kC13 = model_bit(Model::c13);
+constexpr FieldNote kFieldNotes[] = {
+    {.dialect = Dialect::skydroid,
+     .models = kC13,
+     .ident = "GAC",
+     .note = "GAC pitch often reads 0.0 while the gimbal tilts; yaw is reliable",
+     .evidence = "a station used on a real C13 (vamaskylight/custom-GCS, vgcs/skydroid/adapter.py "
+                 "@ 0151122d, _gac_pitch_trusted: \"C13 GAC pitch often reads 0.0 even while the "
+                 "gimbal tilts (yaw is reliable)\"; it distrusts a 0.0 pitch when its aim moved "
+                 "pitch by 2.5 deg or more). A station's note, confirmed nowhere else: topsim's "
+                 "C13 reports "
+                 "the pitch it moves to; a C13 pitch that stays 0.0 in topdump report's motion "
+                 "plot while yaw moves may be this (issue 28)"},
+    {.dialect = Dialect::skydroid,
+     .models = kC13,
+     .note = "some C13 builds also listen on UDP 9003 and 19853 (zoom and lens/system commands)",
+     .evidence = "a station used on a real C13 (vamaskylight/custom-GCS, vgcs/skydroid/adapter.py "
+                 "@ 0151122d: \"lens/system also on 9003 on some C13 builds\", "
+                 "_ZOOM_EXTRA_PORTS = (9003, 19853); the same file's probe list has 19856 where "
+                 "the zoom list has 19853). Not a port rule: UDP 9003 is the Topotek device port "
+                 "(Topotek V1.1.3), which tells topdump and the dissector the Topotek dialect, and "
+                 "one station's constants, at odds within the file, are not enough to serve "
+                 "19853 (issue 28)"},
+};
+
 }  // namespace
 
 std::span<const StreamSpec> streams() noexcept { return kStreams; }
 std::span<const DeviceForm> device_forms() noexcept { return kForms; }
 std::span<const Trait> traits() noexcept { return kTraits; }
 std::span<const FieldSupport> field_support() noexcept { return kFieldSupport; }
+std::span<const FieldNote> field_notes() noexcept { return kFieldNotes; }
 
 }  // namespace top

@@ -5,7 +5,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <array>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -170,6 +172,22 @@ inline Endpoint ep4(std::uint8_t last, std::uint16_t port) {
 }
 
 inline constexpr std::int64_t T = 1714564800LL * 1000000;
+
+// A finished session's pairing counts: requests, paired, unanswered and
+// unsolicited, checked as one.
+using Counts = std::array<std::uint64_t, 4>;
+inline Counts pairing_counts(const Stats& s) {
+  return {s.requests, s.paired, s.unanswered, s.unsolicited};
+}
+
+// The options of a session whose requests are unanswered after 100 ms, for
+// `model` (unknown: any).
+inline AnalyzerOptions unanswered_after_100ms(top::Model model = top::Model::unknown) {
+  AnalyzerOptions o;
+  o.timeout_us = 100000;
+  o.model = model;
+  return o;
+}
 
 struct Fixture {
   Recorder rec;

@@ -2,7 +2,7 @@
 // A DriverClient holds what a public autopilot driver does, carried over
 // as facts from reading its source (docs/sources/ardupilot.md): what it
 // sends and when, and how it reads what comes back. This harness runs one
-// over a real pseudo-terminal or UDP socket against an in-process topsim
+// over a real pseudo-terminal, UDP socket or TCP connection against an in-process topsim
 // server that records the run to a pcap, and reads that recording back
 // with the built topdump.
 #pragma once
@@ -18,6 +18,7 @@
 #include "conf/transport.hpp"
 #include "running_server.hpp"
 #include "sim/server.hpp"
+#include "top/dialect.hpp"
 #include "top/frame.hpp"
 
 class DriverClient {
@@ -35,15 +36,42 @@ class DriverClient {
 
 struct DriverLink {
   topsim::TransportKind kind = topsim::TransportKind::udp;
-  const char* name() const { return kind == topsim::TransportKind::udp ? "udp" : "pty"; }
+  const char* name() const {
+    switch (kind) {
+      case topsim::TransportKind::udp:
+        return "udp";
+      case topsim::TransportKind::tcp:
+        return "tcp";
+      default:
+        return "pty";
+    }
+  }
 };
+
+// The links a driver client runs over against `model` (issue 28 item 2:
+// "over a pty, UDP and TCP where the link rules allow"): a pty (a serial
+// line: AP_Mount_Topotek's MNT1_TYPE=12 at 115200, AP_Mount_SkyDroid's
+// serial port), then UDP and TCP where top::known_ports() gives the model a
+// device port on them. By those rules only the C10 and the C20 have a TCP
+// port (SkyDroid 2.1.1); the Topotek document gives the SIP UDP 9003 and a
+// UART, and the C12 and C13 have UDP 5000 (and 12580) only: none of the
+// drivers' models (sip, c12, c13) is served over TCP (docs/FIELD.md, Ports).
+inline std::vector<topsim::TransportKind> driver_links(top::Model model) {
+  std::vector<topsim::TransportKind> links{topsim::TransportKind::pty};
+  bool udp = false, tcp = false;
+  for (const top::PortSpec& p : top::known_ports())
+    if (!p.client && (p.models & top::model_bit(model))) (p.tcp ? tcp : udp) = true;
+  if (udp) links.push_back(topsim::TransportKind::udp);
+  if (tcp) links.push_back(topsim::TransportKind::tcp);
+  return links;
+}
 
 struct DriverRun {
   std::uint64_t sent = 0, received = 0;  // frames
   std::uint64_t start_us = 0;            // on the client's clock
 };
 
-// Runs `client` against topsim for `duration_ms` over `kind` (udp or pty),
+// Runs `client` against topsim for `duration_ms` over `kind` (udp, tcp or pty),
 // with `faults` (topsim --fault). The server records the run to `record`
 // (empty: none). Throws on a link that cannot be opened.
 inline DriverRun run_driver(DriverClient& client, top::Model model, topsim::TransportKind kind,
@@ -57,9 +85,10 @@ inline DriverRun run_driver(DriverClient& client, top::Model model, topsim::Tran
   cfg.device_options = options;
   cfg.faults = faults;
   RunningServer s(cfg);
-  const std::string target = kind == topsim::TransportKind::udp
-                                 ? "udp://127.0.0.1:" + std::to_string(s.server.port())
-                                 : "serial:" + s.server.pty_path();
+  const std::string target =
+      kind == topsim::TransportKind::udp   ? "udp://127.0.0.1:" + std::to_string(s.server.port())
+      : kind == topsim::TransportKind::tcp ? "tcp://127.0.0.1:" + std::to_string(s.server.port())
+                                           : "serial:" + s.server.pty_path();
   auto t = topconf::open_transport(target, model, 0);
   client.client = t->client_address();
   topconf::FrameLink link(*t, nullptr, 4096);

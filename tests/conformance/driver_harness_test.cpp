@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <vector>
+
 #include "top/frame.hpp"
 
 namespace {
@@ -34,7 +37,11 @@ TEST_P(Harness, AnswersArriveAndTheRecordingReadsClean) {
   const DriverLink l{GetParam()};
   const std::string rec = std::string(TOPKIT_BINARY_DIR) + "/driver_harness_" + l.name() + ".pcap";
   AskVersion c;
-  const DriverRun r = run_driver(c, top::Model::c12, l.kind, 1000, rec);
+  // TCP only where the port rules give a model TCP: the C10 (SkyDroid
+  // 2.1.1: also on TCP 5000; the C20, TCP only, takes no VER); the C12 has
+  // a pty and UDP.
+  const top::Model model = l.kind == topsim::TransportKind::tcp ? top::Model::c10 : top::Model::c12;
+  const DriverRun r = run_driver(c, model, l.kind, 1000, rec);
   EXPECT_GE(c.asked, 9);
   EXPECT_GE(c.answered, c.asked - 1) << "sent " << r.sent << ", received " << r.received;
   const Dump d = topdump_findings(rec);
@@ -45,7 +52,22 @@ TEST_P(Harness, AnswersArriveAndTheRecordingReadsClean) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Links, Harness,
-                         ::testing::Values(topsim::TransportKind::pty, topsim::TransportKind::udp),
+                         ::testing::Values(topsim::TransportKind::pty, topsim::TransportKind::udp,
+                                           topsim::TransportKind::tcp),
                          [](const auto& i) { return std::string(DriverLink{i.param}.name()); });
+
+// The links follow the port rules (top::known_ports): TCP for the models a
+// document gives a TCP port (SkyDroid 2.1.1: the C10 also on TCP 5000, the
+// C20 on TCP 5000 only), and for none of the drivers' models (issue 28).
+TEST(DriverLinks, FollowThePortRules) {
+  using K = topsim::TransportKind;
+  using Links = std::vector<K>;
+  EXPECT_EQ(driver_links(top::Model::sip), (Links{K::pty, K::udp}));
+  EXPECT_EQ(driver_links(top::Model::c12), (Links{K::pty, K::udp}));
+  EXPECT_EQ(driver_links(top::Model::c13), (Links{K::pty, K::udp}));
+  EXPECT_EQ(driver_links(top::Model::c10), (Links{K::pty, K::udp, K::tcp}));
+  const Links c20 = driver_links(top::Model::c20);
+  EXPECT_NE(std::find(c20.begin(), c20.end(), K::tcp), c20.end());
+}
 
 }  // namespace

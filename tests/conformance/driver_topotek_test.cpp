@@ -118,8 +118,9 @@ TEST_P(TopotekDriver, IsServedAndTheRecordingReadsClean) {
   std::remove(rec.c_str());
 }
 
-INSTANTIATE_TEST_SUITE_P(Links, TopotekDriver,
-                         ::testing::Values(topsim::TransportKind::pty, topsim::TransportKind::udp),
+// Every link the port rules give the SIP: a pty and UDP (no TCP: see
+// driver_links).
+INSTANTIATE_TEST_SUITE_P(Links, TopotekDriver, ::testing::ValuesIn(driver_links(top::Model::sip)),
                          [](const auto& i) { return std::string(DriverLink{i.param}.name()); });
 
 }  // namespace

@@ -9,7 +9,7 @@ difference fails, naming the capture, topdump's frame number and record and
 tshark's packet number.
 
 Usage: compare.py --tshark T --topdump D --lua top.lua [--tshark-opt -o ...]
-                  [--topdump-opt ...] CAPTURE...
+                  [--topdump-opt ...] [--expect-role IDENT=ROLE] CAPTURE...
 Exit status: 0 equal, 1 a difference, 77 (ctest's SKIP_RETURN_CODE) when
 tshark is not installed.
 """
@@ -190,6 +190,8 @@ def main():
                     "another link: the DLT_USER0 serial dump)")
     ap.add_argument("--expect-fields", help="file of '<ident> <field>...' lines, one per frame: "
                     "tshark must show each top.<ident>.<field>")
+    ap.add_argument("--expect-role", action="append", default=[], metavar="IDENT=ROLE",
+                    help="tshark must show every frame of IDENT with this role (and at least one)")
     ap.add_argument("captures", nargs="+")
     a = ap.parse_args()
     tshark = shutil.which(a.tshark) if not os.path.isabs(a.tshark) else a.tshark
@@ -214,6 +216,17 @@ def main():
                 if w["hdr"].get("top.ident") != want[0] or shown != want[1:]:
                     print(f"{name}: frame {i + 1} (tshark packet {w['packet']}): built {want[0]} "
                           f"with {want[1:]}, tshark shows {w['hdr'].get('top.ident')} with {shown}")
+                    bad += 1
+        for want in a.expect_role:
+            ident, role = want.split("=", 1)
+            shown = [w for w in ws if w["hdr"].get("top.ident") == ident]
+            if not shown:
+                print(f"{name}: no {ident} frame in tshark's dissection")
+                bad += 1
+            for w in shown:
+                if w["hdr"].get("top.role") != role:
+                    print(f"{name}: tshark packet {w['packet']}: {ident} shown as "
+                          f"{w['hdr'].get('top.role')!r}, want {role!r}")
                     bad += 1
         # Compared per direction (a TCP frame is reported when its segment is
         # complete, so the directions interleave differently), in capture

@@ -18,6 +18,13 @@
 //   heuristic.pcap       TOP on ports nobody registered (UDP 40001/40002, TCP
 //                        40003/40004 with a frame split over two segments and
 //                        two frames in one datagram)
+//   c12-push.pcap        a real C12's attitude pushes, client first
+//                        (#tpUGCrGAC, docs/FIELD.md), in three conversations
+//                        whose device end the dissector must learn as topdump
+//                        does: from the device port (40000 -> 5000), from the
+//                        GAA write (UDP 5000 -> 5000, the vendor's app), from
+//                        the push's layout alone (UDP 40005/40006, nothing
+//                        asked first)
 #include <pcap/pcap.h>
 
 #include <cstdio>
@@ -217,6 +224,33 @@ int write_tcp(const std::string& dir) {
   return 0;
 }
 
+// A real C12 pushes attitude as #tpUGCrGAC, client first (docs/FIELD.md,
+// the C12's recorded push form): the pushes come from the device, whatever
+// their addresses say.
+int write_c12_push(const std::string& dir) {
+  PcapWriter out(dir + "/c12-push.pcap", DLT_EN10MB);
+  if (!out.ok()) return 2;
+  constexpr Ip4 kApp{192, 168, 144, 11}, kDevice2{192, 168, 144, 109}, kDevice3{192, 168, 144, 110};
+  std::int64_t ts = kT0;
+  auto udp = [&](Ip4 from, Ip4 to, std::uint16_t sp, std::uint16_t dp, const std::string& p) {
+    out.write(ts, w::eth(w::udp4(from, to, sp, dp, p)));
+    ts += 10000;
+  };
+  const std::string gaa = top::with_checksum("#TPUG2wGAA0A"),
+                    echo = top::with_checksum("#TPGU2wGAA0A");
+  const std::string pushes[] = {top::with_checksum("#tpUGCrGAC0000FC1800C8"),
+                                top::with_checksum("#tpUGCrGAC0064FB5000C8"),
+                                top::with_checksum("#tpUGCrGAC00C8FA8800C8")};
+  udp(kClient, kDevice, 40000, 5000, gaa);
+  udp(kDevice, kClient, 5000, 40000, echo);
+  for (const std::string& p : pushes) udp(kDevice, kClient, 5000, 40000, p);
+  udp(kApp, kDevice2, 5000, 5000, gaa);
+  udp(kDevice2, kApp, 5000, 5000, echo);
+  for (const std::string& p : pushes) udp(kDevice2, kApp, 5000, 5000, p);
+  for (const std::string& p : pushes) udp(kDevice3, kClient, 40006, 40005, p);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -228,5 +262,6 @@ int main(int argc, char** argv) {
   if (int rc = write_forms(dir)) return rc;
   if (int rc = write_vectors(dir, argv[2])) return rc;
   if (int rc = write_tcp(dir)) return rc;
+  if (int rc = write_c12_push(dir)) return rc;
   return write_heuristic(dir);
 }

@@ -14,6 +14,41 @@ local PORT_DIALECT = { [5000] = "skydroid", [9002] = "skydroid", [12580] = "skyd
 local MODELS = { "c10", "c10pro", "c12", "c13", "c20", "sip", }
 local MODEL_DIALECT = { c10 = "skydroid", c10pro = "skydroid", c12 = "skydroid", c13 = "skydroid", c20 = "skydroid", sip = "topotek", }
 
+-- The end of a conversation each known port belongs to (top::port_role).
+local PORT_ROLE = { [5000] = "device", [9002] = "device", [12580] = "device", [9003] = "device", [9004] = "client", }
+
+-- The streams (top::streams()): the sender of each pushed identifier (the first
+-- stream that names it, as top::stream_of), and the writes that switch one.
+local STREAMS = { skydroid = { push = {}, switch = {} }, topotek = { push = {}, switch = {} } }
+STREAMS.skydroid.push["GAC"] = "device"
+STREAMS.skydroid.switch["GAA"] = true
+STREAMS.skydroid.push["FAI"] = "client"
+STREAMS.skydroid.switch["FAE"] = true
+STREAMS.topotek.push["GAC"] = "device"
+STREAMS.topotek.switch["GAA"] = true
+STREAMS.topotek.push["GIC"] = "device"
+STREAMS.topotek.switch["GIA"] = true
+STREAMS.topotek.push["GIA"] = "device"
+STREAMS.topotek.switch["GIA"] = true
+STREAMS.topotek.push["OFT"] = "device"
+STREAMS.topotek.switch["LOC"] = true
+
+-- Every recorded device form (top::device_forms()): document examples and
+-- field evidence of the header and address order a device frame comes in.
+local RECORDED = {
+  { dialect = "skydroid", models = { c10 = true, c10pro = true, c12 = true, c20 = true, }, ident = "GAC", control = "r", sent = "push", header = "fixed", order = "request order", source = "document example", evidence = "SkyDroid 3.3.2.2 example #TPUGCrGACY0Y1Y2Y3P0P1P2P3R0R1R2R3CC: uppercase #TP, U first" },
+  { dialect = "skydroid", models = { c12 = true, }, ident = "GAC", control = "r", sent = "push", header = "variable", order = "request order", source = "field", evidence = "real C12s push #tpUGCrGAC<12 hex><cs>: an Android app and two Python C12 drivers (one checks the checksum) accept only that prefix" },
+  { dialect = "skydroid", models = { c13 = true, }, ident = "SLR", control = "r", sent = "reply", header = "fixed", order = "request order", source = "document example", evidence = "SkyDroid 4.22 reply example #TPUD4rSLR0005BC: #TP with length 4, U first" },
+  { dialect = "skydroid", models = { c13 = true, }, ident = "SLR", control = "r", sent = "reply", header = "fixed", order = "swapped", source = "field", evidence = "a public C13 SDK takes a range only from a datagram holding #TPDU and SLR: #TP with length 4, addresses swapped" },
+  { dialect = "skydroid", models = { c12 = true, }, ident = "VER", control = "r", sent = "reply", header = "variable", order = "swapped", source = "field", evidence = "a real C12 answered VER with #tpDU3rVER0105025A (its length char lies)" },
+  { dialect = "topotek", models = { sip = true, }, ident = "GIC", control = "r", sent = "reply", header = "variable", order = "swapped", source = "document example", evidence = "Topotek 3.5 example #tpGU C r GIC Y0Y1Y2Y3P0P1P2P3R0R1R2R3 CC" },
+  { dialect = "topotek", models = { sip = true, }, ident = "GAC", control = "r", sent = "reply", header = "variable", order = "swapped", source = "field", evidence = "a Topotek device answered #tpGPCrGACFF36ED5A0048DE to a network client" },
+  { dialect = "topotek", models = { sip = true, }, ident = "GIA", control = "r", sent = "reply", header = "variable", order = "swapped", source = "field", evidence = "a real SIP (firmware 1.6.26.R.D) answered the GIC query #TPPG2rGIC0035 with #tpGPCrGIA + 12 hex (issue 28 log; PixEagle: GIC queries consistently got GIA replies)" },
+  { dialect = "topotek", models = { sip = true, }, ident = "GMS", control = "r", sent = "reply", header = "variable", order = "swapped", source = "field", evidence = "a real Topotek unit answered #tpPG2rGMS0089 with #tpGP2rGMS018A: #tp kept on a 2-data-char reply (issue 28 log)" },
+  { dialect = "skydroid", models = { c12 = true, }, ident = "IMG", control = "r", sent = "reply", header = "fixed", order = "swapped", source = "field", evidence = "a C12 Android app (log114/PTZControl C12Service.kt) waits for #TPDU1rIMG and takes the 2 chars after IMG as the palette: length 1 for 2 data chars; a Python C12 console reads the palette only from a reply that starts #TPDU and holds IMG" },
+  { dialect = "skydroid", models = { }, ident = "SLR", control = "r", sent = "reply", header = "fixed", order = "swapped", source = "field", evidence = "a real device answered the range read with #TPDU2rSLR0018BE, data 0018 = 24 dm under length 2 (a Qt ground station's lgs::SkydroidSdkClient note; a C14 Pro per issue 28)" },
+}
+
 -- The finding codes (protocol/include/top/findings.hpp) as expert infos:
 -- top.finding.<code> at the default severity, top.finding.<code>.<severity>
 -- when a frame's finding has another one; QUIRKS: the firmware quirk a code names.
@@ -2831,6 +2866,37 @@ local function role_from_addresses(f)
   return "any"
 end
 
+-- The role the frame's layout alone gives (top::role_from_layout): a
+-- response when only responses of its identifier, control and length exist
+-- (or it is a read laid out as a device stream's push: the SkyDroid GAC,
+-- which the document writes #TPUGCrGAC, client first), a request when only
+-- requests do.
+local function role_from_layout(dialect, f)
+  local n, ctl = f.data_length, f.control and schar(f.control) or nil
+  local request, response = false, false
+  for _, d in ipairs({ "skydroid", "topotek" }) do
+    local cmd = (dialect == "unknown" or d == dialect) and CATALOG[d][f.ident] or nil
+    if cmd then
+      for _, fm in ipairs(cmd.forms) do
+        if fm.control == ctl and n >= fm.min_length and n <= fm.max_length then
+          request = request or fm.role ~= "response"
+          response = response or fm.role ~= "request"
+        end
+      end
+    end
+  end
+  if response and not request then return "response" end
+  if request and not response then return "request" end
+  if response and ctl == "r" then
+    for _, d in ipairs({ "skydroid", "topotek" }) do
+      if (dialect == "unknown" or d == dialect) and STREAMS[d].push[f.ident] == "device" then
+        return "response"
+      end
+    end
+  end
+  return "any"
+end
+
 local function fmt_number(v, d) return sfmt("%." .. d .. "f", v) end
 
 local function all_printable(s)
@@ -3147,6 +3213,73 @@ local function decode(f, dialect, role, model)
   return out
 end
 
+-- The recorded form a device frame matches (top::recorded_form): its header
+-- and address order; field evidence first. model "auto" matches every model.
+local function recorded_form(dialect, model, f, sent)
+  local order = (f.src == 85 or f.src == 80) and "request order" or "swapped"
+  local ctl = f.control and schar(f.control) or nil
+  local best = nil
+  for _, x in ipairs(RECORDED) do
+    if x.dialect == dialect and (model == "auto" or x.models[model]) and x.ident == f.ident and
+       x.control == ctl and x.sent == sent and x.header == f.header and x.order == order then
+      if not best or x.source == "field" then best = x end
+    end
+  end
+  return best
+end
+
+-- A frame the device sent (the conversation says so): a recorded form of
+-- real firmware completes its findings (top::note_device_form). A push in
+-- the order its recorded form has (the C12's #tpUGCrGAC) is that device's
+-- own form, not a reply that failed to swap: no note; other unswapped
+-- device frames are noted; a recorded form names its evidence and makes a
+-- tp-length info.
+local function note_device_form(f, model, dec)
+  local unswapped = role_from_addresses(f) == "request"
+  local tp, un = nil, nil
+  local function find_tp()
+    tp = nil
+    for _, x in ipairs(dec.findings) do
+      if x.code == "tp-length" and x.severity ~= "info" then tp = x end
+    end
+  end
+  for i, x in ipairs(dec.findings) do
+    if x.code == "tp-length" and x.severity ~= "info" then tp = x end
+    if x.code == "unswapped-addresses" then un = i end
+  end
+  if not unswapped and not tp then return end
+  local streams = STREAMS[dec.dialect]
+  local push = streams ~= nil and streams.push[f.ident] == "device"
+  local rf = recorded_form(dec.dialect, model, f, push and "push" or "reply")
+  local function source() return "; as recorded (" .. rf.source .. ")" end
+  if unswapped and push and rf then
+    if un then table.remove(dec.findings, un) end
+    un = nil
+    find_tp()
+  elseif unswapped and not un then
+    local msg
+    if rf then
+      msg = f.ident .. (push and " push" or " reply") .. " addressed " .. schar(f.src) .. " to " ..
+            schar(f.dst) .. " (the request's order)" .. source()
+    else
+      msg = "a response addressed " .. schar(f.src) .. " to " .. schar(f.dst) ..
+            " (the request's order; some simulators)"
+    end
+    dec.findings[#dec.findings + 1] = finding("unswapped-addresses", 3, msg)
+    un = #dec.findings
+    find_tp()
+  elseif un and rf then
+    dec.findings[un].message = dec.findings[un].message .. source()
+  end
+  if not rf then return end
+  if un then dec.findings[un].quirk = rf.evidence end
+  if tp then
+    tp.severity = "info"
+    tp.quirk = rf.evidence
+    tp.message = tp.message .. source()
+  end
+end
+
 local function summary(dec)
   local form = dec.form
   if form and form.none and #dec.fields > 0 and dec.fields[1].none and form.note ~= "" then
@@ -3234,12 +3367,18 @@ local function conversation(pinfo, transport)
   local key = transport .. " " .. (a < b and (a .. " " .. b) or (b .. " " .. a))
   local c = convs[key]
   if not c then
-    c = { first = a, votes = { skydroid = 0, topotek = 0 }, observed = 0, port = "unknown", pending = {} }
+    -- device_dir: the direction the device sends in (0: from `first`), nil
+    -- until the ports or a frame say (conversations.cpp, learn_device)
+    c = { first = a, same = a == b, votes = { skydroid = 0, topotek = 0 }, observed = 0,
+          port = "unknown", pending = {} }
     if transport ~= "serial" then
       local d1 = PORT_DIALECT[pinfo.src_port]
       if d1 then c.port = d1 end
       local d2 = PORT_DIALECT[pinfo.dst_port]
       if d2 then c.port = d2 end
+      local s_dev = PORT_ROLE[pinfo.src_port] == "device"
+      local d_dev = PORT_ROLE[pinfo.dst_port] == "device"
+      if s_dev ~= d_dev then c.device_dir = s_dev and 0 or 1 end
     end
     convs[key] = c
   end
@@ -3260,7 +3399,44 @@ local function expire(c, ts)
   while #c.pending > 0 and ts - c.pending[1].ts > TIMEOUT do table.remove(c.pending, 1) end
 end
 
--- The dialect and role topdump gives this frame, updating the conversation.
+-- Learns which direction the device sends in from a frame of direction
+-- dir, when the ports did not say (topdump's learn_device,
+-- analyzer/session/requests.cpp): a frame addressed to a client, one whose
+-- layout only a response has (a 12-char attitude push, even from a device
+-- that keeps the request's address order, as a real C12 pushes
+-- #tpUGCrGAC), or one that answers a pending request of the other
+-- direction, comes from the device; a frame whose layout only a request
+-- has, or a stream switch (GAA, GIA, FAE write), comes from a client.
+local function learn_device(c, dir, f, dialect)
+  -- Both ends the same (a recording without ports): the addresses decide.
+  if c.same then return end
+  if role_from_addresses(f) == "response" then
+    c.device_dir = dir
+    return
+  end
+  local layout = role_from_layout(dialect, f)
+  if layout == "response" then
+    c.device_dir = dir
+    return
+  elseif layout == "request" then
+    c.device_dir = 1 - dir
+    return
+  end
+  for _, p in ipairs(c.pending) do
+    if p.dir ~= dir and p.ident == f.ident then
+      c.device_dir = dir
+      return
+    end
+  end
+  if f.control == 119 and dialect ~= "unknown" and STREAMS[dialect].switch[f.ident] then
+    c.device_dir = 1 - dir
+  end
+end
+
+-- The dialect and role topdump gives this frame, updating the conversation:
+-- the device's frames are responses and pushes whatever their address order
+-- (real C12s push #tpUGCrGAC, client first), the client's are requests;
+-- "any" while the conversation has not shown which end is the device.
 local function judge_frame(c, dir, f, ts)
   if c.observed < 64 then
     local v = dialect_from_frame(f)
@@ -3269,17 +3445,9 @@ local function judge_frame(c, dir, f, ts)
   end
   local dialect = current_dialect(c)
   if dialect == "unknown" then dialect = dialect_from_frame(f) end
+  if c.device_dir == nil then learn_device(c, dir, f, dialect) end
   local role = "any"
-  local from_client = f.src == 85 or f.src == 80
-  local to_client = f.dst == 85 or f.dst == 80
-  if from_client and not to_client then
-    for _, p in ipairs(c.pending) do
-      if p.dir ~= dir and p.ident == f.ident and p.src == f.src and p.dst == f.dst then
-        role = "response"
-        break
-      end
-    end
-  end
+  if c.device_dir ~= nil then role = dir == c.device_dir and "response" or "request" end
   return dialect, role
 end
 
@@ -3364,15 +3532,8 @@ local function add_frame(tvb, pk, tree, off, item, c, dir, index)
     role = "any"
   end
   local dec = decode(f, dialect, role == "any" and role_from_addresses(f) or role, pk.model)
-  if role == "response" and role_from_addresses(f) == "request" then
-    local has = false
-    for _, x in ipairs(dec.findings) do has = has or x.code == "unswapped-addresses" end
-    if not has then
-      dec.findings[#dec.findings + 1] = finding("unswapped-addresses", 3, "a response addressed " ..
-                                                schar(f.src) .. " to " .. schar(f.dst) ..
-                                                " (the request's order; some simulators)")
-    end
-  end
+  -- the conversation says the device sent it (top::decode with a response role)
+  if role == "response" then note_device_form(f, pk.model, dec) end
   if not pk.visited then after_decode(c, dir, f, dec, pk.ts) end
 
   local total = item.length

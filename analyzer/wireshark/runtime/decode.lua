@@ -17,6 +17,37 @@ local function role_from_addresses(f)
   return "any"
 end
 
+-- The role the frame's layout alone gives (top::role_from_layout): a
+-- response when only responses of its identifier, control and length exist
+-- (or it is a read laid out as a device stream's push: the SkyDroid GAC,
+-- which the document writes #TPUGCrGAC, client first), a request when only
+-- requests do.
+local function role_from_layout(dialect, f)
+  local n, ctl = f.data_length, f.control and schar(f.control) or nil
+  local request, response = false, false
+  for _, d in ipairs({ "skydroid", "topotek" }) do
+    local cmd = (dialect == "unknown" or d == dialect) and CATALOG[d][f.ident] or nil
+    if cmd then
+      for _, fm in ipairs(cmd.forms) do
+        if fm.control == ctl and n >= fm.min_length and n <= fm.max_length then
+          request = request or fm.role ~= "response"
+          response = response or fm.role ~= "request"
+        end
+      end
+    end
+  end
+  if response and not request then return "response" end
+  if request and not response then return "request" end
+  if response and ctl == "r" then
+    for _, d in ipairs({ "skydroid", "topotek" }) do
+      if (dialect == "unknown" or d == dialect) and STREAMS[d].push[f.ident] == "device" then
+        return "response"
+      end
+    end
+  end
+  return "any"
+end
+
 local function fmt_number(v, d) return sfmt("%." .. d .. "f", v) end
 
 local function all_printable(s)
@@ -331,6 +362,73 @@ local function decode(f, dialect, role, model)
     pos = pos + w
   end
   return out
+end
+
+-- The recorded form a device frame matches (top::recorded_form): its header
+-- and address order; field evidence first. model "auto" matches every model.
+local function recorded_form(dialect, model, f, sent)
+  local order = (f.src == 85 or f.src == 80) and "request order" or "swapped"
+  local ctl = f.control and schar(f.control) or nil
+  local best = nil
+  for _, x in ipairs(RECORDED) do
+    if x.dialect == dialect and (model == "auto" or x.models[model]) and x.ident == f.ident and
+       x.control == ctl and x.sent == sent and x.header == f.header and x.order == order then
+      if not best or x.source == "field" then best = x end
+    end
+  end
+  return best
+end
+
+-- A frame the device sent (the conversation says so): a recorded form of
+-- real firmware completes its findings (top::note_device_form). A push in
+-- the order its recorded form has (the C12's #tpUGCrGAC) is that device's
+-- own form, not a reply that failed to swap: no note; other unswapped
+-- device frames are noted; a recorded form names its evidence and makes a
+-- tp-length info.
+local function note_device_form(f, model, dec)
+  local unswapped = role_from_addresses(f) == "request"
+  local tp, un = nil, nil
+  local function find_tp()
+    tp = nil
+    for _, x in ipairs(dec.findings) do
+      if x.code == "tp-length" and x.severity ~= "info" then tp = x end
+    end
+  end
+  for i, x in ipairs(dec.findings) do
+    if x.code == "tp-length" and x.severity ~= "info" then tp = x end
+    if x.code == "unswapped-addresses" then un = i end
+  end
+  if not unswapped and not tp then return end
+  local streams = STREAMS[dec.dialect]
+  local push = streams ~= nil and streams.push[f.ident] == "device"
+  local rf = recorded_form(dec.dialect, model, f, push and "push" or "reply")
+  local function source() return "; as recorded (" .. rf.source .. ")" end
+  if unswapped and push and rf then
+    if un then table.remove(dec.findings, un) end
+    un = nil
+    find_tp()
+  elseif unswapped and not un then
+    local msg
+    if rf then
+      msg = f.ident .. (push and " push" or " reply") .. " addressed " .. schar(f.src) .. " to " ..
+            schar(f.dst) .. " (the request's order)" .. source()
+    else
+      msg = "a response addressed " .. schar(f.src) .. " to " .. schar(f.dst) ..
+            " (the request's order; some simulators)"
+    end
+    dec.findings[#dec.findings + 1] = finding("unswapped-addresses", 3, msg)
+    un = #dec.findings
+    find_tp()
+  elseif un and rf then
+    dec.findings[un].message = dec.findings[un].message .. source()
+  end
+  if not rf then return end
+  if un then dec.findings[un].quirk = rf.evidence end
+  if tp then
+    tp.severity = "info"
+    tp.quirk = rf.evidence
+    tp.message = tp.message .. source()
+  end
 end
 
 local function summary(dec)

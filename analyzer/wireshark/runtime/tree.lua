@@ -48,15 +48,8 @@ local function add_frame(tvb, pk, tree, off, item, c, dir, index)
     role = "any"
   end
   local dec = decode(f, dialect, role == "any" and role_from_addresses(f) or role, pk.model)
-  if role == "response" and role_from_addresses(f) == "request" then
-    local has = false
-    for _, x in ipairs(dec.findings) do has = has or x.code == "unswapped-addresses" end
-    if not has then
-      dec.findings[#dec.findings + 1] = finding("unswapped-addresses", 3, "a response addressed " ..
-                                                schar(f.src) .. " to " .. schar(f.dst) ..
-                                                " (the request's order; some simulators)")
-    end
-  end
+  -- the conversation says the device sent it (top::decode with a response role)
+  if role == "response" then note_device_form(f, pk.model, dec) end
   if not pk.visited then after_decode(c, dir, f, dec, pk.ts) end
 
   local total = item.length

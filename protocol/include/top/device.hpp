@@ -211,6 +211,19 @@ std::span<const FieldSupport> field_support() noexcept;
 const FieldSupport* field_supported(Dialect d, Model model, std::string_view ident,
                                     std::optional<std::int64_t> value) noexcept;
 
+// What a field source says of a model that nothing here acts on: recorded
+// with its source so that an engineer reading a capture knows of it, but
+// neither decoded, simulated nor checked (a station's note, unconfirmed,
+// or at odds with a rule: C13 ports that are Topotek's device port).
+struct FieldNote {
+  Dialect dialect = Dialect::unknown;
+  ModelSet models = 0;
+  std::string_view ident;     // the identifier it concerns; empty: none
+  std::string_view note;      // what the source says
+  std::string_view evidence;  // the source, and why it is not modelled
+};
+std::span<const FieldNote> field_notes() noexcept;
+
 // ---- Rules of the device: asked for by topsim, topconf, the fuzzers and
 // topdump alike, so that each is written once. ----
 
