@@ -7,11 +7,11 @@ cd "$(dirname "$0")/.."
 ./scripts/install-deps.sh
 cmake --preset default
 cmake --build --preset default
-ctest --preset default -j2
+ctest --preset default
 if [ "${TOPKIT_SKIP_ASAN:-0}" != 1 ]; then
   cmake --preset asan
   cmake --build --preset asan
-  ctest --preset asan -j2
+  ctest --preset asan
 fi
 if [ -x fuzz/run-ci.sh ] && [ "${TOPKIT_SKIP_FUZZ:-0}" != 1 ]; then
   ./fuzz/run-ci.sh
