@@ -13,7 +13,7 @@ namespace topdump::diag {
 
 class StaleWatch {
  public:
-  static constexpr std::uint64_t kMinReports = 5, kMinCommands = 3;
+  static constexpr std::uint64_t kMinReports = 3, kMinCommands = 3;
   // A non-zero motion command, frame n at ts, `last_report` the time of
   // the attitude's last report (of `attitude`, reports so far).
   void command(std::uint64_t n, std::int64_t ts, std::string_view ident, int dir,

@@ -2,9 +2,8 @@
 // client (fault_clients.hpp) over real UDP against topsim with one fault;
 // `topdump read --json` on topsim's recording names the diagnosis the fault
 // shows, and the same client against the healthy device names none. The
-// motion faults, whose detectors are not here yet, are checked on the
-// recording itself: the commands echoed, the attitude unchanged or moving
-// the other way.
+// motion faults are checked on the recording itself too: the commands
+// echoed, the attitude unchanged or moving the other way.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -154,7 +153,10 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"bad_checksum_sip", top::Model::sip, Client::bad_checksum, "", "dropped-bad-checksum"},
         // Topotek requests with source U over UDP: the device answers its UART
         // only (no fault needed)
-        Case{"uart_source_sip", top::Model::sip, Client::uart_source, "", "reply-interface"}),
+        Case{"uart_source_sip", top::Model::sip, Client::uart_source, "", "reply-interface"},
+        // the attitude stops at 1 s for good while the client's angle
+        // targets (from 1.8 s, ten a second) keep coming
+        Case{"stale_sip", top::Model::sip, Client::topotek, "stall=GIA@1+2.5", "attitude-stale"}),
     [](const auto& i) { return std::string(i.param.name); });
 
 // ---- the motion faults, on the recording ----------------------------------
@@ -206,6 +208,13 @@ TEST_P(MotionFault, InvertedPitchRateMovesTheOtherWay) {
   EXPECT_GT(std::fabs(dh), 5.0) << "healthy pitch moved " << dh;
   EXPECT_GT(std::fabs(df), 5.0) << "inverted pitch moved " << df;
   EXPECT_LT(dh * df, 0) << "healthy " << dh << ", inverted " << df;
+  // topdump names it on the fault's recording, not on the healthy one's
+  auto names = [](const Recorded& r, const char* code) {
+    const auto v = diagnoses(r.dump);
+    return std::find(v.begin(), v.end(), code) != v.end();
+  };
+  EXPECT_TRUE(names(*fault, "direction-inverted")) << describe(fault->dump);
+  EXPECT_FALSE(names(*healthy, "direction-inverted")) << describe(healthy->dump);
   // the yaw angle target is reached the same way in both
   EXPECT_NEAR(h.back().yaw, f.back().yaw, 1.0);
 }
@@ -230,6 +239,13 @@ TEST_P(MotionFault, IgnoredAngleCommandIsEchoedAndNothingMoves) {
   EXPECT_GT(std::fabs(h.back().yaw), 5.0) << "the healthy device turned yaw";
   for (const Attitude& a : f) EXPECT_NEAR(a.yaw, 0, 0.05) << "at " << a.t << " s";
   EXPECT_GT(std::fabs(at(f, 1.6).pitch - at(f, 0.4).pitch), 5.0) << "pitch still moves";
+  // topdump names it on the fault's recording, not on the healthy one's
+  auto names = [](const Recorded& r, const char* code) {
+    const auto v = diagnoses(r.dump);
+    return std::find(v.begin(), v.end(), code) != v.end();
+  };
+  EXPECT_TRUE(names(*fault, "command-ignored")) << describe(fault->dump);
+  EXPECT_FALSE(names(*healthy, "command-ignored")) << describe(healthy->dump);
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, MotionFault, ::testing::Values(top::Model::c12, top::Model::sip),
