@@ -19,11 +19,21 @@ const top::MotionAxis* axis_of(const top::MotionSpec& m, int axis) noexcept {
   return nullptr;
 }
 
+// The direction of each axis of a rate command (the raw sign); false when
+// its data does not read.
+bool read_signs(const top::MotionSpec& m, const top::FormSpec* form, std::string_view data,
+                std::array<int, top::axis_count>& out) {
+  top::MotionReading r;
+  if (!form || !top::read_motion(m, *form, data, r)) return false;
+  for (std::size_t i = 0; i < top::axis_count; ++i) out[i] = sign_of(r.raw[i]);
+  return true;
+}
+
 }  // namespace
 
 bool Snap::angle(int axis, double& out) const noexcept {
   top::MotionReading r;
-  if (!spec || !form || !top::read_motion(*spec, *form, view(), r)) return false;
+  if (!spec || !form || !top::read_motion(*spec, *form, view(), r, axis)) return false;
   const top::MotionAxis* a = axis_of(*spec, axis);
   if (!a || !r.has[static_cast<std::size_t>(axis)]) return false;
   out = r.value[static_cast<std::size_t>(axis)] * a->sign_in(top::field_convention(*spec));
@@ -46,7 +56,7 @@ void MotionTrack::command(const top::MotionSpec& m, const top::FormSpec* form,
     if (a.move == top::PtzMove::stop || a.move == top::PtzMove::centre) {
       for (Window& w : win_) {
         close(w);
-        w = Window{};
+        w.cmd.spec = nullptr;
       }
     } else if (a.move == top::PtzMove::turn) {
       if (stale) stale_.command(n, ts, m.ident, dir, last_report_, last_attitude_->ident);
@@ -56,26 +66,19 @@ void MotionTrack::command(const top::MotionSpec& m, const top::FormSpec* form,
   }
   // Angles are read only when judged; rates for their direction, unless
   // every axis's window has this very data (a refresh).
-  top::MotionReading r;
-  bool read = false;
+  std::array<int, top::axis_count> sign{};
   if (stale || m.kind == top::MotionKind::rate) {
     bool refresh = !stale;
     for (const top::MotionAxis& a : m.fields())
       refresh = refresh && win_[static_cast<std::size_t>(a.axis)].cmd.same(m, data);
-    if (!refresh) {
-      if (!form || !top::read_motion(m, *form, data, r)) return;
-      read = true;
-    }
+    if (!refresh && !read_signs(m, form, data, sign)) return;
+    if (stale && std::any_of(sign.begin(), sign.end(), [](int v) { return v != 0; }))
+      stale_.command(n, ts, m.ident, dir, last_report_, last_attitude_->ident);
   }
-  if (stale && read &&
-      std::any_of(m.fields().begin(), m.fields().end(), [&](const top::MotionAxis& a) {
-        return r.raw[static_cast<std::size_t>(a.axis)] != 0;
-      }))
-    stale_.command(n, ts, m.ident, dir, last_report_, last_attitude_->ident);
   for (const top::MotionAxis& a : m.fields()) {
     const auto i = static_cast<std::size_t>(a.axis);
-    const int sign = read && m.kind == top::MotionKind::rate ? sign_of(r.raw[i]) : 0;
-    on_axis(static_cast<int>(a.axis), sign, m, form, data, n, ts, dir);
+    on_axis(static_cast<int>(a.axis), m.kind == top::MotionKind::rate ? sign[i] : 0, m, form, data,
+            n, ts, dir);
   }
 }
 
@@ -96,8 +99,9 @@ void MotionTrack::on_axis(int axis, int sign, const top::MotionSpec& m, const to
     return refresh();
   }
   close(w);
-  w = Window{};
+  w.cmd.spec = nullptr;
   if (!w.cmd.take(m, form, data, n, ts)) return;
+  w.acked = false;
   w.ref = ref_for(m);
   w.start = w.at_last = att_[static_cast<std::size_t>(w.ref)];
   w.open_ts = w.last_ts = ts;
@@ -133,7 +137,7 @@ void MotionTrack::close(Window& w) {
   } else {
     top::MotionReading r;
     const top::MotionAxis* a = axis_of(*m, axis);
-    if (!a || !top::read_motion(*m, *w.cmd.form, w.cmd.view(), r)) return;
+    if (!a || !top::read_motion(*m, *w.cmd.form, w.cmd.view(), r, axis)) return;
     const auto i = static_cast<std::size_t>(axis);
     const int s = a->sign_in(field);
     j.raw = r.raw[i];
@@ -177,7 +181,7 @@ void MotionTrack::finish() {
         left_.at_end(lm);
     }
     close(w);
-    w = Window{};
+    w.cmd.spec = nullptr;
   }
 }
 

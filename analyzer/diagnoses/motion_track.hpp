@@ -68,6 +68,7 @@ struct Snap {
 class MotionTrack {
  public:
   static constexpr std::int64_t kMinWindow = 500'000;  // us
+  static constexpr std::int64_t kSample = 20'000;  // us: attitude kept at most 50 times a second
 
   // A frame of a motion identifier with a good checksum: `request` from the
   // client, else the device's.
@@ -142,14 +143,21 @@ inline void MotionTrack::frame(const top::MotionSpec& m, const top::FormSpec* fo
 inline void MotionTrack::attitude(const top::MotionSpec& m, const top::FormSpec* form,
                                   std::string_view data, std::uint64_t n, std::int64_t ts) {
   const std::size_t slot = m.reference == top::Reference::earth ? 1 : 0;
-  if (!att_[slot].take(m, form, data, n, ts)) return;
+  // A window is judged over half a second or more: a report within kSample
+  // of the one kept (of the same attitude) is counted, not copied.
+  Snap& a = att_[slot];
+  if (a.spec != &m || ts - a.ts >= kSample || ts < a.ts) {
+    if (!a.take(m, form, data, n, ts)) return;
+  } else if (!form || data.size() > sizeof a.w) {
+    return;
+  }
   ++reports_;
   last_report_ = ts;
   last_attitude_ = &m;
   auto& mk = marks_[slot];
   if (!mk[1].set() || ts - mk[1].ts >= kMinWindow) {
     mk[0] = mk[1];
-    mk[1] = att_[slot];
+    mk[1] = a;
   }
 }
 

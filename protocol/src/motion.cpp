@@ -200,7 +200,7 @@ const FieldSpec* field_in(const FormSpec& form, std::string_view name, std::stri
   std::size_t at = 0;
   for (const FieldSpec& f : form.fields) {
     const std::size_t w = f.width ? f.width : data.size() - std::min(at, data.size());
-    if (f.name == name) {
+    if (f.name.size() == name.size() && f.name[0] == name[0] && f.name == name) {
       if (at + w > data.size()) return nullptr;
       bytes = data.substr(at, w);
       return &f;
@@ -213,9 +213,10 @@ const FieldSpec* field_in(const FormSpec& form, std::string_view name, std::stri
 }  // namespace
 
 bool read_motion(const MotionSpec& spec, const FormSpec& form, std::string_view data,
-                 MotionReading& out) noexcept {
+                 MotionReading& out, int only) noexcept {
   for (const MotionAxis& a : spec.fields()) {
     const auto i = static_cast<std::size_t>(a.axis);
+    if (only >= 0 && static_cast<int>(i) != only) continue;
     std::string_view bytes;
     const FieldSpec* f = field_in(form, a.value, data, bytes);
     if (!f || !read_integer(*f, bytes, out.raw[i])) return false;

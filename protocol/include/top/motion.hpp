@@ -93,9 +93,10 @@ struct MotionReading {
   std::array<bool, axis_count> has{};
 };
 // false when a field of `spec` is missing from `form`, or is not a number
-// (hex_u, hex_s or dec_u digits) in `data`.
+// (hex_u, hex_s or dec_u digits) in `data`. `only` (an Axis): that axis
+// alone, for a reader that needs one.
 bool read_motion(const MotionSpec& spec, const FormSpec& form, std::string_view data,
-                 MotionReading& out) noexcept;
+                 MotionReading& out, int only = -1) noexcept;
 // A PTZ frame's action code (its "action" field), or -1.
 std::int64_t ptz_code(const FormSpec& form, std::string_view data) noexcept;
 // Whether `attitude`'s readings follow field evidence (Topotek GIA: a row
