@@ -103,6 +103,21 @@ std::string read_at_half_speed(const std::string& sent) {
 }
 
 void stream_captures() {
+  {  // GAA asks 10 Hz (0A); the camera pushes GAC at 5 Hz, steadily
+    Udp u = skydroid("diag-stream-rate.pcap");
+    for (int s = 0; s < 6; ++s) u.echoed(s * 1000, 4, "#TPUG2wGAA0A");
+    for (int i = 0; i < 30; ++i) u.down(100 + i * 200, gac_at(0, -20));
+  }
+  {  // a SkyDroid yaw rate sent once and not refreshed: yaw turns for the
+     // 1 s the speed-refresh trait gives it, then stops
+    Udp u = skydroid("diag-refresh-gap.pcap");
+    for (int s = 0; s < 4; ++s) u.echoed(s * 1000, 4, "#TPUG2wGAA0A");
+    for (int i = 0; i < 40; ++i) {
+      const int ms = 50 + i * 100;
+      u.down(ms, gac_at(ramp(ms, 1000, 2000, 10), -20));
+    }
+    u.echoed(1000, 3, "#TPUG2wGSY14");
+  }
   {  // a 10 Hz GAC stream that stops for 2 s and comes back
     Udp u = skydroid("diag-stream-stalled.pcap");
     for (int s = 0; s < 8; ++s) u.echoed(s * 1000, 4, "#TPUG2wGAA0A");  // re-sent every second

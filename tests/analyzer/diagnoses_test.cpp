@@ -262,6 +262,7 @@ TEST(DiagnosesCaptures, EachFiresOnItsCapture) {
       {"diag-command-ignored.log", "command-ignored"},
       {"diag-attitude-stale.pcap", "attitude-stale"},
       {"diag-axis-left-moving.log", "axis-left-moving"},
+      {"diag-stream-rate.pcap", "stream-rate"},
   };
   for (const auto& [file, code] : made) {
     const Seen s = read_json(file);

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Renders `topdump report` for captures and checks each page offline.
 
-  report_check.py --topdump BIN --out DIR [--chromium] CAPTURE...
+  report_check.py --topdump BIN --out DIR [--chromium] [--together NAME
+                  [--every-diagnosis DIAGNOSES.md]] CAPTURE...
 
 Every page: written (exit 0 or 1), at most 5 MB, no external URL (no
 http:, https: or // in any src or href, no url( in styles, no <link>),
@@ -10,9 +11,15 @@ well-formed: parsed strictly as XML by python3's xml.etree (expat). With
 off: no console message may appear, and the screenshot must not be blank
 (enough non-white pixels, more than two colours). Exit 77 (skip) when
 --chromium is given and /usr/bin/chromium is absent.
+
+--together NAME: one page of every capture (NAME.html) instead of one page
+each. --every-diagnosis: that page's "What went wrong" (report --json,
+what_went_wrong[].code) must name every code of docs/DIAGNOSES.md's table,
+each with its evidence and remedy.
 """
 import argparse
 import concurrent.futures
+import json
 import os
 import re
 import shutil
@@ -84,6 +91,8 @@ def main():
     ap.add_argument("--topdump", required=True)
     ap.add_argument("--out", required=True)
     ap.add_argument("--chromium", action="store_true")
+    ap.add_argument("--together")
+    ap.add_argument("--every-diagnosis")
     ap.add_argument("captures", nargs="+")
     a = ap.parse_args()
     chromium = shutil.which("chromium") or "/usr/bin/chromium"
@@ -91,6 +100,14 @@ def main():
         print("chromium not installed: skipped")
         return 77
     os.makedirs(a.out, exist_ok=True)
+    if a.together:
+        errors = check(a, chromium, a.captures, a.together)
+        if a.every_diagnosis:
+            errors += every_diagnosis(a)
+        for e in errors:
+            print("FAIL " + e)
+        print("%d captures on one page, %d problems" % (len(a.captures), len(errors)))
+        return 1 if errors else 0
     # two pages at a time (the machine has two cores; Chromium waits a lot)
     with concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
         results = list(pool.map(lambda cap: check(a, chromium, cap), a.captures))
@@ -101,12 +118,32 @@ def main():
     return 1 if errors else 0
 
 
-def check(a, chromium, cap):
-    """The problems of one capture's page."""
+def every_diagnosis(a):
+    """The table's codes missing from the page's "What went wrong"."""
+    table = re.findall(r"^\| `([a-z-]+)` \|", open(a.every_diagnosis).read(), re.M)
+    r = subprocess.run([a.topdump, "report", "--json"] + a.captures, capture_output=True,
+                       text=True)
+    items = json.loads(r.stdout)["overview"]["what_went_wrong"]
+    seen = {i["code"]: i for i in items if i.get("code")}
     errors = []
-    name = os.path.basename(cap)
+    if len(table) < 10:
+        errors.append("%s: no diagnosis table found" % a.every_diagnosis)
+    for code in table:
+        if code not in seen:
+            errors.append("%s: not in What went wrong" % code)
+        elif not seen[code].get("evidence") or not seen[code].get("remedy"):
+            errors.append("%s: no evidence or remedy" % code)
+    print("every diagnosis: %d of %d codes on the page" % (len(table) - len(errors), len(table)))
+    return errors
+
+
+def check(a, chromium, cap, together=None):
+    """The problems of one capture's page (of every capture's, `together`)."""
+    errors = []
+    caps = cap if together else [cap]
+    name = together or os.path.basename(cap)
     page = os.path.join(a.out, name + ".html")
-    r = subprocess.run([a.topdump, "report", cap, "-o", page], capture_output=True)
+    r = subprocess.run([a.topdump, "report"] + caps + ["-o", page], capture_output=True)
     if r.returncode not in (0, 1) or not os.path.exists(page):
         errors.append("%s: topdump report exit %d: %s" % (name, r.returncode, r.stderr))
         return errors

@@ -213,6 +213,9 @@ TEST(Fuzz, AnUnusableTargetIsExit2) {
 
 // ---- the binaries
 
+// The probe waits 500 ms: with 150 ms a loaded CI machine (tests six at a
+// time, cmake/test_slots.cmake) once missed a healthy answer, blamed a case
+// that was no GAY and could not reproduce it (minimised "not-reproduced").
 TEST(FuzzCli, FindsACrashOverUdpRestartsWithSighupAndWritesEveryReport) {
   std::string line;
   const pid_t pid = start_topsim(
@@ -222,7 +225,7 @@ TEST(FuzzCli, FindsACrashOverUdpRestartsWithSighupAndWritesEveryReport) {
   const std::string dir = std::string(TOPKIT_BINARY_DIR) + "/topconf_fuzz_cli";
   run_cmd("mkdir -p " + dir);
   const int rc = run_cmd(bin("topconf") + " fuzz --model c12 --target udp://" + line.substr(4) +
-                         " --cases 3000 --max-failures 1 --probe-timeout-ms 150 --slow-ms 200 "
+                         " --cases 3000 --max-failures 1 --probe-timeout-ms 500 --slow-ms 200 "
                          "--restart-cmd 'kill -HUP " +
                          std::to_string(pid) + "' --json " + dir + "/f.jsonl --junit " + dir +
                          "/f.xml --html " + dir + "/f.html --pcap " + dir + "/f.pcap -q");
