@@ -55,6 +55,7 @@ void MotionTrack::command(const top::MotionSpec& m, const top::FormSpec* form,
     const top::PtzAction a = top::ptz_action(form ? top::ptz_code(*form, data) : -1);
     if (a.move == top::PtzMove::stop || a.move == top::PtzMove::centre) {
       for (Window& w : win_) {
+        check_refresh(w, ts);
         close(w);
         w.cmd.spec = nullptr;
       }
@@ -85,6 +86,7 @@ void MotionTrack::command(const top::MotionSpec& m, const top::FormSpec* form,
 void MotionTrack::on_axis(int axis, int sign, const top::MotionSpec& m, const top::FormSpec* form,
                           std::string_view data, std::uint64_t n, std::int64_t ts, int dir) {
   Window& w = win_[static_cast<std::size_t>(axis)];
+  if (m.kind == top::MotionKind::rate) check_refresh(w, ts);
   auto refresh = [&] {
     w.last_ts = ts;
     w.last_n = n;
@@ -109,6 +111,18 @@ void MotionTrack::on_axis(int axis, int sign, const top::MotionSpec& m, const to
   w.commands = 1;
   w.dir = dir;
   w.sign = sign;
+}
+
+void MotionTrack::check_refresh(const Window& w, std::int64_t ts) {
+  const top::MotionSpec* m = w.cmd.spec;
+  if (!m || m->kind != top::MotionKind::rate || w.sign == 0) return;
+  if (refresh_limit_us_ < 0) {
+    const top::Trait* t = top::speed_refresh_trait(model_, m->dialect);
+    refresh_limit_us_ = t ? std::int64_t{t->value} * 1000 : 0;
+  }
+  if (refresh_limit_us_ > 0 && ts - w.last_ts > refresh_limit_us_)
+    refresh_.gap(w.last_n, w.last_ts, m->ident, static_cast<int>(&w - win_.data()), w.dir,
+                 ts - w.last_ts, static_cast<std::uint32_t>(refresh_limit_us_ / 1000));
 }
 
 void MotionTrack::close(Window& w) {
@@ -153,8 +167,9 @@ void MotionTrack::close(Window& w) {
   ignored_.window(j);
 }
 
-void MotionTrack::finish() {
+void MotionTrack::finish(std::int64_t end_ts) {
   for (Window& w : win_) {
+    if (end_ts != kNoTime) check_refresh(w, end_ts);
     const top::MotionSpec* m = w.cmd.spec;
     const auto ref = static_cast<std::size_t>(w.ref);
     const Snap& end = att_[ref];

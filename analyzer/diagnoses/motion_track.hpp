@@ -16,6 +16,7 @@
 #include "diagnoses/axis_left_moving.hpp"
 #include "diagnoses/command_ignored.hpp"
 #include "diagnoses/direction_inverted.hpp"
+#include "diagnoses/refresh_gap.hpp"
 
 namespace topdump::diag {
 
@@ -75,14 +76,16 @@ class MotionTrack {
   // `model`: the one topdump was told (--model), or unknown.
   void frame(const top::MotionSpec& m, const top::FormSpec* form, bool request, char control,
              std::string_view data, std::uint64_t n, std::int64_t ts, int dir, top::Model model);
-  // The conversation ended: judge the open windows.
-  void finish();
+  // The conversation ended at `end_ts` (its last frame): judge the open
+  // windows.
+  void finish(std::int64_t end_ts);
   template <class Out>
   void verdicts(Out&& out) const {
     direction_.verdicts(out);
     ignored_.verdicts(out);
     if (auto f = stale_.verdict()) out(std::move(*f));
     left_.verdicts(out);
+    if (auto f = refresh_.verdict()) out(std::move(*f));
   }
 
  private:
@@ -102,6 +105,8 @@ class MotionTrack {
   void attitude(const top::MotionSpec& m, const top::FormSpec* form, std::string_view data,
                 std::uint64_t n, std::int64_t ts);
   void close(Window& w);
+  // refresh-gap: whether the rate window `w` went unrefreshed until `ts`.
+  void check_refresh(const Window& w, std::int64_t ts);
   int ref_for(const top::MotionSpec& m) const noexcept;
 
   std::array<Snap, 2> att_{};                   // the latest report: body, earth
@@ -115,6 +120,8 @@ class MotionTrack {
   IgnoredWatch ignored_;
   StaleWatch stale_;
   LeftMovingWatch left_;
+  RefreshWatch refresh_;
+  std::int64_t refresh_limit_us_ = -1;  // -1: not looked up yet; 0: no limit applies
 };
 
 // Inline: the session calls it for every motion frame, most of them

@@ -122,20 +122,9 @@ void response_facts(Report& rep) {
 
 // Rate commands not refreshed, and the speed scale they showed.
 void rate_facts(Report& rep) {
-  if (!rep.gaps.empty()) {
-    const auto& g =
-        *std::max_element(rep.gaps.begin(), rep.gaps.end(),
-                          [](const auto& a, const auto& b) { return a.gap_ms < b.gap_ms; });
-    add(rep, 65, top::Severity::warning,
-        std::to_string(rep.gaps.size()) + " rate command" + (rep.gaps.size() == 1 ? "" : "s") +
-            " not refreshed within " + std::to_string(rep.refresh_limit_ms) + " ms (longest " +
-            fmt("%.0f", g.gap_ms) + " ms after the " + g.ident + " at " + clock_text(g.t) +
-            "): the motors stop",
-        "rates");
-    rep.facts.back().code = top::Diagnosis::refresh_gap;
-    rep.facts.back().frame = rep.gaps.front().frame;
-    rep.facts.back().count = rep.gaps.size();
-  }
+  // refresh-gap itself is the session's diagnosis (analyzer/diagnoses/
+  // refresh_gap.cpp, in "What went wrong" with the rest); rep.gaps lists
+  // each gap for the rates section.
   if (!rep.scale_verdict.empty())
     add(rep, 25, top::Severity::info,
         "rate commands moved the gimbal at " + fmt("%.3f", rep.scale_measured) +

@@ -209,18 +209,10 @@ bool slope(const Series& s, std::int64_t t0, std::int64_t t1, double& out, std::
   return true;
 }
 
-const top::Trait* refresh_trait(top::Model model, top::Dialect d) {
-  if (model != top::Model::unknown)
-    return top::find_trait(top::TraitKind::speed_refresh, model, top::Profile::field);
-  for (const auto& t : top::traits())
-    if (t.kind == top::TraitKind::speed_refresh && t.dialect == d) return &t;
-  return nullptr;
-}
-
 }  // namespace
 
 void rate_runs(const ConvData& c, const AxisTimes& times, Report& rep, std::int64_t capture_end) {
-  const top::Trait* trait = refresh_trait(rep.model, c.dialect);
+  const top::Trait* trait = top::speed_refresh_trait(rep.model, c.dialect);
   const std::int64_t limit_us = trait ? std::int64_t{trait->value} * 1000 : 1'000'000;
   if (trait) {
     rep.refresh_limit_ms = trait->value;

@@ -105,7 +105,7 @@ void Analyzer::Impl::close(Conversation& c, std::int64_t ts) {
   }
   emit_silence(c);
   for (const StreamStat& s : c.st.streams) check_stream(c, s);
-  c.watch.motion.finish();
+  c.watch.motion.finish(last_ts(c));
   c.watch.verdicts([&](diag::Found f) { diagnose(c, std::move(f)); },
                    c.transport == Transport::serial, c.dir[0].sent_frame || c.dir[1].sent_frame);
   c.st.dialect = c.det.current();

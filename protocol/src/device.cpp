@@ -346,6 +346,13 @@ BuildSpec error_reply(const Frame& request) noexcept {
   return b;
 }
 
+const Trait* speed_refresh_trait(Model model, Dialect d) noexcept {
+  if (model != Model::unknown) return find_trait(TraitKind::speed_refresh, model, Profile::field);
+  for (const Trait& t : traits())
+    if (t.kind == TraitKind::speed_refresh && t.dialect == d) return &t;
+  return nullptr;
+}
+
 std::uint32_t speed_hold_ms(Model model, Profile profile) noexcept {
   const Trait* t = find_trait(TraitKind::speed_refresh, model, profile);
   return t != nullptr && t->value != 0 ? t->value : default_speed_hold_ms;

@@ -263,6 +263,7 @@ TEST(DiagnosesCaptures, EachFiresOnItsCapture) {
       {"diag-attitude-stale.pcap", "attitude-stale"},
       {"diag-axis-left-moving.log", "axis-left-moving"},
       {"diag-stream-rate.pcap", "stream-rate"},
+      {"diag-refresh-gap.pcap", "refresh-gap"},
   };
   for (const auto& [file, code] : made) {
     const Seen s = read_json(file);

@@ -213,9 +213,8 @@ TEST(Fuzz, AnUnusableTargetIsExit2) {
 
 // ---- the binaries
 
-// The probe waits 500 ms: with 150 ms a loaded CI machine (tests six at a
-// time, cmake/test_slots.cmake) once missed a healthy answer, blamed a case
-// that was no GAY and could not reproduce it (minimised "not-reproduced").
+// The probe waits 500 ms (150 ms once missed a healthy answer on a loaded
+// machine); the executable runs alone (tests/conformance/CMakeLists.txt).
 TEST(FuzzCli, FindsACrashOverUdpRestartsWithSighupAndWritesEveryReport) {
   std::string line;
   const pid_t pid = start_topsim(

@@ -296,5 +296,9 @@ inline constexpr std::uint32_t quiet_line_ms = 20;
 // 10-50 Hz), else default_speed_hold_ms.
 inline constexpr std::uint32_t default_speed_hold_ms = 1000;
 std::uint32_t speed_hold_ms(Model model, Profile profile) noexcept;
+// The speed-refresh trait a capture is judged by: `model`'s (field
+// profile), or with the model unknown the first of dialect `d`; nullptr when
+// none applies (Topotek records none: a rate holds until changed).
+const Trait* speed_refresh_trait(Model model, Dialect d) noexcept;
 
 }  // namespace top

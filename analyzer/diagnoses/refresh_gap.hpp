@@ -1,0 +1,28 @@
+// refresh-gap: a rate command not refreshed within the speed-refresh limit
+// (top::speed_refresh_trait): the firmware stops the motors. A gap is a
+// non-zero rate on an axis whose next command there (a rate, a PTZ stop),
+// or the conversation's end, came later than the limit.
+#pragma once
+
+#include <optional>
+
+#include "diagnoses/case.hpp"
+
+namespace topdump::diag {
+
+class RefreshWatch {
+ public:
+  // The rate command frame n at ts on `axis` went `gap_us` without a refresh.
+  void gap(std::uint64_t n, std::int64_t ts, std::string_view ident, int axis, int dir,
+           std::int64_t gap_us, std::uint32_t limit_ms) noexcept;
+  std::optional<Found> verdict() const;
+
+ private:
+  Case c_;
+  int axis_ = -1;
+  std::uint32_t limit_ms_ = 0;
+  std::int64_t longest_us_ = 0, longest_at_ = kNoTime;
+  char longest_ident_[3] = {};
+};
+
+}  // namespace topdump::diag
