@@ -329,7 +329,8 @@ void Analyzer::Impl::response(Conversation& c, int d, FrameEvent& ev) {
                    top::escape(f.data()) + "\", the write carried \"" + top::escape(m->data) + "\"";
           }),
           ev.n});
-    if (m->control == 'w')  // a stream's switch answered (stream-never-started)
+    // a stream's switch accepted (stream-never-started); an ERE refuses it
+    if (m->control == 'w' && !ere)
       for (StreamStat& s : c.st.streams)
         if (s.frames == 0 && s.asked_by == std::string_view(m->ident, 3)) s.never.answered();
     c.pairing.answer(mt->index);

@@ -57,11 +57,14 @@ struct Recorded {
 // Runs `client` against `model` with `spec` over UDP for `ms`, and reads the
 // recording back.
 std::unique_ptr<Recorded> record(const std::string& name, top::Model model, Client client,
-                                 const std::string& spec, std::uint64_t ms = 3500) {
+                                 const std::string& spec, std::uint64_t ms = 3500,
+                                 top::Profile profile = top::Profile::field) {
   auto r = std::make_unique<Recorded>();
   r->pcap = std::string(TOPKIT_BINARY_DIR) + "/fault_" + name + ".pcap";
   auto c = make_client(client, model);
-  run_driver(*c, model, topsim::TransportKind::udp, ms, r->pcap, {}, faults(spec));
+  topsim::DeviceOptions options;
+  options.profile = profile;
+  run_driver(*c, model, topsim::TransportKind::udp, ms, r->pcap, options, faults(spec));
   r->dump = topdump_findings(r->pcap);
   return r;
 }
@@ -89,6 +92,17 @@ TEST_P(Healthy, TheWellBehavedClientsRecordingNamesNothing) {
     EXPECT_EQ(r->dump.status, 0) << describe(r->dump);
     EXPECT_TRUE(r->dump.findings.empty()) << describe(r->dump);
   }
+}
+
+// The document profile (topsim --profile document): the same clients' runs
+// raise no warning or error diagnosis either (the motion diagnoses judge a
+// command by the convention of the attitude it is compared with).
+TEST_P(Healthy, TheDocumentProfileNamesNoDiagnosis) {
+  const top::Model m = GetParam();
+  const auto r =
+      record("healthy_doc_" + model_name(m), m, client_of(m), "", 3500, top::Profile::document);
+  for (const DumpFinding& f : r->dump.findings)
+    EXPECT_FALSE(top::diagnosis_from_string(f.code)) << describe(r->dump);
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, Healthy,
