@@ -9,8 +9,6 @@ namespace topdump::diag {
 
 namespace {
 
-constexpr std::int64_t kStaleUs = top::attitude_stale_ms * 1000;
-
 int sign_of(std::int64_t v) noexcept { return v > 0 ? 1 : v < 0 ? -1 : 0; }
 
 const top::MotionAxis* axis_of(const top::MotionSpec& m, int axis) noexcept {
@@ -55,6 +53,7 @@ void MotionTrack::command(const top::MotionSpec& m, const top::FormSpec* form,
     const top::PtzAction a = top::ptz_action(form ? top::ptz_code(*form, data) : -1);
     if (a.move == top::PtzMove::stop || a.move == top::PtzMove::centre) {
       for (Window& w : win_) {
+        if (!w.cmd.spec) continue;  // none open (a stop repeated)
         check_refresh(w, ts);
         close(w);
         w.cmd.spec = nullptr;
@@ -125,14 +124,9 @@ void MotionTrack::check_refresh(const Window& w, std::int64_t ts) {
                  ts - w.last_ts, static_cast<std::uint32_t>(refresh_limit_us_ / 1000));
 }
 
-void MotionTrack::close(Window& w) {
+void MotionTrack::judge(const Window& w) {
   const top::MotionSpec* m = w.cmd.spec;
-  if (!m) return;
   const Snap& end = att_[static_cast<std::size_t>(w.ref)];
-  // judged on reports of one attitude, fresh when it opened, over kMinWindow
-  if (!w.start.set() || end.spec != w.start.spec || end.ts < w.open_ts ||
-      end.ts - w.start.ts < kMinWindow || w.open_ts - w.start.ts > kStaleUs)
-    return;
   const int axis = static_cast<int>(&w - win_.data());
   Judged j;
   j.spec = m;

@@ -70,6 +70,7 @@ class MotionTrack {
  public:
   static constexpr std::int64_t kMinWindow = 500'000;  // us
   static constexpr std::int64_t kSample = 20'000;  // us: attitude kept at most 50 times a second
+  static constexpr std::int64_t kStaleUs = top::attitude_stale_ms * 1000;
 
   // A frame of a motion identifier with a good checksum: `request` from the
   // client, else the device's.
@@ -104,7 +105,18 @@ class MotionTrack {
                std::string_view data, std::uint64_t n, std::int64_t ts, int dir);
   void attitude(const top::MotionSpec& m, const top::FormSpec* form, std::string_view data,
                 std::uint64_t n, std::int64_t ts);
-  void close(Window& w);
+  // Judges the window `w` if it can be (its command and the attitude read
+  // only then); the caller clears it.
+  void close(const Window& w) {
+    if (judgeable(w)) judge(w);
+  }
+  // judged on reports of one attitude, fresh when it opened, over kMinWindow
+  bool judgeable(const Window& w) const noexcept {
+    const Snap& end = att_[static_cast<std::size_t>(w.ref)];
+    return w.cmd.spec && w.start.set() && end.spec == w.start.spec && end.ts >= w.open_ts &&
+           end.ts - w.start.ts >= kMinWindow && w.open_ts - w.start.ts <= kStaleUs;
+  }
+  void judge(const Window& w);
   // refresh-gap: whether the rate window `w` went unrefreshed until `ts`.
   void check_refresh(const Window& w, std::int64_t ts);
   int ref_for(const top::MotionSpec& m) const noexcept;

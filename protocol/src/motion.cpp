@@ -137,15 +137,22 @@ const MotionSpec* motion_of(Dialect d, std::string_view ident) noexcept {
 namespace {
 
 // Per dialect, the row of each command by its place in commands(): built
-// once at start-up, so that motion_of(cmd) is an index and a load.
+// once at start-up, so that motion_of(cmd) is a subtraction, a compare and
+// a load (the session asks it of every frame).
 struct ByCommand {
-  std::array<std::span<const CommandSpec>, 2> cmds;
-  std::array<std::vector<const MotionSpec*>, 2> rows;
+  struct Rows {
+    std::uintptr_t base = 0;
+    std::size_t size = 0;
+    std::vector<const MotionSpec*> row;
+  };
+  std::array<Rows, 2> of;  // skydroid, topotek
   ByCommand() {
     for (const Dialect d : {Dialect::skydroid, Dialect::topotek}) {
-      const std::size_t i = d == Dialect::topotek;
-      cmds[i] = commands(d);
-      for (const CommandSpec& c : cmds[i]) rows[i].push_back(motion_of(d, c.ident));
+      Rows& r = of[d == Dialect::topotek];
+      const std::span<const CommandSpec> cmds = commands(d);
+      r.base = reinterpret_cast<std::uintptr_t>(cmds.data());
+      r.size = cmds.size();
+      for (const CommandSpec& c : cmds) r.row.push_back(motion_of(d, c.ident));
     }
   }
 };
@@ -154,13 +161,10 @@ const ByCommand kByCommand;
 }  // namespace
 
 const MotionSpec* motion_of(const CommandSpec& cmd) noexcept {
-  const auto p = reinterpret_cast<std::uintptr_t>(&cmd);
-  for (std::size_t i = 0; i < 2; ++i) {
-    const auto base = reinterpret_cast<std::uintptr_t>(kByCommand.cmds[i].data());
-    const std::size_t at = (p - base) / sizeof(CommandSpec);
-    if (p >= base && at < kByCommand.cmds[i].size()) return kByCommand.rows[i][at];
-  }
-  return nullptr;
+  const ByCommand::Rows& r = kByCommand.of[cmd.dialect == Dialect::topotek];
+  // unsigned: a command before the table's start wraps past its size
+  const std::size_t at = (reinterpret_cast<std::uintptr_t>(&cmd) - r.base) / sizeof(CommandSpec);
+  return at < r.size ? r.row[at] : nullptr;
 }
 
 namespace {
@@ -233,6 +237,15 @@ bool read_motion(const MotionSpec& spec, const FormSpec& form, std::string_view 
 }
 
 std::int64_t ptz_code(const FormSpec& form, std::string_view data) noexcept {
+  // Every PTZ form puts its two-char action first (SkyDroid 3.1, Topotek
+  // 4.1): read without the search by name, which costs most of a call.
+  if (!form.fields.empty() && data.size() >= 2) {
+    const FieldSpec& f = form.fields.front();
+    if (f.width == 2 && f.kind == FieldKind::enum_hex && f.name == "action") {
+      const int hi = detail::hex_value(data[0]), lo = detail::hex_value(data[1]);
+      return hi < 0 || lo < 0 ? -1 : hi * 16 + lo;
+    }
+  }
   std::string_view bytes;
   std::int64_t v = -1;
   const FieldSpec* f = field_in(form, "action", data, bytes);
