@@ -24,6 +24,7 @@ void socat_log(const std::string& path, LineReader& r, CaptureSink& a) {
   std::string iso;      // the header's time, as ISO 8601
   std::string bytes;    // the chunk's data
   bool have_line = false;
+  a.both_ways();  // socat relays and logs both directions
   for (;;) {
     if (!have_line) {
       if (!r.get()) break;

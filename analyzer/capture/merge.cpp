@@ -90,6 +90,7 @@ bool read_merged(const std::vector<std::string>& paths, Format format, CaptureSi
   // each log is one tap, one direction: merged by time, the first log first
   // on equal times
   const Endpoint e0 = named(names[0]), e1 = named(names[1]);
+  a.both_ways();  // the two taps are the two directions
   std::size_t i = 0, j = 0;
   const auto& x = logs[0].chunks;
   const auto& y = logs[1].chunks;

@@ -49,6 +49,10 @@ class CaptureSink {
                      std::string_view bytes, std::uint64_t record, std::uint64_t offset) = 0;
   // A live line was quiet: bytes held to see whether CR/LF follows go on.
   virtual void flush_streams() {}
+  // The serial recording holds both directions of the line by construction
+  // (socat's relay log, two taps merged): a direction without a byte is a
+  // silent device, not a line nobody recorded.
+  virtual void both_ways() {}
   // A problem of the input itself (truncated file, bad packet, bad log line).
   virtual void source_note(std::int64_t ts, ACode code, std::string message, std::uint64_t record,
                            std::uint64_t offset) = 0;

@@ -10,7 +10,7 @@ void LeftMovingWatch::at_end(const LeftMoving& m) {
   if (m.sign == 0 || m.end_ts - m.last_ts < top::attitude_stale_ms * 1000 || m.mark_ts == kNoTime ||
       m.mark_ts <= m.last_ts)
     return;
-  const double after = angle_delta(m.axis, m.at_last, m.at_end);
+  const double after = m.whole ? m.after : angle_delta(m.axis, m.at_last, m.at_end);
   const double tail = angle_delta(m.axis, m.at_mark, m.at_end);
   // moved since the last command, and still moving the same way at the end
   // (which way is not judged: a model's sign trait may turn it)

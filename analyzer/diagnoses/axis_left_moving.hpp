@@ -23,6 +23,8 @@ struct LeftMoving {
          at_end = 0;  // the attitude then, a little before the end, at the end
   std::int64_t mark_ts = kNoTime, end_ts = kNoTime;
   std::string_view attitude;
+  double after = 0;    // yaw: turned from at_last to at_end across whole turns,
+  bool whole = false;  // when known (Unwrap)
 };
 
 class LeftMovingWatch {

@@ -5,7 +5,7 @@
 namespace topdump::diag {
 
 void ClockWatch::frame(const top::FormSpec& form, std::string_view data, std::string_view ident,
-                       std::uint64_t n, std::int64_t ts, int dir) noexcept {
+                       std::uint64_t n, std::int64_t ts, int dir, bool device) noexcept {
   if (ts == kNoTime) return;
   const std::optional<top::DateTime> t = top::date_time_of(form, data);
   if (!t) return;
@@ -14,6 +14,7 @@ void ClockWatch::frame(const top::FormSpec& form, std::string_view data, std::st
   if (!c_.any()) {
     camera_s_ = cam;
     capture_s_ = cap;
+    device_ = device;
     top::DateTime next = *t;
     ++next.month;  // the month a 0-based month meant
     kind_ = std::llabs(top::epoch_seconds(next) - cap) <= kDay ? 1 : t->year <= 1970 ? 2 : 0;
@@ -25,10 +26,18 @@ std::optional<Found> ClockWatch::verdict() const {
   if (!c_.any()) return std::nullopt;
   Found f{top::Diagnosis::clock_offset, c_, -1, {}};
   const std::int64_t off = camera_s_ - capture_s_;
-  const std::string why = kind_ == 1   ? "exactly one month early: a 0-based month sent unconverted"
-                          : kind_ == 2 ? "1970: the camera's clock was never set"
-                                       : std::to_string(std::llabs(off) / kDay) + " days " +
-                                             (off < 0 ? "early" : "late");
+  // Who is off: a client's set is the client's month; a camera's report
+  // or echo with no client's set off before it is the camera's own clock.
+  const std::string why =
+      kind_ == 1 ? (device_ ? "exactly one month early, from the camera: its clock or its echo "
+                              "of the time set is a month behind (a 0-based month in the "
+                              "firmware, or one it kept from an earlier set)"
+                            : "exactly one month early: a 0-based month sent unconverted")
+      : kind_ == 2
+          ? (device_ ? "1970: the camera's clock was never set"
+                     : "1970: the client set the camera's clock to 1970 (no time "
+                       "source yet)")
+          : std::to_string(std::llabs(off) / kDay) + " days " + (off < 0 ? "early" : "late");
   f.figure = std::string(c_.ident, 3) + " camera time " + date_text(camera_s_) + ", capture " +
              date_text(capture_s_) + ": " + why + " (frame " + std::to_string(c_.first_frame) +
              (c_.frames > 1 ? ", " + std::to_string(c_.frames) + " frames" : "") + ")";

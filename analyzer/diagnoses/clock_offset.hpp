@@ -13,9 +13,10 @@ namespace topdump::diag {
 
 class ClockWatch {
  public:
-  // A frame whose form may carry a date, at capture time ts.
+  // A frame whose form may carry a date, at capture time ts; `device`:
+  // the camera sent it (a report or the echo of a set), else the client.
   void frame(const top::FormSpec& form, std::string_view data, std::string_view ident,
-             std::uint64_t n, std::int64_t ts, int dir) noexcept;
+             std::uint64_t n, std::int64_t ts, int dir, bool device) noexcept;
   std::optional<Found> verdict() const;
 
   static constexpr std::int64_t kDay = 86400;
@@ -24,6 +25,7 @@ class ClockWatch {
   Case c_;
   std::int64_t camera_s_ = 0, capture_s_ = 0;  // of the first frame off
   int kind_ = 0;                               // 1 one month early, 2 1970, 0 other
+  bool device_ = false;                        // the first frame off is the camera's
 };
 
 }  // namespace topdump::diag

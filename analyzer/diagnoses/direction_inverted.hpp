@@ -1,7 +1,8 @@
 // direction-inverted: angle or rate commands on an axis move the gimbal
 // opposite to their sign. Judged per axis and kind (angle, rate, PTZ) over
 // the windows the motion track closes: a window votes when the gimbal moved
-// at least kMinMoved deg (angles: toward a target kMinStep deg or more away);
+// at least kMinMoved deg (angles: toward a target kMinStep deg or more away
+// whose mirror, the other convention's -target, lies on the other side);
 // the verdict needs the inverted votes to outnumber the right ones twice.
 #pragma once
 

@@ -31,8 +31,13 @@ struct Judged {
   // the model's sign trait is unknown (top::sign_trait_factor 0): which way
   // the command should turn the gimbal cannot be told
   bool ambiguous = false;
-  std::string_view attitude;      // the attitude's identifier ("GAC", "GIA")
-  double moved() const noexcept;  // to - from, yaw taken the short way round
+  std::string_view attitude;  // the attitude's identifier ("GAC", "GIA")
+  // yaw: the turn from `from` to `to` across whole turns (Unwrap), when
+  // `whole`; a window that turns past 180 deg measured the short way round
+  // reads the other way
+  double turned = 0;
+  bool whole = false;
+  double moved() const noexcept;  // to - from: `turned`, else yaw the short way round
 };
 
 // b - a in degrees, the short way round for yaw (axis 0).

@@ -1,6 +1,7 @@
 #include "diagnoses/motion_track.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "top/device.hpp"
 #include "top/diagnoses.hpp"
@@ -36,6 +37,32 @@ bool Snap::angle(int axis, double& out) const noexcept {
   if (!a || !r.has[static_cast<std::size_t>(axis)]) return false;
   out = r.value[static_cast<std::size_t>(axis)] * a->sign_in(top::field_convention(*spec));
   return true;
+}
+
+bool Snap::turned(const Snap& a, double ya, const Snap& b, double yb, double& out) noexcept {
+  if (a.u.epoch == 0 || a.u.epoch != b.u.epoch) return false;
+  // each reading is within a mark's step of its mark: the short way there
+  out = (b.u.turned + std::remainder(yb - double{b.u.yaw}, 360.0)) -
+        (a.u.turned + std::remainder(ya - double{a.u.yaw}, 360.0));
+  return true;
+}
+
+void MotionTrack::mark(std::size_t slot) {
+  Unwrap& u = unwrap_[slot];
+  const Snap& m = marks_[slot][1];
+  const Snap& before = marks_[slot][0];
+  double y = 0;
+  if (!m.angle(static_cast<int>(top::Axis::yaw), y)) {
+    u.epoch = 0;
+    return;
+  }
+  if (u.epoch != 0 && before.spec == m.spec) {
+    u.turned = static_cast<float>(u.turned + std::remainder(y - double{u.yaw}, 360.0));
+  } else {
+    u.epoch = ++epochs_;
+    u.turned = static_cast<float>(y);
+  }
+  u.yaw = static_cast<float>(y);
 }
 
 int MotionTrack::ref_for(const top::MotionSpec& m) const noexcept {
@@ -96,12 +123,12 @@ void MotionTrack::on_axis(int axis, int sign, const top::MotionSpec& m, const to
   if (w.cmd.same(m, data)) return refresh();
   if (w.cmd.spec == &m &&
       (m.kind == top::MotionKind::angle ? ts - w.open_ts < kMinWindow : sign == w.sign)) {
-    w.cmd.take(m, form, data, n, ts);  // a new target or speed, the same window
+    w.cmd.take(m, form, data, ts);  // a new target or speed, the same window
     return refresh();
   }
   close(w);
   w.cmd.spec = nullptr;
-  if (!w.cmd.take(m, form, data, n, ts)) return;
+  if (!w.cmd.take(m, form, data, ts)) return;
   w.acked = false;
   w.ref = ref_for(m);
   w.start = w.at_last = att_[static_cast<std::size_t>(w.ref)];
@@ -116,7 +143,8 @@ void MotionTrack::check_refresh(const Window& w, std::int64_t ts) {
   const top::MotionSpec* m = w.cmd.spec;
   if (!m || m->kind != top::MotionKind::rate || w.sign == 0) return;
   if (refresh_limit_us_ < 0) {
-    const top::Trait* t = top::speed_refresh_trait(model_, m->dialect);
+    const top::Trait* t =
+        top::speed_refresh_trait(model_ != top::Model::unknown ? model_ : named_, m->dialect);
     refresh_limit_us_ = t ? std::int64_t{t->value} * 1000 : 0;
   }
   if (refresh_limit_us_ > 0 && ts - w.last_ts > refresh_limit_us_)
@@ -139,6 +167,8 @@ void MotionTrack::judge(const Window& w) {
   j.attitude = end.spec->ident;
   j.seconds = static_cast<double>(end.ts - w.start.ts) / 1e6;
   if (!w.start.angle(axis, j.from) || !end.angle(axis, j.to)) return;
+  if (axis == static_cast<int>(top::Axis::yaw))
+    j.whole = Snap::turned(w.start, j.from, end, j.to, j.turned);
   const bool field = top::field_convention(*end.spec);
   if (m->kind == top::MotionKind::ptz) {
     j.sign = w.sign;
@@ -186,8 +216,11 @@ void MotionTrack::finish(std::int64_t end_ts) {
       if (a && top::read_motion(*m, *w.cmd.form, w.cmd.view(), r))
         lm.raw = r.raw[static_cast<std::size_t>(lm.axis)];
       if (mark.spec == end.spec && w.at_last.angle(lm.axis, lm.at_last) &&
-          mark.angle(lm.axis, lm.at_mark) && end.angle(lm.axis, lm.at_end))
+          mark.angle(lm.axis, lm.at_mark) && end.angle(lm.axis, lm.at_end)) {
+        if (lm.axis == static_cast<int>(top::Axis::yaw))
+          lm.whole = Snap::turned(w.at_last, lm.at_last, end, lm.at_end, lm.after);
         left_.at_end(lm);
+      }
     }
     close(w);
     w.cmd.spec = nullptr;

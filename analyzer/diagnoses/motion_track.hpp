@@ -20,20 +20,31 @@
 
 namespace topdump::diag {
 
-// A copy of a motion frame's data (at most 16 chars: every motion form).
+// Yaw unwrapped across the turns: the motion track reads the yaw of an
+// attitude report about every kMinWindow (its marks) and adds each step the
+// short way round, so a window or a capture's tail that turns past 180 deg
+// is measured whole. `epoch` 0: none; two readings compare only within one.
+struct Unwrap {
+  std::uint32_t epoch = 0;
+  float turned = 0;  // the last mark's yaw, unwrapped (floats: a Snap stays
+  float yaw = 0;     // within a cache line), and as reported
+};
+
+// A copy of a motion frame's data (at most 16 chars: every motion form),
+// in 56 bytes: the session copies one for most motion frames.
 struct Snap {
   const top::MotionSpec* spec = nullptr;  // none yet
   const top::FormSpec* form = nullptr;
   std::int64_t ts = kNoTime;
-  std::uint64_t n = 0;
-  std::uint8_t len = 0;
   std::uint64_t w[2] = {0, 0};  // the data (words())
+  Unwrap u;                     // attitude: the unwrapping when it came
+  std::uint8_t len = 0;
   bool set() const noexcept { return spec != nullptr; }
   std::string_view view() const noexcept { return {reinterpret_cast<const char*>(w), len}; }
-  bool take(const top::MotionSpec& m, const top::FormSpec* f, std::string_view d, std::uint64_t nn,
+  bool take(const top::MotionSpec& m, const top::FormSpec* f, std::string_view d,
             std::int64_t t) noexcept {
     if (!f || d.size() > sizeof w) return false;
-    spec = &m, form = f, ts = t, n = nn, len = static_cast<std::uint8_t>(d.size());
+    spec = &m, form = f, ts = t, len = static_cast<std::uint8_t>(d.size());
     words(d, w);
     return true;
   }
@@ -64,7 +75,12 @@ struct Snap {
   }
   // An attitude report's angle on `axis`, up and right positive.
   bool angle(int axis, double& out) const noexcept;
+  // The yaw turned from `a` to `b` (their angles `ya`, `yb`) across whole
+  // turns; false when they are not of one unwrapping.
+  static bool turned(const Snap& a, double ya, const Snap& b, double yb, double& out) noexcept;
 };
+
+static_assert(sizeof(Snap) <= 56, "a Snap fits a cache line with room to spare");
 
 class MotionTrack {
  public:
@@ -77,6 +93,14 @@ class MotionTrack {
   // `model`: the one topdump was told (--model), or unknown.
   void frame(const top::MotionSpec& m, const top::FormSpec* form, bool request, char control,
              std::string_view data, std::uint64_t n, std::int64_t ts, int dir, top::Model model);
+  // The model the device named (SkyDroid MOD). It chooses the speed-refresh
+  // limit when topdump was not told one, as it may only lift that limit (a
+  // C13 records none); a sign trait needs the model told (--model): a named
+  // model must not turn a capture's directions.
+  void named(top::Model m) noexcept {
+    if (m != named_) refresh_limit_us_ = -1;  // looked up again
+    named_ = m;
+  }
   // The conversation ended at `end_ts` (its last frame): judge the open
   // windows.
   void finish(std::int64_t end_ts);
@@ -104,9 +128,11 @@ class MotionTrack {
   void on_axis(int axis, int sign, const top::MotionSpec& m, const top::FormSpec* form,
                std::string_view data, std::uint64_t n, std::int64_t ts, int dir);
   void attitude(const top::MotionSpec& m, const top::FormSpec* form, std::string_view data,
-                std::uint64_t n, std::int64_t ts);
+                std::int64_t ts);
   // Judges the window `w` if it can be (its command and the attitude read
   // only then); the caller clears it.
+  // A new mark of the attitude `slot`: its yaw read, the unwrapping on.
+  void mark(std::size_t slot);
   void close(const Window& w) {
     if (judgeable(w)) judge(w);
   }
@@ -123,10 +149,13 @@ class MotionTrack {
 
   std::array<Snap, 2> att_{};                   // the latest report: body, earth
   std::array<std::array<Snap, 2>, 2> marks_{};  // per frame: reports about 0.5 s apart
+  std::array<Unwrap, 2> unwrap_{};              // per frame: yaw across the marks
+  std::uint32_t epochs_ = 0;
   std::uint64_t reports_ = 0;
   std::int64_t last_report_ = kNoTime;
   const top::MotionSpec* last_attitude_ = nullptr;
-  top::Model model_ = top::Model::unknown;
+  top::Model model_ = top::Model::unknown;  // told (--model)
+  top::Model named_ = top::Model::unknown;  // named by the device
   std::array<Window, top::axis_count> win_{};
   DirectionWatch direction_;
   IgnoredWatch ignored_;
@@ -146,7 +175,7 @@ inline void MotionTrack::frame(const top::MotionSpec& m, const top::FormSpec* fo
   if (m.kind == top::MotionKind::attitude) {
     // a report: a push or the answer to a read (the Topotek GIA switch's
     // echo, a write, carries no angles)
-    if (!request && control == 'r') attitude(m, form, data, n, ts);
+    if (!request && control == 'r') attitude(m, form, data, ts);
     return;
   }
   if (control != 'w') return;
@@ -160,13 +189,14 @@ inline void MotionTrack::frame(const top::MotionSpec& m, const top::FormSpec* fo
 }
 
 inline void MotionTrack::attitude(const top::MotionSpec& m, const top::FormSpec* form,
-                                  std::string_view data, std::uint64_t n, std::int64_t ts) {
+                                  std::string_view data, std::int64_t ts) {
   const std::size_t slot = m.reference == top::Reference::earth ? 1 : 0;
   // A window is judged over half a second or more: a report within kSample
   // of the one kept (of the same attitude) is counted, not copied.
   Snap& a = att_[slot];
   if (a.spec != &m || ts - a.ts >= kSample || ts < a.ts) {
-    if (!a.take(m, form, data, n, ts)) return;
+    if (!a.take(m, form, data, ts)) return;
+    a.u = unwrap_[slot];
   } else if (!form || data.size() > sizeof a.w) {
     return;
   }
@@ -177,6 +207,7 @@ inline void MotionTrack::attitude(const top::MotionSpec& m, const top::FormSpec*
   if (!mk[1].set() || ts - mk[1].ts >= kMinWindow) {
     mk[0] = mk[1];
     mk[1] = a;
+    mark(slot);
   }
 }
 

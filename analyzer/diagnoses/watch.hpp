@@ -13,6 +13,7 @@
 #include "diagnoses/placeholder_identity.hpp"
 #include "diagnoses/tracking_refused.hpp"
 #include "top/catalog.hpp"
+#include "top/device.hpp"
 #include "top/diagnoses.hpp"
 
 namespace topdump::diag {
@@ -28,17 +29,18 @@ struct Watch {
   DroppedWatch dropped;
   BaudWatch baud;
   MotionTrack motion;  // direction-inverted, command-ignored, attitude-stale, axis-left-moving
-
   // A frame of the device (reply or push), its data and form.
   void device_frame(top::Dialect d, std::string_view ident, std::string_view data, std::uint64_t n,
                     std::int64_t ts, int dir) {
     identity.reply(d, ident, data, n, ts, dir);
     tracking.reply(d, ident, data, n, ts, dir);
+    if (const top::Model m = top::model_named_by(d, ident, data); m != top::Model::unknown)
+      motion.named(m);
   }
   // Any frame with a form: a date set on or reported by the camera.
   void dated_frame(const top::FormSpec* form, std::string_view ident, std::string_view data,
-                   std::uint64_t n, std::int64_t ts, int dir) noexcept {
-    if (form && top::carries_date(ident)) clock.frame(*form, data, ident, n, ts, dir);
+                   std::uint64_t n, std::int64_t ts, int dir, bool device) noexcept {
+    if (form && top::carries_date(ident)) clock.frame(*form, data, ident, n, ts, dir, device);
   }
   // `frames`: whether the conversation carried any TOP frame.
   template <class Out>

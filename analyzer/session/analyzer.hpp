@@ -69,6 +69,8 @@ class Analyzer final : public CaptureSink {
              std::string_view bytes, std::uint64_t record, std::uint64_t offset) override;
   // Releases frames held to see whether CR/LF follows (live serial).
   void flush_streams() override;
+  // The serial recording holds both directions (socat, a merge of two taps).
+  void both_ways() override { both_ways_ = true; }
   // A source finding (truncated file, bad packet, bad log line).
   void source_note(std::int64_t ts, ACode code, std::string message, std::uint64_t record,
                    std::uint64_t offset) override;
@@ -106,6 +108,7 @@ class Analyzer final : public CaptureSink {
   Sink& sink_;
   Filter filter_;
   bool filtering_ = false;  // filter_.active(), asked once per frame
+  bool both_ways_ = false;  // the serial inputs record both directions (both_ways())
   mutable Stats stats_;
   top::Severity worst_ = top::Severity::info;
   bool diagnosed_ = false;

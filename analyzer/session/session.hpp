@@ -86,9 +86,12 @@ struct Conversation {
   top::DialectDetector det;
   std::uint32_t observed = 0;
   Pairing pairing;
-  diag::Watch watch;  // the conversation's diagnoses (analyzer/diagnoses/)
   std::uint64_t last_used = 0;
   ConvStats st;
+  // The conversation's diagnoses (analyzer/diagnoses/): last, a few KB of
+  // state most frames touch little of, so that the fields every frame
+  // uses stay on the cache lines next to each other.
+  diag::Watch watch;
 };
 
 // The conversation table's key: a transport and both ends, the lesser first.
@@ -243,10 +246,13 @@ struct Analyzer::Impl {
   }
   void unanswered(Conversation& c, const Pending& p, bool at_end);
   // A serial line recorded in one direction only (a raw dump, one tap): its
-  // frames are neither unsolicited nor unanswered, as far as it shows.
-  static bool one_way(const Conversation& c) noexcept {
+  // frames are neither unsolicited nor unanswered, as far as it shows. A
+  // recording that holds both directions by construction (socat's relay
+  // log, two taps merged) is never one way: its silent side is the device's.
+  bool one_way(const Conversation& c) const noexcept {
     auto silent = [](const Direction& D) { return D.dec.fed() == 0 && D.base == 0; };
-    return c.transport == Transport::serial && (silent(c.dir[0]) || silent(c.dir[1]));
+    return c.transport == Transport::serial && !A.both_ways_ &&
+           (silent(c.dir[0]) || silent(c.dir[1]));
   }
   void emit_silence(Conversation& c);
   void check_stream(Conversation& c, const StreamStat& s);

@@ -18,7 +18,13 @@
 namespace top {
 namespace {
 
-bool same(std::string_view a, std::string_view b) noexcept { return a == b; }
+// Identifiers are three chars: compared as such, without a call to memcmp
+// (the session asks the stream rules of every write and every reply).
+bool same(std::string_view a, std::string_view b) noexcept {
+  if (a.size() != b.size()) return false;
+  if (a.size() == 3) return a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
+  return a == b;
+}
 
 constexpr std::string_view kSource[] = {"document example", "document rule", "field"};
 static_assert(std::size(kSource) == static_cast<std::size_t>(Source::field) + 1);
@@ -65,7 +71,41 @@ const StreamSpec* stream_enabled_by(Dialect d, std::string_view request) noexcep
   return stream_enabled_by(d, request, Profile::document);
 }
 
+namespace {
+
+// An identifier's three chars as one integer (0: not three chars).
+std::uint32_t key_of(std::string_view id) noexcept {
+  if (id.size() != 3) return 0;
+  return static_cast<std::uint32_t>(static_cast<unsigned char>(id[0])) |
+         static_cast<std::uint32_t>(static_cast<unsigned char>(id[1])) << 8 |
+         static_cast<std::uint32_t>(static_cast<unsigned char>(id[2])) << 16;
+}
+
+// Every stream request's key, built at start-up: most writes switch no
+// stream, and the session asks of every one.
+const std::vector<std::uint32_t> kSwitchKeys = [] {
+  std::vector<std::uint32_t> v;
+  for (const StreamSpec& s : streams()) v.push_back(key_of(s.request));
+  return v;
+}();
+
+// Whether a link_by_source trait applies, per dialect and profile: built at
+// start-up from traits() (answers_source is asked of every request).
+const std::array<std::array<bool, 2>, 3> kLinkBySource = [] {
+  std::array<std::array<bool, 2>, 3> v{};
+  for (const Trait& t : traits())
+    if (t.kind == TraitKind::link_by_source)
+      for (const Profile p : {Profile::field, Profile::document})
+        if (t.source != Source::field || p == Profile::field)
+          v[static_cast<std::size_t>(t.dialect)][static_cast<std::size_t>(p)] = true;
+  return v;
+}();
+
+}  // namespace
+
 const StreamSpec* stream_enabled_by(Dialect d, std::string_view request, Profile profile) noexcept {
+  const std::uint32_t key = key_of(request);
+  if (std::find(kSwitchKeys.begin(), kSwitchKeys.end(), key) == kSwitchKeys.end()) return nullptr;
   const StreamSpec* document = nullptr;
   for (const StreamSpec& s : streams()) {
     if (s.dialect != d || !same(s.request, request)) continue;
@@ -88,7 +128,9 @@ const StreamSpec* stream_of(Dialect d, std::string_view push, Profile profile) n
 
 std::string_view to_string(WriteReply r) noexcept { return enum_name(kWriteReply, r); }
 
-WriteReply write_reply(const CommandSpec& cmd) noexcept {
+namespace {
+
+WriteReply write_reply_of(const CommandSpec& cmd) noexcept {
   const StreamSpec* s = stream_of(cmd.dialect, cmd.ident);
   if (s && s->sender == Sender::client) return WriteReply::nothing;
   for (const FormSpec& f : cmd.forms) {
@@ -100,6 +142,13 @@ WriteReply write_reply(const CommandSpec& cmd) noexcept {
   }
   return WriteReply::echo;
 }
+
+// built at start-up (the tables are constants): no guard on each call
+const detail::PerCommand<WriteReply, decltype(&write_reply_of)> kReplyOf(&write_reply_of);
+
+}  // namespace
+
+WriteReply write_reply(const CommandSpec& cmd) noexcept { return kReplyOf(cmd); }
 
 std::string_view to_string(Order o) noexcept { return enum_name(kOrder, o); }
 
@@ -287,11 +336,8 @@ bool answers_source(Model model, Profile profile, Link link, char src) noexcept 
 }
 
 bool answers_source(Dialect d, Profile profile, Link link, char src) noexcept {
-  for (const Trait& t : traits())
-    if (t.kind == TraitKind::link_by_source && t.dialect == d &&
-        (t.source != Source::field || profile == Profile::field))
-      return src == client_address(d, link);
-  return true;
+  if (!kLinkBySource[static_cast<std::size_t>(d)][static_cast<std::size_t>(profile)]) return true;
+  return src == client_address(d, link);
 }
 
 bool rejects(FindingCode c) noexcept {
@@ -351,6 +397,17 @@ const Trait* speed_refresh_trait(Model model, Dialect d) noexcept {
   for (const Trait& t : traits())
     if (t.kind == TraitKind::speed_refresh && t.dialect == d) return &t;
   return nullptr;
+}
+
+Model model_named_by(Dialect d, std::string_view ident, std::string_view data) noexcept {
+  if (d != Dialect::skydroid || ident != "MOD") return Model::unknown;
+  while (!data.empty() && (data.back() == ' ' || data.back() == '\0')) data.remove_suffix(1);
+  char low[8];
+  if (data.empty() || data.size() > sizeof low) return Model::unknown;
+  for (std::size_t i = 0; i < data.size(); ++i)
+    low[i] = data[i] >= 'A' && data[i] <= 'Z' ? static_cast<char>(data[i] - 'A' + 'a') : data[i];
+  const std::optional<Model> m = model_from_string({low, data.size()});
+  return m && *m != Model::unknown && dialect_of(*m) == d ? *m : Model::unknown;
 }
 
 std::uint32_t speed_hold_ms(Model model, Profile profile) noexcept {

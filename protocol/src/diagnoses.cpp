@@ -89,7 +89,10 @@ std::optional<DateTime> date_time_of(const FormSpec& form, std::string_view data
     if (digits == 0) return std::nullopt;
     if (slot == &t.year) {
       year = true;
-      if (digits <= 2) v += 2000;
+      // two digits (SkyDroid TIM, Topotek UTC): 69-99 are 1969-1999 and
+      // 00-68 are 2000-2068, as POSIX strptime's %y reads them, so a
+      // camera that never set its clock (70 01 01) reads 1970, not 2070
+      if (digits <= 2) v += v >= 69 ? 1900 : 2000;
     }
     month |= slot == &t.month;
     day |= slot == &t.day;

@@ -6,6 +6,7 @@
 #include <iterator>
 #include <vector>
 
+#include "catalog_data.hpp"
 #include "chars.hpp"
 #include "numbers.hpp"
 #include "top/enum_names.hpp"
@@ -135,37 +136,12 @@ const MotionSpec* motion_of(Dialect d, std::string_view ident) noexcept {
 }
 
 namespace {
-
-// Per dialect, the row of each command by its place in commands(): built
-// once at start-up, so that motion_of(cmd) is a subtraction, a compare and
-// a load (the session asks it of every frame).
-struct ByCommand {
-  struct Rows {
-    std::uintptr_t base = 0;
-    std::size_t size = 0;
-    std::vector<const MotionSpec*> row;
-  };
-  std::array<Rows, 2> of;  // skydroid, topotek
-  ByCommand() {
-    for (const Dialect d : {Dialect::skydroid, Dialect::topotek}) {
-      Rows& r = of[d == Dialect::topotek];
-      const std::span<const CommandSpec> cmds = commands(d);
-      r.base = reinterpret_cast<std::uintptr_t>(cmds.data());
-      r.size = cmds.size();
-      for (const CommandSpec& c : cmds) r.row.push_back(motion_of(d, c.ident));
-    }
-  }
-};
-const ByCommand kByCommand;
-
+// built at start-up (the tables are constants): no guard on each call
+const MotionSpec* row_of(const CommandSpec& c) noexcept { return motion_of(c.dialect, c.ident); }
+const detail::PerCommand<const MotionSpec*, decltype(&row_of)> kRowOf(&row_of);
 }  // namespace
 
-const MotionSpec* motion_of(const CommandSpec& cmd) noexcept {
-  const ByCommand::Rows& r = kByCommand.of[cmd.dialect == Dialect::topotek];
-  // unsigned: a command before the table's start wraps past its size
-  const std::size_t at = (reinterpret_cast<std::uintptr_t>(&cmd) - r.base) / sizeof(CommandSpec);
-  return at < r.size ? r.row[at] : nullptr;
-}
+const MotionSpec* motion_of(const CommandSpec& cmd) noexcept { return kRowOf(cmd); }
 
 namespace {
 

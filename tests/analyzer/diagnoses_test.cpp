@@ -14,6 +14,7 @@
 
 #include "diagnoses/baud_mismatch.hpp"
 #include "diagnoses/clock_offset.hpp"
+#include "diagnoses/placeholder_identity.hpp"
 #include "diagnoses/stream_never_started.hpp"
 #include "diagnoses/stream_stalled.hpp"
 #include "diagnoses/watch.hpp"
@@ -65,6 +66,25 @@ TEST(DiagnosesRules, PlaceholderIdentities) {
     EXPECT_TRUE(top::is_placeholder_identity(v)) << v;
   for (const char* v : {"SIP-T1", "1.0.0", "SIM_TP", "M3326", "V1.0.0", "C13", "010502", "1230"})
     EXPECT_FALSE(top::is_placeholder_identity(v)) << v;
+}
+
+// SkyDroid MOD (the model name ArduPilot's driver reads) is an identity
+// reply like VER: "Unknown" or zeros there are a placeholder (an outside
+// capture's miss).
+TEST(DiagnosesRules, SkyDroidModelNameIsAnIdentity) {
+  EXPECT_TRUE(top::is_identity_reply(top::Dialect::skydroid, "MOD"));
+  EXPECT_TRUE(top::is_identity_reply(top::Dialect::skydroid, "VER"));
+  EXPECT_FALSE(top::is_identity_reply(top::Dialect::skydroid, "GAC"));
+  for (const char* v : {"Unknown", "000000000"}) {
+    diag::IdentityWatch w;
+    w.reply(top::Dialect::skydroid, "MOD", v, 4, kT0, 1);
+    const auto f = w.verdict();
+    ASSERT_TRUE(f) << v;
+    EXPECT_NE(f->figure.find("MOD"), std::string::npos) << f->figure;
+  }
+  diag::IdentityWatch ok;
+  ok.reply(top::Dialect::skydroid, "MOD", "C13", 4, kT0, 1);
+  EXPECT_FALSE(ok.verdict());
 }
 
 TEST(DiagnosesRules, TrackingRefusedIsState4Only) {
@@ -131,6 +151,18 @@ TEST(DiagnosesRules, DatesReadByTheCatalogsFields) {
   // month 0 is the December before
   EXPECT_EQ(top::epoch_seconds({2026, 0, 1, 0, 0, 0}), top::epoch_seconds({2025, 12, 1, 0, 0, 0}));
   EXPECT_EQ(top::epoch_seconds({1970, 1, 1, 0, 0, 0}), 0);
+  // Two-digit years pivot as POSIX %y does: a SkyDroid TIM or Topotek UTC
+  // of a camera that never set its clock reads 1970, not 2070 (found by an
+  // outside capture: "2070-01-01 ... 15741 days late").
+  t = top::date_time_of(date_form(top::Dialect::skydroid, "TIM", 15), "000512.00010170");
+  ASSERT_TRUE(t);
+  EXPECT_EQ(t->year, 1970);
+  t = top::date_time_of(date_form(top::Dialect::topotek, "UTC", 12), "000512010170");
+  ASSERT_TRUE(t);
+  EXPECT_EQ(t->year, 1970);
+  t = top::date_time_of(date_form(top::Dialect::topotek, "UTC", 12), "000512010168");
+  ASSERT_TRUE(t);
+  EXPECT_EQ(t->year, 2068);
 }
 
 // ---- the detectors on their own ----------------------------------------------
@@ -185,27 +217,41 @@ TEST(DiagnosesClock, OneMonthEarly1970AndTimeZones) {
   const top::FormSpec& tim = date_form(top::Dialect::topotek, "TIM", 14);
   {
     diag::ClockWatch w;  // Beijing time: 8 h ahead is no offset
-    w.frame(tim, "20240501200000", "TIM", 1, kT0, 0);
+    w.frame(tim, "20240501200000", "TIM", 1, kT0, 0, false);
     EXPECT_FALSE(w.verdict());
   }
   {
     diag::ClockWatch w;
-    w.frame(tim, "20240401120000", "TIM", 7, kT0, 0);
+    w.frame(tim, "20240401120000", "TIM", 7, kT0, 0, false);
     const auto f = w.verdict();
     ASSERT_TRUE(f);
     EXPECT_EQ(f->c.first_frame, 7u);
     EXPECT_NE(f->figure.find("exactly one month"), std::string::npos) << f->figure;
+    EXPECT_NE(f->figure.find("0-based month sent unconverted"), std::string::npos) << f->figure;
+  }
+  {
+    // the client's set is right, the camera's echo a month early: the
+    // camera's clock, not the client's month (an outside capture's case)
+    diag::ClockWatch w;
+    w.frame(tim, "20240501120000", "TIM", 15, kT0, 0, false);
+    w.frame(tim, "20240401120000", "TIM", 16, kT0 + 5000, 1, true);
+    const auto f = w.verdict();
+    ASSERT_TRUE(f);
+    EXPECT_EQ(f->c.first_frame, 16u);
+    EXPECT_NE(f->figure.find("from the camera"), std::string::npos) << f->figure;
+    EXPECT_EQ(f->figure.find("sent unconverted"), std::string::npos) << f->figure;
   }
   {
     diag::ClockWatch w;
-    w.frame(tim, "19700101000512", "TIM", 3, kT0, 1);
+    w.frame(tim, "19700101000512", "TIM", 3, kT0, 1, true);
     const auto f = w.verdict();
     ASSERT_TRUE(f);
-    EXPECT_NE(f->figure.find("1970"), std::string::npos) << f->figure;
+    EXPECT_NE(f->figure.find("1970: the camera's clock was never set"), std::string::npos)
+        << f->figure;
   }
   {
     diag::ClockWatch w;  // a serial log without times judges nothing
-    w.frame(tim, "19700101000512", "TIM", 3, kNoTime, 1);
+    w.frame(tim, "19700101000512", "TIM", 3, kNoTime, 1, true);
     EXPECT_FALSE(w.verdict());
   }
 }

@@ -301,4 +301,10 @@ std::uint32_t speed_hold_ms(Model model, Profile profile) noexcept;
 // none applies (Topotek records none: a rate holds until changed).
 const Trait* speed_refresh_trait(Model model, Dialect d) noexcept;
 
+// The model a device names in its model-name reply, or unknown: SkyDroid
+// MOD, whose data is the model name ("C13"; ArduPilot's AP_Mount_SkyDroid
+// reads it until answered, docs/sources/ardupilot.md), read as one of the
+// dialect's models, case and trailing blanks aside.
+Model model_named_by(Dialect d, std::string_view ident, std::string_view data) noexcept;
+
 }  // namespace top

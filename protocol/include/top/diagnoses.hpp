@@ -149,12 +149,13 @@ bool is_placeholder_identity(std::string_view value) noexcept;
 
 // Whether the device's reply to `ident` names the device: Topotek PA2
 // (model name), VSN (version), VER (serial number); SkyDroid VER
-// (software version).
+// (software version) and MOD (model name, which ArduPilot's SkyDroid
+// driver reads until answered: docs/sources/ardupilot.md).
 // Inline: the session asks it of every device frame.
 inline bool is_identity_reply(Dialect d, std::string_view id) noexcept {
   if (id.size() != 3) return false;
   if (d == Dialect::topotek) return id == "PA2" || id == "VSN" || id == "VER";
-  return d == Dialect::skydroid && id == "VER";
+  return d == Dialect::skydroid && (id == "VER" || id == "MOD");
 }
 
 // Whether a device's reply refuses tracking: Topotek TRC with state '4'
@@ -185,6 +186,7 @@ inline bool may_matter_to_diagnoses(const char* ident) noexcept {
     case ident_key("PA2"):
     case ident_key("VSN"):
     case ident_key("VER"):
+    case ident_key("MOD"):
     case ident_key("TRC"):
     case ident_key("TIM"):
     case ident_key("UTC"):
@@ -197,7 +199,7 @@ inline bool may_matter_to_diagnoses(const char* ident) noexcept {
 // A date and time carried by a frame: the fields named year, month, day,
 // hour, minute and second of its form (Topotek TIM and UTC, SkyDroid TIM),
 // read from the raw data by the form's field widths, so it works without
-// decoded values. Two-digit years are 20YY. nullopt when the form has no
+// decoded values. Two-digit years are 1969-2068 (POSIX %y). nullopt when the form has no
 // year/month/day or a digit is not one.
 struct DateTime {
   int year = 0, month = 0, day = 0, hour = 0, minute = 0, second = 0;

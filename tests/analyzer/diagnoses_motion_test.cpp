@@ -1,0 +1,165 @@
+// The diagnoses that need more than one frame to tell (issue 29), on their
+// own: the motion track fed frame by frame as the session feeds it, and a
+// serial log through the session. Each test is a case an outside capture
+// found (direction-inverted, refresh-gap, silent-device).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <deque>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "diagnoses/direction_inverted.hpp"
+#include "diagnoses/motion_track.hpp"
+#include "findings/afindings.hpp"
+#include "test_support.hpp"
+#include "top/catalog.hpp"
+#include "top/device.hpp"
+#include "top/diagnoses.hpp"
+#include "top/motion.hpp"
+
+namespace topdump {
+namespace {
+
+constexpr std::int64_t kT0 = 1714564800LL * 1'000'000;  // 2024-05-01T12:00:00Z
+
+// The motion track fed frame by frame, as the session feeds it. Each frame's
+// data is a view into the whole frame, as the session's are (the track
+// reads the eight bytes before a short datum, which every header holds).
+class MotionFeed {
+ public:
+  explicit MotionFeed(top::Dialect d) : d_(d) {}
+  void command(std::int64_t ms, std::string_view id, const std::string& data) {
+    frame(ms, id, data, 'w', true);
+  }
+  void attitude(std::int64_t ms, std::string_view id, const std::string& data) {
+    frame(ms, id, data, 'r', false);
+  }
+  diag::MotionTrack track;
+  std::vector<diag::Found> finish(std::int64_t ms) {
+    track.finish(kT0 + ms * 1000);
+    std::vector<diag::Found> v;
+    track.verdicts([&](diag::Found f) { v.push_back(std::move(f)); });
+    return v;
+  }
+
+ private:
+  void frame(std::int64_t ms, std::string_view id, const std::string& data, char control,
+             bool request) {
+    const top::MotionSpec* m = top::motion_of(d_, id);
+    const top::CommandSpec* c = top::find_command(d_, id);
+    ASSERT_TRUE(m && c) << id;
+    const top::FormSpec* form = nullptr;
+    for (const top::FormSpec& f : c->forms)
+      if (f.control == control && f.min_length <= data.size() && data.size() <= f.max_length)
+        form = &f;
+    ASSERT_TRUE(form) << id << " " << data;
+    frames_.push_back("#tpUG6" + std::string(1, control) + std::string(id) + data + "00");
+    const std::string_view whole = frames_.back();
+    track.frame(*m, form, request, control, whole.substr(10, data.size()), ++n_, kT0 + ms * 1000,
+                request ? 0 : 1, top::Model::unknown);
+  }
+  top::Dialect d_;
+  std::uint64_t n_ = 0;
+  std::deque<std::string> frames_;
+};
+
+std::string hex4(double deg) {  // hex_s, 0.01 deg, 16 bits
+  char b[8];
+  std::snprintf(b, sizeof b, "%04X", static_cast<unsigned>(std::lround(deg * 100)) & 0xFFFFu);
+  return b;
+}
+
+bool has(const std::vector<diag::Found>& v, top::Diagnosis d) {
+  return std::any_of(v.begin(), v.end(), [&](const diag::Found& f) { return f.code == d; });
+}
+
+// A yaw pan of more than 180 deg (Topotek YPR yaw 30 counts, about 24.6
+// deg/s, for 8 s) is measured across the turn: the short way round it read
+// as a turn the other way and named direction-inverted (found by an outside
+// capture). Its mirror, a pan that does turn the other way, still is.
+TEST(DiagnosesMotion, YawPanPast180IsMeasuredWhole) {
+  for (const int turns : {1, -1}) {
+    MotionFeed f(top::Dialect::topotek);
+    for (std::int64_t ms = 0; ms <= 11000; ms += 50) {
+      const double moved =
+          24.576 * static_cast<double>(std::clamp<std::int64_t>(ms - 1000, 0, 8000)) / 1000;
+      f.attitude(ms, "GIA", hex4(std::remainder(turns * moved, 360.0)) + "0000" + "0000");
+      if (ms >= 1000 && ms < 9000 && ms % 100 == 0) f.command(ms, "YPR", "1E0000");
+      if (ms >= 9000 && ms < 9300 && ms % 100 == 0) f.command(ms, "YPR", "000000");
+    }
+    const auto v = f.finish(11000);
+    EXPECT_EQ(has(v, top::Diagnosis::direction_inverted), turns < 0) << turns;
+    EXPECT_FALSE(has(v, top::Diagnosis::axis_left_moving)) << turns;
+  }
+}
+
+// Angle commands that return to 0 (a nod: -30, 0, -30, 0) move the gimbal
+// the same way under either sign convention: they vote neither way, so the
+// inverted -30s are named (counted as right, the returns outvoted them).
+TEST(DiagnosesMotion, ReturnsToZeroDoNotOutvoteAnInversion) {
+  diag::DirectionWatch w;
+  diag::Judged j;
+  j.spec = top::motion_of(top::Dialect::skydroid, "GAP");
+  j.axis = static_cast<int>(top::Axis::pitch);
+  j.seconds = 8;
+  for (int i = 0; i < 2; ++i) {
+    j.first_n = 10 + 2 * static_cast<std::uint64_t>(i);
+    j.from = 0, j.target = -30, j.to = 30;  // inverted
+    w.window(j);
+    j.first_n += 1;
+    j.from = 30, j.target = 0, j.to = 0;  // back: either convention
+    w.window(j);
+  }
+  std::vector<diag::Found> v;
+  w.verdicts([&](diag::Found f) { v.push_back(std::move(f)); });
+  ASSERT_TRUE(has(v, top::Diagnosis::direction_inverted));
+  EXPECT_NE(v[0].figure.find("2 of 2 pitch angle windows"), std::string::npos) << v[0].figure;
+}
+
+// The speed-refresh limit is the model's: a device that names itself C13 in
+// its MOD reply (no speed-refresh trait) holds a rate without refreshes,
+// where a C12 or an unnamed SkyDroid stops after 1000 ms (an outside C13
+// capture was told "not refreshed ... the motors stop").
+TEST(DiagnosesMotion, ModelNamedByTheDeviceChoosesTheRefreshLimit) {
+  EXPECT_EQ(top::model_named_by(top::Dialect::skydroid, "MOD", "C13"), top::Model::c13);
+  EXPECT_EQ(top::model_named_by(top::Dialect::skydroid, "MOD", "c12 "), top::Model::c12);
+  EXPECT_EQ(top::model_named_by(top::Dialect::skydroid, "MOD", "C11"), top::Model::unknown);
+  EXPECT_EQ(top::model_named_by(top::Dialect::skydroid, "MOD", "SIP"), top::Model::unknown);
+  EXPECT_EQ(top::model_named_by(top::Dialect::topotek, "MOD", "C13"), top::Model::unknown);
+  for (const top::Model named : {top::Model::unknown, top::Model::c12, top::Model::c13}) {
+    MotionFeed f(top::Dialect::skydroid);
+    if (named != top::Model::unknown) f.track.named(named);
+    f.command(1000, "GSP", "06");
+    f.command(4000, "GSP", "00");
+    const auto v = f.finish(5000);
+    EXPECT_EQ(has(v, top::Diagnosis::refresh_gap), named != top::Model::c13)
+        << top::to_string(named);
+  }
+}
+
+// A socat relay log records both directions by construction: requests with
+// no byte back are a silent device, not a line nobody recorded (a raw
+// dump's one tap). Found by an outside capture: nothing was named.
+TEST(DiagnosesSession, SocatLogWithASilentDeviceNamesIt) {
+  test::TempDir tmp;
+  const std::string path = tmp.file("silent.log");
+  {
+    std::ofstream o(path);
+    for (int i = 0; i < 20; ++i) {
+      char head[96];
+      std::snprintf(head, sizeof head,
+                    "> 2024/05/01 12:00:%02d.%03d000000  length=16 from=%d to=%d\n", i / 4,
+                    (i % 4) * 250, i * 16, i * 16 + 15);
+      o << head << "#TPUD2rVER0051\\r\n";
+    }
+  }
+  const test::Recorder r = test::read(path);
+  EXPECT_TRUE(r.has_note(acode_of(top::Diagnosis::silent_device)));
+}
+
+}  // namespace
+}  // namespace topdump
