@@ -26,15 +26,23 @@ std::string fmt(const char* f, double v);
 struct Series {
   const std::vector<std::int64_t>* t = nullptr;
   const std::vector<float>* v = nullptr;
-  const char* name = "";  // "GAC" or "GIC"
+  std::string_view name;  // "GAC", "GIC", "GIA"
+  bool field = false;     // read in the field's convention (top::field_convention)
 };
 // The times of every command (angle or rate) per axis, sorted.
 using AxisTimes = std::array<std::vector<std::int64_t>, kAxes>;
 AxisTimes axis_times(const ConvData& c);
-// The attitude an axis command is compared with.
+// The attitude an axis command is compared with: one of its reference
+// frame (Topotek GI* commands: GIC or GIA; the rest: GAC), else any seen.
 Series series_for(const ConvData& c, std::string_view ident, int axis);
+// The factor that puts a command's value on `axis` in the convention of
+// `s`, the attitude it is compared with (up and right positive): the axis's
+// sign under that attitude's convention, times `model`'s sign trait;
+// `ambiguous` when the model is unknown and a trait may apply (factor 1).
+int command_sign(top::Dialect d, std::string_view ident, int axis, const Series& s,
+                 top::Model model, bool& ambiguous);
 AngleResult angle_result(const ConvData& c, const AxisTimes& times, const AngleCommand& cmd,
-                         const Series& s, double tol);
+                         top::Model model, double tol);
 void rate_runs(const ConvData& c, const AxisTimes& times, Report& rep, std::int64_t capture_end);
 double median(std::vector<double> v);
 

@@ -60,26 +60,23 @@ Report analyze(const ReportSink& data, const Stats& stats, top::Severity worst, 
   rep.angles.reserve(n);
   for (const auto& [id, c] : data.convs) {
     const AxisTimes times = axis_times(c);
-    // the attitude of each axis for GA* and GI* commands
-    std::array<std::array<Series, kAxes>, 2> series;
-    for (int ax = 0; ax < kAxes; ++ax) {
-      series[0][static_cast<std::size_t>(ax)] = series_for(c, "GAY", ax);
-      series[1][static_cast<std::size_t>(ax)] = series_for(c, "GIY", ax);
-    }
-    for (const auto& a : c.angles) {
-      const bool earth = a.ident.size() == 3 && a.ident[1] == 'I';
-      rep.angles.push_back(angle_result(c, times, a,
-                                        series[earth ? 1 : 0][static_cast<std::size_t>(a.axis)],
-                                        opts.tolerance_deg));
-    }
+    for (const auto& a : c.angles)
+      rep.angles.push_back(angle_result(c, times, a, model, opts.tolerance_deg));
     if (!c.rates.empty()) rate_runs(c, times, rep, stats.last);
   }
+  // The speed unit from the runs that turned the commanded way: one that
+  // turned the other way is direction-inverted's (the session's diagnosis),
+  // and its size under an absolute value would hide that.
   std::vector<double> per_step;
   for (const auto& r : rep.runs) {
     const auto it = data.convs.find(r.conv);
     if (r.measured_ok && std::llabs(r.steps) >= 2 && it != data.convs.end() &&
-        it->second.dialect == top::Dialect::skydroid)
-      per_step.push_back(std::fabs(r.per_step));
+        it->second.dialect == top::Dialect::skydroid) {
+      if (r.per_step > 0 || r.ambiguous)
+        per_step.push_back(std::fabs(r.per_step));
+      else
+        ++rep.scale_other_way;
+    }
   }
   if (!per_step.empty()) {
     rep.scale_runs = per_step.size();

@@ -64,10 +64,11 @@ void diagnosis_facts(const ReportSink& d, Report& rep) {
 
 // Response flags, grouped by identifier.
 void response_facts(Report& rep) {
-  // per identifier: other way, never, range, superseded; the first flagged
+  // per identifier: other way, never, range, superseded, other way with the
+  // sign trait unknown; the first flagged
   struct Flags {
     std::string_view id;
-    std::array<std::uint64_t, 4> n{};
+    std::array<std::uint64_t, 5> n{};
     std::int64_t first = kNoTime;
   };
   std::vector<Flags> all;  // a handful of identifiers: a linear search
@@ -76,14 +77,14 @@ void response_facts(Report& rep) {
         std::find_if(all.begin(), all.end(), [&](const Flags& f) { return f.id == a.cmd->ident; });
     if (it == all.end()) it = all.insert(all.end(), Flags{a.cmd->ident});
     auto& f = it->n;
-    if (a.other_way) ++f[0];
+    if (a.other_way) ++f[a.ambiguous ? 4 : 0];
     if (a.never_reached && !a.other_way && !a.no_attitude) ++f[1];
     if (a.out_of_range) ++f[2];
     if (a.superseded && !a.other_way) ++f[3];
     if ((a.other_way || a.never_reached) && it->first == kNoTime) it->first = a.cmd->t;
   }
   std::sort(all.begin(), all.end(), [](const Flags& a, const Flags& b) { return a.id < b.id; });
-  std::map<std::string_view, std::array<std::uint64_t, 4>> flags;
+  std::map<std::string_view, std::array<std::uint64_t, 5>> flags;
   std::map<std::string_view, std::int64_t> first_flag;
   for (const auto& f : all) {
     flags[f.id] = f.n;
@@ -93,18 +94,21 @@ void response_facts(Report& rep) {
     return std::to_string(n) + " " + std::string(id) + (n == 1 ? " command" : " commands");
   };
   for (const auto& [id, f] : flags) {
-    if (f[0]) {
-      std::string t = plural(f[0], id) + " moved the gimbal the other way (sign inverted)";
-      if (rep.model == top::Model::unknown || rep.model == top::Model::c12)
-        for (const auto& tr : top::traits())
-          if ((tr.kind == top::TraitKind::yaw_inverted && id.back() != 'P') ||
-              (tr.kind == top::TraitKind::pitch_inverted && id.back() == 'P')) {
-            t += "; field trait of " + std::string(top::to_string(top::Model::c12)) + ": " +
-                 std::string(tr.evidence);
-            break;
-          }
-      add(rep, 78, top::Severity::warning, std::move(t), "response");
-    }
+    // Each command's own flag, an observation: the verdict is the session's
+    // direction-inverted, judged over the windows of an axis (a single
+    // command that overshot or was superseded is no inversion).
+    if (f[0])
+      add(rep, 35, top::Severity::info,
+          plural(f[0], id) +
+              " moved the gimbal the other way of their target (see direction-inverted)",
+          "response");
+    if (f[4])
+      add(rep, 20, top::Severity::info,
+          plural(f[4], id) +
+              " moved the gimbal the other way of the document's sign, as a field sign trait "
+              "of the dialect has it (docs/FIELD.md): which way is right depends on the model "
+              "(--model)",
+          "response");
     if (f[1])
       add(rep, 70, top::Severity::warning,
           plural(f[1], id) + " never brought the gimbal within " +

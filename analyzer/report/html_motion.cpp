@@ -14,7 +14,8 @@ namespace topdump::report::html {
 
 void Page::motion() {
   o += "<section id=\"motion\"><h2>2. Gimbal motion</h2>";
-  o += "<p class=\"muted\">Per conversation and axis: the reported attitude (GAC/GIC replies and "
+  o += "<p class=\"muted\">Per conversation and axis, up and right positive: the reported attitude "
+       "(GAC, GIC or GIA replies and "
        "pushes, solid), the commanded angle (dashed, held until the next command), angle "
        "commands (diamonds at their target), rate commands (triangles above the plot: up "
        "positive, down negative, circle zero) and other gimbal commands (dotted lines). Hover a "
@@ -38,7 +39,9 @@ void Page::motion() {
       for (const auto& [ident, a] : c.attitude) {
         svg::Series s;
         s.label = ident + " " + axis_name(axis);
-        s.color = ident == "GIC" ? "#9467bd" : kAxisColor[axis];
+        // the earth frame's attitude (Topotek GIC, GIA) in its own colour
+        s.color =
+            a.spec && a.spec->reference == top::Reference::earth ? "#9467bd" : kAxisColor[axis];
         s.t = a.t;
         s.v = a.v[static_cast<std::size_t>(axis)];
         s.break_us = 2'000'000;
@@ -146,6 +149,7 @@ void Page::response() {
       flag(a.out_of_range, "outside the range " + fmt("%g", a.cmd->min) + ".." +
                                fmt("%g", a.cmd->max) + ": clamped");
       flag(a.superseded, "superseded", true);
+      flag(a.still_moving, "still on its way at the capture's end", true);
       o += "<tr>" + tdn(frame_ref(a.cmd->frame)) + td(clock_text(a.cmd->t)) +
            tdn(std::to_string(a.conv)) + td(std::string(a.cmd->ident)) +
            td(axis_name(a.cmd->axis)) + tdn(fmt("%.2f", a.cmd->target)) +

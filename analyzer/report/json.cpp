@@ -149,6 +149,7 @@ void Writer::angles() {
       put_str(o, name);
     };
     f(a.no_attitude, "no-attitude");
+    f(a.still_moving, "still-moving");
     f(a.never_reached, "never-reached");
     f(a.other_way, "other-way");
     f(a.out_of_range, "out-of-range");
@@ -171,6 +172,7 @@ void Writer::rates() {
   text("scale_verdict", r.scale_verdict);
   opt("measured_deg_s_per_step", r.scale_runs ? r.scale_measured : -1);
   u("scale_runs", r.scale_runs);
+  u("scale_other_way_runs", r.scale_other_way);
   j.key_array("runs");
   for (const RateRun& x : r.runs) {
     j.item_object();

@@ -17,17 +17,20 @@ void ReportSink::motion(const FrameEvent& e, ConvData& c) {
   // What moves the gimbal, and the attitude it reports: top/motion.hpp.
   const top::MotionSpec* m = top::motion_of(d.dialect, id);
   if (m && m->kind == top::MotionKind::attitude) {
-    // the attitude forms of both dialects: yaw, pitch, roll
-    if (d.fields.size() != 3 || e.entry->bad_checksum || e.ts == kNoTime) return;
-    const top::FieldValue *y = &d.fields[0], *p = &d.fields[1], *r = &d.fields[2];
-    if (!y->valid || !p->valid || !r->valid || y->name() != "yaw" || p->name() != "pitch" ||
-        r->name() != "roll")
+    // a report (a push or the answer to a read; a switch's echo carries no
+    // angles): yaw, pitch and roll as the motion row reads them
+    top::MotionReading r;
+    if (f.control != 'r' || d.role == top::Role::request || !d.form || e.entry->bad_checksum ||
+        e.ts == kNoTime || m->count != kAxes || !top::read_motion(*m, *d.form, f.data(), r))
       return;
     Attitude& a = c.attitude[std::string(id)];
+    a.spec = m;
     a.t.push_back(e.ts);
-    a.v[0].push_back(static_cast<float>(y->value));
-    a.v[1].push_back(static_cast<float>(p->value));
-    a.v[2].push_back(static_cast<float>(r->value));
+    const bool field = top::field_convention(*m);
+    for (const top::MotionAxis& x : m->fields()) {
+      const auto i = static_cast<std::size_t>(x.axis);
+      a.v[i].push_back(static_cast<float>(r.value[i] * x.sign_in(field)));
+    }
     if (e.reply_to == 0) a.push_t.push_back(e.ts);
     return;
   }
@@ -73,17 +76,31 @@ void ReportSink::motion(const FrameEvent& e, ConvData& c) {
     }
 }
 
-// The attitude an axis command is compared with: GIC for the earth-frame
-// GI* commands (Topotek 4.3), GAC for the rest, else whichever was seen.
 Series series_for(const ConvData& c, std::string_view ident, int axis) {
-  const std::string want = ident.size() == 3 && ident[0] == 'G' && ident[1] == 'I' ? "GIC" : "GAC";
-  auto it = c.attitude.find(want);
-  if (it == c.attitude.end() || it->second.t.empty()) {
-    it = c.attitude.find(want == "GAC" ? "GIC" : "GAC");
-    if (it == c.attitude.end() || it->second.t.empty()) return {};
+  const top::MotionSpec* m = top::motion_of(c.dialect, ident);
+  const top::Reference want = m ? m->reference : top::Reference::body;
+  const std::pair<const std::string, Attitude>* best = nullptr;
+  for (const auto& kv : c.attitude) {
+    const Attitude& a = kv.second;
+    if (a.t.empty() || !a.spec) continue;
+    if (!best || (a.spec->reference == want && best->second.spec->reference != want)) best = &kv;
   }
-  return {&it->second.t, &it->second.v[static_cast<std::size_t>(axis)],
-          it->first == "GIC" ? "GIC" : "GAC"};
+  if (!best) return {};
+  return {&best->second.t, &best->second.v[static_cast<std::size_t>(axis)], best->first,
+          top::field_convention(*best->second.spec)};
+}
+
+int command_sign(top::Dialect d, std::string_view ident, int axis, const Series& s,
+                 top::Model model, bool& ambiguous) {
+  ambiguous = false;
+  const top::MotionSpec* m = top::motion_of(d, ident);
+  if (!m) return 1;
+  int sign = 1;
+  for (const top::MotionAxis& x : m->fields())
+    if (static_cast<int>(x.axis) == axis) sign = x.sign_in(s.field);
+  const int t = top::sign_trait_factor(d, model, axis, ident);
+  ambiguous = t == 0;
+  return t == 0 ? sign : sign * t;
 }
 
 namespace {
@@ -123,14 +140,16 @@ std::int64_t next_on_axis(const AxisTimes& times, int axis, std::int64_t t) {
 }  // namespace
 
 AngleResult angle_result(const ConvData& c, const AxisTimes& times, const AngleCommand& cmd,
-                         const Series& s, double tol) {
+                         top::Model model, double tol) {
   AngleResult r;
   r.cmd = &cmd;
   r.conv = c.id;
-  const double eff =
+  const Series s = series_for(c, cmd.ident, cmd.axis);
+  const double clamped =
       cmd.min <= cmd.max ? std::clamp<double>(cmd.target, cmd.min, cmd.max) : cmd.target;
+  r.out_of_range = clamped != cmd.target;
+  const double eff = clamped * command_sign(c.dialect, cmd.ident, cmd.axis, s, model, r.ambiguous);
   r.effective = static_cast<float>(eff);
-  r.out_of_range = eff != cmd.target;
   const std::int64_t end = next_on_axis(times, cmd.axis, cmd.t);
   if (!s.t) {
     r.no_attitude = true;
@@ -176,8 +195,15 @@ AngleResult angle_result(const ConvData& c, const AxisTimes& times, const AngleC
     }
   }
   if (r.settling_s < 0) {
+    // The capture's end cut short a gimbal still on its way: within the
+    // time its speed needs, or its last half second still closing in.
+    const std::size_t back = i1 - std::min<std::size_t>(i1 - i0, 6);
+    const bool closing = std::fabs(step) > tol && (step > 0 ? 1 : -1) * (v[i1 - 1] - v[back]) > tol;
+    const bool in_time = r.expected_s >= 0 && secs(i1 - 1) < r.expected_s * 1.25f + 0.5f;
     if (end != kNoTime)
       r.superseded = true;
+    else if (!r.other_way && (closing || in_time))
+      r.still_moving = true;
     else
       r.never_reached = true;
   }
@@ -242,7 +268,9 @@ void rate_runs(const ConvData& c, const AxisTimes& times, Report& rep, std::int6
         intervals.push_back(static_cast<double>(cmds[j]->t - cmds[j - 1]->t) / 1000.0);
         ++j;
       }
+      const Series s = series_for(c, cmds[i]->ident, axis);
       RateRun run;
+      run.sign = command_sign(c.dialect, cmds[i]->ident, axis, s, rep.model, run.ambiguous);
       run.conv = c.id;
       run.first_frame = cmds[i]->frame;
       run.ident = std::string(cmds[i]->ident);
@@ -250,7 +278,7 @@ void rate_runs(const ConvData& c, const AxisTimes& times, Report& rep, std::int6
       run.start = cmds[i]->t;
       run.commands = j - i;
       run.steps = cmds[i]->steps;
-      run.commanded = cmds[i]->rate;
+      run.commanded = static_cast<double>(cmds[i]->rate) * run.sign;
       run.scale = cmds[i]->scale;
       run.median_interval_ms = median(intervals);
       run.max_interval_ms =
@@ -260,11 +288,10 @@ void rate_runs(const ConvData& c, const AxisTimes& times, Report& rep, std::int6
       run.end = cmds[j - 1]->t + hold;
       const std::int64_t other = next_on_axis(times, axis, cmds[j - 1]->t);
       if (other != kNoTime) run.end = std::min(run.end, other);
-      const Series s = series_for(c, run.ident, axis);
       // Skip the first 50 ms: the motors take a moment to reach the rate.
       if (s.t && run.steps != 0)
         run.measured_ok = slope(s, run.start + 50'000, run.end, run.measured, run.samples);
-      if (run.measured_ok) run.per_step = run.measured / static_cast<double>(run.steps);
+      if (run.measured_ok) run.per_step = run.measured / static_cast<double>(run.steps * run.sign);
       rep.runs.push_back(run);
       i = j;
     }

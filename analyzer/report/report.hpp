@@ -35,8 +35,13 @@ inline constexpr std::size_t kLatencyBins = 26;  // 0.1 ms .. 10 s, five per dec
 // The lower edge of latency bin b in milliseconds (bin 0 also takes less).
 double latency_bin_ms(std::size_t b) noexcept;
 
-// The attitude reported by GAC or GIC frames (replies and pushes).
+// The attitude reported by one identifier's frames (replies and pushes:
+// every attitude row of top/motion.hpp, SkyDroid GAC, Topotek GAC, GIC and
+// the field's GIA), up and right positive: each axis in its row's sign
+// under its own convention (top::field_convention), so that a Topotek GIA
+// pitch, down positive on the wire, plots and compares as up positive.
 struct Attitude {
+  const top::MotionSpec* spec = nullptr;
   std::vector<std::int64_t> t;
   std::array<std::vector<float>, kAxes> v;  // deg
   std::vector<std::int64_t> push_t;         // frames that answered no request
@@ -81,7 +86,7 @@ struct ConvData {
   // them, and one the device sent that no model left has.
   top::ModelSet models = static_cast<top::ModelSet>(~0u);
   std::string_view narrowed_by, conflict;
-  std::map<std::string, Attitude, std::less<>> attitude;  // "GAC", "GIC"
+  std::map<std::string, Attitude, std::less<>> attitude;  // by identifier: "GAC", "GIA"
   // deques: no copy as they grow, and stable addresses (AngleResult::cmd)
   std::deque<AngleCommand> angles;
   std::deque<RateCommand> rates;
@@ -191,9 +196,11 @@ class ReportSink : public Sink {
 struct AngleResult {
   const AngleCommand* cmd = nullptr;  // in the sink's conversation
   std::uint64_t conv = 0;
-  const char* attitude = "";       // the attitude compared with: "GAC", "GIC", "" none
-  float start = 0;                 // attitude when the command came, deg
-  float effective = 0;             // the target clamped to the model's range
+  std::string_view attitude;  // the attitude compared with: "GAC", "GIA", "" none
+  float start = 0;            // attitude when the command came, deg
+  // the target clamped to the model's range, in the attitude's convention
+  // (up and right positive: command_sign)
+  float effective = 0;
   float expected_s = -1;           // |effective - start| / speed, when a speed was given
   float settling_s = -1;           // -1: never settled
   float overshoot_deg = 0;         // past the target, in the direction of motion
@@ -205,7 +212,12 @@ struct AngleResult {
   bool never_reached = false;
   bool other_way = false;  // moved away: sign inverted
   bool out_of_range = false;
-  bool superseded = false;  // a new command on the axis came before it settled
+  bool superseded = false;    // a new command on the axis came before it settled
+  bool still_moving = false;  // the capture ended while it was on its way to the target
+  // which way the command turns the gimbal cannot be told: the model is
+  // unknown and a sign trait of the dialect names the command
+  // (top::sign_trait_factor); other_way is then no verdict
+  bool ambiguous = false;
 };
 
 // Consecutive rate commands on one axis with the same value, each within
@@ -217,14 +229,16 @@ struct RateRun {
   std::int64_t start = 0, end = 0;  // first command, and the end of the last one's effect
   std::uint64_t commands = 0;
   std::int64_t steps = 0;
-  double commanded = 0;        // deg/s by the catalog's scale
+  int sign = 1;                // steps to the attitude's convention (command_sign)
+  bool ambiguous = false;      // that sign cannot be told (AngleResult::ambiguous)
+  double commanded = 0;        // deg/s by the catalog's scale, in that convention
   double scale = 1;            // catalog deg/s per step
   double max_interval_ms = 0;  // longest refresh interval inside the run
   double median_interval_ms = 0;
   double measured = 0;  // deg/s, least squares over the run's samples
   std::size_t samples = 0;
   bool measured_ok = false;
-  double per_step = 0;  // measured / steps
+  double per_step = 0;  // measured / (steps x sign): negative when it turned the other way
 };
 
 struct RefreshGap {
@@ -273,6 +287,7 @@ struct Report {
   std::string scale_verdict;
   double scale_measured = 0;  // median deg/s per step
   std::size_t scale_runs = 0;
+  std::size_t scale_other_way = 0;  // SkyDroid runs that turned the other way: not counted
   std::vector<StreamResult> streams;
   std::vector<Fact> facts;
 };
