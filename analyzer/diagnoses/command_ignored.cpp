@@ -16,8 +16,8 @@ void IgnoredWatch::window(const Judged& j) {
     return;
   }
   // the target's distance; either sign's when the model's sign is unknown
-  double step = std::fabs(angle_delta(j.axis, j.from, j.target));
-  if (j.ambiguous) step = std::min(step, std::fabs(angle_delta(j.axis, j.from, -j.target)));
+  double step = std::fabs(j.step());
+  if (j.ambiguous) step = std::min(step, std::fabs(j.mirror_step()));
   if (j.spec->kind != top::MotionKind::angle || !j.acked || moved >= kStill ||
       j.seconds < kMinSeconds || step < kMinStep)
     return;

@@ -9,14 +9,14 @@ void DirectionWatch::window(const Judged& j) {
   if (j.ambiguous || std::fabs(moved) < kMinMoved) return;
   int want = j.sign;  // rates and PTZ: the commanded direction
   if (j.spec->kind == top::MotionKind::angle) {
-    const double step = angle_delta(j.axis, j.from, j.target);
+    const double step = j.step();
     if (std::fabs(step) < kMinStep) return;
     // The other convention's target is -target: when it lies on the same
     // side of the start (a return to 0, a target nearer 0 than the start),
     // both conventions move the gimbal the same way and the window tells
     // neither from the other. Counted as right, such windows outvoted the
     // ones that showed the inversion.
-    const double mirror = angle_delta(j.axis, j.from, -j.target);
+    const double mirror = j.mirror_step();
     if (std::fabs(mirror) >= kMinStep && (mirror > 0) == (step > 0)) return;
     want = step > 0 ? 1 : -1;
   }

@@ -11,7 +11,18 @@ double angle_delta(int axis, double a, double b) noexcept {
   return d;
 }
 
-double Judged::moved() const noexcept { return whole ? turned : angle_delta(axis, from, to); }
+double Judged::moved() const noexcept {
+  if (whole) return turned;
+  return linear ? to - from : angle_delta(axis, from, to);
+}
+
+double Judged::step() const noexcept {
+  return linear ? target - from : angle_delta(axis, from, target);
+}
+
+double Judged::mirror_step() const noexcept {
+  return linear ? -target - from : angle_delta(axis, from, -target);
+}
 
 std::string_view direction_word(int axis, int sign) noexcept {
   if (axis == static_cast<int>(top::Axis::pitch)) return sign > 0 ? "up" : "down";

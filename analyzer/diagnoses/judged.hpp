@@ -37,7 +37,14 @@ struct Judged {
   // reads the other way
   double turned = 0;
   bool whole = false;
+  // angle: the command's range keeps the axis off +-180 (Topotek yaw
+  // +-150): the gimbal goes from +140 to -140 through 0, never across
+  bool linear = false;
   double moved() const noexcept;  // to - from: `turned`, else yaw the short way round
+  // target - from (and -target - from, the other convention's), the way the
+  // gimbal has to turn: the short way round for yaw, unless `linear`
+  double step() const noexcept;
+  double mirror_step() const noexcept;
 };
 
 // b - a in degrees, the short way round for yaw (axis 0).

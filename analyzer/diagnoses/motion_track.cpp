@@ -185,10 +185,19 @@ void MotionTrack::judge(const Window& w) {
     j.sign = sign_of(r.raw[i]) * s * (t == 0 ? 1 : t);
     double target = r.value[i];
     if (r.min[i] <= r.max[i]) target = std::clamp(target, r.min[i], r.max[i]);
+    j.linear = m->kind == top::MotionKind::angle && axis == static_cast<int>(top::Axis::yaw) &&
+               r.min[i] <= r.max[i] && r.max[i] - r.min[i] < 359.0;
     j.target = target * s * (t == 0 ? 1 : t);
   }
   direction_.window(j);
   ignored_.window(j);
+}
+
+void MotionTrack::handover() {
+  for (Window& w : win_) {
+    close(w);
+    w.cmd.spec = nullptr;
+  }
 }
 
 void MotionTrack::finish(std::int64_t end_ts) {

@@ -101,6 +101,10 @@ class MotionTrack {
     if (m != named_) refresh_limit_us_ = -1;  // looked up again
     named_ = m;
   }
+  // The camera's tracker drives the gimbal (top::reports_tracking): the
+  // open windows are judged up to now and closed, as the tracker's motion
+  // answers none of them.
+  void handover();
   // The conversation ended at `end_ts` (its last frame): judge the open
   // windows.
   void finish(std::int64_t end_ts);

@@ -15,7 +15,12 @@ void StallWatch::push(std::uint64_t n, std::int64_t ts, double asked_hz) noexcep
   // Judged once the stream has shown its pace (four intervals).
   const double asked_us = asked_hz > 0 ? 1e6 / asked_hz : 0;
   const double period = std::max(asked_us, typical_us_);
-  if (intervals_ >= 4 && period > 0 && dt > kPeriods * period) {
+  const bool judged = intervals_ >= 4 && period > 0 && dt > kPeriods * period;
+  if (judged && dt <= static_cast<double>(kMinStallUs)) {
+    last_ = ts;  // a bunch of the link: neither a stall nor the stream's pace
+    return;
+  }
+  if (judged) {
     stalls_.add(n, last_, {}, 0);
     stalled_us_ += ts - last_;
     if (ts - last_ > longest_us_) {

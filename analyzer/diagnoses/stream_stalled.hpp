@@ -1,4 +1,5 @@
-// stream-stalled: a push stream stops for more than 3 periods and resumes.
+// stream-stalled: a push stream stops for more than 3 periods (and more
+// than kMinStallUs) and resumes.
 // The period is the one asked for or, when the stream runs slower than
 // asked (stream-rate's case) or no rate was asked, the stream's own typical
 // interval, so that one cause gives one item: a steady 10 Hz stream asked
@@ -25,6 +26,11 @@ class StallWatch {
 
  private:
   static constexpr int kPeriods = 3;
+  // A stop shorter than this is the link's jitter, not the stream's: Wi-Fi
+  // and UDP bridges hand frames over in bunches of 60-100 ms (a 50 Hz
+  // stream's 3 periods are 60 ms; ArduPilot's own attitude health check
+  // waits 1 s).
+  static constexpr std::int64_t kMinStallUs = 200'000;
   std::int64_t last_ = kNoTime;
   double typical_us_ = 0;  // running mean of the intervals that were no stall
   std::uint32_t intervals_ = 0;

@@ -30,12 +30,13 @@ struct Watch {
   BaudWatch baud;
   MotionTrack motion;  // direction-inverted, command-ignored, attitude-stale, axis-left-moving
   // A frame of the device (reply or push), its data and form.
-  void device_frame(top::Dialect d, std::string_view ident, std::string_view data, std::uint64_t n,
-                    std::int64_t ts, int dir) {
+  void device_frame(top::Dialect d, std::string_view ident, char control, std::string_view data,
+                    std::uint64_t n, std::int64_t ts, int dir) {
     identity.reply(d, ident, data, n, ts, dir);
     tracking.reply(d, ident, data, n, ts, dir);
     if (const top::Model m = top::model_named_by(d, ident, data); m != top::Model::unknown)
       motion.named(m);
+    if (top::reports_tracking(d, ident, control, data)) motion.handover();
   }
   // Any frame with a form: a date set on or reported by the camera.
   void dated_frame(const top::FormSpec* form, std::string_view ident, std::string_view data,

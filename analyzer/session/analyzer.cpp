@@ -172,7 +172,7 @@ void Analyzer::Impl::frame(Conversation& c, int d, top::Frame& f, Position pos, 
     const std::string_view id = fr.ident_view(), data = fr.data();
     if (decided == top::Role::response && e.decoded.dialect != top::Dialect::unknown &&
         fr.checksum_ok)
-      c.watch.device_frame(e.decoded.dialect, id, data, ev.n, ts, d);
+      c.watch.device_frame(e.decoded.dialect, id, fr.control, data, ev.n, ts, d);
     c.watch.dated_frame(e.decoded.form, id, data, ev.n, ts, d, decided == top::Role::response);
   }
   // the motion diagnoses: commands that move the gimbal and its attitude

@@ -263,15 +263,16 @@ void decode_shape(Ctx& ctx, const Frame& frame, const DecodeOptions& opts, Diale
     return;
   }
   if (opts.model != Model::unknown && !cmd->supports(opts.model)) {
-    // Not in the document for the model: a warning when field evidence says
-    // the firmware takes it anyway (device.hpp), an error when nothing does.
+    // Not in the document for the model: information when field evidence
+    // says the firmware takes it anyway (device.hpp: a healthy C13 running
+    // ArduPilot's GSY/GSP/GAC/FAI is no warning), an error when nothing does.
     const FieldSupport* fs = field_supported(d, opts.model, ident, std::nullopt);
     ctx.add(FindingCode::unsupported_on_model, ident_at, [&] {
       return cat({ident, " (", cmd->section, ") is not listed for ", to_string(opts.model),
                   fs ? "; field: " : "", fs ? fs->evidence : ""});
     });
     Finding& x = out.findings.back();
-    x.severity = fs ? Severity::warning : Severity::error;
+    x.severity = fs ? Severity::info : Severity::error;
     if (fs) x.quirk = fs->evidence;
   }
   if (ident == "ERE")

@@ -120,10 +120,59 @@ TEST(DiagnosesMotion, ReturnsToZeroDoNotOutvoteAnInversion) {
   EXPECT_NE(v[0].figure.find("2 of 2 pitch angle windows"), std::string::npos) << v[0].figure;
 }
 
+// A Topotek yaw range of +-150 keeps the gimbal off +-180: from +140 to
+// -140 it turns through 0, 280 deg left, the way GAY asks. Taken the short
+// way round, every window read as "away from it" (an outside capture of
+// ArduPilot's angle mode alternating +140 and -140 on a SIP).
+TEST(DiagnosesMotion, YawRangeShortOf180TurnsThroughZero) {
+  MotionFeed f(top::Dialect::topotek);
+  double yaw = 0;
+  double target = 140;
+  for (std::int64_t ms = 0; ms <= 33000; ms += 50) {
+    if (ms >= 1000 && (ms - 1000) % 8000 == 0) {
+      target = (ms - 1000) % 16000 == 0 ? 140 : -140;
+      f.command(ms, "GAY", hex4(target) + "63");
+    }
+    yaw += std::clamp(target - yaw, -2.5, 2.5);  // 50 deg/s, through 0
+    f.attitude(ms, "GIA", hex4(yaw) + "0000" + "0000");
+  }
+  const auto v = f.finish(33000);
+  EXPECT_FALSE(has(v, top::Diagnosis::direction_inverted)) << (v.empty() ? "" : v[0].figure);
+}
+
+// A rate window ends where the camera's tracker takes the gimbal (Topotek
+// TRC state 2, after ArduPilot's TRC 02 and LOC): the tracker's motion
+// afterwards answers no command. Judged on it, a pitch pan down "moved up"
+// (an outside capture of a pan, then 28 s tracking).
+TEST(DiagnosesMotion, TrackingEndsTheWindowsBeforeIt) {
+  for (const bool handed : {true, false}) {
+    MotionFeed f(top::Dialect::topotek);
+    double pitch = 0;  // GIA pitch, down positive on the wire
+    for (std::int64_t ms = 0; ms <= 36000; ms += 50) {
+      if (ms >= 1000 && ms < 3000 && ms % 100 == 0) f.command(ms, "YPR", "000400");
+      if (ms == 3000 && handed) f.track.handover();
+      pitch += ms < 3000 ? (ms >= 1000 ? 0.16 : 0) : -0.1;  // down 3.2 deg/s, then the tracker: up
+      f.attitude(ms, "GIA", "0000" + hex4(pitch) + "0000");
+    }
+    const auto v = f.finish(36000);
+    EXPECT_EQ(has(v, top::Diagnosis::direction_inverted), !handed) << handed;
+  }
+}
+
 // The speed-refresh limit is the model's: a device that names itself C13 in
 // its MOD reply (no speed-refresh trait) holds a rate without refreshes,
 // where a C12 or an unnamed SkyDroid stops after 1000 ms (an outside C13
 // capture was told "not refreshed ... the motors stop").
+TEST(DiagnosesMotion, TrackingIsTrcStateTwo) {
+  EXPECT_TRUE(top::reports_tracking(top::Dialect::topotek, "TRC", 'r', "02"));
+  EXPECT_FALSE(top::reports_tracking(top::Dialect::topotek, "TRC", 'r', "01"));  // waiting
+  // the echo of the write TRC 02 (prepare) is no state (a sip fault test
+  // lost its command-ignored to it)
+  EXPECT_FALSE(top::reports_tracking(top::Dialect::topotek, "TRC", 'w', "02"));
+  EXPECT_FALSE(top::reports_tracking(top::Dialect::topotek, "LOC", 'r', "02"));
+  EXPECT_FALSE(top::reports_tracking(top::Dialect::skydroid, "TRC", 'r', "02"));
+}
+
 TEST(DiagnosesMotion, ModelNamedByTheDeviceChoosesTheRefreshLimit) {
   EXPECT_EQ(top::model_named_by(top::Dialect::skydroid, "MOD", "C13"), top::Model::c13);
   EXPECT_EQ(top::model_named_by(top::Dialect::skydroid, "MOD", "c12 "), top::Model::c12);

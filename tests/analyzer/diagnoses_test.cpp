@@ -114,7 +114,8 @@ TEST(DiagnosesRules, WatchPrefilterCoversTheRules) {
     for (const top::CommandSpec& c : top::commands(d)) {
       const std::string id(c.ident);
       const bool ruled = top::is_identity_reply(d, id) || top::carries_date(id) ||
-                         top::refuses_tracking(d, id, "04");
+                         top::refuses_tracking(d, id, "04") ||
+                         top::reports_tracking(d, id, 'r', "02");
       if (ruled) {
         EXPECT_TRUE(diag::Watch::watched(id.c_str())) << id;
       }
@@ -173,6 +174,22 @@ TEST(DiagnosesStall, SlowSteadyStreamIsNoStall) {
   diag::StallWatch w;
   for (int i = 0; i < 300; ++i) w.push(static_cast<std::uint64_t>(i + 1), kT0 + i * 100'000, 50);
   EXPECT_FALSE(w.verdict("GAC"));
+}
+
+// A 50 Hz stream handed over in 100 ms bunches (Wi-Fi) is no stall, 73
+// times over (an outside capture); a 300 ms stop of it is.
+TEST(DiagnosesStall, LinkBunchesAreNoStall) {
+  for (const std::int64_t gap_ms : {60, 100, 300}) {
+    diag::StallWatch w;
+    std::uint64_t n = 0;
+    std::int64_t t = kT0;
+    for (int i = 0; i < 50; ++i) w.push(++n, t += 20'000, 50);
+    for (int bunch = 0; bunch < 20; ++bunch) {
+      t += gap_ms * 1000;
+      for (int i = 0; i < 5; ++i) w.push(++n, t += 1'000, 50);
+    }
+    EXPECT_EQ(w.verdict("GAC").has_value(), gap_ms == 300) << gap_ms;
+  }
 }
 
 TEST(DiagnosesStall, GapOfMoreThanThreePeriodsThatResumes) {

@@ -183,9 +183,9 @@ EXPERTS["unknown-ident"] = {
 }
 FINDINGS["unsupported-on-model"] = "error"
 EXPERTS["unsupported-on-model"] = {
-  ["info"] = ProtoExpert.new("top.finding.unsupported-on-model.info", "unsupported-on-model: the command exists but neither the document nor field evidence lists it for the model; a warning naming the evidence when the field says the firmware takes it (C13 PTZ)", expert.group.PROTOCOL, expert.severity.NOTE),
-  ["warning"] = ProtoExpert.new("top.finding.unsupported-on-model.warning", "unsupported-on-model: the command exists but neither the document nor field evidence lists it for the model; a warning naming the evidence when the field says the firmware takes it (C13 PTZ)", expert.group.PROTOCOL, expert.severity.WARN),
-  ["error"] = ProtoExpert.new("top.finding.unsupported-on-model", "unsupported-on-model: the command exists but neither the document nor field evidence lists it for the model; a warning naming the evidence when the field says the firmware takes it (C13 PTZ)", expert.group.PROTOCOL, expert.severity.ERROR),
+  ["info"] = ProtoExpert.new("top.finding.unsupported-on-model.info", "unsupported-on-model: the command exists but neither the document nor field evidence lists it for the model; information naming the evidence when the field says the firmware takes it (C13 PTZ, GSY, GAC)", expert.group.PROTOCOL, expert.severity.NOTE),
+  ["warning"] = ProtoExpert.new("top.finding.unsupported-on-model.warning", "unsupported-on-model: the command exists but neither the document nor field evidence lists it for the model; information naming the evidence when the field says the firmware takes it (C13 PTZ, GSY, GAC)", expert.group.PROTOCOL, expert.severity.WARN),
+  ["error"] = ProtoExpert.new("top.finding.unsupported-on-model", "unsupported-on-model: the command exists but neither the document nor field evidence lists it for the model; information naming the evidence when the field says the firmware takes it (C13 PTZ, GSY, GAC)", expert.group.PROTOCOL, expert.severity.ERROR),
 }
 FINDINGS["unsupported-control"] = "warning"
 EXPERTS["unsupported-control"] = {

@@ -48,7 +48,8 @@ struct FormSpec;
     "ask for a rate the model pushes; check the camera's load and the link when it pushes "        \
     "slower")                                                                                      \
   X(stream_stalled, "stream-stalled", warning,                                                     \
-    "a push stream stopped for more than 3 periods and then resumed",                              \
+    "a push stream stopped for more than 3 periods (and 200 ms: shorter is the link's bunching) "  \
+    "and then resumed",                                                                            \
     "field note: ArduPilot's SkyDroid driver counts more than 1 s without GAC as unhealthy "       \
     "and stops both axes (PR #34155 review); a running stream pushes until switched off",          \
     "check the link (Wi-Fi or UART load, lost datagrams) and the camera (reboot, video "           \
@@ -156,6 +157,19 @@ inline bool is_identity_reply(Dialect d, std::string_view id) noexcept {
   if (id.size() != 3) return false;
   if (d == Dialect::topotek) return id == "PA2" || id == "VSN" || id == "VER";
   return d == Dialect::skydroid && (id == "VER" || id == "MOD");
+}
+
+// Whether a device's reply says its tracker drives the gimbal: Topotek TRC
+// with state '2' (tracking; data char 1, as refuses_tracking reads it).
+// ArduPilot's AP_Mount_Topotek starts tracking with TRC 02 and a LOC, reads
+// TRC, and sends no motion command while the camera tracks (PR #27568): the
+// motion the tracker makes is no answer to the commands before it. A LOC
+// alone is not enough: a lens that waits (state 1) does not move. A read's
+// reply (`control` 'r'): the echo of the write TRC 02 (prepare) is no state.
+inline bool reports_tracking(Dialect d, std::string_view id, char control,
+                             std::string_view data) noexcept {
+  return control == 'r' && data.size() == 2 && data[1] == '2' && d == Dialect::topotek &&
+         id == "TRC";
 }
 
 // Whether a device's reply refuses tracking: Topotek TRC with state '4'

@@ -71,8 +71,8 @@ std::string_view to_string(Severity s) noexcept;
     "the identifier is not in the catalog of the dialect")                                        \
   X(unsupported_on_model, "unsupported-on-model", error, "",                                      \
     "the command exists but neither the document nor field evidence lists it "                    \
-    "for the model; a warning naming the evidence when the field says the "                       \
-    "firmware takes it (C13 PTZ)")                                                                \
+    "for the model; information naming the evidence when the field says the "                     \
+    "firmware takes it (C13 PTZ, GSY, GAC)")                                                      \
   X(unsupported_control, "unsupported-control", warning, "",                                      \
     "the command exists but not in this form (a read of a write-only "                            \
     "command or the reverse)")                                                                    \
