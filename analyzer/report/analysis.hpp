@@ -44,6 +44,11 @@ int command_sign(top::Dialect d, std::string_view ident, int axis, const Series&
 AngleResult angle_result(const ConvData& c, const AxisTimes& times, const AngleCommand& cmd,
                          top::Model model, double tol);
 void rate_runs(const ConvData& c, const AxisTimes& times, Report& rep, std::int64_t capture_end);
+// Least squares slope (deg/s) of the samples of `s` in [t0, t1]; yaw
+// (`wraps`) unwrapped sample to sample, so that a pan across +-180 is one
+// line (it measured a 10 deg/s pan as 7.3); `n` the samples.
+bool slope(const Series& s, std::int64_t t0, std::int64_t t1, bool wraps, double& out,
+           std::size_t& n);
 double median(std::vector<double> v);
 
 // streams.cpp: each stream's rate over time and its gaps.

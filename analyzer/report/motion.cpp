@@ -216,17 +216,22 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-namespace {
+namespace {}  // namespace
 
-// Least squares slope (deg/s) of the samples in [t0, t1].
-bool slope(const Series& s, std::int64_t t0, std::int64_t t1, double& out, std::size_t& n) {
+bool slope(const Series& s, std::int64_t t0, std::int64_t t1, bool wraps, double& out,
+           std::size_t& n) {
   const std::size_t i0 = index_at(*s.t, t0), i1 = index_at(*s.t, t1 + 1);
   n = i1 > i0 ? i1 - i0 : 0;
   if (n < 3) return false;
   const double tb = static_cast<double>((*s.t)[i0]);
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  double y = (*s.v)[i0];
   for (std::size_t i = i0; i < i1; ++i) {
-    const double x = (static_cast<double>((*s.t)[i]) - tb) / 1e6, y = (*s.v)[i];
+    if (i > i0) {
+      const double d = double{(*s.v)[i]} - (*s.v)[i - 1];
+      y += wraps ? std::remainder(d, 360.0) : d;
+    }
+    const double x = (static_cast<double>((*s.t)[i]) - tb) / 1e6;
     sx += x, sy += y, sxx += x * x, sxy += x * y;
   }
   const double dn = static_cast<double>(n), den = dn * sxx - sx * sx;
@@ -234,8 +239,6 @@ bool slope(const Series& s, std::int64_t t0, std::int64_t t1, double& out, std::
   out = (dn * sxy - sx * sy) / den;
   return true;
 }
-
-}  // namespace
 
 void rate_runs(const ConvData& c, const AxisTimes& times, Report& rep, std::int64_t capture_end) {
   const top::Trait* trait = top::speed_refresh_trait(rep.model, c.dialect);
@@ -278,7 +281,12 @@ void rate_runs(const ConvData& c, const AxisTimes& times, Report& rep, std::int6
       run.start = cmds[i]->t;
       run.commands = j - i;
       run.steps = cmds[i]->steps;
-      run.commanded = static_cast<double>(cmds[i]->rate) * run.sign;
+      // in the unit field evidence gives where the attitude follows the
+      // field's convention (Topotek YPR: 0.8192 deg/s a count, FIELD.md)
+      const top::MotionSpec* ms = top::motion_of(c.dialect, cmds[i]->ident);
+      const double rate = static_cast<double>(cmds[i]->rate);
+      run.commanded =
+          (ms ? top::motion_speed(*ms, rate, cmds[i]->steps, s.field) : rate) * run.sign;
       run.scale = cmds[i]->scale;
       run.median_interval_ms = median(intervals);
       run.max_interval_ms =
@@ -290,7 +298,8 @@ void rate_runs(const ConvData& c, const AxisTimes& times, Report& rep, std::int6
       if (other != kNoTime) run.end = std::min(run.end, other);
       // Skip the first 50 ms: the motors take a moment to reach the rate.
       if (s.t && run.steps != 0)
-        run.measured_ok = slope(s, run.start + 50'000, run.end, run.measured, run.samples);
+        run.measured_ok =
+            slope(s, run.start + 50'000, run.end, axis == 0, run.measured, run.samples);
       if (run.measured_ok) run.per_step = run.measured / static_cast<double>(run.steps * run.sign);
       rep.runs.push_back(run);
       i = j;

@@ -15,6 +15,7 @@
 #include "diagnoses/direction_inverted.hpp"
 #include "diagnoses/motion_track.hpp"
 #include "findings/afindings.hpp"
+#include "report/analysis.hpp"
 #include "test_support.hpp"
 #include "top/catalog.hpp"
 #include "top/device.hpp"
@@ -157,6 +158,23 @@ TEST(DiagnosesMotion, TrackingEndsTheWindowsBeforeIt) {
     const auto v = f.finish(36000);
     EXPECT_EQ(has(v, top::Diagnosis::direction_inverted), !handed) << handed;
   }
+}
+
+// The report's measured rate of a yaw pan across +-180 (a 10 deg/s pan
+// from +170 measured 7.3 deg/s, and the speed unit "neither").
+TEST(ReportRate, YawSlopeAcrossTheWrap) {
+  std::vector<std::int64_t> t;
+  std::vector<float> v;
+  for (int i = 0; i <= 40; ++i) {
+    t.push_back(kT0 + i * 100'000);
+    v.push_back(static_cast<float>(std::remainder(170.0 + i * 1.0, 360.0)));  // 10 deg/s
+  }
+  report::Series s{&t, &v, "GAC", false};
+  double rate = 0;
+  std::size_t n = 0;
+  ASSERT_TRUE(report::slope(s, t.front(), t.back(), true, rate, n));
+  EXPECT_EQ(n, 41u);
+  EXPECT_NEAR(rate, 10.0, 0.01);
 }
 
 // The speed-refresh limit is the model's: a device that names itself C13 in
