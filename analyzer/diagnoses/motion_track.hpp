@@ -133,10 +133,10 @@ class MotionTrack {
                std::string_view data, std::uint64_t n, std::int64_t ts, int dir);
   void attitude(const top::MotionSpec& m, const top::FormSpec* form, std::string_view data,
                 std::int64_t ts);
-  // Judges the window `w` if it can be (its command and the attitude read
-  // only then); the caller clears it.
   // A new mark of the attitude `slot`: its yaw read, the unwrapping on.
   void mark(std::size_t slot);
+  // Judges the window `w` if it can be (its command and the attitude read
+  // only then); the caller clears it.
   void close(const Window& w) {
     if (judgeable(w)) judge(w);
   }

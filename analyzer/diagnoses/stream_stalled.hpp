@@ -26,11 +26,8 @@ class StallWatch {
 
  private:
   static constexpr int kPeriods = 3;
-  // A stop shorter than this is the link's jitter, not the stream's: Wi-Fi
-  // and UDP bridges hand frames over in bunches of 60-100 ms (a 50 Hz
-  // stream's 3 periods are 60 ms; ArduPilot's own attitude health check
-  // waits 1 s).
-  static constexpr std::int64_t kMinStallUs = 200'000;
+  // a shorter stop is the link's bunching (top::stream_stall_min_ms)
+  static constexpr std::int64_t kMinStallUs = top::stream_stall_min_ms * 1000;
   std::int64_t last_ = kNoTime;
   double typical_us_ = 0;  // running mean of the intervals that were no stall
   std::uint32_t intervals_ = 0;

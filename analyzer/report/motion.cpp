@@ -299,7 +299,8 @@ void rate_runs(const ConvData& c, const AxisTimes& times, Report& rep, std::int6
       // Skip the first 50 ms: the motors take a moment to reach the rate.
       if (s.t && run.steps != 0)
         run.measured_ok =
-            slope(s, run.start + 50'000, run.end, axis == 0, run.measured, run.samples);
+            slope(s, run.start + 50'000, run.end, axis == static_cast<int>(top::Axis::yaw),
+                  run.measured, run.samples);
       if (run.measured_ok) run.per_step = run.measured / static_cast<double>(run.steps * run.sign);
       rep.runs.push_back(run);
       i = j;

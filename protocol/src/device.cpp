@@ -10,6 +10,7 @@
 
 #include "catalog_data.hpp"
 #include "device_form.hpp"
+#include "top/diagnoses.hpp"
 #include "top/enum_names.hpp"
 #include "top/text.hpp"
 
@@ -73,12 +74,9 @@ const StreamSpec* stream_enabled_by(Dialect d, std::string_view request) noexcep
 
 namespace {
 
-// An identifier's three chars as one integer (0: not three chars).
+// An identifier's three chars as one integer (ident_key; 0: not three chars).
 std::uint32_t key_of(std::string_view id) noexcept {
-  if (id.size() != 3) return 0;
-  return static_cast<std::uint32_t>(static_cast<unsigned char>(id[0])) |
-         static_cast<std::uint32_t>(static_cast<unsigned char>(id[1])) << 8 |
-         static_cast<std::uint32_t>(static_cast<unsigned char>(id[2])) << 16;
+  return id.size() == 3 ? ident_key(id.data()) : 0;
 }
 
 // Every stream request's key, built at start-up: most writes switch no

@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <nlohmann/json.hpp>
 #include <thread>
@@ -276,6 +277,27 @@ struct SerialRun {
     return f;
   }
 };
+
+// Two taps merged are both directions of the line: a gimbal tap with no
+// frame is a silent device (silent-device), not a line nobody recorded
+// (CaptureSink::both_ways; a one-tap dump stays one way).
+TEST(Input, TwoTapsWithASilentGimbalNameIt) {
+  TempDir tmp;
+  std::string requests;
+  for (int i = 0; i < 20; ++i) {
+    char t[40];
+    std::snprintf(t, sizeof t, "2024-05-01T12:00:%02d.%03dZ TX ", i / 4, (i % 4) * 250);
+    requests += t + top::with_checksum("#TPUD2rVER00") + "\n";
+  }
+  write_file(tmp.file("autopilot.log"), requests);
+  write_file(tmp.file("gimbal.log"), "2024-05-01T11:59:59.000Z RX \n");
+  std::string out;
+  EXPECT_EQ(run(bin() + " read " + q(tmp.file("autopilot.log")) + " " + q(tmp.file("gimbal.log")) +
+                    " 2>&1",
+                out),
+            1);
+  EXPECT_NE(out.find("silent-device"), std::string::npos) << out;
+}
 
 TEST(Input, TwoSerialTapsPairRequestsAndReplies) {
   SerialRun r(2);

@@ -228,4 +228,10 @@ std::int64_t epoch_seconds(const DateTime& t) noexcept;
 // (review of PR #34155).
 inline constexpr std::int64_t attitude_stale_ms = 1000;
 
+// The shortest stop of a push stream that is the stream's, not the link's:
+// Wi-Fi and UDP bridges hand frames over in bunches of 60-100 ms (an outside
+// capture of a 50 Hz GAC stream, whose 3 periods are 60 ms, gave 73
+// "stalls"); ArduPilot's own health check waits attitude_stale_ms.
+inline constexpr std::int64_t stream_stall_min_ms = 200;
+
 }  // namespace top
