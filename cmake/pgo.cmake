@@ -37,11 +37,15 @@ if(TOPKIT_PGO_ACTIVE)
   set(TOPKIT_PGO_DATA ${CMAKE_BINARY_DIR}/pgo/data)  # its profiles (*.gcda)
   set(TOPKIT_PGO_STAMP ${CMAKE_BINARY_DIR}/pgo/trained.stamp)
   set(topkit_pgo_exe_suffix ${CMAKE_EXECUTABLE_SUFFIX})
+  # the instrumented build compiles as this one does (the default preset's
+  # -g1 too), so each object's profile matches it
+  string(TOUPPER "${CMAKE_BUILD_TYPE}" topkit_pgo_config)
   ExternalProject_Add(topkit_pgo_instrumented
     SOURCE_DIR ${PROJECT_SOURCE_DIR}
     BINARY_DIR ${TOPKIT_PGO_GEN}
     CMAKE_ARGS
       -DCMAKE_BUILD_TYPE=${CMAKE_BUILD_TYPE}
+      "-DCMAKE_CXX_FLAGS_${topkit_pgo_config}=${CMAKE_CXX_FLAGS_${topkit_pgo_config}}"
       -DCMAKE_CXX_COMPILER=${CMAKE_CXX_COMPILER}
       "-DCMAKE_CXX_FLAGS=${CMAKE_CXX_FLAGS} -fprofile-generate=${TOPKIT_PGO_DATA} -fprofile-prefix-path=${TOPKIT_PGO_GEN} -fprofile-update=single"
       "-DCMAKE_EXE_LINKER_FLAGS=${CMAKE_EXE_LINKER_FLAGS} -fprofile-generate"
