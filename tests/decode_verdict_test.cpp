@@ -21,7 +21,8 @@ std::string verdict_of(const Decoded& d) {
   std::string s = std::to_string(static_cast<int>(d.dialect)) + "/" +
                   std::to_string(static_cast<int>(d.role)) + " " +
                   (d.command ? std::string(d.command->ident) : "-") + " form " +
-                  std::to_string(reinterpret_cast<std::uintptr_t>(d.form));
+                  std::to_string(reinterpret_cast<std::uintptr_t>(d.form)) + " motion " +
+                  (d.motion ? std::string(d.motion->ident) : "-");
   for (const Finding& x : d.findings)
     s += " " + std::string(to_string(x.code)) + "/" + std::string(to_string(x.severity)) + "@" +
          std::to_string(x.offset);

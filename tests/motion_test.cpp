@@ -132,3 +132,31 @@ TEST(Motion, TopotekFieldSignsAndUnits) {
     }
   }
 }
+
+// decode() gives the command's motion row with the command, from the shape
+// cache too (the session reads it for every frame): the row motion_of
+// gives, and none for a command that does not move the gimbal.
+TEST(Motion, DecodeGivesTheCommandsRow) {
+  DecodeCache cache;
+  for (const bool detail : {true, false})
+    for (const char* ident : {"GAC", "GAY", "PTZ", "VER"}) {
+      BuildSpec b;
+      b.header = Header::fixed;
+      b.src = 'U';
+      b.dst = 'G';
+      b.control = 'w';
+      b.ident = ident;
+      b.data = "00";
+      const ParseResult r = parse_frame(build_frame(b), true);
+      ASSERT_EQ(r.status, ParseStatus::frame) << ident;
+      DecodeOptions o{Dialect::skydroid, Model::unknown, Role::request};
+      o.detail = detail;
+      o.cache = detail ? nullptr : &cache;
+      for (int twice = 0; twice < 2; ++twice) {  // the second from the cache
+        const Decoded d = decode(r.frame, o);
+        ASSERT_NE(d.command, nullptr) << ident;
+        EXPECT_EQ(d.motion, motion_of(Dialect::skydroid, ident)) << ident << " " << detail;
+        EXPECT_EQ(d.motion == nullptr, std::string_view(ident) == "VER") << ident;
+      }
+    }
+}

@@ -176,10 +176,9 @@ void Analyzer::Impl::frame(Conversation& c, int d, top::Frame& f, Position pos, 
     c.watch.dated_frame(e.decoded.form, id, data, ev.n, ts, d, decided == top::Role::response);
   }
   // the motion diagnoses: commands that move the gimbal and its attitude
-  if (e.decoded.command && fr.checksum_ok && decided != top::Role::any)
-    if (const top::MotionSpec* m = top::motion_of(*e.decoded.command))
-      c.watch.motion.frame(*m, e.decoded.form, decided == top::Role::request, fr.control, fr.data(),
-                           ev.n, ts, d, A.opts_.model);
+  if (const top::MotionSpec* m = e.decoded.motion; m && fr.checksum_ok && decided != top::Role::any)
+    c.watch.motion.frame(*m, e.decoded.form, decided == top::Role::request, fr.control, fr.data(),
+                         ev.n, ts, d, A.opts_.model);
 
   // Pairing saw the frame; what follows is reporting, which the filter
   // governs: a frame it leaves out is neither counted nor in the exit status.

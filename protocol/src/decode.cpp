@@ -18,6 +18,7 @@
 #include "numbers.hpp"
 #include "top/device.hpp"
 #include "top/dialect.hpp"
+#include "top/motion.hpp"
 
 namespace top {
 
@@ -246,6 +247,7 @@ void decode_shape(Ctx& ctx, const Frame& frame, const DecodeOptions& opts, Diale
   if (cmd && d == Dialect::unknown) d = cmd->dialect;
   out.dialect = d;
   out.command = cmd;
+  out.motion = cmd ? motion_of(*cmd) : nullptr;
 
   if (frame.header == Header::fixed && frame.declared_length != 2)
     note_tp_length(ctx, frame, cmd, d, out);
@@ -402,6 +404,7 @@ static void decode_frame(const Frame& frame, const DecodeOptions& opts, Decoded&
   out.findings.clear();
   out.command = nullptr;
   out.form = nullptr;
+  out.motion = nullptr;
   Ctx ctx{frame, out, opts.detail};
   out.role = opts.role != Role::any ? opts.role : role_from_addresses(frame);
   Dialect d = opts.dialect;

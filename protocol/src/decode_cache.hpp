@@ -21,6 +21,7 @@ struct ShapeSlot {
   std::uint8_t count = 0;
   const CommandSpec* command = nullptr;
   const FormSpec* form = nullptr;
+  const MotionSpec* motion = nullptr;
   const FormPlan* plan = nullptr;
   struct Seen {
     FindingCode code{};
@@ -128,6 +129,7 @@ inline void remember(ShapeSlot& s, const Decoded& out) {
   s.role = out.role;
   s.command = out.command;
   s.form = out.form;
+  s.motion = out.motion;
   s.plan = out.form ? &plan_of(*out.command, *out.form) : nullptr;
   s.count = static_cast<std::uint8_t>(out.findings.size());
   for (std::size_t i = 0; i < out.findings.size(); ++i) {
@@ -142,6 +144,7 @@ inline void replay(const ShapeSlot& s, Decoded& out) {
   out.role = s.role;
   out.command = s.command;
   out.form = s.form;
+  out.motion = s.motion;
   for (std::size_t i = 0; i < s.count; ++i) {
     const ShapeSlot::Seen& x = s.findings[i];
     out.findings.push_back(Finding{x.code, x.severity, x.offset, std::string(), x.quirk});

@@ -13,6 +13,8 @@
 
 namespace top {
 
+struct MotionSpec;  // top/motion.hpp
+
 namespace detail {
 struct ShapeSlot;
 struct CacheAccess;
@@ -95,6 +97,9 @@ struct Decoded {
   Role role = Role::any;               // request or response as decided
   const CommandSpec* command = nullptr;
   const FormSpec* form = nullptr;
+  // The command's motion row (top/motion.hpp: what moves the gimbal or
+  // reports its attitude), or null; with the command, from the shape cache.
+  const MotionSpec* motion = nullptr;
   std::vector<FieldValue> fields;
   std::vector<Finding> findings;  // catalog-level findings
 
