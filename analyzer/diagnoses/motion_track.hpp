@@ -187,9 +187,15 @@ inline void MotionTrack::frame(const top::MotionSpec& m, const top::FormSpec* fo
     command(m, form, data, n, ts, dir);
     return;
   }
-  // the device's echo acknowledges the window of its identifier
-  for (Window& w : win_)
-    if (w.cmd.spec == &m) w.acked = true;
+  // the device's echo acknowledges the window of its identifier: one on
+  // each of its axes (a PTZ's on the axis its action turned)
+  if (m.kind == top::MotionKind::ptz) {
+    for (Window& w : win_)
+      if (w.cmd.spec == &m) w.acked = true;
+    return;
+  }
+  for (const top::MotionAxis& a : m.fields())
+    if (Window& w = win_[static_cast<std::size_t>(a.axis)]; w.cmd.spec == &m) w.acked = true;
 }
 
 inline void MotionTrack::attitude(const top::MotionSpec& m, const top::FormSpec* form,

@@ -6,6 +6,7 @@
 // for at 50 Hz is off its rate, never stalled.
 #pragma once
 
+#include <algorithm>
 #include <optional>
 
 #include "diagnoses/case.hpp"
@@ -15,6 +16,7 @@ namespace topdump::diag {
 class StallWatch {
  public:
   // A push of the stream, frame n at ts; asked_hz 0 when no rate was asked.
+  // Inline: the session calls it for every push.
   void push(std::uint64_t n, std::int64_t ts, double asked_hz) noexcept;
   // The diagnosis for the stream `ident`, when it stalled.
   std::optional<Found> verdict(std::string_view ident) const;
@@ -25,6 +27,8 @@ class StallWatch {
   std::int64_t stalled_us() const noexcept { return stalled_us_; }
 
  private:
+  // A stop longer than kPeriods periods (the period the push judged by).
+  void stalled(std::uint64_t n, std::int64_t ts, double period) noexcept;
   static constexpr int kPeriods = 3;
   // a shorter stop is the link's bunching (top::stream_stall_min_ms)
   static constexpr std::int64_t kMinStallUs = top::stream_stall_min_ms * 1000;
@@ -34,7 +38,36 @@ class StallWatch {
   std::uint64_t first_n_ = 0;
   Case stalls_;  // one frame per stall: the push that resumed it
   std::int64_t longest_us_ = 0, longest_at_ = kNoTime, stalled_us_ = 0;
-  double period_us_ = 0;  // the period the longest stall was judged by
+  double period_us_ = 0;                // the period the longest stall was judged by
+  double asked_hz_ = 0, asked_us_ = 0;  // the rate last asked, and its period
 };
+
+inline void StallWatch::push(std::uint64_t n, std::int64_t ts, double asked_hz) noexcept {
+  if (first_n_ == 0) first_n_ = n;
+  if (ts == kNoTime) return;
+  if (last_ == kNoTime || ts < last_) {
+    last_ = ts;
+    return;
+  }
+  const auto dt = static_cast<double>(ts - last_);
+  // Judged once the stream has shown its pace (four intervals).
+  if (asked_hz != asked_hz_) {  // the period, worked out when the rate asked changes
+    asked_hz_ = asked_hz;
+    asked_us_ = asked_hz > 0 ? 1e6 / asked_hz : 0;
+  }
+  const double period = std::max(asked_us_, typical_us_);
+  if (intervals_ >= 4 && period > 0 && dt > kPeriods * period) {
+    // a bunch of the link is neither a stall nor the stream's pace
+    if (dt > static_cast<double>(kMinStallUs)) stalled(n, ts, period);
+  } else if (intervals_ < 16) {
+    // a running mean over the first 16 intervals, then a slow follower
+    // (a weight of 1/16, without a division per push)
+    ++intervals_;
+    typical_us_ += (dt - typical_us_) / intervals_;
+  } else {
+    typical_us_ += (dt - typical_us_) * (1.0 / 16);
+  }
+  last_ = ts;
+}
 
 }  // namespace topdump::diag
