@@ -56,7 +56,8 @@ namespace topdump {
   X(unanswered, "unanswered", warning,                                                            \
     "a request got no response within the timeout (or before the end)")                           \
   X(unsolicited, "unsolicited", warning,                                                          \
-    "a response that no pending request asked for (and no stream explains)")                      \
+    "a response that no pending request asked for (and no stream explains), "                     \
+    "after the conversation's first request")                                                     \
   X(echo_differs, "echo-differs", warning,                                                        \
     "the reply to a write carries other data than the write (Topotek REC "                        \
     "and CAP answer with a file index and are exempt)")                                           \

@@ -362,6 +362,10 @@ void Analyzer::Impl::response(Conversation& c, int d, FrameEvent& ev) {
     return;
   }
   if (one_way(c)) return;  // the requests are on a line nobody recorded
+  // Before the conversation's first request a reply may answer one sent
+  // before the capture began (a capture started mid-session): it shows
+  // nothing about the device.
+  if (c.dir[0].last_req.empty() && c.dir[1].last_req.empty()) return;
   ev.notes.push_back(Note{ACode::unsolicited, default_severity(ACode::unsolicited), message([&] {
                             return top::escape(id) + " response that no pending request asked for";
                           }),

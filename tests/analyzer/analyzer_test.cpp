@@ -120,21 +120,44 @@ TEST(Streams, ReSentEnableContinuesTheStream) {
 
 TEST(Pairing, UnsolicitedEchoDiffersAndRepeated) {
   Fixture f;
+  f.echoed(-1000, 5, "#TPUD2rVER00");             // the session under way
   f.down(0, top::with_checksum("#TPGU2wPTZ05"));  // nobody asked
   f.up(10, top::with_checksum("#TPUG2wPTZ05"));
   f.up(40, top::with_checksum("#TPUG2wPTZ05"));    // again, 30 ms later
   f.down(45, top::with_checksum("#TPGU2wPTZ01"));  // echo with other data
   f.down(46, top::with_checksum("#TPGU2wPTZ05"));
   f.a->finish();
-  ASSERT_EQ(f.rec.frames.size(), 5u);
-  EXPECT_TRUE(has_code(f.rec.frames[0], "unsolicited"));
-  EXPECT_TRUE(has_code(f.rec.frames[2], "repeated"));
-  EXPECT_FALSE(has_code(f.rec.frames[1], "repeated"));
-  EXPECT_TRUE(has_code(f.rec.frames[3], "echo-differs"));
-  // newest first: the odd echo answers the retry (frame 3), the last reply
+  ASSERT_EQ(f.rec.frames.size(), 7u);
+  EXPECT_EQ(f.rec.frames[1].reply_to, 1u);
+  EXPECT_TRUE(has_code(f.rec.frames[2], "unsolicited"));
+  EXPECT_TRUE(has_code(f.rec.frames[4], "repeated"));
+  EXPECT_FALSE(has_code(f.rec.frames[3], "repeated"));
+  EXPECT_TRUE(has_code(f.rec.frames[5], "echo-differs"));
+  // newest first: the odd echo answers the retry (frame 5), the last reply
   // the first request
+  EXPECT_EQ(f.rec.frames[5].reply_to, 5u);
+  EXPECT_EQ(f.rec.frames[6].reply_to, 4u);
+}
+
+// A capture started mid-session: the replies before the conversation's
+// first request may answer requests sent before it began, so they are not
+// unsolicited (ArduPilot's Topotek driver sends LAT/LON/ALT every 100 ms;
+// an outside judge's capture cut there had three such warnings). Once a
+// request was seen, a reply nobody asked for is.
+TEST(Pairing, RepliesBeforeTheFirstRequestAreNotUnsolicited) {
+  Fixture f;
+  f.down(0, top::with_checksum("#TPGU2wPTZ05"));  // its request is before the capture
+  f.down(2, top::with_checksum("#TPDU2rVER0101"));
+  f.up(10, top::with_checksum("#TPUG2wPTZ05"));
+  f.down(12, top::with_checksum("#TPGU2wPTZ05"));  // answers frame 3
+  f.down(20, top::with_checksum("#TPGU2wPTZ05"));  // nobody asked
+  f.a->finish();
+  ASSERT_EQ(f.rec.frames.size(), 5u);
+  EXPECT_FALSE(has_code(f.rec.frames[0], "unsolicited"));
+  EXPECT_FALSE(has_code(f.rec.frames[1], "unsolicited"));
   EXPECT_EQ(f.rec.frames[3].reply_to, 3u);
-  EXPECT_EQ(f.rec.frames[4].reply_to, 2u);
+  EXPECT_TRUE(has_code(f.rec.frames[4], "unsolicited"));
+  EXPECT_EQ(f.a->stats().unsolicited, 1u);
 }
 
 // Pending requests are counted per identifier and direction in 64 hashed
