@@ -61,6 +61,31 @@ void Dissector::bad(std::int64_t ts, std::uint64_t record, std::size_t off, std:
   a_.source_note(ts, ACode::bad_packet, std::move(msg), record, off);
 }
 
+bool Dissector::duplicate(std::int64_t ts, std::uint16_t id, std::string_view payload) noexcept {
+  Seen now;
+  now.ts = ts;
+  now.id = id;
+  now.len = static_cast<std::uint32_t>(payload.size());
+  std::memcpy(&now.saddr, src_.addr.data(), 4);
+  std::memcpy(&now.daddr, dst_.addr.data(), 4);
+  now.ports = std::uint32_t{src_.port} << 16 | dst_.port;
+  // the first and last eight bytes (a TOP datagram has at least ten)
+  const std::size_t k = std::min<std::size_t>(payload.size(), 8);
+  std::memcpy(&now.head, payload.data(), k);
+  std::memcpy(&now.tail, payload.data() + payload.size() - k, k);
+  Seen& s = seen_[id & 0xFF];
+  const bool same = s.ts != kNoTime && ts != kNoTime && ts >= s.ts && ts - s.ts <= kDuplicateUs &&
+                    s.id == id && s.saddr == now.saddr && s.daddr == now.daddr &&
+                    s.ports == now.ports && s.len == now.len && s.head == now.head &&
+                    s.tail == now.tail;
+  if (same) {
+    dup_gap_us_ = ts - s.ts;
+    return true;  // the original stays the one remembered
+  }
+  s = now;
+  return false;
+}
+
 bool Dissector::packet(int dlt, std::int64_t ts, const std::uint8_t* p, std::uint32_t caplen,
                        std::uint32_t len, std::uint64_t record) {
   if (caplen < len)
@@ -130,6 +155,7 @@ bool Dissector::ip(std::int64_t ts, const std::uint8_t* p, std::size_t n, std::s
   Endpoint& src = src_;
   Endpoint& dst = dst_;
   std::uint8_t proto = 0;
+  std::uint16_t ip_id = 0;  // IPv4's identification (0: none, or IPv6)
   std::size_t l4 = 0, end = n;
   if (n <= off) return bad(ts, record, off, "IP header missing"), false;
   unsigned version = p[off] >> 4;
@@ -141,6 +167,7 @@ bool Dissector::ip(std::int64_t ts, const std::uint8_t* p, std::size_t n, std::s
     if (total < ihl)
       return bad(ts, record, off + 2, "IPv4 total length below header length"), false;
     end = std::min(n, off + total);
+    ip_id = be16(p + off + 4);
     std::uint16_t frag = be16(p + off + 6);
     proto = p[off + 9];
     if ((frag & 0x3FFF) != 0 && (proto == kIpProtoUdp || proto == kIpProtoTcp))
@@ -184,6 +211,14 @@ bool Dissector::ip(std::int64_t ts, const std::uint8_t* p, std::size_t n, std::s
     std::size_t pend = ulen >= 8 ? std::min(end, l4 + ulen) : end;
     std::string_view payload(reinterpret_cast<const char*>(p + l4 + 8), pend - l4 - 8);
     if (!udp_port_[src.port] && !udp_port_[dst.port] && !looks_like_top(payload)) return false;
+    if (ip_id != 0 && duplicate(ts, ip_id, payload)) {
+      a_.source_note(ts, ACode::duplicate_datagram,
+                     "UDP datagram recorded twice: the same IPv4 identification " +
+                         std::to_string(ip_id) + ", addresses, ports and payload as one " +
+                         std::to_string(dup_gap_us_) + " us before; the copy is skipped",
+                     record, l4 + 8);
+      return true;
+    }
     a_.datagram(ts, src, dst, payload, record, static_cast<std::uint32_t>(l4 + 8));
     return true;
   }

