@@ -71,6 +71,13 @@ void Analyzer::Impl::learn_device(Conversation& c, int d, const top::Frame& f,
 
 void Analyzer::Impl::unanswered(Conversation& c, const Pending& p, bool at_end) {
   if (one_way(c)) return;  // the answers are on a line nobody recorded
+  // A client stream's frame (FAI) waited only for the ERE that would refuse
+  // it: a device that took it without a word did as the document says
+  // (SkyDroid 3.3.6.2: FAI gets no reply), also before its enable was seen.
+  if (p.control == 'w')
+    if (const top::CommandSpec* cmd = top::find_command(c.det.current(), {p.ident, 3});
+        cmd && top::write_reply(*cmd) == top::WriteReply::nothing)
+      return;
   // A copy of a request that was answered (senders that send each frame
   // several times) is not unanswered: the device answered one of them.
   if (c.pairing.copy_of_answered(p, A.opts_.repeat_window_us)) return;

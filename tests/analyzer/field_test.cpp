@@ -240,6 +240,26 @@ TEST(Field, ClientStreamFramesExpectNoAnswer) {
   EXPECT_FALSE(f.rec.has_note(ACode::unanswered));
 }
 
+// ArduPilot's SkyDroid driver sends FAI with 14 data chars (PR #34155), a
+// length SkyDroid 3.3.6.2 does not give, so topdump waits for the ERE that
+// would refuse each (Pairing.EreAnswersTheRejectedClientStreamFrame). A
+// device that takes them without a word, as the document says it answers
+// FAI, leaves nothing unanswered, before the enable was seen too: an
+// outside judge's healthy C13 session had 1498 warnings.
+TEST(Field, RefusableClientStreamFramesTakenSilentlyAreNotUnanswered) {
+  Fixture f;
+  const std::string fai = top::with_checksum("#TPUGEwFAIEC7800000000AB");
+  for (int i = 0; i < 5; ++i) f.up(i * 50, fai);  // before the enable was seen
+  f.echoed(300, 3, "#TPUG2wFAE01");
+  for (int i = 0; i < 20; ++i) f.up(400 + i * 50, fai);
+  f.echoed(2000, 4, "#TPUD2rVER00");  // the device answers what asks for an answer
+  f.up(6000, top::with_checksum("#TPUD2rVER00"));
+  f.a->finish();
+  EXPECT_EQ(f.a->stats().unanswered, 1u);  // the last VER only
+  ASSERT_EQ(f.rec.count_note(ACode::unanswered), 1u);
+  EXPECT_EQ(f.rec.notes[0].note.frame, 30u);
+}
+
 // A serial line recorded in one direction (a raw dump, one tap) shows
 // replies without their requests and requests without their replies: none
 // is unsolicited or unanswered. Once the other direction carries bytes,
