@@ -121,7 +121,34 @@ struct PtzAction {
 };
 // What PTZ code `code` does. C13 codes 0E-13 (pitch, yaw and roll trim, +
 // then -) turn an axis only where field evidence says the model takes them
-// (field_supported in top/device.hpp); the caller asks that.
-PtzAction ptz_action(std::int64_t code) noexcept;
+// (field_supported in top/device.hpp); the caller asks that. Inline: the
+// session asks it for every PTZ write.
+constexpr PtzAction ptz_action(std::int64_t code) noexcept {
+  switch (code) {
+    case 0x00:
+      return {PtzMove::stop, Axis::yaw, 0};
+    case 0x01:  // up
+      return {PtzMove::turn, Axis::pitch, 1};
+    case 0x02:  // down
+      return {PtzMove::turn, Axis::pitch, -1};
+    case 0x03:  // left
+      return {PtzMove::turn, Axis::yaw, -1};
+    case 0x04:  // right
+      return {PtzMove::turn, Axis::yaw, 1};
+    case 0x05:
+      return {PtzMove::centre, Axis::yaw, 0};
+    case 0x0E:  // C13 field evidence: 0E/0F pitch +/-, 10/11 yaw, 12/13 roll
+    case 0x0F:
+    case 0x10:
+    case 0x11:
+    case 0x12:
+    case 0x13: {
+      constexpr Axis kTrim[] = {Axis::pitch, Axis::yaw, Axis::roll};
+      return {PtzMove::turn, kTrim[(code - 0x0E) / 2], static_cast<std::int8_t>(code % 2 ? -1 : 1)};
+    }
+    default:
+      return {};
+  }
+}
 
 }  // namespace top
