@@ -19,3 +19,29 @@ if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
     "$<$<NOT:$<CONFIG:Debug>>:-falign-functions=1;-falign-jumps=1;-falign-loops=1;-falign-labels=1>"
     "$<$<NOT:$<CONFIG:Debug>>:-fno-plt>")
 endif()
+
+# Link-time optimisation of topdump (TOPKIT_LTO, on in the default preset;
+# GCC, optimised builds): its library sources are compiled once, into fat
+# objects (GIMPLE and machine code), so only topdump's own link reads the
+# GIMPLE and optimises across the rooms (inlining the protocol's lookups
+# into the session's per-frame path), while tests and tools link the
+# machine code as before. With PGO, `stats` of 1M frames went 184 -> 172 ms
+# and `read --json` 733 -> 627 ms (medians of interleaved runs, 2026-11-27).
+# GCC 12 warns at that link of string concatenations it inlines
+# (-Wstringop-overflow, a false positive of std::string's operator+).
+option(TOPKIT_LTO "Link topdump with link-time optimisation (GCC)" OFF)
+set(TOPKIT_LTO_ACTIVE OFF)
+if(TOPKIT_LTO AND CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND NOT CMAKE_BUILD_TYPE STREQUAL "Debug")
+  set(TOPKIT_LTO_ACTIVE ON)
+endif()
+# topkit_lto(target): a library topdump links, or topdump itself.
+function(topkit_lto target)
+  if(NOT TOPKIT_LTO_ACTIVE)
+    return()
+  endif()
+  target_compile_options(${target} PRIVATE -flto=auto -ffat-lto-objects)
+  get_target_property(type ${target} TYPE)
+  if(type STREQUAL "EXECUTABLE")
+    target_link_options(${target} PRIVATE -flto=auto -Wno-stringop-overflow)
+  endif()
+endfunction()
