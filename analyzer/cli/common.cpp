@@ -260,8 +260,11 @@ bool setup(const Common& o, Setup& s) {
 }
 
 // A source finding on stderr, naming the file once: "topdump: FILE: !! ...",
-// the message without its own "FILE: ".
+// the message without its own "FILE: ". Only a problem of the input (a
+// warning or an error): information about it (a packet the capture
+// recorded twice) stays in the output.
 void source_note_to_stderr(const std::string& file, const NoteEvent& e) {
+  if (e.note.severity == top::Severity::info) return;
   std::string line = note_line(e);
   if (file.empty()) {  // two inputs: the message names its own
     std::fprintf(stderr, "topdump: %s\n", line.c_str());
