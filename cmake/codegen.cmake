@@ -63,7 +63,7 @@ option(TOPKIT_QUICK_FRONTENDS
 function(topkit_quick_compile target)
   target_compile_options(${target} PRIVATE -Og)
 endfunction()
-function(topkit_frontend target)
+function(topkit_quick_frontend target)
   if(TOPKIT_QUICK_FRONTENDS)
     topkit_quick_compile(${target})
   endif()
