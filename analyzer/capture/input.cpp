@@ -3,6 +3,7 @@
 #include "capture/input.hpp"
 
 #include <fcntl.h>
+#include <stdio_ext.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -50,6 +51,15 @@ int pipe_close(void* c) {
 // topdump stats; 64 KiB to 1 MiB measure alike).
 constexpr std::size_t kReadBuffer = std::size_t{1} << 16;
 
+// The input's FILE reads through our buffer, and without stdio's lock:
+// only this thread reads it, and libpcap's two freads per record each took
+// the lock (a locked cmpxchg, a quarter of fread's time; topdump stats of
+// 1M frames -1%).
+void own_reads(Input& in) {
+  std::setvbuf(in.file, in.buffer.get(), _IOFBF, kReadBuffer);
+  ::__fsetlocking(in.file, FSETLOCKING_BYCALLER);
+}
+
 }  // namespace
 
 bool open_input(const std::string& path, Input& in, std::string& error) {
@@ -76,7 +86,7 @@ bool open_input(const std::string& path, Input& in, std::string& error) {
       ::close(fd);
       return false;
     }
-    std::setvbuf(in.file, in.buffer.get(), _IOFBF, kReadBuffer);
+    own_reads(in);
     in.head.resize(kInputHead);
     in.head.resize(std::fread(in.head.data(), 1, kInputHead, in.file));
     if (std::ferror(in.file) || std::fseek(in.file, 0, SEEK_SET) != 0) {
@@ -109,7 +119,7 @@ bool open_input(const std::string& path, Input& in, std::string& error) {
     pipe_close(cookie);
     return false;
   }
-  std::setvbuf(in.file, in.buffer.get(), _IOFBF, kReadBuffer);
+  own_reads(in);
   return true;
 }
 
@@ -130,8 +140,9 @@ bool make_seekable(Input& in, std::string& error) {
     }
   }
   const bool bad = std::ferror(in.file) != 0;
-  std::fclose(in.file);
+  std::fclose(in.file);  // our buffer is free again
   in.file = t;
+  own_reads(in);
   if (bad) {
     error = in.name + ": read error: " + std::strerror(errno);
     return false;
