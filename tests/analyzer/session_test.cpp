@@ -211,6 +211,39 @@ TEST(Stats, WithoutDetailEqualsWithDetail) {
   }
 }
 
+// Without detail (topdump stats) the datagram path writes no finding's
+// text, which stats never shows: a frame with a bad checksum and CR/LF
+// after it keeps its codes, with empty messages; with detail they have
+// their text. Building those strings was 2% of stats on 1M frames.
+TEST(Stats, WithoutDetailTheFramesFindingsCarryNoText) {
+  struct Texts : Sink {
+    std::vector<std::pair<std::string, std::string>> seen;  // code, message
+    void frame(const FrameEvent& e) override {
+      for (const top::Finding& x : e.entry->frame->findings)
+        seen.emplace_back(top::to_string(x.code), x.message);
+    }
+  };
+  std::string bad = top::with_checksum("#TPUG2wPTZ05");
+  bad.back() = bad.back() == '0' ? '1' : '0';
+  const std::string payload = bad + "\r\n" + top::with_checksum("#TPUG2wPTZ00") + "\r\n";
+  std::vector<std::string> codes[2];
+  for (int detail = 0; detail < 2; ++detail) {
+    SCOPED_TRACE(detail);
+    Texts t;
+    AnalyzerOptions o;
+    o.detail = detail == 1;
+    Analyzer a(o, t);
+    a.datagram(T, ep4(1, 40000), ep4(2, 5000), payload, 1, 42);
+    a.finish();
+    ASSERT_GE(t.seen.size(), 3u);  // a checksum, and CR/LF after each frame
+    for (const auto& [code, message] : t.seen) {
+      codes[detail].push_back(code);
+      EXPECT_EQ(message.empty(), detail == 0) << code << ": " << message;
+    }
+  }
+  EXPECT_EQ(codes[0], codes[1]);
+}
+
 // The pending-request ring against a std::deque, through random pushes,
 // pops and erasures anywhere, across growth and wrap-around; a slot handed
 // back by push_back is reused, so the test assigns all of it as the
