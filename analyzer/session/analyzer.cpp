@@ -227,7 +227,9 @@ std::uint64_t GarbageEvent::conv_id() const noexcept { return conv ? conv->id : 
 std::uint64_t NoteEvent::conv_id() const noexcept { return conv ? conv->id : 0; }
 
 Analyzer::Analyzer(AnalyzerOptions opts, Sink& sink)
-    : impl_(std::make_unique<Impl>(*this)), opts_(opts), sink_(sink) {}
+    : impl_(std::make_unique<Impl>(*this)), opts_(opts), sink_(sink) {
+  impl_->parse.messages = opts_.detail;
+}
 Analyzer::~Analyzer() = default;
 
 const Stats& Analyzer::stats() const {
@@ -255,12 +257,8 @@ void Analyzer::datagram(std::int64_t ts, const Endpoint& src, const Endpoint& ds
   std::size_t p = 0;
   std::uint32_t index = 0;
   top::ParseResult& r = impl_->scratch;
-  // Without detail (topdump stats) the frames' findings carry no text: a
-  // bad checksum or a CR/LF no longer builds a message nobody reads.
-  top::ParseOptions po;
-  po.messages = opts_.detail;
   while (p < payload.size() && payload[p] == '#') {
-    top::parse_frame(payload.substr(p), true, po, r);
+    top::parse_frame(payload.substr(p), true, impl_->parse, r);
     if (r.status != top::ParseStatus::frame) break;
     if (!r.frame.checksum_ok && std::memchr(payload.data() + p + 1, '#', r.consumed - 1)) break;
     std::size_t q = p + r.consumed;
@@ -268,7 +266,8 @@ void Analyzer::datagram(std::int64_t ts, const Endpoint& src, const Endpoint& ds
     // garbage, which the decoder below yields.
     const std::size_t q_max = std::min(payload.size(), q + top::kMaxTerminator);
     while (q < q_max && (payload[q] == '\r' || payload[q] == '\n')) ++q;
-    if (q != p + r.consumed) top::note_terminator(r.frame, q - p - r.consumed, opts_.detail);
+    if (q != p + r.consumed)
+      top::note_terminator(r.frame, q - p - r.consumed, impl_->parse.messages);
     impl_->frame(c, d, r.frame, Position{record, index++, offset + p}, ts, p);
     p = q;
   }

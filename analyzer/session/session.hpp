@@ -167,6 +167,9 @@ struct Analyzer::Impl {
   DecodedEntry current;
   top::DecodeCache decode_cache;  // used without detail (topdump stats)
   top::ParseResult scratch;       // the one-frame datagram path parses into this
+  // How the datagram path parses: without detail (topdump stats) the
+  // frames' findings carry no text, which stats never shows.
+  top::ParseOptions parse;
 
   std::array<std::uint64_t, top::finding_code_count> codes{};
   std::array<std::uint64_t, acode_count> acodes{};
