@@ -57,7 +57,7 @@ constexpr std::size_t kReadBuffer = std::size_t{1} << 18;
 // The input's FILE reads through our buffer, and without stdio's lock:
 // only this thread reads it, and libpcap's two freads per record each took
 // the lock (a locked cmpxchg, a quarter of fread's time; topdump stats of
-// 1M frames -1%).
+// 1M frames -1.6%, median of 11 interleaved rounds).
 void own_reads(Input& in) {
   std::setvbuf(in.file, in.buffer.get(), _IOFBF, kReadBuffer);
   ::__fsetlocking(in.file, FSETLOCKING_BYCALLER);
