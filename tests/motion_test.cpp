@@ -3,6 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <vector>
+
 #include "top/top.hpp"
 
 using namespace top;
@@ -159,4 +164,26 @@ TEST(Motion, DecodeGivesTheCommandsRow) {
         EXPECT_EQ(d.motion == nullptr, std::string_view(ident) == "VER") << ident;
       }
     }
+}
+
+// short_way is std::remainder(d, 360.0), bit for bit: on the ties (odd
+// multiples of 180, which go to the even multiple), next to them, and on
+// a spread of magnitudes up to a million turns.
+TEST(Motion, ShortWayIsTheRemainderBy360) {
+  std::vector<double> xs = {
+      0.0,     -0.0,  180.0,  -180.0, 540.0,  -540.0, 900.0, 359.99,
+      -359.99, 360.0, -360.0, 720.0,  -720.0, 1e-300, 0.01,  179.99999999999997};
+  for (int k = -2000; k <= 2000; ++k) {
+    const double tie = 180.0 + 360.0 * k;
+    xs.insert(xs.end(), {tie, std::nextafter(tie, 1e300), std::nextafter(tie, -1e300)});
+  }
+  std::mt19937_64 rng(7);
+  for (const double scale : {1.0, 360.0, 1e4, 1e6, 3.6e8}) {
+    std::uniform_real_distribution<double> u(-scale, scale);
+    for (int i = 0; i < 20000; ++i) xs.push_back(u(rng));
+  }
+  for (const double x : xs) {
+    const double want = std::remainder(x, 360.0), got = short_way(x);
+    ASSERT_EQ(std::memcmp(&want, &got, sizeof want), 0) << std::hexfloat << x << " " << got;
+  }
 }

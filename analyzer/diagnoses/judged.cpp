@@ -7,7 +7,7 @@ namespace topdump::diag {
 
 double angle_delta(int axis, double a, double b) noexcept {
   double d = b - a;
-  if (axis == static_cast<int>(top::Axis::yaw)) d = std::remainder(d, 360.0);
+  if (axis == static_cast<int>(top::Axis::yaw)) d = top::short_way(d);
   return d;
 }
 

@@ -42,8 +42,8 @@ bool Snap::angle(int axis, double& out) const noexcept {
 bool Snap::turned(const Snap& a, double ya, const Snap& b, double yb, double& out) noexcept {
   if (a.u.epoch == 0 || a.u.epoch != b.u.epoch) return false;
   // each reading is within a mark's step of its mark: the short way there
-  out = (b.u.turned + std::remainder(yb - double{b.u.yaw}, 360.0)) -
-        (a.u.turned + std::remainder(ya - double{a.u.yaw}, 360.0));
+  out = (b.u.turned + top::short_way(yb - double{b.u.yaw})) -
+        (a.u.turned + top::short_way(ya - double{a.u.yaw}));
   return true;
 }
 
@@ -57,7 +57,7 @@ void MotionTrack::mark(std::size_t slot) {
     return;
   }
   if (u.epoch != 0 && before.spec == m.spec) {
-    u.turned = static_cast<float>(u.turned + std::remainder(y - double{u.yaw}, 360.0));
+    u.turned = static_cast<float>(u.turned + top::short_way(y - double{u.yaw}));
   } else {
     u.epoch = ++epochs_;
     u.turned = static_cast<float>(y);
@@ -131,7 +131,10 @@ void MotionTrack::on_axis(int axis, int sign, const top::MotionSpec& m, const to
   if (!w.cmd.take(m, form, data, ts)) return;
   w.acked = false;
   w.ref = ref_for(m);
-  w.start = w.at_last = att_[static_cast<std::size_t>(w.ref)];
+  w.start = att_[static_cast<std::size_t>(w.ref)];
+  // where the attitude was at the last command: rates and PTZ only
+  // (axis-left-moving; an angle window's is never read)
+  if (m.kind != top::MotionKind::angle) w.at_last = w.start;
   w.open_ts = w.last_ts = ts;
   w.first_n = w.last_n = n;
   w.commands = 1;

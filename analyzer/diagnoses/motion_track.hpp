@@ -134,7 +134,9 @@ class MotionTrack {
   void attitude(const top::MotionSpec& m, const top::FormSpec* form, std::string_view data,
                 std::int64_t ts);
   // A new mark of the attitude `slot`: its yaw read, the unwrapping on.
-  void mark(std::size_t slot);
+  // (cold, as judge: about twice a second, not per frame; compiled for
+  // size and kept out of the per-frame code, -0.5% on `stats`)
+  [[gnu::cold]] void mark(std::size_t slot);
   // Judges the window `w` if it can be (its command and the attitude read
   // only then); the caller clears it.
   void close(const Window& w) {
@@ -146,7 +148,7 @@ class MotionTrack {
     return w.cmd.spec && w.start.set() && end.spec == w.start.spec && end.ts >= w.open_ts &&
            end.ts - w.start.ts >= kMinWindow && w.open_ts - w.start.ts <= kStaleUs;
   }
-  void judge(const Window& w);
+  [[gnu::cold]] void judge(const Window& w);
   // refresh-gap: whether the rate window `w` went unrefreshed until `ts`.
   void check_refresh(const Window& w, std::int64_t ts);
   int ref_for(const top::MotionSpec& m) const noexcept;

@@ -229,7 +229,7 @@ bool slope(const Series& s, std::int64_t t0, std::int64_t t1, bool wraps, double
   for (std::size_t i = i0; i < i1; ++i) {
     if (i > i0) {
       const double d = double{(*s.v)[i]} - (*s.v)[i - 1];
-      y += wraps ? std::remainder(d, 360.0) : d;
+      y += wraps ? top::short_way(d) : d;
     }
     const double x = (static_cast<double>((*s.t)[i]) - tb) / 1e6;
     sx += x, sy += y, sxx += x * x, sxy += x * y;

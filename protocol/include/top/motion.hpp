@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <string_view>
@@ -32,6 +33,22 @@ enum class Reference : std::uint8_t {
   body,  // relative to the aircraft (magnetic encoder: GA* on Topotek, all SkyDroid)
   earth  // in the earth frame (gyroscope: Topotek GI*, 4.3.2)
 };
+
+// The turn from one yaw to another `d` degrees on, the short way round:
+// std::remainder(d, 360.0), d less the nearest multiple of 360 (a tie to
+// the even one), in [-180, 180]. Inline: the motion diagnoses take it as
+// a capture streams by, and libm's remainder() was a call whose code
+// missed the instruction cache each time (tests/motion_test.cpp
+// checks it against std::remainder). Adding and taking back 1.5 * 2^52
+// rounds d / 360 to an integer, ties to even (IEEE arithmetic: the build
+// never uses -ffast-math), and d less a multiple of 360 within 180 of it
+// is exact.
+inline double short_way(double d) noexcept {
+  constexpr double kRound = 0x1.8p52;
+  const double n = (d / 360.0 + kRound) - kRound;
+  const double r = d - n * 360.0;
+  return r == 0 ? std::copysign(0.0, d) : r;  // a zero takes d's sign, as remainder's
+}
 
 // One axis of a motion command: the field that carries its value and, for
 // angles, the field of the speed to reach it.
