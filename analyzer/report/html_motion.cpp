@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <map>
 
+#include "analysis.hpp"
 #include "capture/sources.hpp"
 #include "html_page.hpp"
 #include "report/report.hpp"
@@ -68,19 +69,31 @@ void Page::motion() {
         it->second = {col, p.markers.size()};
         p.markers.push_back(make());
       };
+      std::string_view signed_for;  // the identifier `sign` is for (the same all along, mostly)
+      int sign = 1;
       for (const auto& a : c.angles) {
         if (a.axis != axis) continue;
+        // up and right positive, as the attitude: the target the response
+        // analysis compares (a Topotek pitch of 30 on the wire is 30 down)
+        if (a.ident != signed_for) {
+          bool ambiguous = false;
+          sign = command_sign(c.dialect, a.ident, axis, series_for(c, a.ident, axis), r.model,
+                              ambiguous);
+          signed_for = a.ident;
+        }
+        const float up = sign < 0 ? -a.target : a.target;
         cmd.t.push_back(a.t);
-        cmd.v.push_back(static_cast<float>(a.target));
+        cmd.v.push_back(up);
         mark(a.t, 'd', [&] {
           return svg::Marker{a.t,
-                             a.target,
+                             up,
                              false,
                              'd',
                              kCmdColor[axis],
-                             std::string(a.ident) + " " + fmt("%.2f", a.target) + " deg, speed " +
-                                 fmt("%.1f", a.speed) + " deg/s (frame " + std::to_string(a.frame) +
-                                 ", " + clock_text(a.t) + ")"};
+                             std::string(a.ident) + " " + fmt("%.2f", a.target) + " deg" +
+                                 (up != a.target ? " (" + fmt("%.2f", up) + " as plotted)" : "") +
+                                 ", speed " + fmt("%.1f", a.speed) + " deg/s (frame " +
+                                 std::to_string(a.frame) + ", " + clock_text(a.t) + ")"};
         });
       }
       for (const auto& x : c.rates) {
@@ -125,12 +138,15 @@ void Page::response() {
        fmt("%g", r.opts.tolerance_deg) +
        " deg of the target (clamped to the model's range) and stayed there until the next "
        "command on the axis (<code>--tolerance</code>); expected is the step over the "
-       "commanded speed.</p>";
+       "commanded speed. A target sent again (the same command, target and speed, nothing "
+       "else on the axis between) is one row, judged from its first frame: commands counts "
+       "them.</p>";
   if (r.angles.empty()) {
     o += "<p class=\"muted\">No angle command.</p>";
   } else {
     o += "<table><tr><th>frame</th><th>time</th><th>conv</th><th>command</th><th>axis</th>"
-         "<th>target</th><th>from</th><th>speed</th><th>expected</th><th>settling</th>"
+         "<th>commands</th><th>target</th><th>from</th><th>speed</th><th>expected</"
+         "th><th>settling</th>"
          "<th>overshoot</th><th>steady-state error</th><th>flags</th></tr>";
     for (std::size_t i = 0; i < r.angles.size() && i < kMaxRows; ++i) {
       const AngleResult& a = r.angles[i];
@@ -152,8 +168,8 @@ void Page::response() {
       flag(a.still_moving, "still on its way at the capture's end", true);
       o += "<tr>" + tdn(frame_ref(a.cmd->frame)) + td(clock_text(a.cmd->t)) +
            tdn(std::to_string(a.conv)) + td(std::string(a.cmd->ident)) +
-           td(axis_name(a.cmd->axis)) + tdn(fmt("%.2f", a.cmd->target)) +
-           tdn(a.no_attitude ? "-" : fmt("%.2f", a.start)) +
+           td(axis_name(a.cmd->axis)) + tdn(std::to_string(a.cmd->commands)) +
+           tdn(fmt("%.2f", a.cmd->target)) + tdn(a.no_attitude ? "-" : fmt("%.2f", a.start)) +
            tdn(a.cmd->speed > 0 ? fmt("%.1f", a.cmd->speed) : "-") +
            tdn(a.expected_s >= 0 ? fmt("%.3f s", a.expected_s) : "-") +
            tdn(a.settling_s >= 0 ? fmt("%.3f s", a.settling_s) : "-") +

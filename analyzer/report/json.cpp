@@ -124,6 +124,7 @@ void Writer::angles() {
     time("time", a.cmd->t);
     text("ident", a.cmd->ident);
     text("axis", axis_name(a.cmd->axis));
+    u("commands", a.cmd->commands);
     num("target_deg", a.cmd->target);
     j.key("speed_deg_s");
     if (a.cmd->speed > 0)

@@ -29,7 +29,8 @@ void ReportSink::motion(const FrameEvent& e, ConvData& c) {
     const bool field = top::field_convention(*m);
     for (const top::MotionAxis& x : m->fields()) {
       const auto i = static_cast<std::size_t>(x.axis);
-      a.v[i].push_back(static_cast<float>(r.value[i] * x.sign_in(field)));
+      // (+ 0: a zero turned by the sign is 0, not -0, in the tables)
+      a.v[i].push_back(static_cast<float>(r.value[i] * x.sign_in(field)) + 0.0f);
     }
     if (e.reply_to == 0) a.push_t.push_back(e.ts);
     return;
@@ -67,8 +68,18 @@ void ReportSink::motion(const FrameEvent& e, ConvData& c) {
                        -1};
         if (v->spec)
           a.min = static_cast<float>(v->spec->min), a.max = static_cast<float>(v->spec->max);
+        std::ptrdiff_t& held = c.held[axis];
+        if (held >= 0) {
+          AngleCommand& h = c.angles[static_cast<std::size_t>(held)];
+          if (h.ident == a.ident && h.target == a.target && h.speed == a.speed) {
+            ++h.commands;  // a refresh of the target held
+            continue;
+          }
+        }
+        held = static_cast<std::ptrdiff_t>(c.angles.size());
         c.angles.push_back(a);
       } else {
+        c.held[axis] = -1;
         c.rates.push_back({e.n, e.ts, cid, ax, static_cast<std::int32_t>(v->integer),
                            static_cast<float>(v->value),
                            v->spec ? static_cast<float>(v->spec->scale) : 1.f});

@@ -56,6 +56,10 @@ struct AngleCommand {
   float target = 0;         // deg, as commanded
   float speed = 0;          // deg/s from the command (0: none given)
   float min = 0, max = -1;  // the catalog's range for the dialect
+  // This command and its refreshes: the same identifier, target and speed
+  // again on the axis, no other command between (a driver resending its
+  // target at 10 Hz holds one target, judged once from the first).
+  std::uint32_t commands = 1;
 };
 
 struct RateCommand {
@@ -90,6 +94,9 @@ struct ConvData {
   // deques: no copy as they grow, and stable addresses (AngleResult::cmd)
   std::deque<AngleCommand> angles;
   std::deque<RateCommand> rates;
+  // Per axis, the angle command a refresh adds to (angles' index), or -1:
+  // none, or another command came since.
+  std::array<std::ptrdiff_t, kAxes> held{-1, -1, -1};
   std::deque<Mark> marks;
 };
 

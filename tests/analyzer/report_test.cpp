@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -288,6 +289,45 @@ std::string bundled(const std::string& name) {
 // ArduPilot's convention (GIP down positive) against the GIA attitude the
 // field gives: every GIP is compared with GIA in that convention (the
 // report looked for GAC or GIC only: "no attitude" on every command).
+// A driver holding one target resends it (ArduPilot's Topotek driver every
+// update): the refreshes are one row, judged from the first frame until
+// another command on the axis, not forty rows each superseded by the next.
+TEST(ReportMotion, ATargetSentAgainIsOneRowJudgedFromItsFirstFrame) {
+  const json r = report_json(bundled("diag-healthy-topotek.pcap"));
+  const json* last = nullptr;
+  int gip = 0;
+  for (const auto& a : r["angle_commands"]) {
+    if (last && (*last)["axis"] == a["axis"] && (*last)["conversation"] == a["conversation"]) {
+      EXPECT_FALSE((*last)["ident"] == a["ident"] && (*last)["target_deg"] == a["target_deg"] &&
+                   (*last)["speed_deg_s"] == a["speed_deg_s"])
+          << "a refresh as a row of its own: " << a.dump();
+    }
+    last = &a;
+    if (a["ident"] != "GIP") continue;
+    ++gip;
+    EXPECT_GT(a["commands"].get<int>(), 1) << a.dump();
+    EXPECT_FALSE(has_flag(a, "superseded")) << a.dump();
+    EXPECT_TRUE(a["settling_s"].is_number()) << a.dump();
+  }
+  EXPECT_EQ(gip, 1);
+}
+
+// The motion plot is up and right positive, as its caption says: a Topotek
+// pitch target of 30 on the wire (30 down) is drawn at -30, with the
+// attitude that reaches it, and a zero attitude reads 0.00, not -0.00.
+TEST(ReportMotion, ThePlotDrawsTheTargetUpPositive) {
+  int st = -1;
+  const std::string html =
+      run("'" + std::string(TOPKIT_BINARY_DIR) + "/analyzer/topdump' report '" +
+              bundled("diag-healthy-topotek.pcap") + "' -o - 2>/dev/null",
+          &st);
+  ASSERT_LE(st, 1);
+  EXPECT_NE(html.find("GIP 30.00 deg (-30.00 as plotted)"), std::string::npos);
+  const json r = report_json(bundled("diag-healthy-topotek.pcap"));
+  for (const auto& a : r["angle_commands"])
+    EXPECT_FALSE(std::signbit(a["start_deg"].get<double>())) << a.dump();
+}
+
 TEST(ReportMotion, TopotekAnglesAreComparedWithTheGiaAttitude) {
   const json r = report_json(bundled("diag-healthy-topotek.pcap"));
   int gip = 0;
