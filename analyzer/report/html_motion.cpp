@@ -145,9 +145,9 @@ void Page::response() {
     o += "<p class=\"muted\">No angle command.</p>";
   } else {
     o += "<table><tr><th>frame</th><th>time</th><th>conv</th><th>command</th><th>axis</th>"
-         "<th>commands</th><th>target</th><th>from</th><th>speed</th><th>expected</"
-         "th><th>settling</th>"
-         "<th>overshoot</th><th>steady-state error</th><th>flags</th></tr>";
+         "<th>commands</th><th>target</th><th>from</th><th>speed</th>"
+         "<th>expected</th><th>settling</th><th>overshoot</th><th>steady-state "
+         "error</th><th>flags</th></tr>";
     for (std::size_t i = 0; i < r.angles.size() && i < kMaxRows; ++i) {
       const AngleResult& a = r.angles[i];
       std::string flags;

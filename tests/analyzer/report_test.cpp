@@ -310,6 +310,9 @@ TEST(ReportMotion, ATargetSentAgainIsOneRowJudgedFromItsFirstFrame) {
     EXPECT_TRUE(a["settling_s"].is_number()) << a.dump();
   }
   EXPECT_EQ(gip, 1);
+  // nor an overview item counting refreshes as commands cut short
+  for (const auto& f : r["overview"]["what_went_wrong"])
+    EXPECT_EQ(f["text"].get<std::string>().find("superseded"), std::string::npos) << f.dump();
 }
 
 // The motion plot is up and right positive, as its caption says: a Topotek
