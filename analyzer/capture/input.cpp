@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <vector>
@@ -48,18 +49,29 @@ int pipe_close(void* c) {
 
 // Our own FILE buffer: libpcap reads each record with two freads, and
 // stdio's default 4 KiB buffer costs a read(2) every ~50 records (5% of
-// topdump stats). With PGO and LTO (2026-11-27, 1M frames, medians of
-// interleaved rounds against 64 KiB): 16 KiB +2.6%, 256 KiB -1.9% (fewer
-// system calls, whose kernel paths take the caches from the frames' code),
-// 1 MiB -1.6%.
-constexpr std::size_t kReadBuffer = std::size_t{1} << 18;
+// topdump stats). 64 KiB, from the heap: the kernel's copy of each read(2)
+// into it (_copy_to_iter) was 2.9% of `stats`' cpu-clock samples, against
+// 5.6% with 256 KiB (a separate mapping, its first byte 16 bytes into a
+// page); stats of 1M frames -3.0%, -1.4% and -3.0% in three runs of 15-21
+// interleaved rounds against 256 KiB (PGO+LTO, 2026-11-27). The 256 KiB
+// buffer measured -1.9% earlier that day in another build: one build
+// against another moves by a few percent whatever changed.
+constexpr std::size_t kReadBuffer = std::size_t{1} << 16;
+
+// The buffer's first byte on a cache line (it is allocated 64 bytes
+// larger): the kernel copied into a destination 16 bytes past a line ~70%
+// slower (cpu-clock samples of _copy_to_iter, the same binary, the buffer
+// at page offsets 16 and 64).
+char* line_start(char* p) noexcept {
+  return p + (-reinterpret_cast<std::uintptr_t>(p) & std::uintptr_t{63});
+}
 
 // The input's FILE reads through our buffer, and without stdio's lock:
 // only this thread reads it, and libpcap's two freads per record each took
 // the lock (a locked cmpxchg, a quarter of fread's time; topdump stats of
 // 1M frames -1.6%, median of 11 interleaved rounds).
 void own_reads(Input& in) {
-  std::setvbuf(in.file, in.buffer.get(), _IOFBF, kReadBuffer);
+  std::setvbuf(in.file, line_start(in.buffer.get()), _IOFBF, kReadBuffer);
   ::__fsetlocking(in.file, FSETLOCKING_BYCALLER);
 }
 
@@ -81,7 +93,7 @@ bool open_input(const std::string& path, Input& in, std::string& error) {
   }
   in.regular = S_ISREG(st.st_mode);
   in.size = in.regular ? static_cast<std::uint64_t>(st.st_size) : 0;
-  in.buffer.reset(new char[kReadBuffer]);
+  in.buffer.reset(new char[kReadBuffer + 64]);
   if (in.regular) {
     in.file = ::fdopen(fd, "rb");
     if (!in.file) {
