@@ -47,6 +47,11 @@ void ReportSink::motion(const FrameEvent& e, ConvData& c) {
   if (m->kind == top::MotionKind::ptz) {
     const auto* a = field(d, "action");
     c.marks.push_back({e.n, e.ts, cid, a ? a->enum_name : std::string_view()});
+    // a turn or a centring moves the gimbal: the same target sent after it
+    // is a command again, not a refresh of the one held
+    const top::PtzAction act = top::ptz_action(d.form ? top::ptz_code(*d.form, f.data()) : -1);
+    if (act.move == top::PtzMove::turn) c.held[static_cast<std::size_t>(act.axis)] = -1;
+    if (act.move == top::PtzMove::centre) c.held.fill(-1);
     return;
   }
   // axis by axis, yaw first, as the rates and angles are listed

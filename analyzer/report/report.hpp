@@ -57,7 +57,8 @@ struct AngleCommand {
   float speed = 0;          // deg/s from the command (0: none given)
   float min = 0, max = -1;  // the catalog's range for the dialect
   // This command and its refreshes: the same identifier, target and speed
-  // again on the axis, no other angle or rate command between (AP_Mount_Topotek
+  // again on the axis, nothing else moving it between (an angle, a rate, a
+  // PTZ turn or centring; AP_Mount_Topotek
   // resends its GAY/GIP/GIR targets at 10 Hz, docs/FIELD.md: one target held,
   // judged once from the first).
   std::uint32_t commands = 1;

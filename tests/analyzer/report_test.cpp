@@ -315,6 +315,38 @@ TEST(ReportMotion, ATargetSentAgainIsOneRowJudgedFromItsFirstFrame) {
     EXPECT_EQ(f["text"].get<std::string>().find("superseded"), std::string::npos) << f.dump();
 }
 
+// A PTZ turn between two equal targets moves the gimbal: the second target
+// is a command of its own, judged from its frame, not a refresh of the
+// first (the report counted it as one, whatever PTZ did between). A GSY
+// between two equal targets is the same case for a rate. Recorded from
+// topsim over UDP.
+TEST(ReportMotion, ATargetSentAgainAfterAPtzTurnIsACommandOfItsOwn) {
+  topsim::DeviceOptions d;
+  const std::string pcap = record("ptz_between", top::Model::c10, d, [](Client& c) {
+    c.send("#TPUG2wGAA32");  // attitude push at 50 Hz
+    std::this_thread::sleep_for(milliseconds(100));
+    c.send("#tpUG6wGAY03E832");  // yaw to 10.00 deg at 5.0 deg/s
+    std::this_thread::sleep_for(milliseconds(300));
+    c.send("#tpUG6wGAY03E832");  // the same target: a refresh
+    std::this_thread::sleep_for(milliseconds(300));
+    c.send("#TPUG2wPTZ03");  // turn left
+    std::this_thread::sleep_for(milliseconds(300));
+    c.send("#TPUG2wPTZ00");      // stop
+    c.send("#tpUG6wGAY03E832");  // the same target after the turn: a command
+    std::this_thread::sleep_for(milliseconds(300));
+    c.send("#TPUG2wGSY14");  // a yaw rate
+    std::this_thread::sleep_for(milliseconds(200));
+    c.send("#TPUG2wGSY00");
+    c.send("#tpUG6wGAY03E832");  // and after a rate: a command again
+    std::this_thread::sleep_for(milliseconds(300));
+  });
+  const json r = report_json(pcap);
+  std::vector<int> gay;
+  for (const auto& a : r["angle_commands"])
+    if (a["ident"] == "GAY") gay.push_back(a["commands"].get<int>());
+  EXPECT_EQ(gay, (std::vector<int>{2, 1, 1})) << r["angle_commands"].dump(2);
+}
+
 // The motion plot is up and right positive, as its caption says: a Topotek
 // pitch target of 30 on the wire (30 down) is drawn at -30, with the
 // attitude that reaches it, and a zero attitude reads 0.00, not -0.00.
