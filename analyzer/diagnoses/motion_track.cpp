@@ -197,6 +197,7 @@ void MotionTrack::judge(const Window& w) {
 }
 
 void MotionTrack::handover() {
+  tracking_ = true;
   for (Window& w : win_) {
     close(w);
     w.cmd.spec = nullptr;

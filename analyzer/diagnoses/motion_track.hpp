@@ -102,9 +102,12 @@ class MotionTrack {
     named_ = m;
   }
   // The camera's tracker drives the gimbal (top::reports_tracking): the
-  // open windows are judged up to now and closed, as the tracker's motion
-  // answers none of them.
+  // open windows are judged up to now and closed, and no command opens one
+  // until the tracker lets go (released(), top::releases_tracking): the
+  // tracker's motion answers no command, and ArduPilot's Topotek driver
+  // sends none while its camera tracks (AP_Mount_Topotek::update, PR #27568).
   void handover();
+  void released() noexcept { tracking_ = false; }
   // The conversation ended at `end_ts` (its last frame): judge the open
   // windows.
   void finish(std::int64_t end_ts);
@@ -169,6 +172,7 @@ class MotionTrack {
   LeftMovingWatch left_;
   RefreshWatch refresh_;
   std::int64_t refresh_limit_us_ = -1;  // -1: not looked up yet; 0: no limit applies
+  bool tracking_ = false;               // the camera's tracker drives the gimbal
 };
 
 // Inline: the session calls it for every motion frame, most of them
@@ -186,7 +190,7 @@ inline void MotionTrack::frame(const top::MotionSpec& m, const top::FormSpec* fo
   }
   if (control != 'w') return;
   if (request) {
-    command(m, form, data, n, ts, dir);
+    if (!tracking_) command(m, form, data, n, ts, dir);
     return;
   }
   // the device's echo acknowledges the window of its identifier: one on

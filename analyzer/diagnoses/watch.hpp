@@ -36,7 +36,10 @@ struct Watch {
     tracking.reply(d, ident, data, n, ts, dir);
     if (const top::Model m = top::model_named_by(d, ident, data); m != top::Model::unknown)
       motion.named(m);
-    if (top::reports_tracking(d, ident, control, data)) motion.handover();
+    if (top::reports_tracking(d, ident, control, data))
+      motion.handover();
+    else if (top::releases_tracking(d, ident, control, data))
+      motion.released();
   }
   // Any frame with a form: a date set on or reported by the camera.
   void dated_frame(const top::FormSpec* form, std::string_view ident, std::string_view data,

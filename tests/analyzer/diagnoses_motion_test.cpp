@@ -39,6 +39,9 @@ class MotionFeed {
   void attitude(std::int64_t ms, std::string_view id, const std::string& data) {
     frame(ms, id, data, 'r', false);
   }
+  void echo(std::int64_t ms, std::string_view id, const std::string& data) {
+    frame(ms, id, data, 'w', false);
+  }
   diag::MotionTrack track;
   std::vector<diag::Found> finish(std::int64_t ms) {
     track.finish(kT0 + ms * 1000);
@@ -177,10 +180,39 @@ TEST(ReportRate, YawSlopeAcrossTheWrap) {
   EXPECT_NEAR(rate, 10.0, 0.01);
 }
 
-// The speed-refresh limit is the model's: a device that names itself C13 in
-// its MOD reply (no speed-refresh trait) holds a rate without refreshes,
-// where a C12 or an unnamed SkyDroid stops after 1000 ms (an outside C13
-// capture was told "not refreshed ... the motors stop").
+// While the camera's tracker drives the gimbal, no command is judged: a yaw
+// target sent then sits still because the tracker holds the gimbal, not
+// because the firmware ignores it (ArduPilot's Topotek driver sends no target
+// while its camera tracks). A topsim recording whose client sent GAY and GIP
+// during tracking was command-ignored whenever two TRC polls were more than
+// a window apart. Once the tracker lets go (TRC state 0), a still gimbal is
+// command-ignored again.
+TEST(DiagnosesMotion, NoCommandIsJudgedWhileTheTrackerDrives) {
+  for (const bool released : {false, true}) {
+    MotionFeed f(top::Dialect::topotek);
+    double yaw = 0;
+    for (std::int64_t ms = 0; ms <= 16000; ms += 50) {
+      if (ms >= 500 && ms < 2500 && ms % 100 == 0) {  // YPR moves the gimbal right
+        f.command(ms, "YPR", "140000");
+        f.echo(ms, "YPR", "140000");
+      }
+      if (ms == 2500) f.command(ms, "YPR", "000000");
+      if (ms == 3000) f.track.handover();  // TRC state 2
+      if (released && ms == 9000) f.track.released();
+      if (ms >= 3500 && ms % 100 == 0) {  // GAY to 30 deg (then -30), never followed
+        const std::string target = (ms < 9000 ? hex4(30) : hex4(-30)) + "63";
+        f.command(ms, "GAY", target);
+        f.echo(ms, "GAY", target);
+      }
+      if (ms >= 500 && ms < 2500) yaw += 0.8;  // 16 deg/s
+      f.attitude(ms, "GIA", hex4(yaw) + "0000" + "0000");
+    }
+    const auto v = f.finish(16000);
+    EXPECT_EQ(has(v, top::Diagnosis::command_ignored), released) << released;
+    EXPECT_FALSE(has(v, top::Diagnosis::direction_inverted)) << released;
+  }
+}
+
 TEST(DiagnosesMotion, TrackingIsTrcStateTwo) {
   EXPECT_TRUE(top::reports_tracking(top::Dialect::topotek, "TRC", 'r', "02"));
   EXPECT_FALSE(top::reports_tracking(top::Dialect::topotek, "TRC", 'r', "01"));  // waiting
@@ -189,7 +221,22 @@ TEST(DiagnosesMotion, TrackingIsTrcStateTwo) {
   EXPECT_FALSE(top::reports_tracking(top::Dialect::topotek, "TRC", 'w', "02"));
   EXPECT_FALSE(top::reports_tracking(top::Dialect::topotek, "LOC", 'r', "02"));
   EXPECT_FALSE(top::reports_tracking(top::Dialect::skydroid, "TRC", 'r', "02"));
+  // and lets go on state 0, 1 or 4, or the echo of TRC 00 or 01; not on
+  // state 3 (temporarily lost) nor the echo of TRC 02 (prepare)
+  for (const char* d : {"00", "01", "04"})
+    EXPECT_TRUE(top::releases_tracking(top::Dialect::topotek, "TRC", 'r', d)) << d;
+  for (const char* d : {"00", "01"})
+    EXPECT_TRUE(top::releases_tracking(top::Dialect::topotek, "TRC", 'w', d)) << d;
+  EXPECT_FALSE(top::releases_tracking(top::Dialect::topotek, "TRC", 'r', "03"));
+  EXPECT_FALSE(top::releases_tracking(top::Dialect::topotek, "TRC", 'r', "02"));
+  EXPECT_FALSE(top::releases_tracking(top::Dialect::topotek, "TRC", 'w', "02"));
+  EXPECT_FALSE(top::releases_tracking(top::Dialect::skydroid, "TRC", 'r', "00"));
 }
+
+// The speed-refresh limit is the model's: a device that names itself C13 in
+// its MOD reply (no speed-refresh trait) holds a rate without refreshes,
+// where a C12 or an unnamed SkyDroid stops after 1000 ms (an outside C13
+// capture was told "not refreshed ... the motors stop").
 
 TEST(DiagnosesMotion, ModelNamedByTheDeviceChoosesTheRefreshLimit) {
   EXPECT_EQ(top::model_named_by(top::Dialect::skydroid, "MOD", "C13"), top::Model::c13);

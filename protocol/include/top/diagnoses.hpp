@@ -172,6 +172,18 @@ inline bool reports_tracking(Dialect d, std::string_view id, char control,
          id == "TRC";
 }
 
+// Whether a device's frame says its tracker lets the gimbal go: a TRC read
+// answered with state 0 (stopped), 1 (waiting) or 4 (this lens does not
+// track), or the echo of the write TRC 00 (exit) or 01 (cancel to waiting)
+// (docs/CATALOG.md, TRC; AP_Mount_Topotek cancels with them, PR #27568).
+// State 3 (temporarily lost) is not: the tracker may take the target again.
+inline bool releases_tracking(Dialect d, std::string_view id, char control,
+                              std::string_view data) noexcept {
+  if (d != Dialect::topotek || id != "TRC" || data.size() != 2) return false;
+  if (control == 'r') return data[1] == '0' || data[1] == '1' || data[1] == '4';
+  return control == 'w' && data[0] == '0' && (data[1] == '0' || data[1] == '1');
+}
+
 // Whether a device's reply refuses tracking: Topotek TRC with state '4'
 // (data char 1; ArduPilot PR #31768). State 3 (temporarily lost) is not a
 // refusal.
