@@ -49,7 +49,7 @@ void ReportSink::motion(const FrameEvent& e, ConvData& c) {
     c.marks.push_back({e.n, e.ts, cid, a ? a->enum_name : std::string_view()});
     // a turn or a centring moves the gimbal: the same target sent after it
     // is a command again, not a refresh of the one held
-    const top::PtzAction act = top::ptz_action(d.form ? top::ptz_code(*d.form, f.data()) : -1);
+    const top::PtzAction act = top::ptz_action(a && a->valid ? a->integer : -1);
     if (act.move == top::PtzMove::turn) c.held[static_cast<std::size_t>(act.axis)] = -1;
     if (act.move == top::PtzMove::centre) c.held.fill(-1);
     return;
