@@ -13,16 +13,14 @@
 
 namespace topdump::diag {
 
-struct LeftMoving {
-  const top::MotionSpec* spec = nullptr;
-  int axis = 0, sign = 0, dir = 0;
+struct LeftMoving : WindowOf {
+  int sign = 0;
   std::int64_t raw = 0;
   std::uint64_t last_n = 0;  // the last command
   std::int64_t last_ts = kNoTime;
   double at_last = 0, at_mark = 0,
          at_end = 0;  // the attitude then, a little before the end, at the end
   std::int64_t mark_ts = kNoTime, end_ts = kNoTime;
-  std::string_view attitude;
   double after = 0;    // yaw: turned from at_last to at_end across whole turns,
   bool whole = false;  // when known (Unwrap)
 };

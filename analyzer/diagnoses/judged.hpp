@@ -13,13 +13,19 @@
 
 namespace topdump::diag {
 
-struct Judged {
+// What every case of a window names: its command, its axis, where the
+// commands came from, and the attitude it was read against.
+struct WindowOf {
   const top::MotionSpec* spec = nullptr;
-  int axis = 0;                // top::Axis
+  int axis = 0;               // top::Axis
+  int dir = 0;                // the direction the commands came from
+  std::string_view attitude;  // the attitude's identifier ("GAC", "GIA")
+};
+
+struct Judged : WindowOf {
   std::uint64_t first_n = 0;   // the window's first command
   std::uint64_t commands = 0;  // commands in it, refreshes included
   std::int64_t open_ts = kNoTime;
-  int dir = 0;  // the direction the commands came from
   // rate and PTZ: the commanded direction (+1, -1; 0 a stop) and the raw
   // count; angle: the target in degrees (clamped to the field's range)
   int sign = 0;
@@ -31,7 +37,6 @@ struct Judged {
   // the model's sign trait is unknown (top::sign_trait_factor 0): which way
   // the command should turn the gimbal cannot be told
   bool ambiguous = false;
-  std::string_view attitude;  // the attitude's identifier ("GAC", "GIA")
   // yaw: the turn from `from` to `to` across whole turns (Unwrap), when
   // `whole`; a window that turns past 180 deg measured the short way round
   // reads the other way

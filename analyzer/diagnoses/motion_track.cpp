@@ -155,19 +155,20 @@ void MotionTrack::check_refresh(const Window& w, std::int64_t ts) {
                  ts - w.last_ts, static_cast<std::uint32_t>(refresh_limit_us_ / 1000));
 }
 
+WindowOf MotionTrack::window_of(const Window& w) const noexcept {
+  return {w.cmd.spec, static_cast<int>(&w - win_.data()), w.dir,
+          att_[static_cast<std::size_t>(w.ref)].spec->ident};
+}
+
 void MotionTrack::judge(const Window& w) {
   const top::MotionSpec* m = w.cmd.spec;
   const Snap& end = att_[static_cast<std::size_t>(w.ref)];
   const int axis = static_cast<int>(&w - win_.data());
-  Judged j;
-  j.spec = m;
-  j.axis = axis;
+  Judged j{window_of(w)};
   j.first_n = w.first_n;
   j.commands = w.commands;
   j.open_ts = w.open_ts;
-  j.dir = w.dir;
   j.acked = w.acked;
-  j.attitude = end.spec->ident;
   j.seconds = static_cast<double>(end.ts - w.start.ts) / 1e6;
   if (!w.start.angle(axis, j.from) || !end.angle(axis, j.to)) return;
   if (axis == static_cast<int>(top::Axis::yaw))
@@ -214,15 +215,11 @@ void MotionTrack::finish(std::int64_t end_ts) {
         end.spec == w.at_last.spec) {
       const auto& mk = marks_[ref];
       const Snap& mark = mk[1].set() && end.ts - mk[1].ts >= kMinWindow ? mk[1] : mk[0];
-      LeftMoving lm;
-      lm.spec = m;
-      lm.axis = static_cast<int>(&w - win_.data());
-      lm.dir = w.dir;
+      LeftMoving lm{window_of(w)};
       lm.last_n = w.last_n;
       lm.last_ts = w.last_ts;
       lm.mark_ts = mark.ts;
       lm.end_ts = end.ts;
-      lm.attitude = end.spec->ident;
       const top::MotionAxis* a = axis_of(*m, lm.axis);
       lm.sign = a ? w.sign * a->sign_in(top::field_convention(*end.spec)) : w.sign;
       top::MotionReading r;

@@ -152,6 +152,9 @@ class MotionTrack {
            end.ts - w.start.ts >= kMinWindow && w.open_ts - w.start.ts <= kStaleUs;
   }
   [[gnu::cold]] void judge(const Window& w);
+  // The window's command, axis and sender, and the attitude it is judged
+  // against (which has a report).
+  WindowOf window_of(const Window& w) const noexcept;
   // refresh-gap: whether the rate window `w` went unrefreshed until `ts`.
   void check_refresh(const Window& w, std::int64_t ts);
   int ref_for(const top::MotionSpec& m) const noexcept;

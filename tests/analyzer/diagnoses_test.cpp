@@ -230,47 +230,44 @@ TEST(DiagnosesNeverStarted, NeedsAnAnsweredSwitchAndTime) {
   EXPECT_EQ(f->c.first_frame, 1u);
 }
 
-TEST(DiagnosesClock, OneMonthEarly1970AndTimeZones) {
+// What ClockWatch finds in Topotek TIM frames: {data, frame, time, dir,
+// from the camera}.
+struct TimFrame {
+  const char* data;
+  std::uint64_t n;
+  std::int64_t ts;
+  int dir;
+  bool device;
+};
+std::optional<diag::Found> clock_verdict(std::initializer_list<TimFrame> frames) {
   const top::FormSpec& tim = date_form(top::Dialect::topotek, "TIM", 14);
-  {
-    diag::ClockWatch w;  // Beijing time: 8 h ahead is no offset
-    w.frame(tim, "20240501200000", "TIM", 1, kT0, 0, false);
-    EXPECT_FALSE(w.verdict());
-  }
-  {
-    diag::ClockWatch w;
-    w.frame(tim, "20240401120000", "TIM", 7, kT0, 0, false);
-    const auto f = w.verdict();
-    ASSERT_TRUE(f);
-    EXPECT_EQ(f->c.first_frame, 7u);
-    EXPECT_NE(f->figure.find("exactly one month"), std::string::npos) << f->figure;
-    EXPECT_NE(f->figure.find("0-based month sent unconverted"), std::string::npos) << f->figure;
-  }
-  {
-    // the client's set is right, the camera's echo a month early: the
-    // camera's clock, not the client's month (an outside capture's case)
-    diag::ClockWatch w;
-    w.frame(tim, "20240501120000", "TIM", 15, kT0, 0, false);
-    w.frame(tim, "20240401120000", "TIM", 16, kT0 + 5000, 1, true);
-    const auto f = w.verdict();
-    ASSERT_TRUE(f);
-    EXPECT_EQ(f->c.first_frame, 16u);
-    EXPECT_NE(f->figure.find("from the camera"), std::string::npos) << f->figure;
-    EXPECT_EQ(f->figure.find("sent unconverted"), std::string::npos) << f->figure;
-  }
-  {
-    diag::ClockWatch w;
-    w.frame(tim, "19700101000512", "TIM", 3, kT0, 1, true);
-    const auto f = w.verdict();
-    ASSERT_TRUE(f);
-    EXPECT_NE(f->figure.find("1970: the camera's clock was never set"), std::string::npos)
-        << f->figure;
-  }
-  {
-    diag::ClockWatch w;  // a serial log without times judges nothing
-    w.frame(tim, "19700101000512", "TIM", 3, kNoTime, 1, true);
-    EXPECT_FALSE(w.verdict());
-  }
+  diag::ClockWatch w;
+  for (const TimFrame& f : frames) w.frame(tim, f.data, "TIM", f.n, f.ts, f.dir, f.device);
+  return w.verdict();
+}
+
+TEST(DiagnosesClock, OneMonthEarly1970AndTimeZones) {
+  // Beijing time: 8 h ahead is no offset
+  EXPECT_FALSE(clock_verdict({{"20240501200000", 1, kT0, 0, false}}));
+  const auto early = clock_verdict({{"20240401120000", 7, kT0, 0, false}});
+  ASSERT_TRUE(early);
+  EXPECT_EQ(early->c.first_frame, 7u);
+  EXPECT_NE(early->figure.find("exactly one month"), std::string::npos) << early->figure;
+  EXPECT_NE(early->figure.find("0-based month sent unconverted"), std::string::npos);
+  // the client's set is right, the camera's echo a month early: the
+  // camera's clock, not the client's month (an outside capture's case)
+  const auto echo = clock_verdict(
+      {{"20240501120000", 15, kT0, 0, false}, {"20240401120000", 16, kT0 + 5000, 1, true}});
+  ASSERT_TRUE(echo);
+  EXPECT_EQ(echo->c.first_frame, 16u);
+  EXPECT_NE(echo->figure.find("from the camera"), std::string::npos) << echo->figure;
+  EXPECT_EQ(echo->figure.find("sent unconverted"), std::string::npos) << echo->figure;
+  const auto unset = clock_verdict({{"19700101000512", 3, kT0, 1, true}});
+  ASSERT_TRUE(unset);
+  EXPECT_NE(unset->figure.find("1970: the camera's clock was never set"), std::string::npos)
+      << unset->figure;
+  // a serial log without times judges nothing
+  EXPECT_FALSE(clock_verdict({{"19700101000512", 3, kNoTime, 1, true}}));
 }
 
 TEST(DiagnosesBaud, TextNoiseIsNoBaudMismatch) {
@@ -362,32 +359,32 @@ TEST(DiagnosesCaptures, SelectedByIdentAndTime) {
 }
 
 TEST(DiagnosesCaptures, CarryTheirMeasuredFigure) {
-  auto msg = [](const char* file, const char* code) {
-    const Seen s = read_json(file);
-    return s.diagnoses.count(code) ? s.diagnoses.at(code)["message"].get<std::string>() : "";
+  struct Figure {
+    const char* file;
+    const char* code;
+    const char* text;  // in its message
   };
-  EXPECT_NE(msg("diag-clock-offset.pcap", "clock-offset")
-                .find("camera time 2024-04-01 20:00:00, capture 2024-05-01 12:00:00: exactly one "
-                      "month early"),
-            std::string::npos);
-  EXPECT_NE(msg("diag-placeholder-identity.pcap", "placeholder-identity").find("\"000000000\""),
-            std::string::npos);
-  EXPECT_NE(msg("diag-stream-stalled.pcap", "stream-stalled").find("longest 2.100 s"),
-            std::string::npos);
-  EXPECT_NE(msg("diag-reply-interface.pcap", "reply-interface").find("5 requests"),
-            std::string::npos);
-  // the motion diagnoses: commanded against measured
-  EXPECT_NE(msg("diag-direction-inverted.pcap", "direction-inverted")
-                .find("GSP 20 (up): pitch moved -9.5 deg/s (down)"),
-            std::string::npos);
-  EXPECT_NE(msg("diag-command-ignored.log", "command-ignored")
-                .find("GAY to +30.0 deg was acknowledged; yaw stayed at +0.0 deg"),
-            std::string::npos);
-  EXPECT_NE(msg("diag-attitude-stale.pcap", "attitude-stale").find("20 non-zero motion commands"),
-            std::string::npos);
-  EXPECT_NE(msg("diag-axis-left-moving.log", "axis-left-moving")
-                .find("yaw moved +49.0 deg in the 4.850 s to the end"),
-            std::string::npos);
+  const Figure figures[] = {
+      {"diag-clock-offset.pcap", "clock-offset",
+       "camera time 2024-04-01 20:00:00, capture 2024-05-01 12:00:00: exactly one month early"},
+      {"diag-placeholder-identity.pcap", "placeholder-identity", "\"000000000\""},
+      {"diag-stream-stalled.pcap", "stream-stalled", "longest 2.100 s"},
+      {"diag-reply-interface.pcap", "reply-interface", "5 requests"},
+      // the motion diagnoses: commanded against measured
+      {"diag-direction-inverted.pcap", "direction-inverted",
+       "GSP 20 (up): pitch moved -9.5 deg/s (down)"},
+      {"diag-command-ignored.log", "command-ignored",
+       "GAY to +30.0 deg was acknowledged; yaw stayed at +0.0 deg"},
+      {"diag-attitude-stale.pcap", "attitude-stale", "20 non-zero motion commands"},
+      {"diag-axis-left-moving.log", "axis-left-moving",
+       "yaw moved +49.0 deg in the 4.850 s to the end"},
+  };
+  for (const Figure& f : figures) {
+    const Seen s = read_json(f.file);
+    ASSERT_TRUE(s.diagnoses.count(f.code)) << f.file << ": no " << f.code;
+    const std::string message = s.diagnoses.at(f.code)["message"].get<std::string>();
+    EXPECT_NE(message.find(f.text), std::string::npos) << f.file << ": " << message;
+  }
 }
 
 // A motion diagnosis names its axis (the JSON's `axis`), and none where a

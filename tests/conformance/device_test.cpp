@@ -23,6 +23,15 @@ top::Frame parsed(const std::string& s) {
   return r.frame;
 }
 
+// A frame's identifier, header kind and addresses, checked together.
+void expect_frame(const top::Frame& f, std::string_view ident, top::Header header, char src,
+                  char dst) {
+  EXPECT_EQ(f.ident_view(), ident);
+  EXPECT_EQ(f.header, header) << ident;
+  EXPECT_EQ(f.src, src) << ident;
+  EXPECT_EQ(f.dst, dst) << ident;
+}
+
 TEST(Device, WriteIsEchoedWithSwappedAddresses) {
   Device d(top::Model::c12);
   auto out = ask(d, "#TPUG6wGAYEF0732");
@@ -139,13 +148,9 @@ TEST(Device, GaaStreamsGacAtTheRequestedRate) {
   }
   EXPECT_EQ(n, 10);
   ASSERT_FALSE(out.empty());
-  auto f = parsed(out[0]);
-  EXPECT_EQ(f.ident_view(), "GAC");
   // The field profile's C12 form (#tpUGCrGAC, client first: docs/FIELD.md);
   // field_test.cpp checks every profile's form.
-  EXPECT_EQ(f.header, top::Header::variable);
-  EXPECT_EQ(f.src, 'U');
-  EXPECT_EQ(f.dst, 'G');
+  expect_frame(parsed(out[0]), "GAC", top::Header::variable, 'U', 'G');
   ask(d, "#TPUG2wGAA00", 1000000);
   EXPECT_EQ(d.next_timer(), std::numeric_limits<std::uint64_t>::max());
 }
@@ -255,10 +260,7 @@ TEST(DeviceTopotek, GipMovesPitchAndGiaReportsItDownPositive) {
   const auto out = run_until(d, 1000000);
   ASSERT_GE(out.size(), 9u);
   const top::Frame last = parsed(out.back());
-  EXPECT_EQ(last.ident_view(), "GIA");
-  EXPECT_EQ(last.header, top::Header::variable);
-  EXPECT_EQ(last.src, 'G');
-  EXPECT_EQ(last.dst, 'U');
+  expect_frame(last, "GIA", top::Header::variable, 'G', 'U');
   EXPECT_EQ(angles(last)[1], 3000);
   EXPECT_NEAR(d.pitch().angle, -30, 0.01);  // up positive inside
   // The document: GIP is up positive, and the attitude (GIC) too.
@@ -300,11 +302,8 @@ TEST(DeviceTopotek, ResentGiaEnableKeepsTheStreamTiming) {
 TEST(DeviceTopotek, GicQueryIsAnsweredWithGiaInTheField) {
   Device d(top::Model::sip);
   const top::Frame f = parsed(ask(d, "#TPPG2rGIC00").at(0));
-  EXPECT_EQ(f.ident_view(), "GIA");
+  expect_frame(f, "GIA", top::Header::variable, 'G', 'P');
   EXPECT_EQ(f.data().size(), 12u);
-  EXPECT_EQ(f.header, top::Header::variable);
-  EXPECT_EQ(f.src, 'G');
-  EXPECT_EQ(f.dst, 'P');
   topsim::DeviceOptions o;
   o.profile = top::Profile::document;
   Device doc(top::Model::sip, o);
@@ -367,11 +366,8 @@ TEST(DeviceTopotek, TrackingStateMachine) {
   EXPECT_GE(boxes.size(), 30u);
   EXPECT_LE(boxes.size(), 35u);
   const top::Frame oft = parsed(boxes.front());
-  EXPECT_EQ(oft.ident_view(), "OFT");
-  EXPECT_EQ(oft.header, top::Header::variable);
+  expect_frame(oft, "OFT", top::Header::variable, 'D', 'U');
   EXPECT_EQ(oft.control, 'w');
-  EXPECT_EQ(oft.src, 'D');
-  EXPECT_EQ(oft.dst, 'U');
   ASSERT_EQ(oft.data().size(), 9u);
   auto le = [&](int i) {
     return static_cast<unsigned char>(oft.data()[i]) | static_cast<unsigned char>(oft.data()[i + 1])
