@@ -381,7 +381,10 @@ TEST(DiagnosesCaptures, CarryTheirMeasuredFigure) {
   };
   for (const Figure& f : figures) {
     const Seen s = read_json(f.file);
-    ASSERT_TRUE(s.diagnoses.count(f.code)) << f.file << ": no " << f.code;
+    if (!s.diagnoses.count(f.code)) {  // the next captures are checked still
+      ADD_FAILURE() << f.file << ": no " << f.code;
+      continue;
+    }
     const std::string message = s.diagnoses.at(f.code)["message"].get<std::string>();
     EXPECT_NE(message.find(f.text), std::string::npos) << f.file << ": " << message;
   }
