@@ -125,7 +125,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
   bare.detail = false;
   decode(f, bare, v);
   bool same = v.dialect == d.dialect && v.role == d.role && v.command == d.command &&
-              v.form == d.form && v.fields.empty() && v.findings.size() == d.findings.size();
+              v.form == d.form && v.motion == d.motion && v.switches == d.switches &&
+              v.diagnosed == d.diagnosed && v.fields.empty() &&
+              v.findings.size() == d.findings.size();
   for (std::size_t i = 0; same && i < v.findings.size(); ++i)
     same = v.findings[i].code == d.findings[i].code &&
            v.findings[i].severity == d.findings[i].severity &&
@@ -138,6 +140,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
   bare.cache = &cache;
   decode(f, bare, c);
   same = c.dialect == v.dialect && c.role == v.role && c.command == v.command && c.form == v.form &&
+         c.motion == v.motion && c.switches == v.switches && c.diagnosed == v.diagnosed &&
          c.fields.empty() && c.findings.size() == v.findings.size();
   for (std::size_t i = 0; same && i < c.findings.size(); ++i)
     same = c.findings[i].code == v.findings[i].code &&

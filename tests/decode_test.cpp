@@ -362,3 +362,26 @@ TEST(Decode, SameLengthFormsAreChosenByContent) {
     EXPECT_TRUE(fast.findings.empty());
   }
 }
+
+// A frame the device sent in the request's address order (DecodeOptions
+// role response) gets its unswapped-addresses finding from the device's
+// form, after the findings of its fields (as the Lua dissector lists
+// them), with detail, without, and from the shape cache.
+TEST(Decode, DeviceFormFindingComesAfterTheFieldsFindings) {
+  const std::string s = with_checksum("#tpUG6wGAYec7832");  // lowercase hex data
+  const ParseResult r = parse_frame(s, true);
+  ASSERT_EQ(r.status, ParseStatus::frame);
+  DecodeCache cache;
+  for (bool detail : {true, false})
+    for (int pass = 0; pass < 2; ++pass) {
+      DecodeOptions o{Dialect::skydroid, Model::unknown, Role::response};
+      o.detail = detail;
+      o.cache = detail ? nullptr : &cache;
+      const Decoded d = decode(r.frame, o);
+      std::vector<FindingCode> codes;
+      for (const Finding& x : d.findings) codes.push_back(x.code);
+      EXPECT_EQ(codes, (std::vector<FindingCode>{FindingCode::lowercase_hex,
+                                                 FindingCode::unswapped_addresses}))
+          << "detail " << detail << " pass " << pass;
+    }
+}

@@ -10,6 +10,7 @@
 #include "test_util.hpp"
 #include "top/decode.hpp"
 #include "top/detail/decimal.hpp"
+#include "top/device.hpp"
 
 using namespace top;
 
@@ -18,11 +19,12 @@ namespace {
 // The verdict of a decode: dialect, role, command, form and each finding's
 // code, severity and offset.
 std::string verdict_of(const Decoded& d) {
-  std::string s = std::to_string(static_cast<int>(d.dialect)) + "/" +
-                  std::to_string(static_cast<int>(d.role)) + " " +
-                  (d.command ? std::string(d.command->ident) : "-") + " form " +
-                  std::to_string(reinterpret_cast<std::uintptr_t>(d.form)) + " motion " +
-                  (d.motion ? std::string(d.motion->ident) : "-");
+  std::string s =
+      std::to_string(static_cast<int>(d.dialect)) + "/" + std::to_string(static_cast<int>(d.role)) +
+      " " + (d.command ? std::string(d.command->ident) : "-") + " form " +
+      std::to_string(reinterpret_cast<std::uintptr_t>(d.form)) + " motion " +
+      (d.motion ? std::string(d.motion->ident) : "-") + " switches " +
+      (d.switches ? std::string(d.switches->push) : "-") + (d.diagnosed ? " diagnosed" : "");
   for (const Finding& x : d.findings)
     s += " " + std::string(to_string(x.code)) + "/" + std::string(to_string(x.severity)) + "@" +
          std::to_string(x.offset);

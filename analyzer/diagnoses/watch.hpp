@@ -18,11 +18,10 @@
 
 namespace topdump::diag {
 
+// The session hands device_frame and dated_frame only the frames whose
+// identifier may matter to them (Decoded::diagnosed, the rules' prefilter
+// top::may_matter_to_diagnoses), and the motion track the motion frames.
 struct Watch {
-  // Whether a frame of `ident` can matter to a detector (the rules'
-  // prefilter, top::may_matter_to_diagnoses).
-  static bool watched(const char* ident) noexcept { return top::may_matter_to_diagnoses(ident); }
-
   IdentityWatch identity;
   TrackingWatch tracking;
   ClockWatch clock;

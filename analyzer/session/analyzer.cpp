@@ -168,7 +168,7 @@ void Analyzer::Impl::frame(Conversation& c, int d, top::Frame& f, Position pos, 
     response(c, d, ev);
   // The conversation's diagnoses see every frame, as pairing does; what
   // they find is reported at its end, through the filter.
-  if (diag::Watch::watched(fr.ident)) {
+  if (e.decoded.diagnosed) {  // the rules' prefilter (top::may_matter_to_diagnoses)
     const std::string_view id = fr.ident_view(), data = fr.data();
     if (decided == top::Role::response && e.decoded.dialect != top::Dialect::unknown &&
         fr.checksum_ok)

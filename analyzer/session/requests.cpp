@@ -243,9 +243,7 @@ void Analyzer::Impl::request(Conversation& c, int d, FrameEvent& ev) {
       return;
     }
   }
-  const top::StreamSpec* switched =
-      f.control == 'w' ? top::stream_enabled_by(dialect, id, top::Profile::field) : nullptr;
-  if (switched) {
+  if (const top::StreamSpec* switched = ev.entry->decoded.switches) {  // a write's
     if (const std::optional<unsigned> value = top::switch_value(f.data())) {
       const unsigned v = *value;
       const std::string sid(switched->push);

@@ -17,6 +17,7 @@
 #include "field_read.hpp"
 #include "numbers.hpp"
 #include "top/device.hpp"
+#include "top/diagnoses.hpp"
 #include "top/dialect.hpp"
 #include "top/motion.hpp"
 
@@ -248,6 +249,8 @@ void decode_shape(Ctx& ctx, const Frame& frame, const DecodeOptions& opts, Diale
   out.dialect = d;
   out.command = cmd;
   out.motion = cmd ? motion_of(*cmd) : nullptr;
+  out.switches = frame.control == 'w' ? stream_enabled_by(d, ident, Profile::field) : nullptr;
+  out.diagnosed = may_matter_to_diagnoses(frame.ident);
 
   if (frame.header == Header::fixed && frame.declared_length != 2)
     note_tp_length(ctx, frame, cmd, d, out);
@@ -398,30 +401,44 @@ const FormSpec* by_content(const Frame& frame, const CommandSpec& cmd, const For
 
 }  // namespace
 
-// The frame's command, form and findings, and its fields with detail.
-static void decode_frame(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
+// The frame's command, form and findings, and its fields with detail;
+// `noted`: the index of the finding note_device_form added, if any.
+static void decode_frame(const Frame& frame, const DecodeOptions& opts, Decoded& out,
+                         std::size_t& noted) {
   out.fields.clear();
   out.findings.clear();
   out.command = nullptr;
   out.form = nullptr;
   out.motion = nullptr;
+  out.switches = nullptr;
+  out.diagnosed = false;
   Ctx ctx{frame, out, opts.detail};
   out.role = opts.role != Role::any ? opts.role : role_from_addresses(frame);
   Dialect d = opts.dialect;
   if (d == Dialect::unknown && opts.model != Model::unknown) d = dialect_of(opts.model);
   if (d == Dialect::unknown) d = dialect_from_frame(frame);
   const FormPlan* plan = nullptr;  // the form's, when the shape cache knows it
+  // The caller knows the device sent it: a recorded form of real firmware
+  // (top/device.hpp) completes the shape's findings. What it reads and
+  // writes is the shape's, so the shape cache remembers it too.
+  auto shape = [&] {
+    decode_shape(ctx, frame, opts, d, out);
+    if (opts.role != Role::response) return;
+    const std::size_t before = out.findings.size();
+    detail::note_device_form(frame, opts.model, ctx.detail, out);
+    if (out.findings.size() > before) noted = out.findings.size() - 1;
+  };
   if (detail::ShapeSlot* slot =
           ctx.detail ? nullptr : detail::shape_slot(opts, frame, d, out.role)) {
     if (slot->known) {
-      detail::replay(*slot, out);
+      detail::replay(*slot, out, noted);
     } else {
-      decode_shape(ctx, frame, opts, d, out);
-      detail::remember(*slot, out);  // unless the shape has too many findings
+      shape();
+      detail::remember(*slot, out, noted);  // unless the shape has too many findings
     }
     if (slot->known) plan = slot->plan;
   } else {
-    decode_shape(ctx, frame, opts, d, out);
+    shape();
   }
   if (!out.form) return;
   const FormSpec* shaped = out.form;
@@ -453,10 +470,14 @@ static void decode_frame(const Frame& frame, const DecodeOptions& opts, Decoded&
 }
 
 void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
-  decode_frame(frame, opts, out);
-  // The caller knows the device sent it: a recorded form of real firmware
-  // (top/device.hpp) completes its findings.
-  if (opts.role == Role::response) detail::note_device_form(frame, opts.model, opts.detail, out);
+  std::size_t noted = detail::kNoNote;
+  decode_frame(frame, opts, out, noted);
+  // The finding the device's form added comes after the fields' own, as
+  // the device's form is judged once the frame is (and the Lua dissector
+  // lists them so).
+  if (noted != detail::kNoNote && noted + 1 < out.findings.size())
+    std::rotate(out.findings.begin() + static_cast<std::ptrdiff_t>(noted),
+                out.findings.begin() + static_cast<std::ptrdiff_t>(noted) + 1, out.findings.end());
 }
 
 Decoded decode(const Frame& frame, const DecodeOptions& opts) {

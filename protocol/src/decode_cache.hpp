@@ -22,6 +22,9 @@ struct ShapeSlot {
   const CommandSpec* command = nullptr;
   const FormSpec* form = nullptr;
   const MotionSpec* motion = nullptr;
+  const StreamSpec* switches = nullptr;
+  bool diagnosed = false;
+  std::uint8_t noted = 0xFF;  // the finding note_device_form added (0xFF: none)
   const FormPlan* plan = nullptr;
   struct Seen {
     FindingCode code{};
@@ -36,6 +39,10 @@ struct ShapeSlot {
 // options (messages aside), each in its own bits of one word:
 //
 //   bit 63     1 (a key is never 0, the empty slot's)
+//   58         whether the caller said the device sent it (Role::response:
+//              note_device_form then completes the findings)
+//   56-57      whether the source, the destination is a client's address
+//              (note_device_form reads their order)
 //   54-55      dialect          (3 values)
 //   52-53      role             (3 values)
 //   44-51      identifier char 0 (a byte)
@@ -55,10 +62,12 @@ struct ShapeBits {
 };
 inline constexpr ShapeBits kKeyModel{0, 3}, kKeyDataOffset{3, 4}, kKeyDataLength{7, 8},
     kKeyControl{15, 2}, kKeyDeclared{17, 8}, kKeyHeader{25, 3}, kKeyIdent2{28, 8},
-    kKeyIdent1{36, 8}, kKeyIdent0{44, 8}, kKeyRole{52, 2}, kKeyDialect{54, 2}, kKeyMark{63, 1};
+    kKeyIdent1{36, 8}, kKeyIdent0{44, 8}, kKeyRole{52, 2}, kKeyDialect{54, 2},
+    kKeyFromClient{56, 1}, kKeyToClient{57, 1}, kKeyDevice{58, 1}, kKeyMark{63, 1};
 inline constexpr ShapeBits kKeyFields[] = {
-    kKeyModel,  kKeyDataOffset, kKeyDataLength, kKeyControl, kKeyDeclared, kKeyHeader,
-    kKeyIdent2, kKeyIdent1,     kKeyIdent0,     kKeyRole,    kKeyDialect,  kKeyMark};
+    kKeyModel,   kKeyDataOffset, kKeyDataLength, kKeyControl, kKeyDeclared,
+    kKeyHeader,  kKeyIdent2,     kKeyIdent1,     kKeyIdent0,  kKeyRole,
+    kKeyDialect, kKeyFromClient, kKeyToClient,   kKeyDevice,  kKeyMark};
 
 // No two fields share a bit, and every enum fits its field.
 static_assert([] {
@@ -78,7 +87,9 @@ static_assert(kKeyControl.holds(2) && kKeyIdent0.holds(0xFF) && kKeyDeclared.hol
 
 // 0 when a length, the data offset or the control does not fit (those frames
 // are decoded without the cache).
-inline std::uint64_t shape_key(const Frame& f, Dialect d, Role role, Model model) noexcept {
+// `device`: the caller said the device sent it (DecodeOptions::role).
+inline std::uint64_t shape_key(const Frame& f, Dialect d, Role role, Model model,
+                               bool device) noexcept {
   if (f.declared_length > 0xFF || f.data_length > 0xFF || f.data_offset > 0xF) return 0;
   const std::uint64_t control = f.control == 0     ? 0
                                 : f.control == 'r' ? 1
@@ -92,7 +103,9 @@ inline std::uint64_t shape_key(const Frame& f, Dialect d, Role role, Model model
          kKeyHeader.put(static_cast<std::uint64_t>(f.header)) |
          kKeyDeclared.put(f.declared_length) | kKeyControl.put(control) |
          kKeyDataLength.put(f.data_length) | kKeyDataOffset.put(f.data_offset) |
-         kKeyModel.put(static_cast<std::uint64_t>(model));
+         kKeyModel.put(static_cast<std::uint64_t>(model)) |
+         kKeyFromClient.put(is_client_address(f.src) ? 1 : 0) |
+         kKeyToClient.put(is_client_address(f.dst) ? 1 : 0) | kKeyDevice.put(device ? 1 : 0);
 }
 
 struct CacheAccess {
@@ -119,19 +132,25 @@ struct CacheAccess {
 // does not key).
 inline ShapeSlot* shape_slot(const DecodeOptions& opts, const Frame& f, Dialect d, Role role) {
   if (!opts.cache) return nullptr;
-  const std::uint64_t key = shape_key(f, d, role, opts.model);
+  const std::uint64_t key = shape_key(f, d, role, opts.model, opts.role == Role::response);
   return key ? &CacheAccess::slot(*opts.cache, key) : nullptr;
 }
 
-inline void remember(ShapeSlot& s, const Decoded& out) {
+// What decode_frame's `noted` holds when note_device_form added no finding.
+inline constexpr std::size_t kNoNote = static_cast<std::size_t>(-1);
+
+inline void remember(ShapeSlot& s, const Decoded& out, std::size_t noted) {
   if (out.findings.size() > ShapeSlot::kFindings) return;
   s.dialect = out.dialect;
   s.role = out.role;
   s.command = out.command;
   s.form = out.form;
   s.motion = out.motion;
+  s.switches = out.switches;
+  s.diagnosed = out.diagnosed;
   s.plan = out.form ? &plan_of(*out.command, *out.form) : nullptr;
   s.count = static_cast<std::uint8_t>(out.findings.size());
+  s.noted = noted == kNoNote ? 0xFF : static_cast<std::uint8_t>(noted);
   for (std::size_t i = 0; i < out.findings.size(); ++i) {
     const Finding& f = out.findings[i];
     s.findings[i] = {f.code, f.severity, f.offset, f.quirk};
@@ -139,12 +158,15 @@ inline void remember(ShapeSlot& s, const Decoded& out) {
   s.known = true;
 }
 
-inline void replay(const ShapeSlot& s, Decoded& out) {
+inline void replay(const ShapeSlot& s, Decoded& out, std::size_t& noted) {
+  if (s.noted != 0xFF) noted = s.noted;
   out.dialect = s.dialect;
   out.role = s.role;
   out.command = s.command;
   out.form = s.form;
   out.motion = s.motion;
+  out.switches = s.switches;
+  out.diagnosed = s.diagnosed;
   for (std::size_t i = 0; i < s.count; ++i) {
     const ShapeSlot::Seen& x = s.findings[i];
     out.findings.push_back(Finding{x.code, x.severity, x.offset, std::string(), x.quirk});

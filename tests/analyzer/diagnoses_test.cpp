@@ -21,6 +21,8 @@
 #include "findings/afindings.hpp"
 #include "test_support.hpp"
 #include "top/catalog.hpp"
+#include "top/decode.hpp"
+#include "top/frame.hpp"
 
 namespace topdump {
 namespace {
@@ -108,18 +110,38 @@ TEST(DiagnosesRules, CarriesDateMatchesTheCatalog) {
 }
 
 // The session's prefilter lets through every frame a detector's rule
-// could take.
+// could take: the decoded frame says so (Decoded::diagnosed), with and
+// without the shape cache (topdump stats), for either sender.
 TEST(DiagnosesRules, WatchPrefilterCoversTheRules) {
+  top::DecodeCache cache;
+  std::size_t ruled_count = 0;
   for (top::Dialect d : {top::Dialect::skydroid, top::Dialect::topotek})
     for (const top::CommandSpec& c : top::commands(d)) {
       const std::string id(c.ident);
       const bool ruled = top::is_identity_reply(d, id) || top::carries_date(id) ||
                          top::refuses_tracking(d, id, "04") ||
                          top::reports_tracking(d, id, 'r', "02");
-      if (ruled) {
-        EXPECT_TRUE(diag::Watch::watched(id.c_str())) << id;
+      EXPECT_EQ(top::may_matter_to_diagnoses(id.c_str()), ruled) << id;
+      ruled_count += ruled;
+      for (top::Role role : {top::Role::request, top::Role::response}) {
+        top::BuildSpec b;
+        b.src = role == top::Role::request ? 'U' : c.address;
+        b.dst = role == top::Role::request ? c.address : 'U';
+        b.control = 'r';
+        b.ident = c.ident;
+        b.data = "00";
+        const top::ParseResult r = top::parse_frame(top::build_frame(b), true);
+        ASSERT_EQ(r.status, top::ParseStatus::frame) << id;
+        for (top::DecodeCache* cached : {static_cast<top::DecodeCache*>(nullptr), &cache}) {
+          top::DecodeOptions o{d, top::Model::unknown, role};
+          o.detail = cached == nullptr;
+          o.cache = cached;
+          for (int pass = 0; pass < 2; ++pass)  // the second from the cache
+            EXPECT_EQ(top::decode(r.frame, o).diagnosed, ruled) << id << " pass " << pass;
+        }
       }
     }
+  EXPECT_GE(ruled_count, 7u);  // PA2, VSN, VER, MOD, TRC, TIM, UTC across the two
 }
 
 const top::FormSpec& date_form(top::Dialect d, std::string_view id, std::size_t len) {

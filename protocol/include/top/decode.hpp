@@ -92,6 +92,8 @@ struct DecodeOptions {
   bool document_first = false;
 };
 
+struct StreamSpec;  // top/device.hpp
+
 struct Decoded {
   Dialect dialect = Dialect::unknown;  // the dialect decoded with
   Role role = Role::any;               // request or response as decided
@@ -100,6 +102,13 @@ struct Decoded {
   // The command's motion row (top/motion.hpp: what moves the gimbal or
   // reports its attitude), or null; with the command, from the shape cache.
   const MotionSpec* motion = nullptr;
+  // For a write, the stream it switches as the field's firmware does
+  // (stream_enabled_by, Profile::field, top/device.hpp), or null.
+  const StreamSpec* switches = nullptr;
+  // Whether a frame of its identifier may matter to a diagnosis
+  // (may_matter_to_diagnoses, top/diagnoses.hpp). These two are the shape's,
+  // from the shape cache like the command: the session asks of every frame.
+  bool diagnosed = false;
   std::vector<FieldValue> fields;
   std::vector<Finding> findings;  // catalog-level findings
 
