@@ -249,7 +249,9 @@ void decode_shape(Ctx& ctx, const Frame& frame, const DecodeOptions& opts, Diale
   out.dialect = d;
   out.command = cmd;
   out.motion = cmd ? motion_of(*cmd) : nullptr;
-  out.switches = frame.control == 'w' ? stream_enabled_by(d, ident, Profile::field) : nullptr;
+  out.switches = frame.control == 'w' && out.role != Role::response
+                     ? stream_enabled_by(d, ident, Profile::field)
+                     : nullptr;
   out.diagnosed = may_matter_to_diagnoses(frame.ident);
 
   if (frame.header == Header::fixed && frame.declared_length != 2)
@@ -401,46 +403,11 @@ const FormSpec* by_content(const Frame& frame, const CommandSpec& cmd, const For
 
 }  // namespace
 
-// The frame's command, form and findings, and its fields with detail;
-// `noted`: the index of the finding note_device_form added, if any.
-static void decode_frame(const Frame& frame, const DecodeOptions& opts, Decoded& out,
-                         std::size_t& noted) {
-  out.fields.clear();
-  out.findings.clear();
-  out.command = nullptr;
-  out.form = nullptr;
-  out.motion = nullptr;
-  out.switches = nullptr;
-  out.diagnosed = false;
-  Ctx ctx{frame, out, opts.detail};
-  out.role = opts.role != Role::any ? opts.role : role_from_addresses(frame);
-  Dialect d = opts.dialect;
-  if (d == Dialect::unknown && opts.model != Model::unknown) d = dialect_of(opts.model);
-  if (d == Dialect::unknown) d = dialect_from_frame(frame);
-  const FormPlan* plan = nullptr;  // the form's, when the shape cache knows it
-  // The caller knows the device sent it: a recorded form of real firmware
-  // (top/device.hpp) completes the shape's findings. What it reads and
-  // writes is the shape's, so the shape cache remembers it too.
-  auto shape = [&] {
-    decode_shape(ctx, frame, opts, d, out);
-    if (opts.role != Role::response) return;
-    const std::size_t before = out.findings.size();
-    detail::note_device_form(frame, opts.model, ctx.detail, out);
-    if (out.findings.size() > before) noted = out.findings.size() - 1;
-  };
-  if (detail::ShapeSlot* slot =
-          ctx.detail ? nullptr : detail::shape_slot(opts, frame, d, out.role)) {
-    if (slot->known) {
-      detail::replay(*slot, out, noted);
-    } else {
-      shape();
-      detail::remember(*slot, out, noted);  // unless the shape has too many findings
-    }
-    if (slot->known) plan = slot->plan;
-  } else {
-    shape();
-  }
-  if (!out.form) return;
+// The fields of a frame whose shape has a form (`plan`: the shape's, when
+// the cache knows it): the form chosen by content, its fields' findings and,
+// with detail, their values.
+static void decode_data(Ctx& ctx, const Frame& frame, const DecodeOptions& opts, Decoded& out,
+                        const FormPlan* plan) {
   const FormSpec* shaped = out.form;
   const FormSpec* form = out.form =
       by_content(frame, *out.command, shaped, out.role, opts.document_first);
@@ -469,15 +436,56 @@ static void decode_frame(const Frame& frame, const DecodeOptions& opts, Decoded&
   check_fields(ctx, *form, frame);
 }
 
-void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
+// The frame's command, form and findings, and its fields with detail.
+static void decode_frame(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
+  out.fields.clear();
+  out.findings.clear();
+  out.command = nullptr;
+  out.form = nullptr;
+  out.motion = nullptr;
+  out.switches = nullptr;
+  out.diagnosed = false;
+  Ctx ctx{frame, out, opts.detail};
+  out.role = opts.role != Role::any ? opts.role : role_from_addresses(frame);
+  Dialect d = opts.dialect;
+  if (d == Dialect::unknown && opts.model != Model::unknown) d = dialect_of(opts.model);
+  if (d == Dialect::unknown) d = dialect_from_frame(frame);
+  const FormPlan* plan = nullptr;  // the form's, when the shape cache knows it
+  // The caller knows the device sent it: a recorded form of real firmware
+  // (top/device.hpp) completes the shape's findings. What it reads and
+  // writes is the shape's, so the shape cache remembers it too; `noted`:
+  // the finding it added, if any.
   std::size_t noted = detail::kNoNote;
-  decode_frame(frame, opts, out, noted);
+  auto shape = [&] {
+    decode_shape(ctx, frame, opts, d, out);
+    if (opts.role != Role::response) return;
+    const std::size_t before = out.findings.size();
+    detail::note_device_form(frame, opts.model, ctx.detail, out);
+    if (out.findings.size() > before) noted = out.findings.size() - 1;
+  };
+  if (detail::ShapeSlot* slot =
+          ctx.detail ? nullptr : detail::shape_slot(opts, frame, d, out.role)) {
+    if (slot->known) {
+      detail::replay(*slot, out, noted);
+    } else {
+      shape();
+      detail::remember(*slot, out, noted);  // unless the shape has too many findings
+    }
+    if (slot->known) plan = slot->plan;
+  } else {
+    shape();
+  }
+  if (out.form) decode_data(ctx, frame, opts, out, plan);
   // The finding the device's form added comes after the fields' own, as
   // the device's form is judged once the frame is (and the Lua dissector
   // lists them so).
   if (noted != detail::kNoNote && noted + 1 < out.findings.size())
     std::rotate(out.findings.begin() + static_cast<std::ptrdiff_t>(noted),
                 out.findings.begin() + static_cast<std::ptrdiff_t>(noted) + 1, out.findings.end());
+}
+
+void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
+  decode_frame(frame, opts, out);
 }
 
 Decoded decode(const Frame& frame, const DecodeOptions& opts) {

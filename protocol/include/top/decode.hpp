@@ -102,7 +102,8 @@ struct Decoded {
   // The command's motion row (top/motion.hpp: what moves the gimbal or
   // reports its attitude), or null; with the command, from the shape cache.
   const MotionSpec* motion = nullptr;
-  // For a write, the stream it switches as the field's firmware does
+  // For a write not known to come from the device (its role request or
+  // any), the stream it switches as the field's firmware does
   // (stream_enabled_by, Profile::field, top/device.hpp), or null.
   const StreamSpec* switches = nullptr;
   // Whether a frame of its identifier may matter to a diagnosis
