@@ -139,15 +139,22 @@ inline ShapeSlot* shape_slot(const DecodeOptions& opts, const Frame& f, Dialect 
 // What decode_frame's `noted` holds when note_device_form added no finding.
 inline constexpr std::size_t kNoNote = static_cast<std::size_t>(-1);
 
+// The shape's members of a Decoded, the same names in a ShapeSlot: copied
+// one way by remember(), the other by replay().
+template <class To, class From>
+void copy_shape(To& to, const From& from) noexcept {
+  to.dialect = from.dialect;
+  to.role = from.role;
+  to.command = from.command;
+  to.form = from.form;
+  to.motion = from.motion;
+  to.switches = from.switches;
+  to.diagnosed = from.diagnosed;
+}
+
 inline void remember(ShapeSlot& s, const Decoded& out, std::size_t noted) {
   if (out.findings.size() > ShapeSlot::kFindings) return;
-  s.dialect = out.dialect;
-  s.role = out.role;
-  s.command = out.command;
-  s.form = out.form;
-  s.motion = out.motion;
-  s.switches = out.switches;
-  s.diagnosed = out.diagnosed;
+  copy_shape(s, out);
   s.plan = out.form ? &plan_of(*out.command, *out.form) : nullptr;
   s.count = static_cast<std::uint8_t>(out.findings.size());
   s.noted = noted == kNoNote ? 0xFF : static_cast<std::uint8_t>(noted);
@@ -160,13 +167,7 @@ inline void remember(ShapeSlot& s, const Decoded& out, std::size_t noted) {
 
 inline void replay(const ShapeSlot& s, Decoded& out, std::size_t& noted) {
   if (s.noted != 0xFF) noted = s.noted;
-  out.dialect = s.dialect;
-  out.role = s.role;
-  out.command = s.command;
-  out.form = s.form;
-  out.motion = s.motion;
-  out.switches = s.switches;
-  out.diagnosed = s.diagnosed;
+  copy_shape(out, s);
   for (std::size_t i = 0; i < s.count; ++i) {
     const ShapeSlot::Seen& x = s.findings[i];
     out.findings.push_back(Finding{x.code, x.severity, x.offset, std::string(), x.quirk});
