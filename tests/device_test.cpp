@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "top/top.hpp"
 
@@ -51,6 +53,30 @@ TEST(DeviceRules, SkydroidAnswersEverySource) {
   for (Model m : {Model::c10, Model::c12, Model::c13, Model::c20})
     for (Link l : {Link::network, Link::uart})
       for (char src : {'U', 'P'}) EXPECT_TRUE(answers_source(m, Profile::field, l, src));
+}
+
+// answers_other_query is exactly "answers_query holds for some other
+// request": the session asks it before scanning its pending reads, so a
+// false where a form answers another read would lose a pairing.
+TEST(DeviceRules, AnswersOtherQueryIsTheRecordedCrossAnswers) {
+  EXPECT_TRUE(answers_query(Dialect::topotek, "GIC", "GIA"));  // a real SIP's
+  EXPECT_TRUE(answers_other_query(Dialect::topotek, "GIA"));
+  EXPECT_FALSE(answers_other_query(Dialect::skydroid, "GIA"));
+  EXPECT_FALSE(answers_other_query(Dialect::topotek, "GIC"));
+  EXPECT_FALSE(answers_other_query(Dialect::skydroid, "GAC"));
+  // every identifier a form names, as a request and as a reply
+  std::vector<std::string_view> idents;
+  for (const DeviceForm& f : device_forms()) {
+    idents.push_back(f.ident);
+    if (!f.answers.empty()) idents.push_back(f.answers);
+  }
+  for (Dialect d : {Dialect::skydroid, Dialect::topotek})
+    for (std::string_view reply : idents) {
+      bool other = false;
+      for (std::string_view request : idents)
+        other = other || (request != reply && answers_query(d, request, reply));
+      EXPECT_EQ(answers_other_query(d, reply), other) << reply;
+    }
 }
 
 TEST(DeviceRules, RejectionOfACleanCommandIsNone) {

@@ -33,6 +33,7 @@ struct Pending {
   std::string data;
   int dir;  // the direction it was sent in (0 or 1)
   Cause cause;
+  const top::CommandSpec* command;  // as decoded (null: none)
 };
 
 inline bool same_ident(const char a[3], std::string_view b) noexcept {

@@ -7,6 +7,7 @@
 #include <array>
 #include <iterator>
 #include <string>
+#include <vector>
 
 #include "catalog_data.hpp"
 #include "device_form.hpp"
@@ -168,6 +169,21 @@ bool answers_query(Dialect d, std::string_view request, std::string_view reply) 
   for (const DeviceForm& f : device_forms())
     if (f.dialect == d && f.sent == Sent::reply && f.ident == reply && f.answers == request)
       return true;
+  return false;
+}
+
+bool answers_other_query(Dialect d, std::string_view reply) noexcept {
+  // the recorded forms that answer another identifier's read, found once
+  // (one today: a SIP's GIA answering GIC); the device forms are ~40 rows
+  // of 80 bytes, and every push a client's read waits beside would scan them
+  static const std::vector<const DeviceForm*> kOthers = [] {
+    std::vector<const DeviceForm*> v;
+    for (const DeviceForm& f : device_forms())
+      if (f.sent == Sent::reply && !f.answers.empty() && f.answers != f.ident) v.push_back(&f);
+    return v;
+  }();
+  for (const DeviceForm* f : kOthers)
+    if (f->dialect == d && f->ident == reply) return true;
   return false;
 }
 

@@ -144,6 +144,11 @@ std::string_view reply_ident(Model model, std::string_view request, Profile prof
 // identifier, or a recorded form of any model and profile: a reader of
 // traffic takes both the document's and the field's answer).
 bool answers_query(Dialect d, std::string_view request, std::string_view reply) noexcept;
+// Whether a device frame of `reply` answers a read of another identifier in
+// some recorded form (answers_query true for a `request` other than
+// `reply`): false for nearly every identifier, so a reader asks it once
+// before it looks for such a read among the pending requests.
+bool answers_other_query(Dialect d, std::string_view reply) noexcept;
 // The recorded form whose length char counts bytes (length_in_bytes) that
 // `f` has: its identifier, control, header and address order, any model.
 // Asked by the frame parser when a frame's data is twice its length.
