@@ -1,6 +1,7 @@
 #include "diagnoses/axis_left_moving.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 #include "top/diagnoses.hpp"
 
@@ -20,8 +21,10 @@ void LeftMovingWatch::at_end(const LeftMoving& m) {
   c.add(m.last_n, m.last_ts, m.spec->ident, m.dir);
   Found f{top::Diagnosis::axis_left_moving, c, m.axis, {}};
   const double tail_s = static_cast<double>(m.end_ts - m.mark_ts) / 1e6;
-  f.figure = std::string(m.spec->ident) +
-             (m.spec->kind == top::MotionKind::ptz ? "" : " " + std::to_string(m.raw)) + " at " +
+  char rate[48] = "";
+  if (m.spec->kind != top::MotionKind::ptz)
+    std::snprintf(rate, sizeof rate, " %lld (%.1f deg/s)", static_cast<long long>(m.raw), m.speed);
+  f.figure = std::string(m.spec->ident) + rate + " at " +
              time_text(m.last_ts) + " was the last " + axis +
              " command and no stop followed: " + axis + " moved " + signed_text(after) +
              " deg in the " + seconds_text(m.end_ts - m.last_ts) + " s to the end by " +

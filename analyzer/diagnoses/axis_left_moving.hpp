@@ -16,6 +16,7 @@ namespace topdump::diag {
 struct LeftMoving : WindowOf {
   int sign = 0;
   std::int64_t raw = 0;
+  double speed = 0;          // rates: the commanded speed, deg/s (magnitude)
   std::uint64_t last_n = 0;  // the last command
   std::int64_t last_ts = kNoTime;
   double at_last = 0, at_mark = 0,

@@ -24,6 +24,7 @@ class ClockWatch {
  private:
   Case c_;
   std::int64_t camera_s_ = 0, capture_s_ = 0;  // of the first frame off
+  top::DateTime sent_{};                       // the first frame's date as it reads
   int kind_ = 0;                               // 1 one month early, 2 1970, 0 other
   bool device_ = false;                        // the first frame off is the camera's
 };

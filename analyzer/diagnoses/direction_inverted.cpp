@@ -39,16 +39,13 @@ std::optional<Found> DirectionWatch::verdict(std::size_t i) const {
   Found f{top::Diagnosis::direction_inverted, s.c, j.axis, {}};
   std::string& t = f.figure;
   const double moved = j.moved();
-  if (j.spec->kind == top::MotionKind::angle) {
-    t = std::string(j.spec->ident) + " to " + signed_text(j.target) + " deg: " + axis +
-        " went from " + signed_text(j.from) + " to " + signed_text(j.to) + " deg, away from it";
-  } else {
-    t = std::string(j.spec->ident) +
-        (j.spec->kind == top::MotionKind::ptz ? "" : " " + std::to_string(j.raw)) + " (" +
-        std::string(direction_word(j.axis, j.sign)) + "): " + axis + " moved " +
-        signed_text(moved / j.seconds) + " deg/s (" +
-        std::string(direction_word(j.axis, moved > 0 ? 1 : -1)) + ")";
-  }
+  t = command_text(j) + ": " + axis;
+  if (j.spec->kind == top::MotionKind::angle)
+    t += " went from " + signed_text(j.from) + " to " + signed_text(j.to) + " deg (" +
+         std::string(direction_word(j.axis, moved > 0 ? 1 : -1)) + "), away from it";
+  else
+    t += " moved " + signed_text(moved / j.seconds) + " deg/s (" +
+         std::string(direction_word(j.axis, moved > 0 ? 1 : -1)) + ")";
   t += " in " + seconds_text(static_cast<std::int64_t>(j.seconds * 1e6)) + " s by " +
        std::string(j.attitude) + "; " + std::to_string(s.inverted) + " of " +
        std::to_string(s.inverted + s.right) + " " + axis + " " +

@@ -31,8 +31,31 @@ std::string_view direction_word(int axis, int sign) noexcept {
 
 std::string signed_text(double v) {
   char b[32];
-  std::snprintf(b, sizeof b, "%+.1f", v);
+  std::snprintf(b, sizeof b, "%+.1f", std::fabs(v) < 0.05 ? 0.0 : v);
   return b;
+}
+
+std::string command_text(const Judged& j) {
+  const std::string ident(j.spec->ident);
+  char b[48];
+  switch (j.spec->kind) {
+    case top::MotionKind::angle: {
+      if (j.field_sign * j.trait > 0) return ident + " to " + signed_text(j.target) + " deg";
+      const auto axis = static_cast<top::Axis>(j.axis);
+      const std::string why =
+          j.field_sign < 0
+              ? std::string(top::to_string(axis)) + " " +
+                    std::string(direction_word(j.axis, -1)) + " positive on the wire"
+              : "the model's inverted " + std::string(top::to_string(axis));
+      return ident + " " + signed_text(j.wire) + " deg (" + why + ": a target of " +
+             signed_text(j.target) + " deg)";
+    }
+    case top::MotionKind::rate:
+      std::snprintf(b, sizeof b, " %lld (%.1f deg/s ", static_cast<long long>(j.raw), j.wire);
+      return ident + b + std::string(direction_word(j.axis, j.sign)) + ")";
+    default:
+      return ident + " (" + std::string(direction_word(j.axis, j.sign)) + ")";
+  }
 }
 
 }  // namespace topdump::diag

@@ -31,6 +31,14 @@ struct Judged : WindowOf {
   int sign = 0;
   std::int64_t raw = 0;
   double target = 0;
+  // As the command says it: angle, the value decoded from the wire (the
+  // catalog's scale and sign); rate, the speed in deg/s (its magnitude,
+  // under field evidence: the field's unit).
+  double wire = 0;
+  // Why `target` and `sign` differ from the wire's sign: the field's sign
+  // of this command (top::MotionAxis::sign_in) and the model's sign trait
+  // (top::sign_trait_factor), each +1 or -1.
+  std::int8_t field_sign = 1, trait = 1;
   double from = 0, to = 0;  // the attitude at the window's start and end, deg
   double seconds = 0;       // between those two reports
   bool acked = false;       // the device echoed one of its commands
@@ -56,7 +64,11 @@ struct Judged : WindowOf {
 double angle_delta(int axis, double a, double b) noexcept;
 // "up", "down", "right", "left" for a direction on an axis.
 std::string_view direction_word(int axis, int sign) noexcept;
-// "+10.0", "-3.5"
+// "+10.0", "-3.5"; a value that rounds to zero is "+0.0"
 std::string signed_text(double v);
+// The command of a window as it reads on the wire and what it means for
+// the attitude: "GAY to -20.0 deg", "GIP +30.0 deg (pitch down positive on
+// the wire: a target of -30.0 deg)", "GSP 20 (10.0 deg/s up)".
+std::string command_text(const Judged& j);
 
 }  // namespace topdump::diag

@@ -192,6 +192,11 @@ void MotionTrack::judge(const Window& w) {
     j.linear = m->kind == top::MotionKind::angle && axis == static_cast<int>(top::Axis::yaw) &&
                r.min[i] <= r.max[i] && r.max[i] - r.min[i] < 359.0;
     j.target = target * s * (t == 0 ? 1 : t);
+    j.wire = m->kind == top::MotionKind::angle
+                 ? r.value[i]
+                 : std::fabs(top::motion_speed(*m, r.value[i], r.raw[i], field));
+    j.field_sign = static_cast<std::int8_t>(s);
+    j.trait = static_cast<std::int8_t>(t == 0 ? 1 : t);
   }
   direction_.window(j);
   ignored_.window(j);
@@ -223,8 +228,12 @@ void MotionTrack::finish(std::int64_t end_ts) {
       const top::MotionAxis* a = axis_of(*m, lm.axis);
       lm.sign = a ? w.sign * a->sign_in(top::field_convention(*end.spec)) : w.sign;
       top::MotionReading r;
-      if (a && top::read_motion(*m, *w.cmd.form, w.cmd.view(), r))
-        lm.raw = r.raw[static_cast<std::size_t>(lm.axis)];
+      if (a && top::read_motion(*m, *w.cmd.form, w.cmd.view(), r)) {
+        const auto i = static_cast<std::size_t>(lm.axis);
+        lm.raw = r.raw[i];
+        lm.speed = std::fabs(
+            top::motion_speed(*m, r.value[i], r.raw[i], top::field_convention(*end.spec)));
+      }
       if (mark.spec == end.spec && w.at_last.angle(lm.axis, lm.at_last) &&
           mark.angle(lm.axis, lm.at_mark) && end.angle(lm.axis, lm.at_end)) {
         if (lm.axis == static_cast<int>(top::Axis::yaw))

@@ -11,6 +11,7 @@
 
 #include "session.hpp"
 #include "top/detail/text.hpp"
+#include "top/motion.hpp"
 
 namespace topdump {
 
@@ -211,11 +212,23 @@ Cause Analyzer::Impl::cause_of(const Conversation& c, const DecodedEntry& e, top
   return cause;
 }
 
+namespace {
+// A rate command sent again unchanged is a refresh, not a repeat: the
+// speed-refresh trait (docs/FIELD.md) stops the motors without one, and
+// drivers re-send every 20-100 ms (ArduPilot's Topotek YPR at 10 Hz, its
+// SkyDroid GSY/GSP at 50 Hz).
+bool is_rate_refresh(const DecodedEntry& e) noexcept {
+  const top::MotionSpec* m = e.decoded.command ? top::motion_of(*e.decoded.command) : nullptr;
+  return m && m->kind == top::MotionKind::rate;
+}
+}  // namespace
+
 void Analyzer::Impl::request(Conversation& c, int d, FrameEvent& ev) {
   const top::Frame& f = *ev.entry->frame;
   Direction& D = c.dir[d];
   if (ev.ts != kNoTime && D.last_req_ts != kNoTime &&
-      ev.ts - D.last_req_ts <= A.opts_.repeat_window_us && D.last_req == f.raw)
+      ev.ts - D.last_req_ts <= A.opts_.repeat_window_us && D.last_req == f.raw &&
+      !is_rate_refresh(*ev.entry))
     ev.notes.push_back(Note{ACode::repeated, default_severity(ACode::repeated), message([&] {
                               return "same request again after " +
                                      std::to_string((ev.ts - D.last_req_ts) / 1000) + " ms";

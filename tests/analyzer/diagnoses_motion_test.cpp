@@ -101,6 +101,37 @@ TEST(DiagnosesMotion, YawPanPast180IsMeasuredWhole) {
   }
 }
 
+// The case reads the command as the wire carries it, then what it means:
+// a Topotek GIP of +30.00 is 30 deg down (ArduPilot PR #29002), and an
+// outside capture read "GIP to -30.0 deg" beside a frame decoded as
+// "angle 30.00 deg". Rates name their speed in deg/s, not only the count.
+TEST(DiagnosesMotion, TheCaseShowsTheWireValueAndItsMeaning) {
+  MotionFeed f(top::Dialect::topotek);
+  for (std::int64_t ms = 0; ms <= 6000; ms += 100) {
+    const double pitch = std::clamp<double>(static_cast<double>(ms - 1000) / 100, 0, 30);
+    f.attitude(ms, "GIA", "0000" + hex4(-pitch) + "0000");  // up (GIA: down positive)
+    if (ms >= 1000 && ms < 5000 && ms % 200 == 0) f.command(ms, "GIP", hex4(30) + "63");
+  }
+  const auto v = f.finish(6000);
+  ASSERT_TRUE(has(v, top::Diagnosis::direction_inverted));
+  EXPECT_NE(v[0].figure.find("GIP +30.0 deg (pitch down positive on the wire: a target of "
+                             "-30.0 deg): pitch went from +0.0 to +30.0 deg (up), away from it"),
+            std::string::npos)
+      << v[0].figure;
+
+  MotionFeed r(top::Dialect::topotek);
+  for (std::int64_t ms = 0; ms <= 6000; ms += 100) {
+    const double pitch = std::clamp<double>(static_cast<double>(ms - 1000) / 100, 0, 30);
+    r.attitude(ms, "GIA", "0000" + hex4(-pitch) + "0000");
+    if (ms >= 1000 && ms < 4000) r.command(ms, "YPR", "000C00");  // 12 counts down
+    if (ms >= 4000 && ms < 4300) r.command(ms, "YPR", "000000");
+  }
+  const auto w = r.finish(6000);
+  ASSERT_TRUE(has(w, top::Diagnosis::direction_inverted));
+  EXPECT_NE(w[0].figure.find("YPR 12 (9.8 deg/s down): pitch moved +"), std::string::npos)
+      << w[0].figure;
+}
+
 // Angle commands that return to 0 (a nod: -30, 0, -30, 0) move the gimbal
 // the same way under either sign convention: they vote neither way, so the
 // inverted -30s are named (counted as right, the returns outvoted them).

@@ -394,7 +394,7 @@ TEST(DiagnosesCaptures, CarryTheirMeasuredFigure) {
       {"diag-reply-interface.pcap", "reply-interface", "5 requests"},
       // the motion diagnoses: commanded against measured
       {"diag-direction-inverted.pcap", "direction-inverted",
-       "GSP 20 (up): pitch moved -9.5 deg/s (down)"},
+       "GSP 20 (10.0 deg/s up): pitch moved -9.5 deg/s (down)"},
       {"diag-command-ignored.log", "command-ignored",
        "GAY to +30.0 deg was acknowledged; yaw stayed at +0.0 deg"},
       {"diag-attitude-stale.pcap", "attitude-stale", "20 non-zero motion commands"},

@@ -210,6 +210,29 @@ TEST(Field, CopiesOfAnAnsweredRequestAreNotUnanswered) {
   EXPECT_EQ(f.rec.count_note(ACode::repeated), 0u);  // notes on frames, not events
 }
 
+TEST(Field, RateRefreshesAreNotRepeats) {
+  // The speed-refresh trait stops the motors unless a rate command comes
+  // again: ArduPilot's Topotek driver sends the same YPR every 100 ms, a
+  // stick held still sends the same GSY at 20 Hz. Neither is a repeat; a
+  // PTZ sent again within the window still is.
+  Fixture f;
+  f.client = ep4(1, 9004);
+  f.device = ep4(2, 9003);
+  for (int i = 0; i < 5; ++i) f.echoed(i * 100, 5, "#tpPG6wYPR000C00");
+  f.echoed(600, 5, "#tpPG2wPTZ00");
+  f.echoed(650, 5, "#tpPG2wPTZ00");
+  f.a->finish();
+  EXPECT_EQ(f.rec.frames.size(), 14u);
+  std::size_t repeats = 0;
+  for (const auto& fr : f.rec.frames) repeats += has_code(fr, "repeated");
+  EXPECT_EQ(repeats, 1u);  // the second PTZ only
+
+  Fixture g;
+  for (int i = 0; i < 5; ++i) g.echoed(i * 50, 5, "#TPUG2wGSY14");
+  g.a->finish();
+  for (const auto& fr : g.rec.frames) EXPECT_FALSE(has_code(fr, "repeated")) << fr.n;
+}
+
 TEST(Field, ASilentDeviceIsOneFindingForTheStretch) {
   Fixture f;
   f.reset(unanswered_after_100ms());
