@@ -292,6 +292,26 @@ TEST(DiagnosesClock, OneMonthEarly1970AndTimeZones) {
   EXPECT_FALSE(clock_verdict({{"19700101000512", 3, kNoTime, 1, true}}));
 }
 
+// Under two days the offset is in hours ("1 days late" read wrong for 25 h),
+// and a date that is no day of the calendar is shown as sent: 31 March
+// sent with a 0-based month reads 31 February, not 3 March (outside
+// captures' cases).
+TEST(DiagnosesClock, HoursAndDatesThatDoNotExist) {
+  const auto hours = clock_verdict({{"20240502130000", 1, kT0, 0, false}});
+  ASSERT_TRUE(hours);
+  EXPECT_NE(hours->figure.find(": 25 hours late"), std::string::npos) << hours->figure;
+  const auto days = clock_verdict({{"20240426000000", 1, kT0, 0, false}});
+  ASSERT_TRUE(days);
+  EXPECT_NE(days->figure.find(": 5.5 days early"), std::string::npos) << days->figure;
+  const std::int64_t march31 = 1774958400LL * 1'000'000;  // 2026-03-31T12:00:00Z
+  const auto feb31 = clock_verdict({{"20260231120000", 2, march31, 0, false}});
+  ASSERT_TRUE(feb31);
+  EXPECT_NE(feb31->figure.find("camera time 2026-02-31 (no such date: 2026-03-03 12:00:00)"),
+            std::string::npos)
+      << feb31->figure;
+  EXPECT_NE(feb31->figure.find("exactly one month early"), std::string::npos) << feb31->figure;
+}
+
 TEST(DiagnosesBaud, TextNoiseIsNoBaudMismatch) {
   diag::BaudWatch text;
   text.garbage(200, "$GPGGA,123519,4807.038,N,01131.0", 1, kNoTime);
