@@ -35,12 +35,14 @@ void unanswered_facts(const ReportSink& d, Report& rep) {
     g.text = cause.empty() ? "no response" : std::string(cause);
   }
   for (const auto& [k, g] : groups) {
+    const bool elsewhere = g.text == describe(Cause::other_port);
     std::string t = std::to_string(g.n) + " " + k.substr(0, 3) +
                     (g.n == 1 ? " request unanswered at " + clock_text(g.first)
                               : " requests unanswered from " + clock_text(g.first) + " to " +
                                     clock_text(g.last)) +
                     ": " + g.text;
-    add(rep, g.text == "no response" ? 80 : 60, top::Severity::warning, std::move(t), "unanswered");
+    add(rep, g.text == "no response" ? 80 : 60,
+        elsewhere ? top::Severity::info : top::Severity::warning, std::move(t), "unanswered");
   }
 }
 

@@ -19,18 +19,40 @@ bool endpoint_less(const Endpoint& x, const Endpoint& y) {
   if (x.port != y.port) return x.port < y.port;
   return x.name < y.name;
 }
+
+std::uint64_t one(const Endpoint& e) noexcept {
+  if (e.family == 0) return std::hash<std::string>{}(e.name);
+  std::uint64_t a, b;
+  std::memcpy(&a, e.addr.data(), 8);
+  std::memcpy(&b, e.addr.data() + 8, 8);
+  return (a * 0x9E3779B97F4A7C15ull) ^ (b * 0xC2B2AE3D27D4EB4Full) ^ (std::uint64_t{e.port} << 1);
+}
 }  // namespace
 
 std::size_t ConvKeyHash::operator()(const ConvKey& k) const noexcept {
-  auto one = [](const Endpoint& e) -> std::uint64_t {
-    if (e.family == 0) return std::hash<std::string>{}(e.name);
-    std::uint64_t a, b;
-    std::memcpy(&a, e.addr.data(), 8);
-    std::memcpy(&b, e.addr.data() + 8, 8);
-    return (a * 0x9E3779B97F4A7C15ull) ^ (b * 0xC2B2AE3D27D4EB4Full) ^ (std::uint64_t{e.port} << 1);
-  };
   std::uint64_t h = one(k.a) * 31 + one(k.b) + static_cast<std::uint64_t>(k.t);
   return static_cast<std::size_t>(h ^ (h >> 29));
+}
+
+std::size_t Analyzer::Impl::EndpointHash::operator()(const Endpoint& e) const noexcept {
+  const std::uint64_t h = one(e);
+  return static_cast<std::size_t>(h ^ (h >> 29));
+}
+
+const Conversation* Analyzer::Impl::answered_elsewhere(const Conversation& c, const Direction& D,
+                                                       std::int64_t after, Endpoint& to) const {
+  const auto it = by_end.find(D.dst);
+  if (it == by_end.end()) return nullptr;
+  for (const Conversation* o : it->second) {
+    if (o == &c || o->transport != c.transport) continue;
+    for (const Direction& x : o->dir)
+      if (x.src == D.dst && x.dst.family == D.src.family && x.dst.addr == D.src.addr &&
+          x.sent_frame && x.last_frame_ts != kNoTime && x.last_frame_ts >= after) {
+        to = x.dst;
+        return o;
+      }
+  }
+  return nullptr;
 }
 
 Conversation& Analyzer::Impl::get_slow(Transport t, const Endpoint& src, const Endpoint& dst,
@@ -66,6 +88,8 @@ Conversation& Analyzer::Impl::get_slow(Transport t, const Endpoint& src, const E
     c->st.a = c->dir[0].from;
     c->st.b = c->dir[0].to;
     c->st.transport = t;
+    if (src.family && dst.family)
+      for (const Endpoint* e : {&src, &dst}) by_end[*e].push_back(c.get());
     it = convs.emplace(std::move(k), std::move(c)).first;
   }
   Conversation& c = *it->second;
@@ -87,6 +111,11 @@ void Analyzer::Impl::evict() {
   note_event(kNoTime, Position{}, c.transport, nullptr, nullptr, nullptr,
              Note{ACode::conversation_limit, default_severity(ACode::conversation_limit), msg, 0},
              ++limit_notes <= 10);
+  for (const Endpoint* e : {&c.dir[0].src, &c.dir[0].dst})
+    if (auto at = by_end.find(*e); at != by_end.end()) {
+      std::erase(at->second, &c);
+      if (at->second.empty()) by_end.erase(at);
+    }
   convs.erase(victim);
 }
 
@@ -130,6 +159,7 @@ void Analyzer::finish() {
             [](const Conversation* a, const Conversation* b) { return a->id < b->id; });
   for (Conversation* c : order) impl_->close(*c, kNoTime);
   impl_->cache.fill(Impl::CacheSlot{});
+  impl_->by_end.clear();
   impl_->convs.clear();
   std::sort(stats_.conversations.begin(), stats_.conversations.end(),
             [](const ConvStats& a, const ConvStats& b) { return a.id < b.id; });

@@ -31,6 +31,7 @@ enum class Cause : std::uint8_t {
   uart_source,    // Topotek: source U over the network, answers go to the UART
   unsupported,    // not in the catalog, or not on the model
   invalid,        // a wrong length or value: Topotek ignores it, SkyDroid answers ERE
+  other_port,     // the device sent its frames to another port of the client's host
   silent          // the device sent nothing while several requests went unanswered
 };
 // What the capture shows of that cause, for people ("" for none).

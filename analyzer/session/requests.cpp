@@ -25,6 +25,8 @@ constexpr std::string_view kCauseText[] = {
     "UART only (the network client is P)",
     "the identifier is not supported on the model",
     "the request is invalid (its length or a value), which devices ignore or answer with ERE",
+    "the device sent its frames to another port of this host: a client that does not listen "
+    "there hears nothing",
     "the device was silent",
 };
 static_assert(std::size(kCauseText) == static_cast<std::size_t>(Cause::silent) + 1);
@@ -126,9 +128,16 @@ void Analyzer::Impl::unanswered(Conversation& c, const Pending& p, bool at_end) 
                            std::to_string(A.opts_.timeout_us / 1000), " ms", cause_text(p.cause)});
   });
   if (silent) {
+    // Not silent after all when its frames went to another port of this
+    // host: a stretch of its own, noted as such.
+    Endpoint to;
+    const Conversation* o = answered_elsewhere(c, D, p.ts, to);
+    const std::uint64_t oid = o ? o->id : 0;
     Silence& s = c.silence;
-    if (s.count && s.dir != p.dir) emit_silence(c);
+    if (s.count && (s.dir != p.dir || s.elsewhere_conv != oid)) emit_silence(c);
     if (s.count == 0) {
+      s.elsewhere = std::move(to);
+      s.elsewhere_conv = oid;
       s.about = about;
       s.first_n = p.n;
       s.first_ts = p.ts;
@@ -156,6 +165,27 @@ void Analyzer::Impl::emit_silence(Conversation& c) {
   Silence& s = c.silence;
   if (s.count == 0) return;
   const Direction& D = c.dir[s.dir];
+  if (s.elsewhere_conv) {
+    Note n = s.about;
+    n.severity = top::Severity::info;
+    n.cause = Cause::other_port;
+    n.count = s.count;
+    n.until = s.last_ts;
+    n.message = message([&] {
+      return std::to_string(s.count) + (s.count == 1 ? " request (" : " requests (") + s.idents +
+             ") from frame " + std::to_string(s.first_n) + " to frame " +
+             std::to_string(s.last_n) + " got no response on this port: the device sent its " +
+             "frames to " + s.elsewhere.text() + " (conversation " +
+             std::to_string(s.elsewhere_conv) +
+             ") meanwhile: a client that does not listen there hears nothing" +
+             (c.det.current() == top::Dialect::topotek
+                  ? " (Topotek V1.1.3: the device answers to UDP 9004)"
+                  : "");
+    });
+    note_event(s.first_ts, s.pos, c.transport, &c, &D.from, &D.to, std::move(n));
+    s = Silence{};
+    return;
+  }
   std::string msg = s.count == 1 ? std::move(s.single) : message([&] {
     char span[32];
     std::snprintf(span, sizeof span, "%.3f", static_cast<double>(s.last_ts - s.first_ts) / 1e6);

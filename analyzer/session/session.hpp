@@ -51,6 +51,10 @@ struct Silence {
   // One of them waited the whole timeout inside the capture: the device
   // was silent (silent-device), not just cut off by the capture's end.
   bool timed_out = false;
+  // The device was not silent: it sent frames to another port of the
+  // client's host (`elsewhere`, another conversation) meanwhile.
+  Endpoint elsewhere;
+  std::uint64_t elsewhere_conv = 0;
 };
 
 struct Direction {
@@ -131,6 +135,19 @@ struct Analyzer::Impl {
     int d = 0;
   };
   std::array<CacheSlot, 64> cache{};
+  // The network conversations of each end (both ends of each): asked only
+  // when a request goes unanswered, to tell a silent device from one that
+  // answers to another port of the client's host (Topotek V1.1.3: to UDP
+  // 9004, whatever the request's source port).
+  struct EndpointHash {
+    std::size_t operator()(const Endpoint& e) const noexcept;
+  };
+  std::unordered_map<Endpoint, std::vector<Conversation*>, EndpointHash> by_end;
+  // The conversation other than `c` in which the device end of direction D
+  // of `c` sent a frame at or after `after` to another port of D's source
+  // host, and that port's end; nullptr when none.
+  const Conversation* answered_elsewhere(const Conversation& c, const Direction& D,
+                                         std::int64_t after, Endpoint& to) const;
 
   static std::size_t cache_slot(Transport t, const Endpoint& src, const Endpoint& dst) noexcept {
     std::uint64_t h = static_cast<std::uint64_t>(t) + 1;

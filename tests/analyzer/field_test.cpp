@@ -252,6 +252,47 @@ TEST(Field, ASilentDeviceIsOneFindingForTheStretch) {
   EXPECT_EQ(f.rec.notes[0].note.cause, Cause::silent);
 }
 
+// Topotek V1.1.3: the device answers to UDP 9004 on the client, whatever
+// port the request came from. A client sending from another port gets its
+// answers in another conversation: the device is not silent (outside
+// captures read "silent-device" on a SIP that answered every request, and
+// on a SkyDroid answering to port 5000). The stretch is one info note that
+// names where the frames went; a device silent to every port still is
+// silent-device.
+TEST(Field, ADeviceAnsweringToAnotherPortIsNotSilent) {
+  Fixture f;
+  f.reset(unanswered_after_100ms());
+  f.client = ep4(1, 14580);
+  f.device = ep4(2, 9003);
+  const Endpoint listener = ep4(1, 9004);
+  for (int i = 0; i < 20; ++i) {
+    f.up(i * 100, top::with_checksum("#tpPD2rVSN00"));
+    f.a->datagram(T + (i * 100 + 5) * 1000, f.device, listener,
+                  top::with_checksum("#tpDP9rVSN1.6.26.R.D"), ++f.record, 42);
+  }
+  f.a->finish();
+  EXPECT_FALSE(f.rec.has_note(acode_of(top::Diagnosis::silent_device)));
+  ASSERT_EQ(f.rec.count_note(ACode::unanswered), 1u);
+  const auto& n = f.rec.notes[0].note;
+  EXPECT_EQ(n.cause, Cause::other_port);
+  EXPECT_EQ(n.severity, top::Severity::info);
+  EXPECT_EQ(n.count, 20u);
+  EXPECT_NE(n.message.find("20 requests (VSN) from frame 1 to frame 39 got no response on this "
+                           "port: the device sent its frames to 10.0.0.1:9004 (conversation 2)"),
+            std::string::npos)
+      << n.message;
+
+  // silent to every port: silent-device
+  Fixture g;
+  g.reset(unanswered_after_100ms());
+  g.client = ep4(1, 14580);
+  g.device = ep4(2, 9003);
+  g.a->datagram(T, g.device, listener, top::with_checksum("#tpDP9rVSN1.6.26.R.D"), ++g.record, 42);
+  for (int i = 0; i < 20; ++i) g.up(100 + i * 100, top::with_checksum("#tpPD2rVSN00"));
+  g.a->finish();
+  EXPECT_EQ(g.rec.count_note(acode_of(top::Diagnosis::silent_device)), 1u);
+}
+
 TEST(Field, ClientStreamFramesExpectNoAnswer) {
   // SkyDroid 3.3.6: after FAE 01 the flight controller sends FAI writes;
   // the document gives them no reply.
