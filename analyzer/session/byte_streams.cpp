@@ -95,6 +95,9 @@ void Analyzer::chunk(std::int64_t ts, Transport t, const Endpoint& src, const En
   if (filtering_ && !take(ts)) return;
   int d = 0;
   Conversation& c = impl_->get(t, src, dst, d);
+  // A line with no frame yet: its first bytes, for the baud-mismatch check.
+  if (t == Transport::serial && !c.dir[0].sent_frame && !c.dir[1].sent_frame)
+    c.watch.baud.bytes(bytes);
   impl_->deliver(c, d, bytes, record, offset, ts);
 }
 

@@ -321,6 +321,37 @@ TEST(DiagnosesBaud, TextNoiseIsNoBaudMismatch) {
   EXPECT_TRUE(binary.verdict());
 }
 
+// A serial line at the right speed that carries MAVLink (an autopilot port
+// left on MAVLink) is binary too, but no mis-set speed: an outside capture
+// of MAVLink v2 heartbeats and attitude read "the line speed is likely
+// wrong" (error). Its packets chain, STX to STX; the same bytes shuffled
+// do not, and a TOP line read at twice its speed still is named.
+TEST(DiagnosesBaud, AMavlinkLineIsNoBaudMismatch) {
+  std::string mav;
+  std::uint32_t x = 12345;
+  auto rnd = [&] { return static_cast<char>((x = x * 1103515245u + 12345u) >> 24); };
+  for (int i = 0; i < 60; ++i) {
+    const std::size_t len = i % 3 ? 28 : 9;  // ATTITUDE, HEARTBEAT
+    mav += '\xFD';
+    mav += static_cast<char>(len);
+    mav += '\x00';  // unsigned
+    for (std::size_t k = 0; k < 7 + len + 2; ++k) mav += rnd();
+  }
+  EXPECT_GE(diag::mavlink_chain(mav), 60 - 1);
+  diag::BaudWatch line;
+  line.bytes(mav);
+  line.garbage(mav.size(), std::string_view(mav).substr(0, 32), 1, kNoTime);
+  EXPECT_FALSE(line.verdict());
+
+  std::string shuffled = mav;
+  for (std::size_t i = 0; i < shuffled.size(); ++i) shuffled[i] = rnd();
+  EXPECT_LT(diag::mavlink_chain(shuffled), diag::BaudWatch::kMavlinkChain);
+  diag::BaudWatch noise;
+  noise.bytes(shuffled);
+  noise.garbage(shuffled.size(), std::string_view(shuffled).substr(0, 32), 1, kNoTime);
+  EXPECT_TRUE(noise.verdict());
+}
+
 // ---- every bundled capture through topdump ---------------------------------
 
 // The warning and error diagnoses `topdump read --json` reports, by code,
