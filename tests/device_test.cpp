@@ -79,6 +79,24 @@ TEST(DeviceRules, AnswersOtherQueryIsTheRecordedCrossAnswers) {
     }
 }
 
+// A write the device echoes must have a form its echo fits: LOC's only
+// form was a request's, so topdump noted unswapped-addresses on the echo it
+// expects (an outside capture's healthy tracking: "laid out as a request
+// but addressed D to P").
+TEST(DeviceRules, AnEchoedWriteHasAFormItsEchoFits) {
+  for (const top::Dialect d : {top::Dialect::skydroid, top::Dialect::topotek})
+    for (const top::CommandSpec& c : top::commands(d)) {
+      if (top::write_reply(c) != top::WriteReply::echo) continue;
+      bool writes = false, echo = false;
+      for (const top::FormSpec& f : c.forms)
+        if (f.control == 'w') {
+          writes = true;
+          echo |= f.role != top::Role::request;
+        }
+      EXPECT_TRUE(!writes || echo) << c.ident;
+    }
+}
+
 TEST(DeviceRules, RejectionOfACleanCommandIsNone) {
   EXPECT_EQ(rejection(decode_text("#TPUG2wGAA0A", Model::c12), Model::c12), Rejection::none);
   EXPECT_EQ(rejection(Decoded{}, Model::c12), Rejection::none);

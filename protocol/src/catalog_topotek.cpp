@@ -1254,8 +1254,8 @@ constexpr FieldSpec kLocFields[] = {
              "the vendor PDF's example has 00 08, and 00 00 also works (PixEagle)"},
 };
 constexpr FormSpec kLocForms[] = {
+    // either role: the device echoes the write (top::write_reply)
     {.control = 'w',
-     .role = Role::request,
      .min_length = 10,
      .max_length = 10,
      .fields = kLocFields,

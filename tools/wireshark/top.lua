@@ -2448,7 +2448,7 @@ CATALOG.topotek["LOC"] = {
   dialect = "topotek", address = "D", title = "tracking point or rectangle", section = "field: ArduPilot AP_Mount_Topotek (PR #27568)",
   models = { sip = true, },
   forms = {
-    { control = "w", role = "request", min_length = 10, max_length = 10, note = "",
+    { control = "w", role = "any", min_length = 10, max_length = 10, note = "",
       fields = {
         { name = "x", kind = "be_i16", width = 2, scale = 1, mul = 1, dec = 0, unit = "", min = -1000, max = 1000, abbrev = "top.LOC.x" },
         { name = "y", kind = "be_i16", width = 2, scale = 1, mul = 1, dec = 0, unit = "", min = -1000, max = 1000, abbrev = "top.LOC.y" },
