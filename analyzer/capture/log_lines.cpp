@@ -8,6 +8,10 @@ namespace topdump {
 
 void lines_log(const std::string& path, LineReader& r, CaptureSink& a) {
   Endpoint host = named("host"), device = named("device");
+  // Every line names its direction: the log records both, and a device
+  // with no RX line was silent, not untapped (an outside capture's
+  // TX-only log named nothing where its socat twin named silent-device).
+  a.both_ways();
   while (r.get()) {
     if (r.line.empty() || (r.line.size() > 1 && r.line[0] == '#' && r.line[1] == ' ')) continue;
     std::string_view t, d, rest;

@@ -24,9 +24,8 @@ void LeftMovingWatch::at_end(const LeftMoving& m) {
   char rate[48] = "";
   if (m.spec->kind != top::MotionKind::ptz)
     std::snprintf(rate, sizeof rate, " %lld (%.1f deg/s)", static_cast<long long>(m.raw), m.speed);
-  f.figure = std::string(m.spec->ident) + rate + " at " +
-             time_text(m.last_ts) + " was the last " + axis +
-             " command and no stop followed: " + axis + " moved " + signed_text(after) +
+  f.figure = std::string(m.spec->ident) + rate + " at " + time_text(m.last_ts) + " was the last " +
+             axis + " command and no stop followed: " + axis + " moved " + signed_text(after) +
              " deg in the " + seconds_text(m.end_ts - m.last_ts) + " s to the end by " +
              std::string(m.attitude) + ", still " + signed_text(tail / tail_s) +
              " deg/s at the end";

@@ -31,6 +31,8 @@ class LeftMovingWatch {
   static constexpr double kMinMoved = 3.0, kStillMoving = 1.0;
   // The open rate window of an axis at the conversation's end.
   void at_end(const LeftMoving& m);
+  // Whether `axis` was found left moving.
+  bool found(int axis) const noexcept { return found_[static_cast<std::size_t>(axis)].has_value(); }
   template <class Out>
   void verdicts(Out&& out) const {
     for (const auto& f : found_)

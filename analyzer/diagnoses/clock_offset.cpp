@@ -44,15 +44,14 @@ std::optional<Found> ClockWatch::verdict() const {
   // Who is off: a client's set is the client's month; a camera's report
   // or echo with no client's set off before it is the camera's own clock.
   const std::string why =
-      kind_ == 1 ? (device_ ? "exactly one month early, from the camera: its clock or its echo "
-                              "of the time set is a month behind (a 0-based month in the "
-                              "firmware, or one it kept from an earlier set)"
-                            : "exactly one month early: a 0-based month sent unconverted")
-      : kind_ == 2
-          ? (device_ ? "1970: the camera's clock was never set"
-                     : "1970: the client set the camera's clock to 1970 (no time "
-                       "source yet)")
-          : off_text(off) + (off < 0 ? " early" : " late");
+      kind_ == 1   ? (device_ ? "exactly one month early, from the camera: its clock or its echo "
+                                "of the time set is a month behind (a 0-based month in the "
+                                "firmware, or one it kept from an earlier set)"
+                              : "exactly one month early: a 0-based month sent unconverted")
+      : kind_ == 2 ? (device_ ? "1970: the camera's clock was never set"
+                              : "1970: the client set the camera's clock to 1970 (no time "
+                                "source yet)")
+                   : off_text(off) + (off < 0 ? " early" : " late");
   // A date that is no day of the calendar (31 February: a 0-based month
   // turns 31 March into it) is shown as sent, then as the day it is taken for.
   std::string cam = date_text(camera_s_);

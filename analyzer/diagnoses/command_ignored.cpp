@@ -37,8 +37,8 @@ std::optional<Found> IgnoredWatch::verdict(const Entry& e) const {
   const Judged& j = e.first;
   const std::string axis(top::to_string(static_cast<top::Axis>(j.axis)));
   Found f{top::Diagnosis::command_ignored, e.c, j.axis, {}};
-  f.figure = command_text(j) + " was acknowledged; " + axis + " stayed at " + signed_text(j.to) + " deg for " +
-             seconds_text(static_cast<std::int64_t>(j.seconds * 1e6)) + " s by " +
+  f.figure = command_text(j) + " was acknowledged; " + axis + " stayed at " + signed_text(j.to) +
+             " deg for " + seconds_text(static_cast<std::int64_t>(j.seconds * 1e6)) + " s by " +
              std::string(j.attitude) + " (" + std::to_string(e.c.frames) + " window" +
              (e.c.frames == 1 ? "" : "s") + "), while " + std::string((*other)->ident) +
              " moved the gimbal";

@@ -43,10 +43,9 @@ std::string command_text(const Judged& j) {
       if (j.field_sign * j.trait > 0) return ident + " to " + signed_text(j.target) + " deg";
       const auto axis = static_cast<top::Axis>(j.axis);
       const std::string why =
-          j.field_sign < 0
-              ? std::string(top::to_string(axis)) + " " +
-                    std::string(direction_word(j.axis, -1)) + " positive on the wire"
-              : "the model's inverted " + std::string(top::to_string(axis));
+          j.field_sign < 0 ? std::string(top::to_string(axis)) + " " +
+                                 std::string(direction_word(j.axis, -1)) + " positive on the wire"
+                           : "the model's inverted " + std::string(top::to_string(axis));
       return ident + " " + signed_text(j.wire) + " deg (" + why + ": a target of " +
              signed_text(j.target) + " deg)";
     }

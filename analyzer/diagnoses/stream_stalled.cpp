@@ -5,7 +5,9 @@
 namespace topdump::diag {
 
 void StallWatch::stalled(std::uint64_t n, std::int64_t ts, double period) noexcept {
-  stalls_.add(n, last_, {}, 0);
+  if (!stalls_.any()) resumed_n_ = n;
+  stalls_.add(last_n_, last_, {}, 0);
+  stalls_.last_ts = ts;
   stalled_us_ += ts - last_;
   if (ts - last_ > longest_us_) {
     longest_us_ = ts - last_;
@@ -22,7 +24,8 @@ std::optional<Found> StallWatch::verdict(std::string_view ident) const {
              (stalls_.frames == 1 ? " time" : " times") + " for more than 3 periods (period " +
              seconds_text(static_cast<std::int64_t>(period_us_)) + " s) and resumed; longest " +
              seconds_text(longest_us_) + " s from " + time_text(longest_at_) +
-             "; the first resumed at frame " + std::to_string(stalls_.first_frame);
+             "; the first stopped after frame " + std::to_string(stalls_.first_frame) +
+             " and resumed at frame " + std::to_string(resumed_n_);
   return f;
 }
 

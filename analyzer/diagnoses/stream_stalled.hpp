@@ -36,7 +36,10 @@ class StallWatch {
   double typical_us_ = 0;  // running mean of the intervals that were no stall
   std::uint32_t intervals_ = 0;
   std::uint64_t first_n_ = 0;
-  Case stalls_;  // one frame per stall: the push that resumed it
+  // One frame per stall: the last push before it, at its time; the case
+  // ends (last_ts) when the last stall resumed.
+  Case stalls_;
+  std::uint64_t last_n_ = 0, resumed_n_ = 0;  // the last push; the first stall's resuming push
   std::int64_t longest_us_ = 0, longest_at_ = kNoTime, stalled_us_ = 0;
   double period_us_ = 0;                // the period the longest stall was judged by
   double asked_hz_ = 0, asked_us_ = 0;  // the rate last asked, and its period
@@ -47,6 +50,7 @@ inline void StallWatch::push(std::uint64_t n, std::int64_t ts, double asked_hz) 
   if (ts == kNoTime) return;
   if (last_ == kNoTime || ts < last_) {
     last_ = ts;
+    last_n_ = n;
     return;
   }
   const auto dt = static_cast<double>(ts - last_);
@@ -68,6 +72,7 @@ inline void StallWatch::push(std::uint64_t n, std::int64_t ts, double asked_hz) 
     typical_us_ += (dt - typical_us_) * (1.0 / 16);
   }
   last_ = ts;
+  last_n_ = n;
 }
 
 }  // namespace topdump::diag

@@ -17,6 +17,8 @@ top::Dialect dialect_of(const Report& r, const ConvStats& c) {
 
 std::string model_text(top::Model given, top::Dialect d, const ConvData* c) {
   if (given != top::Model::unknown) return std::string(top::to_string(given)) + " (given)";
+  if (c && c->named != top::Model::unknown)
+    return std::string(top::to_string(c->named)) + " (named by the device's model-name reply)";
   std::vector<top::Model> of, left;
   for (top::Model m : top::all_models())
     if (top::dialect_of(m) == d) {

@@ -120,6 +120,10 @@ void ReportSink::frame(const FrameEvent& e) {
     const top::Frame& f = *e.entry->frame;
     const top::Decoded& d = e.entry->decoded;
     if (d.dialect != top::Dialect::unknown) c.dialect = d.dialect;
+    if (d.role == top::Role::response && !e.entry->bad_checksum)
+      if (const top::Model m = top::model_named_by(d.dialect, f.ident_view(), f.data());
+          m != top::Model::unknown)
+        c.named = m;
     if (d.role == top::Role::response && d.command && d.command->models && !e.entry->bad_checksum) {
       const top::ModelSet left = c.models & d.command->models;
       if (left == 0) {

@@ -92,6 +92,9 @@ struct ConvData {
   // them, and one the device sent that no model left has.
   top::ModelSet models = static_cast<top::ModelSet>(~0u);
   std::string_view narrowed_by, conflict;
+  // The model the device named in its model-name reply (SkyDroid MOD;
+  // top::model_named_by), which the diagnoses judge by too.
+  top::Model named = top::Model::unknown;
   std::map<std::string, Attitude, std::less<>> attitude;  // by identifier: "GAC", "GIA"
   // deques: no copy as they grow, and stable addresses (AngleResult::cmd)
   std::deque<AngleCommand> angles;

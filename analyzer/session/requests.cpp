@@ -173,10 +173,9 @@ void Analyzer::Impl::emit_silence(Conversation& c) {
     n.until = s.last_ts;
     n.message = message([&] {
       return std::to_string(s.count) + (s.count == 1 ? " request (" : " requests (") + s.idents +
-             ") from frame " + std::to_string(s.first_n) + " to frame " +
-             std::to_string(s.last_n) + " got no response on this port: the device sent its " +
-             "frames to " + s.elsewhere.text() + " (conversation " +
-             std::to_string(s.elsewhere_conv) +
+             ") from frame " + std::to_string(s.first_n) + " to frame " + std::to_string(s.last_n) +
+             " got no response on this port: the device sent its " + "frames to " +
+             s.elsewhere.text() + " (conversation " + std::to_string(s.elsewhere_conv) +
              ") meanwhile: a client that does not listen there hears nothing" +
              (c.det.current() == top::Dialect::topotek
                   ? " (Topotek V1.1.3: the device answers to UDP 9004)"

@@ -18,7 +18,11 @@ void Analyzer::Impl::diagnose(Conversation& c, diag::Found f) {
   n.count = f.c.frames;
   n.until = f.c.last_ts;
   n.axis = static_cast<std::int8_t>(f.axis);
-  const Direction& D = c.dir[f.c.dir];
+  // A stall is the device's: its pushes stopped (the case's frames are
+  // pushes, whatever direction the detector was told).
+  const int d =
+      f.code == top::Diagnosis::stream_stalled && c.device_dir >= 0 ? c.device_dir : f.c.dir;
+  const Direction& D = c.dir[d];
   note_event(f.c.first_ts, Position{}, c.transport, &c, &D.from, &D.to, std::move(n));
 }
 
@@ -67,7 +71,10 @@ void Analyzer::Impl::check_stream(Conversation& c, const StreamStat& s) {
   std::memcpy(n.ident, s.ident.data(), std::min<std::size_t>(s.ident.size(), 3));
   n.count = s.frames;
   n.until = s.last;
-  note_event(s.last, Position{}, c.transport, &c, &c.dir[0].from, &c.dir[0].to, std::move(n));
+  // the device's stream, from its first push (the case's frame) to its last
+  const Direction& D = c.dir[c.device_dir >= 0 ? c.device_dir : 0];
+  note_event(s.first != kNoTime ? s.first : s.last, Position{}, c.transport, &c, &D.from, &D.to,
+             std::move(n));
 }
 
 }  // namespace topdump

@@ -286,6 +286,39 @@ TEST(DiagnosesMotion, ModelNamedByTheDeviceChoosesTheRefreshLimit) {
   }
 }
 
+// An axis still moving at the end is left moving, and its gap to the end
+// no refresh-gap: the motors did not stop (an outside capture of a C12,
+// refresh limit 1 s, named both of one axis). Where the attitude stops
+// after the limit, the gap is named and the axis is not.
+TEST(DiagnosesMotion, AnAxisMovingToTheEndIsNoRefreshGap) {
+  for (const bool stops : {false, true}) {
+    MotionFeed f(top::Dialect::skydroid);
+    f.track.named(top::Model::c12);
+    for (std::int64_t ms = 0; ms <= 8000; ms += 100) {
+      const double moving = static_cast<double>(std::clamp<std::int64_t>(ms - 1000, 0, 7000));
+      const double yaw = (stops ? std::min(moving, 1000.0) : moving) * 10 / 1000;
+      f.attitude(ms, "GAC", hex4(yaw) + "0000" + "0000");
+      if (ms >= 1000 && ms <= 2000) f.command(ms, "GSY", "14");
+    }
+    const auto v = f.finish(8000);
+    EXPECT_EQ(has(v, top::Diagnosis::axis_left_moving), !stops) << stops;
+    EXPECT_EQ(has(v, top::Diagnosis::refresh_gap), stops) << stops;
+  }
+}
+
+// The model the device names (SkyDroid MOD "C13") is the model: an outside
+// capture's report guessed "c12 (the device sent MOD, which the documents
+// give to this model only)" of a device that answered MOD C13.
+TEST(ReportModel, TheModelTheDeviceNamesIsTheModel) {
+  report::ConvData c;
+  c.models = top::model_bit(top::Model::c12);
+  c.narrowed_by = "MOD";
+  c.named = top::Model::c13;
+  EXPECT_EQ(report::model_text(top::Model::unknown, top::Dialect::skydroid, &c),
+            "c13 (named by the device's model-name reply)");
+  EXPECT_EQ(report::model_text(top::Model::c20, top::Dialect::skydroid, &c), "c20 (given)");
+}
+
 // A socat relay log records both directions by construction: requests with
 // no byte back are a silent device, not a line nobody recorded (a raw
 // dump's one tap). Found by an outside capture: nothing was named.
@@ -300,6 +333,24 @@ TEST(DiagnosesSession, SocatLogWithASilentDeviceNamesIt) {
                     "> 2024/05/01 12:00:%02d.%03d000000  length=16 from=%d to=%d\n", i / 4,
                     (i % 4) * 250, i * 16, i * 16 + 15);
       o << head << "#TPUD2rVER0051\\r\n";
+    }
+  }
+  const test::Recorder r = test::read(path);
+  EXPECT_TRUE(r.has_note(acode_of(top::Diagnosis::silent_device)));
+}
+
+// A line log names each line's direction: TX lines with no RX line are a
+// silent device too (an outside capture named nothing).
+TEST(DiagnosesSession, LineLogWithASilentDeviceNamesIt) {
+  test::TempDir tmp;
+  const std::string path = tmp.file("silent-lines.log");
+  {
+    std::ofstream o(path);
+    for (int i = 0; i < 20; ++i) {
+      char line[96];
+      std::snprintf(line, sizeof line, "2024-05-01T12:00:%02d.%03dZ TX #TPUD2rVER0051\n", i / 4,
+                    (i % 4) * 250);
+      o << line;
     }
   }
   const test::Recorder r = test::read(path);
