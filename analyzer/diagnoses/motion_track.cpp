@@ -233,7 +233,11 @@ void MotionTrack::finish(std::int64_t end_ts) {
         lm.speed = std::fabs(
             top::motion_speed(*m, r.value[i], r.raw[i], top::field_convention(*end.spec)));
       }
-      if (mark.spec == end.spec && w.at_last.angle(lm.axis, lm.at_last) &&
+      // Reports that read the same at the end: stopped (a motor stopped by
+      // the refresh limit within the last mark's half second read as
+      // "still moving" over it)
+      const bool stopped = changed_[ref] != kNoTime && end.ts - changed_[ref] >= kStoppedUs;
+      if (!stopped && mark.spec == end.spec && w.at_last.angle(lm.axis, lm.at_last) &&
           mark.angle(lm.axis, lm.at_mark) && end.angle(lm.axis, lm.at_end)) {
         if (lm.axis == static_cast<int>(top::Axis::yaw))
           lm.whole = Snap::turned(w.at_last, lm.at_last, end, lm.at_end, lm.after);

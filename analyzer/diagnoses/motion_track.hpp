@@ -161,7 +161,12 @@ class MotionTrack {
 
   std::array<Snap, 2> att_{};                   // the latest report: body, earth
   std::array<std::array<Snap, 2>, 2> marks_{};  // per frame: reports about 0.5 s apart
-  std::array<Unwrap, 2> unwrap_{};              // per frame: yaw across the marks
+  // Per frame, when a kept report last differed from the one before it in
+  // any byte: an attitude that reads the same to the end has stopped.
+  std::array<std::int64_t, 2> changed_{kNoTime, kNoTime};
+  // Reports that read the same for this long at the end: the gimbal stopped.
+  static constexpr std::int64_t kStoppedUs = 200'000;
+  std::array<Unwrap, 2> unwrap_{};  // per frame: yaw across the marks
   std::uint32_t epochs_ = 0;
   std::uint64_t reports_ = 0;
   std::int64_t last_report_ = kNoTime;
@@ -214,6 +219,7 @@ inline void MotionTrack::attitude(const top::MotionSpec& m, const top::FormSpec*
   // of the one kept (of the same attitude) is counted, not copied.
   Snap& a = att_[slot];
   if (a.spec != &m || ts - a.ts >= kSample || ts < a.ts) {
+    if (!a.same(m, data)) changed_[slot] = ts;
     if (!a.take(m, form, data, ts)) return;
     a.u = unwrap_[slot];
   } else if (!form || data.size() > sizeof a.w) {

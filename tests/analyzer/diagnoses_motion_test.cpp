@@ -306,6 +306,23 @@ TEST(DiagnosesMotion, AnAxisMovingToTheEndIsNoRefreshGap) {
   }
 }
 
+// The motors stopped by the refresh limit 0.28 s before the end (topsim's
+// C10, ReportKnownAnswers): the last mark's half second still held motion,
+// and the axis read "still +5.9 deg/s at the end". Reports that read the
+// same for the last 0.2 s are a stopped gimbal: refresh-gap, not left moving.
+TEST(DiagnosesMotion, AStopJustBeforeTheEndIsNoAxisLeftMoving) {
+  MotionFeed f(top::Dialect::skydroid);
+  f.track.named(top::Model::c10);
+  for (std::int64_t ms = 0; ms <= 3280; ms += 10) {
+    const double yaw = static_cast<double>(std::clamp<std::int64_t>(ms - 1000, 0, 2000)) / 100;
+    f.attitude(ms, "GAC", hex4(yaw) + "0000" + "0000");
+    if (ms >= 1000 && ms <= 2000 && ms % 100 == 0) f.command(ms, "GSY", "14");
+  }
+  const auto v = f.finish(3280);
+  EXPECT_FALSE(has(v, top::Diagnosis::axis_left_moving));
+  EXPECT_TRUE(has(v, top::Diagnosis::refresh_gap));
+}
+
 // The model the device names (SkyDroid MOD "C13") is the model: an outside
 // capture's report guessed "c12 (the device sent MOD, which the documents
 // give to this model only)" of a device that answered MOD C13.
