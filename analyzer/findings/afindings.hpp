@@ -66,7 +66,8 @@ namespace topdump {
     "and CAP answer with a file index and are exempt)")                                           \
   X(repeated, "repeated", info,                                                                   \
     "the same request again within the repeat window (some senders send "                         \
-    "each frame three times, 30 ms apart)")                                                       \
+    "each frame three times, 30 ms apart); a rate command sent again is a "                       \
+    "refresh, not a repeat")                                                                      \
   X(no_frames, "no-frames", error, "the input held no TOP frame at all")
 
 // The analyzer's codes: its findings, then the diagnoses of
