@@ -178,7 +178,8 @@ void Analyzer::Impl::emit_silence(Conversation& c) {
              s.elsewhere.text() + " (conversation " + std::to_string(s.elsewhere_conv) +
              ") meanwhile: a client that does not listen there hears nothing" +
              (c.det.current() == top::Dialect::topotek
-                  ? " (Topotek V1.1.3: the device answers to UDP 9004)"
+                  ? " (Topotek V1.1.3: the device answers to UDP " +
+                        std::to_string(top::client_port(top::Model::sip)) + ")"
                   : "");
     });
     note_event(s.first_ts, s.pos, c.transport, &c, &D.from, &D.to, std::move(n));

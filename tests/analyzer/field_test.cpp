@@ -275,6 +275,9 @@ TEST(Field, ADeviceAnsweringToAnotherPortIsNotSilent) {
   ASSERT_EQ(f.rec.count_note(ACode::unanswered), 1u);
   const auto& n = f.rec.notes[0].note;
   EXPECT_EQ(n.cause, Cause::other_port);
+  // the port the Topotek document names, from the port table
+  EXPECT_NE(n.message.find("(Topotek V1.1.3: the device answers to UDP 9004)"), std::string::npos)
+      << n.message;
   EXPECT_EQ(n.severity, top::Severity::info);
   EXPECT_EQ(n.count, 20u);
   EXPECT_NE(n.message.find("20 requests (VSN) from frame 1 to frame 39 got no response on this "
