@@ -216,10 +216,16 @@ TEST(DeviceField, GiaEnablePushesGiaUnderTheFieldProfile) {
         EXPECT_FALSE(field_seen);
     }
   }
-  // A GIA write is still echoed (the stream's frames come from the device).
+  // A GIA write gets no reply (Topotek 2: w is set/control; the stream's
+  // frames are what it turns on), nor does any Topotek write the document
+  // gives no reply form; REC answers with its file index, and every
+  // SkyDroid write is echoed (SkyDroid 2.3.1).
   const CommandSpec* gia = find_command(Dialect::topotek, "GIA");
   ASSERT_NE(gia, nullptr);
-  EXPECT_EQ(write_reply(*gia), WriteReply::echo);
+  EXPECT_EQ(write_reply(*gia), WriteReply::nothing);
+  EXPECT_EQ(write_reply(*find_command(Dialect::topotek, "PTZ")), WriteReply::nothing);
+  EXPECT_EQ(write_reply(*find_command(Dialect::topotek, "REC")), WriteReply::file_index);
+  EXPECT_EQ(write_reply(*find_command(Dialect::skydroid, "PTZ")), WriteReply::echo);
 }
 
 TEST(DeviceField, FormsAndTraitsOfTheFieldNameTheirSources) {

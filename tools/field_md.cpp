@@ -123,8 +123,10 @@ int main() {
          " | " + (s.rate_in_data ? "data, Hz" : "on/off") + " | " +
          (s.from_field() ? "field: " + cell(s.evidence) : std::string("document")) + " | " +
          std::string(s.section) + " | " + cell(s.note) + " |\n";
-  o += "\n## What a device answers to a write\n\nEvery write is echoed with the addresses "
-       "swapped (SkyDroid 2.3.1) except:\n\n";
+  o += "\n## What a device answers to a write\n\nSkyDroid echoes every write with the "
+       "addresses swapped (SkyDroid 2.3.1); Topotek defines `w` as set/control (Topotek 2) and "
+       "answers only the writes it gives a reply form (the `silent-writes` trait: a real "
+       "Topotek camera echoed none). The writes whose answer is not the dialect's rule:\n\n";
   o += "| dialect | command | answer | section |\n|---|---|---|---|\n";
   for (top::Dialect d : {top::Dialect::skydroid, top::Dialect::topotek})
     for (const top::CommandSpec& c : top::commands(d)) {
@@ -133,7 +135,9 @@ int main() {
       const top::StreamSpec* pushed = top::stream_of(d, c.ident);
       if (pushed && pushed->sender == top::Sender::device && pushed->request != c.ident) continue;
       const top::WriteReply r = top::write_reply(c);
-      if (r == top::WriteReply::echo) continue;
+      const top::WriteReply rule =
+          d == top::Dialect::topotek ? top::WriteReply::nothing : top::WriteReply::echo;
+      if (r == rule) continue;
       o += "| " + std::string(top::to_string(d)) + " | " + std::string(c.ident) + " | " +
            std::string(top::to_string(r)) + " | " + std::string(c.section) + " |\n";
     }

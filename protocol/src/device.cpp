@@ -11,6 +11,7 @@
 
 #include "catalog_data.hpp"
 #include "device_form.hpp"
+#include "top/dialect.hpp"
 #include "top/diagnoses.hpp"
 #include "top/enum_names.hpp"
 #include "top/text.hpp"
@@ -37,9 +38,10 @@ static_assert(std::size(kWriteReply) == static_cast<std::size_t>(WriteReply::not
 constexpr std::string_view kOrder[] = {"swapped", "request order"};
 static_assert(std::size(kOrder) == static_cast<std::size_t>(Order::request_order) + 1);
 constexpr std::string_view kTraitKind[] = {
-    "yaw-inverted",  "pitch-inverted",       "answers-to-source", "link-by-source",
-    "speed-refresh", "keeps-request-header", "double-checksum"};
-static_assert(std::size(kTraitKind) == static_cast<std::size_t>(TraitKind::double_checksum) + 1);
+    "yaw-inverted",   "pitch-inverted",       "answers-to-source",       "link-by-source",
+    "speed-refresh",  "keeps-request-header", "double-checksum",         "ephemeral-reply-port",
+    "fan-out",        "duplicate-to-client-port", "silent-writes"};
+static_assert(std::size(kTraitKind) == static_cast<std::size_t>(TraitKind::silent_writes) + 1);
 constexpr std::string_view kLink[] = {"network", "uart"};
 static_assert(std::size(kLink) == static_cast<std::size_t>(Link::uart) + 1);
 constexpr std::string_view kRejection[] = {"none", "unsupported", "invalid"};
@@ -139,6 +141,9 @@ WriteReply write_reply_of(const CommandSpec& cmd) noexcept {
       return WriteReply::file_index;
     return cmd.ident == "ERE" ? WriteReply::echo : WriteReply::data;
   }
+  // Topotek 2: `w` is set/control; the document gives no reply to a write
+  // it shows no reply form for (SkyDroid 2.3.1's echo is SkyDroid's rule).
+  if (cmd.dialect == Dialect::topotek) return WriteReply::nothing;
   return WriteReply::echo;
 }
 
@@ -352,6 +357,15 @@ bool answers_source(Model model, Profile profile, Link link, char src) noexcept 
 bool answers_source(Dialect d, Profile profile, Link link, char src) noexcept {
   if (!kLinkBySource[static_cast<std::size_t>(d)][static_cast<std::size_t>(profile)]) return true;
   return src == client_address(d, link);
+}
+
+bool replies_reach_host(Dialect d) noexcept {
+  for (const PortSpec& p : known_ports())
+    if (p.client && p.dialect == d) return true;
+  for (const Trait& t : traits())
+    if (t.dialect == d && (t.kind == TraitKind::fan_out || t.kind == TraitKind::ephemeral_reply_port))
+      return true;
+  return false;
 }
 
 bool rejects(FindingCode c) noexcept {

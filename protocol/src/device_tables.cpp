@@ -268,6 +268,46 @@ constexpr Trait kTraits[] = {
                  "checksum over it and its checksum; that the camera takes them is the tool "
                  "author's claim",
      .idents = "PTZ"},
+    // A real Topotek camera on UDP: PixEagle's bench evidence
+    // (alireza787b/PixEagle @ 3bea324, docs/reporting/agent-ops/
+    // codex-modernization/evidence/2026-09-17-gimbal-control-bench/<session>/
+    // events.jsonl; captures/sip-bench/ holds them as pcaps).
+    {.kind = TraitKind::ephemeral_reply_port,
+     .dialect = Dialect::topotek,
+     .models = sip,
+     .source = Source::field,
+     .evidence = "a real Topotek camera (PixEagle bench @3bea324, VSN 1.6.26.R.D) answered "
+                 "requests to UDP 9003 from port 38909 (sessions 20260917T044930Z to 045021Z), "
+                 "57707 (045346Z to 045454Z), 35496 (050911Z to 051227Z), 59598 (051516Z to "
+                 "052716Z), 50076 (071735Z to 072435Z) and 48413 (185212Z-identity), never from "
+                 "9003: its reply port changes between sessions"},
+    {.kind = TraitKind::fan_out,
+     .dialect = Dialect::topotek,
+     .models = sip,
+     .source = Source::field,
+     .evidence = "a real Topotek camera (PixEagle bench @3bea324, VSN 1.6.26.R.D) sent each "
+                 "reply to the asking port, to UDP 9004 and to the client port that asked "
+                 "before it: in 20260917T045021Z-routing the TRC read from port 48611 at "
+                 "04:50:26.437400 reached 8080, 9004, 48611 and 9004 within 0.11 ms; in "
+                 "20260917T044930Z-queries the reads from 9004 reached 8080 too"},
+    {.kind = TraitKind::duplicate_to_client_port,
+     .dialect = Dialect::topotek,
+     .models = sip,
+     .source = Source::field,
+     .evidence = "a real Topotek camera (PixEagle bench @3bea324, VSN 1.6.26.R.D) sent two "
+                 "copies of each reply to UDP 9004 in 20260917T045021Z-routing and from "
+                 "050955Z-zoom on (051804Z-queries 05:18:06.710040 and .710110); one in "
+                 "044930Z-queries and 045346Z-stops to 045454Z-tilt"},
+    {.kind = TraitKind::silent_writes,
+     .dialect = Dialect::topotek,
+     .models = sip,
+     .source = Source::field,
+     .evidence = "a real Topotek camera (PixEagle bench @3bea324, VSN 1.6.26.R.D) echoed none "
+                 "of the 361 writes of its 28 UDP sessions of 2026-09-17 (PTZ, ZMC, GSY, GSP, TRC, "
+                 "LOC, FED), and they took effect: after #TPPD2wTRC024F (20260917T045408Z-"
+                 "tracking-ready 04:54:10.483447) the next TRC read answered 01; after "
+                 "#TPUG2wGSY0564 (045437Z-pan 04:54:39.435460) GAC yaw went from -2.72 to -2.37 "
+                 "deg. Topotek V1.1.3 defines w as set/control and gives plain writes no reply"},
 };
 
 // SkyDroid 3.1 lists PTZ for C10, C10Pro, C12 and C20, and 0E-13 as trim.

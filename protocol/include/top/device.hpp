@@ -81,11 +81,16 @@ enum class WriteReply : std::uint8_t {
   echo,        // the write itself, addresses swapped (SkyDroid 2.3.1)
   data,        // a reply layout of its own (Topotek LON/LAT target, LRF)
   file_index,  // state and file index (Topotek 5.1 REC, 5.2 CAP)
-  nothing      // no answer (a stream of the client: FAI)
+  nothing      // no answer (a stream of the client: FAI; a Topotek write
+               // the document gives no reply form: its `w` is set/control)
 };
 std::string_view to_string(WriteReply r) noexcept;
 // What a device answers to a write of `cmd` (ERE for an invalid one is the
-// dialect's rule, not the command's).
+// dialect's rule, not the command's). SkyDroid 2.3.1 echoes every write;
+// Topotek V1.1.3 defines `w` as set/control and promises a reply only where
+// it gives the write's reply a form (REC and CAP's file index, LRF's
+// range): any other Topotek write is taken without a word, as a real
+// Topotek camera does (the silent_writes trait).
 WriteReply write_reply(const CommandSpec& cmd) noexcept;
 
 // The address order of a frame the device sends.
@@ -162,7 +167,17 @@ enum class TraitKind : std::uint8_t {
   link_by_source,        // Topotek: answers only the link the source byte names
   speed_refresh,         // a speed command must be refreshed or the motors stop
   keeps_request_header,  // a reply keeps the request's #TP or #tp, whatever its length
-  double_checksum        // takes a frame followed by a second checksum over it
+  double_checksum,       // takes a frame followed by a second checksum over it
+  // UDP: the device sends its replies from an ephemeral port of its own,
+  // not from the port it serves
+  ephemeral_reply_port,
+  // UDP: each reply goes to the asking port, to the client port of the
+  // port table (Topotek 9004) and to the client ports that asked before it
+  fan_out,
+  // UDP: each reply reaches the client port of the port table twice
+  duplicate_to_client_port,
+  // a valid write takes effect without any reply (no echo)
+  silent_writes
 };
 std::string_view to_string(TraitKind k) noexcept;
 
@@ -252,6 +267,15 @@ bool answers_source(Model model, Profile profile, Link link, char src) noexcept;
 // the trait of any model of the dialect.
 bool answers_source(Dialect d, Profile profile, Link link, char src) noexcept;
 
+// Whether a device of `d` may send what it sends over UDP to any port of
+// the client's host, from any port of its own: Topotek V1.1.3 answers to
+// the client port 9004 whatever the request's source port, and a real
+// Topotek camera answers from an ephemeral port to several client ports
+// (the traits ephemeral_reply_port and fan_out). A reader of traffic pairs
+// such a device's frames with the requests of the client's host, whatever
+// the ports; SkyDroid devices answer the datagram's source (answers_to_source).
+bool replies_reach_host(Dialect d) noexcept;
+
 // Why a device refuses a request, judged from the request's catalog findings.
 enum class Rejection : std::uint8_t {
   none,         // the device takes it
@@ -290,6 +314,13 @@ BuildSpec error_reply(const Frame& request) noexcept;
 // fraction of it: GAA asks a rate in whole Hz and devices pace by their own
 // tick, so a few percent are jitter and 25% is a different rate.
 inline constexpr double stream_rate_tolerance = 0.25;
+// Copies of one datagram a device sends to several ports of the client
+// (fan_out, duplicate_to_client_port) leave it within this time of each
+// other: a real Topotek camera's copies left within 0.12 ms (PixEagle
+// bench, 20260917T045021Z-routing), and the fastest periodic push of either
+// document (SkyDroid GAA at 100 Hz) is 10 ms apart, so the same bytes again
+// within 5 ms are a copy, later they are a frame of their own.
+inline constexpr std::int64_t fan_out_copy_window_us = 5000;
 // A device holding bytes that may start a frame (one failing its checksum
 // waits for the bytes after it: a length that lies) decides on them once its
 // line has been quiet this long. The documents give no inter-frame timeout; this is
