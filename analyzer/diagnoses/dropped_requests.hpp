@@ -1,9 +1,10 @@
-// Requests that went unanswered for a cause the capture shows, one case per
-// cause: reply-interface (a Topotek request over the network with source
-// U: the answer goes to the UART), dropped-bad-checksum and
-// dropped-checksum-case (the device drops a frame it cannot trust, or whose
-// checksum digits are lowercase). The session decides the cause once
-// (Cause, session/requests.cpp) and reports each unanswered request here.
+// Requests that carry a cause for the device to drop them, one case per
+// cause: reply-interface (a network client that names itself U, the UART,
+// in Topotek requests: the client's deviation, reported whether or not the
+// device answered, with how many went unanswered), dropped-bad-checksum and
+// dropped-checksum-case (the device drops a frame it cannot trust, or
+// whose checksum digits are lowercase: each unanswered request). The
+// session decides the cause once (Cause, session/requests.cpp).
 #pragma once
 
 #include <array>
@@ -19,6 +20,11 @@ class DroppedWatch {
   void add(top::Diagnosis d, std::uint64_t n, std::int64_t ts, std::string_view ident,
            int dir) noexcept {
     if (const int i = slot(d); i >= 0) cases_[static_cast<std::size_t>(i)].add(n, ts, ident, dir);
+  }
+  // A request of case `d` went unanswered (reply-interface: its case
+  // holds every such request, answered or not).
+  void unanswered(top::Diagnosis d) noexcept {
+    if (const int i = slot(d); i >= 0) ++unanswered_[static_cast<std::size_t>(i)];
   }
   // The diagnoses found, in the table's order.
   template <class Out>
@@ -38,6 +44,7 @@ class DroppedWatch {
     return -1;
   }
   std::array<Case, 3> cases_{};
+  std::array<std::uint64_t, 3> unanswered_{};
 };
 
 }  // namespace topdump::diag

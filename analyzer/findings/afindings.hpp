@@ -68,7 +68,18 @@ namespace topdump {
     "the same request again within the repeat window (some senders send "                         \
     "each frame three times, 30 ms apart); a rate command sent again is a "                       \
     "refresh, not a repeat")                                                                      \
-  X(no_frames, "no-frames", error, "the input held no TOP frame at all")
+  X(no_frames, "no-frames", error, "the input held no TOP frame at all")                          \
+  X(reply_port, "reply-port", info,                                                               \
+    "the device sent its frames from a port other than the one it serves (the "                   \
+    "ephemeral-reply-port trait of docs/FIELD.md); they are its own, paired with the requests "   \
+    "of the client's host; once per conversation")                                                \
+  X(fan_out, "fan-out", info,                                                                     \
+    "the device sent its frames to several ports of the client's host, or twice (the fan-out "    \
+    "and duplicate-to-client-port traits); each copy is shown with the frame it copies and "      \
+    "counted once; once per conversation")                                                        \
+  X(silent_writes, "silent-writes", info,                                                         \
+    "the device took writes the document gives no reply without a reply (the silent-writes "      \
+    "trait); their effects are the evidence; once per conversation")
 
 // The analyzer's codes: its findings, then the diagnoses of
 // top/diagnoses.hpp (the one home of their codes, severities, evidence and

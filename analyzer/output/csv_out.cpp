@@ -242,6 +242,8 @@ const Column kColumns[] = {
        std::snprintf(b, sizeof b, "%.3f", static_cast<double>(r.f->latency_us) / 1000.0);
        return std::string(b);
      }},
+    {"copy_of",
+     [](const Row& r) { return r.f && r.f->copy_of ? num(r.f->copy_of) : std::string(); }},
     {"frame",
      [](const Row& r) { return r.n && r.n->note.frame ? num(r.n->note.frame) : std::string(); }},
 };

@@ -265,6 +265,11 @@ void write_frame_json(std::string& out, const FrameEvent& e) {
     put_decimal(o, e.latency_us, 3);  // the double nearest to it is latency_us / 1000.0
   else
     app(o, "null");
+  app(o, ",\"copy_of\":");
+  if (e.copy_of)
+    put_u(o, e.copy_of);
+  else
+    app(o, "null");
   app(o, ",\"session\":[");
   bool first = true;
   for (const Note& n : e.notes) {

@@ -108,6 +108,7 @@ void write_stats_json(std::string& out, const Stats& s, top::Severity worst, int
   count("paired", s.paired);
   count("unanswered", s.unanswered);
   count("unsolicited", s.unsolicited);
+  count("copies", s.copies);
   j.close_object();
   j.key_object("latency");
   for (const auto& [k, l] : s.latency) {
@@ -175,6 +176,10 @@ std::string stats_text(const Stats& s, top::Severity worst) {
       static_cast<unsigned long long>(s.paired), static_cast<unsigned long long>(s.unanswered),
       static_cast<unsigned long long>(s.unsolicited));
   o += b;
+  if (s.copies) {
+    o.pop_back();
+    o += ", copies " + std::to_string(s.copies) + " (the device's fan-out: counted once)\n";
+  }
   if (!s.latency.empty()) {
     o += "latency (ms): ident count min median p95 max\n";
     for (const auto& [k, l] : s.latency) {

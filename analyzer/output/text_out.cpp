@@ -200,6 +200,7 @@ std::string frame_line(const FrameEvent& e) {
       s += b;
     }
   }
+  if (e.copy_of) s += " | copy of #" + std::to_string(e.copy_of);
   for (const top::Finding* x : all_findings(f, d)) s += " | " + severity_tag(*x);
   for (const Note& n : e.notes)
     s += " | " + std::string(top::to_string(n.severity)) + " " + std::string(to_string(n.code)) +

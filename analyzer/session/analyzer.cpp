@@ -55,8 +55,8 @@ void Analyzer::Impl::item(Conversation& c, int d, top::StreamItem& it, Position 
                          .pos = pos,
                          .transport = c.transport,
                          .conv = &c,
-                         .from = &D.from,
-                         .to = &D.to,
+                         .from = &D.now->from,
+                         .to = &D.now->to,
                          .item = &it};
     if (c.transport == Transport::serial)
       c.watch.baud.garbage(it.length, it.preview, pos.record, ts);
@@ -150,8 +150,8 @@ void Analyzer::Impl::frame(Conversation& c, int d, top::Frame& f, Position pos, 
                 .stream_offset = stream_off,
                 .transport = c.transport,
                 .conv = &c,
-                .from = &D.from,
-                .to = &D.to,
+                .from = &D.now->from,
+                .to = &D.now->to,
                 .entry = &e};
 
   expire(c, ts);
@@ -162,23 +162,31 @@ void Analyzer::Impl::frame(Conversation& c, int d, top::Frame& f, Position pos, 
   D.sent_frame = true;
   reply_timed = false;
   const top::Role decided = e.decoded.role;
-  if (decided == top::Role::request)
-    request(c, d, ev);
-  else if (decided == top::Role::response)
-    response(c, d, ev);
-  // The conversation's diagnoses see every frame, as pairing does; what
-  // they find is reported at its end, through the filter.
-  if (e.decoded.diagnosed) {  // the rules' prefilter (top::may_matter_to_diagnoses)
-    const std::string_view id = fr.ident_view(), data = fr.data();
-    if (decided == top::Role::response && e.decoded.dialect != top::Dialect::unknown &&
-        fr.checksum_ok)
-      c.watch.device_frame(e.decoded.dialect, id, fr.control, data, ev.n, ts, d);
-    c.watch.dated_frame(e.decoded.form, id, data, ev.n, ts, d, decided == top::Role::response);
+  // A copy of the device's last frame to another port of the client's
+  // host (a real Topotek camera's fan-out) is that frame again: shown and
+  // counted, never paired or judged twice.
+  if (c.link && d == c.device_dir && copy_of_last(c, d, fr, ts, ev.n))
+    ev.copy_of = c.link->last_n;
+  if (ev.copy_of == 0) {
+    if (decided == top::Role::request)
+      request(c, d, ev);
+    else if (decided == top::Role::response)
+      response(c, d, ev);
+    // The conversation's diagnoses see every frame, as pairing does; what
+    // they find is reported at its end, through the filter.
+    if (e.decoded.diagnosed) {  // the rules' prefilter (top::may_matter_to_diagnoses)
+      const std::string_view id = fr.ident_view(), data = fr.data();
+      if (decided == top::Role::response && e.decoded.dialect != top::Dialect::unknown &&
+          fr.checksum_ok)
+        c.watch.device_frame(e.decoded.dialect, id, fr.control, data, ev.n, ts, d);
+      c.watch.dated_frame(e.decoded.form, id, data, ev.n, ts, d, decided == top::Role::response);
+    }
+    // the motion diagnoses: commands that move the gimbal and its attitude
+    if (const top::MotionSpec* m = e.decoded.motion;
+        m && fr.checksum_ok && decided != top::Role::any)
+      c.watch.motion.frame(*m, e.decoded.form, decided == top::Role::request, fr.control,
+                           fr.data(), ev.n, ts, d, A.opts_.model);
   }
-  // the motion diagnoses: commands that move the gimbal and its attitude
-  if (const top::MotionSpec* m = e.decoded.motion; m && fr.checksum_ok && decided != top::Role::any)
-    c.watch.motion.frame(*m, e.decoded.form, decided == top::Role::request, fr.control, fr.data(),
-                         ev.n, ts, d, A.opts_.model);
 
   // Pairing saw the frame; what follows is reporting, which the filter
   // governs: a frame it leaves out is neither counted nor in the exit status.
@@ -194,7 +202,9 @@ void Analyzer::Impl::frame(Conversation& c, int d, top::Frame& f, Position pos, 
     unsolicited |= n.code == ACode::unsolicited;
   }
   ++c.st.frames;
-  if (decided == top::Role::request) {
+  if (ev.copy_of) {
+    ++A.stats_.copies;
+  } else if (decided == top::Role::request) {
     ++A.stats_.requests;
     ++c.st.requests;
   } else if (decided == top::Role::response) {
@@ -245,8 +255,10 @@ void Analyzer::record(bool top_traffic) {
 void Analyzer::datagram(std::int64_t ts, const Endpoint& src, const Endpoint& dst,
                         std::string_view payload, std::uint64_t record, std::uint32_t offset) {
   if (filtering_ && !take(ts)) return;
-  int d = 0;
-  Conversation& c = impl_->get(Transport::udp, src, dst, d);
+  const Route* route = nullptr;
+  Conversation& c = impl_->get(Transport::udp, src, dst, route);
+  const int d = route->dir;
+  c.dir[d].now = route;
   // The common case, a datagram of back-to-back frames (each perhaps
   // followed by CR/LF), skips the stream decoder's queue: for such bytes it
   // yields exactly these frames. A frame that fails its checksum qualifies

@@ -84,8 +84,9 @@ void Analyzer::segment(std::int64_t ts, const Endpoint& src, const Endpoint& dst
                        bool syn, std::string_view payload, std::uint64_t record,
                        std::uint32_t offset) {
   if (filtering_ && !take(ts)) return;
-  int d = 0;
-  Conversation& c = impl_->get(Transport::tcp, src, dst, d);
+  const Route* r = nullptr;
+  Conversation& c = impl_->get(Transport::tcp, src, dst, r);
+  const int d = r->dir;
   Impl::TcpSide side(*impl_, c, d);
   c.dir[d].tcp.segment(seq, syn, payload, record, offset, ts, side);
 }
@@ -93,8 +94,9 @@ void Analyzer::segment(std::int64_t ts, const Endpoint& src, const Endpoint& dst
 void Analyzer::chunk(std::int64_t ts, Transport t, const Endpoint& src, const Endpoint& dst,
                      std::string_view bytes, std::uint64_t record, std::uint64_t offset) {
   if (filtering_ && !take(ts)) return;
-  int d = 0;
-  Conversation& c = impl_->get(t, src, dst, d);
+  const Route* r = nullptr;
+  Conversation& c = impl_->get(t, src, dst, r);
+  const int d = r->dir;
   // A line with no frame yet: its first bytes, for the baud-mismatch check.
   if (t == Transport::serial && !c.dir[0].sent_frame && !c.dir[1].sent_frame)
     c.watch.baud.bytes(bytes);

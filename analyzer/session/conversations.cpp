@@ -39,7 +39,7 @@ std::size_t Analyzer::Impl::EndpointHash::operator()(const Endpoint& e) const no
   return static_cast<std::size_t>(h ^ (h >> 29));
 }
 
-const Conversation* Analyzer::Impl::answered_elsewhere(const Conversation& c, const Direction& D,
+const Conversation* Analyzer::Impl::answered_elsewhere(const Conversation& c, const Route& D,
                                                        std::int64_t after, Endpoint& to) const {
   const auto it = by_end.find(D.dst);
   if (it == by_end.end()) return nullptr;
@@ -55,11 +55,143 @@ const Conversation* Analyzer::Impl::answered_elsewhere(const Conversation& c, co
   return nullptr;
 }
 
+std::size_t Analyzer::Impl::HostHash::operator()(
+    const std::array<std::uint8_t, 16>& a) const noexcept {
+  std::uint64_t x, y;
+  std::memcpy(&x, a.data(), 8);
+  std::memcpy(&y, a.data() + 8, 8);
+  const std::uint64_t h = (x * 0x9E3779B97F4A7C15ull) ^ (y * 0xC2B2AE3D27D4EB4Full);
+  return static_cast<std::size_t>(h ^ (h >> 29));
+}
+
+namespace {
+bool same_host(const Endpoint& a, const Endpoint& b) noexcept {
+  return a.family == b.family && a.addr == b.addr;
+}
+bool has(const std::vector<std::uint16_t>& v, std::uint16_t p) noexcept {
+  return std::find(v.begin(), v.end(), p) != v.end();
+}
+void remember(std::vector<std::uint16_t>& v, std::uint16_t p) {
+  if (v.size() < 16 && !has(v, p)) v.push_back(p);
+}
+}  // namespace
+
+// A UDP conversation with one end on a device's served port, of a dialect
+// whose devices answer the client's host (top::replies_reach_host), takes
+// every later pair of ends between the two hosts: the client's other
+// ports, and the device's replies from another port of its own.
+void Analyzer::Impl::register_link(Conversation& c) {
+  if (c.transport != Transport::udp || c.device_dir < 0) return;
+  const Direction& dev = c.dir[c.device_dir];
+  if (!dev.src.family || top::port_role(dev.src.port) != top::PortRole::device) return;
+  top::Dialect dialect = A.opts_.dialect;
+  if (dialect == top::Dialect::unknown && A.opts_.model != top::Model::unknown)
+    dialect = top::dialect_of(A.opts_.model);
+  if (dialect == top::Dialect::unknown) dialect = top::dialect_from_port(dev.src.port);
+  if (!top::replies_reach_host(dialect)) return;
+  auto l = std::make_unique<HostLink>();
+  l->device = dev.src;
+  l->client_host = dev.dst;
+  l->client_host.port = 0;
+  l->dialect = dialect;
+  for (const top::PortSpec& p : top::known_ports())
+    if (p.client && !p.tcp && p.dialect == dialect) l->client_port = p.port;
+  remember(l->client_ports, dev.dst.port);
+  c.link = std::move(l);
+  links[dev.src.addr].push_back(&c);
+}
+
+void Analyzer::Impl::forget_link(Conversation& c) {
+  if (!c.link) return;
+  for (const auto& r : c.link->routes) {
+    ConvKey k{Transport::udp, r->src, r->dst};
+    if (endpoint_less(r->dst, r->src)) std::swap(k.a, k.b);
+    routes.erase(k);
+  }
+  if (auto at = links.find(c.link->device.addr); at != links.end()) {
+    std::erase(at->second, &c);
+    if (at->second.empty()) links.erase(at);
+  }
+}
+
+Conversation* Analyzer::Impl::link_of(const Endpoint& src, const Endpoint& dst, const Route*& r) {
+  if (links.empty() || !src.family || !dst.family) return nullptr;
+  // The device's end is on one of the two hosts; its conversation with the
+  // other host decides.
+  for (const bool from_device : {true, false}) {
+    const Endpoint& dev = from_device ? src : dst;
+    const Endpoint& cli = from_device ? dst : src;
+    const auto at = links.find(dev.addr);
+    if (at == links.end()) continue;
+    for (Conversation* c : at->second) {
+      HostLink& l = *c->link;
+      if (!same_host(l.device, dev) || !same_host(l.client_host, cli)) continue;
+      if (!from_device) {
+        // a client port of the host writing to the device's served port
+        if (dev.port != l.device.port) continue;
+        remember(l.client_ports, cli.port);
+      } else if (dev.port != l.device.port) {
+        // the device writing from another port: an ephemeral one (a port of
+        // the port table is another device's or a client's); on one host
+        // (loopback) only to a port the client used or the dialect's client
+        // port, and never from a port the client writes from
+        if (top::is_top_port(dev.port)) continue;
+        const bool one_host = same_host(dev, cli);
+        if (one_host && !has(l.client_ports, cli.port) && cli.port != l.client_port) continue;
+        if (one_host && has(l.client_ports, dev.port)) continue;
+        remember(l.reply_ports, dev.port);
+      }
+      auto route = std::make_unique<Route>();
+      route->src = src;
+      route->dst = dst;
+      route->from = src.text();
+      route->to = dst.text();
+      route->dir = from_device ? c->device_dir : 1 - c->device_dir;
+      r = route.get();
+      ConvKey k{Transport::udp, src, dst};
+      if (endpoint_less(dst, src)) std::swap(k.a, k.b);
+      routes.emplace(std::move(k), std::make_pair(c, route.get()));
+      l.routes.push_back(std::move(route));
+      return c;
+    }
+  }
+  return nullptr;
+}
+
 Conversation& Analyzer::Impl::get_slow(Transport t, const Endpoint& src, const Endpoint& dst,
-                                       int& d) {
+                                       const Route*& r) {
   ConvKey k{t, src, dst};
   if (endpoint_less(dst, src)) std::swap(k.a, k.b);
   auto it = convs.find(k);
+  if (it == convs.end() && t == Transport::udp) {
+    if (const auto at = routes.find(k); at != routes.end()) {
+      Conversation& c = *at->second.first;
+      c.last_used = ++clock;
+      r = at->second.second;
+      // the same pair the other way (a client port the device answers)
+      if (!(r->src == src)) {
+        for (const auto& x : c.link->routes)
+          if (x->src == src && x->dst == dst) {
+            r = x.get();
+            return c;
+          }
+        const Route* back = r;
+        auto route = std::make_unique<Route>();
+        route->src = src;
+        route->dst = dst;
+        route->from = back->to;
+        route->to = back->from;
+        route->dir = 1 - back->dir;
+        r = route.get();
+        c.link->routes.push_back(std::move(route));
+      }
+      return c;
+    }
+    if (Conversation* c = link_of(src, dst, r)) {
+      c->last_used = ++clock;
+      return *c;
+    }
+  }
   if (it == convs.end()) {
     if (convs.size() >= A.opts_.max_conversations) evict();
     auto c = std::make_unique<Conversation>();
@@ -69,10 +201,12 @@ Conversation& Analyzer::Impl::get_slow(Transport t, const Endpoint& src, const E
     c->dir[0].dst = dst;
     c->dir[0].from = src.text();
     c->dir[0].to = dst.text();
+    c->dir[0].dir = 0;
     c->dir[1].src = dst;
     c->dir[1].dst = src;
     c->dir[1].from = c->dir[0].to;
     c->dir[1].to = c->dir[0].from;
+    c->dir[1].dir = 1;
     c->dir[0].tcp = TcpReassembly(A.opts_.max_tcp_held);
     c->dir[1].tcp = TcpReassembly(A.opts_.max_tcp_held);
     if (A.opts_.dialect != top::Dialect::unknown) c->det.force(A.opts_.dialect);
@@ -90,11 +224,12 @@ Conversation& Analyzer::Impl::get_slow(Transport t, const Endpoint& src, const E
     c->st.transport = t;
     if (src.family && dst.family)
       for (const Endpoint* e : {&src, &dst}) by_end[*e].push_back(c.get());
+    register_link(*c);
     it = convs.emplace(std::move(k), std::move(c)).first;
   }
   Conversation& c = *it->second;
   c.last_used = ++clock;
-  d = (c.dir[0].src == src && c.dir[0].dst == dst) ? 0 : 1;
+  r = (c.dir[0].src == src && c.dir[0].dst == dst) ? &c.dir[0] : &c.dir[1];
   return c;
 }
 
@@ -116,6 +251,7 @@ void Analyzer::Impl::evict() {
       std::erase(at->second, &c);
       if (at->second.empty()) by_end.erase(at);
     }
+  forget_link(c);
   convs.erase(victim);
 }
 
@@ -133,6 +269,7 @@ void Analyzer::Impl::close(Conversation& c, std::int64_t ts) {
     c.pairing.pop_oldest();
   }
   emit_silence(c);
+  link_notes(c);
   for (const StreamStat& s : c.st.streams) check_stream(c, s);
   c.watch.motion.finish(last_ts(c));
   c.watch.verdicts([&](diag::Found f) { diagnose(c, std::move(f)); },
@@ -160,6 +297,8 @@ void Analyzer::finish() {
   for (Conversation* c : order) impl_->close(*c, kNoTime);
   impl_->cache.fill(Impl::CacheSlot{});
   impl_->by_end.clear();
+  impl_->routes.clear();
+  impl_->links.clear();
   impl_->convs.clear();
   std::sort(stats_.conversations.begin(), stats_.conversations.end(),
             [](const ConvStats& a, const ConvStats& b) { return a.id < b.id; });

@@ -75,6 +75,10 @@ struct FrameEvent {
   const DecodedEntry* entry = nullptr;
   std::uint64_t reply_to = 0;  // frame number of the request answered
   std::int64_t latency_us = -1;
+  // A copy of frame `copy_of` the device sent to another port of the
+  // client's host, or again (top::fan_out_copy_window_us): shown, counted
+  // as a frame, but neither paired nor judged (0: not a copy).
+  std::uint64_t copy_of = 0;
   std::vector<Note> notes;  // session findings on this frame
   top::Severity worst() const noexcept;
   std::uint64_t conv_id() const noexcept;

@@ -22,6 +22,8 @@ namespace topdump {
 
 inline constexpr std::size_t kMaxPending = 256;  // per conversation
 
+struct Route;
+
 // A request waiting for its response.
 struct Pending {
   std::int64_t ts;
@@ -34,6 +36,7 @@ struct Pending {
   int dir;  // the direction it was sent in (0 or 1)
   Cause cause;
   const top::CommandSpec* command;  // as decoded (null: none)
+  const Route* at;                  // the pair of ends it went between (session.hpp)
 };
 
 inline bool same_ident(const char a[3], std::string_view b) noexcept {
@@ -75,8 +78,8 @@ class Pairing {
   }
   // The request a response of `ident` with `data`, sent in `dir` by
   // `src`, answers (`ere`: the response is an ERE), if any.
-  std::optional<Match> match(std::string_view ident, std::string_view data, char src, int dir,
-                             bool ere) const;
+  std::optional<Match> match(std::string_view ident, std::string_view data, char control,
+                             char src, int dir, bool ere) const;
   // The request at `index` was answered: it leaves, and is remembered.
   void answer(std::size_t index);
   // The oldest request leaves (unanswered, or pushed out by a newer one).
@@ -138,15 +141,20 @@ class Pairing {
 // One pass from the newest: the first request whose data the response
 // echoes, else the newest of its identifier (ERE: the newest to the device
 // it speaks for that the device rejects (top::rejection), else the newest to
-// it). Oldest-first would pair a reply to a request that was lost
+// it). A request of the response's control (a read's answer is a read, a
+// write's echo a write) goes first: a TRC write and a TRC read in flight
+// together are each answered by their own (a real Topotek camera answers
+// the read and takes the write silently: the read's "01" is no echo of
+// a "01" write). Oldest-first would pair a reply to a request that was lost
 // (never answered) instead of the retry it answers: the latency would be
 // off by up to the timeout and the retry reported unanswered. Newest-first
 // can only swap two identical requests in flight, whose latencies are alike.
 inline std::optional<Pairing::Match> Pairing::match(std::string_view ident, std::string_view data,
-                                                    char src, int dir, bool ere) const {
+                                                    char control, char src, int dir,
+                                                    bool ere) const {
   if (!ere && maybe_pending(ident.data(), 1 - dir) == 0) return std::nullopt;
   constexpr std::size_t kNone = SIZE_MAX;
-  std::size_t by_ident = kNone;
+  std::size_t by_ident = kNone, other_control = kNone;
   for (std::size_t i = pending_.size(); i-- > 0;) {
     const Pending& p = pending_[i];
     if (p.dir == dir) continue;
@@ -157,11 +165,16 @@ inline std::optional<Pairing::Match> Pairing::match(std::string_view ident, std:
       continue;
     }
     if (!same_ident(p.ident, ident)) continue;
+    if (p.control != control) {
+      if (other_control == kNone) other_control = i;
+      continue;
+    }
     if (p.data == data) return Match{i, true};
     if (by_ident == kNone) by_ident = i;
   }
-  if (by_ident == kNone) return std::nullopt;
-  return Match{by_ident, false};
+  if (by_ident != kNone) return Match{by_ident, false};
+  if (other_control == kNone) return std::nullopt;
+  return Match{other_control, pending_[other_control].data == data};
 }
 
 inline void Pairing::answer(std::size_t index) {

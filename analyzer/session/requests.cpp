@@ -79,12 +79,19 @@ void Analyzer::Impl::unanswered(Conversation& c, const Pending& p, bool at_end) 
   // (SkyDroid 3.3.6.2: FAI gets no reply), also before its enable was seen.
   // (The command as decoded when it was sent: a catalog search here cost
   // cache misses on every unanswered request.)
-  if (p.control == 'w' && p.command && top::write_reply(*p.command) == top::WriteReply::nothing)
+  if (p.control == 'w' && p.command && top::write_reply(*p.command) == top::WriteReply::nothing) {
+    silent_write(c, p);
     return;
+  }
   // A copy of a request that was answered (senders that send each frame
   // several times) is not unanswered: the device answered one of them.
   if (c.pairing.copy_of_answered(p, A.opts_.repeat_window_us)) return;
-  const Direction& D = c.dir[p.dir];
+  // Nor is one whose answer the capture's end cut off: its last frame came
+  // sooner after the request than the slowest answer to its identifier in
+  // the conversation (a capture that stops 50 ms after a read its camera
+  // answers in 105-112 ms: PixEagle bench, 20260917T044930Z-queries).
+  if (at_end && cut_off(c, p)) return;
+  const Route& D = p.at ? *p.at : c.dir[p.dir];
   switch (p.cause) {
     case Cause::bad_checksum:
       c.watch.dropped.add(top::Diagnosis::dropped_bad_checksum, p.n, p.ts, p.ident, p.dir);
@@ -93,7 +100,7 @@ void Analyzer::Impl::unanswered(Conversation& c, const Pending& p, bool at_end) 
       c.watch.dropped.add(top::Diagnosis::dropped_checksum_case, p.n, p.ts, p.ident, p.dir);
       break;
     case Cause::uart_source:
-      c.watch.dropped.add(top::Diagnosis::reply_interface, p.n, p.ts, p.ident, p.dir);
+      c.watch.dropped.unanswered(top::Diagnosis::reply_interface);
       break;
     default:
       break;
@@ -157,6 +164,13 @@ void Analyzer::Impl::unanswered(Conversation& c, const Pending& p, bool at_end) 
   }
   about.message = std::move(msg);
   note_event(p.ts, p.pos, c.transport, &c, &D.from, &D.to, std::move(about));
+}
+
+bool Analyzer::Impl::cut_off(const Conversation& c, const Pending& p) const noexcept {
+  const std::int64_t heard = last_ts(c);
+  if (p.ts == kNoTime || heard == kNoTime) return false;
+  const std::int64_t slowest = c.slowest.of(pack_ident(std::string_view(p.ident, 3)));
+  return slowest >= 0 && heard - p.ts < slowest;
 }
 
 // One finding for requests that went unanswered while the device said
@@ -317,7 +331,12 @@ void Analyzer::Impl::request(Conversation& c, int d, FrameEvent& ev) {
       }
     }
   }
-  pend(c, d, ev, cause_of(c, *ev.entry, A.opts_.model));
+  const Cause cause = cause_of(c, *ev.entry, A.opts_.model);
+  // The client's deviation, whatever the device does with it: a network
+  // client that names itself U (the UART) in Topotek requests.
+  if (cause == Cause::uart_source)
+    c.watch.dropped.add(top::Diagnosis::reply_interface, ev.n, ev.ts, f.ident_view(), d);
+  pend(c, d, ev, cause);
 }
 
 // The request waits in the conversation's pairing for its response.
@@ -340,6 +359,7 @@ void Analyzer::Impl::pend(Conversation& c, int d, const FrameEvent& ev, Cause ca
     p.dir = d;
     p.cause = cause;
     p.command = ev.entry->decoded.command;
+    p.at = c.dir[d].now;
   });
 }
 
@@ -349,7 +369,7 @@ void Analyzer::Impl::response(Conversation& c, int d, FrameEvent& ev) {
   bool ere = top::is_error_reply(id);
   // The newest pending request it answers, preferring one whose data it
   // echoes (Pairing::match).
-  std::optional<Pairing::Match> mt = c.pairing.match(id, f.data(), f.src, d, ere);
+  std::optional<Pairing::Match> mt = c.pairing.match(id, f.data(), f.control, f.src, d, ere);
   // A reply of another identifier that a recorded form names as the answer
   // to a read (a real SIP answers the GIC query with GIA): the newest such
   // read pending (asked only of an identifier that answers another's read:
@@ -369,6 +389,7 @@ void Analyzer::Impl::response(Conversation& c, int d, FrameEvent& ev) {
       ev.latency_us = ev.ts - m->ts;
       reply_timed = true;
       reply_key = pack_ident(std::string_view(m->ident, 3));
+      c.slowest.add(reply_key, ev.latency_us);
     }
     // Writes answered in a layout of their own (Topotek REC/CAP file index,
     // LON/LAT, LRF) are not echoes.
@@ -385,6 +406,8 @@ void Analyzer::Impl::response(Conversation& c, int d, FrameEvent& ev) {
     if (m->control == 'w' && !ere)
       for (StreamStat& s : c.st.streams)
         if (s.frames == 0 && s.asked_by == std::string_view(m->ident, 3)) s.never.answered();
+    if (c.link && m->at && m->at->src.port != c.dir[d].now->dst.port)
+      answered_at(c, *m, *c.dir[d].now, ev.n, ev.ts);
     c.pairing.answer(mt->index);
     return;
   }

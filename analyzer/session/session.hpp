@@ -57,9 +57,20 @@ struct Silence {
   std::uint64_t elsewhere_conv = 0;
 };
 
-struct Direction {
+// The pair of ends a record went between, as the conversation table found
+// it: a conversation's own pair, or another pair it takes (HostLink).
+struct Route {
   Endpoint src, dst;
-  std::string from, to;
+  std::string from, to;  // endpoint texts
+  int dir = 0;           // the conversation's direction this pair goes in
+};
+
+// One direction of a conversation: its own pair of ends (the Route), and
+// what it decodes.
+struct Direction : Route {
+  // The pair the frames being decoded now went between: this one, or a
+  // HostLink's (set per datagram).
+  const Route* now = this;
   top::StreamDecoder dec;
   // The chunks whose bytes the decoder holds, oldest first (at most 4096).
   // A Ring, not a std::deque: a deque allocates two blocks as it is made,
@@ -74,6 +85,54 @@ struct Direction {
   std::int64_t last_req_ts = kNoTime;
   std::int64_t last_frame_ts = kNoTime;  // the last frame this direction sent
   bool sent_frame = false;
+};
+
+// What a conversation of a device that answers the client's host (not its
+// port) keeps: the other pairs of ends it takes, and what the device did
+// with them, for the notes at its end.
+struct HostLink {
+  Endpoint device;       // the end on the device's served port
+  Endpoint client_host;  // the client's address, port 0
+  top::Dialect dialect = top::Dialect::unknown;
+  std::uint16_t client_port = 0;  // the dialect's client port (Topotek 9004), 0: none
+  // The other pairs (a client port, the device's reply port) and their keys,
+  // to forget them when the conversation closes.
+  std::vector<std::unique_ptr<Route>> routes;
+  std::vector<std::uint16_t> client_ports;  // that sent to the device (at most 16)
+  std::vector<std::uint16_t> reply_ports;   // the device sent from, besides its own (at most 16)
+  std::vector<std::uint16_t> copy_ports;    // copies went to (at most 16)
+  std::uint64_t device_frames = 0;          // frames of the device, copies aside
+  std::uint64_t from_reply_port = 0;        // of them, sent from a reply port
+  std::uint64_t copies = 0;                 // copies of the device's frames
+  std::uint64_t fanned = 0;                 // frames of the device that had a copy
+  // The first frame from a reply port, and the first copy: where the notes sit.
+  std::uint64_t reply_port_n = 0, copy_n = 0;
+  std::int64_t reply_port_ts = kNoTime, copy_ts = kNoTime;
+  // The device's last frames, a copy compared with each: the deliveries of
+  // two datagrams may interleave (a real Topotek camera sent a TRC, an OFT,
+  // the TRC's copy, then the OFT's: PixEagle bench, 20260918T060610Z-
+  // rotated-point 06:06:14.538870).
+  struct Sent {
+    std::string raw;
+    std::int64_t ts = kNoTime;
+    std::uint64_t n = 0;
+    bool copied = false;
+  };
+  std::array<Sent, 4> recent{};
+  std::size_t recent_next = 0;
+  std::uint64_t last_n = 0;  // the frame the copy at hand copies
+  // The last reply reached another port than its request came from
+  // (`asker`): whether a copy reaches that port decides.
+  bool check = false;
+  std::uint16_t asker = 0;
+  std::uint64_t check_n = 0;  // the reply
+  std::int64_t check_ts = kNoTime;
+  Pending asked{};       // the request (its route, number, time, identifier)
+  std::string reached;   // the endpoint the reply went to
+  // The requests whose replies never reached the port that asked: one note.
+  Silence elsewhere;
+  std::string elsewhere_asker;
+  const Route* elsewhere_at = nullptr;  // the first such request's pair of ends
 };
 
 struct Conversation {
@@ -92,6 +151,37 @@ struct Conversation {
   Pairing pairing;
   std::uint64_t last_used = 0;
   ConvStats st;
+  // A device whose frames reach any port of the client's host from any port
+  // of its own (top::replies_reach_host: Topotek): every UDP datagram
+  // between the two hosts belongs here (HostLink), null otherwise.
+  std::unique_ptr<HostLink> link;
+  // The slowest answer per identifier (at most 8 identifiers), whatever the
+  // filter selects: how long after a request the capture must go on hearing
+  // the device before the request is unanswered at its end.
+  struct Slowest {
+    std::array<std::uint32_t, 8> key{};
+    std::array<std::int64_t, 8> us{};
+    void add(std::uint32_t k, std::int64_t v) noexcept {
+      for (std::size_t i = 0; i < key.size(); ++i)
+        if (key[i] == k || key[i] == 0) {
+          key[i] = k;
+          if (v > us[i]) us[i] = v;
+          return;
+        }
+    }
+    std::int64_t of(std::uint32_t k) const noexcept {
+      for (std::size_t i = 0; i < key.size() && key[i]; ++i)
+        if (key[i] == k) return us[i];
+      return -1;
+    }
+  } slowest;
+  // Writes taken without a reply, as the device's rule says
+  // (top::write_reply nothing), for the silent-writes note.
+  std::uint64_t silent_writes = 0;
+  std::string silent_idents;
+  std::uint64_t silent_n = 0;  // the first of them
+  std::int64_t silent_ts = kNoTime;
+  const Route* silent_at = nullptr;
   // The conversation's diagnoses (analyzer/diagnoses/): last, a few KB of
   // state most frames touch little of, so that the fields every frame
   // uses stay on the cache lines next to each other.
@@ -132,9 +222,22 @@ struct Analyzer::Impl {
   // cleared when a conversation is closed.
   struct CacheSlot {
     Conversation* c = nullptr;
-    int d = 0;
+    const Route* r = nullptr;  // the pair, a conversation's own or a HostLink's
   };
   std::array<CacheSlot, 64> cache{};
+  // The conversations of devices that answer the client's host, by the
+  // device's address: asked only for a pair of ends no conversation has.
+  struct HostHash {
+    std::size_t operator()(const std::array<std::uint8_t, 16>& a) const noexcept;
+  };
+  std::unordered_map<std::array<std::uint8_t, 16>, std::vector<Conversation*>, HostHash> links;
+  // The pairs HostLinks took, to find them again (the key of each pair).
+  std::unordered_map<ConvKey, std::pair<Conversation*, const Route*>, ConvKeyHash> routes;
+  // The conversation a new pair of UDP ends belongs to through a HostLink
+  // (and the Route it takes for the pair), or nullptr.
+  Conversation* link_of(const Endpoint& src, const Endpoint& dst, const Route*& r);
+  void register_link(Conversation& c);
+  void forget_link(Conversation& c);
   // The network conversations of each end (both ends of each): asked only
   // when a request goes unanswered, to tell a silent device from one that
   // answers to another port of the client's host (Topotek V1.1.3: to UDP
@@ -146,7 +249,7 @@ struct Analyzer::Impl {
   // The conversation other than `c` in which the device end of direction D
   // of `c` sent a frame at or after `after` to another port of D's source
   // host, and that port's end; nullptr when none.
-  const Conversation* answered_elsewhere(const Conversation& c, const Direction& D,
+  const Conversation* answered_elsewhere(const Conversation& c, const Route& D,
                                          std::int64_t after, Endpoint& to) const;
 
   static std::size_t cache_slot(Transport t, const Endpoint& src, const Endpoint& dst) noexcept {
@@ -160,21 +263,21 @@ struct Analyzer::Impl {
     }
     return static_cast<std::size_t>(h >> 58);  // 64 slots
   }
-  // The conversation of a record and the direction `d` it goes in.
-  Conversation& get(Transport t, const Endpoint& src, const Endpoint& dst, int& d) {
+  // The conversation of a record and the pair of ends it went between (its
+  // direction: r->dir; its endpoint texts: r->from, r->to).
+  Conversation& get(Transport t, const Endpoint& src, const Endpoint& dst, const Route*& r) {
     CacheSlot& slot = cache[cache_slot(t, src, dst)];
-    if (slot.c && slot.c->transport == t && slot.c->dir[slot.d].src == src &&
-        slot.c->dir[slot.d].dst == dst) {
+    if (slot.c && slot.c->transport == t && slot.r->src == src && slot.r->dst == dst) {
       slot.c->last_used = ++clock;
-      d = slot.d;
+      r = slot.r;
       return *slot.c;
     }
-    Conversation& c = get_slow(t, src, dst, d);
+    Conversation& c = get_slow(t, src, dst, r);
     slot.c = &c;
-    slot.d = d;
+    slot.r = r;
     return c;
   }
-  Conversation& get_slow(Transport t, const Endpoint& src, const Endpoint& dst, int& d);
+  Conversation& get_slow(Transport t, const Endpoint& src, const Endpoint& dst, const Route*& r);
   void evict();
   // Ends a conversation: flushes its decoders, expires its requests,
   // checks its streams and files its statistics.
@@ -255,6 +358,10 @@ struct Analyzer::Impl {
   std::uint32_t reply_key = 0;
 
   void pend(Conversation& c, int d, const FrameEvent& ev, Cause cause);
+  // Whether the conversation's last frame came sooner after request `p`
+  // than the slowest answer its identifier got in it: the capture's end may
+  // have cut the answer off.
+  bool cut_off(const Conversation& c, const Pending& p) const noexcept;
   void learn_device(Conversation& c, int d, const top::Frame& f, top::Dialect dialect);
   // What the capture shows of why a request may go unanswered.
   static Cause cause_of(const Conversation& c, const DecodedEntry& e, top::Model model);
@@ -275,6 +382,22 @@ struct Analyzer::Impl {
            (silent(c.dir[0]) || silent(c.dir[1]));
   }
   void emit_silence(Conversation& c);
+  // --- host_links.cpp: a device that answers the client's host ----------
+  // Whether frame `f` of the device, sent in direction `d`, is a copy of
+  // its last frame (fan-out); bookkeeping of the frames that are not.
+  bool copy_of_last(Conversation& c, int d, const top::Frame& f, std::int64_t ts,
+                    std::uint64_t n);
+  // The reply at hand answered request `p` on another port than `p` asked
+  // from: a copy to that port may yet come.
+  void answered_at(Conversation& c, const Pending& p, const Route& reply, std::uint64_t n,
+                   std::int64_t ts);
+  // The last reply's copies are all in: did one reach its asking port?
+  void settle(Conversation& c);
+  // The notes of what the device did, once per conversation, at its end.
+  void link_notes(Conversation& c);
+  // A write the device takes without a word (top::write_reply nothing)
+  // went without one: counted for the silent-writes note.
+  void silent_write(Conversation& c, const Pending& p);
   void check_stream(Conversation& c, const StreamStat& s);
   // --- the diagnoses (analyzer/diagnoses/), reported as session notes ---
   void diagnose(Conversation& c, diag::Found f);

@@ -72,6 +72,7 @@ struct Stats {
   std::uint64_t garbage = 0;  // garbage runs
   std::uint64_t error_frames = 0;
   std::uint64_t requests = 0, responses = 0, paired = 0, unanswered = 0, unsolicited = 0;
+  std::uint64_t copies = 0;  // the device's copies of its own frames (FrameEvent::copy_of)
   std::map<std::string, std::uint64_t> per_ident;
   std::map<std::string, std::uint64_t> per_code;  // frame, catalog and analyzer codes
   std::map<std::string, Latency> latency;         // per identifier

@@ -253,11 +253,11 @@ TEST(Field, ASilentDeviceIsOneFindingForTheStretch) {
 }
 
 // Topotek V1.1.3: the device answers to UDP 9004 on the client, whatever
-// port the request came from. A client sending from another port gets its
-// answers in another conversation: the device is not silent (outside
-// captures read "silent-device" on a SIP that answered every request, and
-// on a SkyDroid answering to port 5000). The stretch is one info note that
-// names where the frames went; a device silent to every port still is
+// port the request came from. Its replies reach the client's host: they are
+// paired with the requests (top::replies_reach_host), and the device is not
+// silent (outside captures read "silent-device" on a SIP that answered every
+// request). That no reply reached the asking port is one info note that
+// names where they went; a device silent to every port still is
 // silent-device.
 TEST(Field, ADeviceAnsweringToAnotherPortIsNotSilent) {
   Fixture f;
@@ -280,8 +280,13 @@ TEST(Field, ADeviceAnsweringToAnotherPortIsNotSilent) {
       << n.message;
   EXPECT_EQ(n.severity, top::Severity::info);
   EXPECT_EQ(n.count, 20u);
-  EXPECT_NE(n.message.find("20 requests (VSN) from frame 1 to frame 39 got no response on this "
-                           "port: the device sent its frames to 10.0.0.1:9004 (conversation 2)"),
+  // the replies reached the client's host: each is paired with its
+  // request, and the note says where they went
+  EXPECT_EQ(f.a->stats().paired, 20u);
+  EXPECT_EQ(f.a->stats().unanswered, 0u);
+  EXPECT_NE(n.message.find("20 requests (VSN) from frame 1 to frame 39 got their response on "
+                           "another port: the device sent it to 10.0.0.1:9004, never to "
+                           "10.0.0.1:14580 that asked"),
             std::string::npos)
       << n.message;
 
@@ -321,6 +326,7 @@ TEST(Field, RefusableClientStreamFramesTakenSilentlyAreNotUnanswered) {
   for (int i = 0; i < 20; ++i) f.up(400 + i * 50, fai);
   f.echoed(2000, 4, "#TPUD2rVER00");  // the device answers what asks for an answer
   f.up(6000, top::with_checksum("#TPUD2rVER00"));
+  f.up(6500, fai);  // the capture goes on past the VER's answer time
   f.a->finish();
   EXPECT_EQ(f.a->stats().unanswered, 1u);  // the last VER only
   ASSERT_EQ(f.rec.count_note(ACode::unanswered), 1u);
@@ -353,6 +359,8 @@ TEST(Field, OneWaySerialLineHasNoUnsolicitedOrUnanswered) {
   b.chunk(T, Transport::serial, dump, peer, request, 1, 0);
   b.chunk(T + 1000, Transport::serial, peer, dump, top::with_checksum("#TPDU2rVER00"), 2, 0);
   b.chunk(T + 500000, Transport::serial, dump, peer, request, 3, 0);  // past the repeat window
+  // the line goes on past the time the device took to answer the first
+  b.chunk(T + 600000, Transport::serial, dump, peer, top::with_checksum("#TPUG2wPTZ05"), 4, 0);
   b.finish();
   bool unanswered = false;
   for (const auto& n : rec2.notes) unanswered |= n.note.code == ACode::unanswered;

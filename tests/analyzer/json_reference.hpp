@@ -194,6 +194,10 @@ inline json frame_event_json(const FrameEvent& e) {
     j["latency_ms"] = static_cast<double>(e.latency_us) / 1000.0;
   else
     j["latency_ms"] = nullptr;
+  if (e.copy_of)
+    j["copy_of"] = e.copy_of;
+  else
+    j["copy_of"] = nullptr;
   json s = json::array();
   for (const Note& n : e.notes) s.push_back(note_json(n));
   j["session"] = std::move(s);
@@ -264,7 +268,8 @@ inline json stats_json(const Stats& s, top::Severity worst) {
                   {"responses", s.responses},
                   {"paired", s.paired},
                   {"unanswered", s.unanswered},
-                  {"unsolicited", s.unsolicited}};
+                  {"unsolicited", s.unsolicited},
+                  {"copies", s.copies}};
   json lat = json::object();
   for (const auto& [k, l] : s.latency) {
     json x;

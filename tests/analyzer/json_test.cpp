@@ -310,6 +310,8 @@ TEST(Json, FastWriterEqualsReferenceOnHostileBytes) {
     a.chunk(T + i, Transport::serial, i % 2 ? s : d, i % 2 ? d : s, p,
             static_cast<std::uint64_t>(i + 1), 0);
   }
+  // a frame after the timeout: what went unanswered is noted with its name
+  a.chunk(T + 3'000'000, Transport::serial, d, s, top::with_checksum("#TPUG2wPTZ05"), 301, 0);
   a.finish();
   ASSERT_GT(r.frames.size(), 50u);
   ASSERT_FALSE(r.notes.empty());

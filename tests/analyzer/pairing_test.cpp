@@ -28,7 +28,37 @@ void add(Pairing& p, std::uint64_t n, std::int64_t ts, std::string_view ident, c
     x.data.assign(data);
     x.dir = dir;
     x.cause = Cause::none;
+    x.command = nullptr;
+    x.at = nullptr;
   });
+}
+
+// A real Topotek camera takes a TRC write silently and answers the TRC read
+// sent right after it (PixEagle bench, 20260917T045408Z-tracking-ready
+// 04:54:10.483447: #TPPD2wTRC024F, #TPPD2rTRC0048, then #TPDP2rTRC0149):
+// the read's reply answers the read, even when its data is the write's
+// (cancel to ready, TRC 01, then a read answered 01).
+TEST(Pairing, AReplyAnswersARequestOfItsOwnControlFirst) {
+  Pairing p;
+  add(p, 1, 0, "TRC", 'w', "01", 'D');
+  add(p, 2, 10, "TRC", 'r', "00", 'D');
+  auto m = p.match("TRC", "01", 'r', 'D', kDevice, false);
+  ASSERT_TRUE(m);
+  EXPECT_EQ(p[m->index].n, 2u);
+  EXPECT_FALSE(m->echoed);
+  p.answer(m->index);
+  // with no read pending, an echo of the write still answers it
+  m = p.match("TRC", "01", 'w', 'D', kDevice, false);
+  ASSERT_TRUE(m);
+  EXPECT_EQ(p[m->index].n, 1u);
+  EXPECT_TRUE(m->echoed);
+  // and a reply of the other control takes what is left (a device that
+  // answers a read in a write's form)
+  p.answer(m->index);
+  add(p, 3, 20, "TRC", 'r', "00", 'D');
+  m = p.match("TRC", "02", 'w', 'D', kDevice, false);
+  ASSERT_TRUE(m);
+  EXPECT_EQ(p[m->index].n, 3u);
 }
 
 TEST(Pairing, ResponseMatchesARequestOfItsIdentifierSentTheOtherWay) {
@@ -39,17 +69,17 @@ TEST(Pairing, ResponseMatchesARequestOfItsIdentifierSentTheOtherWay) {
   EXPECT_TRUE(p.waiting("VER", kClient));
   EXPECT_FALSE(p.waiting("VER", kDevice));
   // a VER from the client's side answers nothing
-  EXPECT_FALSE(p.match("VER", "0105", 'U', kClient, false));
+  EXPECT_FALSE(p.match("VER", "0105", 'r', 'U', kClient, false));
   // one from the device answers frame 1
-  auto m = p.match("VER", "0105", 'G', kDevice, false);
+  auto m = p.match("VER", "0105", 'r', 'G', kDevice, false);
   ASSERT_TRUE(m);
   EXPECT_EQ(p[m->index].n, 1u);
   EXPECT_FALSE(m->echoed);
   p.answer(m->index);
   EXPECT_EQ(p.size(), 1u);
   EXPECT_FALSE(p.waiting("VER", kClient));
-  EXPECT_FALSE(p.match("VER", "0105", 'G', kDevice, false));  // answered once
-  EXPECT_FALSE(p.match("GAY", "", 'G', kDevice, false));      // never asked
+  EXPECT_FALSE(p.match("VER", "0105", 'r', 'G', kDevice, false));  // answered once
+  EXPECT_FALSE(p.match("GAY", "", 'w', 'G', kDevice, false));      // never asked
 }
 
 TEST(Pairing, PrefersTheRequestItEchoesThenTheNewest) {
@@ -58,12 +88,12 @@ TEST(Pairing, PrefersTheRequestItEchoesThenTheNewest) {
   add(p, 2, 10, "GAY", 'w', "0200");
   add(p, 3, 20, "GAY", 'w', "0300");
   // the echo of frame 1's data pairs with frame 1, though newer ones wait
-  auto m = p.match("GAY", "0100", 'G', kDevice, false);
+  auto m = p.match("GAY", "0100", 'w', 'G', kDevice, false);
   ASSERT_TRUE(m);
   EXPECT_EQ(p[m->index].n, 1u);
   EXPECT_TRUE(m->echoed);
   // a reply that echoes none pairs with the newest
-  m = p.match("GAY", "0999", 'G', kDevice, false);
+  m = p.match("GAY", "0999", 'w', 'G', kDevice, false);
   ASSERT_TRUE(m);
   EXPECT_EQ(p[m->index].n, 3u);
   EXPECT_FALSE(m->echoed);
@@ -74,13 +104,13 @@ TEST(Pairing, EreAnswersTheNewestRequestToTheDeviceItSpeaksFor) {
   add(p, 1, 0, "GAY", 'w', "0100", 'G');
   add(p, 2, 10, "VER", 'r', "", 'D');
   add(p, 3, 20, "PTZ", 'w', "05", 'G');
-  auto m = p.match("ERE", "!!", 'G', kDevice, true);
+  auto m = p.match("ERE", "!!", 'w', 'G', kDevice, true);
   ASSERT_TRUE(m);
   EXPECT_EQ(p[m->index].n, 3u);
-  m = p.match("ERE", "!!", 'D', kDevice, true);
+  m = p.match("ERE", "!!", 'w', 'D', kDevice, true);
   ASSERT_TRUE(m);
   EXPECT_EQ(p[m->index].n, 2u);
-  EXPECT_FALSE(p.match("ERE", "!!", 'M', kDevice, true));
+  EXPECT_FALSE(p.match("ERE", "!!", 'w', 'M', kDevice, true));
 }
 
 TEST(Pairing, RequestsPastTheTimeoutAreUnansweredOldestFirst) {
@@ -105,7 +135,7 @@ TEST(Pairing, RequestsPastTheTimeoutAreUnansweredOldestFirst) {
 TEST(Pairing, CopyOfAnAnsweredRequestIsRecognisedWithinTheWindow) {
   Pairing p;
   add(p, 1, 1'000'000, "GAY", 'w', "0100");
-  p.answer(p.match("GAY", "0100", 'G', kDevice, false)->index);
+  p.answer(p.match("GAY", "0100", 'w', 'G', kDevice, false)->index);
   add(p, 2, 1'030'000, "GAY", 'w', "0100");  // a copy 30 ms later
   add(p, 3, 1'060'000, "GAY", 'w', "0200");  // other data
   add(p, 4, 1'500'000, "GAY", 'w', "0100");  // the same, but 500 ms later

@@ -315,12 +315,14 @@ BuildSpec error_reply(const Frame& request) noexcept;
 // tick, so a few percent are jitter and 25% is a different rate.
 inline constexpr double stream_rate_tolerance = 0.25;
 // Copies of one datagram a device sends to several ports of the client
-// (fan_out, duplicate_to_client_port) leave it within this time of each
-// other: a real Topotek camera's copies left within 0.12 ms (PixEagle
-// bench, 20260917T045021Z-routing), and the fastest periodic push of either
-// document (SkyDroid GAA at 100 Hz) is 10 ms apart, so the same bytes again
-// within 5 ms are a copy, later they are a frame of their own.
-inline constexpr std::int64_t fan_out_copy_window_us = 5000;
+// (fan_out, duplicate_to_client_port) arrive less than this after the
+// first: a real Topotek camera's copies came within 1 ms, a few of them
+// 6-7 ms late (PixEagle bench: 2852 and 6 of 2858; 20260917T051804Z-queries
+// 05:18:06.703191 and .710040), while two frames of the same bytes it sent
+// on their own came 30 ms apart or more (ODZ during zoom), and the fastest
+// periodic push of either document (SkyDroid GAA at 100 Hz) is 10 ms
+// apart. The same bytes again within less than 10 ms are a copy.
+inline constexpr std::int64_t fan_out_copy_window_us = 10000;
 // A device holding bytes that may start a frame (one failing its checksum
 // waits for the bytes after it: a length that lies) decides on them once its
 // line has been quiet this long. The documents give no inter-frame timeout; this is
