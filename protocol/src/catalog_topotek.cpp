@@ -683,26 +683,12 @@ constexpr FieldSpec kLonOutFields[] = {
      .max = 180,
      .note = "ddd.ddddd per the text; bytes 1-10 per the byte count"},
 };
-// A real unit answers the position writes with their echo (issue 28: the
-// driver's LAT/LON/ALT/AZI writes "get example filler instead of their
-// echo"); AP_Mount_Topotek sends them 10 times a second and parses no answer.
-constexpr std::string_view kPositionEcho =
-    "issue 28: a real unit echoes AP_Mount_Topotek's LAT/LON writes (#tpUDAwLAT..., 10 Hz, "
-    "docs/sources/ardupilot.md 8.1)";
 constexpr FormSpec kLonForms[] = {
     {.control = 'w',
      .role = Role::request,
      .min_length = 11,
      .max_length = 11,
      .fields = kLonInFields},
-    {.control = 'w',
-     .role = Role::response,
-     .min_length = 11,
-     .max_length = 11,
-     .fields = kLonInFields,
-     .note = "the write's echo: the field's answer; the 5.8.7 layout has the same length, "
-             "the decoder takes the first of the two whose fields validate",
-     .evidence = kPositionEcho},
     {.control = 'w',
      .role = Role::response,
      .min_length = 11,
@@ -733,14 +719,6 @@ constexpr FormSpec kLatForms[] = {
      .min_length = 10,
      .max_length = 10,
      .fields = kLatInFields},
-    {.control = 'w',
-     .role = Role::response,
-     .min_length = 10,
-     .max_length = 10,
-     .fields = kLatInFields,
-     .note = "the write's echo: the field's answer; the 5.8.7 layout has the same length, "
-             "the decoder takes the first of the two whose fields validate",
-     .evidence = kPositionEcho},
     {.control = 'w',
      .role = Role::response,
      .min_length = 10,
@@ -877,14 +855,6 @@ constexpr FieldSpec kLrfResultFields[] = {
      .none = "ERR",
      .note = "X1X2X3X4X5.X6, 0.1 m; ERR: measurement failed"},
 };
-constexpr FieldSpec kLrfFieldFields[] = {
-    {.name = "distance",
-     .kind = FieldKind::number,
-     .width = 5,
-     .note = "5 chars, no point in the one reply seen; its unit is not established "
-             "(ArduPilot's driver, expecting X1X2X3X4X5.X6, would read 50001.4 m from "
-             "#tpMU5wLRF500002E)"},
-};
 constexpr FormSpec kLrfForms[] = {
     {.control = 'w',
      .min_length = 2,
@@ -893,18 +863,12 @@ constexpr FormSpec kLrfForms[] = {
      .note = "control, sent to M on long-range versions"},
     {.control = 'w',
      .role = Role::response,
-     .min_length = 5,
-     .max_length = 5,
-     .fields = kLrfFieldFields,
-     .note = "result in 5 digits, sent by M",
-     .evidence = "a real Topotek unit answered #tpMU5wLRF500002E (issue 28 log): 5 data chars, "
-                 "not the document's X1X2X3X4X5.X6"},
-    {.control = 'w',
-     .role = Role::response,
      .min_length = 3,
      .max_length = 7,
      .fields = kLrfResultFields,
-     .note = "result, sent by D after each successful measurement"},
+     .note = "result, sent by D after each successful measurement: X1X2X3X4X5.X6 metres "
+             "(00123.4), ERR when it failed; AP_Mount_Topotek.cpp @ d4209711 "
+             "gimbal_dist_info_analyse() reads \"12345.6\" and ERR"},
 };
 
 // 5.10 TIM (Beijing time) and UTC, decimal
@@ -1667,9 +1631,7 @@ constexpr CommandSpec kTable[] = {
      .models = sip,
      .forms = kLonForms,
      .note = "input E/W dddmm.mmmm; 5.8.7 output (rangefinder models) is "
-             "E/W + degrees, 11 bytes though \"ddd.ddddd\" has 9 chars; the field: "
-             "a device answers the input with its echo, which takes the length before the "
-             "output"},
+             "E/W + degrees, 11 bytes though \"ddd.ddddd\" has 9 chars"},
     {.ident = "LAT",
      .dialect = Dialect::topotek,
      .address = 'D',

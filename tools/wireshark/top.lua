@@ -627,7 +627,7 @@ CATALOG_FIELDS["top.UAV.flight_path"] = ProtoField.new("UAV flight_path (deg)", 
 CATALOG_VTYPE["top.UAV.flight_path"] = "double"
 CATALOG_FIELDS["top.LRF.action"] = ProtoField.new("LRF action", "top.LRF.action", ftypes.UINT32, { [0] = "stop", [1] = "on", [2] = "single", [3] = "continuous", }, base.HEX, nil, "laser rangefinder (Topotek 5.9)")
 CATALOG_VTYPE["top.LRF.action"] = "uint"
-CATALOG_FIELDS["top.LRF.distance"] = ProtoField.new("LRF distance", "top.LRF.distance", ftypes.DOUBLE, nil, nil, nil, "laser rangefinder (Topotek 5.9): 5 chars, no point in the one reply seen; its unit is not established (ArduPilot's driver, expecting X1X2X3X4X5.X6, would read 50001.4 m from #tpMU5wLRF500002E)")
+CATALOG_FIELDS["top.LRF.distance"] = ProtoField.new("LRF distance (m)", "top.LRF.distance", ftypes.DOUBLE, nil, nil, nil, "laser rangefinder (Topotek 5.9): X1X2X3X4X5.X6, 0.1 m; ERR: measurement failed")
 CATALOG_VTYPE["top.LRF.distance"] = "double"
 CATALOG_FIELDS["top.UTC.hour"] = ProtoField.new("UTC hour", "top.UTC.hour", ftypes.UINT32, nil, base.DEC, nil, "UTC time (Topotek 5.10)")
 CATALOG_VTYPE["top.UTC.hour"] = "uint"
@@ -2121,10 +2121,6 @@ CATALOG.topotek["LON"] = {
       fields = {
         { name = "longitude", kind = "nmea", width = 11, scale = 1, mul = 1, dec = 0, unit = "deg", abbrev = "top.LON.longitude" },
       } },
-    { control = "w", role = "response", min_length = 11, max_length = 11, note = "the write's echo: the field's answer; the 5.8.7 layout has the same length, the decoder takes the first of the two whose fields validate",
-      fields = {
-        { name = "longitude", kind = "nmea", width = 11, scale = 1, mul = 1, dec = 0, unit = "deg", abbrev = "top.LON.longitude" },
-      } },
     { control = "w", role = "response", min_length = 11, max_length = 11, note = "5.8.7: target longitude solved from attitude and range",
       fields = {
         { name = "hemisphere", kind = "enum_char", width = 1, scale = 1, mul = 1, dec = 0, unit = "", enums = { [69] = "east", [87] = "west", }, abbrev = "top.LON.hemisphere" },
@@ -2137,10 +2133,6 @@ CATALOG.topotek["LAT"] = {
   models = { sip = true, },
   forms = {
     { control = "w", role = "request", min_length = 10, max_length = 10, note = "",
-      fields = {
-        { name = "latitude", kind = "nmea", width = 10, scale = 1, mul = 1, dec = 0, unit = "deg", abbrev = "top.LAT.latitude" },
-      } },
-    { control = "w", role = "response", min_length = 10, max_length = 10, note = "the write's echo: the field's answer; the 5.8.7 layout has the same length, the decoder takes the first of the two whose fields validate",
       fields = {
         { name = "latitude", kind = "nmea", width = 10, scale = 1, mul = 1, dec = 0, unit = "deg", abbrev = "top.LAT.latitude" },
       } },
@@ -2206,11 +2198,7 @@ CATALOG.topotek["LRF"] = {
       fields = {
         { name = "action", kind = "enum_hex", width = 2, scale = 1, mul = 1, dec = 0, unit = "", enums = { [0] = "stop", [1] = "on", [2] = "single", [3] = "continuous", }, abbrev = "top.LRF.action" },
       } },
-    { control = "w", role = "response", min_length = 5, max_length = 5, note = "result in 5 digits, sent by M",
-      fields = {
-        { name = "distance", kind = "number", width = 5, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.LRF.distance" },
-      } },
-    { control = "w", role = "response", min_length = 3, max_length = 7, note = "result, sent by D after each successful measurement",
+    { control = "w", role = "response", min_length = 3, max_length = 7, note = "result, sent by D after each successful measurement: X1X2X3X4X5.X6 metres (00123.4), ERR when it failed; AP_Mount_Topotek.cpp @ d4209711 gimbal_dist_info_analyse() reads \"12345.6\" and ERR",
       fields = {
         { name = "distance", kind = "number", width = 0, scale = 1, mul = 1, dec = 0, unit = "m", min = 0, max = 99999.899999999994, none = "ERR", abbrev = "top.LRF.distance" },
       } },

@@ -343,9 +343,9 @@ void Device::handle(const Frame& req, Link link, std::uint64_t now_us,
       stored = month_early(*dec.form, std::move(stored));
     settings_[std::string(id)] = stored;
     // A write with a reply layout of its own (Topotek 5.8.7 LON/LAT target
-    // output, 5.9 LRF result) is answered in that layout; others are echoed.
-    // The field's layout first under the field profile (a real unit's 5-char
-    // LRF), never under the document's.
+    // output) is answered in that layout; others are echoed. The field's
+    // layout first under the field profile, never under the document's.
+    // (The 5.9 LRF result carries a measurement: device_topotek.cpp.)
     const top::FormSpec* layout = nullptr;
     for (const auto& f : cmd.forms) {
       if (f.control != 'w' || f.role != top::Role::response || &f == dec.form) continue;

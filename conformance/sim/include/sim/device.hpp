@@ -93,6 +93,9 @@ struct DeviceOptions {
   // Topotek tracking: false for a lens that cannot track (TRC state 4,
   // ArduPilot PR #31768).
   bool tracking = true;
+  // What the Topotek rangefinder measures, in metres: the result a
+  // measuring LRF write is answered with (X1X2X3X4X5.X6, Topotek 5.9).
+  double range_m = 1234.5;
   DeviceFaults faults;
 };
 
