@@ -399,8 +399,9 @@ constexpr FormSpec kPushForms[] = {
 };
 
 // 4.3.6 GIA: the document's switch, and the field's attitude frame. A real
-// SIP answers the GIC query with GIA frames of 12 hex chars, and
-// ArduPilot's Topotek driver reads its attitude only from them.
+// Topotek camera (PixEagle bench) answers the GIC query with GIA frames of
+// 12 hex chars, and ArduPilot's Topotek driver reads its attitude only from
+// them.
 constexpr FieldSpec kGiaAttitudeFields[] = {
     {.name = "yaw", .kind = FieldKind::hex_s, .width = 4, .scale = 0.01, .unit = "deg"},
     {.name = "pitch",
@@ -427,10 +428,11 @@ constexpr FormSpec kGiaForms[] = {
      .fields = kGiaAttitudeFields,
      .note = "attitude: the reply to a GIC query and the frame pushed after GIA 01, yaw, "
              "pitch, roll in 0.01 deg",
-     .evidence = "a real SIP (firmware 1.6.26.R.D) answers #TPPG2rGIC0035 with #tpGPCrGIA + "
-                 "12 hex (issue 28 log; PixEagle bench notes); AP_Mount_Topotek reads its "
-                 "attitude from GIA after #TPUG2wGIA013E (its header @02246a61 parsed GAC, "
-                 "@3d293ff8 GIA: ArduPilot PR #28455 per issue 28)"},
+     .evidence = "a real Topotek camera (PixEagle bench, VSN 1.6.26.R.D) answers #TPPG2rGIC0035 "
+                 "with #tpGPCrGIA + 12 hex (PixEagle session 20260917T044930Z-queries "
+                 "04:49:34.243738 -> 04:49:34.350916 #tpGPCrGIAFF25FFF8FFFE38); "
+                 "AP_Mount_Topotek.cpp @ d4209711 reads its attitude from GIA after "
+                 "#TPUG2wGIA013E (AP_Mount_Topotek.h @ 02246a61 dispatched GAC, @ 3d293ff8 GIA)"},
 };
 
 // 4.4 GMS (gimbal motors)
@@ -1149,15 +1151,19 @@ constexpr FormSpec kTrcForms[] = {
      .max_length = 2,
      .fields = kTrcActionFields,
      .evidence = "AP_Mount_Topotek sends #TPUD2wTRC0254, #TPUD2wTRC0153 and #TPUD2wTRC0052 "
-                 "(PR #27568); PixEagle sends the same to a real SIP"},
+                 "(PR #27568); PixEagle sent #TPPD2wTRC024F, #TPPD2wTRC014E, #TPPD2wTRC004D to a "
+                 "real Topotek camera (PixEagle session 20260917T051606Z-point 05:16:07.901740, "
+                 "05:16:09.904481, 05:16:10.705791)"},
     kQueryForm,
     {.control = 'r',
      .role = Role::response,
      .min_length = 2,
      .max_length = 2,
      .fields = kTrcStateFields,
-     .evidence = "a real SIP answers #TPPD2rTRC0048 with #TPDP2rTRC0048 within 2 ms (issue 28 "
-                 "log); AP_Mount_Topotek reads the state from data char 1 (PR #27568, "
+     .evidence = "a real Topotek camera (PixEagle bench, VSN 1.6.26.R.D) answered 04:49:32.641749 "
+                 "#TPPD2rTRC0048 with 04:49:32.643626 #TPDP2rTRC0048, 1.9 ms (PixEagle session "
+                 "20260917T044930Z-queries); AP_Mount_Topotek.cpp @ d4209711 "
+                 "gimbal_track_analyse() reads the state from data char 1 (PR #27568, "
                  "PR #31768)"},
 };
 
@@ -1166,8 +1172,9 @@ constexpr FieldSpec kTraFields[] = {
     {.name = "fault",
      .kind = FieldKind::text,
      .width = 2,
-     .note = "11 in every reply of a SIP whose tracking worked (issue 28 log, PixEagle "
-             "bench); the vendor's PDF says a reply means an abnormal tracker"},
+     .note = "11 in every reply of a Topotek camera whose tracker was ready (PixEagle session "
+             "20260917T071854Z-ai-observe); the vendor's PDF says a reply means an abnormal "
+             "tracker"},
 };
 constexpr FormSpec kTraForms[] = {
     kQueryForm,
@@ -1176,8 +1183,9 @@ constexpr FormSpec kTraForms[] = {
      .min_length = 2,
      .max_length = 2,
      .fields = kTraFields,
-     .evidence = "a real SIP answers #TPPD2rTRA0046 with #TPDP2rTRA1148 (issue 28 log, "
-                 "PixEagle bench notes)"},
+     .evidence = "a real Topotek camera (PixEagle bench, VSN 1.6.26.R.D) answered "
+                 "07:18:56.503256 #TPPD2rTRA0046 with 07:18:56.511155 #TPDP2rTRA1148 (PixEagle "
+                 "session 20260917T071854Z-ai-observe)"},
 };
 
 // LOC (tracking point or rectangle), 10 binary bytes, big-endian
@@ -1224,8 +1232,8 @@ constexpr FormSpec kLocForms[] = {
      .max_length = 10,
      .fields = kLocFields,
      .evidence = "AP_Mount_Topotek sends #tpUDAwLOC + 10 bytes (PR #27568); PixEagle sent "
-                 "#tpPDAwLOC 00 00 00 00 00 3E 00 6F 00 09 E7 to a real SIP, which then "
-                 "tracked"},
+                 "#tpPDAwLOC 00 00 00 00 00 3E 00 6F 00 09 E7 to a real Topotek camera, which "
+                 "then tracked (PixEagle session 20260917T051606Z-point 05:16:08.703292)"},
 };
 
 // OFT (tracking box push), 9 binary bytes, little-endian
@@ -1250,8 +1258,9 @@ constexpr FormSpec kOftForms[] = {
      .min_length = 9,
      .max_length = 9,
      .fields = kOftFields,
-     .evidence = "a real SIP pushes #tpDP9wOFT + 9 bytes at about video rate while it tracks "
-                 "(PixEagle bench: 99 in one session; the vendor's tracking PDF section 7)"},
+     .evidence = "a real Topotek camera (PixEagle bench, VSN 1.6.26.R.D) pushes #tpDP9wOFT + 9 "
+                 "bytes while it tracks: 33 from 05:16:08.832750 to 05:16:09.898290, 33 ms apart "
+                 "(PixEagle session 20260917T051606Z-point)"},
 };
 
 // Appendix II only (the checksum example): no layout.
@@ -1805,18 +1814,22 @@ constexpr CommandSpec kTable[] = {
              "after a LOC)",
      .evidence = "AP_Mount_Topotek.cpp (PR #27568 https://github.com/ArduPilot/ardupilot/pull/"
                  "27568, state 4: PR #31768 https://github.com/ArduPilot/ardupilot/pull/31768); "
-                 "a real SIP's log (issue 28); PixEagle bench notes and the vendor's tracking "
-                 "PDF (state 3)"},
+                 "states 00 -> 01 (+1.673 s) -> 02 (+2.676 s) -> 03 (+5.285 s) -> 01 -> 00 on a "
+                 "real Topotek camera (PixEagle session 20260918T185503Z-qt-point, manifest "
+                 "tracking_transitions) and the vendor's tracking PDF (state 3)"},
     {.ident = "TRA",
      .dialect = Dialect::topotek,
      .address = 'D',
      .title = "tracker fault",
-     .section = "field: a real SIP (issue 28), PixEagle bench notes",
+     .section = "field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF "
+                "section 4",
      .models = sip,
      .forms = kTraForms,
      .note = "answered 11 on a healthy tracker: not a health acknowledgement",
-     .evidence = "a real SIP answered #TPPD2rTRA0046 with #TPDP2rTRA1148 (issue 28 log; "
-                 "PixEagle bench notes; the vendor's serial example #TPUD2rTRA004B -> "
+     .evidence = "a real Topotek camera (PixEagle bench, VSN 1.6.26.R.D) answered "
+                 "07:18:56.503256 #TPPD2rTRA0046 with 07:18:56.511155 #TPDP2rTRA1148 (PixEagle "
+                 "session 20260917T071854Z-ai-observe; the vendor's serial example "
+                 "#TPUD2rTRA004B -> "
                  "#TPDU2rTRA114D)"},
     {.ident = "LOC",
      .dialect = Dialect::topotek,
@@ -1829,20 +1842,22 @@ constexpr CommandSpec kTable[] = {
              "+/-1000 grid, then 00 and 09 point or 01 rectangle; tracking starts (TRC state "
              "2) and OFT frames follow",
      .evidence = "AP_Mount_Topotek.cpp set_tracking() (PR #27568 https://github.com/ArduPilot/"
-                 "ardupilot/pull/27568); PixEagle bench notes on a real SIP"},
+                 "ardupilot/pull/27568); PixEagle session 20260917T051606Z-point on a real "
+                 "Topotek camera"},
     {.ident = "OFT",
      .dialect = Dialect::topotek,
      .address = 'D',
      .title = "tracking box",
-     .section = "field: PixEagle bench notes on a real SIP",
+     .section = "field: PixEagle session 20260917T051606Z-point",
      .models = sip,
      .forms = kOftForms,
      .note = "pushed at about 30 Hz while tracking: 9 binary bytes, x, y, width, height as "
              "little-endian 16-bit pixels (LOC is big-endian), then status '2' tracking or "
              "'1' stopped; never attitude",
-     .evidence = "PixEagle bench notes (a real SIP, firmware 1.6.26.R.D) and the vendor's "
-                 "tracking PDF section 7; issue 28: the unit pushes OFT at about 30 Hz while "
-                 "it tracks"},
+     .evidence = "a real Topotek camera (PixEagle bench, VSN 1.6.26.R.D): 33 OFT from "
+                 "05:16:08.832750 to 05:16:09.898290, 33 ms apart, after LOC at 05:16:08.703292 "
+                 "(PixEagle session 20260917T051606Z-point); the vendor's tracking PDF "
+                 "section 7"},
 };
 
 }  // namespace

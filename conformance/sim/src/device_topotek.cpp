@@ -23,7 +23,8 @@ struct TopotekHandlers {
   using Call = detail::HandlerCall;
   using Fn = detail::HandlerFn;
 
-  // The write back, its header kept (a real SIP answers #tp with #tp).
+  // The write back, its header kept (a real Topotek camera answers #tp with
+  // #tp: PixEagle session 20260917T185212Z-identity, GMS).
   static bool echo(const Call& c) {
     c.out.push_back(
         c.dev.make(c.req.header, c.req, c.req.control, c.req.ident_view(), c.req.data()));
@@ -76,7 +77,8 @@ struct TopotekHandlers {
   }
 
   // The GIC query: the attitude now, in the identifier top::reply_ident
-  // gives (a real SIP answers with a 12-char GIA, the document with GIC).
+  // gives (a real Topotek camera answers with a 12-char GIA, the document
+  // with GIC).
   static bool attitude_read(const Call& c) {
     Device& d = c.dev;
     d.advance(c.now_us);
