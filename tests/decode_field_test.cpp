@@ -166,18 +166,28 @@ TEST(DecodeField, OftTrackingBoxIsLittleEndian) {
   EXPECT_EQ(field(c, "width").integer, 0);
 }
 
-TEST(DecodeField, LrfFiveCharReply) {
-  const Decoded d = dec("#tpMU5wLRF500002E", Dialect::topotek, Model::sip);
+// The LRF result is the document's X1X2X3X4X5.X6 in metres (Topotek 5.9),
+// which ArduPilot's AP_Mount_Topotek.cpp @ d4209711 reads ("12345.6", or
+// ERR). The catalog had a field form of 5 chars from "a real unit",
+// #tpMU5wLRF500002E, which was topsim's own midpoint filler: no LRF form is
+// the field's, and 5 digits are the document's result, in metres.
+TEST(DecodeField, LrfResultIsTheDocumentsSevenChars) {
+  const CommandSpec* lrf = find_command(Dialect::topotek, "LRF");
+  ASSERT_NE(lrf, nullptr);
+  for (const FormSpec& f : lrf->forms) EXPECT_FALSE(f.from_field()) << f.note;
+  const Decoded d = dec(with_checksum("#tpMU7wLRF01234.5"), Dialect::topotek, Model::sip);
   ASSERT_NE(d.form, nullptr);
-  EXPECT_TRUE(d.form->from_field());
   EXPECT_TRUE(codes(d).empty()) << d.summary();
-  EXPECT_DOUBLE_EQ(field(d, "distance").value, 50000);
-  EXPECT_EQ(field(d, "distance").unit(), "");  // not established
-  // The document's form is still the document's.
-  const Decoded doc = dec(with_checksum("#tpDU7wLRF00123.4"), Dialect::topotek, Model::sip);
-  ASSERT_NE(doc.form, nullptr);
-  EXPECT_FALSE(doc.form->from_field());
-  EXPECT_DOUBLE_EQ(field(doc, "distance").value, 123.4);
+  EXPECT_DOUBLE_EQ(field(d, "distance").value, 1234.5);
+  EXPECT_EQ(field(d, "distance").unit(), "m");
+  const Decoded err = dec(with_checksum("#tpMU3wLRFERR"), Dialect::topotek, Model::sip);
+  ASSERT_NE(err.form, nullptr);
+  EXPECT_TRUE(codes(err).empty()) << err.summary();
+  EXPECT_TRUE(field(err, "distance").none);
+  const Decoded five = dec("#tpMU5wLRF500002E", Dialect::topotek, Model::sip);
+  ASSERT_NE(five.form, nullptr);
+  EXPECT_FALSE(five.form->from_field());
+  EXPECT_EQ(field(five, "distance").unit(), "m");
 }
 
 TEST(DecodeField, BigEndianKindsEncodeAndName) {

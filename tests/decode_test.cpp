@@ -289,12 +289,12 @@ TEST(Decode, EnumCodesAreThoseOfPrintf) {
   EXPECT_EQ(checked, 18u * 7u);
 }
 
-// topsim's document profile answers LAT/LON writes in 5.8.7's layout
-// (W0000000090, S000000045): no digits-and-point coordinate of 5.8.1/5.8.2,
-// so they decode as the output, not as the field's echo (they did: every
-// digit string passed as dddmm.mmmm). The echo of AP_Mount_Topotek's writes
-// stays the echo, and the catalog's example data is a valid coordinate.
-TEST(Decode, DocumentOutputIsNotTakenForTheFieldsEcho) {
+// topsim answers LAT/LON writes in 5.8.7's layout (W0000000090,
+// S000000045): no digits-and-point coordinate of 5.8.1/5.8.2, so they decode
+// as the output, not as the writes' layout (they did: every digit string
+// passed as dddmm.mmmm), and the catalog's example data is a valid
+// coordinate.
+TEST(Decode, DocumentOutputIsNotTakenForTheWritesLayout) {
   for (const char* raw : {"#tpDUBwLONW0000000090", "#tpDUAwLATS000000045"}) {
     const Decoded out = dec(with_checksum(raw), Dialect::topotek, Model::sip);
     ASSERT_NE(out.form, nullptr) << raw;
@@ -302,30 +302,27 @@ TEST(Decode, DocumentOutputIsNotTakenForTheFieldsEcho) {
     EXPECT_FALSE(out.form->from_field()) << raw;
     EXPECT_EQ(field(out, "hemisphere").text, std::string(1, raw[10])) << raw;
   }
-  for (const char* raw : {"#tpDUAwLATN3520.1206", "#tpDUBwLONE13843.6200"}) {
-    const Decoded echo = dec(with_checksum(raw), Dialect::topotek, Model::sip);
-    ASSERT_NE(echo.form, nullptr) << raw;
-    EXPECT_TRUE(echo.findings.empty()) << raw << ": " << echo.findings.front().message;
-    EXPECT_TRUE(echo.form->from_field()) << raw;
-  }
   // The writes themselves: a coordinate out of shape is a bad field.
   for (const char* raw : {"#tpUDAwLATN35201.206", "#tpUDAwLATE3520.1206", "#tpUDBwLONE13883.6200",
                           "#tpUDBwLONE1384362000"}) {
     const Decoded w = dec(with_checksum(raw), Dialect::topotek, Model::sip);
     EXPECT_TRUE(toptest::has_code(w.findings, FindingCode::bad_field)) << raw;
   }
-  // 5 digits are the real unit's LRF and also fit the document's
-  // X1X2X3X4X5.X6 (3-7 chars): the catalog's order takes the field's form,
-  // document_first the document's; neither with a finding.
-  const top::ParseResult lrf = top::parse_exact(with_checksum("#tpMU5wLRF50000"));
-  for (bool document_first : {false, true}) {
-    const Decoded d = decode(lrf.frame, {.dialect = Dialect::topotek,
-                                         .model = Model::sip,
-                                         .role = Role::response,
-                                         .document_first = document_first});
-    ASSERT_NE(d.form, nullptr);
-    EXPECT_TRUE(d.findings.empty()) << d.findings.front().message;
-    EXPECT_EQ(d.form->from_field(), !document_first);
+  // An LRF result has one layout, the document's X1X2X3X4X5.X6 (there was
+  // a field form of 5 digits, #tpMU5wLRF500002E, which was topsim's own
+  // midpoint filler and no device's): whatever the order, the document's.
+  for (const char* raw : {"#tpMU7wLRF01234.5", "#tpMU5wLRF50000"}) {
+    const top::ParseResult lrf = top::parse_exact(with_checksum(raw));
+    for (bool document_first : {false, true}) {
+      const Decoded d = decode(lrf.frame, {.dialect = Dialect::topotek,
+                                           .model = Model::sip,
+                                           .role = Role::response,
+                                           .document_first = document_first});
+      ASSERT_NE(d.form, nullptr) << raw;
+      EXPECT_TRUE(d.findings.empty()) << raw << ": " << d.findings.front().message;
+      EXPECT_FALSE(d.form->from_field()) << raw;
+      EXPECT_EQ(field(d, "distance").unit(), "m") << raw;
+    }
   }
   for (const char* id : {"LAT", "LON"}) {
     const top::CommandSpec* c = top::find_command(Dialect::topotek, id);
@@ -338,14 +335,20 @@ TEST(Decode, DocumentOutputIsNotTakenForTheFieldsEcho) {
   }
 }
 
-// LAT/LON answers: the field's echo (N/S E/W + ddmm.mmmm) and 5.8.7's output
-// (hemisphere + degrees) share a length; the decoder takes the form whose
-// fields validate, so neither raises a false alarm.
-TEST(Decode, SameLengthFormsAreChosenByContent) {
+// LAT/LON answers: 5.8.7's output (hemisphere + degrees) is the one
+// answer a source gives (there was a field form of the write's echo, which
+// no source records). A device frame in the write's own layout is not taken
+// for a second answer: it reads as the output, its degrees out of range.
+TEST(Decode, PositionAnswersAreTheDocumentsOutput) {
   const Decoded echo = dec(with_checksum("#tpDUAwLATN2232.7680"), Dialect::topotek, Model::sip);
   ASSERT_NE(echo.form, nullptr);
-  EXPECT_TRUE(echo.findings.empty()) << echo.findings.front().message;
-  EXPECT_NEAR(field(echo, "latitude").value, 22.5461, 1e-4);
+  EXPECT_FALSE(echo.form->from_field());
+  EXPECT_TRUE(toptest::has_code(echo.findings, FindingCode::value_out_of_range)) << echo.summary();
+  for (const char* id : {"LAT", "LON"}) {
+    const top::CommandSpec* c = top::find_command(Dialect::topotek, id);
+    ASSERT_NE(c, nullptr);
+    for (const top::FormSpec& f : c->forms) EXPECT_FALSE(f.from_field()) << id;
+  }
   const Decoded out = dec(with_checksum("#tpDUBwLONW 74.006000"), Dialect::topotek, Model::sip);
   ASSERT_NE(out.form, nullptr);
   EXPECT_TRUE(out.findings.empty()) << out.findings.front().message;

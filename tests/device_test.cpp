@@ -191,7 +191,8 @@ TEST(DeviceField, GiaEnablePushesGiaUnderTheFieldProfile) {
   EXPECT_EQ(field->request, "GIA");
   EXPECT_TRUE(field->from_field());
   EXPECT_EQ(field->sender, Sender::device);
-  EXPECT_NE(field->evidence.find("PR #28455"), std::string_view::npos);
+  EXPECT_NE(field->evidence.find("AP_Mount_Topotek.h @ 02246a61"), std::string_view::npos);
+  EXPECT_NE(field->evidence.find("@ 3d293ff8"), std::string_view::npos);
   // GAA has no field stream: the field profile gives the document's.
   EXPECT_EQ(stream_enabled_by(Dialect::topotek, "GAA", Profile::field)->push, "GAC");
   // Which frames are pushes.

@@ -37,8 +37,7 @@ void write_ports_and_field_commands(std::string& o) {
          std::string(top::to_string(p.dialect)) + " | " + (p.client ? "client" : "device") + " | " +
          models(p.served) + " | " + cell(p.source) + " |\n";
   // Which links the rows above give each model: TCP only where a document
-  // or the field puts it (issue 28 item 2 serves the drivers over TCP
-  // "where the link rules allow").
+  // or the field puts it (the port table's sources).
   o += "\nThe network links each model has by the rows above; topsim serves any model over TCP "
        "when asked (`--tcp`), but a model without a TCP port has none in either document or "
        "the field. The drivers' models (sip, c12, c13) have none, so their driver clients "

@@ -283,9 +283,10 @@ void Analyzer::Impl::request(Conversation& c, int d, FrameEvent& ev) {
   std::string_view id = f.ident_view();
   const top::Dialect dialect = ev.entry->decoded.dialect;
   // A client stream's frame (FAI after FAE) expects no answer, unless the
-  // device rejects it: then it waits for the ERE that refuses it (a
-  // 14-char FAI of ArduPilot's SkyDroid driver, issue 28), so that the ERE
-  // is not paired with the enable before it.
+  // device rejects it: then it waits for the ERE that refuses it (a device
+  // that keeps the document's 12 chars refuses the 14-char FAI that
+  // AP_Mount_SkyDroid.cpp @ c5aa8452 send_attitude_to_gimbal() sends, PR
+  // #34155), so that the ERE is not paired with the enable before it.
   for (StreamStat& s : c.st.streams) {
     if (s.from_client && s.ident == id) {
       ++s.frames;
@@ -371,10 +372,10 @@ void Analyzer::Impl::response(Conversation& c, int d, FrameEvent& ev) {
   // echoes (Pairing::match).
   std::optional<Pairing::Match> mt = c.pairing.match(id, f.data(), f.control, f.src, d, ere);
   // A reply of another identifier that a recorded form names as the answer
-  // to a read (a real SIP answers the GIC query with GIA): the newest such
-  // read pending (asked only of an identifier that answers another's read:
-  // the scan read every pending request for each push, 13k L1d misses per
-  // 100k frames of bench/run.sh's capture).
+  // to a read (a real Topotek camera answers the GIC query with GIA): the
+  // newest such read pending (asked only of an identifier that answers
+  // another's read: the scan read every pending request for each push, 13k
+  // L1d misses per 100k frames of bench/run.sh's capture).
   if (!mt && !ere && top::answers_other_query(ev.entry->decoded.dialect, id))
     for (std::size_t i = c.pairing.size(); !mt && i-- > 0;) {
       const Pending& p = c.pairing[i];

@@ -116,7 +116,8 @@ std::vector<Choice> add_options(CLI::App& app, Options& o) {
          {"normal", "inverted"});
   app.add_option("--fw-version", o.fw_version,
                  "the version SkyDroid VER / Topotek VSN answers (default: SkyDroid V1.0.78, "
-                 "the form ArduPilot's SkyDroid driver parses; Topotek 1.6.26.R.D, a real SIP's)");
+                 "the form ArduPilot's SkyDroid driver parses; Topotek 1.6.26.R.D, a real Topotek "
+                 "camera's)");
   app.add_option("--model-name", o.device_name,
                  "the model name SkyDroid MOD / Topotek PA2 answers (default the model's: "
                  "C12, SIP)");

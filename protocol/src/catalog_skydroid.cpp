@@ -787,9 +787,10 @@ constexpr FormSpec kSlrForms[] = {
      .min_length = 2,
      .max_length = 2,
      .fields = kSlrTriggerFields,
-     .evidence = "a station used on a real C13 (vamaskylight/custom-GCS, vgcs/skydroid) sends "
-                 "the trigger #TPUD2wSLR015B before each range read #TPUD2rSLR0055 (a C13 SDK, "
-                 "skydroid_c13_miniSDK, reads without one)"},
+     .evidence = "a station used on a real C13 (vamaskylight/custom-GCS, vgcs/skydroid; its "
+                 "tests/test_skydroid_protocol.py) sends the trigger #TPUD2wSLR015B before each "
+                 "range read #TPUD2rSLR0055 (a C13 SDK, sadikbarun/skydroid_c13_miniSDK "
+                 "skydroid.py @ d5a1ae12, reads without one)"},
 };
 
 // ---------------------------------------------------------------------------

@@ -399,8 +399,9 @@ constexpr FormSpec kPushForms[] = {
 };
 
 // 4.3.6 GIA: the document's switch, and the field's attitude frame. A real
-// SIP answers the GIC query with GIA frames of 12 hex chars, and
-// ArduPilot's Topotek driver reads its attitude only from them.
+// Topotek camera (PixEagle bench) answers the GIC query with GIA frames of
+// 12 hex chars, and ArduPilot's Topotek driver reads its attitude only from
+// them.
 constexpr FieldSpec kGiaAttitudeFields[] = {
     {.name = "yaw", .kind = FieldKind::hex_s, .width = 4, .scale = 0.01, .unit = "deg"},
     {.name = "pitch",
@@ -427,10 +428,11 @@ constexpr FormSpec kGiaForms[] = {
      .fields = kGiaAttitudeFields,
      .note = "attitude: the reply to a GIC query and the frame pushed after GIA 01, yaw, "
              "pitch, roll in 0.01 deg",
-     .evidence = "a real SIP (firmware 1.6.26.R.D) answers #TPPG2rGIC0035 with #tpGPCrGIA + "
-                 "12 hex (issue 28 log; PixEagle bench notes); AP_Mount_Topotek reads its "
-                 "attitude from GIA after #TPUG2wGIA013E (its header @02246a61 parsed GAC, "
-                 "@3d293ff8 GIA: ArduPilot PR #28455 per issue 28)"},
+     .evidence = "a real Topotek camera (PixEagle bench, VSN 1.6.26.R.D) answers #TPPG2rGIC0035 "
+                 "with #tpGPCrGIA + 12 hex (PixEagle session 20260917T044930Z-queries "
+                 "04:49:34.243738 -> 04:49:34.350916 #tpGPCrGIAFF25FFF8FFFE38); "
+                 "AP_Mount_Topotek.cpp @ d4209711 reads its attitude from GIA after "
+                 "#TPUG2wGIA013E (AP_Mount_Topotek.h @ 02246a61 dispatched GAC, @ 3d293ff8 GIA)"},
 };
 
 // 4.4 GMS (gimbal motors)
@@ -683,26 +685,12 @@ constexpr FieldSpec kLonOutFields[] = {
      .max = 180,
      .note = "ddd.ddddd per the text; bytes 1-10 per the byte count"},
 };
-// A real unit answers the position writes with their echo (issue 28: the
-// driver's LAT/LON/ALT/AZI writes "get example filler instead of their
-// echo"); AP_Mount_Topotek sends them 10 times a second and parses no answer.
-constexpr std::string_view kPositionEcho =
-    "issue 28: a real unit echoes AP_Mount_Topotek's LAT/LON writes (#tpUDAwLAT..., 10 Hz, "
-    "docs/sources/ardupilot.md 8.1)";
 constexpr FormSpec kLonForms[] = {
     {.control = 'w',
      .role = Role::request,
      .min_length = 11,
      .max_length = 11,
      .fields = kLonInFields},
-    {.control = 'w',
-     .role = Role::response,
-     .min_length = 11,
-     .max_length = 11,
-     .fields = kLonInFields,
-     .note = "the write's echo: the field's answer; the 5.8.7 layout has the same length, "
-             "the decoder takes the first of the two whose fields validate",
-     .evidence = kPositionEcho},
     {.control = 'w',
      .role = Role::response,
      .min_length = 11,
@@ -733,14 +721,6 @@ constexpr FormSpec kLatForms[] = {
      .min_length = 10,
      .max_length = 10,
      .fields = kLatInFields},
-    {.control = 'w',
-     .role = Role::response,
-     .min_length = 10,
-     .max_length = 10,
-     .fields = kLatInFields,
-     .note = "the write's echo: the field's answer; the 5.8.7 layout has the same length, "
-             "the decoder takes the first of the two whose fields validate",
-     .evidence = kPositionEcho},
     {.control = 'w',
      .role = Role::response,
      .min_length = 10,
@@ -877,14 +857,6 @@ constexpr FieldSpec kLrfResultFields[] = {
      .none = "ERR",
      .note = "X1X2X3X4X5.X6, 0.1 m; ERR: measurement failed"},
 };
-constexpr FieldSpec kLrfFieldFields[] = {
-    {.name = "distance",
-     .kind = FieldKind::number,
-     .width = 5,
-     .note = "5 chars, no point in the one reply seen; its unit is not established "
-             "(ArduPilot's driver, expecting X1X2X3X4X5.X6, would read 50001.4 m from "
-             "#tpMU5wLRF500002E)"},
-};
 constexpr FormSpec kLrfForms[] = {
     {.control = 'w',
      .min_length = 2,
@@ -893,18 +865,12 @@ constexpr FormSpec kLrfForms[] = {
      .note = "control, sent to M on long-range versions"},
     {.control = 'w',
      .role = Role::response,
-     .min_length = 5,
-     .max_length = 5,
-     .fields = kLrfFieldFields,
-     .note = "result in 5 digits, sent by M",
-     .evidence = "a real Topotek unit answered #tpMU5wLRF500002E (issue 28 log): 5 data chars, "
-                 "not the document's X1X2X3X4X5.X6"},
-    {.control = 'w',
-     .role = Role::response,
      .min_length = 3,
      .max_length = 7,
      .fields = kLrfResultFields,
-     .note = "result, sent by D after each successful measurement"},
+     .note = "result, sent by D after each successful measurement: X1X2X3X4X5.X6 metres "
+             "(00123.4), ERR when it failed; AP_Mount_Topotek.cpp @ d4209711 "
+             "gimbal_dist_info_analyse() reads \"12345.6\" and ERR"},
 };
 
 // 5.10 TIM (Beijing time) and UTC, decimal
@@ -1185,15 +1151,19 @@ constexpr FormSpec kTrcForms[] = {
      .max_length = 2,
      .fields = kTrcActionFields,
      .evidence = "AP_Mount_Topotek sends #TPUD2wTRC0254, #TPUD2wTRC0153 and #TPUD2wTRC0052 "
-                 "(PR #27568); PixEagle sends the same to a real SIP"},
+                 "(PR #27568); PixEagle sent #TPPD2wTRC024F, #TPPD2wTRC014E, #TPPD2wTRC004D to a "
+                 "real Topotek camera (PixEagle session 20260917T051606Z-point 05:16:07.901740, "
+                 "05:16:09.904481, 05:16:10.705791)"},
     kQueryForm,
     {.control = 'r',
      .role = Role::response,
      .min_length = 2,
      .max_length = 2,
      .fields = kTrcStateFields,
-     .evidence = "a real SIP answers #TPPD2rTRC0048 with #TPDP2rTRC0048 within 2 ms (issue 28 "
-                 "log); AP_Mount_Topotek reads the state from data char 1 (PR #27568, "
+     .evidence = "a real Topotek camera (PixEagle bench, VSN 1.6.26.R.D) answered 04:49:32.641749 "
+                 "#TPPD2rTRC0048 with 04:49:32.643626 #TPDP2rTRC0048, 1.9 ms (PixEagle session "
+                 "20260917T044930Z-queries); AP_Mount_Topotek.cpp @ d4209711 "
+                 "gimbal_track_analyse() reads the state from data char 1 (PR #27568, "
                  "PR #31768)"},
 };
 
@@ -1202,8 +1172,9 @@ constexpr FieldSpec kTraFields[] = {
     {.name = "fault",
      .kind = FieldKind::text,
      .width = 2,
-     .note = "11 in every reply of a SIP whose tracking worked (issue 28 log, PixEagle "
-             "bench); the vendor's PDF says a reply means an abnormal tracker"},
+     .note = "11 in every reply of a Topotek camera whose tracker was ready (PixEagle session "
+             "20260917T071854Z-ai-observe); the vendor's PDF says a reply means an abnormal "
+             "tracker"},
 };
 constexpr FormSpec kTraForms[] = {
     kQueryForm,
@@ -1212,8 +1183,9 @@ constexpr FormSpec kTraForms[] = {
      .min_length = 2,
      .max_length = 2,
      .fields = kTraFields,
-     .evidence = "a real SIP answers #TPPD2rTRA0046 with #TPDP2rTRA1148 (issue 28 log, "
-                 "PixEagle bench notes)"},
+     .evidence = "a real Topotek camera (PixEagle bench, VSN 1.6.26.R.D) answered "
+                 "07:18:56.503256 #TPPD2rTRA0046 with 07:18:56.511155 #TPDP2rTRA1148 (PixEagle "
+                 "session 20260917T071854Z-ai-observe)"},
 };
 
 // LOC (tracking point or rectangle), 10 binary bytes, big-endian
@@ -1260,8 +1232,8 @@ constexpr FormSpec kLocForms[] = {
      .max_length = 10,
      .fields = kLocFields,
      .evidence = "AP_Mount_Topotek sends #tpUDAwLOC + 10 bytes (PR #27568); PixEagle sent "
-                 "#tpPDAwLOC 00 00 00 00 00 3E 00 6F 00 09 E7 to a real SIP, which then "
-                 "tracked"},
+                 "#tpPDAwLOC 00 00 00 00 00 3E 00 6F 00 09 E7 to a real Topotek camera, which "
+                 "then tracked (PixEagle session 20260917T051606Z-point 05:16:08.703292)"},
 };
 
 // OFT (tracking box push), 9 binary bytes, little-endian
@@ -1286,8 +1258,9 @@ constexpr FormSpec kOftForms[] = {
      .min_length = 9,
      .max_length = 9,
      .fields = kOftFields,
-     .evidence = "a real SIP pushes #tpDP9wOFT + 9 bytes at about video rate while it tracks "
-                 "(PixEagle bench: 99 in one session; the vendor's tracking PDF section 7)"},
+     .evidence = "a real Topotek camera (PixEagle bench, VSN 1.6.26.R.D) pushes #tpDP9wOFT + 9 "
+                 "bytes while it tracks: 33 from 05:16:08.832750 to 05:16:09.898290, 33 ms apart "
+                 "(PixEagle session 20260917T051606Z-point)"},
 };
 
 // Appendix II only (the checksum example): no layout.
@@ -1667,9 +1640,7 @@ constexpr CommandSpec kTable[] = {
      .models = sip,
      .forms = kLonForms,
      .note = "input E/W dddmm.mmmm; 5.8.7 output (rangefinder models) is "
-             "E/W + degrees, 11 bytes though \"ddd.ddddd\" has 9 chars; the field: "
-             "a device answers the input with its echo, which takes the length before the "
-             "output"},
+             "E/W + degrees, 11 bytes though \"ddd.ddddd\" has 9 chars"},
     {.ident = "LAT",
      .dialect = Dialect::topotek,
      .address = 'D',
@@ -1843,18 +1814,22 @@ constexpr CommandSpec kTable[] = {
              "after a LOC)",
      .evidence = "AP_Mount_Topotek.cpp (PR #27568 https://github.com/ArduPilot/ardupilot/pull/"
                  "27568, state 4: PR #31768 https://github.com/ArduPilot/ardupilot/pull/31768); "
-                 "a real SIP's log (issue 28); PixEagle bench notes and the vendor's tracking "
-                 "PDF (state 3)"},
+                 "states 00 -> 01 (+1.673 s) -> 02 (+2.676 s) -> 03 (+5.285 s) -> 01 -> 00 on a "
+                 "real Topotek camera (PixEagle session 20260918T185503Z-qt-point, manifest "
+                 "tracking_transitions) and the vendor's tracking PDF (state 3)"},
     {.ident = "TRA",
      .dialect = Dialect::topotek,
      .address = 'D',
      .title = "tracker fault",
-     .section = "field: a real SIP (issue 28), PixEagle bench notes",
+     .section = "field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF "
+                "section 4",
      .models = sip,
      .forms = kTraForms,
      .note = "answered 11 on a healthy tracker: not a health acknowledgement",
-     .evidence = "a real SIP answered #TPPD2rTRA0046 with #TPDP2rTRA1148 (issue 28 log; "
-                 "PixEagle bench notes; the vendor's serial example #TPUD2rTRA004B -> "
+     .evidence = "a real Topotek camera (PixEagle bench, VSN 1.6.26.R.D) answered "
+                 "07:18:56.503256 #TPPD2rTRA0046 with 07:18:56.511155 #TPDP2rTRA1148 (PixEagle "
+                 "session 20260917T071854Z-ai-observe; the vendor's serial example "
+                 "#TPUD2rTRA004B -> "
                  "#TPDU2rTRA114D)"},
     {.ident = "LOC",
      .dialect = Dialect::topotek,
@@ -1867,20 +1842,22 @@ constexpr CommandSpec kTable[] = {
              "+/-1000 grid, then 00 and 09 point or 01 rectangle; tracking starts (TRC state "
              "2) and OFT frames follow",
      .evidence = "AP_Mount_Topotek.cpp set_tracking() (PR #27568 https://github.com/ArduPilot/"
-                 "ardupilot/pull/27568); PixEagle bench notes on a real SIP"},
+                 "ardupilot/pull/27568); PixEagle session 20260917T051606Z-point on a real "
+                 "Topotek camera"},
     {.ident = "OFT",
      .dialect = Dialect::topotek,
      .address = 'D',
      .title = "tracking box",
-     .section = "field: PixEagle bench notes on a real SIP",
+     .section = "field: PixEagle session 20260917T051606Z-point",
      .models = sip,
      .forms = kOftForms,
      .note = "pushed at about 30 Hz while tracking: 9 binary bytes, x, y, width, height as "
              "little-endian 16-bit pixels (LOC is big-endian), then status '2' tracking or "
              "'1' stopped; never attitude",
-     .evidence = "PixEagle bench notes (a real SIP, firmware 1.6.26.R.D) and the vendor's "
-                 "tracking PDF section 7; issue 28: the unit pushes OFT at about 30 Hz while "
-                 "it tracks"},
+     .evidence = "a real Topotek camera (PixEagle bench, VSN 1.6.26.R.D): 33 OFT from "
+                 "05:16:08.832750 to 05:16:09.898290, 33 ms apart, after LOC at 05:16:08.703292 "
+                 "(PixEagle session 20260917T051606Z-point); the vendor's tracking PDF "
+                 "section 7"},
 };
 
 }  // namespace

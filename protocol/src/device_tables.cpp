@@ -51,23 +51,30 @@ constexpr StreamSpec kStreams[] = {
     {.dialect = Dialect::topotek,
      .request = "GIA",
      .push = "GIA",
-     .section = "field: ArduPilot AP_Mount_Topotek (PR #28455); a real SIP (issue 28)",
+     .section = "field: ArduPilot AP_Mount_Topotek.h @ 3d293ff8 (GIA dispatch); PixEagle "
+                "20260917T044930Z-queries (GIC answered with GIA)",
      .note = "GIA 01 pushes 12-char GIA attitude frames (yaw, pitch down positive, roll in "
              "0.01 deg); ArduPilot's driver re-sends the enable once a second and is healthy "
              "only while GIA frames arrive",
      .evidence =
-         "AP_Mount_Topotek.cpp sends #TPUG2wGIA013E once a second and parses only GIA "
-         "for attitude (it parsed GAC before: PR #28455 per issue 28); ArduPilot's SIM_Topotek "
-         "pushes #TPUGCrGIA at 10 Hz; a real SIP answers the GIC query with a 12-char "
-         "GIA (issue 28 log, PixEagle bench notes)"},
+         "AP_Mount_Topotek.cpp @ d4209711 sends #TPUG2wGIA013E once a second and parses only "
+         "GIA for attitude (AP_Mount_Topotek.h @ 02246a61 dispatched GAC, @ 3d293ff8 GIA; the "
+         "driver was tested on real hardware, PR #27053); ArduPilot's SIM_Topotek pushes "
+         "#TPUGCrGIA at 10 Hz; a real Topotek camera (PixEagle bench, VSN 1.6.26.R.D) answers "
+         "the GIC query with a 12-char GIA (PixEagle session 20260917T044930Z-queries "
+         "04:49:34.243738 #TPPG2rGIC0035 -> 04:49:34.350916 #tpGPCrGIAFF25FFF8FFFE38). No "
+         "public capture shows the push after GIA 01 itself: it rests on the driver"},
     {.dialect = Dialect::topotek,
      .request = "LOC",
      .push = "OFT",
-     .section = "field: PixEagle bench notes on a real SIP",
+     .section = "field: PixEagle sessions 20260917T051606Z-point, 20260917T072332Z-box",
      .note = "a tracking start (LOC) pushes OFT tracking boxes at about video rate while the "
              "unit tracks; after a cancel one OFT with an all-zero box and status 1",
-     .evidence = "PixEagle bench notes (a real SIP: 99 OFT in one session; the vendor's "
-                 "tracking PDF section 7); issue 28: OFT at about 30 Hz while it tracks"},
+     .evidence = "a real Topotek camera (PixEagle bench, VSN 1.6.26.R.D): after LOC at "
+                 "05:16:08.703292, 33 OFT from 05:16:08.832750 to 05:16:09.898290, 33 ms apart "
+                 "(about 30 Hz; PixEagle session 20260917T051606Z-point); after the cancel "
+                 "#TPPD2wTRC014E at 07:23:41.799582 one OFT with an all-zero box and status '1' "
+                 "at 07:23:41.846893 (PixEagle session 20260917T072332Z-box)"},
 };
 
 constexpr DeviceForm kForms[] = {
@@ -90,8 +97,10 @@ constexpr DeviceForm kForms[] = {
      .header = Header::variable,
      .order = Order::request_order,
      .source = Source::field,
-     .evidence = "real C12s push #tpUGCrGAC<12 hex><cs>: an Android app and two Python "
-                 "C12 drivers (one checks the checksum) accept only that prefix"},
+     .evidence = "real C12s push #tpUGCrGAC<12 hex><cs>: a C12 Android app (log114/PTZControl "
+                 "app/src/main/java/com/yiku/ptzcontrol/MainActivity.kt) reads the attitude "
+                 "only from data holding #tpUGCrGAC, as do Python C12 clients (one checks the "
+                 "checksum)"},
     // SkyDroid 4.22, reply example: "#TPUD4rSLR0005BC".
     {.dialect = Dialect::skydroid,
      .models = c13,
@@ -110,8 +119,9 @@ constexpr DeviceForm kForms[] = {
      .header = Header::fixed,
      .order = Order::swapped,
      .source = Source::field,
-     .evidence = "a public C13 SDK takes a range only from a datagram holding #TPDU and "
-                 "SLR: #TP with length 4, addresses swapped"},
+     .evidence = "a public C13 SDK (sadikbarun/skydroid_c13_miniSDK skydroid.py @ d5a1ae12) "
+                 "takes a range only from a datagram holding #TPDU and SLR: #TP with length 4, "
+                 "addresses swapped"},
     {.dialect = Dialect::skydroid,
      .models = c12,
      .ident = "VER",
@@ -120,7 +130,9 @@ constexpr DeviceForm kForms[] = {
      .header = Header::variable,
      .order = Order::swapped,
      .source = Source::field,
-     .evidence = "a real C12 answered VER with #tpDU3rVER0105025A (its length char lies)"},
+     .evidence = "a real C12 answered VER with #tpDU3rVER0105025A (its length char lies): "
+                 "CinarSamet/skydroid-c12-toolkit src/skydroid_c12/protocol.py @ 82a4a6b8, "
+                 "\"confirmed on a real C12 unit\""},
     // Topotek 3.5: "receive: #tpGU C r GIC Y0Y1Y2Y3P0P1P2P3R0R1R2R3 CC".
     {.dialect = Dialect::topotek,
      .models = sip,
@@ -139,7 +151,11 @@ constexpr DeviceForm kForms[] = {
      .header = Header::variable,
      .order = Order::swapped,
      .source = Source::field,
-     .evidence = "a Topotek device answered #tpGPCrGACFF36ED5A0048DE to a network client"},
+     .evidence = "a Topotek device answered #TPPG2rGAC002D with #tpGPCrGACFF36ED5A0048DE "
+                 "(alireza787b/gimbal_control protocol_validator.py @ d2456511, \"from the "
+                 "logs\"); a real Topotek camera (PixEagle bench, VSN 1.6.26.R.D) answered "
+                 "04:49:33.442799 #TPPG2rGAC002D with 04:49:33.551667 #tpGPCrGACFFCC063202F3D6 "
+                 "(PixEagle session 20260917T044930Z-queries)"},
     {.dialect = Dialect::topotek,
      .models = sip,
      .ident = "GIA",
@@ -148,9 +164,10 @@ constexpr DeviceForm kForms[] = {
      .header = Header::variable,
      .order = Order::swapped,
      .source = Source::field,
-     .evidence = "a real SIP (firmware 1.6.26.R.D) answered the GIC query #TPPG2rGIC0035 with "
-                 "#tpGPCrGIA + 12 hex (issue 28 log; PixEagle: GIC queries consistently got "
-                 "GIA replies)",
+     .evidence = "a real Topotek camera (PixEagle bench, VSN 1.6.26.R.D) answered the GIC query "
+                 "04:49:34.243738 #TPPG2rGIC0035 with 04:49:34.350916 #tpGPCrGIAFF25FFF8FFFE38 "
+                 "(again at 04:49:36.754050, 04:49:39.157290; PixEagle session "
+                 "20260917T044930Z-queries)",
      .answers = "GIC"},
     {.dialect = Dialect::topotek,
      .models = sip,
@@ -160,11 +177,12 @@ constexpr DeviceForm kForms[] = {
      .header = Header::variable,
      .order = Order::swapped,
      .source = Source::field,
-     .evidence = "a real Topotek unit answered #tpPG2rGMS0089 with #tpGP2rGMS018A: #tp kept on "
-                 "a 2-data-char reply (issue 28 log)"},
-    // Lengths that count bytes. The SLR reply is of a C14 Pro, a model the
-    // catalog does not list: no model bit, so only a capture of unknown
-    // model matches it.
+     .evidence = "a real Topotek camera (PixEagle bench, VSN 1.6.26.R.D) answered "
+                 "18:52:14.971018 #tpPG2rGMS0089 with 18:52:15.082037 #tpGP2rGMS018A: #tp kept "
+                 "on a 2-data-char reply (again 18:52:18.282093, 18:52:21.485252; PixEagle "
+                 "session 20260917T185212Z-identity)"},
+    // Lengths that count bytes. The SLR reply's source names no model: no
+    // model bit, so only a capture of unknown model matches it.
     {.dialect = Dialect::skydroid,
      .models = c12,
      .ident = "IMG",
@@ -186,8 +204,8 @@ constexpr DeviceForm kForms[] = {
      .order = Order::swapped,
      .source = Source::field,
      .evidence = "a real device answered the range read with #TPDU2rSLR0018BE, data 0018 = 24 dm "
-                 "under length 2 (a Qt ground station's lgs::SkydroidSdkClient note; a C14 Pro "
-                 "per issue 28)",
+                 "under length 2 (a Qt ground station's note: lgs::SkydroidSdkClient, "
+                 "video/skydroid_sdk_client.cpp, repository not known; it names no model)",
      .length_in_bytes = true},
 };
 
@@ -211,15 +229,18 @@ constexpr Trait kTraits[] = {
      .dialect = Dialect::skydroid,
      .models = c12,
      .source = Source::field,
-     .evidence = "for: one public C12 client negates pitch before GAM (\"attitude telemetry "
-                 "reports yaw/pitch with opposite signs from GAM input\"; that client was not "
-                 "found again in docs/sources/ardupilot.md's search), and a C12 visual-servoing "
-                 "README's tuning example sets inv_y (image to pitch: weak). Against: a C12 "
-                 "Android app (log114/PTZControl) sends GAP DCD8 (-90.00) for down and GSP +30 "
-                 "for up, the document's signs; AP_Mount_SkyDroid (C11, PR #34155) and a C13 "
+     .evidence = "for: only a C12 visual-servoing README's tuning example, which sets inv_y "
+                 "(image to pitch: weak; no public C12 client that negates pitch before GAM was "
+                 "found). Against: a C12 Android app (log114/PTZControl "
+                 "app/src/main/java/com/yiku/ptzcontrol/service/C12Service.kt @ adfe4ccb) sends "
+                 "GAP DCD8 (-90.00) for down and GSP +30 for up, the document's signs; a C12 "
+                 "toolkit (CinarSamet/skydroid-c12-toolkit src/skydroid_c12/protocol.py @ "
+                 "82a4a6b8) found GAP up positive on a real C12; AP_Mount_SkyDroid (C11, PR "
+                 "#34155) and a C13 "
                  "station (custom-GCS) keep GSP and GAC pitch up positive, and SkyDroid told the "
-                 "driver's author the commands are the same; with it ArduPilot's driver drives "
-                 "pitch to +90 after a -30 target (issue 28). Unconfirmed: not applied by "
+                 "driver's author the commands are the same; AP_Mount_SkyDroid.cpp @ c5aa8452 "
+                 "closes its angle loop on GAC pitch with GSP, so with it the driver's pitch "
+                 "would run away to the limit (inference). Unconfirmed: not applied by "
                  "default (topsim --pitch-sign inverted inverts every pitch command)",
      .idents = "GAM",
      .contested = true},
@@ -238,8 +259,11 @@ constexpr Trait kTraits[] = {
      .dialect = Dialect::skydroid,
      .models = c10 | c10pro | c12 | c13 | c20,
      .source = Source::field,
-     .evidence = "C12 clients send from UDP 5000 to 5000 (the vendor's app does) and read "
-                 "the replies on that socket: the device answers the datagram's source"},
+     .evidence = "C12 clients send from a bound UDP port and read the replies and GAC pushes on "
+                 "that socket (CinarSamet/skydroid-c12-toolkit src/skydroid_c12/protocol.py @ "
+                 "82a4a6b8, on a real C12 at port 5000; log114/PTZControl "
+                 "app/src/main/java/com/yiku/ptzcontrol/service/C12Service.kt @ adfe4ccb): the "
+                 "device answers the datagram's source"},
     {.kind = TraitKind::link_by_source,
      .dialect = Dialect::topotek,
      .models = sip,
@@ -251,19 +275,25 @@ constexpr Trait kTraits[] = {
      .models = c10 | c10pro | c12 | c20,
      .value = 1000,
      .source = Source::field,
-     .evidence = "autopilot drivers refresh speed commands at 10-50 Hz: without a refresh "
-                 "the motors stop"},
+     .evidence = "\"the firmware auto-stops the motor a few tens of milliseconds after the last "
+                 "command if it isn't refreshed at roughly 20Hz\" (a real C12: CinarSamet/"
+                 "skydroid-c12-toolkit src/skydroid_c12/protocol.py @ 82a4a6b8); "
+                 "AP_Mount_SkyDroid.cpp @ c5aa8452 (PR #34155) re-sends GSY/GSP on every update"},
     {.kind = TraitKind::keeps_request_header,
      .dialect = Dialect::topotek,
      .models = sip,
      .source = Source::field,
-     .evidence = "a real unit answers #tpPG2rGMS0089 with #tpGP2rGMS018A (#tp kept on 2 data "
-                 "chars) and #TPPD2rTRC0048 with #TPDP2rTRC0048 (issue 28 log)"},
+     .evidence = "a real Topotek camera (PixEagle bench, VSN 1.6.26.R.D) answers #tpPG2rGMS0089 "
+                 "with #tpGP2rGMS018A (#tp kept on 2 data chars; PixEagle session "
+                 "20260917T185212Z-identity 18:52:14.971018 -> 18:52:15.082037) and "
+                 "#TPPD2rTRC0048 with #TPDP2rTRC0048 (PixEagle session 20260917T044930Z-queries "
+                 "04:49:32.641749 -> 04:49:32.643626)"},
     {.kind = TraitKind::double_checksum,
      .dialect = Dialect::skydroid,
      .models = c10pro,
      .source = Source::field,
-     .evidence = "a C10 Pro tool (DifferentialRobotics/C10Pro_Control README) sends "
+     .evidence = "a C10 Pro tool (DifferentialRobotics/C10Pro_Control README.md, "
+                 "angel_control.py @ 57886756) sends "
                  "#TPUG2wPTZ056FEB, #TPUG2wPTZ016BE3, #TPUG2wPTZ026CE5: a valid frame, then a "
                  "checksum over it and its checksum; that the camera takes them is the tool "
                  "author's claim",
@@ -319,9 +349,9 @@ constexpr FieldSupport kFieldSupport[] = {
      .models = c13,
      .ident = "PTZ",
      .values = kC13Ptz,
-     .evidence = "a public C13 SDK (skydroid_c13_miniSDK) reports PTZ 02 (down), 05 "
-                 "(center) and 0E/0F pitch +/-, 10/11 yaw +/-, 12/13 roll +/- working on a "
-                 "real C13"},
+     .evidence = "a public C13 SDK (sadikbarun/skydroid_c13_miniSDK skydroid.py @ d5a1ae12) "
+                 "lists PTZ 02 (down), 05 (center) and 0E/0F pitch +/-, 10/11 yaw +/-, 12/13 "
+                 "roll +/- for the C13"},
     {.dialect = Dialect::skydroid,
      .models = c13,
      .ident = "PTZ",
@@ -417,7 +447,7 @@ constexpr FieldNote kFieldNotes[] = {
                  "pitch by 2.5 deg or more). A station's note, confirmed nowhere else: topsim's "
                  "C13 reports "
                  "the pitch it moves to; a C13 pitch that stays 0.0 in topdump report's motion "
-                 "plot while yaw moves may be this (issue 28)"},
+                 "plot while yaw moves may be this"},
     {.dialect = Dialect::skydroid,
      .models = kC13,
      .note = "some C13 builds also listen on UDP 9003 and 19853 (zoom and lens/system commands)",
@@ -427,7 +457,7 @@ constexpr FieldNote kFieldNotes[] = {
                  "the zoom list has 19853). Not a port rule: UDP 9003 is the Topotek device port "
                  "(Topotek V1.1.3), which tells topdump and the dissector the Topotek dialect, and "
                  "one station's constants, at odds within the file, are not enough to serve "
-                 "19853 (issue 28)"},
+                 "19853"},
 };
 
 }  // namespace

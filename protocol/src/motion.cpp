@@ -72,9 +72,11 @@ constexpr std::string_view kAngleField =
     "speed byte is read in the YPR rate unit (inference: ArduPilot's SIM_Topotek moves to "
     "angle targets without a speed limit)";
 constexpr std::string_view kGiaField =
-    "AP_Mount_Topotek reads yaw, pitch, roll from GIA and negates pitch (down positive on the "
-    "wire); ArduPilot's SIM_Topotek sends 30 deg down as 0BB8; a real SIP answers the GIC "
-    "query with a 12-char GIA (issue 28 log, PixEagle bench notes)";
+    "AP_Mount_Topotek.cpp @ d4209711 gimbal_angle_analyse() reads yaw, pitch, roll from GIA "
+    "and negates pitch (down positive on the wire); ArduPilot's SIM_Topotek sends 30 deg down "
+    "as 0BB8; a real Topotek camera (PixEagle bench, VSN 1.6.26.R.D) answers the GIC query "
+    "with a 12-char GIA (PixEagle session 20260917T044930Z-queries 04:49:34.243738 "
+    "#TPPG2rGIC0035 -> 04:49:34.350916 #tpGPCrGIAFF25FFF8FFFE38)";
 
 constexpr MotionSpec kMotions[] = {
     // SkyDroid 3.1-3.3
@@ -117,7 +119,8 @@ constexpr MotionSpec kMotions[] = {
     row(T, "GIC", kAtt, E, {yaw("yaw"), pitch("pitch"), roll("roll")}, "Topotek 4.3.5"),
     // The field: GIA frames of 12 chars carry the attitude (pitch down positive).
     field(row(T, "GIA", kAtt, E, {yaw("yaw"), pitch("pitch", {}, kDown), roll("roll")},
-              "field: ArduPilot AP_Mount_Topotek (PR #28455); a real SIP (issue 28)"),
+              "field: ArduPilot AP_Mount_Topotek.h @ 3d293ff8, .cpp @ d4209711; PixEagle "
+              "20260917T044930Z-queries"),
           0, kGiaField),
 };
 

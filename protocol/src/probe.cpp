@@ -34,8 +34,8 @@ constexpr ProbeRow kProbes[] = {
     {Dialect::topotek, "GIA", 'w', "01",
      "Topotek 4.3.6 (GIA 01 pushes GIC) and the field (GIA frames): ArduPilot's "
      "AP_Mount_Topotek sends #TPUG2wGIA013E once a second, SIM_Topotek answers any GIA with "
-     "a GIA frame at once, a real SIP answers with GIA (docs/sources/ardupilot.md sections 1.2, 3, "
-     "8.1)"},
+     "a GIA frame at once, a real Topotek camera answers the GIC query with GIA (PixEagle "
+     "session 20260917T044930Z-queries; docs/sources/ardupilot.md sections 1.2, 3, 8.1)"},
 };
 
 }  // namespace

@@ -398,41 +398,70 @@ TEST(DeviceTopotek, LensWithoutTrackingAnswersState4) {
   EXPECT_EQ(parsed(ask(d, "#TPUD2rTRC00", 1000000, Link::uart).at(0)).data(), "04");
 }
 
-// Position and time writes come back as they went (issue 28); the document
-// profile keeps 5.8.7's output layout for LAT.
-TEST(DeviceTopotek, PositionAndTimeWritesAreEchoed) {
-  Device d(top::Model::sip);
-  for (const char* w : {"#tpUDAwLATN3520.1234", "#tpUDBwLONE13845.6789", "#tpUD8wALT000123.4",
-                        "#tpUD5wAZI045.0", "#tpUDCwUTC143005261126"}) {
-    std::string echo = w;
-    std::swap(echo[3], echo[4]);
-    EXPECT_EQ(ask(d, w, 0, Link::uart).at(0), top::with_checksum(echo)) << w;
-  }
+// Position writes: no source records what a Topotek device answers to
+// LAT/LON/ALT/AZI (the field profile echoed LAT/LON on the word of our own
+// tracker, which no capture bears out), so the field profile answers them
+// as the document profile does: LAT/LON in 5.8.7's target output layout,
+// ALT/AZI and the time echoed (on a UART; what a network link answers to a
+// write is the link's rule).
+TEST(DeviceTopotek, PositionWritesGetTheDocumentsAnswerInEitherProfile) {
   topsim::DeviceOptions o;
   o.profile = top::Profile::document;
-  Device doc(top::Model::sip, o);
-  EXPECT_NE(parsed(ask(doc, "#tpUDAwLATN3520.1234", 0, Link::uart).at(0)).data(), "N3520.1234");
+  Device fld(top::Model::sip), doc(top::Model::sip, o);
+  for (const char* w : {"#tpUDAwLATN3520.1234", "#tpUDBwLONE13845.6789"}) {
+    const std::vector<std::string> a = ask(fld, w, 0, Link::uart);
+    ASSERT_EQ(a.size(), 1u) << w;
+    EXPECT_EQ(a, ask(doc, w, 0, Link::uart)) << w;
+    const top::Frame f = parsed(a.at(0));
+    EXPECT_NE(f.data(), std::string_view(w).substr(10)) << w;  // no echo
+    top::DecodeOptions dopts;
+    dopts.dialect = top::Dialect::topotek;
+    dopts.model = top::Model::sip;
+    dopts.role = top::Role::response;
+    const top::Decoded dec = top::decode(f, dopts);
+    ASSERT_NE(dec.form, nullptr) << w;
+    EXPECT_FALSE(dec.form->from_field()) << w;
+    EXPECT_TRUE(dec.findings.empty()) << w << ": " << dec.summary();
+  }
+  for (const char* w : {"#tpUD8wALT000123.4", "#tpUD5wAZI045.0", "#tpUDCwUTC143005261126"}) {
+    std::string echo = w;
+    std::swap(echo[3], echo[4]);
+    EXPECT_EQ(ask(fld, w, 0, Link::uart), std::vector<std::string>{top::with_checksum(echo)}) << w;
+    EXPECT_EQ(ask(doc, w, 0, Link::uart), std::vector<std::string>{top::with_checksum(echo)}) << w;
+  }
 }
 
-// The rangefinder answers in the real unit's 5-char form in the field, in
-// the document's X1X2X3X4X5.X6 layout otherwise.
-TEST(DeviceTopotek, LrfAnswersInTheFieldForm) {
-  auto reply = [](top::Profile p) {
+// The rangefinder (Topotek 5.9): a control write (00 stop, 01 on, 02
+// single, 03 continuous) is answered with the range in the document's
+// X1X2X3X4X5.X6, metres, in either profile (a write of a command with a
+// reply layout is answered in it: top::write_reply).
+// topsim answered with 5 digits, the midpoint of the document's range
+// (#tpMU5wLRF500002E), which the catalog then took for a real unit's form.
+TEST(DeviceTopotek, LrfAnswersWithItsRangeInTheDocumentsForm) {
+  for (top::Profile p : {top::Profile::field, top::Profile::document}) {
     topsim::DeviceOptions o;
     o.profile = p;
     Device d(top::Model::sip, o);
-    const top::Frame f = parsed(ask(d, "#TPUM2wLRF03", 0, Link::uart).at(0));
-    EXPECT_EQ(f.ident_view(), "LRF");
-    EXPECT_EQ(f.src, 'M');
-    return std::string(f.data());
-  };
-  const top::FormSpec *fld = nullptr, *doc = nullptr;
-  for (const top::FormSpec& f : top::find_command(top::Dialect::topotek, "LRF")->forms)
-    if (f.control == 'w' && f.role == top::Role::response) (f.from_field() ? fld : doc) = &f;
-  ASSERT_TRUE(fld && doc);
-  EXPECT_EQ(reply(top::Profile::field), top::example_data(*fld));
-  EXPECT_EQ(reply(top::Profile::field).size(), 5u);
-  EXPECT_EQ(reply(top::Profile::document), top::example_data(*doc));
+    for (const char* w : {"#TPUM2wLRF00", "#TPUM2wLRF01", "#TPUM2wLRF02", "#TPUM2wLRF03"}) {
+      const std::vector<std::string> a = ask(d, w, 0, Link::uart);
+      ASSERT_EQ(a.size(), 1u) << w;
+      EXPECT_EQ(a.at(0), top::with_checksum("#tpMU7wLRF01234.5")) << w;
+    }
+    o.range_m = 12.34;
+    Device near(top::Model::sip, o);
+    const top::Frame f = parsed(ask(near, "#TPUM2wLRF03", 0, Link::uart).at(0));
+    EXPECT_EQ(f.data(), "00012.3");
+    top::DecodeOptions dopts;
+    dopts.dialect = top::Dialect::topotek;
+    dopts.model = top::Model::sip;
+    dopts.role = top::Role::response;
+    const top::Decoded dec = top::decode(f, dopts);
+    ASSERT_NE(dec.form, nullptr);
+    EXPECT_TRUE(dec.findings.empty()) << dec.summary();
+    ASSERT_EQ(dec.fields.size(), 1u);
+    EXPECT_DOUBLE_EQ(dec.fields[0].value, 12.3);
+    EXPECT_EQ(dec.fields[0].unit(), "m");
+  }
 }
 
 }  // namespace

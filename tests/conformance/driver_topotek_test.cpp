@@ -118,6 +118,48 @@ TEST_P(TopotekDriver, IsServedAndTheRecordingReadsClean) {
   std::remove(rec.c_str());
 }
 
+// The rangefinder: the driver's LRF 03 is answered with topsim's range in
+// Topotek 5.9's X1X2X3X4X5.X6, which a client reading like ArduPilot's
+// driver (chars 0-4 and 6) gets as the range topsim meant, and topdump
+// decodes as metres without a finding. topsim's LRF answer was 5 chars
+// (#tpMU5wLRF500002E, the midpoint of the document's range), which the
+// driver read as 50001.4 m (the checksum's E as the tenths).
+TEST_P(TopotekDriver, ReadsTheRangeTopsimMeasures) {
+  const DriverLink l{GetParam()};
+  const std::string rec =
+      std::string(TOPKIT_BINARY_DIR) + "/driver_topotek_lrf_" + l.name() + ".pcap";
+  topsim::DeviceOptions o;
+  o.range_m = 2345.6;
+  struct OnAtStart : TopotekClient {
+    bool asked = false;
+    std::uint64_t tick(std::uint64_t now_us, std::vector<std::string>& out) override {
+      if (!asked) rangefinder(true), asked = true;
+      return TopotekClient::tick(now_us, out);
+    }
+  } c;
+  run_driver(c, top::Model::sip, l.kind, 1500, rec, o);
+  ASSERT_EQ(c.lrf, 1);
+  EXPECT_NEAR(c.distance_m, 2345.6, 1e-9);
+  // topdump: the answer decodes as the document's result, in metres.
+  int lrf = 0;
+  for (const auto& [line, j] : topdump_read_json(rec).lines) {
+    if (j.is_discarded() || j.value("type", "") != "frame" || j.value("ident", "") != "LRF" ||
+        j.value("src", "") == std::string(1, c.client))
+      continue;
+    ++lrf;
+    EXPECT_EQ(j.value("data", ""), "02345.6") << line;
+    const auto& d = j["fields"]["distance"];
+    EXPECT_NEAR(d.value("value", 0.0), 2345.6, 1e-9) << line;
+    EXPECT_EQ(d.value("unit", ""), "m") << line;
+    EXPECT_TRUE(j["findings"].empty()) << line;
+  }
+  EXPECT_EQ(lrf, 1);
+  const Dump dump = topdump_findings(rec);
+  EXPECT_EQ(dump.status, 0) << describe(dump);
+  EXPECT_TRUE(dump.findings.empty()) << describe(dump);
+  std::remove(rec.c_str());
+}
+
 // Every link the port rules give the SIP: a pty and UDP (no TCP: see
 // driver_links).
 INSTANTIATE_TEST_SUITE_P(Links, TopotekDriver, ::testing::ValuesIn(driver_links(top::Model::sip)),

@@ -7,10 +7,13 @@
 // (#tp, 6 chars, speed 63) or a YPR rate at 10 Hz while not tracking; PTZ 00
 // three times when the rates go to zero; UTC after an SDC reply that is not
 // NNNN (at most 7 times); REC on/off; TRC 02 + LOC to track, TRC 01/00 to
-// cancel. It reads GIA, REC, SDC, LRF, TRC, VSN and PA2 the way the driver
-// does (section 1.3).
+// cancel; LRF 03/00 to switch the rangefinder on and off. It reads GIA,
+// REC, SDC, LRF, TRC, VSN and PA2 the way the driver does (section 1.3; the
+// LRF distance as AP_Mount_Topotek.cpp @ d4209711 gimbal_dist_info_analyse()
+// reads it).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -45,7 +48,9 @@ class TopotekClient : public DriverClient {
   std::vector<bool> recording;     // each REC frame's state
   std::vector<char> track_states;  // each TRC frame's data char 1
   char track_state = '0';
-  bool tracking = false;  // the driver's _is_tracking
+  bool tracking = false;   // the driver's _is_tracking
+  double distance_m = -1;  // the driver's _measure_dist_m: -1 until a range, or after ERR
+  int lrf = 0;             // LRF frames read
   int oft = 0, ere = 0, frames = 0;
 
   // Commands as the driver's API gives them; sent at the next tick.
@@ -56,6 +61,8 @@ class TopotekClient : public DriverClient {
     pending_.push_back(loc(0, 0, 62, 111, 0x0009));
   }
   void cancel_tracking() { pending_.push_back(fixed('D', 'w', "TRC", track_state == '2' ? 1 : 0)); }
+  // set_rangefinder_enable(): 03 continuous measurement, 00 stop, to M.
+  void rangefinder(bool on) { pending_.push_back(fixed('M', 'w', "LRF", on ? 3 : 0)); }
 
   std::uint64_t tick(std::uint64_t now_us, std::vector<std::string>& out) override {
     out.insert(out.end(), pending_.begin(), pending_.end());
@@ -116,6 +123,9 @@ class TopotekClient : public DriverClient {
       parse_version(d);
     } else if (id == "PA2" && !d.empty()) {
       model_name = std::string(d.substr(0, 15));
+    } else if (id == "LRF") {
+      ++lrf;
+      distance_m = distance(f.raw);
     }
   }
 
@@ -194,6 +204,17 @@ class TopotekClient : public DriverClient {
       return hex2(std::lround(std::fmax(-99, std::fmin(99, r * 1.220740379))));
     };
     out.push_back(var('G', "YPR", rate(yaw_rate) + rate(-pitch_rate) + rate(roll_rate)));
+  }
+  // The driver's buffer holds the frame from '#': data starts at byte 10.
+  // ERR in data chars 0-2 is no range; otherwise the digits of "12345.6" are
+  // read at chars 0-4 and 6, char 5 skipped, whatever the length char says
+  // (each as a hex nibble, as the driver converts them).
+  static double distance(std::string_view raw) {
+    auto at = [&](std::size_t i) { return 10 + i < raw.size() ? raw[10 + i] : '\0'; };
+    if (at(0) == 'E' && at(1) == 'R' && at(2) == 'R') return -1;
+    auto nib = [&](std::size_t i) { return std::max(0, top::hex_value(at(i))); };
+    return nib(0) * 10000.0 + nib(1) * 1000.0 + nib(2) * 100.0 + nib(3) * 10.0 + nib(4) +
+           nib(6) * 0.1;
   }
   // Numbers ended by '.', at most three; without a '.', three single digits.
   void parse_version(std::string_view d) {

@@ -37,16 +37,16 @@ STREAMS.topotek.switch["LOC"] = true
 -- field evidence of the header and address order a device frame comes in.
 local RECORDED = {
   { dialect = "skydroid", models = { c10 = true, c10pro = true, c12 = true, c20 = true, }, ident = "GAC", control = "r", sent = "push", header = "fixed", order = "request order", source = "document example", evidence = "SkyDroid 3.3.2.2 example #TPUGCrGACY0Y1Y2Y3P0P1P2P3R0R1R2R3CC: uppercase #TP, U first" },
-  { dialect = "skydroid", models = { c12 = true, }, ident = "GAC", control = "r", sent = "push", header = "variable", order = "request order", source = "field", evidence = "real C12s push #tpUGCrGAC<12 hex><cs>: an Android app and two Python C12 drivers (one checks the checksum) accept only that prefix" },
+  { dialect = "skydroid", models = { c12 = true, }, ident = "GAC", control = "r", sent = "push", header = "variable", order = "request order", source = "field", evidence = "real C12s push #tpUGCrGAC<12 hex><cs>: a C12 Android app (log114/PTZControl app/src/main/java/com/yiku/ptzcontrol/MainActivity.kt) reads the attitude only from data holding #tpUGCrGAC, as do Python C12 clients (one checks the checksum)" },
   { dialect = "skydroid", models = { c13 = true, }, ident = "SLR", control = "r", sent = "reply", header = "fixed", order = "request order", source = "document example", evidence = "SkyDroid 4.22 reply example #TPUD4rSLR0005BC: #TP with length 4, U first" },
-  { dialect = "skydroid", models = { c13 = true, }, ident = "SLR", control = "r", sent = "reply", header = "fixed", order = "swapped", source = "field", evidence = "a public C13 SDK takes a range only from a datagram holding #TPDU and SLR: #TP with length 4, addresses swapped" },
-  { dialect = "skydroid", models = { c12 = true, }, ident = "VER", control = "r", sent = "reply", header = "variable", order = "swapped", source = "field", evidence = "a real C12 answered VER with #tpDU3rVER0105025A (its length char lies)" },
+  { dialect = "skydroid", models = { c13 = true, }, ident = "SLR", control = "r", sent = "reply", header = "fixed", order = "swapped", source = "field", evidence = "a public C13 SDK (sadikbarun/skydroid_c13_miniSDK skydroid.py @ d5a1ae12) takes a range only from a datagram holding #TPDU and SLR: #TP with length 4, addresses swapped" },
+  { dialect = "skydroid", models = { c12 = true, }, ident = "VER", control = "r", sent = "reply", header = "variable", order = "swapped", source = "field", evidence = "a real C12 answered VER with #tpDU3rVER0105025A (its length char lies): CinarSamet/skydroid-c12-toolkit src/skydroid_c12/protocol.py @ 82a4a6b8, \"confirmed on a real C12 unit\"" },
   { dialect = "topotek", models = { sip = true, }, ident = "GIC", control = "r", sent = "reply", header = "variable", order = "swapped", source = "document example", evidence = "Topotek 3.5 example #tpGU C r GIC Y0Y1Y2Y3P0P1P2P3R0R1R2R3 CC" },
-  { dialect = "topotek", models = { sip = true, }, ident = "GAC", control = "r", sent = "reply", header = "variable", order = "swapped", source = "field", evidence = "a Topotek device answered #tpGPCrGACFF36ED5A0048DE to a network client" },
-  { dialect = "topotek", models = { sip = true, }, ident = "GIA", control = "r", sent = "reply", header = "variable", order = "swapped", source = "field", evidence = "a real SIP (firmware 1.6.26.R.D) answered the GIC query #TPPG2rGIC0035 with #tpGPCrGIA + 12 hex (issue 28 log; PixEagle: GIC queries consistently got GIA replies)" },
-  { dialect = "topotek", models = { sip = true, }, ident = "GMS", control = "r", sent = "reply", header = "variable", order = "swapped", source = "field", evidence = "a real Topotek unit answered #tpPG2rGMS0089 with #tpGP2rGMS018A: #tp kept on a 2-data-char reply (issue 28 log)" },
+  { dialect = "topotek", models = { sip = true, }, ident = "GAC", control = "r", sent = "reply", header = "variable", order = "swapped", source = "field", evidence = "a Topotek device answered #TPPG2rGAC002D with #tpGPCrGACFF36ED5A0048DE (alireza787b/gimbal_control protocol_validator.py @ d2456511, \"from the logs\"); a real Topotek camera (PixEagle bench, VSN 1.6.26.R.D) answered 04:49:33.442799 #TPPG2rGAC002D with 04:49:33.551667 #tpGPCrGACFFCC063202F3D6 (PixEagle session 20260917T044930Z-queries)" },
+  { dialect = "topotek", models = { sip = true, }, ident = "GIA", control = "r", sent = "reply", header = "variable", order = "swapped", source = "field", evidence = "a real Topotek camera (PixEagle bench, VSN 1.6.26.R.D) answered the GIC query 04:49:34.243738 #TPPG2rGIC0035 with 04:49:34.350916 #tpGPCrGIAFF25FFF8FFFE38 (again at 04:49:36.754050, 04:49:39.157290; PixEagle session 20260917T044930Z-queries)" },
+  { dialect = "topotek", models = { sip = true, }, ident = "GMS", control = "r", sent = "reply", header = "variable", order = "swapped", source = "field", evidence = "a real Topotek camera (PixEagle bench, VSN 1.6.26.R.D) answered 18:52:14.971018 #tpPG2rGMS0089 with 18:52:15.082037 #tpGP2rGMS018A: #tp kept on a 2-data-char reply (again 18:52:18.282093, 18:52:21.485252; PixEagle session 20260917T185212Z-identity)" },
   { dialect = "skydroid", models = { c12 = true, }, ident = "IMG", control = "r", sent = "reply", header = "fixed", order = "swapped", source = "field", evidence = "a C12 Android app (log114/PTZControl C12Service.kt) waits for #TPDU1rIMG and takes the 2 chars after IMG as the palette: length 1 for 2 data chars; a Python C12 console reads the palette only from a reply that starts #TPDU and holds IMG" },
-  { dialect = "skydroid", models = { }, ident = "SLR", control = "r", sent = "reply", header = "fixed", order = "swapped", source = "field", evidence = "a real device answered the range read with #TPDU2rSLR0018BE, data 0018 = 24 dm under length 2 (a Qt ground station's lgs::SkydroidSdkClient note; a C14 Pro per issue 28)" },
+  { dialect = "skydroid", models = { }, ident = "SLR", control = "r", sent = "reply", header = "fixed", order = "swapped", source = "field", evidence = "a real device answered the range read with #TPDU2rSLR0018BE, data 0018 = 24 dm under length 2 (a Qt ground station's note: lgs::SkydroidSdkClient, video/skydroid_sdk_client.cpp, repository not known; it names no model)" },
 }
 
 -- The finding codes (protocol/include/top/findings.hpp) as expert infos:
@@ -627,7 +627,7 @@ CATALOG_FIELDS["top.UAV.flight_path"] = ProtoField.new("UAV flight_path (deg)", 
 CATALOG_VTYPE["top.UAV.flight_path"] = "double"
 CATALOG_FIELDS["top.LRF.action"] = ProtoField.new("LRF action", "top.LRF.action", ftypes.UINT32, { [0] = "stop", [1] = "on", [2] = "single", [3] = "continuous", }, base.HEX, nil, "laser rangefinder (Topotek 5.9)")
 CATALOG_VTYPE["top.LRF.action"] = "uint"
-CATALOG_FIELDS["top.LRF.distance"] = ProtoField.new("LRF distance", "top.LRF.distance", ftypes.DOUBLE, nil, nil, nil, "laser rangefinder (Topotek 5.9): 5 chars, no point in the one reply seen; its unit is not established (ArduPilot's driver, expecting X1X2X3X4X5.X6, would read 50001.4 m from #tpMU5wLRF500002E)")
+CATALOG_FIELDS["top.LRF.distance"] = ProtoField.new("LRF distance (m)", "top.LRF.distance", ftypes.DOUBLE, nil, nil, nil, "laser rangefinder (Topotek 5.9): X1X2X3X4X5.X6, 0.1 m; ERR: measurement failed")
 CATALOG_VTYPE["top.LRF.distance"] = "double"
 CATALOG_FIELDS["top.UTC.hour"] = ProtoField.new("UTC hour", "top.UTC.hour", ftypes.UINT32, nil, base.DEC, nil, "UTC time (Topotek 5.10)")
 CATALOG_VTYPE["top.UTC.hour"] = "uint"
@@ -703,9 +703,9 @@ CATALOG_FIELDS["top.TRC.x0"] = ProtoField.new("TRC x0", "top.TRC.x0", ftypes.UIN
 CATALOG_VTYPE["top.TRC.x0"] = "uint"
 CATALOG_FIELDS["top.TRC.state"] = ProtoField.new("TRC state", "top.TRC.state", ftypes.UINT32, { [48] = "stopped", [49] = "waiting", [50] = "tracking", [51] = "temporarily_lost", [52] = "lens_unsupported", }, base.DEC, nil, "tracking (field: ArduPilot AP_Mount_Topotek (PR #27568)): 0 stopped, 1 waiting, 2 tracking (AP_Mount_Topotek, PR #27568); 3 temporarily lost (PixEagle bench on a SIP, the vendor's tracking PDF section 3; ArduPilot ignores it); 4 this lens does not track (PR #31768)")
 CATALOG_VTYPE["top.TRC.state"] = "uint"
-CATALOG_FIELDS["top.TRA.query"] = ProtoField.new("TRA query", "top.TRA.query", ftypes.UINT32, nil, base.DEC, nil, "tracker fault (field: a real SIP (issue 28), PixEagle bench notes)")
+CATALOG_FIELDS["top.TRA.query"] = ProtoField.new("TRA query", "top.TRA.query", ftypes.UINT32, nil, base.DEC, nil, "tracker fault (field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 4)")
 CATALOG_VTYPE["top.TRA.query"] = "uint"
-CATALOG_FIELDS["top.TRA.fault"] = ProtoField.new("TRA fault", "top.TRA.fault", ftypes.STRING, nil, base.ASCII, nil, "tracker fault (field: a real SIP (issue 28), PixEagle bench notes): 11 in every reply of a SIP whose tracking worked (issue 28 log, PixEagle bench); the vendor's PDF says a reply means an abnormal tracker")
+CATALOG_FIELDS["top.TRA.fault"] = ProtoField.new("TRA fault", "top.TRA.fault", ftypes.STRING, nil, base.ASCII, nil, "tracker fault (field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 4): 11 in every reply of a Topotek camera whose tracker was ready (PixEagle session 20260917T071854Z-ai-observe); the vendor's PDF says a reply means an abnormal tracker")
 CATALOG_VTYPE["top.TRA.fault"] = "string"
 CATALOG_FIELDS["top.LOC.x"] = ProtoField.new("LOC x", "top.LOC.x", ftypes.INT32, nil, base.DEC, nil, "tracking point or rectangle (field: ArduPilot AP_Mount_Topotek (PR #27568)): centre, -1000 left to +1000 right of the image")
 CATALOG_VTYPE["top.LOC.x"] = "int"
@@ -717,15 +717,15 @@ CATALOG_FIELDS["top.LOC.height"] = ProtoField.new("LOC height", "top.LOC.height"
 CATALOG_VTYPE["top.LOC.height"] = "uint"
 CATALOG_FIELDS["top.LOC.mode"] = ProtoField.new("LOC mode", "top.LOC.mode", ftypes.UINT32, { [1] = "rectangle", [9] = "point", }, base.DEC, nil, "tracking point or rectangle (field: ArduPilot AP_Mount_Topotek (PR #27568)): 00 then 09 point (fuzzy click) or 01 rectangle (AP_Mount_Topotek, PixEagle); the vendor PDF's example has 00 08, and 00 00 also works (PixEagle)")
 CATALOG_VTYPE["top.LOC.mode"] = "uint"
-CATALOG_FIELDS["top.OFT.x"] = ProtoField.new("OFT x (px)", "top.OFT.x", ftypes.UINT32, nil, base.DEC, nil, "tracking box (field: PixEagle bench notes on a real SIP): top left, of 1920")
+CATALOG_FIELDS["top.OFT.x"] = ProtoField.new("OFT x (px)", "top.OFT.x", ftypes.UINT32, nil, base.DEC, nil, "tracking box (field: PixEagle session 20260917T051606Z-point): top left, of 1920")
 CATALOG_VTYPE["top.OFT.x"] = "uint"
-CATALOG_FIELDS["top.OFT.y"] = ProtoField.new("OFT y (px)", "top.OFT.y", ftypes.UINT32, nil, base.DEC, nil, "tracking box (field: PixEagle bench notes on a real SIP): top left, of 1080")
+CATALOG_FIELDS["top.OFT.y"] = ProtoField.new("OFT y (px)", "top.OFT.y", ftypes.UINT32, nil, base.DEC, nil, "tracking box (field: PixEagle session 20260917T051606Z-point): top left, of 1080")
 CATALOG_VTYPE["top.OFT.y"] = "uint"
-CATALOG_FIELDS["top.OFT.width"] = ProtoField.new("OFT width (px)", "top.OFT.width", ftypes.UINT32, nil, base.DEC, nil, "tracking box (field: PixEagle bench notes on a real SIP)")
+CATALOG_FIELDS["top.OFT.width"] = ProtoField.new("OFT width (px)", "top.OFT.width", ftypes.UINT32, nil, base.DEC, nil, "tracking box (field: PixEagle session 20260917T051606Z-point)")
 CATALOG_VTYPE["top.OFT.width"] = "uint"
-CATALOG_FIELDS["top.OFT.height"] = ProtoField.new("OFT height (px)", "top.OFT.height", ftypes.UINT32, nil, base.DEC, nil, "tracking box (field: PixEagle bench notes on a real SIP)")
+CATALOG_FIELDS["top.OFT.height"] = ProtoField.new("OFT height (px)", "top.OFT.height", ftypes.UINT32, nil, base.DEC, nil, "tracking box (field: PixEagle session 20260917T051606Z-point)")
 CATALOG_VTYPE["top.OFT.height"] = "uint"
-CATALOG_FIELDS["top.OFT.status"] = ProtoField.new("OFT status", "top.OFT.status", ftypes.UINT32, { [49] = "stopped", [50] = "tracking", }, base.DEC, nil, "tracking box (field: PixEagle bench notes on a real SIP): 2 while tracking; 1 with an all-zero box after a cancel")
+CATALOG_FIELDS["top.OFT.status"] = ProtoField.new("OFT status", "top.OFT.status", ftypes.UINT32, { [49] = "stopped", [50] = "tracking", }, base.DEC, nil, "tracking box (field: PixEagle session 20260917T051606Z-point): 2 while tracking; 1 with an all-zero box after a cancel")
 CATALOG_VTYPE["top.OFT.status"] = "uint"
 
 -- The command catalog of both dialects (protocol/src/catalog_*.cpp).
@@ -2121,10 +2121,6 @@ CATALOG.topotek["LON"] = {
       fields = {
         { name = "longitude", kind = "nmea", width = 11, scale = 1, mul = 1, dec = 0, unit = "deg", abbrev = "top.LON.longitude" },
       } },
-    { control = "w", role = "response", min_length = 11, max_length = 11, note = "the write's echo: the field's answer; the 5.8.7 layout has the same length, the decoder takes the first of the two whose fields validate",
-      fields = {
-        { name = "longitude", kind = "nmea", width = 11, scale = 1, mul = 1, dec = 0, unit = "deg", abbrev = "top.LON.longitude" },
-      } },
     { control = "w", role = "response", min_length = 11, max_length = 11, note = "5.8.7: target longitude solved from attitude and range",
       fields = {
         { name = "hemisphere", kind = "enum_char", width = 1, scale = 1, mul = 1, dec = 0, unit = "", enums = { [69] = "east", [87] = "west", }, abbrev = "top.LON.hemisphere" },
@@ -2137,10 +2133,6 @@ CATALOG.topotek["LAT"] = {
   models = { sip = true, },
   forms = {
     { control = "w", role = "request", min_length = 10, max_length = 10, note = "",
-      fields = {
-        { name = "latitude", kind = "nmea", width = 10, scale = 1, mul = 1, dec = 0, unit = "deg", abbrev = "top.LAT.latitude" },
-      } },
-    { control = "w", role = "response", min_length = 10, max_length = 10, note = "the write's echo: the field's answer; the 5.8.7 layout has the same length, the decoder takes the first of the two whose fields validate",
       fields = {
         { name = "latitude", kind = "nmea", width = 10, scale = 1, mul = 1, dec = 0, unit = "deg", abbrev = "top.LAT.latitude" },
       } },
@@ -2206,11 +2198,7 @@ CATALOG.topotek["LRF"] = {
       fields = {
         { name = "action", kind = "enum_hex", width = 2, scale = 1, mul = 1, dec = 0, unit = "", enums = { [0] = "stop", [1] = "on", [2] = "single", [3] = "continuous", }, abbrev = "top.LRF.action" },
       } },
-    { control = "w", role = "response", min_length = 5, max_length = 5, note = "result in 5 digits, sent by M",
-      fields = {
-        { name = "distance", kind = "number", width = 5, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.LRF.distance" },
-      } },
-    { control = "w", role = "response", min_length = 3, max_length = 7, note = "result, sent by D after each successful measurement",
+    { control = "w", role = "response", min_length = 3, max_length = 7, note = "result, sent by D after each successful measurement: X1X2X3X4X5.X6 metres (00123.4), ERR when it failed; AP_Mount_Topotek.cpp @ d4209711 gimbal_dist_info_analyse() reads \"12345.6\" and ERR",
       fields = {
         { name = "distance", kind = "number", width = 0, scale = 1, mul = 1, dec = 0, unit = "m", min = 0, max = 99999.899999999994, none = "ERR", abbrev = "top.LRF.distance" },
       } },
@@ -2431,7 +2419,7 @@ CATALOG.topotek["TRC"] = {
   },
 }
 CATALOG.topotek["TRA"] = {
-  dialect = "topotek", address = "D", title = "tracker fault", section = "field: a real SIP (issue 28), PixEagle bench notes",
+  dialect = "topotek", address = "D", title = "tracker fault", section = "field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 4",
   models = { sip = true, },
   forms = {
     { control = "r", role = "request", min_length = 2, max_length = 2, note = "",
@@ -2459,7 +2447,7 @@ CATALOG.topotek["LOC"] = {
   },
 }
 CATALOG.topotek["OFT"] = {
-  dialect = "topotek", address = "D", title = "tracking box", section = "field: PixEagle bench notes on a real SIP",
+  dialect = "topotek", address = "D", title = "tracking box", section = "field: PixEagle session 20260917T051606Z-point",
   models = { sip = true, },
   forms = {
     { control = "w", role = "response", min_length = 9, max_length = 9, note = "",

@@ -112,12 +112,15 @@ Device::Device(top::Model model, DeviceOptions opts)
   settings_["IPV"] = "192.168.144.108";
   settings_["GTW"] = "192.168.144.1";
   if (dialect_ == Dialect::topotek) {
-    // A real SIP's version (issue 28 log: #tpDPArVSN1.6.26.R.D62; PixEagle
-    // bench notes) and a model name that is no placeholder (000000000 and
-    // Unknown were seen: ArduPilot PRs #27568, #27053).
+    // The version a real Topotek camera answered (PixEagle session
+    // 20260917T185212Z-identity 18:52:16.574300: #tpDPArVSN1.6.26.R.D62)
+    // and a model name that is no placeholder (000000000 and Unknown were
+    // seen: ArduPilot PRs #27568, #27053).
     settings_["VSN"] = opts_.version.empty() ? "1.6.26.R.D" : opts_.version;
     settings_["PA2"] = opts_.model_name.empty() ? "SIP" : opts_.model_name;
-    settings_["TRA"] = "11";  // every reply of a real SIP (issue 28 log)
+    // every TRA reply of a real Topotek camera (PixEagle session
+    // 20260917T071854Z-ai-observe 07:18:56.511155: #TPDP2rTRA1148)
+    settings_["TRA"] = "11";
     if (!opts_.tracking || opts_.faults.refuse_tracking) tracking_.state = '4';
   }
   if (opts_.faults.placeholder_identity)
@@ -343,9 +346,9 @@ void Device::handle(const Frame& req, Link link, std::uint64_t now_us,
       stored = month_early(*dec.form, std::move(stored));
     settings_[std::string(id)] = stored;
     // A write with a reply layout of its own (Topotek 5.8.7 LON/LAT target
-    // output, 5.9 LRF result) is answered in that layout; others are echoed.
-    // The field's layout first under the field profile (a real unit's 5-char
-    // LRF), never under the document's.
+    // output) is answered in that layout; others are echoed. The field's
+    // layout first under the field profile, never under the document's.
+    // (The 5.9 LRF result carries a measurement: device_topotek.cpp.)
     const top::FormSpec* layout = nullptr;
     for (const auto& f : cmd.forms) {
       if (f.control != 'w' || f.role != top::Role::response || &f == dec.form) continue;

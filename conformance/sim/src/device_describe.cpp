@@ -131,7 +131,8 @@ void Device::describe_topotek(std::vector<TraitLine>& out) const {
                    field() ? "field" : "document rule", std::string(m.field_evidence)});
   }
   out.push_back({"version", setting("VSN"), opts_.version.empty() ? "field" : "option",
-                 "a real SIP answers #tpDPArVSN1.6.26.R.D62 (issue 28 log, PixEagle bench)"});
+                 "a real Topotek camera answered #tpDPArVSN1.6.26.R.D62 (PixEagle session "
+                 "20260917T185212Z-identity 18:52:16.574300)"});
   out.push_back({"model-name", setting("PA2"), opts_.model_name.empty() ? "default" : "option",
                  "AP_Mount_Topotek reads PA2 as the model name (PR #27568); placeholders seen: "
                  "000000000 (PR #27568), Unknown (PR #27053)"});
@@ -139,7 +140,7 @@ void Device::describe_topotek(std::vector<TraitLine>& out) const {
                  opts_.tracking ? "field" : "option",
                  "TRC 02 prepare/01 cancel -> waiting, 00 exit -> stopped, LOC -> tracking in "
                  "~0.4 s with OFT at ~30 Hz (AP_Mount_Topotek PR #27568, PR #31768: state 4; "
-                 "PixEagle bench notes on a real SIP)"});
+                 "PixEagle session 20260917T051606Z-point on a real Topotek camera)"});
 }
 
 }  // namespace topsim

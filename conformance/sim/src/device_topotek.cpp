@@ -1,13 +1,15 @@
 // The Topotek commands with state behind them, as ArduPilot's AP_Mount_Topotek
-// and a real SIP show them (docs/sources/ardupilot.md sections 1, 8.1, 8.3):
-// angle and rate commands move the axes (top::motion_of, with the field's
-// signs and units under the field profile), GIA switches the attitude
-// stream (GIA frames in the field, GIC in the document), the GIC query is
-// answered as a real SIP does, tracking is a small state machine (TRC, LOC,
-// OFT), and position writes are echoed. Asked before device_handlers.cpp's
-// table (Device::dispatch).
+// and a real Topotek camera (PixEagle bench) show them
+// (docs/sources/ardupilot.md sections 1, 8.1, 8.3): angle and rate commands
+// move the axes (top::motion_of, with the field's signs and units under the
+// field profile), GIA switches the attitude stream (GIA frames in the
+// field, GIC in the document), the GIC query is answered as that camera
+// does, tracking is a small state machine (TRC, LOC, OFT), and a
+// rangefinder measurement is answered with its range (LRF). Asked before
+// device_handlers.cpp's table (Device::dispatch).
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "device_util.hpp"
 #include "sim/device.hpp"
@@ -21,7 +23,8 @@ struct TopotekHandlers {
   using Call = detail::HandlerCall;
   using Fn = detail::HandlerFn;
 
-  // The write back, its header kept (a real SIP answers #tp with #tp).
+  // The write back, its header kept (a real Topotek camera answers #tp with
+  // #tp: PixEagle session 20260917T185212Z-identity, GMS).
   static bool echo(const Call& c) {
     c.out.push_back(
         c.dev.make(c.req.header, c.req, c.req.control, c.req.ident_view(), c.req.data()));
@@ -74,7 +77,8 @@ struct TopotekHandlers {
   }
 
   // The GIC query: the attitude now, in the identifier top::reply_ident
-  // gives (a real SIP answers with a 12-char GIA, the document with GIC).
+  // gives (a real Topotek camera answers with a 12-char GIA, the document
+  // with GIC).
   static bool attitude_read(const Call& c) {
     Device& d = c.dev;
     d.advance(c.now_us);
@@ -136,9 +140,22 @@ struct TopotekHandlers {
     return echo(c);
   }
 
-  // LAT/LON writes: echoed in the field (issue 28: a real unit's answer is
-  // the write back); the document's 5.8.7 output layout otherwise.
-  static bool position_write(const Call& c) { return c.dev.field() ? echo(c) : false; }
+  // LRF control (Topotek 5.9 note 2: 00 stop, 01 on, 02 single, 03
+  // continuous): answered with the result in the document's X1X2X3X4X5.X6,
+  // metres to 0.1 m (Topotek 5.9; the form ArduPilot's AP_Mount_Topotek.cpp
+  // @ d4209711 reads in gimbal_dist_info_analyse(), "12345.6"), as every
+  // write of a command with a reply layout is answered in it
+  // (top::write_reply); a stop too. One result per write (continuous
+  // measurement is not repeated).
+  static bool range_write(const Call& c) {
+    if (!field(c.dec, "action") || !c.dec.command) return false;
+    char data[16];
+    std::snprintf(data, sizeof data, "%07.1f", std::clamp(c.dev.opts_.range_m, 0.0, 99999.9));
+    const std::string_view d(data);
+    c.out.push_back(c.dev.make(top::choose_header(c.dev.dialect_, c.dec.command->address, d.size()),
+                               c.req, 'w', c.req.ident_view(), d));
+    return true;
+  }
 
   static constexpr std::uint64_t kTrackStartUs = 400000;
 };
@@ -152,13 +169,14 @@ struct Entry {
 };
 
 constexpr Entry kTopotek[] = {
-    {"GIA", 'w', TopotekHandlers::stream_write},   {"GAA", 'w', TopotekHandlers::stream_write},
-    {"GIC", 'r', TopotekHandlers::attitude_read},  {"TRC", 'w', TopotekHandlers::tracking_write},
-    {"TRC", 'r', TopotekHandlers::tracking_read},  {"LOC", 'w', TopotekHandlers::tracking_target},
-    {"LAT", 'w', TopotekHandlers::position_write}, {"LON", 'w', TopotekHandlers::position_write},
+    {"GIA", 'w', TopotekHandlers::stream_write},  {"GAA", 'w', TopotekHandlers::stream_write},
+    {"GIC", 'r', TopotekHandlers::attitude_read}, {"TRC", 'w', TopotekHandlers::tracking_write},
+    {"TRC", 'r', TopotekHandlers::tracking_read}, {"LOC", 'w', TopotekHandlers::tracking_target},
+    {"LRF", 'w', TopotekHandlers::range_write},
 };
 
-// OFT at about video rate while tracking (issue 28: ~30 Hz).
+// OFT at about video rate while tracking (PixEagle session
+// 20260917T051606Z-point: 33 ms apart, ~30 Hz).
 constexpr std::uint64_t kBoxPeriodUs = 1000000 / 30;
 
 void put_le16(std::string& s, long v) {

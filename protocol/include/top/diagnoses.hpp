@@ -69,10 +69,10 @@ struct FormSpec;
     "the firmware's convention per axis and per command kind (angle and rate may differ)")         \
   X(command_ignored, "command-ignored", warning,                                                   \
     "angle commands were acknowledged but the gimbal did not move, while other commands moved it", \
-    "field notes: firmware that echoes GAM, GSM or GAY and does not move (a C12 ground "           \
-    "station: GSM drops its yaw part while GSY and GSP work; issue 28's field notes)",             \
-    "use the per-axis commands this firmware moves on (GAY/GAP rather than GAM), or update the "   \
-    "firmware")                                                                                    \
+    "AP_Mount_SkyDroid.cpp @ c5aa8452 (ArduPilot PR #34155): on real C11 hardware GSY is \"the "   \
+    "only command confirmed to move yaw (GAM/GSM/GAY all silently ignored)\"",                     \
+    "use the per-axis commands this firmware moves on (on a C11 GSY and GSP, not GAM, GSM, GAY "   \
+    "or GAP), or update the firmware")                                                             \
   X(attitude_stale, "attitude-stale", warning,                                                     \
     "non-zero motion commands kept coming while the attitude feedback had stopped for more "       \
     "than 1 s",                                                                                    \

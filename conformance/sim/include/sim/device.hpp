@@ -86,13 +86,18 @@ struct DeviceOptions {
   std::uint32_t topotek_stream_hz = 10;
   // Identity: SkyDroid's VER and MOD replies, Topotek's VSN and PA2 (empty:
   // the model's defaults: SkyDroid V1.0.78, the form ArduPilot's SkyDroid
-  // driver parses, and the model's name, C12; Topotek a real SIP's version
-  // 1.6.26.R.D, issue 28 log and PixEagle bench notes, model name SIP).
+  // driver parses, and the model's name, C12; Topotek the version a real
+  // Topotek camera answered, 1.6.26.R.D (PixEagle session
+  // 20260917T185212Z-identity 18:52:16.574300 #tpDPArVSN1.6.26.R.D62), and
+  // the model name SIP, which no capture shows: PA2 was never asked there).
   std::string version;
   std::string model_name;
   // Topotek tracking: false for a lens that cannot track (TRC state 4,
   // ArduPilot PR #31768).
   bool tracking = true;
+  // What the Topotek rangefinder measures, in metres: the result a
+  // measuring LRF write is answered with (X1X2X3X4X5.X6, Topotek 5.9).
+  double range_m = 1234.5;
   DeviceFaults faults;
 };
 
@@ -119,7 +124,7 @@ struct Stream {
 };
 
 // The Topotek tracker (field: ArduPilot AP_Mount_Topotek PR #27568 and
-// #31768, PixEagle bench notes on a real SIP; sim/src/device_topotek.cpp).
+// #31768, PixEagle sessions on a real Topotek camera; sim/src/device_topotek.cpp).
 struct Tracking {
   char state = '0';             // TRC data char 1: 0 stopped, 1 waiting, 2 tracking, 4 no lens
   std::uint64_t starts_us = 0;  // a LOC while waiting: tracking from then (0: none)
