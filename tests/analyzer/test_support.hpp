@@ -97,6 +97,8 @@ struct Recorder : Sink {
     top::Dialect dialect;
     std::uint64_t reply_to;
     std::int64_t latency;
+    std::uint64_t copy_of;
+    char control;
     std::vector<std::string> codes;  // frame, catalog and session codes
     std::string json_fast;
     std::string json_ref;
@@ -118,6 +120,8 @@ struct Recorder : Sink {
     f.dialect = e.entry->decoded.dialect;
     f.reply_to = e.reply_to;
     f.latency = e.latency_us;
+    f.copy_of = e.copy_of;
+    f.control = e.entry->frame->control;
     for (const top::Finding* x : all_findings(*e.entry->frame, e.entry->decoded))
       f.codes.emplace_back(top::to_string(x->code));
     for (const Note& n : e.notes) f.codes.emplace_back(to_string(n.code));
