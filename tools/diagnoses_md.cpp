@@ -6,6 +6,7 @@
 #include <string>
 
 #include "markdown.hpp"
+#include "top/device.hpp"
 #include "top/diagnoses.hpp"
 
 using mdtable::cell;
@@ -40,6 +41,34 @@ int main() {
          std::string(top::to_string(top::severity(d))) + " | " + cell(top::title(d)) + " | " +
          cell(top::evidence(d)) + " | " + cell(top::remedy(d)) + " |\n";
   }
+  o += "\n## What a device does that its document does not say\n\n"
+       "Not field failures, and noted once per conversation at severity info: the\n"
+       "device traits topdump reads a capture by (docs/FIELD.md, from\n"
+       "`protocol/src/device_tables.cpp`), each with its source.\n\n";
+  o += "| note | what the capture shows | trait and its source |\n|---|---|---|\n";
+  struct Row {
+    const char* code;
+    const char* shows;
+    top::TraitKind kind;
+  };
+  const Row rows[] = {
+      {"reply-port",
+       "the device sent its frames from a port other than the one it serves; they are paired "
+       "with the requests of the client's host",
+       top::TraitKind::ephemeral_reply_port},
+      {"fan-out",
+       "the device sent its frames to several ports of the client's host, or twice; each copy "
+       "is shown (`copy_of`) and counted once",
+       top::TraitKind::fan_out},
+      {"fan-out", "", top::TraitKind::duplicate_to_client_port},
+      {"silent-writes", "writes the document gives no reply got none; none is unanswered",
+       top::TraitKind::silent_writes},
+  };
+  for (const Row& r : rows)
+    for (const top::Trait& t : top::traits())
+      if (t.kind == r.kind)
+        o += "| `" + std::string(r.code) + "` | " + cell(r.shows) + " | " +
+             std::string(top::to_string(t.kind)) + ": " + cell(t.evidence) + " |\n";
   std::fwrite(o.data(), 1, o.size(), stdout);
   return 0;
 }

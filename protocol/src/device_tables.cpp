@@ -307,7 +307,8 @@ constexpr Trait kTraits[] = {
      .models = sip,
      .source = Source::field,
      .evidence = "a real Topotek camera (PixEagle bench @3bea324, VSN 1.6.26.R.D) answered "
-                 "requests to UDP 9003 from port 38909 (sessions 20260917T044930Z to 045021Z), "
+                 "requests to UDP 9003 from port 38909 (sessions 20260917T044930Z-queries and "
+                 "045021Z-routing), "
                  "57707 (045346Z to 045454Z), 35496 (050911Z to 051227Z), 59598 (051516Z to "
                  "052716Z), 50076 (071735Z to 072435Z) and 48413 (185212Z-identity), never from "
                  "9003: its reply port changes between sessions"},

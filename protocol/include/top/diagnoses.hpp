@@ -37,9 +37,13 @@ struct FormSpec;
     "check the device's power, IP address or serial port, the port number and line speed, and "    \
     "that the capture sees the device's side of the link")                                         \
   X(reply_interface, "reply-interface", warning,                                                   \
-    "Topotek requests over the network with source U get no answer",                               \
-    "ArduPilot PR #33803: a Topotek gimbal answers on the interface the request's source "         \
-    "letter names; U is its UART, so a network client sending U hears nothing",                    \
+    "a network client names itself U (the UART) in Topotek requests, whether or not the device "   \
+    "answered",                                                                                    \
+    "Topotek V1.1.3 2: P is the network client, U the UART's; ArduPilot PR #33803: a Topotek "      \
+    "gimbal answers on the interface the source letter names, so a network client sending U "      \
+    "hears nothing (the fix needed new firmware too); a real Topotek camera (PixEagle bench, VSN " \
+    "1.6.26.R.D) obeyed GSY and GSP sent with U over UDP (20260917T051548Z-tilt; checkpoint "      \
+    "2026-09-17-phase-5-gimbal-control-bench.md: pitch 4.9 to 7.0 to 4.7 deg)",                    \
     "send source P on UDP/TCP links (ArduPilot with PR #33803, 4.7 or later)")                     \
   X(stream_rate, "stream-rate", warning,                                                           \
     "a GAC/GIC push stream runs more than 25% off the rate its switch asked",                      \
