@@ -29,7 +29,8 @@ bool Analyzer::Impl::copy_of_last(Conversation& c, int d, const top::Frame& f, s
                                   std::uint64_t n) {
   HostLink& l = *c.link;
   const Route& r = *c.dir[d].now;
-  if (ts != kNoTime)
+  // most frames come later than the window after the newest: nothing to compare
+  if (ts != kNoTime && l.newest_ts != kNoTime && ts - l.newest_ts < top::fan_out_copy_window_us)
     for (HostLink::Sent& x : l.recent) {
       if (x.n == 0 || x.ts == kNoTime || ts < x.ts || ts - x.ts >= top::fan_out_copy_window_us ||
           f.raw != x.raw)
@@ -53,6 +54,7 @@ bool Analyzer::Impl::copy_of_last(Conversation& c, int d, const top::Frame& f, s
   HostLink::Sent& x = l.recent[l.recent_next++ % l.recent.size()];
   x.raw.assign(f.raw);
   x.ts = ts;
+  l.newest_ts = ts;
   x.n = n;
   x.copied = false;
   ++l.device_frames;

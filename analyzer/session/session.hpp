@@ -120,6 +120,7 @@ struct HostLink {
   };
   std::array<Sent, 4> recent{};
   std::size_t recent_next = 0;
+  std::int64_t newest_ts = kNoTime;  // the newest of them
   std::uint64_t last_n = 0;  // the frame the copy at hand copies
   // The last reply reached another port than its request came from
   // (`asker`): whether a copy reaches that port decides.
