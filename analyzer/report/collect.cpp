@@ -115,6 +115,9 @@ void ReportSink::frame(const FrameEvent& e) {
     if (e.from) c.a = *e.from;
     if (e.to) c.b = *e.to;
   }
+  // A copy of the device's frame (fan-out) is that frame again: its
+  // findings and its attitude were taken from the first.
+  if (e.copy_of) return;
   const std::string* sender = e.from;
   if (e.entry && e.entry->frame) {
     const top::Frame& f = *e.entry->frame;
