@@ -158,10 +158,13 @@ void frame_body(O& o, const top::Frame& f, const top::Decoded& d) {
   app(o, ",\"fields\":");
   o += '{';
   bool first = true;
+  static thread_local std::string key;  // reused: no allocation per field
   for (const auto& v : d.fields) {
     if (!first) o += ',';
     first = false;
-    put_plain(o, v.name());
+    key.clear();
+    top::append_key(v, key);  // a record's field: "x[1]"
+    put_plain(o, key);
     o += ':';
     put_field(o, v, f);
   }

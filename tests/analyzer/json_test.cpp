@@ -355,12 +355,13 @@ TEST(Json, CatalogStringsNeedNoEscaping) {
                   plain(std::string_view(&c.address, 1)))
           << c.ident;
       for (const top::FormSpec& f : c.forms)
-        for (const top::FieldSpec& fs : f.fields) {
-          EXPECT_TRUE(plain(fs.name) && plain(fs.unit) && plain(top::to_string(fs.kind)))
-              << c.ident << " " << fs.name;
-          for (const top::EnumValue& e : fs.enums) EXPECT_TRUE(plain(e.name)) << e.name;
-          ++n;
-        }
+        for (const auto& fields : {f.fields, f.record})
+          for (const top::FieldSpec& fs : fields) {
+            EXPECT_TRUE(plain(fs.name) && plain(fs.unit) && plain(top::to_string(fs.kind)))
+                << c.ident << " " << fs.name;
+            for (const top::EnumValue& e : fs.enums) EXPECT_TRUE(plain(e.name)) << e.name;
+            ++n;
+          }
     }
   }
   EXPECT_GT(n, 200u);

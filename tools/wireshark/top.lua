@@ -28,6 +28,10 @@ STREAMS.topotek.push["GAC"] = "device"
 STREAMS.topotek.switch["GAA"] = true
 STREAMS.topotek.push["GIC"] = "device"
 STREAMS.topotek.switch["GIA"] = true
+STREAMS.topotek.push["ODR"] = "device"
+STREAMS.topotek.switch["FED"] = true
+STREAMS.topotek.push["ODZ"] = "device"
+STREAMS.topotek.switch["ZMC"] = true
 STREAMS.topotek.push["GIA"] = "device"
 STREAMS.topotek.switch["GIA"] = true
 STREAMS.topotek.push["OFT"] = "device"
@@ -691,6 +695,24 @@ CATALOG_FIELDS["top.ENT.codec"] = ProtoField.new("ENT codec", "top.ENT.codec", f
 CATALOG_VTYPE["top.ENT.codec"] = "uint"
 CATALOG_FIELDS["top.AWB.data"] = ProtoField.new("AWB data", "top.AWB.data", ftypes.STRING, nil, base.ASCII, nil, "white balance (Topotek appendix II)")
 CATALOG_VTYPE["top.AWB.data"] = "string"
+CATALOG_FIELDS["top.FED.output"] = ProtoField.new("FED output", "top.FED.output", ftypes.UINT32, { [16] = "on", [32] = "off", }, base.HEX, nil, "detection output (field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 9): 10 detection output on, 20 off (off by default: the vendor's tracking PDF section 9 as PixEagle quotes it); no other value is known")
+CATALOG_VTYPE["top.FED.output"] = "uint"
+CATALOG_FIELDS["top.ODR.count"] = ProtoField.new("ODR count", "top.ODR.count", ftypes.UINT32, nil, base.DEC, nil, "detections (field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 8): the records that follow; 1 in every ODR recorded (the one-byte length holds 21 at most, where the vendor's PDF declares an array of 255)")
+CATALOG_VTYPE["top.ODR.count"] = "uint"
+CATALOG_FIELDS["top.ODR.x"] = ProtoField.new("ODR x (px)", "top.ODR.x", ftypes.INT32, nil, base.DEC, nil, "detections (field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 8): top left, of 1920")
+CATALOG_VTYPE["top.ODR.x"] = "int"
+CATALOG_FIELDS["top.ODR.y"] = ProtoField.new("ODR y (px)", "top.ODR.y", ftypes.INT32, nil, base.DEC, nil, "detections (field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 8): top left, of 1080")
+CATALOG_VTYPE["top.ODR.y"] = "int"
+CATALOG_FIELDS["top.ODR.width"] = ProtoField.new("ODR width (px)", "top.ODR.width", ftypes.INT32, nil, base.DEC, nil, "detections (field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 8)")
+CATALOG_VTYPE["top.ODR.width"] = "int"
+CATALOG_FIELDS["top.ODR.height"] = ProtoField.new("ODR height (px)", "top.ODR.height", ftypes.INT32, nil, base.DEC, nil, "detections (field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 8)")
+CATALOG_VTYPE["top.ODR.height"] = "int"
+CATALOG_FIELDS["top.ODR.label"] = ProtoField.new("ODR label", "top.ODR.label", ftypes.INT32, nil, base.DEC, nil, "detections (field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 8): label id: 127 in every record recorded; the label table is not public")
+CATALOG_VTYPE["top.ODR.label"] = "int"
+CATALOG_FIELDS["top.ODR.confidence"] = ProtoField.new("ODR confidence", "top.ODR.confidence", ftypes.DOUBLE, nil, nil, nil, "detections (field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 8): a fraction, sent times 10000 (the vendor's tracking PDF section 8 as PixEagle quotes it); 0 in every record recorded")
+CATALOG_VTYPE["top.ODR.confidence"] = "double"
+CATALOG_FIELDS["top.ODZ.data"] = ProtoField.new("ODZ data", "top.ODZ.data", ftypes.STRING, nil, base.ASCII, nil, "zoom push (meaning unknown) (field: PixEagle session 20260917T050955Z-zoom): meaning unknown (PixEagle's phase 5 checkpoint: \"Their meaning is unknown\"): ten zero bytes in every ODZ recorded, while the zoom went 1.0x to 1.5x and back")
+CATALOG_VTYPE["top.ODZ.data"] = "string"
 CATALOG_FIELDS["top.PA2.query"] = ProtoField.new("PA2 query", "top.PA2.query", ftypes.UINT32, nil, base.DEC, nil, "model name (field: ArduPilot AP_Mount_Topotek (PR #27568))")
 CATALOG_VTYPE["top.PA2.query"] = "uint"
 CATALOG_FIELDS["top.PA2.model"] = ProtoField.new("PA2 model", "top.PA2.model", ftypes.STRING, nil, base.ASCII, nil, "model name (field: ArduPilot AP_Mount_Topotek (PR #27568)): 000000000 on units whose name was not set at production (PR #27568)")
@@ -725,7 +747,7 @@ CATALOG_FIELDS["top.OFT.width"] = ProtoField.new("OFT width (px)", "top.OFT.widt
 CATALOG_VTYPE["top.OFT.width"] = "uint"
 CATALOG_FIELDS["top.OFT.height"] = ProtoField.new("OFT height (px)", "top.OFT.height", ftypes.UINT32, nil, base.DEC, nil, "tracking box (field: PixEagle bench notes on a real SIP)")
 CATALOG_VTYPE["top.OFT.height"] = "uint"
-CATALOG_FIELDS["top.OFT.status"] = ProtoField.new("OFT status", "top.OFT.status", ftypes.UINT32, { [49] = "stopped", [50] = "tracking", }, base.DEC, nil, "tracking box (field: PixEagle bench notes on a real SIP): 2 while tracking; 1 with an all-zero box after a cancel")
+CATALOG_FIELDS["top.OFT.status"] = ProtoField.new("OFT status", "top.OFT.status", ftypes.UINT32, { [49] = "stopped", [50] = "tracking", [51] = "temporarily_lost", }, base.DEC, nil, "tracking box (field: PixEagle bench notes on a real SIP): 2 while tracking; 1 with an all-zero box after a cancel; 3 while the target is lost, the box frozen (PixEagle session 20260917T051606Z-point 05:16:08.998653, with TRC state 03 in 20260918T060352Z-point 06:03:55.511523; the name is TRC's state 3, the vendor's tracking PDF section 3)")
 CATALOG_VTYPE["top.OFT.status"] = "uint"
 
 -- The command catalog of both dialects (protocol/src/catalog_*.cpp).
@@ -2397,6 +2419,44 @@ CATALOG.topotek["AWB"] = {
       } },
   },
 }
+CATALOG.topotek["FED"] = {
+  dialect = "topotek", address = "D", title = "detection output", section = "field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 9",
+  models = { sip = true, },
+  forms = {
+    { control = "w", role = "request", min_length = 2, max_length = 2, note = "",
+      fields = {
+        { name = "output", kind = "enum_hex", width = 2, scale = 1, mul = 1, dec = 0, unit = "", enums = { [16] = "on", [32] = "off", }, abbrev = "top.FED.output" },
+      } },
+  },
+}
+CATALOG.topotek["ODR"] = {
+  dialect = "topotek", address = "D", title = "detections", section = "field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 8",
+  models = { sip = true, },
+  forms = {
+    { control = "w", role = "response", min_length = 1, max_length = 255, note = "",
+      fields = {
+        { name = "count", kind = "u8", width = 1, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.ODR.count" },
+      },
+      record = {
+        { name = "x", kind = "le_i16", width = 2, scale = 1, mul = 1, dec = 0, unit = "px", abbrev = "top.ODR.x" },
+        { name = "y", kind = "le_i16", width = 2, scale = 1, mul = 1, dec = 0, unit = "px", abbrev = "top.ODR.y" },
+        { name = "width", kind = "le_i16", width = 2, scale = 1, mul = 1, dec = 0, unit = "px", abbrev = "top.ODR.width" },
+        { name = "height", kind = "le_i16", width = 2, scale = 1, mul = 1, dec = 0, unit = "px", abbrev = "top.ODR.height" },
+        { name = "label", kind = "le_i16", width = 2, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.ODR.label" },
+        { name = "confidence", kind = "le_i16", width = 2, scale = 0.0001, mul = 1, dec = 4, unit = "", abbrev = "top.ODR.confidence" },
+      } },
+  },
+}
+CATALOG.topotek["ODZ"] = {
+  dialect = "topotek", address = "D", title = "zoom push (meaning unknown)", section = "field: PixEagle session 20260917T050955Z-zoom",
+  models = { sip = true, },
+  forms = {
+    { control = "w", role = "response", min_length = 10, max_length = 10, note = "",
+      fields = {
+        { name = "data", kind = "raw", width = 10, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.ODZ.data" },
+      } },
+  },
+}
 CATALOG.topotek["PA2"] = {
   dialect = "topotek", address = "G", title = "model name", section = "field: ArduPilot AP_Mount_Topotek (PR #27568)",
   models = { sip = true, },
@@ -2468,7 +2528,7 @@ CATALOG.topotek["OFT"] = {
         { name = "y", kind = "le_u16", width = 2, scale = 1, mul = 1, dec = 0, unit = "px", abbrev = "top.OFT.y" },
         { name = "width", kind = "le_u16", width = 2, scale = 1, mul = 1, dec = 0, unit = "px", abbrev = "top.OFT.width" },
         { name = "height", kind = "le_u16", width = 2, scale = 1, mul = 1, dec = 0, unit = "px", abbrev = "top.OFT.height" },
-        { name = "status", kind = "enum_char", width = 1, scale = 1, mul = 1, dec = 0, unit = "", enums = { [49] = "stopped", [50] = "tracking", }, abbrev = "top.OFT.status" },
+        { name = "status", kind = "enum_char", width = 1, scale = 1, mul = 1, dec = 0, unit = "", enums = { [49] = "stopped", [50] = "tracking", [51] = "temporarily_lost", }, abbrev = "top.OFT.status" },
       } },
   },
 }
@@ -2903,6 +2963,22 @@ local function all_printable(s)
   return not string.find(s, "[^\32-\126]")
 end
 
+-- Bytes as topdump's JSON carries them (top::escape): printable ASCII as it
+-- is, \\ \r \n, and \xNN for the rest.
+local function escape_bytes(s)
+  if all_printable(s) and not string.find(s, "\\", 1, true) then return s end
+  local out = {}
+  for i = 1, #s do
+    local c = sbyte(s, i)
+    if c == 92 then out[i] = "\\\\"
+    elseif c == 13 then out[i] = "\\r"
+    elseif c == 10 then out[i] = "\\n"
+    elseif c >= 32 and c < 127 then out[i] = schar(c)
+    else out[i] = sfmt("\\x%02X", c) end
+  end
+  return table.concat(out)
+end
+
 -- "[-+]digits[.digits]" as a number, or nil.
 local function parse_number(s)
   if not string.find(s, "^[-+]?%d*%.?%d*$") or not string.find(s, "%d") then return nil end
@@ -3010,6 +3086,11 @@ local function decode_field(ctx, spec, bytes, offset)
     fv.integer = u
     fv.value = scaled(u, spec)
     fv.valid = true
+  elseif k == "u8" then
+    if #bytes ~= 1 then return bad("needs 1 bytes") end
+    fv.integer = sbyte(bytes, 1)
+    fv.value = scaled(fv.integer, spec)
+    fv.valid = true
   elseif k == "be_i16" or k == "be_u16" then
     if #bytes ~= 2 then return bad("needs 2 bytes") end
     local u = sbyte(bytes, 1) * 256 + sbyte(bytes, 2)
@@ -3057,8 +3138,14 @@ local function format_value(fv)
     if k == "enum_hex" then code = sfmt("%0" .. fv.length .. "X", fv.integer) end
     if fv.enum_name then return fv.enum_name .. " (" .. code .. ")" end
     return code .. " (undocumented)"
-  elseif k == "text" or k == "raw" then
+  elseif k == "text" then
     return fv.text
+  elseif k == "raw" then
+    -- printable bytes as they are, binary ones (the Topotek ODZ) as hex pairs
+    if all_printable(fv.text) then return fv.text end
+    local hex = {}
+    for i = 1, #fv.text do hex[i] = sfmt("%02X", sbyte(fv.text, i)) end
+    return table.concat(hex, " ")
   elseif k == "nmea" then
     return fmt_number(fv.value, 7) .. unit .. " (" .. fv.text .. ")"
   elseif k == "number" then
@@ -3070,6 +3157,41 @@ local function format_value(fv)
 end
 
 local function role_fits(form, frame) return form == "any" or frame == "any" or form == frame end
+
+-- The field's key (top::field_key): its name, "x[1]" for a field of record 1.
+local function field_key(fv)
+  if fv.record then return fv.spec.name .. "[" .. fv.record .. "]" end
+  return fv.spec.name
+end
+
+-- The records after a form's fields (decode.cpp check_records): as many as
+-- the count field (the form's last, at data offset count_at) says and the
+-- data holds; a count the data does not match is a data-length at the count.
+local function decode_records(ctx, out, f, form, data, count_at, pos)
+  local cf = form.fields[#form.fields]
+  local quiet = { lowercase_reported = false, add = function() end }
+  local count = decode_field(quiet, cf, ssub(data, count_at + 1, pos), 0)
+  if not count.valid or count.none or count.integer < 0 then return end
+  local width = 0
+  for _, r in ipairs(form.record) do width = width + r.width end
+  if width == 0 then return end
+  local left = #data - pos
+  local whole = math.floor(left / width)
+  local n = count.integer
+  if n * width ~= left then
+    ctx.add("data-length", f.data_offset + count_at, cf.name .. " " .. n .. ": " .. n ..
+            " record(s) of " .. width .. " byte(s) need " .. (n * width) .. ", " .. left .. " follow")
+  end
+  local records = n < whole and n or whole
+  for i = 1, records do
+    for _, r in ipairs(form.record) do
+      local fv = decode_field(ctx, r, ssub(data, pos + 1, pos + r.width), f.data_offset + pos)
+      fv.record = i
+      out.fields[#out.fields + 1] = fv
+      pos = pos + r.width
+    end
+  end
+end
 
 local function decode(f, dialect, role, model)
   local out = { dialect = dialect, role = role, findings = {}, fields = {} }
@@ -3199,6 +3321,7 @@ local function decode(f, dialect, role, model)
     end
     return out
   end
+  local done, last = 0, 0
   for _, fs in ipairs(form.fields) do
     if pos >= #data and fs.width ~= 0 then break end
     local w = fs.width == 0 and (#data - pos) or fs.width
@@ -3208,7 +3331,12 @@ local function decode(f, dialect, role, model)
       break
     end
     out.fields[#out.fields + 1] = decode_field(ctx, fs, ssub(data, pos + 1, pos + w), f.data_offset + pos)
+    last = pos
     pos = pos + w
+    done = done + 1
+  end
+  if form.record and done == #form.fields and done > 0 then
+    decode_records(ctx, out, f, form, data, last, pos)
   end
   return out
 end
@@ -3286,7 +3414,7 @@ local function summary(dec)
     return "none (" .. form.note .. ")"
   end
   local parts = {}
-  for _, fv in ipairs(dec.fields) do parts[#parts + 1] = fv.spec.name .. " " .. format_value(fv) end
+  for _, fv in ipairs(dec.fields) do parts[#parts + 1] = field_key(fv) .. " " .. format_value(fv) end
   return table.concat(parts, ", ")
 end
 
@@ -3499,7 +3627,7 @@ end
 
 local function add_field(sub, tvb, base_off, fv)
   local s = fv.spec
-  local label = s.name .. ": " .. format_value(fv)
+  local label = field_key(fv) .. ": " .. format_value(fv)
   local r = tvb(base_off + fv.offset, fv.length)
   local pf = CATALOG_FIELDS[s.abbrev]
   if fv.none or not fv.valid or not pf then
@@ -3509,7 +3637,13 @@ local function add_field(sub, tvb, base_off, fv)
   local k = s.kind
   local v = fv.value
   if CATALOG_VTYPE[s.abbrev] == "string" then
-    if k == "text" or k == "raw" then v = fv.text else v = format_value(fv) end
+    if k == "text" then
+      v = fv.text
+    elseif k == "raw" then
+      v = escape_bytes(fv.text)  -- binary bytes (the Topotek ODZ) as topdump's JSON has them
+    else
+      v = format_value(fv)
+    end
   end
   sub:add(pf, r, v, label)
 end
@@ -3577,7 +3711,21 @@ local function add_frame(tvb, pk, tree, off, item, c, dir, index)
   if #dec.fields > 0 then
     local sub = t:add(tvb(off + f.data_offset, f.data_length),
                       f.ident .. (dec.command and (" (" .. dec.command.title .. ")") or ""))
-    for _, fv in ipairs(dec.fields) do add_field(sub, tvb, off, fv) end
+    -- a record's fields (the Topotek ODR detections) under "record n"
+    local record_width = 0
+    for _, r in ipairs(dec.form and dec.form.record or {}) do record_width = record_width + r.width end
+    local rec_tree, rec_n = nil, 0
+    for _, fv in ipairs(dec.fields) do
+      local parent = sub
+      if fv.record then
+        if fv.record ~= rec_n then
+          rec_n = fv.record
+          rec_tree = sub:add(tvb(off + fv.offset, record_width), "record " .. rec_n)
+        end
+        parent = rec_tree
+      end
+      add_field(parent, tvb, off, fv)
+    end
   end
   for _, x in ipairs(f.findings) do add_finding(t, tvb, off, x) end
   for _, x in ipairs(dec.findings) do add_finding(t, tvb, off, x) end
