@@ -210,6 +210,13 @@ const FieldValue* record_field(const Decoded& d, std::string_view name, std::uin
   return nullptr;
 }
 
+// The findings of a severity.
+std::size_t count_severity(const Decoded& d, Severity s) {
+  std::size_t n = 0;
+  for (const Finding& f : d.findings) n += f.severity == s;
+  return n;
+}
+
 }  // namespace
 
 // ODR: #tP, a raw length byte 0x0D, a count and one record of six
@@ -379,4 +386,48 @@ TEST(DecodeField, OftStatus3IsTemporarilyLost) {
   const ParseResult p = parse_exact(raw);
   const Decoded lean = decode(p.frame, {.dialect = Dialect::topotek, .detail = false});
   EXPECT_TRUE(lean.findings.empty());
+}
+
+// FAI of 14 chars, as ArduPilot's SkyDroid driver sends it
+// (AP_Mount_SkyDroid.cpp @ c5aa8452 send_attitude_to_gimbal(),
+// "%04X%04X%04X%02X": yaw, pitch, roll and a mode byte, 1 fixed-wing, 0
+// hover): the field's form, no warning but a data-length of information
+// that names the driver; a device of the field profile takes it, the
+// document's (SkyDroid 3.3.6.2: 12 chars) refuses it.
+TEST(DecodeField, Fai14CharsIsTheDriversForm) {
+  for (Model m : {Model::c12, Model::c13}) {
+    SCOPED_TRACE(std::string(to_string(m)));
+    const Decoded d = dec(with_checksum("#tpUGEwFAIEC78FF38000001"), Dialect::skydroid, m);
+    ASSERT_NE(d.form, nullptr);
+    EXPECT_TRUE(d.form->from_field());
+    EXPECT_EQ(count_severity(d, Severity::warning) + count_severity(d, Severity::error), 0u)
+        << d.summary();
+    // (on a C13 also the unsupported-on-model of information: the driver
+    // sends the C13 the C11's commands)
+    const Finding* length = nullptr;
+    for (const Finding& x : d.findings) {
+      if (x.code == FindingCode::data_length) length = &x;
+      EXPECT_EQ(x.severity, Severity::info) << x.message;
+    }
+    ASSERT_NE(length, nullptr) << d.summary();
+    EXPECT_EQ(length->offset, 10u);
+    EXPECT_NE(length->message.find("FAI 'w' takes 12 in SkyDroid 3.3.6.2"), std::string::npos)
+        << length->message;
+    EXPECT_NE(length->quirk.find("AP_Mount_SkyDroid.cpp @ c5aa8452"), std::string::npos);
+    EXPECT_DOUBLE_EQ(field(d, "yaw").value, -50.0);
+    EXPECT_DOUBLE_EQ(field(d, "pitch").value, -2.0);
+    EXPECT_EQ(field(d, "mode").enum_name, "fixed_wing");
+    EXPECT_EQ(rejection(d, m, true), Rejection::none);
+    EXPECT_NE(rejection(d, m, false), Rejection::none);  // the document's device refuses it
+  }
+  const Decoded hover = dec(with_checksum("#tpUGEwFAI00000000000000"), Dialect::skydroid);
+  EXPECT_EQ(field(hover, "mode").enum_name, "hover");
+  // The document's 12 chars are the document's form, no finding.
+  const Decoded doc = dec("#TPUGCwFAIEC780000000064", Dialect::skydroid, Model::c12);
+  ASSERT_NE(doc.form, nullptr);
+  EXPECT_FALSE(doc.form->from_field());
+  EXPECT_EQ(count_severity(doc, Severity::warning), 0u) << doc.summary();
+  // A device's echo of it is the device's frame: no note.
+  const Decoded echo = dec(with_checksum("#tpGUEwFAIEC78FF38000001"), Dialect::skydroid);
+  EXPECT_TRUE(codes(echo).empty()) << echo.summary();
 }

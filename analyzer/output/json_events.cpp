@@ -34,7 +34,7 @@ void put_finding(O& o, const top::Finding& x) {
   put_esc(o, x.message);
   if (!x.quirk.empty()) {
     app(o, ",\"quirk\":");
-    put_plain(o, x.quirk);
+    put_text(o, x.quirk);  // evidence may quote its source: escaped
   }
   o += '}';
 }
@@ -179,7 +179,7 @@ void frame_body(O& o, const top::Frame& f, const top::Decoded& d) {
     put_finding(o, x);
     if (!x.quirk.empty()) {
       if (!quirks.empty()) quirks += ',';
-      put_plain(quirks, x.quirk);
+      put_text(quirks, x.quirk);
     }
     if (x.severity > w) w = x.severity;
   };

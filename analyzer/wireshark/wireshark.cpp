@@ -212,13 +212,15 @@ void write_catalog(std::string& o) {
       o += "CATALOG." + std::string(top::to_string(d)) + "[" + lua_str(c.ident) +
            "] = {\n  dialect = " + lua_str(top::to_string(d)) +
            ", address = " + lua_str(std::string(1, c.address)) + ", title = " + lua_str(c.title) +
-           ", section = " + lua_str(c.section) + ",\n  models = {" + models + " },\n  forms = {\n";
+           ", section = " + lua_str(c.section) + (c.from_field() ? ", field = true" : "") +
+           ",\n  models = {" + models + " },\n  forms = {\n";
       for (const top::FormSpec& f : c.forms) {
         o += "    { control = " + lua_str(std::string(1, f.control)) +
              ", role = " + lua_str(role_name(f.role)) +
              ", min_length = " + std::to_string(f.min_length) +
              ", max_length = " + std::to_string(f.max_length) + ", note = " + lua_str(f.note);
         if (!f.none.empty()) o += ", none = " + lua_str(f.none);
+        if (f.from_field()) o += ", evidence = " + lua_str(f.evidence);
         o += ",\n      fields = {\n";
         for (const top::FieldSpec& s : f.fields) o += "        " + field_spec(c, s) + ",\n";
         o += "      }";

@@ -56,6 +56,43 @@ void note_tp_length(Ctx& ctx, const Frame& frame, const CommandSpec* cmd, Dialec
     f.message = message(frame.declared_length, g_class);
 }
 
+// A client's frame in a length its document does not give that a form of
+// the field takes (ArduPilot's 14-char SkyDroid FAI): a data-length of
+// information, naming the form's source, where the document's device would
+// refuse it (top::rejection takes no information as a refusal). A device's
+// frames in the field's layouts (the 12-char Topotek GIA, an echo of the
+// FAI) are what real devices send and get none.
+void note_field_length(Ctx& ctx, const Frame& frame, const CommandSpec& cmd, const FormSpec& form,
+                       Decoded& out) {
+  if (!form.from_field() || cmd.from_field() || form.role == Role::response ||
+      out.role == Role::response)
+    return;
+  const std::size_t len = frame.data_length;
+  bool documented = false;
+  for (const FormSpec& f : cmd.forms) {
+    if (f.from_field() || f.control != form.control) continue;
+    if (len >= f.min_length && len <= f.max_length) return;
+    documented = true;
+  }
+  if (!documented) return;
+  ctx.add(FindingCode::data_length, frame.data_offset, [&] {
+    std::string m = cat(
+        {std::to_string(len), " data byte(s); ", cmd.ident, " '", {&form.control, 1}, "' takes "});
+    bool first = true;
+    for (const FormSpec& f : cmd.forms) {
+      if (f.from_field() || f.control != form.control) continue;
+      if (!first) m += ", ";
+      first = false;
+      m += std::to_string(f.min_length);
+      if (f.min_length != f.max_length) m.append("-").append(std::to_string(f.max_length));
+    }
+    return cat({m, " in ", cmd.section, "; field: ", form.evidence});
+  });
+  Finding& x = out.findings.back();
+  x.severity = Severity::info;
+  x.quirk = form.evidence;
+}
+
 // What a frame's dialect, role, identifier, header, lengths and control
 // decide: the command, the form and their findings, in `out` (out.form stays
 // null when no form applies: the decode ends there).
@@ -169,6 +206,7 @@ void decode_shape(Ctx& ctx, const Frame& frame, const DecodeOptions& opts, Diale
   }
   out.form = form;
   if (form->role != Role::any && out.role == Role::any) out.role = form->role;
+  note_field_length(ctx, frame, *cmd, *form, out);
 }
 
 // Among the forms of the frame's shape (control, role, length) from `form`

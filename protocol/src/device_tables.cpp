@@ -421,7 +421,8 @@ constexpr FieldSupport kFieldSupport[] = {
      .evidence =
          "AP_Mount_SkyDroid (PR #34155, written against real C11/C13 units; "
          "SkyDroid confirmed the C11/C13 commands are the same) sends the C13 "
-         "its own attitude (its 14-char form still fails SkyDroid 3.3.6.2's length) as the C11"},
+         "its own attitude as the C11, in 14 chars with a mode byte (the catalog's field form "
+         "of FAI; SkyDroid 3.3.6.2 gives 12)"},
     {.dialect = Dialect::skydroid,
      .models = c13,
      .ident = "REC",

@@ -301,6 +301,8 @@ CATALOG_FIELDS["top.FAI.pitch"] = ProtoField.new("FAI pitch (deg)", "top.FAI.pit
 CATALOG_VTYPE["top.FAI.pitch"] = "double"
 CATALOG_FIELDS["top.FAI.roll"] = ProtoField.new("FAI roll (deg)", "top.FAI.roll", ftypes.DOUBLE, nil, nil, nil, "flight controller attitude (SkyDroid 3.3.6.2)")
 CATALOG_VTYPE["top.FAI.roll"] = "double"
+CATALOG_FIELDS["top.FAI.mode"] = ProtoField.new("FAI mode", "top.FAI.mode", ftypes.UINT32, { [0] = "hover", [1] = "fixed_wing", }, base.HEX, nil, "flight controller attitude (SkyDroid 3.3.6.2): 1 fixed-wing, 0 copter/hover (AP_Mount_SkyDroid.cpp: \"SkyDroid's own documented field for this command\"; its author does not know what it changes); SkyDroid 3.3.6.2 (V1.1.5) has no such field")
+CATALOG_VTYPE["top.FAI.mode"] = "uint"
 CATALOG_FIELDS["top.REC.action"] = ProtoField.new("REC action", "top.REC.action", ftypes.UINT32, { [0] = "stop", [1] = "start", [10] = "toggle", }, base.HEX, nil, "recording (SkyDroid 4.1)")
 CATALOG_VTYPE["top.REC.action"] = "uint"
 CATALOG_FIELDS["top.REC.query"] = ProtoField.new("REC query", "top.REC.query", ftypes.UINT32, nil, base.DEC, nil, "recording (SkyDroid 4.1)")
@@ -922,6 +924,13 @@ CATALOG.skydroid["FAI"] = {
         { name = "pitch", kind = "hex_s", width = 4, scale = 0.01, mul = 1, dec = 2, unit = "deg", abbrev = "top.FAI.pitch" },
         { name = "roll", kind = "hex_s", width = 4, scale = 0.01, mul = 1, dec = 2, unit = "deg", abbrev = "top.FAI.roll" },
       } },
+    { control = "w", role = "any", min_length = 14, max_length = 14, note = "the attitude and a mode byte", evidence = "AP_Mount_SkyDroid.cpp @ c5aa8452 (ArduPilot PR #34155) send_attitude_to_gimbal(): yaw, pitch, roll (0.01 deg) and the mode as \"%04X%04X%04X%02X\", 10 times a second, its comment's sample #tpUG0EwFAI; AP_Mount_Backend_TPFrame.cpp @ 4e7781a1 send_variablelen_packet() writes the length as one hex char: #tpUGEwFAI + 14 chars",
+      fields = {
+        { name = "yaw", kind = "hex_s", width = 4, scale = 0.01, mul = 1, dec = 2, unit = "deg", abbrev = "top.FAI.yaw" },
+        { name = "pitch", kind = "hex_s", width = 4, scale = 0.01, mul = 1, dec = 2, unit = "deg", abbrev = "top.FAI.pitch" },
+        { name = "roll", kind = "hex_s", width = 4, scale = 0.01, mul = 1, dec = 2, unit = "deg", abbrev = "top.FAI.roll" },
+        { name = "mode", kind = "enum_hex", width = 2, scale = 1, mul = 1, dec = 0, unit = "", enums = { [0] = "hover", [1] = "fixed_wing", }, abbrev = "top.FAI.mode" },
+      } },
   },
 }
 CATALOG.skydroid["REC"] = {
@@ -1384,7 +1393,7 @@ CATALOG.skydroid["SLR"] = {
       fields = {
         { name = "distance", kind = "hex_u", width = 4, scale = 1, mul = 1, dec = 0, unit = "dm", min = 5, max = 1000, abbrev = "top.SLR.distance" },
       } },
-    { control = "w", role = "any", min_length = 2, max_length = 2, note = "",
+    { control = "w", role = "any", min_length = 2, max_length = 2, note = "", evidence = "a station used on a real C13 (vamaskylight/custom-GCS, vgcs/skydroid) sends the trigger #TPUD2wSLR015B before each range read #TPUD2rSLR0055 (a C13 SDK, skydroid_c13_miniSDK, reads without one)",
       fields = {
         { name = "action", kind = "enum_hex", width = 2, scale = 1, mul = 1, dec = 0, unit = "", enums = { [1] = "measure", }, abbrev = "top.SLR.action" },
       } },
@@ -1559,14 +1568,14 @@ CATALOG.skydroid["RTF"] = {
   },
 }
 CATALOG.skydroid["MOD"] = {
-  dialect = "skydroid", address = "D", title = "model name", section = "field: ArduPilot AP_Mount_SkyDroid (PR #34155)",
+  dialect = "skydroid", address = "D", title = "model name", section = "field: ArduPilot AP_Mount_SkyDroid (PR #34155)", field = true,
   models = { c12 = true, c13 = true, },
   forms = {
     { control = "r", role = "request", min_length = 2, max_length = 2, note = "",
       fields = {
         { name = "query", kind = "hex_u", width = 2, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.MOD.query" },
       } },
-    { control = "r", role = "response", min_length = 1, max_length = 15, note = "",
+    { control = "r", role = "response", min_length = 1, max_length = 15, note = "", evidence = "AP_Mount_SkyDroid takes the reply's data as the model name (C11, C13; PR #34155); ArduPilot's SIM_SkyDroid answers #TPUD3rMODC118A / #TPUD3rMODC138C",
       fields = {
         { name = "model", kind = "text", width = 0, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.MOD.model" },
       } },
@@ -1956,7 +1965,7 @@ CATALOG.topotek["GIA"] = {
       fields = {
         { name = "state", kind = "enum_hex", width = 2, scale = 1, mul = 1, dec = 0, unit = "", enums = { [0] = "disable", [1] = "enable", }, abbrev = "top.GIA.state" },
       } },
-    { control = "r", role = "response", min_length = 12, max_length = 12, note = "attitude: the reply to a GIC query and the frame pushed after GIA 01, yaw, pitch, roll in 0.01 deg",
+    { control = "r", role = "response", min_length = 12, max_length = 12, note = "attitude: the reply to a GIC query and the frame pushed after GIA 01, yaw, pitch, roll in 0.01 deg", evidence = "a real SIP (firmware 1.6.26.R.D) answers #TPPG2rGIC0035 with #tpGPCrGIA + 12 hex (issue 28 log; PixEagle bench notes); AP_Mount_Topotek reads its attitude from GIA after #TPUG2wGIA013E (its header @02246a61 parsed GAC, @3d293ff8 GIA: ArduPilot PR #28455 per issue 28)",
       fields = {
         { name = "yaw", kind = "hex_s", width = 4, scale = 0.01, mul = 1, dec = 2, unit = "deg", abbrev = "top.GIA.yaw" },
         { name = "pitch", kind = "hex_s", width = 4, scale = 0.01, mul = 1, dec = 2, unit = "deg", abbrev = "top.GIA.pitch" },
@@ -2143,7 +2152,7 @@ CATALOG.topotek["LON"] = {
       fields = {
         { name = "longitude", kind = "nmea", width = 11, scale = 1, mul = 1, dec = 0, unit = "deg", abbrev = "top.LON.longitude" },
       } },
-    { control = "w", role = "response", min_length = 11, max_length = 11, note = "the write's echo: the field's answer; the 5.8.7 layout has the same length, the decoder takes the first of the two whose fields validate",
+    { control = "w", role = "response", min_length = 11, max_length = 11, note = "the write's echo: the field's answer; the 5.8.7 layout has the same length, the decoder takes the first of the two whose fields validate", evidence = "issue 28: a real unit echoes AP_Mount_Topotek's LAT/LON writes (#tpUDAwLAT..., 10 Hz, docs/sources/ardupilot.md 8.1)",
       fields = {
         { name = "longitude", kind = "nmea", width = 11, scale = 1, mul = 1, dec = 0, unit = "deg", abbrev = "top.LON.longitude" },
       } },
@@ -2162,7 +2171,7 @@ CATALOG.topotek["LAT"] = {
       fields = {
         { name = "latitude", kind = "nmea", width = 10, scale = 1, mul = 1, dec = 0, unit = "deg", abbrev = "top.LAT.latitude" },
       } },
-    { control = "w", role = "response", min_length = 10, max_length = 10, note = "the write's echo: the field's answer; the 5.8.7 layout has the same length, the decoder takes the first of the two whose fields validate",
+    { control = "w", role = "response", min_length = 10, max_length = 10, note = "the write's echo: the field's answer; the 5.8.7 layout has the same length, the decoder takes the first of the two whose fields validate", evidence = "issue 28: a real unit echoes AP_Mount_Topotek's LAT/LON writes (#tpUDAwLAT..., 10 Hz, docs/sources/ardupilot.md 8.1)",
       fields = {
         { name = "latitude", kind = "nmea", width = 10, scale = 1, mul = 1, dec = 0, unit = "deg", abbrev = "top.LAT.latitude" },
       } },
@@ -2228,7 +2237,7 @@ CATALOG.topotek["LRF"] = {
       fields = {
         { name = "action", kind = "enum_hex", width = 2, scale = 1, mul = 1, dec = 0, unit = "", enums = { [0] = "stop", [1] = "on", [2] = "single", [3] = "continuous", }, abbrev = "top.LRF.action" },
       } },
-    { control = "w", role = "response", min_length = 5, max_length = 5, note = "result in 5 digits, sent by M",
+    { control = "w", role = "response", min_length = 5, max_length = 5, note = "result in 5 digits, sent by M", evidence = "a real Topotek unit answered #tpMU5wLRF500002E (issue 28 log): 5 data chars, not the document's X1X2X3X4X5.X6",
       fields = {
         { name = "distance", kind = "number", width = 5, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.LRF.distance" },
       } },
@@ -2420,20 +2429,20 @@ CATALOG.topotek["AWB"] = {
   },
 }
 CATALOG.topotek["FED"] = {
-  dialect = "topotek", address = "D", title = "detection output", section = "field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 9",
+  dialect = "topotek", address = "D", title = "detection output", section = "field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 9", field = true,
   models = { sip = true, },
   forms = {
-    { control = "w", role = "request", min_length = 2, max_length = 2, note = "",
+    { control = "w", role = "request", min_length = 2, max_length = 2, note = "", evidence = "PixEagle sent #TPPD2wFED1034 to a real Topotek camera (PixEagle bench @3bea324, VSN 1.6.26.R.D) at 07:18:56.503172 and #TPPD2wFED2035 at 07:19:03.716098 (session 20260917T071854Z-ai-observe); the camera answered neither",
       fields = {
         { name = "output", kind = "enum_hex", width = 2, scale = 1, mul = 1, dec = 0, unit = "", enums = { [16] = "on", [32] = "off", }, abbrev = "top.FED.output" },
       } },
   },
 }
 CATALOG.topotek["ODR"] = {
-  dialect = "topotek", address = "D", title = "detections", section = "field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 8",
+  dialect = "topotek", address = "D", title = "detections", section = "field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 8", field = true,
   models = { sip = true, },
   forms = {
-    { control = "w", role = "response", min_length = 1, max_length = 255, note = "",
+    { control = "w", role = "response", min_length = 1, max_length = 255, note = "", evidence = "a real Topotek camera (PixEagle bench @3bea324, VSN 1.6.26.R.D) pushed #tPDP 0D wODR 01 15 06 05 00 65 01 02 04 7F 00 00 00 F0 (1557, 5, 357, 1026, 127, 0) at 07:18:56.928933, 0.43 s after #TPPD2wFED1034 (session 20260917T071854Z-ai-observe); 19 in 20260917T072135Z-ai-select, each of one record",
       fields = {
         { name = "count", kind = "u8", width = 1, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.ODR.count" },
       },
@@ -2448,34 +2457,34 @@ CATALOG.topotek["ODR"] = {
   },
 }
 CATALOG.topotek["ODZ"] = {
-  dialect = "topotek", address = "D", title = "zoom push (meaning unknown)", section = "field: PixEagle session 20260917T050955Z-zoom",
+  dialect = "topotek", address = "D", title = "zoom push (meaning unknown)", section = "field: PixEagle session 20260917T050955Z-zoom", field = true,
   models = { sip = true, },
   forms = {
-    { control = "w", role = "response", min_length = 10, max_length = 10, note = "",
+    { control = "w", role = "response", min_length = 10, max_length = 10, note = "", evidence = "a real Topotek camera (PixEagle bench @3bea324, VSN 1.6.26.R.D) pushed #tpDPAwODZ + ten 0x00 bytes + 40 from 05:09:57.284912, 14 ms after the zoom in #TPPM2wZMC0259, every 30 ms until the stop #TPPM2wZMC0057 at 05:09:57.421025 (session 20260917T050955Z-zoom)",
       fields = {
         { name = "data", kind = "raw", width = 10, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.ODZ.data" },
       } },
   },
 }
 CATALOG.topotek["PA2"] = {
-  dialect = "topotek", address = "G", title = "model name", section = "field: ArduPilot AP_Mount_Topotek (PR #27568)",
+  dialect = "topotek", address = "G", title = "model name", section = "field: ArduPilot AP_Mount_Topotek (PR #27568)", field = true,
   models = { sip = true, },
   forms = {
     { control = "r", role = "request", min_length = 2, max_length = 2, note = "",
       fields = {
         { name = "query", kind = "hex_u", width = 2, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.PA2.query" },
       } },
-    { control = "r", role = "response", min_length = 1, max_length = 15, note = "",
+    { control = "r", role = "response", min_length = 1, max_length = 15, note = "", evidence = "AP_Mount_Topotek takes the reply's data as the model name (PR #27568); ArduPilot's SIM_Topotek answers #TPUG6rPA2SIM_TPBA",
       fields = {
         { name = "model", kind = "text", width = 0, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.PA2.model" },
       } },
   },
 }
 CATALOG.topotek["TRC"] = {
-  dialect = "topotek", address = "D", title = "tracking", section = "field: ArduPilot AP_Mount_Topotek (PR #27568)",
+  dialect = "topotek", address = "D", title = "tracking", section = "field: ArduPilot AP_Mount_Topotek (PR #27568)", field = true,
   models = { sip = true, },
   forms = {
-    { control = "w", role = "any", min_length = 2, max_length = 2, note = "",
+    { control = "w", role = "any", min_length = 2, max_length = 2, note = "", evidence = "AP_Mount_Topotek sends #TPUD2wTRC0254, #TPUD2wTRC0153 and #TPUD2wTRC0052 (PR #27568); PixEagle sends the same to a real SIP",
       fields = {
         { name = "action", kind = "enum_hex", width = 2, scale = 1, mul = 1, dec = 0, unit = "", enums = { [0] = "exit", [1] = "cancel_to_waiting", [2] = "prepare", }, abbrev = "top.TRC.action" },
       } },
@@ -2483,7 +2492,7 @@ CATALOG.topotek["TRC"] = {
       fields = {
         { name = "query", kind = "hex_u", width = 2, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.TRC.query" },
       } },
-    { control = "r", role = "response", min_length = 2, max_length = 2, note = "",
+    { control = "r", role = "response", min_length = 2, max_length = 2, note = "", evidence = "a real SIP answers #TPPD2rTRC0048 with #TPDP2rTRC0048 within 2 ms (issue 28 log); AP_Mount_Topotek reads the state from data char 1 (PR #27568, PR #31768)",
       fields = {
         { name = "x0", kind = "dec_u", width = 1, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.TRC.x0" },
         { name = "state", kind = "enum_char", width = 1, scale = 1, mul = 1, dec = 0, unit = "", enums = { [48] = "stopped", [49] = "waiting", [50] = "tracking", [51] = "temporarily_lost", [52] = "lens_unsupported", }, abbrev = "top.TRC.state" },
@@ -2491,24 +2500,24 @@ CATALOG.topotek["TRC"] = {
   },
 }
 CATALOG.topotek["TRA"] = {
-  dialect = "topotek", address = "D", title = "tracker fault", section = "field: a real SIP (issue 28), PixEagle bench notes",
+  dialect = "topotek", address = "D", title = "tracker fault", section = "field: a real SIP (issue 28), PixEagle bench notes", field = true,
   models = { sip = true, },
   forms = {
     { control = "r", role = "request", min_length = 2, max_length = 2, note = "",
       fields = {
         { name = "query", kind = "hex_u", width = 2, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.TRA.query" },
       } },
-    { control = "r", role = "response", min_length = 2, max_length = 2, note = "",
+    { control = "r", role = "response", min_length = 2, max_length = 2, note = "", evidence = "a real SIP answers #TPPD2rTRA0046 with #TPDP2rTRA1148 (issue 28 log, PixEagle bench notes)",
       fields = {
         { name = "fault", kind = "text", width = 2, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.TRA.fault" },
       } },
   },
 }
 CATALOG.topotek["LOC"] = {
-  dialect = "topotek", address = "D", title = "tracking point or rectangle", section = "field: ArduPilot AP_Mount_Topotek (PR #27568)",
+  dialect = "topotek", address = "D", title = "tracking point or rectangle", section = "field: ArduPilot AP_Mount_Topotek (PR #27568)", field = true,
   models = { sip = true, },
   forms = {
-    { control = "w", role = "any", min_length = 10, max_length = 10, note = "",
+    { control = "w", role = "any", min_length = 10, max_length = 10, note = "", evidence = "AP_Mount_Topotek sends #tpUDAwLOC + 10 bytes (PR #27568); PixEagle sent #tpPDAwLOC 00 00 00 00 00 3E 00 6F 00 09 E7 to a real SIP, which then tracked",
       fields = {
         { name = "x", kind = "be_i16", width = 2, scale = 1, mul = 1, dec = 0, unit = "", min = -1000, max = 1000, abbrev = "top.LOC.x" },
         { name = "y", kind = "be_i16", width = 2, scale = 1, mul = 1, dec = 0, unit = "", min = -1000, max = 1000, abbrev = "top.LOC.y" },
@@ -2519,10 +2528,10 @@ CATALOG.topotek["LOC"] = {
   },
 }
 CATALOG.topotek["OFT"] = {
-  dialect = "topotek", address = "D", title = "tracking box", section = "field: PixEagle bench notes on a real SIP",
+  dialect = "topotek", address = "D", title = "tracking box", section = "field: PixEagle bench notes on a real SIP", field = true,
   models = { sip = true, },
   forms = {
-    { control = "w", role = "response", min_length = 9, max_length = 9, note = "",
+    { control = "w", role = "response", min_length = 9, max_length = 9, note = "", evidence = "a real SIP pushes #tpDP9wOFT + 9 bytes at about video rate while it tracks (PixEagle bench: 99 in one session; the vendor's tracking PDF section 7)",
       fields = {
         { name = "x", kind = "le_u16", width = 2, scale = 1, mul = 1, dec = 0, unit = "px", abbrev = "top.OFT.x" },
         { name = "y", kind = "le_u16", width = 2, scale = 1, mul = 1, dec = 0, unit = "px", abbrev = "top.OFT.y" },
@@ -3193,6 +3202,30 @@ local function decode_records(ctx, out, f, form, data, count_at, pos)
   end
 end
 
+-- A client's frame in a length its document does not give that a form of
+-- the field takes (decode.cpp note_field_length: ArduPilot's 14-char FAI):
+-- a data-length of information naming the form's source.
+local function note_field_length(ctx, out, f, cmd, form)
+  if not form.evidence or cmd.field or form.role == "response" or out.role == "response" then
+    return
+  end
+  local len = f.data_length
+  local documented, allowed = false, {}
+  for _, fm in ipairs(cmd.forms) do
+    if not fm.evidence and fm.control == form.control then
+      if len >= fm.min_length and len <= fm.max_length then return end
+      documented = true
+      allowed[#allowed + 1] = fm.min_length == fm.max_length and tostring(fm.min_length) or
+                              (fm.min_length .. "-" .. fm.max_length)
+    end
+  end
+  if not documented then return end
+  out.findings[#out.findings + 1] = finding("data-length", f.data_offset, len .. " data byte(s); " ..
+                                            f.ident .. " '" .. form.control .. "' takes " ..
+                                            table.concat(allowed, ", ") .. " in " .. cmd.section ..
+                                            "; field: " .. form.evidence, form.evidence, "info")
+end
+
 local function decode(f, dialect, role, model)
   local out = { dialect = dialect, role = role, findings = {}, fields = {} }
   local ctx = { lowercase_reported = false }
@@ -3278,6 +3311,7 @@ local function decode(f, dialect, role, model)
             "' takes " .. table.concat(allowed, ", "))
     return out
   end
+  note_field_length(ctx, out, f, cmd, form)
   local data = ssub(f.raw, f.data_offset + 1, f.data_offset + f.data_length)
   -- Among the forms of this shape from `form` on, the first whose fields
   -- validate (decode.cpp by_content: LAT/LON's field echo and 5.8.7 output).

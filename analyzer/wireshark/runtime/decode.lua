@@ -284,6 +284,30 @@ local function decode_records(ctx, out, f, form, data, count_at, pos)
   end
 end
 
+-- A client's frame in a length its document does not give that a form of
+-- the field takes (decode.cpp note_field_length: ArduPilot's 14-char FAI):
+-- a data-length of information naming the form's source.
+local function note_field_length(ctx, out, f, cmd, form)
+  if not form.evidence or cmd.field or form.role == "response" or out.role == "response" then
+    return
+  end
+  local len = f.data_length
+  local documented, allowed = false, {}
+  for _, fm in ipairs(cmd.forms) do
+    if not fm.evidence and fm.control == form.control then
+      if len >= fm.min_length and len <= fm.max_length then return end
+      documented = true
+      allowed[#allowed + 1] = fm.min_length == fm.max_length and tostring(fm.min_length) or
+                              (fm.min_length .. "-" .. fm.max_length)
+    end
+  end
+  if not documented then return end
+  out.findings[#out.findings + 1] = finding("data-length", f.data_offset, len .. " data byte(s); " ..
+                                            f.ident .. " '" .. form.control .. "' takes " ..
+                                            table.concat(allowed, ", ") .. " in " .. cmd.section ..
+                                            "; field: " .. form.evidence, form.evidence, "info")
+end
+
 local function decode(f, dialect, role, model)
   local out = { dialect = dialect, role = role, findings = {}, fields = {} }
   local ctx = { lowercase_reported = false }
@@ -369,6 +393,7 @@ local function decode(f, dialect, role, model)
             "' takes " .. table.concat(allowed, ", "))
     return out
   end
+  note_field_length(ctx, out, f, cmd, form)
   local data = ssub(f.raw, f.data_offset + 1, f.data_offset + f.data_length)
   -- Among the forms of this shape from `form` on, the first whose fields
   -- validate (decode.cpp by_content: LAT/LON's field echo and 5.8.7 output).

@@ -301,7 +301,8 @@ std::string_view to_string(Rejection r) noexcept;  // "none", "unsupported", "in
 // without it (the document profile) it always rejects, and so do the
 // field's own commands (unsupported: TRC, LOC) and forms (invalid: a
 // 12-char GIA, as the document's lengths make it). unsupported wins over
-// invalid.
+// invalid. A finding of information refuses nothing (a data-length that
+// names the field's form: ArduPilot's 14-char FAI).
 Rejection rejection(const Decoded& dec, Model model, bool field_evidence = true) noexcept;
 // True for the finding codes that can make a device reject a request.
 bool rejects(FindingCode c) noexcept;
