@@ -21,7 +21,8 @@ namespace topfuzz {
 
 // Room enough for the findings and fields of any frame a target builds.
 inline constexpr std::size_t kRoomFindings = 64;
-inline constexpr std::size_t kRoomFields = 96;
+// (fields: an ODR's one-byte length holds a count and 21 records of 6: 127)
+inline constexpr std::size_t kRoomFields = 128;
 
 inline top::ParseResult reused_parse_result() {
   top::ParseResult r;

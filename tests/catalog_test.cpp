@@ -67,8 +67,31 @@ void check_table(Dialect d) {
         if (s.kind == FieldKind::le_i32) {
           EXPECT_EQ(s.width, 4) << s.name;
         }
+        if (s.kind == FieldKind::u8) {
+          EXPECT_EQ(s.width, 1) << s.name;
+        }
       }
-      if (!rest && !f.fields.empty()) {
+      if (!f.record.empty()) {
+        // Records (the Topotek ODR): counted by the form's last field, an
+        // integer of its own bytes, each record of fixed-width binary or
+        // hex fields; the form covers no records and as many as fit.
+        ASSERT_FALSE(f.fields.empty()) << "records need a count";
+        EXPECT_FALSE(rest) << "records follow fixed fields";
+        EXPECT_TRUE(is_integer_kind(f.fields.back().kind)) << f.fields.back().name;
+        std::size_t width = 0;
+        std::set<std::string_view> names;
+        for (const FieldSpec& s : f.fields) names.insert(s.name);
+        for (const FieldSpec& s : f.record) {
+          EXPECT_GT(s.width, 0) << s.name;
+          EXPECT_TRUE(names.insert(s.name).second) << s.name << ": a name twice";
+          if (s.kind == FieldKind::le_i16 || s.kind == FieldKind::le_u16) {
+            EXPECT_EQ(s.width, 2) << s.name;
+          }
+          width += s.width;
+        }
+        EXPECT_EQ(fixed, f.min_length) << "a form with records takes none";
+        EXPECT_GE(f.max_length, fixed + width) << "a form with records takes one";
+      } else if (!rest && !f.fields.empty()) {
         EXPECT_EQ(fixed, f.min_length) << "fields do not fill the form";
         EXPECT_EQ(fixed, f.max_length) << "fields do not fill the form";
       }
@@ -161,7 +184,8 @@ TEST(Catalog, BuildParseRoundTrip) {
           if (x.code == FindingCode::error_reply) continue;  // ERE is a rejection by design
           EXPECT_EQ(x.severity, Severity::info) << bytes << ": " << x.message;
         }
-        EXPECT_EQ(dec.fields.size(), f.fields.size()) << bytes;
+        // example_data gives a form with records one record
+        EXPECT_EQ(dec.fields.size(), f.fields.size() + f.record.size()) << bytes;
         for (const auto& fv : dec.fields) EXPECT_TRUE(fv.valid) << bytes << " " << fv.name();
         ++forms;
       }

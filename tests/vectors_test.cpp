@@ -106,7 +106,7 @@ TEST_P(VectorTest, Verdict) {
     for (const auto& [name, want] : v.at("fields").items()) {
       const FieldValue* fv = nullptr;
       for (const auto& f : d.fields)
-        if (f.name() == name) fv = &f;
+        if (field_key(f) == name) fv = &f;  // a record's field: "x[1]"
       ASSERT_NE(fv, nullptr) << "no field " << name;
       if (want.is_number()) {
         EXPECT_NEAR(fv->value, want.get<double>(), 1e-6) << name;

@@ -60,8 +60,8 @@ int main() {
             f.note.empty() ? "" : ": ", std::string(f.note).c_str());
         if (f.from_field() && !c.from_field())
           std::printf("  - field form, not the document's: %s\n", cell(f.evidence).c_str());
-        for (const top::FieldSpec& s : f.fields) {
-          std::string line = "  - `" + std::string(s.name) + "` " +
+        auto field = [&](const top::FieldSpec& s, const char* indent) {
+          std::string line = std::string(indent) + "- `" + std::string(s.name) + "` " +
                              std::string(top::to_string(s.kind)) + " width " +
                              std::to_string(s.width);
           if (s.scale != 1.0) line += " scale " + num(s.scale);
@@ -81,6 +81,13 @@ int main() {
           }
           if (!s.note.empty()) line += " (" + cell(s.note) + ")";
           std::printf("%s\n", line.c_str());
+        };
+        for (const top::FieldSpec& s : f.fields) field(s, "  ");
+        if (!f.record.empty()) {
+          // a form with records (the Topotek ODR): as many as its last field says
+          std::printf("  - then `%s` records (fields `name[n]`, n from 1), each:\n",
+                      std::string(f.fields.back().name).c_str());
+          for (const top::FieldSpec& s : f.record) field(s, "    ");
         }
       }
       std::printf("\n");

@@ -113,13 +113,18 @@ int main() {
        "`unsupported-on-model` is a warning naming the evidence when the field\n"
        "says the firmware takes a command the document does not list.\n\n";
   o += "## Streams\n\nWhich write turns on which frames (topdump counts them toward the "
-       "stream's rate, never as requests to answer).\n\n";
+       "stream's rate, never as requests to answer). A periodic stream runs at a rate while it "
+       "is on, and topdump judges its stalls, its rate and a start that never came; an event "
+       "push comes and goes with its cause (a target tracked, an object detected, the lens "
+       "zooming) and none of them judges it.\n\n";
   o += "| dialect | write | frames | sent by | rate | source | section | note |\n";
   o += "|---|---|---|---|---|---|---|---|\n";
   for (const top::StreamSpec& s : top::streams())
     o += "| " + std::string(top::to_string(s.dialect)) + " | " + std::string(s.request) + " | " +
          std::string(s.push) + " | " + (s.sender == top::Sender::device ? "device" : "client") +
-         " | " + (s.rate_in_data ? "data, Hz" : "on/off") + " | " +
+         " | " + (s.rate_in_data ? "data, Hz" : "on/off") +
+         (s.periodic ? ", periodic" : ", event push") +
+         (s.off != 0 ? " (off: " + hex2(s.off) + ")" : std::string()) + " | " +
          (s.from_field() ? "field: " + cell(s.evidence) : std::string("document")) + " | " +
          std::string(s.section) + " | " + cell(s.note) + " |\n";
   o += "\n## What a device answers to a write\n\nSkyDroid echoes every write with the "

@@ -264,11 +264,24 @@ const std::set<std::string, std::less<>>& field_names() {
     std::set<std::string, std::less<>> v;
     for (top::Dialect d : {top::Dialect::skydroid, top::Dialect::topotek})
       for (const top::CommandSpec& c : top::commands(d))
-        for (const top::FormSpec& f : c.forms)
+        for (const top::FormSpec& f : c.forms) {
           for (const top::FieldSpec& x : f.fields) v.emplace(x.name);
+          for (const top::FieldSpec& x : f.record) v.emplace(x.name);
+        }
     return v;
   }();
   return names;
+}
+
+// A field column's name without its record number ("x[2]": x), as the
+// catalog names the field (top::field_key).
+std::string_view without_record(std::string_view key) {
+  if (key.size() < 4 || key.back() != ']') return key;
+  const std::size_t open = key.rfind('[');
+  if (open == std::string_view::npos || open == 0 || open + 2 >= key.size()) return key;
+  for (std::size_t i = open + 1; i + 1 < key.size(); ++i)
+    if (key[i] < '0' || key[i] > '9') return key;
+  return key.substr(0, open);
 }
 
 void csv_cell(std::string& o, std::string_view v) {
@@ -309,7 +322,7 @@ std::string csv_column_error(const std::string& c) {
     if (name.size() > kUnit.size() && name.substr(name.size() - kUnit.size()) == kUnit &&
         !field_names().count(name))
       name.remove_suffix(kUnit.size());
-    if (field_names().count(name)) return {};
+    if (field_names().count(without_record(name))) return {};
     std::string all;
     for (const auto& n : field_names()) all += (all.empty() ? "" : ", ") + n;
     return "unknown field \"" + std::string(name) + "\" in column \"" + c +
@@ -351,8 +364,10 @@ void CsvSink::row(const CsvRow& r, std::int64_t ts, std::uint64_t record) {
     if (cols_[i] >= 0) {
       v = kColumns[static_cast<std::size_t>(cols_[i])].cell(r);
     } else if (r.f) {
+      // NAME: the first field so named (a record's: the first record's);
+      // NAME[n]: that of record n
       for (const auto& fv : r.f->entry->decoded.fields)
-        if (fv.name() == fields_[i]) {
+        if (fv.name() == fields_[i] || (fv.record && top::field_key(fv) == fields_[i])) {
           if (units_[i])
             v = fv.unit();
           else

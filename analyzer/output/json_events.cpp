@@ -34,7 +34,7 @@ void put_finding(O& o, const top::Finding& x) {
   put_esc(o, x.message);
   if (!x.quirk.empty()) {
     app(o, ",\"quirk\":");
-    put_plain(o, x.quirk);
+    put_text(o, x.quirk);  // evidence may quote its source: escaped
   }
   o += '}';
 }
@@ -158,10 +158,13 @@ void frame_body(O& o, const top::Frame& f, const top::Decoded& d) {
   app(o, ",\"fields\":");
   o += '{';
   bool first = true;
+  static thread_local std::string key;  // reused: no allocation per field
   for (const auto& v : d.fields) {
     if (!first) o += ',';
     first = false;
-    put_plain(o, v.name());
+    key.clear();
+    top::append_key(v, key);  // a record's field: "x[1]"
+    put_plain(o, key);
     o += ':';
     put_field(o, v, f);
   }
@@ -176,7 +179,7 @@ void frame_body(O& o, const top::Frame& f, const top::Decoded& d) {
     put_finding(o, x);
     if (!x.quirk.empty()) {
       if (!quirks.empty()) quirks += ',';
-      put_plain(quirks, x.quirk);
+      put_text(quirks, x.quirk);
     }
     if (x.severity > w) w = x.severity;
   };

@@ -254,8 +254,9 @@ void put_double(O& o, double v) {
 }
 
 // A string that needs no escaping: the catalog's names, titles, sections,
-// units and enum names, finding codes and quirks, header texts (a test
-// checks every one of them).
+// units and enum names, finding codes, header texts (a test checks every
+// one of them). Not a quirk: it is a source's evidence, which may quote it
+// (put_text).
 template <class O>
 [[gnu::always_inline]] inline void put_plain(O& o, std::string_view s) {
   quoted(o, s);

@@ -81,9 +81,9 @@ std::string frame_tree(const top::Frame& f, const top::Decoded& d) {
   line(id);
   line("data     \"" + escape(f.data()) + "\"");
   std::size_t width = 0;
-  for (const auto& v : d.fields) width = std::max(width, v.name().size());
+  for (const auto& v : d.fields) width = std::max(width, top::field_key(v).size());
   for (const auto& v : d.fields) {
-    std::string n(v.name());
+    std::string n = top::field_key(v);
     n.resize(width, ' ');
     line("  " + n + "  " + format_value(v) + "   @" + std::to_string(v.offset) + " \"" +
          escape(std::string_view(f.raw).substr(v.offset, v.length)) + "\"");

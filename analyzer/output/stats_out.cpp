@@ -140,6 +140,11 @@ void write_stats_json(std::string& out, const Stats& s, top::Severity worst, int
         app(o, "null");
       j.key("measured_hz");
       put_double(o, std::round(t.measured_hz() * 100.0) / 100.0);
+      j.key("periodic");
+      if (t.periodic)
+        app(o, "true");
+      else
+        app(o, "false");
       count("frames", t.frames);
       j.close_object();
     }
@@ -202,10 +207,13 @@ std::string stats_text(const Stats& s, top::Severity worst) {
         static_cast<unsigned long long>(c.responses), static_cast<unsigned long long>(c.paired));
     o += b;
     for (const StreamStat& t : c.streams) {
-      std::snprintf(b, sizeof b, "    stream %s: %llu frames at %.2f Hz (asked %s)\n",
-                    t.ident.c_str(), static_cast<unsigned long long>(t.frames), t.measured_hz(),
-                    t.asked_hz > 0 ? (std::to_string(static_cast<int>(t.asked_hz)) + " Hz").c_str()
-                                   : "enable");
+      // an event push (top::StreamSpec::periodic) runs at no rate of its own
+      const std::string asked =
+          !t.periodic      ? std::string("event push")
+          : t.asked_hz > 0 ? "asked " + std::to_string(static_cast<int>(t.asked_hz)) + " Hz"
+                           : std::string("asked enable");
+      std::snprintf(b, sizeof b, "    stream %s: %llu frames at %.2f Hz (%s)\n", t.ident.c_str(),
+                    static_cast<unsigned long long>(t.frames), t.measured_hz(), asked.c_str());
       o += b;
     }
   }

@@ -63,7 +63,9 @@ void Page::streams() {
        "<th>frames</th><th>gaps over 3 periods</th></tr>";
   for (const auto& x : r.streams)
     o += "<tr>" + tdn(std::to_string(x.conv)) + td(x.stat.ident) + td(x.stat.asked_by) +
-         tdn(x.stat.asked_hz > 0 ? fmt("%g Hz", x.stat.asked_hz) : "on (device rate)") +
+         tdn(!x.stat.periodic      ? std::string("event push (no rate)")
+             : x.stat.asked_hz > 0 ? fmt("%g Hz", x.stat.asked_hz)
+                                   : std::string("on (device rate)")) +
          tdn(fmt("%.2f Hz", x.stat.measured_hz())) + tdn(std::to_string(x.stat.frames)) +
          tdn(std::to_string(x.gap_count)) + "</tr>";
   o += "</table>";

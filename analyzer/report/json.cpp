@@ -277,6 +277,11 @@ void Writer::streams() {
       app(o, "null");
     j.key("measured_hz");
     put_measure(o, x.stat.measured_hz(), false);
+    j.key("periodic");
+    if (x.stat.periodic)
+      app(o, "true");
+    else
+      app(o, "false");
     u("frames", x.stat.frames);
     j.key("bucket_s");
     put_double(o, static_cast<double>(x.bucket_us) / 1e6);

@@ -104,7 +104,8 @@ std::int64_t Latency::quantile(double q) const {
 
 bool StreamStat::off_rate() const {
   const double m = measured_hz();
-  return asked_hz > 0 && m > 0 && std::fabs(m - asked_hz) > top::stream_rate_tolerance * asked_hz;
+  return periodic && asked_hz > 0 && m > 0 &&
+         std::fabs(m - asked_hz) > top::stream_rate_tolerance * asked_hz;
 }
 
 double StreamStat::measured_hz() const {

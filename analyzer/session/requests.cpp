@@ -309,13 +309,15 @@ void Analyzer::Impl::request(Conversation& c, int d, FrameEvent& ev) {
       auto s = std::find_if(streams.begin(), streams.end(),
                             [&](const StreamStat& x) { return x.ident == sid; });
       const double hz = switched->rate_in_data ? static_cast<double>(v) : 0;
-      if (v == 0) {
+      if (top::switches_off(*switched, v)) {
         // disabled: keep the measured figures
         if (s != streams.end()) s->enabled = false;
-      } else if (s != streams.end() && s->enabled && s->asked_hz == hz) {
+      } else if (s != streams.end() && ((s->enabled && s->asked_hz == hz) || !s->periodic)) {
         // asked again for what runs (drivers re-send the enable once a
-        // second): the stream goes on
+        // second): the stream goes on; so does an event push switched on
+        // again (ODZ at each zoom), whose pauses are its causes'
         if (s->frames == 0) s->never.asked(ev.n, ev.ts, id);
+        s->enabled = true;
       } else {
         if (s == streams.end()) {
           streams.push_back(StreamStat{});
@@ -327,6 +329,7 @@ void Analyzer::Impl::request(Conversation& c, int d, FrameEvent& ev) {
         s->ident = sid;
         s->asked_by = std::string(switched->request);
         s->from_client = switched->sender == top::Sender::client;
+        s->periodic = switched->periodic;
         s->asked_hz = hz;
         s->never.asked(ev.n, ev.ts, id);
       }
@@ -432,6 +435,7 @@ void Analyzer::Impl::response(Conversation& c, int d, FrameEvent& ev) {
       top::role_from_layout(dialect, f) == top::Role::response) {
     StreamStat& s = c.st.streams.emplace_back();
     s.ident = std::string(id);
+    s.periodic = st->periodic;
     s.frames = 1;
     s.stall.push(ev.n, ev.ts, 0);
     s.first = s.last = ev.ts;

@@ -44,6 +44,10 @@ struct StreamStat {
   std::string asked_by;      // the request that switched it on: GAA, GIA, FAE
   bool from_client = false;  // the client sends it (FAI): never a request to answer
   bool enabled = true;       // no switch turned it off since it was asked for
+  // Pushed at a rate while on (top::StreamSpec::periodic: an attitude
+  // push); false for an event push (the field's Topotek OFT, ODR, ODZ),
+  // which no stream judge (stalled, rate, never started) judges.
+  bool periodic = true;
   std::uint64_t frames = 0;
   std::int64_t first = kNoTime, last = kNoTime;
   // The stream's diagnoses as it streams by (analyzer/diagnoses/).

@@ -1,7 +1,9 @@
 // Device streams at their end: the stream-rate check of a stream a switch
 // asked for, and the stream's diagnoses (stream-stalled,
 // stream-never-started; analyzer/diagnoses/). Every diagnosis of the
-// session becomes a note here (diagnose()).
+// session becomes a note here (diagnose()). Only a periodic stream is
+// judged (top::StreamSpec::periodic): an event push (the Topotek OFT while
+// tracking, ODR while detecting, ODZ while zooming) pauses with its cause.
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -27,6 +29,7 @@ void Analyzer::Impl::diagnose(Conversation& c, diag::Found f) {
 }
 
 void Analyzer::Impl::check_stream(Conversation& c, const StreamStat& s) {
+  if (!s.periodic) return;
   bool stalled = false;
   if (!s.from_client) {
     if (std::optional<diag::Found> f = s.stall.verdict(s.ident)) {

@@ -92,6 +92,7 @@ std::string value_type(const top::FieldSpec& s) {
       return s.scale == 1.0 && s.width > 0 && s.width <= 9 ? "uint" : "double";
     case K::le_u16:
     case K::be_u16:
+    case K::u8:
       return s.scale == 1.0 ? "uint" : "double";
     case K::hex_s:
       return s.scale == 1.0 && s.width > 0 && s.width <= 8 ? "int" : "double";
@@ -124,10 +125,15 @@ std::vector<top::Dialect> dialects() { return {top::Dialect::skydroid, top::Dial
 void write_fields(std::string& o) {
   std::map<std::string, FieldDecl> decls;
   std::vector<std::string> order;
+  // A form's fields, then its records' (top.ODR.x for every record).
+  auto each = [](const top::FormSpec& f, auto&& fn) {
+    for (const top::FieldSpec& s : f.fields) fn(s);
+    for (const top::FieldSpec& s : f.record) fn(s);
+  };
   for (top::Dialect d : dialects())
     for (const top::CommandSpec& c : top::commands(d))
       for (const top::FormSpec& f : c.forms)
-        for (const top::FieldSpec& s : f.fields) {
+        each(f, [&](const top::FieldSpec& s) {
           const std::string ab = abbrev_of(c, s);
           auto [it, fresh] = decls.try_emplace(ab);
           FieldDecl& x = it->second;
@@ -145,7 +151,7 @@ void write_fields(std::string& o) {
             x.vtype = merge_types(x.vtype, value_type(s));
           }
           for (const top::EnumValue& e : s.enums) x.enums.try_emplace(e.value, std::string(e.name));
-        }
+        });
   o += "-- Every catalog field as top.<ident>.<field>.\nlocal CATALOG_FIELDS = {}\n";
   for (const std::string& ab : order) {
     const FieldDecl& x = decls[ab];
@@ -206,16 +212,24 @@ void write_catalog(std::string& o) {
       o += "CATALOG." + std::string(top::to_string(d)) + "[" + lua_str(c.ident) +
            "] = {\n  dialect = " + lua_str(top::to_string(d)) +
            ", address = " + lua_str(std::string(1, c.address)) + ", title = " + lua_str(c.title) +
-           ", section = " + lua_str(c.section) + ",\n  models = {" + models + " },\n  forms = {\n";
+           ", section = " + lua_str(c.section) + (c.from_field() ? ", field = true" : "") +
+           ",\n  models = {" + models + " },\n  forms = {\n";
       for (const top::FormSpec& f : c.forms) {
         o += "    { control = " + lua_str(std::string(1, f.control)) +
              ", role = " + lua_str(role_name(f.role)) +
              ", min_length = " + std::to_string(f.min_length) +
              ", max_length = " + std::to_string(f.max_length) + ", note = " + lua_str(f.note);
         if (!f.none.empty()) o += ", none = " + lua_str(f.none);
+        if (f.from_field()) o += ", evidence = " + lua_str(f.evidence);
         o += ",\n      fields = {\n";
         for (const top::FieldSpec& s : f.fields) o += "        " + field_spec(c, s) + ",\n";
-        o += "      } },\n";
+        o += "      }";
+        if (!f.record.empty()) {
+          o += ",\n      record = {\n";
+          for (const top::FieldSpec& s : f.record) o += "        " + field_spec(c, s) + ",\n";
+          o += "      }";
+        }
+        o += " },\n";
       }
       o += "  },\n}\n";
     }

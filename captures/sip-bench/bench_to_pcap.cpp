@@ -25,6 +25,7 @@
 // several ports is one packet per delivery, as the bench received them.
 #include <charconv>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -76,6 +77,14 @@ std::optional<std::string> unhex(const std::string& h) {
     out.push_back(static_cast<char>(v));
   }
   return out;
+}
+
+// Removes what a failed run wrote, when it is a file of its own: never a
+// device (/dev/full) or anything else the path named before.
+void discard(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(std::filesystem::symlink_status(path, ec)))
+    std::filesystem::remove(path, ec);
 }
 
 int usage() {
@@ -234,13 +243,13 @@ int main(int argc, char** argv) {
     if (text.empty()) continue;
     if (!s.line(text, n, w)) {
       w.close();
-      std::remove(a.out.c_str());
+      discard(a.out);
       return 2;
     }
   }
   if (!w.finish()) {
     std::fprintf(stderr, "bench_to_pcap: error: %s: the write failed\n", a.out.c_str());
-    std::remove(a.out.c_str());
+    discard(a.out);
     return 2;
   }
   if (!s.check_summary()) return 2;

@@ -199,12 +199,42 @@ constexpr FormSpec kGacForms[] = {
      .fields = kAttitudeFields,
      .note = "pushed after GAA; the document writes it #TPUGCrGAC (U first)"},
 };
+// The field's FAI: the attitude and a mode byte, 14 chars, as ArduPilot's
+// SkyDroid driver sends it (AP_Mount_SkyDroid.cpp @ c5aa8452,
+// send_attitude_to_gimbal(): "%04X%04X%04X%02X").
+constexpr EnumValue kFaiMode[] = {
+    {0x00, "hover"},
+    {0x01, "fixed_wing"},
+};
+constexpr FieldSpec kFaiModeFields[] = {
+    {.name = "yaw", .kind = FieldKind::hex_s, .width = 4, .scale = 0.01, .unit = "deg"},
+    {.name = "pitch", .kind = FieldKind::hex_s, .width = 4, .scale = 0.01, .unit = "deg"},
+    {.name = "roll", .kind = FieldKind::hex_s, .width = 4, .scale = 0.01, .unit = "deg"},
+    {.name = "mode",
+     .kind = FieldKind::enum_hex,
+     .width = 2,
+     .enums = kFaiMode,
+     .note = "1 fixed-wing, 0 copter/hover (AP_Mount_SkyDroid.cpp: \"SkyDroid's own documented "
+             "field for this command\"; its author does not know what it changes); SkyDroid "
+             "3.3.6.2 (V1.1.5) has no such field"},
+};
 constexpr FormSpec kFaiForms[] = {
     {.control = 'w',
      .role = Role::any,
      .min_length = 12,
      .max_length = 12,
      .fields = kAttitudeFields},
+    {.control = 'w',
+     .role = Role::any,
+     .min_length = 14,
+     .max_length = 14,
+     .fields = kFaiModeFields,
+     .note = "the attitude and a mode byte",
+     .evidence = "AP_Mount_SkyDroid.cpp @ c5aa8452 (ArduPilot PR #34155) "
+                 "send_attitude_to_gimbal(): yaw, pitch, roll (0.01 deg) and the mode as "
+                 "\"%04X%04X%04X%02X\", 10 times a second, its comment's sample #tpUG0EwFAI; "
+                 "AP_Mount_Backend_TPFrame.cpp @ 4e7781a1 send_variablelen_packet() writes the "
+                 "length as one hex char: #tpUGEwFAI + 14 chars"},
 };
 
 // 3.3.4 SUM (tracking)
@@ -955,7 +985,8 @@ constexpr CommandSpec kTable[] = {
      .models = c12,
      .forms = kFaiForms,
      .note = "sent by the flight controller; 3.3.6.2 has no support line, "
-             "C12 taken from 3.3.6.1"},
+             "C12 taken from 3.3.6.1; the field: ArduPilot's SkyDroid driver adds a mode byte "
+             "(14 chars)"},
     // 4 D class
     {.ident = "REC",
      .dialect = Dialect::skydroid,

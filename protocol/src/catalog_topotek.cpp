@@ -1240,6 +1240,7 @@ constexpr FormSpec kLocForms[] = {
 constexpr EnumValue kOftStatus[] = {
     {'1', "stopped"},
     {'2', "tracking"},
+    {'3', "temporarily_lost"},
 };
 constexpr FieldSpec kOftFields[] = {
     {.name = "x", .kind = FieldKind::le_u16, .width = 2, .unit = "px", .note = "top left, of 1920"},
@@ -1250,7 +1251,10 @@ constexpr FieldSpec kOftFields[] = {
      .kind = FieldKind::enum_char,
      .width = 1,
      .enums = kOftStatus,
-     .note = "2 while tracking; 1 with an all-zero box after a cancel"},
+     .note = "2 while tracking; 1 with an all-zero box after a cancel; 3 while the target "
+             "is lost, the box frozen (PixEagle session 20260917T051606Z-point "
+             "05:16:08.998653, with TRC state 03 in 20260918T060352Z-point 06:03:55.511523; "
+             "the name is TRC's state 3, the vendor's tracking PDF section 3)"},
 };
 constexpr FormSpec kOftForms[] = {
     {.control = 'w',
@@ -1261,6 +1265,98 @@ constexpr FormSpec kOftForms[] = {
      .evidence = "a real Topotek camera (PixEagle bench, VSN 1.6.26.R.D) pushes #tpDP9wOFT + 9 "
                  "bytes while it tracks: 33 from 05:16:08.832750 to 05:16:09.898290, 33 ms apart "
                  "(PixEagle session 20260917T051606Z-point)"},
+};
+
+// A real Topotek camera's detection and zoom frames that neither document
+// lists: PixEagle's bench (alireza787b/PixEagle @ 3bea324, docs/reporting/
+// agent-ops/codex-modernization/evidence/2026-09-17-gimbal-control-bench/
+// <session>/events.jsonl; captures/sip-bench/ makes pcaps of them). Times are
+// each frame's first delivery, UTC. PixEagle's reading of them: its
+// checkpoints/2026-09-17-phase-5-gimbal-control-bench.md ("phase 5
+// checkpoint") and evidence/.../vendor-protocol-findings.md, which quotes the
+// vendor's tracking PDF (not public).
+
+// FED (detection output switch): 10 on, 20 off
+constexpr EnumValue kFedOutput[] = {
+    {0x10, "on"},
+    {0x20, "off"},
+};
+constexpr FieldSpec kFedFields[] = {
+    {.name = "output",
+     .kind = FieldKind::enum_hex,
+     .width = 2,
+     .enums = kFedOutput,
+     .note = "10 detection output on, 20 off (off by default: the vendor's tracking PDF section "
+             "9 as PixEagle quotes it); no other value is known"},
+};
+constexpr FormSpec kFedForms[] = {
+    {.control = 'w',
+     .role = Role::request,
+     .min_length = 2,
+     .max_length = 2,
+     .fields = kFedFields,
+     .evidence = "PixEagle sent #TPPD2wFED1034 to a real Topotek camera (PixEagle bench @3bea324, "
+                 "VSN 1.6.26.R.D) at 07:18:56.503172 and #TPPD2wFED2035 at 07:19:03.716098 "
+                 "(session 20260917T071854Z-ai-observe); the camera answered neither"},
+};
+
+// ODR (detections), #tP: a count byte, then that many records of six
+// little-endian 16-bit fields
+constexpr FieldSpec kOdrFields[] = {
+    {.name = "count",
+     .kind = FieldKind::u8,
+     .width = 1,
+     .note = "the records that follow; 1 in every ODR recorded (the one-byte length holds 21 at "
+             "most, where the vendor's PDF declares an array of 255)"},
+};
+constexpr FieldSpec kOdrRecord[] = {
+    {.name = "x", .kind = FieldKind::le_i16, .width = 2, .unit = "px", .note = "top left, of 1920"},
+    {.name = "y", .kind = FieldKind::le_i16, .width = 2, .unit = "px", .note = "top left, of 1080"},
+    {.name = "width", .kind = FieldKind::le_i16, .width = 2, .unit = "px"},
+    {.name = "height", .kind = FieldKind::le_i16, .width = 2, .unit = "px"},
+    {.name = "label",
+     .kind = FieldKind::le_i16,
+     .width = 2,
+     .note = "label id: 127 in every record recorded; the label table is not public"},
+    {.name = "confidence",
+     .kind = FieldKind::le_i16,
+     .width = 2,
+     .scale = 0.0001,
+     .note = "a fraction, sent times 10000 (the vendor's tracking PDF section 8 as PixEagle "
+             "quotes it); 0 in every record recorded"},
+};
+constexpr FormSpec kOdrForms[] = {
+    {.control = 'w',
+     .role = Role::response,
+     .min_length = 1,
+     .max_length = 255,
+     .fields = kOdrFields,
+     .record = kOdrRecord,
+     .evidence = "a real Topotek camera (PixEagle bench @3bea324, VSN 1.6.26.R.D) pushed #tPDP "
+                 "0D wODR 01 15 06 05 00 65 01 02 04 7F 00 00 00 F0 (1557, 5, 357, 1026, 127, 0) "
+                 "at 07:18:56.928933, 0.43 s after #TPPD2wFED1034 (session "
+                 "20260917T071854Z-ai-observe); 19 in 20260917T072135Z-ai-select, each of one "
+                 "record"},
+};
+
+// ODZ (pushed while the lens zooms): ten bytes of unknown meaning
+constexpr FieldSpec kOdzFields[] = {
+    {.name = "data",
+     .kind = FieldKind::raw,
+     .width = 10,
+     .note = "meaning unknown (PixEagle's phase 5 checkpoint: \"Their meaning is unknown\"): ten "
+             "zero bytes in every ODZ recorded, while the zoom went 1.0x to 1.5x and back"},
+};
+constexpr FormSpec kOdzForms[] = {
+    {.control = 'w',
+     .role = Role::response,
+     .min_length = 10,
+     .max_length = 10,
+     .fields = kOdzFields,
+     .evidence = "a real Topotek camera (PixEagle bench @3bea324, VSN 1.6.26.R.D) pushed "
+                 "#tpDPAwODZ + ten 0x00 bytes + 40 from 05:09:57.284912, 14 ms after the zoom in "
+                 "#TPPM2wZMC0259, every 30 ms until the stop #TPPM2wZMC0057 at 05:09:57.421025 "
+                 "(session 20260917T050955Z-zoom)"},
 };
 
 // Appendix II only (the checksum example): no layout.
@@ -1790,6 +1886,46 @@ constexpr CommandSpec kTable[] = {
      .note = "layout not documented (appendix only): appears only in the "
              "checksum example #TPUD2wAWB0144"},
     // The field
+    {.ident = "FED",
+     .dialect = Dialect::topotek,
+     .address = 'D',
+     .title = "detection output",
+     .section = "field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF "
+                "section 9",
+     .models = sip,
+     .forms = kFedForms,
+     .note = "10 turns the detector's output on (ODR frames follow), 20 off; no answer",
+     .evidence = "PixEagle bench @3bea324 on a real Topotek camera: FED10 at 07:18:56.503172, "
+                 "ODR from 07:18:56.928933 to 07:19:02.395536, none after FED20 at "
+                 "07:19:03.716098 (session 20260917T071854Z-ai-observe)"},
+    {.ident = "ODR",
+     .dialect = Dialect::topotek,
+     .address = 'D',
+     .title = "detections",
+     .section = "field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF "
+                "section 8",
+     .models = sip,
+     .forms = kOdrForms,
+     .note = "#tP (raw length byte): a count, then per detection x, y, width, height in pixels "
+             "(little-endian 16-bit, top left of 1920x1080), a label id and the confidence "
+             "times 10000; pushed while detection output is on, irregularly",
+     .evidence = "PixEagle bench @3bea324 on a real Topotek camera (sessions "
+                 "20260917T071854Z-ai-observe, 20260917T072135Z-ai-select); the layout is the "
+                 "vendor's tracking PDF section 8 as PixEagle's vendor-protocol-findings.md "
+                 "quotes it"},
+    {.ident = "ODZ",
+     .dialect = Dialect::topotek,
+     .address = 'D',
+     .title = "zoom push (meaning unknown)",
+     .section = "field: PixEagle session 20260917T050955Z-zoom",
+     .models = sip,
+     .forms = kOdzForms,
+     .note = "pushed every 30 ms while the lens zooms; ten bytes, all zero when recorded, "
+             "whose meaning no source gives",
+     .evidence = "PixEagle bench @3bea324 on a real Topotek camera (session "
+                 "20260917T050955Z-zoom: 5 ODZ after each of ZMC 02 and 01, none after ZMC 00 "
+                 "or in any other session); PixEagle's phase 5 checkpoint: \"Their meaning is "
+                 "unknown\""},
     {.ident = "PA2",
      .dialect = Dialect::topotek,
      .address = 'G',
@@ -1852,7 +1988,7 @@ constexpr CommandSpec kTable[] = {
      .models = sip,
      .forms = kOftForms,
      .note = "pushed at about 30 Hz while tracking: 9 binary bytes, x, y, width, height as "
-             "little-endian 16-bit pixels (LOC is big-endian), then status '2' tracking or "
+             "little-endian 16-bit pixels (LOC is big-endian), status '2' tracking, '3' lost or "
              "'1' stopped; never attitude",
      .evidence = "a real Topotek camera (PixEagle bench, VSN 1.6.26.R.D): 33 OFT from "
                  "05:16:08.832750 to 05:16:09.898290, 33 ms apart, after LOC at 05:16:08.703292 "

@@ -1,20 +1,16 @@
 // Decoding a frame into fields and findings: the command and form its
-// shape decides (remembered by DecodeCache without detail), then each field,
-// or without detail the form's plan (decode_plan.hpp).
+// shape decides (remembered by DecodeCache without detail), then each field
+// (decode_fields.cpp), or without detail the form's plan (decode_plan.hpp).
 #include "top/decode.hpp"
 
 #include <algorithm>
 #include <array>
-#include <climits>
-#include <cmath>
-#include <cstring>
 
 #include "chars.hpp"
 #include "decode_cache.hpp"
 #include "decode_ctx.hpp"
 #include "decode_plan.hpp"
 #include "device_form.hpp"
-#include "field_read.hpp"
 #include "numbers.hpp"
 #include "top/device.hpp"
 #include "top/diagnoses.hpp"
@@ -24,190 +20,14 @@
 namespace top {
 
 using detail::cat;
-using detail::decimals_of;
-using detail::FieldCheck;
-using detail::fmt_number;
+using detail::check_fields;
+using detail::Ctx;
 using detail::FormPlan;
-using detail::hex_lanes;
-using detail::hex_value;
-using detail::is_lower_hex;
-using detail::kOnes;
-using detail::lanes_in;
+using detail::judge_planned;
 using detail::plan_of;
-using detail::scaled;
-using detail::word_before;
+using detail::role_fits;
 
 namespace {
-
-void decode_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes, std::uint32_t offset,
-                  FieldValue& fv) {
-  fv.spec = &spec;
-  fv.offset = offset;
-  fv.length = static_cast<std::uint32_t>(bytes.size());
-  if (!spec.none.empty() && bytes == spec.none) {
-    fv.none = true;
-    fv.valid = true;
-    ctx.keep(fv, bytes);
-    return;
-  }
-  // "<name>: " + why, in up to three pieces
-  auto bad = [&](std::string_view why, std::string_view more = {}, std::string_view end = {}) {
-    fv.valid = false;
-    ctx.keep(fv, bytes);
-    ctx.add(FindingCode::bad_field, offset, [&] { return cat({spec.name, ": ", why, more, end}); });
-  };
-  switch (spec.kind) {
-    case FieldKind::hex_u:
-    case FieldKind::hex_s:
-    case FieldKind::enum_hex: {
-      if (bytes.empty() || bytes.size() > 15) return bad("no hex digits");
-      std::uint64_t v = 0;
-      bool lower = false;
-      for (char c : bytes) {
-        int h = hex_value(c);
-        if (h < 0) return bad("'", bytes, "' is not hex");
-        lower |= is_lower_hex(c);
-        v = v * 16 + static_cast<unsigned>(h);
-      }
-      if (lower && !ctx.lowercase_reported) {
-        ctx.lowercase_reported = true;
-        ctx.add(FindingCode::lowercase_hex, offset, [&] {
-          return cat({spec.name, ": hex digits '", bytes, "' in lowercase"});
-        });
-      }
-      std::int64_t iv = static_cast<std::int64_t>(v);
-      if (spec.kind == FieldKind::hex_s) {
-        unsigned bits = static_cast<unsigned>(bytes.size()) * 4;
-        if (bits < 64 && (v >> (bits - 1)) & 1u)
-          iv = static_cast<std::int64_t>(v) - (static_cast<std::int64_t>(1) << bits);
-      }
-      fv.integer = iv;
-      fv.value = scaled(iv, spec.scale);
-      fv.valid = true;
-      break;
-    }
-    case FieldKind::dec_u: {
-      std::int64_t v = 0;
-      if (bytes.empty()) return bad("no digits");
-      for (char c : bytes) {
-        if (c < '0' || c > '9') return bad("'", bytes, "' is not decimal");
-        v = v * 10 + (c - '0');
-      }
-      fv.integer = v;
-      fv.value = scaled(v, spec.scale);
-      fv.valid = true;
-      break;
-    }
-    case FieldKind::enum_char: {
-      if (bytes.empty()) return bad("empty");
-      fv.integer = static_cast<unsigned char>(bytes[0]);
-      fv.value = static_cast<double>(fv.integer);
-      ctx.keep(fv, bytes);
-      fv.valid = true;
-      break;
-    }
-    case FieldKind::text: {
-      if (!detail::all_printable(bytes)) return bad("non-printable bytes in text");
-      ctx.keep(fv, bytes);
-      fv.valid = true;
-      return;
-    }
-    case FieldKind::number: {
-      double v = 0;
-      std::string_view t = bytes;
-      while (!t.empty() && t.front() == ' ') t.remove_prefix(1);
-      if (!detail::parse_number(t, v)) return bad("'", bytes, "' is not a number");
-      fv.value = v * spec.scale;
-      fv.integer = static_cast<std::int64_t>(v);
-      ctx.keep(fv, bytes);
-      fv.valid = true;
-      break;
-    }
-    case FieldKind::le_i16:
-    case FieldKind::le_u16:
-    case FieldKind::le_i32:
-    case FieldKind::be_i16:
-    case FieldKind::be_u16: {
-      const std::size_t w = spec.kind == FieldKind::le_i32 ? 4 : 2;
-      if (bytes.size() != w) return bad("needs ", std::to_string(w), " bytes");
-      const std::int64_t iv = detail::binary_int(spec.kind, bytes);
-      fv.integer = iv;
-      fv.value = scaled(iv, spec.scale);
-      fv.valid = true;
-      break;
-    }
-    case FieldKind::nmea: {
-      if (!detail::decode_nmea(bytes, fv.value, bad)) return;
-      ctx.keep(fv, bytes);
-      fv.valid = true;
-      break;
-    }
-    case FieldKind::raw: {
-      ctx.keep(fv, bytes);
-      fv.valid = true;
-      return;
-    }
-  }
-  fv.enum_name = judge(ctx, spec, bytes, offset, fv.integer, [&] { return fv.value; });
-}
-
-// Without detail: the findings decode_field gives, without building a value.
-// The hex kinds whose digits are all uppercase hex (most fields) are judged
-// here; anything else goes through decode_field into `scratch`.
-void check_field(Ctx& ctx, const FieldSpec& spec, std::string_view bytes, std::uint32_t offset,
-                 FieldValue& scratch) {
-  const bool hex = spec.kind == FieldKind::hex_u || spec.kind == FieldKind::hex_s ||
-                   spec.kind == FieldKind::enum_hex;
-  if (hex && !bytes.empty() && bytes.size() <= 15 && (spec.none.empty() || bytes != spec.none)) {
-    std::uint64_t v = 0;
-    int digits = 0;  // negative once a byte is no hex digit
-    bool lower = false;
-    for (char c : bytes) {
-      const int h = hex_value(c);
-      digits |= h;
-      lower |= is_lower_hex(c);
-      v = v * 16 + static_cast<unsigned>(h & 0x0F);
-    }
-    if (digits >= 0 && !lower) {
-      std::int64_t iv = static_cast<std::int64_t>(v);
-      const unsigned bits = static_cast<unsigned>(bytes.size()) * 4;  // at most 60
-      if (spec.kind == FieldKind::hex_s && (v >> (bits - 1)) & 1u)
-        iv -= static_cast<std::int64_t>(1) << bits;
-      judge(ctx, spec, bytes, offset, iv, [&] { return scaled(iv, spec.scale); });
-      return;
-    }
-  }
-  scratch.valid = scratch.none = false;
-  scratch.integer = 0;
-  scratch.value = 0;
-  scratch.enum_name = {};
-  decode_field(ctx, spec, bytes, offset, scratch);
-}
-
-// Judges a planned form; false (having added nothing) when a byte of the
-// data is outside 0-9 A-F, which check_field must see.
-bool judge_planned(Ctx& ctx, const FormPlan& plan, const Frame& frame) {
-  const char* data = frame.raw.data() + frame.data_offset;
-  if (!hex_lanes(word_before(data + plan.head), plan.head_lanes) ||
-      !hex_lanes(word_before(data + plan.width), plan.tail_lanes))
-    return false;
-  for (const FieldCheck& c : plan.valued) {
-    const std::uint64_t x = word_before(data + c.end) & c.bytes;  // the chars, at the top
-    const std::uint64_t nibbles = (x & (kOnes * 0x0F)) + (lanes_in(x, 'A', 'F') >> 7) * 9;
-    // the last char lowest, then pairs, quads and eights of nibbles joined
-    std::uint64_t v = __builtin_bswap64(nibbles);
-    v = (v | (v >> 4)) & 0x00FF00FF00FF00FFull;
-    v = (v | (v >> 8)) & 0x0000FFFF0000FFFFull;
-    v = (v | (v >> 16)) & 0x00000000FFFFFFFFull;
-    const auto iv = static_cast<std::int64_t>(v) -
-                    static_cast<std::int64_t>((v & c.sign_bit) ? c.sign_bit << 1 : 0);
-    const bool labelled = c.labels & (iv >= 0) & (iv < 64) & ((c.label_bits >> (iv & 63)) & 1u);
-    if (!labelled && (c.enum_only || iv < c.lo || iv > c.hi))
-      ctx.add(FindingCode::value_out_of_range, frame.data_offset + c.end - c.bits / 4,
-              [] { return std::string(); });
-  }
-  return true;
-}
 
 // A #TP frame whose length is not 2 (tp-length): info for a SkyDroid
 // G-class command, which SkyDroid puts under #TP whatever its length.
@@ -234,6 +54,43 @@ void note_tp_length(Ctx& ctx, const Frame& frame, const CommandSpec* cmd, Dialec
     f.message = kMessages[frame.declared_length + (g_class ? 16 : 0)];
   else if (ctx.detail)
     f.message = message(frame.declared_length, g_class);
+}
+
+// A client's frame in a length its document does not give that a form of
+// the field takes (ArduPilot's 14-char SkyDroid FAI): a data-length of
+// information, naming the form's source, where the document's device would
+// refuse it (top::rejection takes no information as a refusal). A device's
+// frames in the field's layouts (the 12-char Topotek GIA, an echo of the
+// FAI) are what real devices send and get none.
+void note_field_length(Ctx& ctx, const Frame& frame, const CommandSpec& cmd, const FormSpec& form,
+                       Decoded& out) {
+  if (!form.from_field() || cmd.from_field() || form.role == Role::response ||
+      out.role == Role::response)
+    return;
+  const std::size_t len = frame.data_length;
+  bool documented = false;
+  for (const FormSpec& f : cmd.forms) {
+    if (f.from_field() || f.control != form.control) continue;
+    if (len >= f.min_length && len <= f.max_length) return;
+    documented = true;
+  }
+  if (!documented) return;
+  ctx.add(FindingCode::data_length, frame.data_offset, [&] {
+    std::string m = cat(
+        {std::to_string(len), " data byte(s); ", cmd.ident, " '", {&form.control, 1}, "' takes "});
+    bool first = true;
+    for (const FormSpec& f : cmd.forms) {
+      if (f.from_field() || f.control != form.control) continue;
+      if (!first) m += ", ";
+      first = false;
+      m += std::to_string(f.min_length);
+      if (f.min_length != f.max_length) m.append("-").append(std::to_string(f.max_length));
+    }
+    return cat({m, " in ", cmd.section, "; field: ", form.evidence});
+  });
+  Finding& x = out.findings.back();
+  x.severity = Severity::info;
+  x.quirk = form.evidence;
 }
 
 // What a frame's dialect, role, identifier, header, lengths and control
@@ -349,31 +206,7 @@ void decode_shape(Ctx& ctx, const Frame& frame, const DecodeOptions& opts, Diale
   }
   out.form = form;
   if (form->role != Role::any && out.role == Role::any) out.role = form->role;
-}
-
-// Each field of `form` on the frame's data: decoded with detail, else
-// validated and dropped.
-void check_fields(Ctx& ctx, const FormSpec& form, const Frame& frame) {
-  std::string_view data = frame.data();
-  std::size_t pos = 0;
-  FieldValue scratch;
-  for (const FieldSpec& fs : form.fields) {
-    if (pos >= data.size() && fs.width != 0) break;
-    std::size_t w = fs.width == 0 ? data.size() - pos : fs.width;
-    if (pos + w > data.size()) {
-      ctx.add(FindingCode::data_length, static_cast<std::uint32_t>(frame.data_offset + pos), [&] {
-        return cat({fs.name, " needs ", std::to_string(w), " byte(s), ",
-                    std::to_string(data.size() - pos), " left"});
-      });
-      break;
-    }
-    const auto at = static_cast<std::uint32_t>(frame.data_offset + pos);
-    if (ctx.detail)
-      decode_field(ctx, fs, data.substr(pos, w), at, ctx.out.fields.emplace_back());
-    else
-      check_field(ctx, fs, data.substr(pos, w), at, scratch);
-    pos += w;
-  }
+  note_field_length(ctx, frame, *cmd, *form, out);
 }
 
 // Among the forms of the frame's shape (control, role, length) from `form`

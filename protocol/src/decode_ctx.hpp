@@ -1,5 +1,6 @@
-// Internal to decode.cpp: the decoding context and the enum and range
-// judgement every field kind shares.
+// Internal to decode.cpp and decode_fields.cpp: the decoding context, the
+// enum and range judgement every field kind shares, and the fields of a
+// form (decode_fields.cpp).
 #pragma once
 
 #include <span>
@@ -9,18 +10,15 @@
 #include "numbers.hpp"
 #include "top/decode.hpp"
 
-namespace top {
-namespace {
+namespace top::detail {
 
-using detail::cat;
-using detail::decimals_of;
-using detail::fmt_number;
+struct FormPlan;  // decode_plan.hpp
 
-bool role_fits(Role form, Role frame) noexcept {
+inline bool role_fits(Role form, Role frame) noexcept {
   return form == Role::any || frame == Role::any || form == frame;
 }
 
-const EnumValue* find_enum(std::span<const EnumValue> e, std::int64_t v) noexcept {
+inline const EnumValue* find_enum(std::span<const EnumValue> e, std::int64_t v) noexcept {
   for (const EnumValue& x : e)
     if (x.value == v) return &x;
   return nullptr;
@@ -70,5 +68,13 @@ std::string_view judge(Ctx& ctx, const FieldSpec& spec, std::string_view bytes,
   return {};
 }
 
-}  // namespace
-}  // namespace top
+// Each field of `form` on the frame's data: decoded into ctx.out with
+// detail, else validated and dropped; then its records, if it has them
+// (FormSpec::record: as many as the count says and the data holds, a count
+// that does not match the data a data-length at the count).
+void check_fields(Ctx& ctx, const FormSpec& form, const Frame& frame);
+// Judges a planned form without detail; false (having added nothing) when
+// a byte of the data is outside 0-9 A-F, which check_fields must see.
+bool judge_planned(Ctx& ctx, const FormPlan& plan, const Frame& frame);
+
+}  // namespace top::detail

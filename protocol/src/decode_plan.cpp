@@ -55,7 +55,7 @@ bool plan_field(const FieldSpec& s, std::uint32_t at, FormPlan& p) {
 
 FormPlan plan_form(const FormSpec& f) {
   FormPlan p;
-  p.fast = std::endian::native == std::endian::little && f.none.empty();
+  p.fast = std::endian::native == std::endian::little && f.none.empty() && f.record.empty();
   for (const FieldSpec& s : f.fields) {
     p.fast = p.fast && plan_field(s, p.width, p);
     p.width += s.width;

@@ -118,8 +118,22 @@ namespace {
       return;
     }
     case FieldKind::text:
-    case FieldKind::raw:
       out += f.text;
+      return;
+    case FieldKind::raw:
+      // printable bytes as they are; binary ones (the Topotek ODZ) as hex
+      // pairs, so that no output carries a control byte
+      if (detail::all_printable(f.text)) {
+        out += f.text;
+      } else {
+        static constexpr char kDigits[] = "0123456789ABCDEF";
+        for (std::size_t i = 0; i < f.text.size(); ++i) {
+          const auto b = static_cast<unsigned char>(f.text[i]);
+          if (i) out += ' ';
+          out += kDigits[b >> 4];
+          out += kDigits[b & 0x0F];
+        }
+      }
       return;
     case FieldKind::nmea:
       out += fmt_number(f.value, 7);
@@ -153,6 +167,20 @@ namespace {
 
 }  // namespace
 
+void append_key(const FieldValue& f, std::string& out) {
+  out += f.name();
+  if (f.record == 0) return;
+  out += '[';
+  out += std::to_string(f.record);
+  out += ']';
+}
+
+std::string field_key(const FieldValue& f) {
+  std::string s;
+  append_key(f, s);
+  return s;
+}
+
 void append_value(const FieldValue& f, std::string& out) { put_value(f, out, false); }
 void append_plain_value(const FieldValue& f, std::string& out) { put_value(f, out, true); }
 
@@ -177,7 +205,7 @@ void Decoded::append_summary(std::string& out) const {
   const std::size_t start = out.size();
   for (const FieldValue& f : fields) {
     if (out.size() != start) out += ", ";
-    out += f.name();
+    append_key(f, out);
     out += ' ';
     append_value(f, out);
   }

@@ -400,7 +400,9 @@ Rejection rejection(const Decoded& dec, Model model, bool field_evidence) noexce
       if (!lifted) return Rejection::unsupported;
     } else if (f.code == FindingCode::unknown_ident) {
       return Rejection::unsupported;
-    } else if (rejects(f.code)) {
+    } else if (rejects(f.code) && f.severity != Severity::info) {
+      // information is no refusal: a form of the field (ArduPilot's
+      // 14-char FAI) under the field profile
       r = Rejection::invalid;
     }
   }

@@ -25,29 +25,65 @@ constexpr StreamSpec kStreams[] = {
      .push = "GAC",
      .rate_in_data = true,
      .section = "SkyDroid 3.3.2",
-     .note = "GAA 01-64 (hex) pushes GAC at 1-100 Hz; 00 stops it"},
+     .note = "GAA 01-64 (hex) pushes GAC at 1-100 Hz; 00 stops it",
+     .periodic = true},
     {.dialect = Dialect::skydroid,
      .request = "FAE",
      .push = "FAI",
      .sender = Sender::client,
      .section = "SkyDroid 3.3.6",
      .note = "FAE 01 lets the flight controller send its attitude as FAI writes; "
-             "the document gives FAI no reply"},
+             "the document gives FAI no reply",
+     .periodic = true},
     {.dialect = Dialect::topotek,
      .request = "GAA",
      .push = "GAC",
      .section = "Topotek 3.4",
      .note = "GAA 01 switches the gimbal attitude push on, 00 off; the rate is "
-             "the device's"},
+             "the device's",
+     .periodic = true},
     {.dialect = Dialect::topotek,
      .request = "GIA",
      .push = "GIC",
      .section = "Topotek 3.6",
      .note = "GIA 01 switches the gyroscope attitude push on, 00 off; the rate "
-             "is the device's"},
+             "is the device's",
+     .periodic = true},
     // The field: pushes the documents do not give. After the document's
     // entry of the same request, so that stream_enabled_by() without a
     // profile keeps the document's.
+    // A real Topotek camera's event pushes (PixEagle bench @3bea324,
+    // alireza787b/PixEagle docs/reporting/agent-ops/codex-modernization/
+    // evidence/2026-09-17-gimbal-control-bench/<session>/events.jsonl): none
+    // runs at a rate of its own asking (periodic false).
+    {.dialect = Dialect::topotek,
+     .request = "FED",
+     .push = "ODR",
+     .section = "field: PixEagle sessions 20260917T071854Z-ai-observe, "
+                "20260917T072135Z-ai-select",
+     .note = "FED 10 turns the detector's output on: ODR frames come at irregular times "
+             "(0.07 to 2.5 s apart, bursts at 15 Hz), or none at all (PixEagle: absence does "
+             "not tell no detection from other conditions); FED 20 turns it off. The camera "
+             "answers neither",
+     .off = 0x20,
+     .evidence = "a real Topotek camera (PixEagle bench @3bea324, VSN 1.6.26.R.D): after "
+                 "#TPPD2wFED1034 at 07:18:56.503172, 8 ODR from 07:18:56.928933 to "
+                 "07:19:02.395536, none after #TPPD2wFED2035 at 07:19:03.716098 (session "
+                 "20260917T071854Z-ai-observe); 19 ODR from 07:21:37.929076, 0.65 s after "
+                 "FED 10 (20260917T072135Z-ai-select); none in 8 s after the same FED 10 in "
+                 "20260917T072022Z-ai-observe"},
+    {.dialect = Dialect::topotek,
+     .request = "ZMC",
+     .push = "ODZ",
+     .section = "field: PixEagle session 20260917T050955Z-zoom",
+     .note = "while the lens zooms (ZMC 02 in, 01 out) ODZ frames come every 30 ms; none after "
+             "the stop (ZMC 00). Only that one session shows them: what turns them on is not "
+             "known beyond it",
+     .evidence = "a real Topotek camera (PixEagle bench @3bea324, VSN 1.6.26.R.D): "
+                 "#TPPM2wZMC0259 at 05:09:57.270748, 5 ODZ from 05:09:57.284912 to "
+                 "05:09:57.405052, the stop #TPPM2wZMC0057 at 05:09:57.421025, none after; "
+                 "the same after #TPPM2wZMC0158 at 05:09:58.653264 (session "
+                 "20260917T050955Z-zoom)"},
     {.dialect = Dialect::topotek,
      .request = "GIA",
      .push = "GIA",
@@ -56,6 +92,7 @@ constexpr StreamSpec kStreams[] = {
      .note = "GIA 01 pushes 12-char GIA attitude frames (yaw, pitch down positive, roll in "
              "0.01 deg); ArduPilot's driver re-sends the enable once a second and is healthy "
              "only while GIA frames arrive",
+     .periodic = true,
      .evidence =
          "AP_Mount_Topotek.cpp @ d4209711 sends #TPUG2wGIA013E once a second and parses only "
          "GIA for attitude (AP_Mount_Topotek.h @ 02246a61 dispatched GAC, @ 3d293ff8 GIA; the "
@@ -415,7 +452,8 @@ constexpr FieldSupport kFieldSupport[] = {
      .evidence =
          "AP_Mount_SkyDroid (PR #34155, written against real C11/C13 units; "
          "SkyDroid confirmed the C11/C13 commands are the same) sends the C13 "
-         "its own attitude (its 14-char form still fails SkyDroid 3.3.6.2's length) as the C11"},
+         "its own attitude as the C11, in 14 chars with a mode byte (the catalog's field form "
+         "of FAI; SkyDroid 3.3.6.2 gives 12)"},
     {.dialect = Dialect::skydroid,
      .models = c13,
      .ident = "REC",

@@ -11,9 +11,10 @@
 
 namespace top::detail {
 
-// A little- or big-endian binary integer field of 2 or 4 bytes (the
-// size checked), signed or not as its kind says.
+// A little- or big-endian binary integer field of 2 or 4 bytes, or a byte
+// (the size checked), signed or not as its kind says.
 inline std::int64_t binary_int(FieldKind kind, std::string_view bytes) {
+  if (kind == FieldKind::u8) return bytes.empty() ? 0 : static_cast<unsigned char>(bytes[0]);
   const bool big = kind == FieldKind::be_i16 || kind == FieldKind::be_u16;
   const std::size_t w = bytes.size();
   std::uint32_t u = 0;

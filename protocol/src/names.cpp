@@ -32,7 +32,7 @@ static_assert(std::size(kHeaderDescription) == std::size(kHeader));
 
 constexpr std::string_view kFieldKind[] = {"hex_u",  "hex_s",  "dec_u",  "enum_hex", "enum_char",
                                            "text",   "number", "le_i16", "le_u16",   "le_i32",
-                                           "be_i16", "be_u16", "nmea",   "raw"};
+                                           "be_i16", "be_u16", "u8",     "nmea",     "raw"};
 static_assert(std::size(kFieldKind) == static_cast<std::size_t>(FieldKind::raw) + 1);
 
 }  // namespace

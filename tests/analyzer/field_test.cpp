@@ -3,6 +3,7 @@
 // replies of another identifier, and why a request went unanswered.
 #include <gtest/gtest.h>
 
+#include <map>
 #include <string>
 
 #include "findings/afindings.hpp"
@@ -365,6 +366,89 @@ TEST(Field, OneWaySerialLineHasNoUnsolicitedOrUnanswered) {
   bool unanswered = false;
   for (const auto& n : rec2.notes) unanswered |= n.note.code == ACode::unanswered;
   EXPECT_TRUE(unanswered);
+}
+
+// Issue 47: a real Topotek camera's event pushes come and go with their
+// cause, and no stream judge (stream-stalled, stream-rate,
+// stream-never-started) judges them: OFT while it tracks (from a LOC to a
+// cancel), ODR while its detector has something to show (after FED 10,
+// irregularly, or not at all), ODZ while the lens zooms. Every frame here is
+// byte for byte one PixEagle's bench recorded (alireza787b/PixEagle @
+// 3bea324, .../2026-09-17-gimbal-control-bench/<session>/events.jsonl), at
+// the bench's pace; only the pauses between the episodes are ours. A GIA
+// attitude stream with the same pause is still stalled.
+TEST(Field, EventPushesWithPausesAreNoStalledStream) {
+  auto bytes = [](std::string_view hex) {
+    std::string out;
+    for (std::size_t i = 0; i + 1 < hex.size(); i += 2)
+      out += static_cast<char>(std::stoi(std::string(hex.substr(i, 2)), nullptr, 16));
+    return out;
+  };
+  // 20260917T051606Z-point: the LOC (05:16:08.703292), boxes with status
+  // '2' and one '3' (05:16:08.998653); 20260917T072332Z-box: the all-zero
+  // status '1' box after the cancel (07:23:41.846893)
+  const std::string loc = bytes("237470504441774c4f4300000000003e006f00094537");
+  const std::string tracking = bytes("237470445039774f4654b803180233001e00323843");
+  const std::string lost = bytes("237470445039774f4654a703230223001600333646");
+  const std::string cancelled = bytes("237470445039774f46540000000000000000313635");
+  // 20260917T071854Z-ai-observe: ODR after FED 10, at its offsets from it (s)
+  const std::string odr = bytes("23745044500d774f44520115060500650102047f0000004630");
+  const double odr_at[] = {0.426, 0.759, 2.226, 4.693, 5.159, 5.226, 5.626, 5.892};
+  // 20260917T050955Z-zoom: five ODZ 30 ms apart after each zoom command
+  const std::string odz = bytes("237470445041774f445a000000000000000000003430");
+
+  Fixture f;
+  f.client = ep4(1, 8080);
+  f.device = ep4(2, 9003);
+  std::int64_t t = 0;
+  for (int episode = 0; episode < 3; ++episode, t += 4000) {  // 2.7 s without a box
+    f.up(t, loc);
+    for (int i = 0; i < 36; ++i) f.down(t + 100 + i * 33, i == 18 ? lost : tracking);
+    f.up(t + 1300, top::with_checksum("#TPPD2wTRC01"));
+    f.down(t + 1347, cancelled);
+  }
+  for (int episode = 0; episode < 2; ++episode, t += 9000) {
+    f.up(t, top::with_checksum("#TPPD2wFED10"));
+    for (double at : odr_at) f.down(t + static_cast<std::int64_t>(at * 1000), odr);
+    f.up(t + 7200, top::with_checksum("#TPPD2wFED20"));
+  }
+  // FED 10 and no detection at all (20260917T072022Z-ai-observe)
+  f.up(t, top::with_checksum("#TPPD2wFED10"));
+  t += 8000;
+  f.up(t, top::with_checksum("#TPPD2wFED20"));
+  for (int pulse = 0; pulse < 4; ++pulse, t += 1400) {
+    f.up(t, top::with_checksum(pulse % 2 ? "#TPPM2wZMC01" : "#TPPM2wZMC02"));
+    for (int i = 0; i < 5; ++i) f.down(t + 14 + i * 30, odz);
+    f.up(t + 150, top::with_checksum("#TPPM2wZMC00"));
+  }
+  f.a->finish();
+
+  for (top::Diagnosis d : {top::Diagnosis::stream_stalled, top::Diagnosis::stream_rate,
+                           top::Diagnosis::stream_never_started})
+    EXPECT_EQ(f.rec.count_note(acode_of(d)), 0u) << top::to_string(d);
+  const Stats& s = f.a->stats();
+  EXPECT_EQ(s.unsolicited, 0u);
+  EXPECT_EQ(s.unanswered, 0u);
+  std::map<std::string, std::uint64_t> frames;
+  for (const StreamStat& st : s.conversations.at(0).streams) {
+    EXPECT_FALSE(st.periodic) << st.ident;
+    EXPECT_FALSE(st.off_rate()) << st.ident;
+    frames[st.ident] = st.frames;
+  }
+  EXPECT_EQ(frames, (std::map<std::string, std::uint64_t>{{"ODR", 16}, {"ODZ", 20}, {"OFT", 111}}));
+  for (const auto& fr : f.rec.frames)
+    for (const auto& code : fr.codes) EXPECT_NE(code, "value-out-of-range") << fr.raw;
+  EXPECT_LE(f.a->worst(), top::Severity::info);
+
+  // The same pause in a GIA attitude stream is a stall.
+  Fixture g;
+  g.client = ep4(1, 8080);
+  g.device = ep4(2, 9003);
+  g.echoed(0, 2, "#TPPG2wGIA01");
+  for (int i = 0; i < 30; ++i)
+    g.down(100 + i * 33 + (i >= 15 ? 2700 : 0), top::with_checksum("#tpGPCrGIA00000BB80000"));
+  g.a->finish();
+  EXPECT_EQ(g.rec.count_note(acode_of(top::Diagnosis::stream_stalled)), 1u);
 }
 
 }  // namespace

@@ -106,7 +106,7 @@ inline json frame_json(const top::Frame& f, const top::Decoded& d) {
     j["command"] = nullptr;
   }
   json fields = json::object();
-  for (const auto& v : d.fields) fields[std::string(v.name())] = field_json(v, f);
+  for (const auto& v : d.fields) fields[top::field_key(v)] = field_json(v, f);
   j["fields"] = std::move(fields);
   json findings = json::array();
   json quirks = json::array();
@@ -301,6 +301,7 @@ inline json stats_json(const Stats& s, top::Severity worst) {
       y["ident"] = t.ident;
       y["asked_hz"] = t.asked_hz > 0 ? json(t.asked_hz) : json(nullptr);
       y["measured_hz"] = std::round(t.measured_hz() * 100.0) / 100.0;
+      y["periodic"] = t.periodic;
       y["frames"] = t.frames;
       st.push_back(std::move(y));
     }

@@ -264,6 +264,22 @@ TEST(Json, FastWriterEqualsReferenceOverTheCaptures) {
   }
 }
 
+// A quirk is a source's evidence, which may quote it: the 14-char FAI's
+// names AP_Mount_SkyDroid.cpp's format "%04X%04X%04X%02X". The writer put
+// quirks between quotes as they were, and the line was no JSON.
+TEST(Json, QuirkThatQuotesItsSourceIsEscaped) {
+  Fixture f;
+  f.up(0, top::with_checksum("#tpUGEwFAIEC78FF38000001"));
+  f.a->finish();
+  ASSERT_EQ(f.rec.frames.size(), 1u);
+  const std::string& line = f.rec.frames[0].json_fast;
+  ASSERT_NE(line.find("\\\"%04X"), std::string::npos) << line;
+  const nlohmann::json j = parse_unique(line);
+  ASSERT_EQ(j["quirks"].size(), 1u) << line;
+  EXPECT_NE(j["quirks"][0].get<std::string>().find("\"%04X%04X%04X%02X\""), std::string::npos);
+  expect_fast_equals_reference(f.rec);
+}
+
 // json_plain reads eight bytes at a time: every byte value at every
 // position of strings of every length up to 24, against the byte table,
 // from exact-size buffers (ASan sees a read past the end).
@@ -357,12 +373,13 @@ TEST(Json, CatalogStringsNeedNoEscaping) {
                   plain(std::string_view(&c.address, 1)))
           << c.ident;
       for (const top::FormSpec& f : c.forms)
-        for (const top::FieldSpec& fs : f.fields) {
-          EXPECT_TRUE(plain(fs.name) && plain(fs.unit) && plain(top::to_string(fs.kind)))
-              << c.ident << " " << fs.name;
-          for (const top::EnumValue& e : fs.enums) EXPECT_TRUE(plain(e.name)) << e.name;
-          ++n;
-        }
+        for (const auto& fields : {f.fields, f.record})
+          for (const top::FieldSpec& fs : fields) {
+            EXPECT_TRUE(plain(fs.name) && plain(fs.unit) && plain(top::to_string(fs.kind)))
+                << c.ident << " " << fs.name;
+            for (const top::EnumValue& e : fs.enums) EXPECT_TRUE(plain(e.name)) << e.name;
+            ++n;
+          }
     }
   }
   EXPECT_GT(n, 200u);

@@ -252,6 +252,8 @@ TEST(BenchToPcap, ABadLogIsAnErrorNamingTheFileAndLine) {
   EXPECT_EQ(run("'" + bench_to_pcap() + "' --host 300.1.1.1 '" + log + "' '" + pcap + "' 2>&1", out),
             2);
   EXPECT_EQ(run("'" + bench_to_pcap() + "' '" + log + "' /dev/full 2>&1", out), 2) << out;
+  // and the device is still there (a failed run removes only a file of its own)
+  EXPECT_TRUE(std::filesystem::is_character_file("/dev/full"));
 }
 
 }  // namespace

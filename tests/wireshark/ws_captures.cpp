@@ -25,6 +25,11 @@
 //                        GAA write (UDP 5000 -> 5000, the vendor's app), from
 //                        the push's layout alone (UDP 40005/40006, nothing
 //                        asked first)
+//   sip-bench.pcap       frames of a real Topotek camera none of the two
+//                        documents lists, byte for byte with their times and
+//                        ports as PixEagle's bench recorded them (FED, the
+//                        ODR detections, ODZ, OFT status 3), and
+//   sip-bench.fields     the fields tshark must show for each
 #include <pcap/pcap.h>
 
 #include <cstdio>
@@ -128,6 +133,8 @@ int write_forms(const std::string& dir) {
         frames.push_back({d == top::Dialect::skydroid, request, built});
         fields << c.ident;
         for (const top::FieldSpec& s : f.fields) fields << ' ' << s.name;
+        // example_data gives a form with records (the Topotek ODR) one
+        for (const top::FieldSpec& s : f.record) fields << ' ' << s.name;
         fields << '\n';
       }
   }
@@ -251,6 +258,51 @@ int write_c12_push(const std::string& dir) {
   return 0;
 }
 
+// A real Topotek camera (192.168.0.108) and PixEagle's bench (192.168.0.167):
+// alireza787b/PixEagle @ 3bea324, docs/reporting/agent-ops/
+// codex-modernization/evidence/2026-09-17-gimbal-control-bench/<session>/
+// events.jsonl, the first delivery of each (UTC).
+int write_sip_bench(const std::string& dir) {
+  PcapWriter out(dir + "/sip-bench.pcap", DLT_EN10MB);
+  std::ofstream fields(dir + "/sip-bench.fields");
+  if (!out.ok() || !fields) return 2;
+  constexpr Ip4 kBench{192, 168, 0, 167}, kCamera{192, 168, 0, 108};
+  struct Real {
+    std::int64_t ts;  // microseconds since the epoch
+    bool from_camera;
+    std::uint16_t camera_port, bench_port;
+    const char* hex;
+    const char* fields;
+  };
+  const Real frames[] = {
+      // 20260917T050955Z-zoom 05:09:57.284912, 14 ms after #TPPM2wZMC0259
+      {1789621797284912, true, 35496, 9004, "237470445041774f445a000000000000000000003430",
+       "ODZ data"},
+      // 20260917T051606Z-point 05:16:08.998653, status '3' (lost)
+      {1789622168998653, true, 59598, 8080, "237470445039774f4654a703230223001600333646",
+       "OFT x y width height status"},
+      // 20260917T071854Z-ai-observe 07:18:56.503172, 07:18:56.928933, 07:19:03.716098
+      {1789629536503172, false, 9003, 8080, "2354505044327746454431303334", "FED output"},
+      {1789629536928933, true, 50076, 8080, "23745044500d774f44520115060500650102047f0000004630",
+       "ODR count x y width height label confidence"},
+      {1789629543716098, false, 9003, 8080, "2354505044327746454432303335", "FED output"},
+      // 20260917T072135Z-ai-select 07:21:37.929076
+      {1789629697929076, true, 50076, 8080, "23745044500d774f445201090005006e0727047f0000003132",
+       "ODR count x y width height label confidence"},
+  };
+  for (const Real& r : frames) {
+    std::string bytes;
+    const std::string_view hex = r.hex;
+    for (std::size_t i = 0; i + 1 < hex.size(); i += 2)
+      bytes += static_cast<char>(std::stoi(std::string(hex.substr(i, 2)), nullptr, 16));
+    out.write(r.ts, r.from_camera
+                        ? w::eth(w::udp4(kCamera, kBench, r.camera_port, r.bench_port, bytes))
+                        : w::eth(w::udp4(kBench, kCamera, r.bench_port, r.camera_port, bytes)));
+    fields << r.fields << '\n';
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -263,5 +315,6 @@ int main(int argc, char** argv) {
   if (int rc = write_vectors(dir, argv[2])) return rc;
   if (int rc = write_tcp(dir)) return rc;
   if (int rc = write_c12_push(dir)) return rc;
+  if (int rc = write_sip_bench(dir)) return rc;
   return write_heuristic(dir);
 }

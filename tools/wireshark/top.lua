@@ -28,6 +28,10 @@ STREAMS.topotek.push["GAC"] = "device"
 STREAMS.topotek.switch["GAA"] = true
 STREAMS.topotek.push["GIC"] = "device"
 STREAMS.topotek.switch["GIA"] = true
+STREAMS.topotek.push["ODR"] = "device"
+STREAMS.topotek.switch["FED"] = true
+STREAMS.topotek.push["ODZ"] = "device"
+STREAMS.topotek.switch["ZMC"] = true
 STREAMS.topotek.push["GIA"] = "device"
 STREAMS.topotek.switch["GIA"] = true
 STREAMS.topotek.push["OFT"] = "device"
@@ -297,6 +301,8 @@ CATALOG_FIELDS["top.FAI.pitch"] = ProtoField.new("FAI pitch (deg)", "top.FAI.pit
 CATALOG_VTYPE["top.FAI.pitch"] = "double"
 CATALOG_FIELDS["top.FAI.roll"] = ProtoField.new("FAI roll (deg)", "top.FAI.roll", ftypes.DOUBLE, nil, nil, nil, "flight controller attitude (SkyDroid 3.3.6.2)")
 CATALOG_VTYPE["top.FAI.roll"] = "double"
+CATALOG_FIELDS["top.FAI.mode"] = ProtoField.new("FAI mode", "top.FAI.mode", ftypes.UINT32, { [0] = "hover", [1] = "fixed_wing", }, base.HEX, nil, "flight controller attitude (SkyDroid 3.3.6.2): 1 fixed-wing, 0 copter/hover (AP_Mount_SkyDroid.cpp: \"SkyDroid's own documented field for this command\"; its author does not know what it changes); SkyDroid 3.3.6.2 (V1.1.5) has no such field")
+CATALOG_VTYPE["top.FAI.mode"] = "uint"
 CATALOG_FIELDS["top.REC.action"] = ProtoField.new("REC action", "top.REC.action", ftypes.UINT32, { [0] = "stop", [1] = "start", [10] = "toggle", }, base.HEX, nil, "recording (SkyDroid 4.1)")
 CATALOG_VTYPE["top.REC.action"] = "uint"
 CATALOG_FIELDS["top.REC.query"] = ProtoField.new("REC query", "top.REC.query", ftypes.UINT32, nil, base.DEC, nil, "recording (SkyDroid 4.1)")
@@ -691,6 +697,24 @@ CATALOG_FIELDS["top.ENT.codec"] = ProtoField.new("ENT codec", "top.ENT.codec", f
 CATALOG_VTYPE["top.ENT.codec"] = "uint"
 CATALOG_FIELDS["top.AWB.data"] = ProtoField.new("AWB data", "top.AWB.data", ftypes.STRING, nil, base.ASCII, nil, "white balance (Topotek appendix II)")
 CATALOG_VTYPE["top.AWB.data"] = "string"
+CATALOG_FIELDS["top.FED.output"] = ProtoField.new("FED output", "top.FED.output", ftypes.UINT32, { [16] = "on", [32] = "off", }, base.HEX, nil, "detection output (field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 9): 10 detection output on, 20 off (off by default: the vendor's tracking PDF section 9 as PixEagle quotes it); no other value is known")
+CATALOG_VTYPE["top.FED.output"] = "uint"
+CATALOG_FIELDS["top.ODR.count"] = ProtoField.new("ODR count", "top.ODR.count", ftypes.UINT32, nil, base.DEC, nil, "detections (field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 8): the records that follow; 1 in every ODR recorded (the one-byte length holds 21 at most, where the vendor's PDF declares an array of 255)")
+CATALOG_VTYPE["top.ODR.count"] = "uint"
+CATALOG_FIELDS["top.ODR.x"] = ProtoField.new("ODR x (px)", "top.ODR.x", ftypes.INT32, nil, base.DEC, nil, "detections (field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 8): top left, of 1920")
+CATALOG_VTYPE["top.ODR.x"] = "int"
+CATALOG_FIELDS["top.ODR.y"] = ProtoField.new("ODR y (px)", "top.ODR.y", ftypes.INT32, nil, base.DEC, nil, "detections (field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 8): top left, of 1080")
+CATALOG_VTYPE["top.ODR.y"] = "int"
+CATALOG_FIELDS["top.ODR.width"] = ProtoField.new("ODR width (px)", "top.ODR.width", ftypes.INT32, nil, base.DEC, nil, "detections (field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 8)")
+CATALOG_VTYPE["top.ODR.width"] = "int"
+CATALOG_FIELDS["top.ODR.height"] = ProtoField.new("ODR height (px)", "top.ODR.height", ftypes.INT32, nil, base.DEC, nil, "detections (field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 8)")
+CATALOG_VTYPE["top.ODR.height"] = "int"
+CATALOG_FIELDS["top.ODR.label"] = ProtoField.new("ODR label", "top.ODR.label", ftypes.INT32, nil, base.DEC, nil, "detections (field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 8): label id: 127 in every record recorded; the label table is not public")
+CATALOG_VTYPE["top.ODR.label"] = "int"
+CATALOG_FIELDS["top.ODR.confidence"] = ProtoField.new("ODR confidence", "top.ODR.confidence", ftypes.DOUBLE, nil, nil, nil, "detections (field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 8): a fraction, sent times 10000 (the vendor's tracking PDF section 8 as PixEagle quotes it); 0 in every record recorded")
+CATALOG_VTYPE["top.ODR.confidence"] = "double"
+CATALOG_FIELDS["top.ODZ.data"] = ProtoField.new("ODZ data", "top.ODZ.data", ftypes.STRING, nil, base.ASCII, nil, "zoom push (meaning unknown) (field: PixEagle session 20260917T050955Z-zoom): meaning unknown (PixEagle's phase 5 checkpoint: \"Their meaning is unknown\"): ten zero bytes in every ODZ recorded, while the zoom went 1.0x to 1.5x and back")
+CATALOG_VTYPE["top.ODZ.data"] = "string"
 CATALOG_FIELDS["top.PA2.query"] = ProtoField.new("PA2 query", "top.PA2.query", ftypes.UINT32, nil, base.DEC, nil, "model name (field: ArduPilot AP_Mount_Topotek (PR #27568))")
 CATALOG_VTYPE["top.PA2.query"] = "uint"
 CATALOG_FIELDS["top.PA2.model"] = ProtoField.new("PA2 model", "top.PA2.model", ftypes.STRING, nil, base.ASCII, nil, "model name (field: ArduPilot AP_Mount_Topotek (PR #27568)): 000000000 on units whose name was not set at production (PR #27568)")
@@ -725,7 +749,7 @@ CATALOG_FIELDS["top.OFT.width"] = ProtoField.new("OFT width (px)", "top.OFT.widt
 CATALOG_VTYPE["top.OFT.width"] = "uint"
 CATALOG_FIELDS["top.OFT.height"] = ProtoField.new("OFT height (px)", "top.OFT.height", ftypes.UINT32, nil, base.DEC, nil, "tracking box (field: PixEagle session 20260917T051606Z-point)")
 CATALOG_VTYPE["top.OFT.height"] = "uint"
-CATALOG_FIELDS["top.OFT.status"] = ProtoField.new("OFT status", "top.OFT.status", ftypes.UINT32, { [49] = "stopped", [50] = "tracking", }, base.DEC, nil, "tracking box (field: PixEagle session 20260917T051606Z-point): 2 while tracking; 1 with an all-zero box after a cancel")
+CATALOG_FIELDS["top.OFT.status"] = ProtoField.new("OFT status", "top.OFT.status", ftypes.UINT32, { [49] = "stopped", [50] = "tracking", [51] = "temporarily_lost", }, base.DEC, nil, "tracking box (field: PixEagle session 20260917T051606Z-point): 2 while tracking; 1 with an all-zero box after a cancel; 3 while the target is lost, the box frozen (PixEagle session 20260917T051606Z-point 05:16:08.998653, with TRC state 03 in 20260918T060352Z-point 06:03:55.511523; the name is TRC's state 3, the vendor's tracking PDF section 3)")
 CATALOG_VTYPE["top.OFT.status"] = "uint"
 
 -- The command catalog of both dialects (protocol/src/catalog_*.cpp).
@@ -899,6 +923,13 @@ CATALOG.skydroid["FAI"] = {
         { name = "yaw", kind = "hex_s", width = 4, scale = 0.01, mul = 1, dec = 2, unit = "deg", abbrev = "top.FAI.yaw" },
         { name = "pitch", kind = "hex_s", width = 4, scale = 0.01, mul = 1, dec = 2, unit = "deg", abbrev = "top.FAI.pitch" },
         { name = "roll", kind = "hex_s", width = 4, scale = 0.01, mul = 1, dec = 2, unit = "deg", abbrev = "top.FAI.roll" },
+      } },
+    { control = "w", role = "any", min_length = 14, max_length = 14, note = "the attitude and a mode byte", evidence = "AP_Mount_SkyDroid.cpp @ c5aa8452 (ArduPilot PR #34155) send_attitude_to_gimbal(): yaw, pitch, roll (0.01 deg) and the mode as \"%04X%04X%04X%02X\", 10 times a second, its comment's sample #tpUG0EwFAI; AP_Mount_Backend_TPFrame.cpp @ 4e7781a1 send_variablelen_packet() writes the length as one hex char: #tpUGEwFAI + 14 chars",
+      fields = {
+        { name = "yaw", kind = "hex_s", width = 4, scale = 0.01, mul = 1, dec = 2, unit = "deg", abbrev = "top.FAI.yaw" },
+        { name = "pitch", kind = "hex_s", width = 4, scale = 0.01, mul = 1, dec = 2, unit = "deg", abbrev = "top.FAI.pitch" },
+        { name = "roll", kind = "hex_s", width = 4, scale = 0.01, mul = 1, dec = 2, unit = "deg", abbrev = "top.FAI.roll" },
+        { name = "mode", kind = "enum_hex", width = 2, scale = 1, mul = 1, dec = 0, unit = "", enums = { [0] = "hover", [1] = "fixed_wing", }, abbrev = "top.FAI.mode" },
       } },
   },
 }
@@ -1362,7 +1393,7 @@ CATALOG.skydroid["SLR"] = {
       fields = {
         { name = "distance", kind = "hex_u", width = 4, scale = 1, mul = 1, dec = 0, unit = "dm", min = 5, max = 1000, abbrev = "top.SLR.distance" },
       } },
-    { control = "w", role = "any", min_length = 2, max_length = 2, note = "",
+    { control = "w", role = "any", min_length = 2, max_length = 2, note = "", evidence = "a station used on a real C13 (vamaskylight/custom-GCS, vgcs/skydroid; its tests/test_skydroid_protocol.py) sends the trigger #TPUD2wSLR015B before each range read #TPUD2rSLR0055 (a C13 SDK, sadikbarun/skydroid_c13_miniSDK skydroid.py @ d5a1ae12, reads without one)",
       fields = {
         { name = "action", kind = "enum_hex", width = 2, scale = 1, mul = 1, dec = 0, unit = "", enums = { [1] = "measure", }, abbrev = "top.SLR.action" },
       } },
@@ -1537,14 +1568,14 @@ CATALOG.skydroid["RTF"] = {
   },
 }
 CATALOG.skydroid["MOD"] = {
-  dialect = "skydroid", address = "D", title = "model name", section = "field: ArduPilot AP_Mount_SkyDroid (PR #34155)",
+  dialect = "skydroid", address = "D", title = "model name", section = "field: ArduPilot AP_Mount_SkyDroid (PR #34155)", field = true,
   models = { c12 = true, c13 = true, },
   forms = {
     { control = "r", role = "request", min_length = 2, max_length = 2, note = "",
       fields = {
         { name = "query", kind = "hex_u", width = 2, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.MOD.query" },
       } },
-    { control = "r", role = "response", min_length = 1, max_length = 15, note = "",
+    { control = "r", role = "response", min_length = 1, max_length = 15, note = "", evidence = "AP_Mount_SkyDroid takes the reply's data as the model name (C11, C13; PR #34155); ArduPilot's SIM_SkyDroid answers #TPUD3rMODC118A / #TPUD3rMODC138C",
       fields = {
         { name = "model", kind = "text", width = 0, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.MOD.model" },
       } },
@@ -1934,7 +1965,7 @@ CATALOG.topotek["GIA"] = {
       fields = {
         { name = "state", kind = "enum_hex", width = 2, scale = 1, mul = 1, dec = 0, unit = "", enums = { [0] = "disable", [1] = "enable", }, abbrev = "top.GIA.state" },
       } },
-    { control = "r", role = "response", min_length = 12, max_length = 12, note = "attitude: the reply to a GIC query and the frame pushed after GIA 01, yaw, pitch, roll in 0.01 deg",
+    { control = "r", role = "response", min_length = 12, max_length = 12, note = "attitude: the reply to a GIC query and the frame pushed after GIA 01, yaw, pitch, roll in 0.01 deg", evidence = "a real Topotek camera (PixEagle bench, VSN 1.6.26.R.D) answers #TPPG2rGIC0035 with #tpGPCrGIA + 12 hex (PixEagle session 20260917T044930Z-queries 04:49:34.243738 -> 04:49:34.350916 #tpGPCrGIAFF25FFF8FFFE38); AP_Mount_Topotek.cpp @ d4209711 reads its attitude from GIA after #TPUG2wGIA013E (AP_Mount_Topotek.h @ 02246a61 dispatched GAC, @ 3d293ff8 GIA)",
       fields = {
         { name = "yaw", kind = "hex_s", width = 4, scale = 0.01, mul = 1, dec = 2, unit = "deg", abbrev = "top.GIA.yaw" },
         { name = "pitch", kind = "hex_s", width = 4, scale = 0.01, mul = 1, dec = 2, unit = "deg", abbrev = "top.GIA.pitch" },
@@ -2385,25 +2416,63 @@ CATALOG.topotek["AWB"] = {
       } },
   },
 }
+CATALOG.topotek["FED"] = {
+  dialect = "topotek", address = "D", title = "detection output", section = "field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 9", field = true,
+  models = { sip = true, },
+  forms = {
+    { control = "w", role = "request", min_length = 2, max_length = 2, note = "", evidence = "PixEagle sent #TPPD2wFED1034 to a real Topotek camera (PixEagle bench @3bea324, VSN 1.6.26.R.D) at 07:18:56.503172 and #TPPD2wFED2035 at 07:19:03.716098 (session 20260917T071854Z-ai-observe); the camera answered neither",
+      fields = {
+        { name = "output", kind = "enum_hex", width = 2, scale = 1, mul = 1, dec = 0, unit = "", enums = { [16] = "on", [32] = "off", }, abbrev = "top.FED.output" },
+      } },
+  },
+}
+CATALOG.topotek["ODR"] = {
+  dialect = "topotek", address = "D", title = "detections", section = "field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 8", field = true,
+  models = { sip = true, },
+  forms = {
+    { control = "w", role = "response", min_length = 1, max_length = 255, note = "", evidence = "a real Topotek camera (PixEagle bench @3bea324, VSN 1.6.26.R.D) pushed #tPDP 0D wODR 01 15 06 05 00 65 01 02 04 7F 00 00 00 F0 (1557, 5, 357, 1026, 127, 0) at 07:18:56.928933, 0.43 s after #TPPD2wFED1034 (session 20260917T071854Z-ai-observe); 19 in 20260917T072135Z-ai-select, each of one record",
+      fields = {
+        { name = "count", kind = "u8", width = 1, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.ODR.count" },
+      },
+      record = {
+        { name = "x", kind = "le_i16", width = 2, scale = 1, mul = 1, dec = 0, unit = "px", abbrev = "top.ODR.x" },
+        { name = "y", kind = "le_i16", width = 2, scale = 1, mul = 1, dec = 0, unit = "px", abbrev = "top.ODR.y" },
+        { name = "width", kind = "le_i16", width = 2, scale = 1, mul = 1, dec = 0, unit = "px", abbrev = "top.ODR.width" },
+        { name = "height", kind = "le_i16", width = 2, scale = 1, mul = 1, dec = 0, unit = "px", abbrev = "top.ODR.height" },
+        { name = "label", kind = "le_i16", width = 2, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.ODR.label" },
+        { name = "confidence", kind = "le_i16", width = 2, scale = 0.0001, mul = 1, dec = 4, unit = "", abbrev = "top.ODR.confidence" },
+      } },
+  },
+}
+CATALOG.topotek["ODZ"] = {
+  dialect = "topotek", address = "D", title = "zoom push (meaning unknown)", section = "field: PixEagle session 20260917T050955Z-zoom", field = true,
+  models = { sip = true, },
+  forms = {
+    { control = "w", role = "response", min_length = 10, max_length = 10, note = "", evidence = "a real Topotek camera (PixEagle bench @3bea324, VSN 1.6.26.R.D) pushed #tpDPAwODZ + ten 0x00 bytes + 40 from 05:09:57.284912, 14 ms after the zoom in #TPPM2wZMC0259, every 30 ms until the stop #TPPM2wZMC0057 at 05:09:57.421025 (session 20260917T050955Z-zoom)",
+      fields = {
+        { name = "data", kind = "raw", width = 10, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.ODZ.data" },
+      } },
+  },
+}
 CATALOG.topotek["PA2"] = {
-  dialect = "topotek", address = "G", title = "model name", section = "field: ArduPilot AP_Mount_Topotek (PR #27568)",
+  dialect = "topotek", address = "G", title = "model name", section = "field: ArduPilot AP_Mount_Topotek (PR #27568)", field = true,
   models = { sip = true, },
   forms = {
     { control = "r", role = "request", min_length = 2, max_length = 2, note = "",
       fields = {
         { name = "query", kind = "hex_u", width = 2, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.PA2.query" },
       } },
-    { control = "r", role = "response", min_length = 1, max_length = 15, note = "",
+    { control = "r", role = "response", min_length = 1, max_length = 15, note = "", evidence = "AP_Mount_Topotek takes the reply's data as the model name (PR #27568); ArduPilot's SIM_Topotek answers #TPUG6rPA2SIM_TPBA",
       fields = {
         { name = "model", kind = "text", width = 0, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.PA2.model" },
       } },
   },
 }
 CATALOG.topotek["TRC"] = {
-  dialect = "topotek", address = "D", title = "tracking", section = "field: ArduPilot AP_Mount_Topotek (PR #27568)",
+  dialect = "topotek", address = "D", title = "tracking", section = "field: ArduPilot AP_Mount_Topotek (PR #27568)", field = true,
   models = { sip = true, },
   forms = {
-    { control = "w", role = "any", min_length = 2, max_length = 2, note = "",
+    { control = "w", role = "any", min_length = 2, max_length = 2, note = "", evidence = "AP_Mount_Topotek sends #TPUD2wTRC0254, #TPUD2wTRC0153 and #TPUD2wTRC0052 (PR #27568); PixEagle sent #TPPD2wTRC024F, #TPPD2wTRC014E, #TPPD2wTRC004D to a real Topotek camera (PixEagle session 20260917T051606Z-point 05:16:07.901740, 05:16:09.904481, 05:16:10.705791)",
       fields = {
         { name = "action", kind = "enum_hex", width = 2, scale = 1, mul = 1, dec = 0, unit = "", enums = { [0] = "exit", [1] = "cancel_to_waiting", [2] = "prepare", }, abbrev = "top.TRC.action" },
       } },
@@ -2411,7 +2480,7 @@ CATALOG.topotek["TRC"] = {
       fields = {
         { name = "query", kind = "hex_u", width = 2, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.TRC.query" },
       } },
-    { control = "r", role = "response", min_length = 2, max_length = 2, note = "",
+    { control = "r", role = "response", min_length = 2, max_length = 2, note = "", evidence = "a real Topotek camera (PixEagle bench, VSN 1.6.26.R.D) answered 04:49:32.641749 #TPPD2rTRC0048 with 04:49:32.643626 #TPDP2rTRC0048, 1.9 ms (PixEagle session 20260917T044930Z-queries); AP_Mount_Topotek.cpp @ d4209711 gimbal_track_analyse() reads the state from data char 1 (PR #27568, PR #31768)",
       fields = {
         { name = "x0", kind = "dec_u", width = 1, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.TRC.x0" },
         { name = "state", kind = "enum_char", width = 1, scale = 1, mul = 1, dec = 0, unit = "", enums = { [48] = "stopped", [49] = "waiting", [50] = "tracking", [51] = "temporarily_lost", [52] = "lens_unsupported", }, abbrev = "top.TRC.state" },
@@ -2419,24 +2488,24 @@ CATALOG.topotek["TRC"] = {
   },
 }
 CATALOG.topotek["TRA"] = {
-  dialect = "topotek", address = "D", title = "tracker fault", section = "field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 4",
+  dialect = "topotek", address = "D", title = "tracker fault", section = "field: PixEagle session 20260917T071854Z-ai-observe; vendor tracking PDF section 4", field = true,
   models = { sip = true, },
   forms = {
     { control = "r", role = "request", min_length = 2, max_length = 2, note = "",
       fields = {
         { name = "query", kind = "hex_u", width = 2, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.TRA.query" },
       } },
-    { control = "r", role = "response", min_length = 2, max_length = 2, note = "",
+    { control = "r", role = "response", min_length = 2, max_length = 2, note = "", evidence = "a real Topotek camera (PixEagle bench, VSN 1.6.26.R.D) answered 07:18:56.503256 #TPPD2rTRA0046 with 07:18:56.511155 #TPDP2rTRA1148 (PixEagle session 20260917T071854Z-ai-observe)",
       fields = {
         { name = "fault", kind = "text", width = 2, scale = 1, mul = 1, dec = 0, unit = "", abbrev = "top.TRA.fault" },
       } },
   },
 }
 CATALOG.topotek["LOC"] = {
-  dialect = "topotek", address = "D", title = "tracking point or rectangle", section = "field: ArduPilot AP_Mount_Topotek (PR #27568)",
+  dialect = "topotek", address = "D", title = "tracking point or rectangle", section = "field: ArduPilot AP_Mount_Topotek (PR #27568)", field = true,
   models = { sip = true, },
   forms = {
-    { control = "w", role = "any", min_length = 10, max_length = 10, note = "",
+    { control = "w", role = "any", min_length = 10, max_length = 10, note = "", evidence = "AP_Mount_Topotek sends #tpUDAwLOC + 10 bytes (PR #27568); PixEagle sent #tpPDAwLOC 00 00 00 00 00 3E 00 6F 00 09 E7 to a real Topotek camera, which then tracked (PixEagle session 20260917T051606Z-point 05:16:08.703292)",
       fields = {
         { name = "x", kind = "be_i16", width = 2, scale = 1, mul = 1, dec = 0, unit = "", min = -1000, max = 1000, abbrev = "top.LOC.x" },
         { name = "y", kind = "be_i16", width = 2, scale = 1, mul = 1, dec = 0, unit = "", min = -1000, max = 1000, abbrev = "top.LOC.y" },
@@ -2447,16 +2516,16 @@ CATALOG.topotek["LOC"] = {
   },
 }
 CATALOG.topotek["OFT"] = {
-  dialect = "topotek", address = "D", title = "tracking box", section = "field: PixEagle session 20260917T051606Z-point",
+  dialect = "topotek", address = "D", title = "tracking box", section = "field: PixEagle session 20260917T051606Z-point", field = true,
   models = { sip = true, },
   forms = {
-    { control = "w", role = "response", min_length = 9, max_length = 9, note = "",
+    { control = "w", role = "response", min_length = 9, max_length = 9, note = "", evidence = "a real Topotek camera (PixEagle bench, VSN 1.6.26.R.D) pushes #tpDP9wOFT + 9 bytes while it tracks: 33 from 05:16:08.832750 to 05:16:09.898290, 33 ms apart (PixEagle session 20260917T051606Z-point)",
       fields = {
         { name = "x", kind = "le_u16", width = 2, scale = 1, mul = 1, dec = 0, unit = "px", abbrev = "top.OFT.x" },
         { name = "y", kind = "le_u16", width = 2, scale = 1, mul = 1, dec = 0, unit = "px", abbrev = "top.OFT.y" },
         { name = "width", kind = "le_u16", width = 2, scale = 1, mul = 1, dec = 0, unit = "px", abbrev = "top.OFT.width" },
         { name = "height", kind = "le_u16", width = 2, scale = 1, mul = 1, dec = 0, unit = "px", abbrev = "top.OFT.height" },
-        { name = "status", kind = "enum_char", width = 1, scale = 1, mul = 1, dec = 0, unit = "", enums = { [49] = "stopped", [50] = "tracking", }, abbrev = "top.OFT.status" },
+        { name = "status", kind = "enum_char", width = 1, scale = 1, mul = 1, dec = 0, unit = "", enums = { [49] = "stopped", [50] = "tracking", [51] = "temporarily_lost", }, abbrev = "top.OFT.status" },
       } },
   },
 }
@@ -2891,6 +2960,22 @@ local function all_printable(s)
   return not string.find(s, "[^\32-\126]")
 end
 
+-- Bytes as topdump's JSON carries them (top::escape): printable ASCII as it
+-- is, \\ \r \n, and \xNN for the rest.
+local function escape_bytes(s)
+  if all_printable(s) and not string.find(s, "\\", 1, true) then return s end
+  local out = {}
+  for i = 1, #s do
+    local c = sbyte(s, i)
+    if c == 92 then out[i] = "\\\\"
+    elseif c == 13 then out[i] = "\\r"
+    elseif c == 10 then out[i] = "\\n"
+    elseif c >= 32 and c < 127 then out[i] = schar(c)
+    else out[i] = sfmt("\\x%02X", c) end
+  end
+  return table.concat(out)
+end
+
 -- "[-+]digits[.digits]" as a number, or nil.
 local function parse_number(s)
   if not string.find(s, "^[-+]?%d*%.?%d*$") or not string.find(s, "%d") then return nil end
@@ -2998,6 +3083,11 @@ local function decode_field(ctx, spec, bytes, offset)
     fv.integer = u
     fv.value = scaled(u, spec)
     fv.valid = true
+  elseif k == "u8" then
+    if #bytes ~= 1 then return bad("needs 1 bytes") end
+    fv.integer = sbyte(bytes, 1)
+    fv.value = scaled(fv.integer, spec)
+    fv.valid = true
   elseif k == "be_i16" or k == "be_u16" then
     if #bytes ~= 2 then return bad("needs 2 bytes") end
     local u = sbyte(bytes, 1) * 256 + sbyte(bytes, 2)
@@ -3045,8 +3135,14 @@ local function format_value(fv)
     if k == "enum_hex" then code = sfmt("%0" .. fv.length .. "X", fv.integer) end
     if fv.enum_name then return fv.enum_name .. " (" .. code .. ")" end
     return code .. " (undocumented)"
-  elseif k == "text" or k == "raw" then
+  elseif k == "text" then
     return fv.text
+  elseif k == "raw" then
+    -- printable bytes as they are, binary ones (the Topotek ODZ) as hex pairs
+    if all_printable(fv.text) then return fv.text end
+    local hex = {}
+    for i = 1, #fv.text do hex[i] = sfmt("%02X", sbyte(fv.text, i)) end
+    return table.concat(hex, " ")
   elseif k == "nmea" then
     return fmt_number(fv.value, 7) .. unit .. " (" .. fv.text .. ")"
   elseif k == "number" then
@@ -3058,6 +3154,65 @@ local function format_value(fv)
 end
 
 local function role_fits(form, frame) return form == "any" or frame == "any" or form == frame end
+
+-- The field's key (top::field_key): its name, "x[1]" for a field of record 1.
+local function field_key(fv)
+  if fv.record then return fv.spec.name .. "[" .. fv.record .. "]" end
+  return fv.spec.name
+end
+
+-- The records after a form's fields (decode.cpp check_records): as many as
+-- the count field (the form's last, at data offset count_at) says and the
+-- data holds; a count the data does not match is a data-length at the count.
+local function decode_records(ctx, out, f, form, data, count_at, pos)
+  local cf = form.fields[#form.fields]
+  local quiet = { lowercase_reported = false, add = function() end }
+  local count = decode_field(quiet, cf, ssub(data, count_at + 1, pos), 0)
+  if not count.valid or count.none or count.integer < 0 then return end
+  local width = 0
+  for _, r in ipairs(form.record) do width = width + r.width end
+  if width == 0 then return end
+  local left = #data - pos
+  local whole = math.floor(left / width)
+  local n = count.integer
+  if n * width ~= left then
+    ctx.add("data-length", f.data_offset + count_at, cf.name .. " " .. n .. ": " .. n ..
+            " record(s) of " .. width .. " byte(s) need " .. (n * width) .. ", " .. left .. " follow")
+  end
+  local records = n < whole and n or whole
+  for i = 1, records do
+    for _, r in ipairs(form.record) do
+      local fv = decode_field(ctx, r, ssub(data, pos + 1, pos + r.width), f.data_offset + pos)
+      fv.record = i
+      out.fields[#out.fields + 1] = fv
+      pos = pos + r.width
+    end
+  end
+end
+
+-- A client's frame in a length its document does not give that a form of
+-- the field takes (decode.cpp note_field_length: ArduPilot's 14-char FAI):
+-- a data-length of information naming the form's source.
+local function note_field_length(ctx, out, f, cmd, form)
+  if not form.evidence or cmd.field or form.role == "response" or out.role == "response" then
+    return
+  end
+  local len = f.data_length
+  local documented, allowed = false, {}
+  for _, fm in ipairs(cmd.forms) do
+    if not fm.evidence and fm.control == form.control then
+      if len >= fm.min_length and len <= fm.max_length then return end
+      documented = true
+      allowed[#allowed + 1] = fm.min_length == fm.max_length and tostring(fm.min_length) or
+                              (fm.min_length .. "-" .. fm.max_length)
+    end
+  end
+  if not documented then return end
+  out.findings[#out.findings + 1] = finding("data-length", f.data_offset, len .. " data byte(s); " ..
+                                            f.ident .. " '" .. form.control .. "' takes " ..
+                                            table.concat(allowed, ", ") .. " in " .. cmd.section ..
+                                            "; field: " .. form.evidence, form.evidence, "info")
+end
 
 local function decode(f, dialect, role, model)
   local out = { dialect = dialect, role = role, findings = {}, fields = {} }
@@ -3144,6 +3299,7 @@ local function decode(f, dialect, role, model)
             "' takes " .. table.concat(allowed, ", "))
     return out
   end
+  note_field_length(ctx, out, f, cmd, form)
   local data = ssub(f.raw, f.data_offset + 1, f.data_offset + f.data_length)
   -- Among the forms of this shape from `form` on, the first whose fields
   -- validate (decode.cpp by_content: LAT/LON's field echo and 5.8.7 output).
@@ -3187,6 +3343,7 @@ local function decode(f, dialect, role, model)
     end
     return out
   end
+  local done, last = 0, 0
   for _, fs in ipairs(form.fields) do
     if pos >= #data and fs.width ~= 0 then break end
     local w = fs.width == 0 and (#data - pos) or fs.width
@@ -3196,7 +3353,12 @@ local function decode(f, dialect, role, model)
       break
     end
     out.fields[#out.fields + 1] = decode_field(ctx, fs, ssub(data, pos + 1, pos + w), f.data_offset + pos)
+    last = pos
     pos = pos + w
+    done = done + 1
+  end
+  if form.record and done == #form.fields and done > 0 then
+    decode_records(ctx, out, f, form, data, last, pos)
   end
   return out
 end
@@ -3274,7 +3436,7 @@ local function summary(dec)
     return "none (" .. form.note .. ")"
   end
   local parts = {}
-  for _, fv in ipairs(dec.fields) do parts[#parts + 1] = fv.spec.name .. " " .. format_value(fv) end
+  for _, fv in ipairs(dec.fields) do parts[#parts + 1] = field_key(fv) .. " " .. format_value(fv) end
   return table.concat(parts, ", ")
 end
 
@@ -3487,7 +3649,7 @@ end
 
 local function add_field(sub, tvb, base_off, fv)
   local s = fv.spec
-  local label = s.name .. ": " .. format_value(fv)
+  local label = field_key(fv) .. ": " .. format_value(fv)
   local r = tvb(base_off + fv.offset, fv.length)
   local pf = CATALOG_FIELDS[s.abbrev]
   if fv.none or not fv.valid or not pf then
@@ -3497,7 +3659,13 @@ local function add_field(sub, tvb, base_off, fv)
   local k = s.kind
   local v = fv.value
   if CATALOG_VTYPE[s.abbrev] == "string" then
-    if k == "text" or k == "raw" then v = fv.text else v = format_value(fv) end
+    if k == "text" then
+      v = fv.text
+    elseif k == "raw" then
+      v = escape_bytes(fv.text)  -- binary bytes (the Topotek ODZ) as topdump's JSON has them
+    else
+      v = format_value(fv)
+    end
   end
   sub:add(pf, r, v, label)
 end
@@ -3565,7 +3733,21 @@ local function add_frame(tvb, pk, tree, off, item, c, dir, index)
   if #dec.fields > 0 then
     local sub = t:add(tvb(off + f.data_offset, f.data_length),
                       f.ident .. (dec.command and (" (" .. dec.command.title .. ")") or ""))
-    for _, fv in ipairs(dec.fields) do add_field(sub, tvb, off, fv) end
+    -- a record's fields (the Topotek ODR detections) under "record n"
+    local record_width = 0
+    for _, r in ipairs(dec.form and dec.form.record or {}) do record_width = record_width + r.width end
+    local rec_tree, rec_n = nil, 0
+    for _, fv in ipairs(dec.fields) do
+      local parent = sub
+      if fv.record then
+        if fv.record ~= rec_n then
+          rec_n = fv.record
+          rec_tree = sub:add(tvb(off + fv.offset, record_width), "record " .. rec_n)
+        end
+        parent = rec_tree
+      end
+      add_field(parent, tvb, off, fv)
+    end
   end
   for _, x in ipairs(f.findings) do add_finding(t, tvb, off, x) end
   for _, x in ipairs(dec.findings) do add_finding(t, tvb, off, x) end

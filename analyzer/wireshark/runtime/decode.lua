@@ -54,6 +54,22 @@ local function all_printable(s)
   return not string.find(s, "[^\32-\126]")
 end
 
+-- Bytes as topdump's JSON carries them (top::escape): printable ASCII as it
+-- is, \\ \r \n, and \xNN for the rest.
+local function escape_bytes(s)
+  if all_printable(s) and not string.find(s, "\\", 1, true) then return s end
+  local out = {}
+  for i = 1, #s do
+    local c = sbyte(s, i)
+    if c == 92 then out[i] = "\\\\"
+    elseif c == 13 then out[i] = "\\r"
+    elseif c == 10 then out[i] = "\\n"
+    elseif c >= 32 and c < 127 then out[i] = schar(c)
+    else out[i] = sfmt("\\x%02X", c) end
+  end
+  return table.concat(out)
+end
+
 -- "[-+]digits[.digits]" as a number, or nil.
 local function parse_number(s)
   if not string.find(s, "^[-+]?%d*%.?%d*$") or not string.find(s, "%d") then return nil end
@@ -161,6 +177,11 @@ local function decode_field(ctx, spec, bytes, offset)
     fv.integer = u
     fv.value = scaled(u, spec)
     fv.valid = true
+  elseif k == "u8" then
+    if #bytes ~= 1 then return bad("needs 1 bytes") end
+    fv.integer = sbyte(bytes, 1)
+    fv.value = scaled(fv.integer, spec)
+    fv.valid = true
   elseif k == "be_i16" or k == "be_u16" then
     if #bytes ~= 2 then return bad("needs 2 bytes") end
     local u = sbyte(bytes, 1) * 256 + sbyte(bytes, 2)
@@ -208,8 +229,14 @@ local function format_value(fv)
     if k == "enum_hex" then code = sfmt("%0" .. fv.length .. "X", fv.integer) end
     if fv.enum_name then return fv.enum_name .. " (" .. code .. ")" end
     return code .. " (undocumented)"
-  elseif k == "text" or k == "raw" then
+  elseif k == "text" then
     return fv.text
+  elseif k == "raw" then
+    -- printable bytes as they are, binary ones (the Topotek ODZ) as hex pairs
+    if all_printable(fv.text) then return fv.text end
+    local hex = {}
+    for i = 1, #fv.text do hex[i] = sfmt("%02X", sbyte(fv.text, i)) end
+    return table.concat(hex, " ")
   elseif k == "nmea" then
     return fmt_number(fv.value, 7) .. unit .. " (" .. fv.text .. ")"
   elseif k == "number" then
@@ -221,6 +248,65 @@ local function format_value(fv)
 end
 
 local function role_fits(form, frame) return form == "any" or frame == "any" or form == frame end
+
+-- The field's key (top::field_key): its name, "x[1]" for a field of record 1.
+local function field_key(fv)
+  if fv.record then return fv.spec.name .. "[" .. fv.record .. "]" end
+  return fv.spec.name
+end
+
+-- The records after a form's fields (decode.cpp check_records): as many as
+-- the count field (the form's last, at data offset count_at) says and the
+-- data holds; a count the data does not match is a data-length at the count.
+local function decode_records(ctx, out, f, form, data, count_at, pos)
+  local cf = form.fields[#form.fields]
+  local quiet = { lowercase_reported = false, add = function() end }
+  local count = decode_field(quiet, cf, ssub(data, count_at + 1, pos), 0)
+  if not count.valid or count.none or count.integer < 0 then return end
+  local width = 0
+  for _, r in ipairs(form.record) do width = width + r.width end
+  if width == 0 then return end
+  local left = #data - pos
+  local whole = math.floor(left / width)
+  local n = count.integer
+  if n * width ~= left then
+    ctx.add("data-length", f.data_offset + count_at, cf.name .. " " .. n .. ": " .. n ..
+            " record(s) of " .. width .. " byte(s) need " .. (n * width) .. ", " .. left .. " follow")
+  end
+  local records = n < whole and n or whole
+  for i = 1, records do
+    for _, r in ipairs(form.record) do
+      local fv = decode_field(ctx, r, ssub(data, pos + 1, pos + r.width), f.data_offset + pos)
+      fv.record = i
+      out.fields[#out.fields + 1] = fv
+      pos = pos + r.width
+    end
+  end
+end
+
+-- A client's frame in a length its document does not give that a form of
+-- the field takes (decode.cpp note_field_length: ArduPilot's 14-char FAI):
+-- a data-length of information naming the form's source.
+local function note_field_length(ctx, out, f, cmd, form)
+  if not form.evidence or cmd.field or form.role == "response" or out.role == "response" then
+    return
+  end
+  local len = f.data_length
+  local documented, allowed = false, {}
+  for _, fm in ipairs(cmd.forms) do
+    if not fm.evidence and fm.control == form.control then
+      if len >= fm.min_length and len <= fm.max_length then return end
+      documented = true
+      allowed[#allowed + 1] = fm.min_length == fm.max_length and tostring(fm.min_length) or
+                              (fm.min_length .. "-" .. fm.max_length)
+    end
+  end
+  if not documented then return end
+  out.findings[#out.findings + 1] = finding("data-length", f.data_offset, len .. " data byte(s); " ..
+                                            f.ident .. " '" .. form.control .. "' takes " ..
+                                            table.concat(allowed, ", ") .. " in " .. cmd.section ..
+                                            "; field: " .. form.evidence, form.evidence, "info")
+end
 
 local function decode(f, dialect, role, model)
   local out = { dialect = dialect, role = role, findings = {}, fields = {} }
@@ -307,6 +393,7 @@ local function decode(f, dialect, role, model)
             "' takes " .. table.concat(allowed, ", "))
     return out
   end
+  note_field_length(ctx, out, f, cmd, form)
   local data = ssub(f.raw, f.data_offset + 1, f.data_offset + f.data_length)
   -- Among the forms of this shape from `form` on, the first whose fields
   -- validate (decode.cpp by_content: LAT/LON's field echo and 5.8.7 output).
@@ -350,6 +437,7 @@ local function decode(f, dialect, role, model)
     end
     return out
   end
+  local done, last = 0, 0
   for _, fs in ipairs(form.fields) do
     if pos >= #data and fs.width ~= 0 then break end
     local w = fs.width == 0 and (#data - pos) or fs.width
@@ -359,7 +447,12 @@ local function decode(f, dialect, role, model)
       break
     end
     out.fields[#out.fields + 1] = decode_field(ctx, fs, ssub(data, pos + 1, pos + w), f.data_offset + pos)
+    last = pos
     pos = pos + w
+    done = done + 1
+  end
+  if form.record and done == #form.fields and done > 0 then
+    decode_records(ctx, out, f, form, data, last, pos)
   end
   return out
 end
@@ -437,7 +530,7 @@ local function summary(dec)
     return "none (" .. form.note .. ")"
   end
   local parts = {}
-  for _, fv in ipairs(dec.fields) do parts[#parts + 1] = fv.spec.name .. " " .. format_value(fv) end
+  for _, fv in ipairs(dec.fields) do parts[#parts + 1] = field_key(fv) .. " " .. format_value(fv) end
   return table.concat(parts, ", ")
 end
 

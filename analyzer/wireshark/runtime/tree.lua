@@ -15,7 +15,7 @@ end
 
 local function add_field(sub, tvb, base_off, fv)
   local s = fv.spec
-  local label = s.name .. ": " .. format_value(fv)
+  local label = field_key(fv) .. ": " .. format_value(fv)
   local r = tvb(base_off + fv.offset, fv.length)
   local pf = CATALOG_FIELDS[s.abbrev]
   if fv.none or not fv.valid or not pf then
@@ -25,7 +25,13 @@ local function add_field(sub, tvb, base_off, fv)
   local k = s.kind
   local v = fv.value
   if CATALOG_VTYPE[s.abbrev] == "string" then
-    if k == "text" or k == "raw" then v = fv.text else v = format_value(fv) end
+    if k == "text" then
+      v = fv.text
+    elseif k == "raw" then
+      v = escape_bytes(fv.text)  -- binary bytes (the Topotek ODZ) as topdump's JSON has them
+    else
+      v = format_value(fv)
+    end
   end
   sub:add(pf, r, v, label)
 end
@@ -93,7 +99,21 @@ local function add_frame(tvb, pk, tree, off, item, c, dir, index)
   if #dec.fields > 0 then
     local sub = t:add(tvb(off + f.data_offset, f.data_length),
                       f.ident .. (dec.command and (" (" .. dec.command.title .. ")") or ""))
-    for _, fv in ipairs(dec.fields) do add_field(sub, tvb, off, fv) end
+    -- a record's fields (the Topotek ODR detections) under "record n"
+    local record_width = 0
+    for _, r in ipairs(dec.form and dec.form.record or {}) do record_width = record_width + r.width end
+    local rec_tree, rec_n = nil, 0
+    for _, fv in ipairs(dec.fields) do
+      local parent = sub
+      if fv.record then
+        if fv.record ~= rec_n then
+          rec_n = fv.record
+          rec_tree = sub:add(tvb(off + fv.offset, record_width), "record " .. rec_n)
+        end
+        parent = rec_tree
+      end
+      add_field(parent, tvb, off, fv)
+    end
   end
   for _, x in ipairs(f.findings) do add_finding(t, tvb, off, x) end
   for _, x in ipairs(dec.findings) do add_finding(t, tvb, off, x) end

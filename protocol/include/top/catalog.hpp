@@ -61,6 +61,7 @@ enum class FieldKind : std::uint8_t {
   le_i32,     // binary little-endian signed 32-bit
   be_i16,     // binary big-endian signed 16-bit (field: Topotek LOC)
   be_u16,     // binary big-endian unsigned 16-bit (field: Topotek LOC)
+  u8,         // one binary byte, unsigned (field: the Topotek ODR record count)
   nmea,       // hemisphere letter + NMEA dddmm.mmmm, decoded to degrees
   raw         // bytes shown as they are; no value
 };
@@ -77,6 +78,7 @@ constexpr bool is_integer_kind(FieldKind k) noexcept {
     case FieldKind::le_i32:
     case FieldKind::be_i16:
     case FieldKind::be_u16:
+    case FieldKind::u8:
       return true;
     default:
       return false;
@@ -119,6 +121,10 @@ struct FormSpec {
   // Whole data that means "no value" (SkyDroid SDC all zero: no card); the
   // note says what it means.
   std::string_view none;
+  // Records that follow the fields (field: the Topotek ODR detections): the
+  // last of `fields` counts them, and each is these fields in order, all of
+  // a fixed width. Empty: the form is its fields.
+  std::span<const FieldSpec> record;
   // Empty for a form the document gives. A form only the field shows (real
   // units, or the drivers written against them) names its source here: the
   // driver file and PR, a real unit's log, a station's note

@@ -30,10 +30,21 @@ struct FieldValue {
   double value = 0;            // integer * scale, or the parsed number
   std::string text;            // text, nmea source, raw bytes
   std::string_view enum_name;  // enum kinds, when the value is known
+  // The record (from 1) of the form's records the field belongs to
+  // (FormSpec::record: the Topotek ODR detections); 0 for a field of the
+  // form itself.
+  std::uint16_t record = 0;
 
   std::string_view name() const noexcept { return spec ? spec->name : ""; }
   std::string_view unit() const noexcept { return spec ? spec->unit : ""; }
 };
+
+// The field's key in every output (JSON, -V, CSV, the summary, the
+// dissector's label): its name, and for a field of a record the record's
+// number ("x[1]", "confidence[2]").
+std::string field_key(const FieldValue& f);
+// The same appended to `out`.
+void append_key(const FieldValue& f, std::string& out);
 
 // The value as a person reads it: "-50.00 deg", "follow (06)", "192.168.1.2".
 std::string format_value(const FieldValue& f);

@@ -49,6 +49,15 @@ struct StreamSpec {
   bool rate_in_data = false;
   std::string_view section;  // where the document (or the field) says so
   std::string_view note;
+  // The frames come at a rate while the stream is on (an attitude push):
+  // topdump judges its stalls, its rate and a start that never came. False
+  // for an event push (the field's Topotek OFT, ODR, ODZ), which comes and
+  // goes with its cause (a target tracked, an object detected, the lens
+  // zooming) and which none of those judges. A source must show the rate.
+  bool periodic = false;
+  // The write's value that switches the stream off: 00 for every switch
+  // of the documents; the field's Topotek FED takes 20 (10 is on).
+  unsigned off = 0;
   // Empty for a stream a document gives. A stream only the field shows
   // (Topotek GIA 01 pushing GIA frames) names its source here; the field
   // profile takes it, the document profile does not.
@@ -70,6 +79,8 @@ const StreamSpec* stream_enabled_by(Dialect d, std::string_view request, Profile
 // rate_in_data, else 00 off / 01 on), read from the frame without a
 // detailed decode; nullopt when the data is empty or not hex.
 std::optional<unsigned> switch_value(std::string_view data) noexcept;
+// Whether a switch value (switch_value) turns `s` off (StreamSpec::off).
+inline bool switches_off(const StreamSpec& s, unsigned value) noexcept { return value == s.off; }
 // The stream whose frames carry `push`, the document's or the field's (a
 // reader of traffic takes both: Topotek GIA frames are pushes), or nullptr.
 const StreamSpec* stream_of(Dialect d, std::string_view push) noexcept;
@@ -290,7 +301,8 @@ std::string_view to_string(Rejection r) noexcept;  // "none", "unsupported", "in
 // without it (the document profile) it always rejects, and so do the
 // field's own commands (unsupported: TRC, LOC) and forms (invalid: a
 // 12-char GIA, as the document's lengths make it). unsupported wins over
-// invalid.
+// invalid. A finding of information refuses nothing (a data-length that
+// names the field's form: ArduPilot's 14-char FAI).
 Rejection rejection(const Decoded& dec, Model model, bool field_evidence = true) noexcept;
 // True for the finding codes that can make a device reject a request.
 bool rejects(FindingCode c) noexcept;

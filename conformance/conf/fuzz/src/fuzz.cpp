@@ -85,9 +85,11 @@ struct Session {
     dopt.role = top::Role::response;
     const top::Decoded dec = top::decode(f, dopt);
     if (!dec.command) return {};
+    // (information is none: a length the field records, ArduPilot's 14-char FAI)
     for (const auto& fd : dec.findings)
-      if (fd.code == top::FindingCode::value_out_of_range ||
-          fd.code == top::FindingCode::bad_field || fd.code == top::FindingCode::data_length)
+      if (fd.severity != top::Severity::info &&
+          (fd.code == top::FindingCode::value_out_of_range ||
+           fd.code == top::FindingCode::bad_field || fd.code == top::FindingCode::data_length))
         return "reply " + top::escape(f.raw) + ": " + std::string(top::to_string(fd.code)) + ": " +
                fd.message;
     return {};
