@@ -47,6 +47,8 @@ struct Options {
   unsigned baud = 115200;
   std::string profile_name = "field", push_order, push_header, reply_order, reply_header;
   std::string yaw_sign, pitch_sign, field_codes;
+  // UDP traits and writes (top/device.hpp traits; "": the profile's)
+  std::string reply_from, fan_out, duplicate, write_echo;
   // Identity: SkyDroid VER and MOD, Topotek VSN and PA2 ("": the model's defaults)
   std::string fw_version, device_name;
   bool no_tracking = false;
@@ -68,6 +70,32 @@ std::string joined(const std::vector<std::string>& names) {
   return s;
 }
 
+// The models and source of a trait, from top::traits(): "sip (field
+// evidence of fan-out, see --describe)"; empty for none.
+std::string trait_of(top::TraitKind k) {
+  std::string models, source;
+  for (const top::Trait& t : top::traits()) {
+    if (t.kind != k || t.contested) continue;
+    source = std::string(top::to_string(t.source));
+    for (top::Model m : top::all_models())
+      if (t.models & top::model_bit(m))
+        models += (models.empty() ? "" : " ") + std::string(top::to_string(m));
+  }
+  if (models.empty()) return {};
+  return models + " (" + source + " evidence of " + std::string(top::to_string(k)) +
+         ", see --describe)";
+}
+
+// The default of a trait's switch: "the profile's: ephemeral for sip (field
+// evidence of ephemeral-reply-port, see --describe), served under --profile
+// document and for the other models".
+std::string trait_default(top::TraitKind k, const char* field_value, const char* document_value) {
+  const std::string of = trait_of(k);
+  if (of.empty()) return std::string("default ") + document_value;
+  return "default: the profile's, " + std::string(field_value) + " for " + of + ", " +
+         document_value + " under --profile document and for the other models";
+}
+
 // The options; returns the named-value ones, to check once parsed.
 std::vector<Choice> add_options(CLI::App& app, Options& o) {
   app.add_option("--model", o.model_name, top::model_list("|", "|"))->capture_default_str();
@@ -86,8 +114,9 @@ std::vector<Choice> add_options(CLI::App& app, Options& o) {
   app.add_option("--seed", o.seed, "seed of the fault injection")->capture_default_str();
   app.add_option("--record", o.record, "write every frame received and sent to FILE.pcap");
   app.add_option("--reply-port", o.reply_port,
-                 "UDP: send replies to this client port (0: the request's source port; "
-                 "default 9004 for sip as the Topotek document says, 0 otherwise)");
+                 "UDP: the client port replies and pushes go to (default: the model's, 9004 for "
+                 "sip as Topotek V1.1.3 names it, none otherwise; 0: none, replies go to the "
+                 "asking port)");
   app.add_flag("-v,--verbose", o.verbose,
                "log every datagram received and sent (UDP, TCP, pty, serial) on stderr");
   std::vector<Choice> choices;
@@ -123,6 +152,25 @@ std::vector<Choice> add_options(CLI::App& app, Options& o) {
                  "C12, SIP)");
   choice("--field-codes", o.field_codes,
          "accept the command values field evidence says the model takes (C13 PTZ)", {"on", "off"});
+  choice("--reply-from", o.reply_from,
+         "UDP: send replies and pushes from the port served or from a port of its own (" +
+             trait_default(top::TraitKind::ephemeral_reply_port, "ephemeral", "served") + ")",
+         {"served", "ephemeral"});
+  choice("--fan-out", o.fan_out,
+         "UDP: send each reply and push to the client port (--reply-port) and to the last "
+         "other port that asked, not to the client port alone (" +
+             trait_default(top::TraitKind::fan_out, "on", "off") + ")",
+         {"on", "off"});
+  choice("--duplicate", o.duplicate,
+         "UDP: send two copies to the client port (" +
+             trait_default(top::TraitKind::duplicate_to_client_port, "on", "off") + ")",
+         {"on", "off"});
+  choice("--write-echo", o.write_echo,
+         "echo every valid write, also those the document gives no answer (default off: each "
+         "write answered as the document says, a Topotek write only where it gives a reply "
+         "form, as a real unit does: " +
+             trait_of(top::TraitKind::silent_writes) + ")",
+         {"on", "off"});
   app.add_flag("--no-tracking", o.no_tracking,
                "Topotek: a lens that cannot track (TRC answers state 4)");
   app.add_flag("--describe", o.describe,
@@ -157,6 +205,10 @@ topsim::DeviceOptions device_options(const Options& o) {
   if (!o.yaw_sign.empty()) dopt.yaw_inverted = o.yaw_sign == "inverted";
   if (!o.pitch_sign.empty()) dopt.pitch_inverted = o.pitch_sign == "inverted";
   if (!o.field_codes.empty()) dopt.field_ptz = o.field_codes == "on";
+  if (!o.reply_from.empty()) dopt.ephemeral_reply_port = o.reply_from == "ephemeral";
+  if (!o.fan_out.empty()) dopt.fan_out = o.fan_out == "on";
+  if (!o.duplicate.empty()) dopt.duplicate = o.duplicate == "on";
+  if (!o.write_echo.empty()) dopt.write_echo = o.write_echo == "on";
   dopt.version = o.fw_version;
   dopt.model_name = o.device_name;
   dopt.tracking = !o.no_tracking;
@@ -210,8 +262,7 @@ std::optional<int> configure(const Options& o, top::Model model, topsim::ServerC
     if (cfg.kind == topsim::TransportKind::udp && spec.empty())
       cfg.extra_udp_ports = topsim::extra_udp_ports(model);
   }
-  cfg.reply_port =
-      o.reply_port >= 0 ? static_cast<std::uint16_t>(o.reply_port) : top::client_port(model);
+  if (o.reply_port >= 0) cfg.reply_port = static_cast<std::uint16_t>(o.reply_port);
   if (!o.faults.empty()) {
     std::string err;
     auto f = topsim::parse_faults(o.faults, err);
@@ -229,6 +280,22 @@ std::optional<int> configure(const Options& o, top::Model model, topsim::ServerC
     };
   }
   return std::nullopt;
+}
+
+// Where a UDP device's datagrams go: " (replies from port 41234 to port
+// 9004 twice and to the last other port that asked)".
+std::string udp_routes(const topsim::Server& server) {
+  const topsim::UdpTraits t = server.udp_traits();
+  const std::uint16_t client = server.client_port();
+  const std::string cp = "port " + std::to_string(client) + (t.duplicate ? " twice" : "");
+  const std::string to =
+      client == 0 ? "the asking port"
+      : t.fan_out ? cp + " and to the last other port that asked (the asking port unless it is " +
+                        std::to_string(client) + ")"
+                  : cp;
+  const std::uint16_t from = server.reply_from_port();
+  return " (replies " + (from ? "from port " + std::to_string(from) + " " : std::string()) + "to " +
+         to + ")";
 }
 
 // Serves until SIGINT or SIGTERM; the address served goes to stdout.
@@ -251,10 +318,9 @@ int serve(const Options& o, const topsim::ServerConfig& cfg) {
       for (std::size_t i = 1; i < server.udp_ports().size(); ++i)
         std::printf("udp %s:%u\n", cfg.host.c_str(), static_cast<unsigned>(server.udp_ports()[i]));
       std::fflush(stdout);
-      spdlog::info(
-          "topsim {} listening on {} {}:{}{}", o.model_name,
-          cfg.kind == topsim::TransportKind::tcp ? "tcp" : "udp", cfg.host, server.port(),
-          cfg.reply_port ? " (replies to port " + std::to_string(cfg.reply_port) + ")" : "");
+      spdlog::info("topsim {} listening on {} {}:{}{}", o.model_name,
+                   cfg.kind == topsim::TransportKind::tcp ? "tcp" : "udp", cfg.host, server.port(),
+                   cfg.kind == topsim::TransportKind::tcp ? std::string() : udp_routes(server));
   }
   if (cfg.faults.any()) spdlog::info("faults: {} (seed {})", o.faults, o.seed);
   server.run();

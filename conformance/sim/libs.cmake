@@ -7,6 +7,7 @@ add_library(topsim_core STATIC
   ${_topkit_sim}/src/device_handlers.cpp
   ${_topkit_sim}/src/device_topotek.cpp
   ${_topkit_sim}/src/device_faults.cpp
+  ${_topkit_sim}/src/fanout.cpp
   ${_topkit_sim}/src/faults.cpp
   ${_topkit_sim}/src/firmware_faults.cpp
   ${_topkit_sim}/src/intake.cpp)

@@ -119,8 +119,9 @@ TEST(DeviceFaults, StallStopsThePushAndResumes) {
   for (std::uint64_t t : at2) EXPECT_TRUE(t < 6000000 || t >= 7000000) << t;
 }
 
-// no-stream=: the switch is echoed (SkyDroid GAA, Topotek GIA) and read back
-// on, no push ever comes.
+// no-stream=: the switch is echoed (SkyDroid GAA, Topotek GIA: the fault's
+// firmware answers it, where the healthy Topotek device is silent) and read
+// back on, no push ever comes.
 TEST(DeviceFaults, NoStreamAnswersTheSwitchAndNeverPushes) {
   Device sky(top::Model::c12, with("no-stream=GAC"));
   const auto echo = ask(sky, "#TPUG2wGAA0A", 0);
@@ -138,7 +139,7 @@ TEST(DeviceFaults, NoStreamAnswersTheSwitchAndNeverPushes) {
   // the healthy device pushes, and reads its switch on (a bug: the GIA read
   // looked for the document's GIC stream, and answered 00 while GIA pushed)
   Device ok(top::Model::sip);
-  ask(ok, "#TPPG2wGIA01", 0);
+  EXPECT_TRUE(ask(ok, "#TPPG2wGIA01", 0).empty());  // top::write_reply: nothing
   EXPECT_EQ(ask(ok, "#TPPG2rGIA00", 100000).at(0).data(), "01");
   EXPECT_GE(pushes(ok, "GIA", 1000000).size(), 9u);
 }
@@ -166,7 +167,8 @@ TEST(DeviceFaults, PlaceholderIdentityAnswersPlaceholders) {
 }
 
 // clock=month-early: a date set is answered one month early (January: the
-// December before); the healthy device echoes it.
+// December before); the healthy device echoes it (SkyDroid 2.3.1) or says
+// nothing (Topotek: the document gives TIM and UTC writes no reply form).
 TEST(DeviceFaults, ClockAnswersTheDateOneMonthEarly) {
   struct Set {
     top::Model model;
@@ -184,8 +186,12 @@ TEST(DeviceFaults, ClockAnswersTheDateOneMonthEarly) {
     Device good(s.model);
     const auto b = ask(bad, s.request, 0), g = ask(good, s.request, 0);
     ASSERT_EQ(b.size(), 1u) << s.request;
-    ASSERT_EQ(g.size(), 1u) << s.request;
     EXPECT_EQ(b[0].data(), s.answer) << s.request;
+    if (s.model == top::Model::sip) {
+      EXPECT_TRUE(g.empty()) << s.request;
+      continue;
+    }
+    ASSERT_EQ(g.size(), 1u) << s.request;
     EXPECT_EQ(g[0].data(), std::string_view(s.request).substr(10)) << s.request;
   }
 }

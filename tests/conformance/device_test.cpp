@@ -254,15 +254,23 @@ std::array<int, 3> angles(const top::Frame& f) {
 // GIP +3000), speed 99: the GIA push reports it down positive within 1 s.
 TEST(DeviceTopotek, GipMovesPitchAndGiaReportsItDownPositive) {
   Device d(top::Model::sip);
-  EXPECT_EQ(ask(d, "#TPUG2wGIA01", 0, Link::uart).at(0), top::with_checksum("#TPGU2wGIA01"));
-  EXPECT_EQ(ask(d, "#tpUG6wGIP0BB863", 0, Link::uart).at(0),
-            top::with_checksum("#tpGU6wGIP0BB863"));
+  // Neither write is answered (top::write_reply: the document gives them no
+  // reply form; a real unit echoes none: silent_writes); both take effect.
+  EXPECT_TRUE(ask(d, "#TPUG2wGIA01", 0, Link::uart).empty());
+  EXPECT_TRUE(ask(d, "#tpUG6wGIP0BB863", 0, Link::uart).empty());
   const auto out = run_until(d, 1000000);
   ASSERT_GE(out.size(), 9u);
   const top::Frame last = parsed(out.back());
   expect_frame(last, "GIA", top::Header::variable, 'G', 'U');
   EXPECT_EQ(angles(last)[1], 3000);
   EXPECT_NEAR(d.pitch().angle, -30, 0.01);  // up positive inside
+  // --write-echo on: every write echoed, as topsim did before silent_writes.
+  topsim::DeviceOptions echo;
+  echo.write_echo = true;
+  Device e(top::Model::sip, echo);
+  EXPECT_EQ(ask(e, "#TPUG2wGIA01", 0, Link::uart).at(0), top::with_checksum("#TPGU2wGIA01"));
+  EXPECT_EQ(ask(e, "#tpUG6wGIP0BB863", 0, Link::uart).at(0),
+            top::with_checksum("#tpGU6wGIP0BB863"));
   // The document: GIP is up positive, and the attitude (GIC) too.
   topsim::DeviceOptions o;
   o.profile = top::Profile::document;
@@ -280,7 +288,7 @@ TEST(DeviceTopotek, YprTurnsInTheDriversUnitAndPtzStops) {
   d.advance(500000);
   EXPECT_NEAR(d.yaw().angle, 10 / 1.220740379 * 0.5, 0.01);
   EXPECT_NEAR(d.pitch().angle, -12 / 1.220740379 * 0.5, 0.01);
-  EXPECT_EQ(ask(d, "#TPUG2wPTZ00", 500000, Link::uart).at(0), top::with_checksum("#TPGU2wPTZ00"));
+  EXPECT_TRUE(ask(d, "#TPUG2wPTZ00", 500000, Link::uart).empty());  // taken without a word
   const double stopped = d.pitch().angle;
   d.advance(900000);
   EXPECT_EQ(d.pitch().angle, stopped);
@@ -358,7 +366,7 @@ TEST(DeviceTopotek, TrackingStateMachine) {
   EXPECT_EQ(state(0), "00");
   ask(d, "#TPUD2wTRC02", 0, Link::uart);
   EXPECT_EQ(state(0), "01");
-  EXPECT_EQ(ask(d, loc(0, 0, 62, 111, 9), 100000, Link::uart).size(), 1u);
+  EXPECT_TRUE(ask(d, loc(0, 0, 62, 111, 9), 100000, Link::uart).empty());  // no echo
   EXPECT_TRUE(run_until(d, 400000).empty());
   EXPECT_EQ(state(400000), "01");
   const auto boxes = run_until(d, 1500000);
@@ -377,7 +385,7 @@ TEST(DeviceTopotek, TrackingStateMachine) {
   EXPECT_NEAR(le(2) + le(6) / 2.0, 540, 1);
   EXPECT_EQ(oft.data()[8], '2');
   const auto cancel = ask(d, "#TPUD2wTRC01", 1500000, Link::uart);
-  ASSERT_EQ(cancel.size(), 2u);
+  ASSERT_EQ(cancel.size(), 1u);  // the box, no echo
   EXPECT_EQ(parsed(cancel[0]).data(), std::string(8, '\0') + "1");
   EXPECT_EQ(state(1500000), "01");
   EXPECT_TRUE(run_until(d, 2000000).empty());
@@ -399,11 +407,12 @@ TEST(DeviceTopotek, LensWithoutTrackingAnswersState4) {
 }
 
 // Position writes: no source records what a Topotek device answers to
-// LAT/LON/ALT/AZI (the field profile echoed LAT/LON on the word of our own
-// tracker, which no capture bears out), so the field profile answers them
-// as the document profile does: LAT/LON in 5.8.7's target output layout,
-// ALT/AZI and the time echoed (on a UART; what a network link answers to a
-// write is the link's rule).
+// LAT/LON (the field profile echoed them on the word of our own tracker,
+// which no capture bears out), so the field profile answers them as the
+// document profile does: in 5.8.7's target output layout
+// (top::write_reply: data). ALT, AZI and the time, which the document gives
+// no reply form, get no answer in either profile, on a UART as over UDP
+// (top::write_reply: nothing; a real Topotek camera echoed no write).
 TEST(DeviceTopotek, PositionWritesGetTheDocumentsAnswerInEitherProfile) {
   topsim::DeviceOptions o;
   o.profile = top::Profile::document;
@@ -424,10 +433,9 @@ TEST(DeviceTopotek, PositionWritesGetTheDocumentsAnswerInEitherProfile) {
     EXPECT_TRUE(dec.findings.empty()) << w << ": " << dec.summary();
   }
   for (const char* w : {"#tpUD8wALT000123.4", "#tpUD5wAZI045.0", "#tpUDCwUTC143005261126"}) {
-    std::string echo = w;
-    std::swap(echo[3], echo[4]);
-    EXPECT_EQ(ask(fld, w, 0, Link::uart), std::vector<std::string>{top::with_checksum(echo)}) << w;
-    EXPECT_EQ(ask(doc, w, 0, Link::uart), std::vector<std::string>{top::with_checksum(echo)}) << w;
+    EXPECT_TRUE(ask(fld, w, 0, Link::uart).empty()) << w;
+    EXPECT_TRUE(ask(doc, w, 0, Link::uart).empty()) << w;
+    EXPECT_TRUE(ask(fld, std::string("#tpPD") + (w + 5), 0, Link::network).empty()) << w;
   }
 }
 

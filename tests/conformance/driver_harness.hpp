@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
@@ -16,6 +17,7 @@
 
 #include "conf/link.hpp"
 #include "conf/transport.hpp"
+#include "loopback.hpp"
 #include "running_server.hpp"
 #include "sim/server.hpp"
 #include "top/dialect.hpp"
@@ -71,25 +73,60 @@ struct DriverRun {
   std::uint64_t start_us = 0;            // on the client's clock
 };
 
+// How a client's UDP socket takes what a device sends, as the public
+// clients' do (a real Topotek camera answers from a port of its own to the
+// asking port and to UDP 9004: top::TraitKind ephemeral_reply_port, fan_out).
+enum class UdpClient : std::uint8_t {
+  // One socket on an ephemeral port, not connected: sendto() the device,
+  // take what comes from any port of its host. ArduPilot's NET_Pn UDP client
+  // with PR #34227 (AP_Networking: accept UDP client replies from a
+  // different source port, tested on a Topotek KHP415), and topconf.
+  unconnected,
+  // One socket connect()ed to the device's address and port: the kernel
+  // drops what comes from another port. ArduPilot master's NET_Pn UDP
+  // client (libraries/AP_Networking/AP_Networking_port.cpp @ d0678504,
+  // udp_client_loop()); it hears nothing from a real Topotek camera.
+  connected,
+  // Requests from an unbound socket (never read), answers on a second one
+  // bound to UDP 9004 (SO_REUSEADDR, not connected, any source): PixEagle's
+  // GimbalInterface (src/classes/gimbal_interface.py @ 0724458 and
+  // @ 2608012, _init_listening_socket, _send_command). PixEagle binds
+  // 0.0.0.0:9004; here 9004 of the test's own loopback host, the device's.
+  pixeagle,
+};
+
+// The client's end of a UDP link to udp://HOST:PORT as `how` makes it.
+std::unique_ptr<topconf::Transport> open_udp_client(UdpClient how, const std::string& host,
+                                                    std::uint16_t port, top::Model model);
+
 // Runs `client` against topsim for `duration_ms` over `kind` (udp, tcp or pty),
 // with `faults` (topsim --fault). The server records the run to `record`
-// (empty: none). Throws on a link that cannot be opened.
+// (empty: none). Over UDP and TCP the device is served on its model's port
+// (top::default_port: Topotek 9003, SkyDroid 5000) of a loopback host of
+// the run's own (loopback.hpp), as `topsim` serves it, and the client's
+// socket is `how`. Throws on a link that cannot be opened.
 inline DriverRun run_driver(DriverClient& client, top::Model model, topsim::TransportKind kind,
                             std::uint64_t duration_ms, const std::string& record,
                             topsim::DeviceOptions options = {},
-                            const topsim::FaultConfig& faults = {}) {
+                            const topsim::FaultConfig& faults = {},
+                            UdpClient how = UdpClient::unconnected) {
   topsim::ServerConfig cfg;
   cfg.model = model;
   cfg.kind = kind;
   cfg.record = record;
   cfg.device_options = options;
   cfg.faults = faults;
+  cfg.host = own_loopback();
+  cfg.port = topsim::default_port(model);
   RunningServer s(cfg);
-  const std::string target =
-      kind == topsim::TransportKind::udp   ? "udp://127.0.0.1:" + std::to_string(s.server.port())
-      : kind == topsim::TransportKind::tcp ? "tcp://127.0.0.1:" + std::to_string(s.server.port())
-                                           : "serial:" + s.server.pty_path();
-  auto t = topconf::open_transport(target, model, 0);
+  std::unique_ptr<topconf::Transport> t =
+      kind == topsim::TransportKind::udp
+          ? open_udp_client(how, cfg.host, s.server.port(), model)
+          : topconf::open_transport(
+                kind == topsim::TransportKind::tcp
+                    ? "tcp://" + cfg.host + ":" + std::to_string(s.server.port())
+                    : "serial:" + s.server.pty_path(),
+                model, 0);
   client.client = t->client_address();
   topconf::FrameLink link(*t, nullptr, 4096);
   DriverRun run;
@@ -135,8 +172,26 @@ struct JsonLines {
 };
 JsonLines topdump_read_json(const std::string& pcap);
 
+// What a test tells topdump of a recording of topsim `model` over `kind`:
+// the dialect (topdump reads the first frames of a serial line's recording
+// before it could tell it; not the model, whose field traits a
+// --profile document device does not have), and for a Topotek client on a
+// pseudo-terminal, that its U source is no finding: topsim records a serial
+// line as UDP 127.0.0.1:9001 -> 9000 (conformance/README.md), where topdump
+// names a U source as a network client's (reply-interface), and U is the
+// UART client's address.
+inline std::string topdump_args(top::Model model, topsim::TransportKind kind) {
+  std::string a = "--dialect " + std::string(top::to_string(top::dialect_of(model)));
+  if (kind == topsim::TransportKind::pty && top::dialect_of(model) == top::Dialect::topotek)
+    a += " --mute reply-interface";
+  return a;
+}
+
 // Runs the built `topdump read --json FILE` and collects its findings of
-// `min_severity` or worse ("info", "warning", "error").
-Dump topdump_findings(const std::string& pcap, const std::string& min_severity = "warning");
+// `min_severity` or worse ("info", "warning", "error"). `args` go before
+// the file (--model sip).
+Dump topdump_findings(const std::string& pcap, const std::string& min_severity = "warning",
+                      const std::string& args = {});
+JsonLines topdump_read_json(const std::string& pcap, const std::string& args);
 // Every finding as "code (ident, frame N): message" lines, for a test's failure text.
 std::string describe(const Dump& d);

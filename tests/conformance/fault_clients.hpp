@@ -148,18 +148,25 @@ struct DumpFrame {
   double time = 0;
   char src = 0, dst = 0, control = 0;
   std::string ident;
-  bool from_device = false;  // sent from the endpoint the first frame went to
+  bool from_device = false;  // not sent from the endpoint the first frame came from
   std::map<std::string, double> values;
 };
 
-inline std::vector<DumpFrame> dump_frames(const std::string& pcap) {
+// The frames of a recording of one client's run, as topdump reads it with
+// `args` (--model): the client's from the endpoint its first frame came
+// from, the device's from the port it serves or a port of its own (a real
+// Topotek camera's reply port); a copy of the device's last frame to
+// another of the client's ports (topdump's copy_of) is that frame again,
+// not listed twice.
+inline std::vector<DumpFrame> dump_frames(const std::string& pcap, const std::string& args = {}) {
   std::vector<DumpFrame> v;
-  std::string device;  // the endpoint the client's first frame went to
-  for (const auto& [line, j] : topdump_read_json(pcap).lines) {
+  std::string client;  // the endpoint the client's first frame came from
+  for (const auto& [line, j] : topdump_read_json(pcap, args).lines) {
     if (j.is_discarded() || j.value("type", "") != "frame") continue;
-    if (device.empty()) device = j.value("to", "");
+    if (!j.value("copy_of", nlohmann::json()).is_null()) continue;
+    if (client.empty()) client = j.value("from", "");
     DumpFrame f;
-    f.from_device = j.value("from", "") == device;
+    f.from_device = j.value("from", "") != client;
     f.time = j.value("time", 0.0);
     f.ident = j.value("ident", "");
     const std::string s = j.value("src", ""), d = j.value("dst", ""), c = j.value("control", "");

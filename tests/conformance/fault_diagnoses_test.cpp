@@ -65,7 +65,7 @@ std::unique_ptr<Recorded> record(const std::string& name, top::Model model, Clie
   topsim::DeviceOptions options;
   options.profile = profile;
   run_driver(*c, model, topsim::TransportKind::udp, ms, r->pcap, options, faults(spec));
-  r->dump = topdump_findings(r->pcap);
+  r->dump = topdump_findings(r->pcap, "warning", topdump_args(model, topsim::TransportKind::udp));
   return r;
 }
 
@@ -212,8 +212,10 @@ TEST_P(MotionFault, InvertedPitchRateMovesTheOtherWay) {
   const top::Model m = GetParam();
   const auto healthy = record("motion_" + model_name(m), m, client_of(m), "");
   const auto fault = record("invert_" + model_name(m), m, client_of(m), "invert=pitch:rate");
-  const auto h = attitude(faultclients::dump_frames(healthy->pcap));
-  const auto f = attitude(faultclients::dump_frames(fault->pcap));
+  const auto h = attitude(
+      faultclients::dump_frames(healthy->pcap, topdump_args(m, topsim::TransportKind::udp)));
+  const auto f =
+      attitude(faultclients::dump_frames(fault->pcap, topdump_args(m, topsim::TransportKind::udp)));
   ASSERT_GE(h.size(), 20u);
   ASSERT_GE(f.size(), 20u);
   // pitch over the rate phase (0.5 s to 1.5 s after the start)
@@ -239,8 +241,10 @@ TEST_P(MotionFault, IgnoredAngleCommandIsEchoedAndNothingMoves) {
   const top::Model m = GetParam();
   const auto healthy = record("motion2_" + model_name(m), m, client_of(m), "");
   const auto fault = record("ignore_motion_" + model_name(m), m, client_of(m), "ignore-motion=GAY");
-  const auto hf = faultclients::dump_frames(healthy->pcap);
-  const auto ff = faultclients::dump_frames(fault->pcap);
+  const auto hf =
+      faultclients::dump_frames(healthy->pcap, topdump_args(m, topsim::TransportKind::udp));
+  const auto ff =
+      faultclients::dump_frames(fault->pcap, topdump_args(m, topsim::TransportKind::udp));
   const auto h = attitude(hf);
   const auto f = attitude(ff);
   ASSERT_GE(h.size(), 20u);

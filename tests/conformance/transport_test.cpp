@@ -19,6 +19,7 @@
 #include "binaries.hpp"
 #include "conf/report.hpp"
 #include "conf/runner.hpp"
+#include "loopback.hpp"
 #include "running_server.hpp"
 #include "sim/server.hpp"
 #include "test_matrix_util.hpp"
@@ -27,6 +28,9 @@ namespace {
 
 using topconf::Verdict;
 
+// topsim as the command line serves it (the model's port; UDP: a real
+// Topotek camera's routes in the field), on a loopback host of the run's
+// own (loopback.hpp), against topconf's transport of the target.
 topconf::RunResult run_over(top::Model m, topsim::TransportKind kind,
                             const std::string& record = {},
                             top::Profile profile = top::Profile::field) {
@@ -35,20 +39,23 @@ topconf::RunResult run_over(top::Model m, topsim::TransportKind kind,
   cfg.device_options.profile = profile;
   cfg.kind = kind;
   cfg.record = record;
+  cfg.host = own_loopback();
+  cfg.port = topsim::default_port(m);
   RunningServer s(cfg);
   std::string target;
   switch (kind) {
     case topsim::TransportKind::udp:
-      target = "udp://127.0.0.1:" + std::to_string(s.server.port());
+      target = "udp://" + cfg.host + ":" + std::to_string(s.server.port());
       break;
     case topsim::TransportKind::tcp:
-      target = "tcp://127.0.0.1:" + std::to_string(s.server.port());
+      target = "tcp://" + cfg.host + ":" + std::to_string(s.server.port());
       break;
     default:
       target = "serial:" + s.server.pty_path();
       break;
   }
-  auto t = topconf::open_transport(target, m, 0);
+  // bound as `topconf run` binds (open_target: sip on UDP 9004 of its host)
+  auto t = topconf::open_target(false, target, m, "", 1, -1);
   topconf::RunOptions o;
   o.settle_ms = 3;  // loopback: duplicates would arrive within a millisecond
   return topconf::run_matrix(default_matrix(m), *t, o);

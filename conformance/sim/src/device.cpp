@@ -159,6 +159,21 @@ void Device::advance(std::uint64_t now_us) noexcept {
   }
 }
 
+UdpTraits Device::udp_traits() const noexcept {
+  auto trait = [&](top::TraitKind k, const std::optional<bool>& opt) {
+    return opt ? *opt : top::find_trait(k, model_, opts_.profile) != nullptr;
+  };
+  UdpTraits t;
+  t.ephemeral_reply_port = trait(top::TraitKind::ephemeral_reply_port, opts_.ephemeral_reply_port);
+  t.fan_out = trait(top::TraitKind::fan_out, opts_.fan_out);
+  t.duplicate = trait(top::TraitKind::duplicate_to_client_port, opts_.duplicate);
+  return t;
+}
+
+bool Device::silent_write(const top::CommandSpec& cmd) const noexcept {
+  return !opts_.write_echo.value_or(false) && top::write_reply(cmd) == top::WriteReply::nothing;
+}
+
 bool Device::inverted(std::size_t axis, std::string_view ident) const noexcept {
   const std::optional<bool>& opt = axis == 0 ? opts_.yaw_inverted : opts_.pitch_inverted;
   if (opt) return *opt;
@@ -346,9 +361,10 @@ void Device::handle(const Frame& req, Link link, std::uint64_t now_us,
       stored = month_early(*dec.form, std::move(stored));
     settings_[std::string(id)] = stored;
     // A write with a reply layout of its own (Topotek 5.8.7 LON/LAT target
-    // output) is answered in that layout; others are echoed. The field's
-    // layout first under the field profile, never under the document's.
-    // (The 5.9 LRF result carries a measurement: device_topotek.cpp.)
+    // output) is answered in that layout; others are echoed where
+    // top::write_reply says so. The field's layout first under the field
+    // profile, never under the document's. (The 5.9 LRF result carries a
+    // measurement: device_topotek.cpp.)
     const top::FormSpec* layout = nullptr;
     for (const auto& f : cmd.forms) {
       if (f.control != 'w' || f.role != top::Role::response || &f == dec.form) continue;
@@ -362,6 +378,10 @@ void Device::handle(const Frame& req, Link link, std::uint64_t now_us,
           make(top::choose_header(dialect_, cmd.address, data.size()), req, 'w', id, data));
       return;
     }
+    // A write the document gives no answer is taken without one
+    // (top::write_reply); a camera whose clock is off (clock=month-early)
+    // answers a date set with that clock.
+    if (silent_write(cmd) && !(opts_.faults.clock_month_early && top::carries_date(id))) return;
     out.push_back(make(req.header, req, 'w', id, stored));
     return;
   }

@@ -110,8 +110,43 @@ std::vector<Device::TraitLine> Device::describe() const {
     out.push_back({std::string(top::to_string(k)), value, std::string(top::to_string(t->source)),
                    std::string(t->evidence)});
   }
+  describe_udp(out);
   if (dialect_ == top::Dialect::topotek) describe_topotek(out);
   return out;
+}
+
+void Device::describe_udp(std::vector<TraitLine>& out) const {
+  // The ports the document gives the model (top::known_ports): what the
+  // UDP traits depart from.
+  std::string served_src, client_src;
+  for (const top::PortSpec& p : top::known_ports()) {
+    if (!(p.models & top::model_bit(model_)) || p.tcp) continue;
+    if (p.client && client_src.empty()) client_src = std::string(p.source);
+    if ((p.served & top::model_bit(model_)) && served_src.empty())
+      served_src = std::string(p.source);
+  }
+  const UdpTraits on = udp_traits();
+  // One switch: shown for a model with the trait in the field, or when set.
+  auto line = [&](const char* name, top::TraitKind k, const std::optional<bool>& opt, bool value,
+                  const char* on_text, const char* off_text, const std::string& doc) {
+    const top::Trait* t = top::find_trait(k, model_, top::Profile::field);
+    if (!t && !opt) return;
+    const top::Trait* applied = top::find_trait(k, model_, opts_.profile);
+    std::string source = opt       ? "option"
+                         : applied ? std::string(top::to_string(applied->source))
+                                   : "document rule";
+    out.push_back({name, value ? on_text : off_text, source,
+                   t && (value || opt || doc.empty()) ? std::string(t->evidence) : doc});
+  };
+  line("reply-from", top::TraitKind::ephemeral_reply_port, opts_.ephemeral_reply_port,
+       on.ephemeral_reply_port, "ephemeral", "served", served_src);
+  line("fan-out", top::TraitKind::fan_out, opts_.fan_out, on.fan_out, "on", "off", client_src);
+  line("duplicate", top::TraitKind::duplicate_to_client_port, opts_.duplicate, on.duplicate, "on",
+       "off", client_src);
+  // Writes: answered as top::write_reply says (none where the document
+  // gives no reply form), or every write echoed (--write-echo on).
+  const bool echo = opts_.write_echo.value_or(false);
+  line("write-echo", top::TraitKind::silent_writes, opts_.write_echo, echo, "on", "off", "");
 }
 
 void Device::describe_topotek(std::vector<TraitLine>& out) const {

@@ -1,7 +1,7 @@
 // The commands with state behind them, as a table: (dialect, identifier,
 // control) -> handler. A handler answers (true) or leaves the request to
-// the catalog-driven answer of Device::handle (false); the SkyDroid writes
-// are echoed once their handler took them.
+// the catalog-driven answer of Device::handle (false); a write is echoed
+// once its handler took it, where top::write_reply says so.
 #include <algorithm>
 
 #include "device_util.hpp"
@@ -173,7 +173,7 @@ struct Entry {
   std::string_view ident;
   char control;
   Handlers::Fn fn;
-  bool echo = false;  // the write is echoed once the handler took it
+  bool echo = false;  // the write is echoed once the handler took it (Device::silent_write)
 };
 
 constexpr top::Dialect kSky = top::Dialect::skydroid;
@@ -215,7 +215,10 @@ bool Device::dispatch(const top::Frame& req, const top::Decoded& dec, std::uint6
     if (const top::MotionSpec* m = top::motion_of(dialect_, id))
       if (m->kind == top::MotionKind::angle || m->kind == top::MotionKind::rate) entry = &kMotion;
   if (!entry || !entry->fn(call)) return false;
-  if (entry->echo) Handlers::echo(call);
+  // Echoed where top::write_reply says a write is (SkyDroid 2.3.1; a
+  // Topotek PTZ is taken without a word), and by the ignore-motion= fault's
+  // firmware, which echoes what it does not carry out.
+  if (entry->echo && (!silent_write(*dec.command) || ignores_motion(id))) Handlers::echo(call);
   return true;
 }
 

@@ -5,8 +5,10 @@
 // field profile), GIA switches the attitude stream (GIA frames in the
 // field, GIC in the document), the GIC query is answered as that camera
 // does, tracking is a small state machine (TRC, LOC, OFT), and a
-// rangefinder measurement is answered with its range (LRF). Asked before
-// device_handlers.cpp's table (Device::dispatch).
+// rangefinder measurement is answered with its range (LRF); a write gets
+// the answer top::write_reply gives it (none where the document gives it
+// no reply form). Asked before device_handlers.cpp's table
+// (Device::dispatch).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -24,8 +26,12 @@ struct TopotekHandlers {
   using Fn = detail::HandlerFn;
 
   // The write back, its header kept (a real Topotek camera answers #tp with
-  // #tp: PixEagle session 20260917T185212Z-identity, GMS).
-  static bool echo(const Call& c) {
+  // #tp: PixEagle session 20260917T185212Z-identity, GMS), where
+  // top::write_reply gives the write an answer (Device::silent_write: the
+  // same camera echoed none of the writes the document gives no reply
+  // form); `always` for a fault's echo.
+  static bool echo(const Call& c, bool always = false) {
+    if (!always && c.dec.command && c.dev.silent_write(*c.dec.command)) return true;
     c.out.push_back(
         c.dev.make(c.req.header, c.req, c.req.control, c.req.ident_view(), c.req.data()));
     return true;
@@ -37,7 +43,9 @@ struct TopotekHandlers {
     Device& d = c.dev;
     const top::MotionSpec* m = top::motion_of(d.dialect_, c.req.ident_view());
     if (!m || (m->kind != top::MotionKind::angle && m->kind != top::MotionKind::rate)) return false;
-    if (d.ignores_motion(c.req.ident_view())) return echo(c);  // nothing moves
+    // ignore-motion=: firmware that echoes a command it does not carry out
+    // (the echo is the fault's, even where the healthy device is silent)
+    if (d.ignores_motion(c.req.ident_view())) return echo(c, true);
     const bool fld = d.field();
     for (const top::MotionAxis& x : m->fields()) {
       const auto axis = static_cast<std::size_t>(x.axis);
@@ -73,7 +81,9 @@ struct TopotekHandlers {
         top::stream_enabled_by(d.dialect_, c.req.ident_view(), d.opts_.profile);
     if ((v != 0 && v != 1) || !s) return false;
     d.start_stream(s->push, v ? d.opts_.topotek_stream_hz : 0, c.req.src, c.now_us);
-    return echo(c);
+    // no-stream=: firmware that answers the switch and never streams (the
+    // answer is the fault's, even where the healthy device is silent)
+    return echo(c, d.opts_.faults.never_pushes(s->push));
   }
 
   // The GIC query: the attitude now, in the identifier top::reply_ident

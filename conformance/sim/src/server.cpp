@@ -6,58 +6,24 @@
 #include <unistd.h>
 
 #include <asio.hpp>
+#include <cerrno>
 #include <chrono>
 #include <cstring>
-#include <deque>
 #include <functional>
 #include <map>
 #include <optional>
 #include <stdexcept>
 
 #include "pcapio/writer.hpp"
+#include "server_line.hpp"
 #include "sim/intake.hpp"
 #include "top/device.hpp"
 #include "top/dialect.hpp"
+#include "udp_copies.hpp"
 
 namespace topsim {
-namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// A byte stream with a write queue (TCP socket, pty master, serial port).
-template <class S>
-class Line : public std::enable_shared_from_this<Line<S>> {
- public:
-  explicit Line(S s) : s_(std::move(s)) {}
-  S& stream() { return s_; }
-  void write(std::string bytes) {
-    // A client that never reads: bounded; new writes are dropped (the
-    // front one may be in flight).
-    if (q_.size() >= 4096) return;
-    const bool idle = q_.empty();
-    q_.push_back(std::move(bytes));
-    if (idle) pump();
-  }
-  bool open = true;
-
- private:
-  void pump() {
-    auto self = this->shared_from_this();
-    asio::async_write(s_, asio::buffer(q_.front()), [self](std::error_code ec, std::size_t) {
-      if (ec) {
-        self->open = false;
-        self->q_.clear();
-        return;
-      }
-      self->q_.pop_front();
-      if (!self->q_.empty()) self->pump();
-    });
-  }
-  S s_;
-  std::deque<std::string> q_;
-};
-
-}  // namespace
 
 std::uint16_t default_port(top::Model m) noexcept {
   const top::PortSpec* p = top::default_port(m);
@@ -104,6 +70,12 @@ struct Server::Impl {
     std::uint16_t port = 0;
   };
   std::vector<std::unique_ptr<UdpPort>> udp;  // the model's port, then extra ones (C10: 9002)
+  // UDP: where the device's datagrams go (sim/fanout.hpp), and the port of
+  // its own they leave from (UdpTraits::ephemeral_reply_port), if any.
+  std::optional<Fanout> fanout;
+  std::unique_ptr<UdpPort> reply_sock;
+  asio::ip::address last_host;  // the client's host: where the last request came from
+  bool have_host = false;
   std::optional<asio::ip::tcp::acceptor> acceptor;
   std::uint16_t bound_port = 0;
   std::string pty_path;
@@ -111,11 +83,17 @@ struct Server::Impl {
 
   // Where the device's frames go, and how to record them.
   struct Peer {
-    std::function<void(std::string)> send;
-    pcapio::Endpoint remote, local;
+    std::function<void(std::string)> send;  // a stream link's line
+    pcapio::Endpoint remote, local;         // the request's ends (the line's)
     bool stream_link = false;
     std::string_view link = "udp";  // for on_traffic
     std::string name;               // the peer, for on_traffic
+    // UDP: the socket the request reached, the client's host and the ports
+    // a reply goes to there (a push's: the fan-out's when it leaves).
+    UdpPort* served = nullptr;
+    asio::ip::address host;
+    std::vector<std::uint16_t> ports;
+    bool push = false;
   };
   Peer stream_peer;  // the last peer that sent a request (receives pushes)
   bool have_stream_peer = false;
@@ -131,11 +109,14 @@ struct Server::Impl {
     return o;
   }
 
-  // A power cycle: the device's state as at start, crash and hang cleared.
+  // A power cycle: the device's state as at start, crash and hang cleared;
+  // it forgets who asked.
   void restart() {
     device = Device(cfg.model, device_options());
     faults.restart();
     stream_timer.cancel();
+    if (fanout) fanout.emplace(device.udp_traits(), fanout->client_port());
+    have_stream_peer = false;
   }
   void wait_hangup(std::shared_ptr<asio::signal_set> sig) {
     sig->async_wait([this, sig](std::error_code ec, int) {
@@ -178,9 +159,42 @@ struct Server::Impl {
 
   // Sends one write of the device to `peer`: recorded, told, sent.
   void deliver(const Peer& peer, std::string bytes) {
+    if (peer.served) {
+      send_udp(peer, bytes);
+      return;
+    }
     if (pcap) pcap->write(peer.local, peer.remote, bytes);
     if (cfg.on_traffic) cfg.on_traffic(Traffic{peer.link, '>', peer.name, bytes});
     peer.send(std::move(bytes));
+  }
+
+  static std::uint32_t v4(const asio::ip::address& a) {
+    return a.is_v4() ? a.to_v4().to_uint() : 0x7F000001u;
+  }
+
+  // One datagram of the device to every port of the client's host the
+  // fan-out names, from the reply port (or the port the request reached):
+  // each copy recorded and told, all sent by one sendmmsg(2) so that they
+  // leave together (top::fan_out_copy_window_us).
+  void send_udp(const Peer& peer, const std::string& bytes) {
+    UdpPort& from = reply_sock ? *reply_sock : *peer.served;
+    const std::vector<std::uint16_t> ports = peer.push && fanout ? fanout->push() : peer.ports;
+    std::vector<asio::ip::udp::endpoint> to;
+    to.reserve(ports.size());
+    std::error_code e;
+    const auto local = from.sock.local_endpoint(e);
+    const pcapio::Endpoint ours =
+        pcapio::Endpoint::ipv4(e ? 0x7F000001u : v4(local.address()), from.port);
+    for (const std::uint16_t port : ports) {
+      to.emplace_back(peer.host, port);
+      if (pcap) pcap->write(ours, pcapio::Endpoint::ipv4(v4(peer.host), port), bytes);
+      if (cfg.on_traffic)
+        cfg.on_traffic(Traffic{"udp", '>',
+                               endpoint_name(to.back()) +
+                                   (reply_sock ? " from port " + std::to_string(from.port) : ""),
+                               bytes});
+    }
+    send_copies(from.sock.native_handle(), to, bytes);
   }
 
   Intake intake(Link link) { return Intake{device, link, &faults}; }
@@ -196,6 +210,7 @@ struct Server::Impl {
     stats.frames_in.fetch_add(frames, std::memory_order_relaxed);
     if (!datagram && dec.buffered() > 0) arm_quiet(dec, peer, link, std::move(keep));
     stream_peer = peer;
+    stream_peer.push = true;  // UDP: pushes go where the fan-out says when they leave
     have_stream_peer = true;
     if (!out.empty()) emit(peer, out);
     arm_stream_timer();
@@ -237,24 +252,18 @@ struct Server::Impl {
         asio::buffer(u.buf), u.from, [this, &u](std::error_code ec, std::size_t n) {
           if (ec == asio::error::operation_aborted) return;
           if (!ec) {
-            asio::ip::udp::endpoint to = u.from;
-            if (cfg.reply_port) to.port(cfg.reply_port);
+            const bool new_host = !have_host || u.from.address() != last_host;
+            last_host = u.from.address();
+            have_host = true;
             Peer p;
-            p.remote = pcapio::Endpoint::ipv4(
-                to.address().is_v4() ? to.address().to_v4().to_uint() : 0x7F000001u, to.port());
+            p.served = &u;
+            p.host = u.from.address();
+            p.ports = fanout->request(u.from.port(), new_host);
+            p.remote = pcapio::Endpoint::ipv4(v4(u.from.address()), u.from.port());
             std::error_code e;
             const auto local = u.sock.local_endpoint(e);
-            p.local = pcapio::Endpoint::ipv4(
-                e || !local.address().is_v4() ? 0x7F000001u : local.address().to_v4().to_uint(),
-                u.port);
-            p.send = [&u, to](std::string b) {
-              std::error_code se;
-              u.sock.send_to(asio::buffer(b), to, 0, se);
-            };
-            if (cfg.on_traffic)
-              p.name = endpoint_name(u.from) +
-                       (cfg.reply_port ? " (replies to port " + std::to_string(to.port()) + ")"
-                                       : std::string());
+            p.local = pcapio::Endpoint::ipv4(e ? 0x7F000001u : v4(local.address()), u.port);
+            if (cfg.on_traffic) p.name = endpoint_name(u.from);
             on_bytes(u.dec, std::string_view(u.buf.data(), n), true, p, Link::network);
           }
           udp_receive(u);
@@ -370,6 +379,18 @@ Server::Server(ServerConfig cfg) : impl_(std::make_unique<Impl>(std::move(cfg)))
         m.udp.push_back(std::move(u));
       }
       m.bound_port = m.udp.front()->port;
+      m.fanout.emplace(m.device.udp_traits(),
+                       m.cfg.reply_port.value_or(top::client_port(m.cfg.model)));
+      if (m.fanout->traits().ephemeral_reply_port) {
+        // A port of its own, as a real Topotek camera's (sim/fanout.hpp);
+        // it serves nothing.
+        m.reply_sock = std::make_unique<Impl::UdpPort>(m.io);
+        asio::ip::udp::endpoint ep(addr, 0);
+        m.reply_sock->sock.open(ep.protocol(), ec);
+        if (!ec) m.reply_sock->sock.bind(ep, ec);
+        if (ec) throw std::runtime_error("udp " + m.cfg.host + ": reply port: " + ec.message());
+        m.reply_sock->port = m.reply_sock->sock.local_endpoint().port();
+      }
       for (auto& u : m.udp) m.udp_receive(*u);
       break;
     }
@@ -431,6 +452,18 @@ std::vector<std::uint16_t> Server::udp_ports() const {
   std::vector<std::uint16_t> out;
   for (const auto& u : impl_->udp) out.push_back(u->port);
   return out;
+}
+
+std::uint16_t Server::reply_from_port() const noexcept {
+  return impl_->reply_sock ? impl_->reply_sock->port : 0;
+}
+
+std::uint16_t Server::client_port() const noexcept {
+  return impl_->fanout ? impl_->fanout->client_port() : 0;
+}
+
+UdpTraits Server::udp_traits() const noexcept {
+  return impl_->fanout ? impl_->fanout->traits() : UdpTraits{};
 }
 
 void Server::stop_on_signals() {

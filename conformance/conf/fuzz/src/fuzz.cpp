@@ -398,6 +398,8 @@ FuzzResult run_fuzz(const Matrix& m, Transport& t, const FuzzOptions& o) {
   const CaseSource src(m.model, t.client_address(), o.seed, &m);
   res.catalog_cases = src.catalog_cases();
   Session s{m, t, o, src, FrameLink(t, o.pcap, 4096), {}, {}, 0, t.now_us()};
+  // the copies of a device's datagrams are one datagram (top/device.hpp fan_out)
+  s.link.accept_copies(sends_copies(m.model));
 
   try {
     const ProbeChoice choice = set_probes(m, t, s);

@@ -464,6 +464,9 @@ void CaseSource::judge(FuzzCase& c) const {
   if (!d.form || d.form->role == top::Role::response) return;
   for (const auto& fd : d.findings)
     if (fd.severity != top::Severity::info) return;
+  // A write the document gives no answer (top::write_reply: Topotek's
+  // set/control writes) promises none: only the form of a reply is checked.
+  if (f.control == 'w' && top::write_reply(*cmd) == top::WriteReply::nothing) return;
   c.promise = Promise::answer;
   c.level = level_for(cmd->ident, f.control, "positive");
 }

@@ -16,6 +16,11 @@ const top::DeviceForm* recorded_form_of(top::Dialect d, top::Model m, const top:
   return top::recorded_form(d, m, f, sent);
 }
 
+bool sends_copies(top::Model m) {
+  return top::find_trait(top::TraitKind::fan_out, m, top::Profile::field) ||
+         top::find_trait(top::TraitKind::duplicate_to_client_port, m, top::Profile::field);
+}
+
 bool reply_addressed(top::Dialect d, top::Model m, const top::Frame& f, char src, char dst) {
   if (f.src == dst && f.dst == src) return true;
   if (f.src != src || f.dst != dst) return false;
@@ -24,6 +29,16 @@ bool reply_addressed(top::Dialect d, top::Model m, const top::Frame& f, char src
 }
 
 void FrameLink::send(std::string_view bytes) {
+  if (copies_ && !recent_.empty()) {
+    // The copies of what came last arrive before the next request leaves
+    // (they leave the device together): what comes after the request may
+    // answer it, and is no copy of what came before.
+    const std::uint64_t until =
+        recent_.back().at + static_cast<std::uint64_t>(top::fan_out_copy_window_us);
+    std::string chunk;
+    for (std::size_t n = 0; n < 4096 && t_.receive(until, chunk); ++n) take(chunk);
+    recent_.clear();
+  }
   if (on_send) on_send(bytes);
   if (pcap_) pcap_->write(t_.local(), t_.remote(), bytes);
   t_.send(bytes);
@@ -46,26 +61,49 @@ bool FrameLink::next(std::uint64_t deadline, Received& out) {
       // for look-ahead): the link went quiet, so decide now.
       if (!t_.datagram() && dec_.buffered() > 0) {
         dec_.settle();
-        collect();
+        collect(now());
         if (!frames_.empty()) continue;
       }
       return false;
     }
-    if (on_chunk) on_chunk(chunk);
-    if (pcap_) pcap_->write(t_.remote(), t_.local(), chunk);
-    dec_.feed(chunk);
-    if (t_.datagram())
-      dec_.finish();
-    else
-      dec_.flush();
-    collect();
-    if (t_.datagram()) dec_.reset();
+    take(chunk);
   }
 }
 
-void FrameLink::collect() {
+void FrameLink::take(const std::string& chunk) {
+  const std::uint64_t at = t_.arrived_us();
+  if (pcap_) pcap_->write(t_.remote(), t_.local(), chunk);
+  std::uint64_t after = 0;
+  if (copies_ && t_.datagram() && copy_of_recent(chunk, at, after)) {
+    if (on_copy) on_copy(chunk, after);
+    return;
+  }
+  if (on_chunk) on_chunk(chunk);
+  dec_.feed(chunk);
+  if (t_.datagram())
+    dec_.finish();
+  else
+    dec_.flush();
+  collect(at);
+  if (t_.datagram()) dec_.reset();
+}
+
+bool FrameLink::copy_of_recent(const std::string& chunk, std::uint64_t at, std::uint64_t& after) {
+  const auto window = static_cast<std::uint64_t>(top::fan_out_copy_window_us);
+  while (!recent_.empty() && recent_.front().at + window <= at) recent_.pop_front();
+  for (const Recent& r : recent_)
+    if (r.bytes == chunk && at >= r.at) {
+      after = at - r.at;
+      return true;
+    }
+  // A device that floods cannot make this list long: the window is short.
+  if (recent_.size() >= 64) recent_.pop_front();
+  recent_.push_back(Recent{chunk, at});
+  return false;
+}
+
+void FrameLink::collect(std::uint64_t at) {
   top::StreamItem item;
-  const std::uint64_t at = now();
   while (dec_.next(item)) {
     if (item.kind == top::ItemKind::garbage) {
       garbage_ = true;

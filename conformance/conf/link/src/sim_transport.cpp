@@ -19,14 +19,24 @@ SimTransport::SimTransport(top::Model model, topsim::FaultConfig faults, std::ui
         return o;
       }()),
       device_(model, options_),
-      faults_(faults, seed) {}
+      faults_(faults, seed),
+      fanout_(device_.udp_traits(), top::client_port(model)),
+      // a port of the client's host that no device port table names
+      own_port_(top::client_port(model) ? top::client_port(model) : 40000) {}
 
 bool SimTransport::restart() {
   device_ = topsim::Device(device_.model(), options_);
   faults_.restart();
   queue_.clear();
   decoder_.reset();
+  fanout_ = topsim::Fanout(device_.udp_traits(), fanout_.client_port());
   return true;
+}
+
+std::size_t SimTransport::copies_to_us(const std::vector<std::uint16_t>& ports) const {
+  // a serial line has no ports: one copy
+  if (!datagram()) return 1;
+  return static_cast<std::size_t>(std::count(ports.begin(), ports.end(), own_port_));
 }
 
 char SimTransport::client_address() const { return top::client_address(device_.dialect(), link_); }
@@ -35,9 +45,16 @@ std::string SimTransport::describe() const {
   return std::string("in-process topsim ") + std::string(top::to_string(device_.model()));
 }
 
-void SimTransport::schedule(const std::vector<std::string>& frames) {
+void SimTransport::schedule(const std::vector<std::string>& frames, std::size_t copies) {
   std::vector<topsim::Emission> em;
   for (const auto& f : frames) faults_.apply(f, link_ == topsim::Link::uart, em);
+  if (copies != 1) {
+    // the copies of each emission, at its time (sim/fanout.hpp)
+    std::vector<topsim::Emission> all;
+    for (const auto& e : em)
+      for (std::size_t i = 0; i < copies; ++i) all.push_back(e);
+    em = std::move(all);
+  }
   for (auto& e : em) {
     std::uint64_t at = now_ + e.delay_us;
     if (!datagram()) {
@@ -62,7 +79,7 @@ void SimTransport::send(std::string_view bytes) {
   last_rx_ = now_;
   std::vector<std::string> replies;
   intake().take(decoder_, bytes, datagram(), now_, replies);
-  schedule(replies);
+  schedule(replies, datagram() ? copies_to_us(fanout_.request(own_port_)) : 1);
 }
 
 bool SimTransport::receive(std::uint64_t deadline_us, std::string& out) {
@@ -97,7 +114,7 @@ bool SimTransport::receive(std::uint64_t deadline_us, std::string& out) {
     }
     std::vector<std::string> frames;
     device_.poll(now_, frames);
-    schedule(frames);
+    schedule(frames, copies_to_us(fanout_.push()));
   }
 }
 

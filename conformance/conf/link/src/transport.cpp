@@ -1,11 +1,14 @@
 #include "conf/transport.hpp"
 
 #include <poll.h>
+#include <sys/socket.h>
+#include <sys/uio.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <asio.hpp>
 #include <chrono>
+#include <ctime>
 #include <type_traits>
 
 #include "top/device.hpp"
@@ -112,34 +115,27 @@ class UdpTransport : public AsioTransport<asio::ip::udp::socket> {
     if (ec) throw TransportError("udp://" + host + ": not an IP address");
     peer_ = asio::ip::udp::endpoint(addr, port);
     handle_.open(peer_.protocol(), ec);
+    // A fixed port (Topotek 9004) may be bound by another client of the
+    // device on this host too, as PixEagle's listener does.
+    if (!ec && local_port > 0) handle_.set_option(asio::socket_base::reuse_address(true), ec);
+    const asio::ip::address any = addr.is_v6() ? asio::ip::address(asio::ip::address_v6::any())
+                                               : asio::ip::address(asio::ip::address_v4::any());
     if (!ec)
-      handle_.bind(asio::ip::udp::endpoint(addr.is_loopback() ? addr : asio::ip::address_v4::any(),
+      handle_.bind(asio::ip::udp::endpoint(addr.is_loopback() ? addr : any,
                                            static_cast<std::uint16_t>(std::max(local_port, 0))),
                    ec);
-    if (!ec) handle_.connect(peer_, ec);
     if (ec)
-      throw TransportError("udp://" + host + ":" + std::to_string(port) + ": " + ec.message());
-    if (local_port > 0) {
-      // The device answers to a fixed port (Topotek 9004), not to our
-      // source port: do not filter on the peer's port.
-      handle_.close();
-      handle_.open(peer_.protocol(), ec);
-      handle_.set_option(asio::socket_base::reuse_address(true), ec);
-      handle_.bind(asio::ip::udp::endpoint(asio::ip::address_v4::any(),
-                                           static_cast<std::uint16_t>(local_port)),
-                   ec);
-      if (ec)
-        throw TransportError("udp bind port " + std::to_string(local_port) + ": " + ec.message());
-      connected_ = false;
-    }
+      throw TransportError("udp://" + host + ":" + std::to_string(port) +
+                           (local_port > 0 ? ": bind port " + std::to_string(local_port) : "") +
+                           ": " + ec.message());
+    // The kernel's arrival time of each datagram (arrived_us).
+    const int on = 1;
+    ::setsockopt(handle_.native_handle(), SOL_SOCKET, SO_TIMESTAMPNS, &on, sizeof on);
     handle_.non_blocking(true, ec);
   }
   void send(std::string_view b) override {
     std::error_code ec;
-    if (connected_)
-      handle_.send(asio::buffer(b.data(), b.size()), 0, ec);
-    else
-      handle_.send_to(asio::buffer(b.data(), b.size()), peer_, 0, ec);
+    handle_.send_to(asio::buffer(b.data(), b.size()), peer_, 0, ec);
     if (ec && ec != asio::error::connection_refused)
       throw TransportError("udp send: " + ec.message());
   }
@@ -147,21 +143,46 @@ class UdpTransport : public AsioTransport<asio::ip::udp::socket> {
     char buf[65536];
     for (;;) {
       if (!wait_readable(handle_.native_handle(), deadline_us)) return false;
-      std::error_code ec;
-      asio::ip::udp::endpoint from;
-      const std::size_t n = handle_.receive_from(asio::buffer(buf), from, 0, ec);
-      if (ec == asio::error::would_block || ec == asio::error::try_again) continue;
-      // ICMP port unreachable: nobody listens yet; keep waiting until the deadline.
-      if (ec == asio::error::connection_refused) {
-        refused_ = true;
-        if (steady_us() >= deadline_us) return false;
-        continue;
+      sockaddr_storage from{};
+      iovec iov{buf, sizeof buf};
+      alignas(cmsghdr) char control[CMSG_SPACE(sizeof(timespec))];
+      msghdr msg{};
+      msg.msg_name = &from;
+      msg.msg_namelen = sizeof from;
+      msg.msg_iov = &iov;
+      msg.msg_iovlen = 1;
+      msg.msg_control = control;
+      msg.msg_controllen = sizeof control;
+      const ssize_t n = ::recvmsg(handle_.native_handle(), &msg, 0);
+      const std::uint64_t now = steady_us();
+      if (n < 0) {
+        if (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR) continue;
+        // ICMP port unreachable (Linux reports it on unconnected sockets
+        // too, now and then): nobody listens yet; wait until the deadline.
+        if (errno == ECONNREFUSED) {
+          if (now >= deadline_us) return false;
+          continue;
+        }
+        throw TransportError(std::string("udp receive: ") + std::strerror(errno));
       }
-      if (ec) throw TransportError("udp receive: " + ec.message());
-      out.assign(buf, n);
+      // What another host sends is not the device's.
+      if (!from_peer_host(from)) continue;
+      arrived_ = now;
+      for (cmsghdr* c = CMSG_FIRSTHDR(&msg); c; c = CMSG_NXTHDR(&msg, c))
+        if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SCM_TIMESTAMPNS) {
+          timespec at{}, wall{};
+          std::memcpy(&at, CMSG_DATA(c), sizeof at);
+          ::clock_gettime(CLOCK_REALTIME, &wall);
+          const std::int64_t ago = (static_cast<std::int64_t>(wall.tv_sec) - at.tv_sec) * 1000000 +
+                                   (wall.tv_nsec - at.tv_nsec) / 1000;
+          if (ago > 0 && static_cast<std::uint64_t>(ago) < now)
+            arrived_ = now - static_cast<std::uint64_t>(ago);
+        }
+      out.assign(buf, static_cast<std::size_t>(n));
       return true;
     }
   }
+  std::uint64_t arrived_us() override { return arrived_; }
   pcapio::Endpoint local() const override { return local_of(handle_); }
   pcapio::Endpoint remote() const override { return remote_of(peer_); }
   std::string describe() const override {
@@ -169,9 +190,20 @@ class UdpTransport : public AsioTransport<asio::ip::udp::socket> {
   }
 
  private:
+  bool from_peer_host(const sockaddr_storage& from) const {
+    const asio::ip::address a = peer_.address();
+    if (from.ss_family == AF_INET && a.is_v4()) {
+      const auto& in = reinterpret_cast<const sockaddr_in&>(from);
+      return ntohl(in.sin_addr.s_addr) == a.to_v4().to_uint();
+    }
+    if (from.ss_family == AF_INET6 && a.is_v6()) {
+      const auto& in6 = reinterpret_cast<const sockaddr_in6&>(from);
+      return std::memcmp(in6.sin6_addr.s6_addr, a.to_v6().to_bytes().data(), 16) == 0;
+    }
+    return false;
+  }
   asio::ip::udp::endpoint peer_;
-  bool connected_ = true;
-  bool refused_ = false;
+  std::uint64_t arrived_ = 0;
 };
 
 class TcpTransport : public AsioTransport<asio::ip::tcp::socket> {

@@ -111,6 +111,19 @@ json send(const top::CommandSpec& c, char control, const std::string& data) {
   return j;
 }
 
+// A write the document gives no answer (top::write_reply: nothing): its
+// silence, or tolerated, an echo the document does not give.
+json unanswered_alts(const top::CommandSpec& c) {
+  const std::string why =
+      "the document gives " + std::string(c.ident) + " w no reply form (top::write_reply: nothing)";
+  return json::array({json{{"silence_ms", 60}},
+                      json{{"echo", true}, {"tolerated", true}, {"note", "an echo: " + why}},
+                      json{{"echo", true},
+                           {"addresses", "any"},
+                           {"tolerated", true},
+                           {"note", "an echo keeping the client's address first: " + why}}});
+}
+
 json echo_alts() {
   return json::array({json{{"echo", true}},
                       json{{"echo", true},
@@ -245,14 +258,34 @@ struct Generator {
     return k;
   }
 
+  // A state case's read: one whose reply has the write's layout.
+  bool readable(const Command& k) const {
+    return k.w && k.rq && k.rs && k.rs->role == top::Role::response && same_layout(*k.w, *k.rs) &&
+           !k.destructive;
+  }
+
   void positive(const Command& k) {
     const top::CommandSpec& c = k.c;
     // A write with its own reply layout (Topotek REC/CAP: state and file
-    // index) is answered in that layout; any other write is echoed.
+    // index) is answered in that layout; one the document gives no answer
+    // (top::write_reply: a Topotek set/control write) is checked by its
+    // silence, or by reading it back where a read can; any other write is
+    // echoed.
     const top::FormSpec* wr = nullptr;
     for (const auto& f : c.forms)
       if (f.control == 'w' && f.role == top::Role::response && !f.from_field()) wr = &f;
-    if (k.w) {
+    if (k.w && top::write_reply(c) == top::WriteReply::nothing) {
+      json cs = k.head("/write",
+                       readable(k) ? ": a write takes effect without an answer (read back)"
+                                   : ": a write is taken without an answer",
+                       k.level, k.tags({"positive", "write"}));
+      json step = {{"send", send(c, 'w', k.wdata)}};
+      step["expect"] = readable(k)
+                           ? json::array({json{{"readback", {{"send", send(c, 'r', k.rdata)}}}}})
+                           : unanswered_alts(c);
+      cs["steps"] = json::array({step});
+      cases.push_back(std::move(cs));
+    } else if (k.w) {
       json expect = echo_alts();
       std::string answer = "echoed with the addresses swapped";
       if (wr) {
@@ -279,8 +312,7 @@ struct Generator {
       cs["steps"] = json::array({{{"send", send(c, 'r', k.rdata)}, {"expect", reply_alts(reply)}}});
       cases.push_back(std::move(cs));
     }
-    if (k.w && k.rq && k.rs && k.rs->role == top::Role::response && same_layout(*k.w, *k.rs) &&
-        !k.destructive) {
+    if (readable(k)) {
       std::string alt = alternate_data(*k.w);
       if (!clean_request(d, model, c, 'w', alt)) alt = k.wdata;
       json cs = k.head("/state", ": a written value reads back",
@@ -402,6 +434,19 @@ struct Generator {
         alt["note"] = "the field's stream: " + std::string(fs->evidence);
         pushes.push_back(std::move(alt));
       }
+      // The switch's answer: its echo, or none where the document gives
+      // it none (top::write_reply); then the pushes are the answer.
+      const bool echoed = top::write_reply(*gaa) != top::WriteReply::nothing;
+      json steps = echoed
+                       ? json::array({
+                             {{"send", send(*gaa, 'w', on)}, {"expect", echo_alts()}},
+                             {{"expect", pushes}},
+                             {{"send", send(*gaa, 'w', "00")}, {"expect", echo_alts()}},
+                         })
+                       : json::array({
+                             {{"send", send(*gaa, 'w', on)}, {"expect", pushes}},
+                             {{"send", send(*gaa, 'w', "00")}, {"expect", unanswered_alts(*gaa)}},
+                         });
       cases.push_back(
           {{"id",
             dn + "/" + section_number(gaa->section) + "/" + std::string(gaa->ident) + "/stream"},
@@ -410,11 +455,7 @@ struct Generator {
            {"level", "must"},
            {"models", models_of(*gaa)},
            {"tags", json::array({"stream", "class-G", std::string(gaa->ident)})},
-           {"steps", json::array({
-                         {{"send", send(*gaa, 'w', on)}, {"expect", echo_alts()}},
-                         {{"expect", pushes}},
-                         {{"send", send(*gaa, 'w', "00")}, {"expect", echo_alts()}},
-                     })}});
+           {"steps", std::move(steps)}});
     }
   }
 };

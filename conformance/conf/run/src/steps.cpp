@@ -97,8 +97,13 @@ void CaseRunner::watch(const Step& s, const std::vector<Alternative>& alts, cons
           r.t_us <= seen.start + std::uint64_t{e.duration_ms} * 1000)
         seen.push_times[i].push_back(r.t_us);
     }
-    const bool push =
-        is_push(m_.dialect, id) && !(rq && top::answers_query(m_.dialect, rq->ident_view(), id));
+    // A frame of a push stream is a push, unless it answers the request: a
+    // read it answers (GIC -> GIA), or a write's echo (the write's control);
+    // the pushes a write switches on answer nothing.
+    const bool answers_rq =
+        rq && (rq->control == 'w' ? id == rq->ident_view() && r.frame.control == rq->control
+                                  : top::answers_query(m_.dialect, rq->ident_view(), id));
+    const bool push = is_push(m_.dialect, id) && !answers_rq;
     if (!push && !seen.answered) {
       seen.answered = true;
       seen.first_answer = r.t_us;
@@ -203,9 +208,17 @@ StepResult CaseRunner::run_readback(const Case& c, const Step& s, const std::str
   StepResult res;
   const Expectation& e = s.expect[0];
   w_.send(sent);
-  // The write's answer (any frame of the identifier) first.
+  // The write's answer (any frame of the identifier) first, where the
+  // document gives the write one (top::write_reply); a write it gives none
+  // is read back once the settle time has passed, answered or not.
+  const top::CommandSpec* cmd =
+      rq && rq->control == 'w' ? top::find_command(m_.dialect, rq->ident_view()) : nullptr;
+  const bool unanswered = cmd && top::write_reply(*cmd) == top::WriteReply::nothing;
   Received r;
-  std::uint64_t deadline = w_.now() + std::uint64_t{timeout} * 1000;
+  std::uint64_t deadline =
+      w_.now() + (unanswered ? std::uint64_t{o_.settle_ms ? *o_.settle_ms : m_.settle_ms}
+                             : std::uint64_t{timeout}) *
+                     1000;
   bool got = false;
   while (w_.next(deadline, r)) {
     if (rq && r.frame.ident_view() == rq->ident_view()) {
@@ -214,10 +227,13 @@ StepResult CaseRunner::run_readback(const Case& c, const Step& s, const std::str
     }
     if (top::is_error_reply(r.frame.ident_view())) break;
   }
-  if (!got) {
+  if (!got && !unanswered) {
     res.reason = "the write got no answer, nothing to read back";
     return res;
   }
+  if (!got)
+    w_.note("the document gives " + std::string(rq->ident_view()) +
+            " w no answer (top::write_reply): reading back");
   std::string read, err;
   if (!resolve_send(e.read, m_.dialect, t_.client_address(), read, err)) {
     res.outcome = Outcome::error;

@@ -21,6 +21,14 @@ class Wire {
     link_.on_garbage = [this](std::size_t n) {
       note("garbage: " + std::to_string(n) + " byte(s) that belong to no frame");
     };
+    // A device that sends each datagram to several of the client's ports
+    // (top/device.hpp fan_out, duplicate_to_client_port): a copy is that
+    // datagram again, neither a frame nor an answer of its own.
+    link_.accept_copies(sends_copies(m.model));
+    link_.on_copy = [this](std::string_view bytes, std::uint64_t after_us) {
+      log('<', std::string(bytes));
+      note("a copy of the datagram " + std::to_string(after_us) + " us before (fan-out)");
+    };
   }
 
   Wire(const Wire&) = delete;  // the link calls back into this one

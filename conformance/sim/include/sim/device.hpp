@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "sim/fanout.hpp"
 #include "top/top.hpp"
 
 namespace topsim {
@@ -52,6 +53,12 @@ struct DeviceFaults {
   bool any() const noexcept {
     return !mutes.empty() || !ignore_motion.empty() || invert[0] || invert[1] || invert[2] ||
            placeholder_identity || refuse_tracking || clock_month_early;
+  }
+  // Whether pushes of `ident` never come (no-stream=).
+  bool never_pushes(std::string_view ident) const noexcept {
+    for (const Mute& m : mutes)
+      if (m.ident == ident && m.from_us == 0 && m.until_us == kForever) return true;
+    return false;
   }
   // Whether a push of `ident` is withheld `since_on_us` after its stream
   // was switched on.
@@ -98,6 +105,16 @@ struct DeviceOptions {
   // What the Topotek rangefinder measures, in metres: the result a
   // measuring LRF write is answered with (X1X2X3X4X5.X6, Topotek 5.9).
   double range_m = 1234.5;
+  // The UDP traits of a real unit (top/device.hpp: ephemeral_reply_port,
+  // fan_out, duplicate_to_client_port; sim/fanout.hpp): unset, the
+  // profile's (field: the model's traits; document: none).
+  std::optional<bool> ephemeral_reply_port;
+  std::optional<bool> fan_out;
+  std::optional<bool> duplicate;
+  // true: echo every valid write top::write_reply gives no answer (the
+  // document gives it no reply form; a real Topotek camera echoes none:
+  // silent_writes); unset or false: answer each write as write_reply says.
+  std::optional<bool> write_echo;
   DeviceFaults faults;
 };
 
@@ -173,6 +190,12 @@ class Device {
   // The stored data of a setting (written value or default), "" if none.
   std::string setting(std::string_view ident) const;
   const std::vector<Stream>& streams() const noexcept { return streams_; }
+  // The UDP traits the device applies (its profile's, then the options'),
+  // for the transports that send its datagrams.
+  UdpTraits udp_traits() const noexcept;
+  // Whether a valid write of `cmd` gets no answer: top::write_reply says
+  // nothing and write_echo is not on.
+  bool silent_write(const top::CommandSpec& cmd) const noexcept;
   const Tracking& tracking() const noexcept { return tracking_; }
   std::uint64_t requests() const noexcept { return requests_; }
 
@@ -199,6 +222,7 @@ class Device {
   // One OFT tracking box of `t` with `status` ('2' tracking, '1' stopped).
   void push_box(const Tracking& t, char status, std::vector<std::string>& out) const;
   void describe_topotek(std::vector<TraitLine>& out) const;
+  void describe_udp(std::vector<TraitLine>& out) const;
   friend struct TopotekHandlers;
   // The form of a reply to `req`: form_of, and the request's header kept
   // where the keeps_request_header trait applies and the length fits it.

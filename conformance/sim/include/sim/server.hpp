@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,8 +31,12 @@ struct ServerConfig {
   top::Model model = top::Model::c12;
   TransportKind kind = TransportKind::udp;
   std::string host = "127.0.0.1";
-  std::uint16_t port = 0;        // 0: ephemeral (tests); the CLI fills the model's port
-  std::uint16_t reply_port = 0;  // UDP: 0 replies to the source port; Topotek: 9004
+  std::uint16_t port = 0;  // 0: ephemeral (tests); the CLI fills the model's port
+  // UDP: the client's port the device sends to (sim/fanout.hpp); unset: the
+  // model's (top::client_port: Topotek 9004, SkyDroid none); 0: none, the
+  // asking port gets the replies. Where replies go from, and to whom else,
+  // the device's UDP traits say (DeviceOptions; Device::udp_traits).
+  std::optional<std::uint16_t> reply_port;
   std::vector<std::uint16_t> extra_udp_ports;  // also served (C10: UDP 9002)
   std::string device;                          // serial device path
   unsigned baud = 115200;
@@ -69,6 +74,13 @@ class Server {
 
   std::uint16_t port() const noexcept;           // bound UDP/TCP port
   std::vector<std::uint16_t> udp_ports() const;  // every bound UDP port
+  // UDP: the port replies and pushes leave from, when the device sends from
+  // a port of its own (UdpTraits::ephemeral_reply_port), else 0 (from the
+  // port the request reached).
+  std::uint16_t reply_from_port() const noexcept;
+  // UDP: the client port it sends to (0: none) and its UDP traits.
+  std::uint16_t client_port() const noexcept;
+  UdpTraits udp_traits() const noexcept;
   // Stops run() on SIGINT/SIGTERM (asio::signal_set; for the CLI).
   void stop_on_signals();
   // Restarts the device on SIGHUP, as restart() does (for `topconf fuzz

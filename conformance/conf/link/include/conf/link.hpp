@@ -37,6 +37,11 @@ bool reply_addressed(top::Dialect d, top::Model m, const top::Frame& f, char src
 // a push by its identifier, or null.
 const top::DeviceForm* recorded_form_of(top::Dialect d, top::Model m, const top::Frame& f);
 
+// Whether a device of `m` may send each datagram more than once to the
+// same client port (the traits fan_out, duplicate_to_client_port of a real
+// Topotek camera): the copies are one datagram, not two answers.
+bool sends_copies(top::Model m);
+
 class FrameLink {
  public:
   // At most `max_queued` frames wait; an older one makes room for a newer.
@@ -51,16 +56,37 @@ class FrameLink {
   // Forgets the frames already decoded.
   void clear() { frames_.clear(); }
 
+  // Takes a datagram that repeats one received within
+  // top::fan_out_copy_window_us before it, with no request sent between
+  // them, as a copy of that one (sends_copies): told to on_copy, recorded,
+  // never decoded again. Two answers with the same bytes to two requests
+  // are two answers, however close: before a request leaves, the copies of
+  // the last datagram are waited for (until the window after it is over).
+  void accept_copies(bool on) { copies_ = on; }
+
   // Told of every write sent, every chunk received and every run of
   // garbage (its length).
   std::function<void(std::string_view)> on_send;
   std::function<void(std::string_view)> on_chunk;
   std::function<void(std::size_t)> on_garbage;
+  // Told of a copy and how long after the datagram it repeats it arrived.
+  std::function<void(std::string_view, std::uint64_t)> on_copy;
 
  private:
-  void collect();
+  // One chunk received: recorded, and decoded unless it is a copy.
+  void take(const std::string& chunk);
+  void collect(std::uint64_t at);
+  // Whether `chunk`, arrived at `at`, repeats a datagram of the last
+  // top::fan_out_copy_window_us (and since when); else it is remembered.
+  bool copy_of_recent(const std::string& chunk, std::uint64_t at, std::uint64_t& after);
 
   Transport& t_;
+  bool copies_ = false;
+  struct Recent {
+    std::string bytes;
+    std::uint64_t at;
+  };
+  std::deque<Recent> recent_;
   pcapio::Recorder* pcap_;
   std::size_t max_queued_;
   top::StreamDecoder dec_;

@@ -36,6 +36,10 @@ class Transport {
   // Waits until bytes arrive (true, `out` holds them) or `deadline_us`
   // passes (false). Throws TransportError.
   virtual bool receive(std::uint64_t deadline_us, std::string& out) = 0;
+  // When the bytes receive() gave last arrived, on now_us()'s clock: the
+  // kernel's time of the datagram over UDP (not when the runner got to
+  // reading it), else when receive() returned.
+  virtual std::uint64_t arrived_us() { return now_us(); }
   // For the pcap of the run.
   virtual pcapio::Endpoint local() const { return {}; }
   virtual pcapio::Endpoint remote() const { return {}; }
@@ -65,7 +69,10 @@ class SimTransport : public Transport {
   topsim::Device& device() noexcept { return device_; }
 
  private:
-  void schedule(const std::vector<std::string>& frames);
+  // Queues `frames`, each `copies` times (sim/fanout.hpp).
+  void schedule(const std::vector<std::string>& frames, std::size_t copies = 1);
+  // How many copies of a frame sent to `ports` reach this client.
+  std::size_t copies_to_us(const std::vector<std::uint16_t>& ports) const;
   topsim::Link link_;
   topsim::DeviceOptions options_;
   topsim::Device device_;
@@ -78,15 +85,26 @@ class SimTransport : public Transport {
     std::uint64_t seq;
     std::string bytes;
   };
-  std::deque<Pending> queue_;          // kept sorted by (at, seq)
+  std::deque<Pending> queue_;  // kept sorted by (at, seq)
+  // The datagrams' routes (sim/fanout.hpp), the client asking from the
+  // port a UDP client of the model binds (top::client_port, as topconf
+  // does; another when the model has none): each frame arrives as many
+  // times as the route names that port.
+  topsim::Fanout fanout_;
+  std::uint16_t own_port_ = 0;
   std::uint64_t line_busy_until_ = 0;  // stream links write one thing at a time
   std::uint64_t last_rx_ = 0;          // for the quiet flush of decoder_
   topsim::Intake intake() { return topsim::Intake{device_, link_, &faults_}; }
 };
 
 // Parses udp://HOST:PORT, tcp://HOST:PORT, serial:DEVICE[@BAUD] and opens
-// it. `local_port` binds the UDP client (Topotek devices answer to 9004).
-// Throws TransportError naming the target.
+// it. `local_port` binds the UDP client (Topotek devices answer to 9004; 0
+// an ephemeral port), on the target's own address for a loopback target
+// (the loopback addresses of one machine are separate hosts), else on every
+// address. The UDP socket is not connected: it sends to HOST:PORT and takes
+// what comes from any port of HOST (top::replies_reach_host: a device may
+// answer from a port of its own), nothing from other hosts. Throws
+// TransportError naming the target.
 std::unique_ptr<Transport> open_transport(const std::string& target, top::Model model,
                                           int local_port = -1);
 
