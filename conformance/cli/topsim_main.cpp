@@ -112,7 +112,10 @@ std::vector<Choice> add_options(CLI::App& app, Options& o) {
   app.add_option("--baud", o.baud, "serial baud rate")->capture_default_str();
   app.add_option("--fault", o.faults, std::string(topsim::fault_usage()));
   app.add_option("--seed", o.seed, "seed of the fault injection")->capture_default_str();
-  app.add_option("--record", o.record, "write every frame received and sent to FILE.pcap");
+  app.add_option("--record", o.record,
+                 "write every frame received and sent: a pcap on UDP and TCP; on a pty or "
+                 "serial line, topdump's line log (TX from the client, RX from the device), "
+                 "which a pcap cannot tell from UDP");
   app.add_option("--reply-port", o.reply_port,
                  "UDP: the client port replies and pushes go to (default: the model's, 9004 for "
                  "sip as Topotek V1.1.3 names it, none otherwise; 0: none, replies go to the "

@@ -175,16 +175,16 @@ JsonLines topdump_read_json(const std::string& pcap);
 // What a test tells topdump of a recording of topsim `model` over `kind`:
 // the dialect (topdump reads the first frames of a serial line's recording
 // before it could tell it; not the model, whose field traits a
-// --profile document device does not have), and for a Topotek client on a
-// pseudo-terminal, that its U source is no finding: topsim records a serial
-// line as UDP 127.0.0.1:9001 -> 9000 (conformance/README.md), where topdump
-// names a U source as a network client's (reply-interface), and U is the
-// UART client's address.
-inline std::string topdump_args(top::Model model, topsim::TransportKind kind) {
-  std::string a = "--dialect " + std::string(top::to_string(top::dialect_of(model)));
-  if (kind == topsim::TransportKind::pty && top::dialect_of(model) == top::Dialect::topotek)
-    a += " --mute reply-interface";
-  return a;
+// --profile document device does not have).
+inline std::string topdump_args(top::Model model, topsim::TransportKind) {
+  return "--dialect " + std::string(top::to_string(top::dialect_of(model)));
+}
+// Where a test records topsim over `kind` (`stem` and the link's name): a
+// pcap for UDP and TCP, topdump's line log for a pseudo-terminal (topsim
+// --record: a serial line's recording says it was one).
+inline std::string recording_path(const std::string& stem, topsim::TransportKind kind) {
+  const bool line = kind == topsim::TransportKind::pty || kind == topsim::TransportKind::serial;
+  return std::string(TOPKIT_BINARY_DIR) + "/" + stem + (line ? ".log" : ".pcap");
 }
 
 // Runs the built `topdump read --json FILE` and collects its findings of

@@ -35,7 +35,7 @@ class Harness : public ::testing::TestWithParam<topsim::TransportKind> {};
 
 TEST_P(Harness, AnswersArriveAndTheRecordingReadsClean) {
   const DriverLink l{GetParam()};
-  const std::string rec = std::string(TOPKIT_BINARY_DIR) + "/driver_harness_" + l.name() + ".pcap";
+  const std::string rec = recording_path(std::string("driver_harness_") + l.name(), l.kind);
   AskVersion c;
   // TCP only where the port rules give a model TCP: the C10 (SkyDroid
   // 2.1.1: also on TCP 5000; the C20, TCP only, takes no VER); the C12 has

@@ -29,7 +29,7 @@ TEST_P(SkyDroidDriverRun, ServedAsTheDriverNeeds) {
   const top::Model model = std::get<0>(GetParam());
   const DriverLink l{std::get<1>(GetParam())};
   const std::string name = std::string(top::to_string(model)) + "_" + l.name();
-  const std::string rec = std::string(TOPKIT_BINARY_DIR) + "/driver_skydroid_" + name + ".pcap";
+  const std::string rec = recording_path("driver_skydroid_" + name, l.kind);
   SkyDroidDriver c;
   c.camera = {{1200000, 'D', "REC", "01"},
               {1500000, 'D', "CAP", "01"},

@@ -47,7 +47,7 @@ class TopotekDriver : public ::testing::TestWithParam<topsim::TransportKind> {};
 
 TEST_P(TopotekDriver, IsServedAndTheRecordingReadsClean) {
   const DriverLink l{GetParam()};
-  const std::string rec = std::string(TOPKIT_BINARY_DIR) + "/driver_topotek_" + l.name() + ".pcap";
+  const std::string rec = recording_path(std::string("driver_topotek_") + l.name(), l.kind);
   Scripted c;
   const DriverRun r = run_driver(c, top::Model::sip, l.kind, 8500, rec);
   SCOPED_TRACE(std::string(l.name()) + ": sent " + std::to_string(r.sent) + ", received " +
@@ -126,8 +126,7 @@ TEST_P(TopotekDriver, IsServedAndTheRecordingReadsClean) {
 // driver read as 50001.4 m (the checksum's E as the tenths).
 TEST_P(TopotekDriver, ReadsTheRangeTopsimMeasures) {
   const DriverLink l{GetParam()};
-  const std::string rec =
-      std::string(TOPKIT_BINARY_DIR) + "/driver_topotek_lrf_" + l.name() + ".pcap";
+  const std::string rec = recording_path(std::string("driver_topotek_lrf_") + l.name(), l.kind);
   topsim::DeviceOptions o;
   o.range_m = 2345.6;
   struct OnAtStart : TopotekClient {

@@ -15,6 +15,7 @@
 #include <stdexcept>
 
 #include "pcapio/writer.hpp"
+#include "recording.hpp"
 #include "server_line.hpp"
 #include "sim/intake.hpp"
 #include "top/device.hpp"
@@ -51,6 +52,10 @@ std::string endpoint_name(const Endpoint& e) {
   return (e.address().is_v6() ? "[" + a + "]" : a) + ":" + std::to_string(e.port());
 }
 
+// The client end of a serial line or pseudo-terminal, as the recording
+// names it (Recording: the bytes from it are TX).
+const pcapio::Endpoint kLineClient = pcapio::Endpoint::ipv4(0x7F000001u, 9001);
+
 struct Server::Impl {
   ServerConfig cfg;
   asio::io_context io;
@@ -58,7 +63,7 @@ struct Server::Impl {
   FaultInjector faults;
   Clock::time_point start = Clock::now();
   ServerStats stats;
-  std::unique_ptr<pcapio::Recorder> pcap;
+  std::unique_ptr<Recording> pcap;
   asio::steady_timer stream_timer{io};
 
   struct UdpPort {
@@ -325,8 +330,8 @@ struct Server::Impl {
 
   Peer line_peer() {
     Peer p;
-    // Serial and pty traffic is recorded as UDP 127.0.0.1:9000 <-> :9001.
-    p.remote = pcapio::Endpoint::ipv4(0x7F000001u, 9001);
+    // The line's ends, for the recording (a line log: TX from the client).
+    p.remote = kLineClient;
     p.local = pcapio::Endpoint::ipv4(0x7F000001u, 9000);
     p.stream_link = true;
     p.link = pty_line ? "pty" : "serial";
@@ -358,8 +363,11 @@ struct Server::Impl {
 
 Server::Server(ServerConfig cfg) : impl_(std::make_unique<Impl>(std::move(cfg))) {
   Impl& m = *impl_;
-  if (!m.cfg.record.empty())
-    m.pcap = std::make_unique<pcapio::Recorder>(m.cfg.record, m.cfg.kind == TransportKind::tcp);
+  if (!m.cfg.record.empty()) {
+    const bool line = m.cfg.kind == TransportKind::pty || m.cfg.kind == TransportKind::serial;
+    m.pcap = std::make_unique<Recording>(m.cfg.record, line, m.cfg.kind == TransportKind::tcp,
+                                         kLineClient);
+  }
   std::error_code ec;
   switch (m.cfg.kind) {
     case TransportKind::udp: {
