@@ -26,15 +26,19 @@ std::string plural(std::uint64_t n, const char* one, const char* many) {
 }  // namespace
 
 bool Analyzer::Impl::copy_of_last(Conversation& c, int d, const top::Frame& f, std::int64_t ts,
-                                  std::uint64_t n) {
+                                  std::uint64_t n, top::Dialect dialect) {
   HostLink& l = *c.link;
   const Route& r = *c.dir[d].now;
   // most frames come later than the window after the newest: nothing to compare
   if (ts != kNoTime && l.newest_ts != kNoTime && ts - l.newest_ts < top::fan_out_copy_window_us)
-    for (HostLink::Sent& x : l.recent) {
+    for (std::size_t k = 1; k <= l.recent.size(); ++k) {  // the newest first
+      HostLink::Sent& x = l.recent[(l.recent_next + l.recent.size() - k) % l.recent.size()];
       if (x.n == 0 || x.ts == kNoTime || ts < x.ts || ts - x.ts >= top::fan_out_copy_window_us ||
           f.raw != x.raw)
         continue;
+      // asked again since: an answer of its own (a request older than the
+      // first delivery is one the device left unanswered, not this)
+      if (const auto m = answered(c, d, f, dialect); m && c.pairing[m->index].n > x.n) break;
       ++l.copies;
       if (!x.copied) ++l.fanned;
       x.copied = true;

@@ -37,6 +37,9 @@ struct Pending {
   Cause cause;
   const top::CommandSpec* command;  // as decoded (null: none)
   const Route* at;                  // the pair of ends it went between (session.hpp)
+  // A write its device takes without a reply (top::write_reply nothing):
+  // only an echo of it, a reply of its own control, answers it.
+  bool echo_only;
 };
 
 inline bool same_ident(const char a[3], std::string_view b) noexcept {
@@ -166,7 +169,7 @@ inline std::optional<Pairing::Match> Pairing::match(std::string_view ident, std:
     }
     if (!same_ident(p.ident, ident)) continue;
     if (p.control != control) {
-      if (other_control == kNone) other_control = i;
+      if (other_control == kNone && !p.echo_only) other_control = i;
       continue;
     }
     if (p.data == data) return Match{i, true};

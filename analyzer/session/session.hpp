@@ -367,6 +367,9 @@ struct Analyzer::Impl {
   // What the capture shows of why a request may go unanswered.
   static Cause cause_of(const Conversation& c, const DecodedEntry& e, top::Model model);
   void request(Conversation& c, int d, FrameEvent& ev);
+  // The pending request a device frame `f` sent in direction `d` answers.
+  std::optional<Pairing::Match> answered(const Conversation& c, int d, const top::Frame& f,
+                                         top::Dialect dialect) const;
   void response(Conversation& c, int d, FrameEvent& ev);
   // Requests older than the timeout at time ts are unanswered.
   void expire(Conversation& c, std::int64_t ts) {
@@ -385,9 +388,12 @@ struct Analyzer::Impl {
   void emit_silence(Conversation& c);
   // --- host_links.cpp: a device that answers the client's host ----------
   // Whether frame `f` of the device, sent in direction `d`, is a copy of
-  // its last frame (fan-out); bookkeeping of the frames that are not.
+  // one of its last frames (fan-out): the same bytes within the copy window
+  // while no request it would answer is pending (a client that asks again
+  // within the window gets an answer of its own); bookkeeping of the frames
+  // that are not.
   bool copy_of_last(Conversation& c, int d, const top::Frame& f, std::int64_t ts,
-                    std::uint64_t n);
+                    std::uint64_t n, top::Dialect dialect);
   // The reply at hand answered request `p` on another port than `p` asked
   // from: a copy to that port may yet come.
   void answered_at(Conversation& c, const Pending& p, const Route& reply, std::uint64_t n,

@@ -556,6 +556,32 @@ TEST(RealSip, InterleavedCopiesAreCopiesAndALaterSameFrameIsNot) {
   EXPECT_EQ(b.a->stats().unsolicited, 0u);
 }
 
+// A client that asks again within the copy window gets an answer of its
+// own, the same bytes as the last (topsim on loopback answers in 0.1 ms);
+// a copy that arrives while an older read the device never answered is
+// pending stays a copy (PixEagle bench, 20260917T071854Z-ai-observe: the GAC
+// read at 07:19:02.634 got nothing, the next one's reply went to 8080 and
+// twice to 9004).
+TEST(RealSip, AReadAskedAgainWithinTheWindowGetsItsOwnAnswer) {
+  SipBench b;
+  b.send(0, 8080, "#TPPD2rTRC00");
+  b.recv(100, 8080, "#TPDP2rTRC00");
+  b.send(200, 8080, "#TPPD2rTRC00");
+  b.recv(300, 8080, "#TPDP2rTRC00");
+  b.recv(340, 9004, "#TPDP2rTRC00");
+  b.send(400'000, 8080, "#TPPG2rGAC00");  // never answered
+  b.send(800'000, 8080, "#TPPG2rGAC00");
+  b.fanned(908'000, "#tpGPCrGAC01220138024F");
+  b.a->finish();
+  EXPECT_EQ(b.frame(2).reply_to, 1u);
+  EXPECT_EQ(b.frame(4).reply_to, 3u);
+  EXPECT_EQ(b.frame(5).copy_of, 4u);
+  EXPECT_EQ(b.frame(8).reply_to, 7u);
+  EXPECT_EQ(b.frame(9).copy_of, 8u);
+  EXPECT_EQ(b.frame(10).copy_of, 8u);
+  EXPECT_EQ(b.a->stats().unanswered, 1u);  // the GAC read of frame 6
+}
+
 // Topotek 2 defines w as set/control and gives these writes no reply; the
 // camera echoed none of its 361 (docs/FIELD.md silent-writes): no write is
 // unanswered, and one info note counts them. A camera that sent nothing at

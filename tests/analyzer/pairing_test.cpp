@@ -16,7 +16,7 @@ constexpr int kClient = 0, kDevice = 1;  // the directions
 
 // A request of frame `n` at `ts` (microseconds), sent by the client to G.
 void add(Pairing& p, std::uint64_t n, std::int64_t ts, std::string_view ident, char control,
-         std::string_view data, char dst = 'G', int dir = kClient) {
+         std::string_view data, char dst = 'G', int dir = kClient, bool echo_only = false) {
   p.add([&](Pending& x) {
     x.ts = ts;
     x.n = n;
@@ -30,6 +30,7 @@ void add(Pairing& p, std::uint64_t n, std::int64_t ts, std::string_view ident, c
     x.cause = Cause::none;
     x.command = nullptr;
     x.at = nullptr;
+    x.echo_only = echo_only;
   });
 }
 
@@ -59,6 +60,18 @@ TEST(Pairing, AReplyAnswersARequestOfItsOwnControlFirst) {
   m = p.match("TRC", "02", 'w', 'D', kDevice, false);
   ASSERT_TRUE(m);
   EXPECT_EQ(p[m->index].n, 3u);
+}
+
+// A write its device takes silently (Topotek TRC) waits only for an echo:
+// a read's reply never answers it, even with no read pending (topsim's
+// sip answered a TRC read, and its copy to 9004 went to the TRC write).
+TEST(Pairing, ASilentWriteTakesOnlyAnEcho) {
+  Pairing p;
+  add(p, 1, 0, "TRC", 'w', "02", 'D', kClient, true);
+  EXPECT_FALSE(p.match("TRC", "01", 'r', 'D', kDevice, false));
+  auto m = p.match("TRC", "02", 'w', 'D', kDevice, false);
+  ASSERT_TRUE(m);
+  EXPECT_TRUE(m->echoed);
 }
 
 TEST(Pairing, ResponseMatchesARequestOfItsIdentifierSentTheOtherWay) {

@@ -24,6 +24,7 @@
 
 #include <chrono>
 #include <fstream>
+#include <map>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -31,6 +32,7 @@
 #include <vector>
 
 #include "binaries.hpp"
+#include "driver_harness.hpp"
 #include "loopback.hpp"
 #include "running_server.hpp"
 #include "sim/server.hpp"
@@ -482,6 +484,84 @@ TEST(RealUnitCli, TopconfRunPassesAgainstTheDefaultSip) {
   }
   ::kill(pid, SIGTERM);
   ::waitpid(pid, nullptr, 0);
+}
+
+}  // namespace
+
+namespace {
+
+// topsim's default sip recorded and read back by topdump says what it says
+// of the real camera's sessions (captures/sip-bench): a client that polls
+// as the PixEagle bench does, from three ports of its host (9004 among
+// them), stops, pulses yaw with the bench's U source and prepares, cancels
+// and disables tracking; every query paired, the copies counted once, the
+// reply port, the fan-out and the silent writes noted once, the client's U
+// named, and nothing else above info.
+TEST(RealUnit, ItsRecordingReadsAsTheRealCamerasSessionsDo) {
+  for (const bool u_source : {true, false}) {
+    SCOPED_TRACE(u_source ? "with the bench's U source" : "with P only");
+    const std::string rec = std::string(TOPKIT_BINARY_DIR) + "/real_unit_bench_" +
+                            (u_source ? "u" : "p") + ".pcap";
+    std::size_t reads = 0;
+    {
+      topsim::ServerConfig cfg = Sip::config(own_loopback(), {});
+      cfg.record = rec;
+      const std::string host = cfg.host;
+      RunningServer server(std::move(cfg));
+      Sock a(host), b(host, kClient), c(host);
+      // a read and its answer, awaited on the asking socket
+      auto read = [&](Sock& s, const char* body, const char* answer) {
+        s.send(body, 9003);
+        s.until_n(answer, 1);
+        ++reads;
+      };
+      for (int i = 0; i < 3; ++i) {
+        read(a, kTrcRead, "TRC");
+        read(a, "#TPPG2rGAC00", "GAC");
+      }
+      read(b, "#TPPG2rGIC00", "GIA");  // from 9004, answered with GIA
+      read(c, kTrcRead, "TRC");
+      for (const char* w : {"#TPPG2wPTZ00", "#TPPG2wPTZ00", "#TPPM2wZMC00", "#TPPM2wZMC00"})
+        a.send(w, 9003);
+      a.send(u_source ? "#TPUG2wGSY05" : "#TPPG2wGSY05", 9003);
+      read(a, "#TPPG2rGAC00", "GAC");
+      a.send("#TPPG2wPTZ00", 9003);
+      for (const char* w : {"#TPPD2wTRC02", "#TPPD2wTRC01", "#TPPD2wTRC00"}) {
+        a.send(w, 9003);
+        read(a, kTrcRead, "TRC");
+      }
+    }
+    const JsonLines run = topdump_read_json(rec);
+    std::size_t paired = 0, copies = 0, queries = 0;
+    std::map<std::string, int> notes;
+    for (const auto& [line, j] : run.lines) {
+      ASSERT_FALSE(j.is_discarded()) << line;
+      if (j.value("type", "") == "frame") {
+        if (!j["reply_to"].is_null()) ++paired;
+        if (!j["copy_of"].is_null()) ++copies;
+        if (j.value("control", "") == "r" && j["role"] == "request") ++queries;
+        for (const auto& f : j["findings"])
+          EXPECT_EQ(f["severity"], "info") << line;
+        for (const auto& s : j["session"])
+          EXPECT_EQ(s["code"], "repeated") << line;
+      } else if (j.value("type", "") == "finding") {
+        ++notes[j.value("code", "")];
+        if (j.value("severity", "") != "info") {
+          EXPECT_EQ(j["code"], "reply-interface") << line;
+        }
+      }
+    }
+    EXPECT_EQ(queries, reads);
+    EXPECT_EQ(paired, reads);
+    EXPECT_GE(copies, reads * 2);  // 9004 twice and the asker, at least
+    EXPECT_EQ(notes["reply-port"], 1);
+    EXPECT_EQ(notes["fan-out"], 1);
+    EXPECT_EQ(notes["silent-writes"], 1);
+    EXPECT_EQ(notes["unanswered"], 0);
+    EXPECT_EQ(notes["reply-interface"], u_source ? 1 : 0);
+    EXPECT_EQ(run.status, u_source ? 1 : 0);
+    if (!HasFailure()) std::remove(rec.c_str());
+  }
 }
 
 }  // namespace
