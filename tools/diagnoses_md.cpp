@@ -44,7 +44,7 @@ int main() {
   o += "\n## What a device does that its document does not say\n\n"
        "Not field failures, and noted once per conversation at severity info: the\n"
        "device traits topdump reads a capture by (docs/FIELD.md, from\n"
-       "`protocol/src/device_tables.cpp`), each with its source.\n\n";
+       "`protocol/src/device_traits.cpp`), each with its source.\n\n";
   o += "| note | what the capture shows | trait and its source |\n|---|---|---|\n";
   struct Row {
     const char* code;

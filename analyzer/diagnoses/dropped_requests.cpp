@@ -15,9 +15,8 @@ std::optional<Found> DroppedWatch::verdict(top::Diagnosis d) const {
   const std::string n = std::to_string(c.frames) + (c.frames == 1 ? " request" : " requests");
   if (d == top::Diagnosis::reply_interface) {
     const std::uint64_t lost = unanswered_[static_cast<std::size_t>(i)];
-    f.figure = "the client sent " + n +
-               " with source U (the UART's address) over the network" + first +
-               "; a network client is P (Topotek V1.1.3)" +
+    f.figure = "the client sent " + n + " with source U (the UART's address) over the network" +
+               first + "; a network client is P (Topotek V1.1.3)" +
                (lost == 0 ? std::string(", and none that expects an answer went unanswered")
                           : ": " + std::to_string(lost) + " got no answer");
     return f;

@@ -184,8 +184,8 @@ void Analyzer::Impl::frame(Conversation& c, int d, top::Frame& f, Position pos, 
     // the motion diagnoses: commands that move the gimbal and its attitude
     if (const top::MotionSpec* m = e.decoded.motion;
         m && fr.checksum_ok && decided != top::Role::any)
-      c.watch.motion.frame(*m, e.decoded.form, decided == top::Role::request, fr.control,
-                           fr.data(), ev.n, ts, d, A.opts_.model);
+      c.watch.motion.frame(*m, e.decoded.form, decided == top::Role::request, fr.control, fr.data(),
+                           ev.n, ts, d, A.opts_.model);
   }
 
   // Pairing saw the frame; what follows is reporting, which the filter

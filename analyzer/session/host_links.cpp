@@ -52,8 +52,8 @@ bool Analyzer::Impl::copy_of_last(Conversation& c, int d, const top::Frame& f, s
       return true;
     }
   // the last reply's copies are in once the window has passed
-  if (l.check && (ts == kNoTime || l.check_ts == kNoTime ||
-                  ts - l.check_ts >= top::fan_out_copy_window_us))
+  if (l.check &&
+      (ts == kNoTime || l.check_ts == kNoTime || ts - l.check_ts >= top::fan_out_copy_window_us))
     settle(c);
   HostLink::Sent& x = l.recent[l.recent_next++ % l.recent.size()];
   x.raw.assign(f.raw);
@@ -152,12 +152,12 @@ void Analyzer::Impl::link_notes(Conversation& c) {
   }();
   if (l.from_reply_port) {
     Note n{ACode::reply_port, top::Severity::info, message([&] {
-             return "the device " + l.device.text() + " sent " +
-                    std::to_string(l.from_reply_port) + " of its " +
-                    plural(l.device_frames, "frame", "frames") + " from port " +
+             return "the device " + l.device.text() + " sent " + std::to_string(l.from_reply_port) +
+                    " of its " + plural(l.device_frames, "frame", "frames") + " from port " +
                     ports_text(l.reply_ports) +
                     ", not from the port it serves: they are its own, paired with the "
-                    "requests of " + host +
+                    "requests of " +
+                    host +
                     " (docs/FIELD.md ephemeral-reply-port: a real Topotek camera answers "
                     "from an ephemeral port)";
            }),
@@ -168,9 +168,9 @@ void Analyzer::Impl::link_notes(Conversation& c) {
   if (l.copies) {
     Note n{ACode::fan_out, top::Severity::info, message([&] {
              return "the device sent " + std::to_string(l.fanned) + " of its " +
-                    plural(l.device_frames, "frame", "frames") +
-                    " to more than one port of " + host + " or twice (copies to port " +
-                    ports_text(l.copy_ports) + "): " + plural(l.copies, "copy", "copies") +
+                    plural(l.device_frames, "frame", "frames") + " to more than one port of " +
+                    host + " or twice (copies to port " + ports_text(l.copy_ports) +
+                    "): " + plural(l.copies, "copy", "copies") +
                     ", each shown as a copy of its first and counted once (docs/FIELD.md "
                     "fan-out, duplicate-to-client-port)";
            }),

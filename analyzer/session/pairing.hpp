@@ -81,8 +81,8 @@ class Pairing {
   }
   // The request a response of `ident` with `data`, sent in `dir` by
   // `src`, answers (`ere`: the response is an ERE), if any.
-  std::optional<Match> match(std::string_view ident, std::string_view data, char control,
-                             char src, int dir, bool ere) const;
+  std::optional<Match> match(std::string_view ident, std::string_view data, char control, char src,
+                             int dir, bool ere) const;
   // The request at `index` was answered: it leaves, and is remembered.
   void answer(std::size_t index);
   // The oldest request leaves (unanswered, or pushed out by a newer one).

@@ -364,8 +364,8 @@ void Analyzer::Impl::pend(Conversation& c, int d, const FrameEvent& ev, Cause ca
     p.cause = cause;
     p.command = ev.entry->decoded.command;
     p.at = c.dir[d].now;
-    p.echo_only = f.control == 'w' && p.command &&
-                  top::write_reply(*p.command) == top::WriteReply::nothing;
+    p.echo_only =
+        f.control == 'w' && p.command && top::write_reply(*p.command) == top::WriteReply::nothing;
   });
 }
 

@@ -121,15 +121,15 @@ struct HostLink {
   std::array<Sent, 4> recent{};
   std::size_t recent_next = 0;
   std::int64_t newest_ts = kNoTime;  // the newest of them
-  std::uint64_t last_n = 0;  // the frame the copy at hand copies
+  std::uint64_t last_n = 0;          // the frame the copy at hand copies
   // The last reply reached another port than its request came from
   // (`asker`): whether a copy reaches that port decides.
   bool check = false;
   std::uint16_t asker = 0;
   std::uint64_t check_n = 0;  // the reply
   std::int64_t check_ts = kNoTime;
-  Pending asked{};       // the request (its route, number, time, identifier)
-  std::string reached;   // the endpoint the reply went to
+  Pending asked{};      // the request (its route, number, time, identifier)
+  std::string reached;  // the endpoint the reply went to
   // The requests whose replies never reached the port that asked: one note.
   Silence elsewhere;
   std::string elsewhere_asker;
@@ -250,8 +250,8 @@ struct Analyzer::Impl {
   // The conversation other than `c` in which the device end of direction D
   // of `c` sent a frame at or after `after` to another port of D's source
   // host, and that port's end; nullptr when none.
-  const Conversation* answered_elsewhere(const Conversation& c, const Route& D,
-                                         std::int64_t after, Endpoint& to) const;
+  const Conversation* answered_elsewhere(const Conversation& c, const Route& D, std::int64_t after,
+                                         Endpoint& to) const;
 
   static std::size_t cache_slot(Transport t, const Endpoint& src, const Endpoint& dst) noexcept {
     std::uint64_t h = static_cast<std::uint64_t>(t) + 1;
@@ -392,8 +392,8 @@ struct Analyzer::Impl {
   // while no request it would answer is pending (a client that asks again
   // within the window gets an answer of its own); bookkeeping of the frames
   // that are not.
-  bool copy_of_last(Conversation& c, int d, const top::Frame& f, std::int64_t ts,
-                    std::uint64_t n, top::Dialect dialect);
+  bool copy_of_last(Conversation& c, int d, const top::Frame& f, std::int64_t ts, std::uint64_t n,
+                    top::Dialect dialect);
   // The reply at hand answered request `p` on another port than `p` asked
   // from: a copy to that port may yet come.
   void answered_at(Conversation& c, const Pending& p, const Route& reply, std::uint64_t n,

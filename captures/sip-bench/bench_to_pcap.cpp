@@ -23,6 +23,8 @@
 // The pcap is raw IPv4 (LINKTYPE_RAW): the log records no MAC address, and
 // every IPv4 identification is 0 (not recorded). A datagram delivered to
 // several ports is one packet per delivery, as the bench received them.
+#include <pcap/pcap.h>
+
 #include <charconv>
 #include <cstdio>
 #include <filesystem>
@@ -30,7 +32,6 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <pcap/pcap.h>
 #include <string>
 #include <vector>
 

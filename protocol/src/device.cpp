@@ -1,4 +1,5 @@
-// Device behaviour: the rules read from the tables of device_tables.cpp
+// Device behaviour: the rules read from the tables of device_tables.cpp and
+// device_traits.cpp
 // (streams, write replies, recorded forms, traits, field support). See
 // top/device.hpp.
 #include "top/device.hpp"
@@ -11,8 +12,8 @@
 
 #include "catalog_data.hpp"
 #include "device_form.hpp"
-#include "top/dialect.hpp"
 #include "top/diagnoses.hpp"
+#include "top/dialect.hpp"
 #include "top/enum_names.hpp"
 #include "top/text.hpp"
 
@@ -38,9 +39,9 @@ static_assert(std::size(kWriteReply) == static_cast<std::size_t>(WriteReply::not
 constexpr std::string_view kOrder[] = {"swapped", "request order"};
 static_assert(std::size(kOrder) == static_cast<std::size_t>(Order::request_order) + 1);
 constexpr std::string_view kTraitKind[] = {
-    "yaw-inverted",   "pitch-inverted",       "answers-to-source",       "link-by-source",
-    "speed-refresh",  "keeps-request-header", "double-checksum",         "ephemeral-reply-port",
-    "fan-out",        "duplicate-to-client-port", "silent-writes"};
+    "yaw-inverted",  "pitch-inverted",           "answers-to-source", "link-by-source",
+    "speed-refresh", "keeps-request-header",     "double-checksum",   "ephemeral-reply-port",
+    "fan-out",       "duplicate-to-client-port", "silent-writes"};
 static_assert(std::size(kTraitKind) == static_cast<std::size_t>(TraitKind::silent_writes) + 1);
 constexpr std::string_view kLink[] = {"network", "uart"};
 static_assert(std::size(kLink) == static_cast<std::size_t>(Link::uart) + 1);
@@ -363,7 +364,8 @@ bool replies_reach_host(Dialect d) noexcept {
   for (const PortSpec& p : known_ports())
     if (p.client && p.dialect == d) return true;
   for (const Trait& t : traits())
-    if (t.dialect == d && (t.kind == TraitKind::fan_out || t.kind == TraitKind::ephemeral_reply_port))
+    if (t.dialect == d &&
+        (t.kind == TraitKind::fan_out || t.kind == TraitKind::ephemeral_reply_port))
       return true;
   return false;
 }

@@ -47,7 +47,8 @@ TEST_P(Golden, MatchesCapturesGolden) {
 TEST(GoldenCases, CoverEveryCapture) {
   // every capture file in captures/ has at least one golden case
   std::string listing;
-  run("cd '" + captures_dir() + "' && ls *.pcap *.pcapng *.bin *.log *.csv sip-bench/*.pcap", listing);
+  run("cd '" + captures_dir() + "' && ls *.pcap *.pcapng *.bin *.log *.csv sip-bench/*.pcap",
+      listing);
   std::istringstream in(listing);
   std::string f;
   auto cs = cases();

@@ -264,12 +264,9 @@ inline json stats_json(const Stats& s, top::Severity worst) {
   j["worst"] = top::to_string(worst);
   j["per_ident"] = s.per_ident;  // std::map: an object, {} when empty
   j["per_finding"] = s.per_code;
-  j["pairing"] = {{"requests", s.requests},
-                  {"responses", s.responses},
-                  {"paired", s.paired},
-                  {"unanswered", s.unanswered},
-                  {"unsolicited", s.unsolicited},
-                  {"copies", s.copies}};
+  j["pairing"] = {{"requests", s.requests},       {"responses", s.responses},
+                  {"paired", s.paired},           {"unanswered", s.unanswered},
+                  {"unsolicited", s.unsolicited}, {"copies", s.copies}};
   json lat = json::object();
   for (const auto& [k, l] : s.latency) {
     json x;

@@ -10,9 +10,9 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <map>
-#include <fstream>
 #include <set>
 
 #include "test_support.hpp"
@@ -54,7 +54,8 @@ TEST_P(SipBench, IsReadAsTheEvidenceShowsIt) {
   const Recorder r = read(path);
   ASSERT_FALSE(r.frames.empty());
   const auto d = drops().find(session);
-  const std::set<std::uint64_t> dropped = d == drops().end() ? std::set<std::uint64_t>{} : d->second;
+  const std::set<std::uint64_t> dropped =
+      d == drops().end() ? std::set<std::uint64_t>{} : d->second;
 
   std::set<std::uint64_t> answered;
   bool u_source = false;
@@ -111,7 +112,8 @@ TEST_P(SipBench, IsReadAsTheEvidenceShowsIt) {
 INSTANTIATE_TEST_SUITE_P(Sessions, SipBench, ::testing::ValuesIn(sessions()),
                          [](const ::testing::TestParamInfo<std::string>& i) {
                            std::string n;
-                           for (char ch : i.param) n += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
+                           for (char ch : i.param)
+                             n += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
                            return n;
                          });
 
@@ -241,16 +243,18 @@ TEST(BenchToPcap, ABadLogIsAnErrorNamingTheFileAndLine) {
   EXPECT_FALSE(std::filesystem::exists(pcap));
   // received datagrams that do not add up to the summary
   std::string lying = kLog;
-  lying.replace(lying.find("\"192.168.0.108:38909->8080\": 1"), 30, "\"192.168.0.108:38909->8080\": 2");
+  lying.replace(lying.find("\"192.168.0.108:38909->8080\": 1"), 30,
+                "\"192.168.0.108:38909->8080\": 2");
   { std::ofstream(log) << lying; }
   EXPECT_EQ(run("'" + bench_to_pcap() + "' '" + log + "' '" + pcap + "' 2>&1", out), 2);
   EXPECT_NE(out.find("do not add up to the summary"), std::string::npos) << out;
   // a missing file, a bad --host, a full disk
-  EXPECT_EQ(run("'" + bench_to_pcap() + "' '" + tmp.file("none") + "' '" + pcap + "' 2>&1", out), 2);
+  EXPECT_EQ(run("'" + bench_to_pcap() + "' '" + tmp.file("none") + "' '" + pcap + "' 2>&1", out),
+            2);
   EXPECT_NE(out.find("cannot open"), std::string::npos) << out;
   { std::ofstream(log) << kLog; }
-  EXPECT_EQ(run("'" + bench_to_pcap() + "' --host 300.1.1.1 '" + log + "' '" + pcap + "' 2>&1", out),
-            2);
+  EXPECT_EQ(
+      run("'" + bench_to_pcap() + "' --host 300.1.1.1 '" + log + "' '" + pcap + "' 2>&1", out), 2);
   EXPECT_EQ(run("'" + bench_to_pcap() + "' '" + log + "' /dev/full 2>&1", out), 2) << out;
   // and the device is still there (a failed run removes only a file of its own)
   EXPECT_TRUE(std::filesystem::is_character_file("/dev/full"));

@@ -39,7 +39,7 @@ struct FormSpec;
   X(reply_interface, "reply-interface", warning,                                                   \
     "a network client names itself U (the UART) in Topotek requests, whether or not the device "   \
     "answered",                                                                                    \
-    "Topotek V1.1.3 2: P is the network client, U the UART's; ArduPilot PR #33803: a Topotek "      \
+    "Topotek V1.1.3 2: P is the network client, U the UART's; ArduPilot PR #33803: a Topotek "     \
     "gimbal answers on the interface the source letter names, so a network client sending U "      \
     "hears nothing (the fix needed new firmware too); a real Topotek camera (PixEagle bench, VSN " \
     "1.6.26.R.D) obeyed GSY and GSP sent with U over UDP (20260917T051548Z-tilt; checkpoint "      \
