@@ -165,7 +165,10 @@ void Analyzer::Impl::frame(Conversation& c, int d, top::Frame& f, Position pos, 
   // A copy of the device's last frame to another port of the client's
   // host (a real Topotek camera's fan-out) is that frame again: shown and
   // counted, never paired or judged twice.
-  if (c.link && d == c.device_dir && copy_of_last(c, d, fr, ts, ev.n, e.decoded.dialect))
+  // (only once the conversation took another pair of ends: a device that
+  // answers from its own port to the one client port copies nothing)
+  if (c.link && d == c.device_dir && !c.link->routes.empty() &&
+      copy_of_last(c, d, fr, ts, ev.n, e.decoded.dialect))
     ev.copy_of = c.link->last_n;
   if (ev.copy_of == 0) {
     if (decided == top::Role::request)

@@ -17,6 +17,7 @@
 #include "capture/sink.hpp"
 #include "session/events.hpp"
 #include "top/detail/ring.hpp"
+#include "top/device.hpp"
 
 namespace topdump {
 
@@ -37,10 +38,14 @@ struct Pending {
   Cause cause;
   const top::CommandSpec* command;  // as decoded (null: none)
   const Route* at;                  // the pair of ends it went between (session.hpp)
-  // A write its device takes without a reply (top::write_reply nothing):
-  // only an echo of it, a reply of its own control, answers it.
-  bool echo_only;
 };
+
+// A write its device takes without a reply (top::write_reply nothing): only
+// an echo of it, a reply of its own control, answers it.
+inline bool takes_only_an_echo(const Pending& p) noexcept {
+  return p.control == 'w' && p.command &&
+         top::write_reply(*p.command) == top::WriteReply::nothing;
+}
 
 inline bool same_ident(const char a[3], std::string_view b) noexcept {
   return b.size() == 3 && a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
@@ -169,7 +174,7 @@ inline std::optional<Pairing::Match> Pairing::match(std::string_view ident, std:
     }
     if (!same_ident(p.ident, ident)) continue;
     if (p.control != control) {
-      if (other_control == kNone && !p.echo_only) other_control = i;
+      if (other_control == kNone && !takes_only_an_echo(p)) other_control = i;
       continue;
     }
     if (p.data == data) return Match{i, true};

@@ -16,7 +16,8 @@ constexpr int kClient = 0, kDevice = 1;  // the directions
 
 // A request of frame `n` at `ts` (microseconds), sent by the client to G.
 void add(Pairing& p, std::uint64_t n, std::int64_t ts, std::string_view ident, char control,
-         std::string_view data, char dst = 'G', int dir = kClient, bool echo_only = false) {
+         std::string_view data, char dst = 'G', int dir = kClient,
+         const top::CommandSpec* command = nullptr) {
   p.add([&](Pending& x) {
     x.ts = ts;
     x.n = n;
@@ -28,9 +29,8 @@ void add(Pairing& p, std::uint64_t n, std::int64_t ts, std::string_view ident, c
     x.data.assign(data);
     x.dir = dir;
     x.cause = Cause::none;
-    x.command = nullptr;
+    x.command = command;
     x.at = nullptr;
-    x.echo_only = echo_only;
   });
 }
 
@@ -67,7 +67,8 @@ TEST(Pairing, AReplyAnswersARequestOfItsOwnControlFirst) {
 // sip answered a TRC read, and its copy to 9004 went to the TRC write).
 TEST(Pairing, ASilentWriteTakesOnlyAnEcho) {
   Pairing p;
-  add(p, 1, 0, "TRC", 'w', "02", 'D', kClient, true);
+  // Topotek TRC: a write the document gives no reply form
+  add(p, 1, 0, "TRC", 'w', "02", 'D', kClient, top::find_command(top::Dialect::topotek, "TRC"));
   EXPECT_FALSE(p.match("TRC", "01", 'r', 'D', kDevice, false));
   auto m = p.match("TRC", "02", 'w', 'D', kDevice, false);
   ASSERT_TRUE(m);
