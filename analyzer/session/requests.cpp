@@ -414,11 +414,15 @@ void Analyzer::Impl::response(Conversation& c, int d, FrameEvent& ev) {
   }
   // A device's push whose switch the capture did not see (it began
   // before the capture, or the device pushes unasked, as ArduPilot's SITL
-  // simulators do): a stream of its own, asked for by nobody seen.
+  // simulators do): a stream of its own, asked for by nobody seen. Not a
+  // frame of an identifier the device answered reads of here: that is a
+  // late or second answer, and a reply to a query is never a stream
+  // sample (a bench that polls GAC got "stream-stalled" for its pauses).
   const top::Dialect dialect = ev.entry->decoded.dialect;
   if (const top::StreamSpec* st = top::stream_of(dialect, id);
       st && st->sender == top::Sender::device &&
-      top::role_from_layout(dialect, f) == top::Role::response) {
+      top::role_from_layout(dialect, f) == top::Role::response &&
+      c.slowest.of(pack_ident(id)) < 0) {
     StreamStat& s = c.st.streams.emplace_back();
     s.ident = std::string(id);
     s.periodic = st->periodic;

@@ -236,3 +236,32 @@ TEST(RealSip, ARequestTheEndCutOffIsNotUnanswered) {
 
 }  // namespace
 }  // namespace topdump::test
+
+namespace topdump::test {
+namespace {
+
+// A reply to a query is never a stream sample: a late answer of an
+// identifier the device answered reads of is a late answer (unsolicited),
+// not the first push of a stream that could then stall (a bench that polls
+// GAC read "stream-stalled" for its pauses).
+TEST(RealSipStreams, ALateAnswerIsNoStream) {
+  Fixture f;
+  AnalyzerOptions o;
+  o.timeout_us = 200'000;
+  f.reset(o);
+  f.client = ep4(167, 8080);
+  f.device = ep4(108, 9003);
+  f.up(0, top::with_checksum("#TPPG2rGAC00"));
+  f.down(108, top::with_checksum("#tpGPCrGACFF1306D7029E"));
+  f.up(400, top::with_checksum("#TPPG2rGAC00"));  // answered 300 ms late
+  f.down(700, top::with_checksum("#tpGPCrGACFF0A06D702A9"));
+  f.up(1200, top::with_checksum("#TPPG2rGAC00"));
+  f.down(1308, top::with_checksum("#tpGPCrGACFF0206D702AD"));
+  f.a->finish();
+  EXPECT_TRUE(f.a->stats().conversations.at(0).streams.empty());
+  EXPECT_EQ(f.a->stats().unsolicited, 1u);
+  EXPECT_EQ(f.a->stats().paired, 2u);
+}
+
+}  // namespace
+}  // namespace topdump::test
