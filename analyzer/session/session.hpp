@@ -146,16 +146,22 @@ struct Conversation {
   // only a device sends (addressed to a client, or answering a request), or
   // the first stream switch (GAA, GIA, FAE) a client sends.
   int device_dir = -1;
+  // A device whose frames reach any port of the client's host from any port
+  // of its own (top::replies_reach_host: Topotek): every UDP datagram
+  // between the two hosts belongs here (HostLink), null otherwise.
+  std::unique_ptr<HostLink> link;
   Silence silence;
   top::DialectDetector det;
   std::uint32_t observed = 0;
   Pairing pairing;
   std::uint64_t last_used = 0;
   ConvStats st;
-  // A device whose frames reach any port of the client's host from any port
-  // of its own (top::replies_reach_host: Topotek): every UDP datagram
-  // between the two hosts belongs here (HostLink), null otherwise.
-  std::unique_ptr<HostLink> link;
+  // The conversation's diagnoses (analyzer/diagnoses/): last, a few KB of
+  // state most frames touch little of, so that the fields every frame
+  // uses stay on the cache lines next to each other.
+  diag::Watch watch;
+  // Below: what a reply or a frame of a host link touches, after the
+  // state most frames use.
   // The slowest answer per identifier (at most 8 identifiers), whatever the
   // filter selects: how long after a request the capture must go on hearing
   // the device before the request is unanswered at its end.
@@ -183,10 +189,6 @@ struct Conversation {
   std::uint64_t silent_n = 0;  // the first of them
   std::int64_t silent_ts = kNoTime;
   const Route* silent_at = nullptr;
-  // The conversation's diagnoses (analyzer/diagnoses/): last, a few KB of
-  // state most frames touch little of, so that the fields every frame
-  // uses stay on the cache lines next to each other.
-  diag::Watch watch;
 };
 
 // The conversation table's key: a transport and both ends, the lesser first.
@@ -443,8 +445,8 @@ struct Analyzer::Impl {
 // was inside response() before the copy check asked it too (topdump stats,
 // 100k frames: +7M instructions out of line).
 inline std::optional<Pairing::Match> Analyzer::Impl::answered(const Conversation& c, int d,
-                                                       const top::Frame& f,
-                                                       top::Dialect dialect) const {
+                                                              const top::Frame& f,
+                                                              top::Dialect dialect) const {
   const std::string_view id = f.ident_view();
   const bool ere = top::is_error_reply(id);
   // The newest pending request it answers, preferring one whose data it

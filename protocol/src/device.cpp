@@ -321,7 +321,16 @@ const Trait* find_trait(TraitKind kind, Model model, Profile profile, bool conte
 int sign_trait_factor(Dialect d, Model model, int axis, std::string_view ident) noexcept {
   const TraitKind kind = axis == 0 ? TraitKind::yaw_inverted : TraitKind::pitch_inverted;
   if (axis > 1) return 1;
-  for (const Trait& t : traits()) {
+  // the sign traits, found once: every judged motion command asks, and the
+  // whole table is a few kilobytes of mostly other traits
+  static const std::vector<const Trait*> kSigns = [] {
+    std::vector<const Trait*> v;
+    for (const Trait& t : traits())
+      if (t.kind == TraitKind::yaw_inverted || t.kind == TraitKind::pitch_inverted) v.push_back(&t);
+    return v;
+  }();
+  for (const Trait* p : kSigns) {
+    const Trait& t = *p;
     if (t.kind != kind || t.dialect != d || t.contested || !t.names(ident)) continue;
     if (model == Model::unknown) return 0;
     if (model_in(t.models, model)) return -1;
