@@ -205,12 +205,13 @@ void Analyzer::Impl::frame(Conversation& c, int d, top::Frame& f, Position pos, 
     unsolicited |= n.code == ACode::unsolicited;
   }
   ++c.st.frames;
-  if (ev.copy_of) {
-    ++A.stats_.copies;
-  } else if (decided == top::Role::request) {
+  // a copy is neither a request nor a response (its role is the first's)
+  A.stats_.copies += ev.copy_of != 0;
+  const top::Role counted = ev.copy_of ? top::Role::any : decided;
+  if (counted == top::Role::request) {
     ++A.stats_.requests;
     ++c.st.requests;
-  } else if (decided == top::Role::response) {
+  } else if (counted == top::Role::response) {
     ++A.stats_.responses;
     ++c.st.responses;
     if (ev.reply_to) {

@@ -166,10 +166,14 @@ struct Conversation {
   // filter selects: how long after a request the capture must go on hearing
   // the device before the request is unanswered at its end.
   struct Slowest {
+    // a slot per identifier by a hash of it, then the next free one: most
+    // replies find theirs at once (a loop from the first slot mispredicted
+    // its exit on every reply)
     std::array<std::uint32_t, 8> key{};
     std::array<std::int64_t, 8> us{};
+    static std::size_t home(std::uint32_t k) noexcept { return (k * 0x9E3779B1u) >> 29; }
     void add(std::uint32_t k, std::int64_t v) noexcept {
-      for (std::size_t i = 0; i < key.size(); ++i)
+      for (std::size_t n = 0, i = home(k); n < key.size(); ++n, i = (i + 1) % key.size())
         if (key[i] == k || key[i] == 0) {
           key[i] = k;
           if (v > us[i]) us[i] = v;
@@ -177,7 +181,7 @@ struct Conversation {
         }
     }
     std::int64_t of(std::uint32_t k) const noexcept {
-      for (std::size_t i = 0; i < key.size() && key[i]; ++i)
+      for (std::size_t n = 0, i = home(k); n < key.size() && key[i]; ++n, i = (i + 1) % key.size())
         if (key[i] == k) return us[i];
       return -1;
     }
