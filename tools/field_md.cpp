@@ -21,7 +21,7 @@ std::string models(top::ModelSet m) {
 }
 
 std::string hex2(std::int64_t v) {
-  char b[8];
+  char b[24];  // room for any 64-bit value in hex
   std::snprintf(b, sizeof b, "%02llX", static_cast<long long>(v));
   return b;
 }
