@@ -47,6 +47,7 @@ bool Analyzer::Impl::copy_of_last(Conversation& c, int d, const top::Frame& f, s
       if (l.copies == 1) {
         l.copy_n = n;
         l.copy_ts = ts;
+        l.copy_at = &r;
       }
       if (l.check && x.n == l.check_n && r.dst.port == l.asker) l.check = false;  // heard
       return true;
@@ -65,6 +66,7 @@ bool Analyzer::Impl::copy_of_last(Conversation& c, int d, const top::Frame& f, s
   if (r.src.port != l.device.port && l.from_reply_port++ == 0) {
     l.reply_port_n = n;
     l.reply_port_ts = ts;
+    l.reply_port_at = &r;
   }
   return false;
 }
@@ -163,7 +165,8 @@ void Analyzer::Impl::link_notes(Conversation& c) {
            }),
            l.reply_port_n};
     n.count = l.from_reply_port;
-    note_event(l.reply_port_ts, Position{}, c.transport, &c, &dev.from, &dev.to, std::move(n));
+    const Route& at = l.reply_port_at ? *l.reply_port_at : dev;
+    note_event(l.reply_port_ts, Position{}, c.transport, &c, &at.from, &at.to, std::move(n));
   }
   if (l.copies) {
     Note n{ACode::fan_out, top::Severity::info, message([&] {
@@ -176,7 +179,8 @@ void Analyzer::Impl::link_notes(Conversation& c) {
            }),
            l.copy_n};
     n.count = l.copies;
-    note_event(l.copy_ts, Position{}, c.transport, &c, &dev.from, &dev.to, std::move(n));
+    const Route& at = l.copy_at ? *l.copy_at : dev;
+    note_event(l.copy_ts, Position{}, c.transport, &c, &at.from, &at.to, std::move(n));
   }
   Silence& s = l.elsewhere;
   if (s.count) {

@@ -43,8 +43,7 @@ struct Pending {
 // A write its device takes without a reply (top::write_reply nothing): only
 // an echo of it, a reply of its own control, answers it.
 inline bool takes_only_an_echo(const Pending& p) noexcept {
-  return p.control == 'w' && p.command &&
-         top::write_reply(*p.command) == top::WriteReply::nothing;
+  return p.control == 'w' && p.command && top::write_reply(*p.command) == top::WriteReply::nothing;
 }
 
 inline bool same_ident(const char a[3], std::string_view b) noexcept {

@@ -108,6 +108,8 @@ struct HostLink {
   // The first frame from a reply port, and the first copy: where the notes sit.
   std::uint64_t reply_port_n = 0, copy_n = 0;
   std::int64_t reply_port_ts = kNoTime, copy_ts = kNoTime;
+  const Route* reply_port_at = nullptr;  // the ends they went between
+  const Route* copy_at = nullptr;
   // The device's last frames, a copy compared with each: the deliveries of
   // two datagrams may interleave (a real Topotek camera sent a TRC, an OFT,
   // the TRC's copy, then the OFT's: PixEagle bench, 20260918T060610Z-

@@ -4,6 +4,8 @@
 // recorded sessions themselves, sip_bench_test.cpp).
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include "findings/afindings.hpp"
 #include "test_support.hpp"
 #include "top/frame.hpp"
@@ -40,6 +42,15 @@ struct SipBench {
       if (n.note.code == c) return &n;
     return nullptr;
   }
+  // "from > to" of the note's JSON line
+  std::string note_ends(ACode c) const {
+    for (std::size_t i = 0; i < rec.notes.size(); ++i)
+      if (rec.notes[i].note.code == c) {
+        const auto j = nlohmann::json::parse(rec.note_json[i].first);
+        return j.value("from", "") + " > " + j.value("to", "");
+      }
+    return "";
+  }
 };
 
 TEST(RealSip, RepliesFromAnEphemeralPortToSeveralPortsAreOneReplyEach) {
@@ -74,10 +85,14 @@ TEST(RealSip, RepliesFromAnEphemeralPortToSeveralPortsAreOneReplyEach) {
   EXPECT_EQ(rp->note.severity, top::Severity::info);
   EXPECT_EQ(rp->note.count, 2u);
   EXPECT_NE(rp->note.message.find("from port 57707"), std::string::npos) << rp->note.message;
+  // each note sits at the frame it names, between that frame's own ends
+  // (as written when it came: the ends are the session's, gone after finish)
+  EXPECT_EQ(b.note_ends(ACode::reply_port), "10.0.0.108:57707 > 10.0.0.167:8080");
   const NoteEvent* fo = b.note(ACode::fan_out);
   ASSERT_NE(fo, nullptr);
   EXPECT_EQ(fo->note.count, 4u);
   EXPECT_NE(fo->note.message.find("copies to port 9004"), std::string::npos) << fo->note.message;
+  EXPECT_EQ(b.note_ends(ACode::fan_out), "10.0.0.108:57707 > 10.0.0.167:9004");
   EXPECT_EQ(b.rec.count_note(ACode::reply_port) + b.rec.count_note(ACode::fan_out), 2u);
   EXPECT_FALSE(b.rec.has_note(acode_of(top::Diagnosis::silent_device)));
 }

@@ -14,7 +14,7 @@ off: no console message may appear, and the screenshot must not be blank
 
 --together NAME: one page of every capture (NAME.html) instead of one page
 each. --every-diagnosis: that page's "What went wrong" (report --json,
-what_went_wrong[].code) must name every code of docs/DIAGNOSES.md's table,
+what_went_wrong[].code) must name every code of docs/DIAGNOSES.md's first table,
 each with its evidence and remedy.
 """
 import argparse
@@ -120,7 +120,10 @@ def main():
 
 def every_diagnosis(a):
     """The table's codes missing from the page's "What went wrong"."""
-    table = re.findall(r"^\| `([a-z-]+)` \|", open(a.every_diagnosis).read(), re.M)
+    # the first table only: the diagnoses; the device notes' table after it
+    # names no diagnosis (they are info notes, not in "What went wrong")
+    rows = re.search(r"(?:^\| `[a-z-]+` \|.*\n)+", open(a.every_diagnosis).read(), re.M)
+    table = re.findall(r"^\| `([a-z-]+)` \|", rows.group(0) if rows else "", re.M)
     r = subprocess.run([a.topdump, "report", "--json"] + a.captures, capture_output=True,
                        text=True)
     items = json.loads(r.stdout)["overview"]["what_went_wrong"]
