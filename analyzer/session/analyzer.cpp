@@ -144,15 +144,7 @@ void Analyzer::Impl::frame(Conversation& c, int d, top::Frame& f, Position pos, 
   const DecodedEntry& e = lookup(f, dialect, role);
   const top::Frame& fr = *e.frame;
 
-  FrameEvent ev{.n = ++A.frame_no_,
-                .ts = ts,
-                .pos = pos,
-                .stream_offset = stream_off,
-                .transport = c.transport,
-                .conv = &c,
-                .from = &D.now->from,
-                .to = &D.now->to,
-                .entry = &e};
+  FrameEvent ev(++A.frame_no_, ts, pos, stream_off, c.transport, &c, &D.now->from, &D.now->to, &e);
 
   expire(c, ts);
   // Requests that expire now were unanswered before this frame: the
