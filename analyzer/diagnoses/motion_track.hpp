@@ -55,22 +55,29 @@ struct Snap {
     words(d, o);
     return ((o[0] ^ w[0]) | (o[1] ^ w[1])) == 0;
   }
-  // The data as two little-endian words, zero-padded, by fixed-size loads:
-  // `d` is a frame's data (2-16 chars for motion), and every header puts
-  // eight bytes before the data (top's decode plan reads them the same way),
-  // so a short datum is the top of the word that ends with it.
+  // The data as two little-endian words, zero-padded, by fixed-size loads
+  // that stay within `d` (two that overlap for a length between two sizes:
+  // 2-3 chars as 16-bit loads, 4-8 as 32-bit, 9-16 as 64-bit).
   static void words(std::string_view d, std::uint64_t (&out)[2]) noexcept {
     const std::size_t k = d.size();
-    if (k == 0) {
-      out[0] = out[1] = 0;
-    } else if (k <= 8) {
-      std::memcpy(&out[0], d.data() + k - 8, 8);
-      out[0] >>= 8 * (8 - k);
-      out[1] = 0;
+    const char* p = d.data();
+    out[1] = 0;
+    if (k > 8) {
+      std::memcpy(&out[0], p, 8);
+      std::memcpy(&out[1], p + k - 8, 8);  // overlaps the first below 16
+      out[1] >>= 8 * (16 - k);             // keeps chars 8 to k - 1
+    } else if (k >= 4) {
+      std::uint32_t a, b;
+      std::memcpy(&a, p, 4);
+      std::memcpy(&b, p + k - 4, 4);  // chars k - 4 to k - 1, overlapping a's
+      out[0] = a | std::uint64_t{b} << 8 * (k - 4);
+    } else if (k >= 2) {
+      std::uint16_t a, b;
+      std::memcpy(&a, p, 2);
+      std::memcpy(&b, p + k - 2, 2);
+      out[0] = a | std::uint64_t{b} << 8 * (k - 2);
     } else {
-      std::memcpy(&out[0], d.data(), 8);
-      std::memcpy(&out[1], d.data() + k - 8, 8);  // overlaps the first below 16
-      out[1] >>= 8 * (16 - k);                    // keeps chars 8 to k - 1
+      out[0] = k ? static_cast<unsigned char>(p[0]) : 0;
     }
   }
   // An attitude report's angle on `axis`, up and right positive.

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <deque>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -372,6 +373,30 @@ TEST(DiagnosesSession, LineLogWithASilentDeviceNamesIt) {
   }
   const test::Recorder r = test::read(path);
   EXPECT_TRUE(r.has_note(acode_of(top::Diagnosis::silent_device)));
+}
+
+// A Snap copies a motion frame's data by fixed-size loads that stay within
+// the data (issue 48: it read up to 8 bytes before a short datum, which
+// every frame's header happened to hold): each length from 0 to 16, from a
+// heap block of exactly that size, reads back as itself (an ASan build
+// fails on a byte read outside it).
+TEST(MotionSnap, CopiesTheDataFromWithinItAtEveryLength) {
+  const top::MotionSpec* m = top::motion_of(top::Dialect::skydroid, "GSY");
+  ASSERT_NE(m, nullptr);
+  const top::FormSpec form{};
+  for (std::size_t k = 0; k <= 16; ++k) {
+    std::unique_ptr<char[]> block(new char[k == 0 ? 1 : k]);
+    for (std::size_t i = 0; i < k; ++i) block[i] = static_cast<char>('A' + i);
+    const std::string_view d(block.get(), k);
+    diag::Snap s;
+    ASSERT_TRUE(s.take(*m, &form, d, kT0)) << k;
+    EXPECT_EQ(s.view(), d) << k;
+    EXPECT_TRUE(s.same(*m, d)) << k;
+    if (k > 0) {
+      block[k - 1] = 'z';
+      EXPECT_FALSE(s.same(*m, d)) << k;
+    }
+  }
 }
 
 }  // namespace
