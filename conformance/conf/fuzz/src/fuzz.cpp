@@ -110,8 +110,12 @@ struct Session {
       return !c.ident.empty() && top::answers_query(m.dialect, c.ident, f.ident_view());
     };
     auto own = [&](const top::Frame& f) { return answers(f) || is_error_reply(f.ident_view()); };
+    // A datagram the kernel took before the case was sent (a late answer to
+    // the case before it) is not this case's: neither its answer nor what
+    // it drew, and no latency is measured to it.
+    auto stale = [&](const Received& x) { return x.t_us < sent_at; };
     auto keep = [&](Received&& x) {
-      if (is_push(m.dialect, x.frame.ident_view()) && !answers(x.frame)) return;
+      if (stale(x) || (is_push(m.dialect, x.frame.ident_view()) && !answers(x.frame))) return;
       got.push_back(std::move(x));
     };
     if (!t.datagram() && c.open_end) {
@@ -124,7 +128,7 @@ struct Session {
     if (c.promise == Promise::answer || (c.promise == Promise::error && sky)) {
       const std::uint64_t deadline = sent_at + std::uint64_t{o.timeout_ms} * 1000;
       while (!found && link.next(deadline, rx)) {
-        const bool mine = own(rx.frame);
+        const bool mine = !stale(rx) && own(rx.frame);
         if (mine && !answered_at) answered_at = rx.t_us;
         keep(std::move(rx));
         found = mine;
@@ -142,6 +146,7 @@ struct Session {
       const std::uint64_t deadline =
           link.now() + std::max(probe_timeout_us(), std::uint64_t{o.slow_ms} * 1000 + 100000);
       while (link.next(deadline, rx)) {
+        if (stale(rx)) continue;
         if (p.answered_by(rx.frame) && !is_error_reply(rx.frame) && rx.frame.ok() &&
             rx.frame.control == 'r') {
           synced = true;
