@@ -203,7 +203,8 @@ TEST(Fuzz, HealthyTopsimOverUdpLoopback5000Cases) {
 }
 
 // A device link on which a datagram the kernel took before anything was
-// sent comes first after each send: a late ERE, stamped at the link's
+// sent comes first after each of the first sends (the liveness probe's and
+// the first cases'): a late ERE, stamped at the link's
 // start (over UDP loopback a late answer that sat in the socket's queue is
 // read after the next case went out; CI saw "the first answer after the
 // case took 18446744073709551 ms", its time before the send).
@@ -214,7 +215,7 @@ class LateEreFirst : public topconf::Transport {
   bool datagram() const override { return t_.datagram(); }
   char client_address() const override { return t_.client_address(); }
   void send(std::string_view bytes) override {
-    late_ = true;
+    late_ = sends_++ < 4;
     t_.send(bytes);
   }
   bool receive(std::uint64_t deadline_us, std::string& out) override {
@@ -234,6 +235,7 @@ class LateEreFirst : public topconf::Transport {
  private:
   topconf::Transport& t_;
   bool late_ = false;
+  int sends_ = 0;
   std::uint64_t late_at_ = 0, arrived_ = 0;
 };
 
@@ -245,10 +247,10 @@ TEST(Fuzz, ADatagramFromBeforeTheCaseIsNotItsAnswer) {
                                      top::Model::c12);
   LateEreFirst t(*udp);
   FuzzOptions o;
-  o.end = 500;
+  o.end = 20;
   o.probe_every = 10;
   const auto r = topconf::run_fuzz(default_matrix(top::Model::c12), t, o);
-  EXPECT_EQ(r.cases_run, 500u);
+  EXPECT_EQ(r.cases_run, 20u);
   EXPECT_EQ(r.exit_code(), 0);
   for (const auto& f : r.failures) ADD_FAILURE() << topconf::failure_line(f);
 }
