@@ -5,6 +5,7 @@
 // such commands.
 #pragma once
 
+#include <array>
 #include <optional>
 
 #include "diagnoses/case.hpp"
@@ -13,6 +14,7 @@ namespace topdump::diag {
 
 class StaleWatch {
  public:
+  static constexpr std::array<top::Diagnosis, 1> codes = {top::Diagnosis::attitude_stale};
   static constexpr std::uint64_t kMinReports = 3, kMinCommands = 3;
   // A non-zero motion command, frame n at ts, `last_report` the time of
   // the attitude's last report (of `attitude`, reports so far).

@@ -28,6 +28,7 @@ struct LeftMoving : WindowOf {
 
 class LeftMovingWatch {
  public:
+  static constexpr std::array<top::Diagnosis, 1> codes = {top::Diagnosis::axis_left_moving};
   static constexpr double kMinMoved = 3.0, kStillMoving = 1.0;
   // The open rate window of an axis at the conversation's end.
   void at_end(const LeftMoving& m);

@@ -8,6 +8,7 @@
 // SERIALn_PROTOCOL), not a mis-set line speed (an outside capture's case).
 #pragma once
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -18,6 +19,7 @@ namespace topdump::diag {
 
 class BaudWatch {
  public:
+  static constexpr std::array<top::Diagnosis, 1> codes = {top::Diagnosis::baud_mismatch};
   // A run of bytes that belong to no frame; `sample` is its first bytes.
   void garbage(std::uint64_t length, std::string_view sample, std::uint64_t record,
                std::int64_t ts) noexcept;

@@ -5,6 +5,7 @@
 // 1970 (the camera's clock was never set). Whole hours are a time zone.
 #pragma once
 
+#include <array>
 #include <optional>
 
 #include "diagnoses/case.hpp"
@@ -13,6 +14,7 @@ namespace topdump::diag {
 
 class ClockWatch {
  public:
+  static constexpr std::array<top::Diagnosis, 1> codes = {top::Diagnosis::clock_offset};
   // A frame whose form may carry a date, at capture time ts; `device`:
   // the camera sent it (a report or the echo of a set), else the client.
   void frame(const top::FormSpec& form, std::string_view data, std::string_view ident,

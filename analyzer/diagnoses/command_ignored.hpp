@@ -15,6 +15,7 @@ namespace topdump::diag {
 
 class IgnoredWatch {
  public:
+  static constexpr std::array<top::Diagnosis, 1> codes = {top::Diagnosis::command_ignored};
   static constexpr double kMinStep = 3.0, kStill = 0.5, kMinSeconds = 1.0, kMoving = 2.0;
   void window(const Judged& j);
   template <class Out>

@@ -16,6 +16,7 @@ namespace topdump::diag {
 
 class DirectionWatch {
  public:
+  static constexpr std::array<top::Diagnosis, 1> codes = {top::Diagnosis::direction_inverted};
   static constexpr double kMinMoved = 1.5, kMinStep = 3.0;
   void window(const Judged& j);
   template <class Out>

@@ -3,6 +3,7 @@
 // (top::is_placeholder_identity): 000000000, 123, 1.2.3, Unknown.
 #pragma once
 
+#include <array>
 #include <optional>
 
 #include "diagnoses/case.hpp"
@@ -11,6 +12,7 @@ namespace topdump::diag {
 
 class IdentityWatch {
  public:
+  static constexpr std::array<top::Diagnosis, 1> codes = {top::Diagnosis::placeholder_identity};
   void reply(top::Dialect d, std::string_view ident, std::string_view data, std::uint64_t n,
              std::int64_t ts, int dir) {
     if (top::is_identity_reply(d, ident)) placeholder(ident, data, n, ts, dir);

@@ -4,6 +4,7 @@
 // or the conversation's end, came later than the limit.
 #pragma once
 
+#include <array>
 #include <optional>
 
 #include "diagnoses/case.hpp"
@@ -12,6 +13,7 @@ namespace topdump::diag {
 
 class RefreshWatch {
  public:
+  static constexpr std::array<top::Diagnosis, 1> codes = {top::Diagnosis::refresh_gap};
   // The rate command frame n at ts on `axis` went `gap_us` without a refresh.
   void gap(std::uint64_t n, std::int64_t ts, std::string_view ident, int axis, int dir,
            std::int64_t gap_us, std::uint32_t limit_ms) noexcept;

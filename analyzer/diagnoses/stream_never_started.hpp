@@ -4,6 +4,7 @@
 // ended. The field note: a camera pushes only once it outputs video.
 #pragma once
 
+#include <array>
 #include <optional>
 
 #include "diagnoses/case.hpp"
@@ -12,6 +13,7 @@ namespace topdump::diag {
 
 class NeverStartedWatch {
  public:
+  static constexpr std::array<top::Diagnosis, 1> codes = {top::Diagnosis::stream_never_started};
   // The switch (frame n at ts) was sent; again while the stream waits
   // counts toward the same case.
   void asked(std::uint64_t n, std::int64_t ts, std::string_view switch_ident) noexcept {

@@ -16,9 +16,10 @@ void StallWatch::stalled(std::uint64_t n, std::int64_t ts, double period) noexce
   }
 }
 
-std::optional<Found> StallWatch::verdict(std::string_view ident) const {
+std::optional<Found> StallWatch::verdict(std::string_view ident, int dir) const {
   if (!stalls_.any()) return std::nullopt;
   Found f{top::Diagnosis::stream_stalled, stalls_, -1, {}};
+  f.c.dir = dir;
   for (std::size_t i = 0; i < 3; ++i) f.c.ident[i] = i < ident.size() ? ident[i] : '\0';
   f.figure = std::string(ident) + " push stopped " + std::to_string(stalls_.frames) +
              (stalls_.frames == 1 ? " time" : " times") + " for more than 3 periods (period " +

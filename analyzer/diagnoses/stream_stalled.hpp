@@ -7,6 +7,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <optional>
 
 #include "diagnoses/case.hpp"
@@ -18,8 +19,10 @@ class StallWatch {
   // A push of the stream, frame n at ts; asked_hz 0 when no rate was asked.
   // Inline: the session calls it for every push.
   void push(std::uint64_t n, std::int64_t ts, double asked_hz) noexcept;
-  // The diagnosis for the stream `ident`, when it stalled.
-  std::optional<Found> verdict(std::string_view ident) const;
+  static constexpr std::array<top::Diagnosis, 1> codes = {top::Diagnosis::stream_stalled};
+  // The diagnosis for the stream `ident`, pushed in direction `dir`, when
+  // it stalled.
+  std::optional<Found> verdict(std::string_view ident, int dir) const;
   std::uint64_t first_push() const noexcept { return first_n_; }
   // The time the stream spent stalled, microseconds (the stream's rate
   // without it is what stream-rate judges when it stalled: one cause, one

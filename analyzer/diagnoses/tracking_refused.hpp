@@ -3,6 +3,7 @@
 // track). State 3, temporarily lost, is no refusal.
 #pragma once
 
+#include <array>
 #include <optional>
 
 #include "diagnoses/case.hpp"
@@ -11,6 +12,7 @@ namespace topdump::diag {
 
 class TrackingWatch {
  public:
+  static constexpr std::array<top::Diagnosis, 1> codes = {top::Diagnosis::tracking_refused};
   void reply(top::Dialect d, std::string_view ident, std::string_view data, std::uint64_t n,
              std::int64_t ts, int dir) noexcept {
     if (top::refuses_tracking(d, ident, data)) c_.add(n, ts, ident, dir);

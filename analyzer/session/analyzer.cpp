@@ -149,7 +149,7 @@ void Analyzer::Impl::frame(Conversation& c, int d, top::Frame& f, Position pos, 
   expire(c, ts);
   // Requests that expire now were unanswered before this frame: the
   // silence they belong to ends with it when it comes from the device.
-  if (c.silence.count && d != c.silence.dir) emit_silence(c);
+  if (c.silence.stretch.count() && d != c.silence.stretch.dir()) emit_silence(c);
   D.last_frame_ts = ts;
   D.sent_frame = true;
   reply_timed = false;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "capture/sink.hpp"
+#include "diagnoses/cause.hpp"
 #include "findings/afindings.hpp"
 #include "top/top.hpp"
 
@@ -23,20 +24,6 @@ struct Position {
 };
 
 // A finding of the session or source layer.
-// Why a request may go unanswered, as far as the capture shows.
-enum class Cause : std::uint8_t {
-  none,
-  bad_checksum,   // devices drop frames they cannot trust
-  checksum_case,  // a lowercase checksum: strict parsers drop it
-  uart_source,    // Topotek: source U over the network, answers go to the UART
-  unsupported,    // not in the catalog, or not on the model
-  invalid,        // a wrong length or value: Topotek ignores it, SkyDroid answers ERE
-  other_port,     // the device sent its frames to another port of the client's host
-  silent          // the device sent nothing while several requests went unanswered
-};
-// What the capture shows of that cause, for people ("" for none).
-std::string_view describe(Cause c) noexcept;
-
 struct Note {
   ACode code{};
   top::Severity severity{};

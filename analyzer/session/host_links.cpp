@@ -89,11 +89,8 @@ void Analyzer::Impl::settle(Conversation& c) {
   l.check = false;
   const Pending& p = l.asked;
   Silence& s = l.elsewhere;
-  if (s.count == 0) {
-    s.first_n = p.n;
-    s.first_ts = p.ts;
+  if (s.stretch.count() == 0) {
     s.pos = p.pos;
-    s.dir = p.dir;
     s.about = Note{ACode::unanswered, top::Severity::info, std::string(), p.n};
     std::copy(p.ident, p.ident + 3, s.about.ident);
     s.about.src = p.src;
@@ -103,12 +100,7 @@ void Analyzer::Impl::settle(Conversation& c) {
     l.elsewhere_at = p.at;
     s.single = l.reached;  // where the replies went
   }
-  ++s.count;
-  s.last_n = p.n;
-  s.last_ts = p.ts;
-  const std::string id = top::escape(std::string_view(p.ident, 3));
-  if (s.idents.find(id) == std::string::npos && s.idents.size() < 64)
-    s.idents += (s.idents.empty() ? "" : ", ") + id;
+  s.stretch.add(p.n, p.ts, std::string_view(p.ident, 3), p.dir, false);
 }
 
 void Analyzer::Impl::silent_write(Conversation& c, const Pending& p) {
@@ -183,14 +175,14 @@ void Analyzer::Impl::link_notes(Conversation& c) {
     note_event(l.copy_ts, Position{}, c.transport, &c, &at.from, &at.to, std::move(n));
   }
   Silence& s = l.elsewhere;
-  if (s.count) {
+  if (const diag::Case& r = s.stretch.requests(); r.frames) {
     Note n = s.about;
     n.cause = Cause::other_port;
-    n.count = s.count;
-    n.until = s.last_ts;
+    n.count = r.frames;
+    n.until = r.last_ts;
     n.message = message([&] {
-      return plural(s.count, "request", "requests") + " (" + s.idents + ") from frame " +
-             std::to_string(s.first_n) + " to frame " + std::to_string(s.last_n) +
+      return plural(r.frames, "request", "requests") + " (" + s.stretch.idents() + ") from frame " +
+             std::to_string(r.first_frame) + " to frame " + std::to_string(s.stretch.last_n()) +
              " got their response on another port: the device sent it to " + s.single +
              ", never to " + l.elsewhere_asker +
              " that asked: a client that listens only there hears nothing" +
@@ -200,7 +192,7 @@ void Analyzer::Impl::link_notes(Conversation& c) {
                   : "");
     });
     const Route* at = l.elsewhere_at;
-    note_event(s.first_ts, s.pos, c.transport, &c, at ? &at->from : &cli.from,
+    note_event(r.first_ts, s.pos, c.transport, &c, at ? &at->from : &cli.from,
                at ? &at->to : &cli.to, std::move(n));
     s = Silence{};
   }

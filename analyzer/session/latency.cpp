@@ -102,16 +102,9 @@ std::int64_t Latency::quantile(double q) const {
   return max_;
 }
 
-bool StreamStat::off_rate() const {
-  const double m = measured_hz();
-  return periodic && asked_hz > 0 && m > 0 &&
-         std::fabs(m - asked_hz) > top::stream_rate_tolerance * asked_hz;
-}
+bool StreamStat::off_rate() const { return periodic && diag::off_rate(measured_hz(), asked_hz); }
 
-double StreamStat::measured_hz() const {
-  if (frames < 2 || first == kNoTime || last <= first) return 0;
-  return static_cast<double>(frames - 1) * 1e6 / static_cast<double>(last - first);
-}
+double StreamStat::measured_hz() const { return diag::measured_hz(frames, first, last); }
 
 Latency& Analyzer::Impl::latency_of(std::uint32_t key) {
   std::uint32_t& hint = latency_hint[(key * 0x9E3779B1u) >> 26];

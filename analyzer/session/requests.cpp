@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 
@@ -16,27 +15,11 @@
 namespace topdump {
 
 namespace {
-// What the capture shows of why a request went unanswered (Cause).
-constexpr std::string_view kCauseText[] = {
-    "",
-    "its checksum is bad, and devices drop such frames",
-    "its checksum is in lowercase hex, which strict parsers drop",
-    "a Topotek request with source U over the network; the device answers U requests on its "
-    "UART only (the network client is P)",
-    "the identifier is not supported on the model",
-    "the request is invalid (its length or a value), which devices ignore or answer with ERE",
-    "the device sent its frames to another port of this host: a client that does not listen "
-    "there hears nothing",
-    "the device was silent",
-};
-static_assert(std::size(kCauseText) == static_cast<std::size_t>(Cause::silent) + 1);
 // ": " and the cause, appended to an unanswered request's message.
 std::string cause_text(Cause c) {
   return c == Cause::none ? std::string() : top::cat({": ", describe(c)});
 }
 }  // namespace
-
-std::string_view describe(Cause c) noexcept { return kCauseText[static_cast<std::size_t>(c)]; }
 
 // Learns which direction the device sends in from a frame of direction d,
 // when the ports did not say: a frame addressed to a client, one whose
@@ -92,19 +75,7 @@ void Analyzer::Impl::unanswered(Conversation& c, const Pending& p, bool at_end) 
   // answers in 105-112 ms: PixEagle bench, 20260917T044930Z-queries).
   if (at_end && cut_off(c, p)) return;
   const Route& D = p.at ? *p.at : c.dir[p.dir];
-  switch (p.cause) {
-    case Cause::bad_checksum:
-      c.watch.dropped.add(top::Diagnosis::dropped_bad_checksum, p.n, p.ts, p.ident, p.dir);
-      break;
-    case Cause::checksum_case:
-      c.watch.dropped.add(top::Diagnosis::dropped_checksum_case, p.n, p.ts, p.ident, p.dir);
-      break;
-    case Cause::uart_source:
-      c.watch.dropped.unanswered(top::Diagnosis::reply_interface);
-      break;
-    default:
-      break;
-  }
+  c.watch.dropped.unanswered(p.cause, p.n, p.ts, std::string_view(p.ident, 3), p.dir);
   Note about{ACode::unanswered, default_severity(ACode::unanswered), std::string(), p.n};
   std::memcpy(about.ident, p.ident, 3);
   about.src = p.src;
@@ -141,25 +112,15 @@ void Analyzer::Impl::unanswered(Conversation& c, const Pending& p, bool at_end) 
     const Conversation* o = answered_elsewhere(c, D, p.ts, to);
     const std::uint64_t oid = o ? o->id : 0;
     Silence& s = c.silence;
-    if (s.count && (s.dir != p.dir || s.elsewhere_conv != oid)) emit_silence(c);
-    if (s.count == 0) {
+    if (s.stretch.count() && (s.stretch.dir() != p.dir || s.elsewhere_conv != oid)) emit_silence(c);
+    if (s.stretch.count() == 0) {
       s.elsewhere = std::move(to);
       s.elsewhere_conv = oid;
       s.about = about;
-      s.first_n = p.n;
-      s.first_ts = p.ts;
       s.pos = p.pos;
-      s.dir = p.dir;
-      s.idents.clear();
       s.single = std::move(msg);
     }
-    ++s.count;
-    s.timed_out |= !at_end;
-    s.last_n = p.n;
-    s.last_ts = p.ts;
-    const std::string id = top::escape(std::string_view(p.ident, 3));
-    if (s.idents.find(id) == std::string::npos && s.idents.size() < 64)
-      s.idents += (s.idents.empty() ? "" : ", ") + id;
+    s.stretch.add(p.n, p.ts, std::string_view(p.ident, 3), p.dir, !at_end);
     return;
   }
   about.message = std::move(msg);
@@ -177,48 +138,38 @@ bool Analyzer::Impl::cut_off(const Conversation& c, const Pending& p) const noex
 // nothing (the first request's message when it is alone).
 void Analyzer::Impl::emit_silence(Conversation& c) {
   Silence& s = c.silence;
-  if (s.count == 0) return;
-  const Direction& D = c.dir[s.dir];
+  const diag::SilentStretch& st = s.stretch;
+  if (st.count() == 0) return;
+  const diag::Case& r = st.requests();
+  const Direction& D = c.dir[st.dir()];
+  Note n = s.about;  // the first request's identifier and addresses
   if (s.elsewhere_conv) {
-    Note n = s.about;
     n.severity = top::Severity::info;
     n.cause = Cause::other_port;
-    n.count = s.count;
-    n.until = s.last_ts;
+    n.count = r.frames;
+    n.until = r.last_ts;
     n.message = message([&] {
-      return std::to_string(s.count) + (s.count == 1 ? " request (" : " requests (") + s.idents +
-             ") from frame " + std::to_string(s.first_n) + " to frame " + std::to_string(s.last_n) +
-             " got no response on this port: the device sent its " + "frames to " +
-             s.elsewhere.text() + " (conversation " + std::to_string(s.elsewhere_conv) +
+      return std::to_string(r.frames) + (r.frames == 1 ? " request (" : " requests (") +
+             st.idents() + ") from frame " + std::to_string(r.first_frame) + " to frame " +
+             std::to_string(st.last_n()) + " got no response on this port: the device sent its " +
+             "frames to " + s.elsewhere.text() + " (conversation " +
+             std::to_string(s.elsewhere_conv) +
              ") meanwhile: a client that does not listen there hears nothing" +
              (c.det.current() == top::Dialect::topotek
                   ? " (Topotek V1.1.3: the device answers to UDP " +
                         std::to_string(top::client_port(top::Model::sip)) + ")"
                   : "");
     });
-    note_event(s.first_ts, s.pos, c.transport, &c, &D.from, &D.to, std::move(n));
-    s = Silence{};
-    return;
-  }
-  std::string msg = s.count == 1 ? std::move(s.single) : message([&] {
-    char span[32];
-    std::snprintf(span, sizeof span, "%.3f", static_cast<double>(s.last_ts - s.first_ts) / 1e6);
-    return "the device was silent: " + std::to_string(s.count) + " requests (" + s.idents +
-           ") from frame " + std::to_string(s.first_n) + " to frame " + std::to_string(s.last_n) +
-           " over " + span + " s got no response";
-  });
-  Note n = s.about;  // the first request's identifier and addresses
-  if (s.count > 1) n.cause = Cause::silent;
-  if (s.count > 1 && s.timed_out) {
-    // the silent-device diagnosis: its case is the stretch
-    n.code = acode_of(top::Diagnosis::silent_device);
-    n.severity = top::severity(top::Diagnosis::silent_device);
+  } else if (r.frames > 1) {
     n.cause = Cause::silent;
-    n.count = s.count;
-    n.until = s.last_ts;
+    if (std::optional<diag::Found> f = st.verdict())
+      n = note_of(std::move(*f), std::move(n));
+    else
+      n.message = message([&] { return st.figure(); });
+  } else {
+    n.message = std::move(s.single);
   }
-  n.message = std::move(msg);
-  note_event(s.first_ts, s.pos, c.transport, &c, &D.from, &D.to, std::move(n));
+  note_event(r.first_ts, s.pos, c.transport, &c, &D.from, &D.to, std::move(n));
   s = Silence{};
 }
 
@@ -336,10 +287,7 @@ void Analyzer::Impl::request(Conversation& c, int d, FrameEvent& ev) {
     }
   }
   const Cause cause = cause_of(c, *ev.entry, A.opts_.model);
-  // The client's deviation, whatever the device does with it: a network
-  // client that names itself U (the UART) in Topotek requests.
-  if (cause == Cause::uart_source)
-    c.watch.dropped.add(top::Diagnosis::reply_interface, ev.n, ev.ts, f.ident_view(), d);
+  c.watch.dropped.request(cause, ev.n, ev.ts, f.ident_view(), d);
   pend(c, d, ev, cause);
 }
 

@@ -21,6 +21,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "diagnoses/silent_device.hpp"
 #include "diagnoses/watch.hpp"
 #include "session/analyzer.hpp"
 #include "session/pairing.hpp"
@@ -38,19 +39,12 @@ struct Seg {
 };
 
 // Requests that went unanswered while the device said nothing: reported as
-// one finding for the stretch.
+// one finding for the stretch (silent-device's when it decides so).
 struct Silence {
-  std::uint64_t count = 0;
-  std::uint64_t first_n = 0, last_n = 0;
-  std::int64_t first_ts = kNoTime, last_ts = kNoTime;
+  diag::SilentStretch stretch;
   Position pos;
-  int dir = 0;
-  std::string idents;  // "GAY, VER, PTZ"
   std::string single;  // the message when the stretch holds one request
   Note about;          // the first request's identifier and addresses
-  // One of them waited the whole timeout inside the capture: the device
-  // was silent (silent-device), not just cut off by the capture's end.
-  bool timed_out = false;
   // The device was not silent: it sent frames to another port of the
   // client's host (`elsewhere`, another conversation) meanwhile.
   Endpoint elsewhere;
@@ -415,6 +409,10 @@ struct Analyzer::Impl {
   void silent_write(Conversation& c, const Pending& p);
   void check_stream(Conversation& c, const StreamStat& s);
   // --- the diagnoses (analyzer/diagnoses/), reported as session notes ---
+  // A detector's verdict as a note: its code, severity, figure and case
+  // over `n` (the addresses and cause of what it is about).
+  Note note_of(diag::Found&& f, Note n = {}) const;
+  // The note at the case's first time, in the case's direction.
   void diagnose(Conversation& c, diag::Found f);
   static std::int64_t last_ts(const Conversation& c) noexcept {
     return std::max(c.dir[0].last_frame_ts, c.dir[1].last_frame_ts);

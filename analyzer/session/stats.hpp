@@ -9,6 +9,7 @@
 
 #include "capture/sink.hpp"
 #include "diagnoses/stream_never_started.hpp"
+#include "diagnoses/stream_rate.hpp"
 #include "diagnoses/stream_stalled.hpp"
 #include "top/top.hpp"
 
@@ -54,8 +55,8 @@ struct StreamStat {
   diag::StallWatch stall;
   diag::NeverStartedWatch never;
   double measured_hz() const;
-  // The one stream-rate verdict (stream-rate finding, stats, report): asked
-  // a rate, measured one, and more than top::stream_rate_tolerance off it.
+  // Asked a rate, measured one, and more than top::stream_rate_tolerance
+  // off it (diag::off_rate: the rule of the stream-rate diagnosis).
   bool off_rate() const;
 };
 

@@ -69,7 +69,7 @@ TEST(DiagnosesRules, DatesReadByTheCatalogsFields) {
 TEST(DiagnosesStall, SlowSteadyStreamIsNoStall) {
   diag::StallWatch w;
   for (int i = 0; i < 300; ++i) w.push(static_cast<std::uint64_t>(i + 1), kT0 + i * 100'000, 50);
-  EXPECT_FALSE(w.verdict("GAC"));
+  EXPECT_FALSE(w.verdict("GAC", 1));
 }
 
 // The case's frame, time and end agree: the last push before the stall at
@@ -82,8 +82,9 @@ TEST(DiagnosesStall, TheCaseIsTheStopAndItsResumption) {
   for (int i = 0; i < 30; ++i) w.push(++n, t += 100'000, 10);
   const std::int64_t stop = t;
   for (int i = 0; i < 10; ++i) w.push(++n, t += (i == 0 ? 2'000'000 : 100'000), 10);
-  const auto f = w.verdict("GAC");
+  const auto f = w.verdict("GAC", 1);
   ASSERT_TRUE(f);
+  EXPECT_EQ(f->c.dir, 1);  // the direction the stream is pushed in
   EXPECT_EQ(f->c.first_frame, 30u);
   EXPECT_EQ(f->c.first_ts, stop);
   EXPECT_EQ(f->c.last_ts, stop + 2'000'000);
@@ -104,7 +105,7 @@ TEST(DiagnosesStall, LinkBunchesAreNoStall) {
       t += gap_ms * 1000;
       for (int i = 0; i < 5; ++i) w.push(++n, t += 1'000, 50);
     }
-    EXPECT_EQ(w.verdict("GAC").has_value(), gap_ms == 300) << gap_ms;
+    EXPECT_EQ(w.verdict("GAC", 1).has_value(), gap_ms == 300) << gap_ms;
   }
 }
 
@@ -114,7 +115,7 @@ TEST(DiagnosesStall, GapOfMoreThanThreePeriodsThatResumes) {
   for (int i = 0; i < 30; ++i) w.push(++n, kT0 + i * 100'000, 10);
   w.push(++n, kT0 + 29 * 100'000 + 2'000'000, 10);  // 2 s later
   for (int i = 1; i < 10; ++i) w.push(++n, kT0 + 49 * 100'000 + i * 100'000, 10);
-  const auto f = w.verdict("GAC");
+  const auto f = w.verdict("GAC", 1);
   ASSERT_TRUE(f);
   EXPECT_EQ(f->code, top::Diagnosis::stream_stalled);
   EXPECT_EQ(f->c.frames, 1u);
@@ -132,7 +133,7 @@ TEST(DiagnosesStall, JitterWithinThreePeriodsIsNoStall) {
     t += (i % 5 == 0) ? 250'000 : 100'000;  // a late push now and then
     w.push(static_cast<std::uint64_t>(i + 1), t, 10);
   }
-  EXPECT_FALSE(w.verdict("GAC"));
+  EXPECT_FALSE(w.verdict("GAC", 1));
 }
 
 TEST(DiagnosesNeverStarted, NeedsAnAnsweredSwitchAndTime) {
