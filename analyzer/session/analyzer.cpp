@@ -16,20 +16,6 @@ top::Severity FrameEvent::worst() const noexcept {
   return w;
 }
 
-void Analyzer::Impl::FreeDeleter::operator()(std::uint64_t* p) const noexcept { std::free(p); }
-
-void Analyzer::Impl::allocate_ident_page(std::unique_ptr<std::uint64_t[], FreeDeleter>& page) {
-  auto* p = static_cast<std::uint64_t*>(std::calloc(kIdentPage, sizeof(std::uint64_t)));
-  if (!p) throw std::bad_alloc();
-  page.reset(p);
-}
-
-std::string unpack_ident(std::uint32_t k) {
-  char b[3] = {static_cast<char>(k & 0xFF), static_cast<char>((k >> 8) & 0xFF),
-               static_cast<char>((k >> 16) & 0xFF)};
-  return top::escape(std::string_view(b, 3));
-}
-
 void Analyzer::Impl::note_event(std::int64_t ts, Position pos, Transport t, const Conversation* c,
                                 const std::string* from, const std::string* to, Note n, bool emit) {
   NoteEvent e{.ts = ts,
@@ -41,7 +27,7 @@ void Analyzer::Impl::note_event(std::int64_t ts, Position pos, Transport t, cons
               .note = std::move(n)};
   // What the filter leaves out is neither counted nor in the exit status.
   if (A.filtering_ && !A.filter_.selects(e)) return;
-  ++acodes[static_cast<std::size_t>(e.note.code)];
+  counts.note(e.note.code);
   if (e.note.severity > A.worst_) A.worst_ = e.note.severity;
   if (e.note.severity != top::Severity::info && diagnosis_of(e.note.code)) A.diagnosed_ = true;
   if (emit) A.sink_.note(e);
@@ -62,7 +48,7 @@ void Analyzer::Impl::item(Conversation& c, int d, top::StreamItem& it, Position 
       c.watch.baud.garbage(it.length, it.preview, pos.record, ts);
     if (A.filtering_ && !A.filter_.selects(g)) return;
     ++A.stats_.garbage;
-    ++codes[static_cast<std::size_t>(it.finding.code)];
+    counts.finding(it.finding.code);
     if (it.finding.severity > A.worst_) A.worst_ = it.finding.severity;
     A.sink_.garbage(g);
     return;
@@ -109,26 +95,12 @@ void Analyzer::Impl::mute(top::Frame& f, FrameEvent& ev) {
 }
 
 void Analyzer::Impl::materialize(Stats& s) const {
-  s.per_ident.clear();
-  for (const auto& [k, v] : idents) s.per_ident[unpack_ident(k)] += v;
-  for (std::size_t p = 0; p < ident_pages.size(); ++p)
-    if (const auto& page = ident_pages[p])
-      for (std::size_t i = 0; i < kIdentPage; ++i)
-        if (page[i]) s.per_ident[top::ident_of(p * kIdentPage + i)] += page[i];
-  s.per_code.clear();
-  for (std::size_t i = 0; i < codes.size(); ++i)
-    if (codes[i])
-      s.per_code[std::string(top::to_string(static_cast<top::FindingCode>(i)))] += codes[i];
-  for (std::size_t i = 0; i < acodes.size(); ++i)
-    if (acodes[i]) s.per_code[std::string(to_string(static_cast<ACode>(i)))] += acodes[i];
-  s.latency.clear();
-  for (std::size_t i = 0; i < latency_keys.size(); ++i)
-    s.latency[unpack_ident(latency_keys[i])] = latency[i];
+  counts.materialize(s);
+  latencies.materialize(s.latency);
 }
 
-void Analyzer::Impl::frame(Conversation& c, int d, top::Frame& f, Position pos, std::int64_t ts,
-                           std::uint64_t stream_off) {
-  Direction& D = c.dir[d];
+// The frame's dialect and role as its conversation knows them, decoded.
+inline const DecodedEntry& Analyzer::Impl::decode(Conversation& c, int d, top::Frame& f) {
   if (c.observed < 64) {
     c.det.observe(f);
     ++c.observed;
@@ -141,65 +113,78 @@ void Analyzer::Impl::frame(Conversation& c, int d, top::Frame& f, Position pos, 
   // requests.
   top::Role role = top::Role::any;
   if (c.device_dir >= 0) role = d == c.device_dir ? top::Role::response : top::Role::request;
-  const DecodedEntry& e = lookup(f, dialect, role);
-  const top::Frame& fr = *e.frame;
+  return lookup(f, dialect, role);
+}
 
-  FrameEvent ev(++A.frame_no_, ts, pos, stream_off, c.transport, &c, &D.now->from, &D.now->to, &e);
-
-  expire(c, ts);
+// Pairing: requests wait, responses answer them, the device's copies are
+// copies.
+inline void Analyzer::Impl::pair(Conversation& c, int d, FrameEvent& ev) {
+  const DecodedEntry& e = *ev.entry;
+  Direction& D = c.dir[d];
+  expire(c, ev.ts);
   // Requests that expire now were unanswered before this frame: the
   // silence they belong to ends with it when it comes from the device.
   if (c.silence.stretch.count() && d != c.silence.stretch.dir()) emit_silence(c);
-  D.last_frame_ts = ts;
+  D.last_frame_ts = ev.ts;
   D.sent_frame = true;
   reply_timed = false;
-  const top::Role decided = e.decoded.role;
   // A copy of the device's last frame to another port of the client's
   // host (a real Topotek camera's fan-out) is that frame again: shown and
   // counted, never paired or judged twice.
   // (only once the conversation took another pair of ends: a device that
   // answers from its own port to the one client port copies nothing)
   if (c.link && d == c.device_dir && !c.link->routes.empty() &&
-      copy_of_last(c, d, fr, ts, ev.n, e.decoded.dialect))
+      copy_of_last(c, d, *e.frame, ev.ts, ev.n, e.decoded.dialect)) {
     ev.copy_of = c.link->last_n;
-  if (ev.copy_of == 0) {
-    if (decided == top::Role::request)
-      request(c, d, ev);
-    else if (decided == top::Role::response)
-      response(c, d, ev);
-    // The conversation's diagnoses see every frame, as pairing does; what
-    // they find is reported at its end, through the filter.
-    if (e.decoded.diagnosed) {  // the rules' prefilter (top::may_matter_to_diagnoses)
-      const std::string_view id = fr.ident_view(), data = fr.data();
-      if (decided == top::Role::response && e.decoded.dialect != top::Dialect::unknown &&
-          fr.checksum_ok)
-        c.watch.device_frame(e.decoded.dialect, id, fr.control, data, ev.n, ts, d);
-      c.watch.dated_frame(e.decoded.form, id, data, ev.n, ts, d, decided == top::Role::response);
-    }
-    // the motion diagnoses: commands that move the gimbal and its attitude
-    if (const top::MotionSpec* m = e.decoded.motion;
-        m && fr.checksum_ok && decided != top::Role::any)
-      c.watch.motion.frame(*m, e.decoded.form, decided == top::Role::request, fr.control, fr.data(),
-                           ev.n, ts, d, A.opts_.model);
+    return;
   }
+  if (e.decoded.role == top::Role::request)
+    request(c, d, ev);
+  else if (e.decoded.role == top::Role::response)
+    response(c, d, ev);
+}
 
-  // Pairing saw the frame; what follows is reporting, which the filter
-  // governs: a frame it leaves out is neither counted nor in the exit status.
-  if (A.filtering_) {
-    if (!A.filter_.mute.empty() || !A.filter_.amute.empty()) mute(f, ev);
-    if (A.done_ || !A.filter_.selects(ev)) return;
-    if (A.filter_.max_frames && ++A.selected_ >= A.filter_.max_frames) A.done_ = true;
+// The diagnoses: the detectors see every frame but the device's copies; what
+// they find is reported at the conversation's end, through the filter.
+inline void Analyzer::Impl::watch(Conversation& c, int d, const FrameEvent& ev) {
+  const DecodedEntry& e = *ev.entry;
+  const top::Frame& fr = *e.frame;
+  const top::Role role = e.decoded.role;
+  if (e.decoded.diagnosed) {  // the rules' prefilter (top::may_matter_to_diagnoses)
+    const std::string_view id = fr.ident_view(), data = fr.data();
+    if (role == top::Role::response && e.decoded.dialect != top::Dialect::unknown && fr.checksum_ok)
+      c.watch.device_frame(e.decoded.dialect, id, fr.control, data, ev.n, ev.ts, d);
+    c.watch.dated_frame(e.decoded.form, id, data, ev.n, ev.ts, d, role == top::Role::response);
   }
+  // the motion diagnoses: commands that move the gimbal and its attitude
+  if (const top::MotionSpec* m = e.decoded.motion; m && fr.checksum_ok && role != top::Role::any)
+    c.watch.motion.frame(*m, e.decoded.form, role == top::Role::request, fr.control, fr.data(),
+                         ev.n, ev.ts, d, A.opts_.model);
+}
+
+// Pairing saw the frame; what follows is reporting, which the filter
+// governs: a frame it leaves out is neither counted nor in the exit status.
+inline bool Analyzer::Impl::selected(top::Frame& f, FrameEvent& ev) {
+  if (!A.filtering_) return true;
+  if (!A.filter_.mute.empty() || !A.filter_.amute.empty()) mute(f, ev);
+  if (A.done_ || !A.filter_.selects(ev)) return false;
+  if (A.filter_.max_frames && ++A.selected_ >= A.filter_.max_frames) A.done_ = true;
+  return true;
+}
+
+// The counters, the conversation's statistics and the latency.
+inline void Analyzer::Impl::count(Conversation& c, const FrameEvent& ev) {
+  const DecodedEntry& e = *ev.entry;
   if (ev.worst() > A.worst_) A.worst_ = ev.worst();
   bool unsolicited = false;
   for (const Note& n : ev.notes) {
-    ++acodes[static_cast<std::size_t>(n.code)];
+    counts.note(n.code);
     unsolicited |= n.code == ACode::unsolicited;
   }
   ++c.st.frames;
   // a copy is neither a request nor a response (its role is the first's)
   A.stats_.copies += ev.copy_of != 0;
-  const top::Role counted = ev.copy_of ? top::Role::any : decided;
+  const top::Role counted = ev.copy_of ? top::Role::any : e.decoded.role;
   if (counted == top::Role::request) {
     ++A.stats_.requests;
     ++c.st.requests;
@@ -210,24 +195,38 @@ void Analyzer::Impl::frame(Conversation& c, int d, top::Frame& f, Position pos, 
       ++A.stats_.paired;
       ++c.st.paired;
     }
-    if (reply_timed) latency_of(reply_key).add(ev.latency_us);
+    if (reply_timed) latencies.of(reply_key).add(ev.latency_us);
     if (unsolicited) ++A.stats_.unsolicited;
   }
   if (A.opts_.stats) {
+    const top::Frame& fr = *e.frame;
     Stats& s = A.stats_;
     ++s.frames;
     if (e.bad_checksum) ++s.bad_checksum;
     if (e.worst == top::Severity::error) ++s.error_frames;
-    count_ident(fr.ident);
-    for (const top::Finding& x : fr.findings) ++codes[static_cast<std::size_t>(x.code)];
-    for (const top::Finding& x : e.decoded.findings) ++codes[static_cast<std::size_t>(x.code)];
-    if (ts != kNoTime) {
-      if (s.first == kNoTime || ts < s.first) s.first = ts;
-      if (s.last == kNoTime || ts > s.last) s.last = ts;
+    counts.ident(fr.ident);
+    for (const top::Finding& x : fr.findings) counts.finding(x.code);
+    for (const top::Finding& x : e.decoded.findings) counts.finding(x.code);
+    if (ev.ts != kNoTime) {
+      if (s.first == kNoTime || ev.ts < s.first) s.first = ev.ts;
+      if (s.last == kNoTime || ev.ts > s.last) s.last = ev.ts;
     }
   }
+}
+
+// One frame through the session's stages, in the pipeline's order.
+void Analyzer::Impl::frame(Conversation& c, int d, top::Frame& f, Position pos, std::int64_t ts,
+                           std::uint64_t stream_off) {
+  const DecodedEntry& e = decode(c, d, f);
+  const Route& at = *c.dir[d].now;
+  FrameEvent ev(++A.frame_no_, ts, pos, stream_off, c.transport, &c, &at.from, &at.to, &e);
+  pair(c, d, ev);
+  if (ev.copy_of == 0) watch(c, d, ev);
+  if (!selected(f, ev)) return;
+  count(c, ev);
   A.sink_.frame(ev);
 }
+
 std::uint64_t FrameEvent::conv_id() const noexcept { return conv ? conv->id : 0; }
 std::uint64_t GarbageEvent::conv_id() const noexcept { return conv ? conv->id : 0; }
 std::uint64_t NoteEvent::conv_id() const noexcept { return conv ? conv->id : 0; }
@@ -298,7 +297,7 @@ void Analyzer::source_note(std::int64_t ts, ACode code, std::string message, std
 }
 
 void Analyzer::note_if_no_frames(std::string what) {
-  if (frame_no_ > 0 || impl_->acodes[static_cast<std::size_t>(ACode::baud_mismatch)] > 0) return;
+  if (frame_no_ > 0 || impl_->counts.notes(ACode::baud_mismatch) > 0) return;
   source_note(kNoTime, ACode::no_frames, std::move(what), 0, 0);
 }
 

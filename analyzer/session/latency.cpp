@@ -106,17 +106,4 @@ bool StreamStat::off_rate() const { return periodic && diag::off_rate(measured_h
 
 double StreamStat::measured_hz() const { return diag::measured_hz(frames, first, last); }
 
-Latency& Analyzer::Impl::latency_of(std::uint32_t key) {
-  std::uint32_t& hint = latency_hint[(key * 0x9E3779B1u) >> 26];
-  if (hint != 0 && latency_keys[hint - 1] == key) return latency[hint - 1];
-  std::size_t i = 0;
-  while (i < latency_keys.size() && latency_keys[i] != key) ++i;
-  if (i == latency_keys.size()) {
-    latency_keys.push_back(key);
-    latency.emplace_back();
-  }
-  hint = static_cast<std::uint32_t>(i + 1);
-  return latency[i];
-}
-
 }  // namespace topdump

@@ -1,14 +1,25 @@
 // The analyzer's internals (not a public header): the state of one
-// conversation and its two directions, and Analyzer::Impl, whose parts live
-// in files of one idea:
-//   analyzer.cpp       frames and items to events, statistics, the public API
+// conversation and its two directions, and Analyzer::Impl. A frame goes
+// through the stages in order (Impl::frame, analyzer.cpp):
+//
+//   datagram / byte stream --> decode --> pair --> watch --> selected --> count --> sink
+//   (byte_streams.cpp,        (role,     (Pairing, (the     (the         (Counters,
+//    tcp_reassembly.hpp)       catalog)   host      diagnoses' filter)    LatencyTable:
+//                                         links)    detectors)            counters.hpp)
+//
+// Their parts live in files of one idea:
+//   analyzer.cpp       the stages of a frame, items to events, the public API
 //   conversations.cpp  the conversation table: lookup, cache, eviction, close
 //   requests.cpp       requests and responses through the conversation's
 //                      Pairing (pairing.hpp), unanswered requests, silences
-//   streams.cpp        device streams: counted pushes, the stream-rate check
+//   host_links.cpp     a device that answers the client's host: copies, notes
+//   streams.cpp        device streams at their end, through their detectors
+//   diagnose.cpp       a detector's verdict as a note (analyzer/diagnoses/
+//                      decides every diagnosis; the session feeds and emits)
 //   byte_streams.cpp   byte streams: TCP through TcpReassembly
 //                      (tcp_reassembly.hpp), positions, serial chunks
-//   latency.cpp        latency histograms and the latency table
+//   counters.cpp       frames per identifier, findings per code, latency
+//   latency.cpp        latency histograms
 #pragma once
 
 #include <array>
@@ -24,6 +35,7 @@
 #include "diagnoses/silent_device.hpp"
 #include "diagnoses/watch.hpp"
 #include "session/analyzer.hpp"
+#include "session/counters.hpp"
 #include "session/pairing.hpp"
 #include "session/tcp_reassembly.hpp"
 #include "top/detail/ring.hpp"
@@ -202,15 +214,6 @@ struct ConvKeyHash {
   std::size_t operator()(const ConvKey& k) const noexcept;
 };
 
-// The identifier as a 24-bit key, and back as display text.
-inline std::uint32_t pack_ident(std::string_view id) noexcept {
-  std::uint32_t k = 0;
-  for (std::size_t i = 0; i < 3 && i < id.size(); ++i)
-    k |= static_cast<std::uint32_t>(static_cast<unsigned char>(id[i])) << (8 * i);
-  return k;
-}
-std::string unpack_ident(std::uint32_t k);
-
 struct Analyzer::Impl {
   Analyzer& A;
   explicit Impl(Analyzer& a) : A(a) {}
@@ -294,36 +297,9 @@ struct Analyzer::Impl {
   // frames' findings carry no text, which stats never shows.
   top::ParseOptions parse;
 
-  std::array<std::uint64_t, top::finding_code_count> codes{};
-  std::array<std::uint64_t, acode_count> acodes{};
-  // Frames per identifier of three [0-9A-Z] characters (every valid one):
-  // top::ident_index's slots in 23 pages of 2048 (16 KB), each allocated
-  // at the first frame counted in it and zeroed by the allocator (calloc).
-  // A capture uses a few identifiers, so it pays for a few pages, not
-  // 373 KB of zeroes: an analyzer that counts a handful of frames (the fuzz
-  // targets build one per input) stays small, and under ASan a page is a
-  // heap block, not a fresh mmap. A power of two, so finding a slot's page
-  // is a shift (topdump stats, 200k frames: +0.04% instructions over one
-  // flat table; 1296-slot pages, a division, cost +0.6%).
-  static constexpr std::size_t kIdentPage = std::size_t{1} << 11;
-  struct FreeDeleter {
-    void operator()(std::uint64_t* p) const noexcept;
-  };
-  std::array<std::unique_ptr<std::uint64_t[], FreeDeleter>,
-             (top::ident_slots + kIdentPage - 1) / kIdentPage>
-      ident_pages;
-  std::unordered_map<std::uint32_t, std::uint64_t> idents;  // other identifiers
-  void count_ident(const char id[3]) {
-    if (const int i = top::ident_index(id); i >= 0) {
-      const auto slot = static_cast<std::size_t>(i);
-      auto& page = ident_pages[slot / kIdentPage];
-      if (!page) allocate_ident_page(page);
-      ++page[slot % kIdentPage];
-    } else {
-      ++idents[pack_ident(std::string_view(id, 3))];
-    }
-  }
-  static void allocate_ident_page(std::unique_ptr<std::uint64_t[], FreeDeleter>& page);
+  // The counting and latency stages (counters.hpp).
+  Counters counts;
+  LatencyTable latencies;
 
   // A finding's or note's message, built only when events are described
   // (AnalyzerOptions::detail); topdump stats counts them without text.
@@ -340,21 +316,21 @@ struct Analyzer::Impl {
   static void summarise(DecodedEntry& e);
   // Drops the findings the filter mutes from a frame and its notes.
   void mute(top::Frame& f, FrameEvent& ev);
+  // A frame through the stages: decode, pair, watch (the diagnoses),
+  // selected (the filter), count, and out to the sink.
   void frame(Conversation& c, int d, top::Frame& f, Position pos, std::int64_t ts,
              std::uint64_t stream_off);
+  // (the stages of analyzer.cpp are inlined into frame(): out of line, the
+  // calls and their arguments cost 90 instructions a frame at -O1)
+  [[gnu::always_inline]] const DecodedEntry& decode(Conversation& c, int d, top::Frame& f);
+  [[gnu::always_inline]] void pair(Conversation& c, int d, FrameEvent& ev);
+  [[gnu::always_inline]] void watch(Conversation& c, int d, const FrameEvent& ev);
+  [[gnu::always_inline]] bool selected(top::Frame& f, FrameEvent& ev);
+  [[gnu::always_inline]] void count(Conversation& c, const FrameEvent& ev);
   // Folds the fast counters into the statistics.
   void materialize(Stats& s) const;
 
   // --- requests.cpp, streams.cpp, latency.cpp: pairing and streams --------
-  // Latency per identifier: a capture pairs a handful of identifiers, so a
-  // linear search of their keys beats hashing (a division per reply).
-  std::vector<std::uint32_t> latency_keys;
-  std::vector<Latency> latency;  // latency[i] is latency_keys[i]'s
-  // The last index found for each of 64 hashed slots: most replies find
-  // their identifier's table there without a search (whose exit, at a
-  // different place for each identifier, mispredicted).
-  std::array<std::uint32_t, 64> latency_hint{};  // 1 + index into latency, 0: none
-  Latency& latency_of(std::uint32_t key);
   // The response at hand answered a request at a known time: its latency
   // counts, under the request's identifier, when the filter selects it.
   bool reply_timed = false;

@@ -1,32 +1,11 @@
 // Device streams at their end, through their detectors (stream-stalled,
-// stream-never-started, stream-rate; analyzer/diagnoses/), and every
-// verdict of a detector made a note (note_of, diagnose()). Only a periodic
+// stream-never-started, stream-rate; analyzer/diagnoses/). Only a periodic
 // stream is judged (top::StreamSpec::periodic): an event push (the Topotek
 // OFT while tracking, ODR while detecting, ODZ while zooming) pauses with
 // its cause.
-#include <cstring>
-
 #include "session.hpp"
 
 namespace topdump {
-
-Note Analyzer::Impl::note_of(diag::Found&& f, Note n) const {
-  n.code = acode_of(f.code);
-  n.severity = top::severity(f.code);
-  n.message = message([&] { return std::move(f.figure); });
-  n.frame = f.c.first_frame;
-  std::memcpy(n.ident, f.c.ident, 3);
-  n.count = f.c.frames;
-  n.until = f.c.last_ts;
-  n.axis = static_cast<std::int8_t>(f.axis);
-  return n;
-}
-
-void Analyzer::Impl::diagnose(Conversation& c, diag::Found f) {
-  const Direction& D = c.dir[f.c.dir];
-  const std::int64_t ts = f.c.first_ts;
-  note_event(ts, Position{}, c.transport, &c, &D.from, &D.to, note_of(std::move(f)));
-}
 
 void Analyzer::Impl::check_stream(Conversation& c, const StreamStat& s) {
   if (!s.periodic) return;
