@@ -232,7 +232,7 @@ std::uint64_t GarbageEvent::conv_id() const noexcept { return conv ? conv->id : 
 std::uint64_t NoteEvent::conv_id() const noexcept { return conv ? conv->id : 0; }
 
 Analyzer::Analyzer(AnalyzerOptions opts, Sink& sink)
-    : impl_(std::make_unique<Impl>(*this)), opts_(opts), sink_(sink) {
+    : impl_(std::make_unique<Impl>(*this, opts)), opts_(opts), sink_(sink) {
   impl_->parse.messages = opts_.detail;
 }
 Analyzer::~Analyzer() = default;

@@ -104,11 +104,12 @@ void Analyzer::chunk(std::int64_t ts, Transport t, const Endpoint& src, const En
 }
 
 void Analyzer::flush_streams() {
-  for (auto& [k, c] : impl_->convs)
+  impl_->table.each([&](Conversation& c) {
     for (int d = 0; d < 2; ++d) {
-      c->dir[d].dec.flush();
-      impl_->drain_stream(*c, d, kNoTime);
+      c.dir[d].dec.flush();
+      impl_->drain_stream(c, d, kNoTime);
     }
+  });
 }
 
 }  // namespace topdump

@@ -1,6 +1,7 @@
-// The conversation table: a conversation per transport and pair of ends,
-// found through a small cache of recent lookups, evicted least recently used
-// past the limit, and closed at the end of the input.
+// The conversation table (conversation_table.hpp): a conversation per
+// transport and pair of ends, found through a small cache of recent
+// lookups; and the session's use of it: evicted least recently used past
+// the limit, closed at the end of the input.
 #include <algorithm>
 #include <cstring>
 
@@ -34,15 +35,15 @@ std::size_t ConvKeyHash::operator()(const ConvKey& k) const noexcept {
   return static_cast<std::size_t>(h ^ (h >> 29));
 }
 
-std::size_t Analyzer::Impl::EndpointHash::operator()(const Endpoint& e) const noexcept {
+std::size_t ConversationTable::EndpointHash::operator()(const Endpoint& e) const noexcept {
   const std::uint64_t h = one(e);
   return static_cast<std::size_t>(h ^ (h >> 29));
 }
 
-const Conversation* Analyzer::Impl::answered_elsewhere(const Conversation& c, const Route& D,
-                                                       std::int64_t after, Endpoint& to) const {
-  const auto it = by_end.find(D.dst);
-  if (it == by_end.end()) return nullptr;
+const Conversation* ConversationTable::answered_elsewhere(const Conversation& c, const Route& D,
+                                                          std::int64_t after, Endpoint& to) const {
+  const auto it = by_end_.find(D.dst);
+  if (it == by_end_.end()) return nullptr;
   for (const Conversation* o : it->second) {
     if (o == &c || o->transport != c.transport) continue;
     for (const Direction& x : o->dir)
@@ -55,7 +56,7 @@ const Conversation* Analyzer::Impl::answered_elsewhere(const Conversation& c, co
   return nullptr;
 }
 
-std::size_t Analyzer::Impl::HostHash::operator()(
+std::size_t ConversationTable::HostHash::operator()(
     const std::array<std::uint8_t, 16>& a) const noexcept {
   std::uint64_t x, y;
   std::memcpy(&x, a.data(), 8);
@@ -80,13 +81,13 @@ void remember(std::vector<std::uint16_t>& v, std::uint16_t p) {
 // whose devices answer the client's host (top::replies_reach_host), takes
 // every later pair of ends between the two hosts: the client's other
 // ports, and the device's replies from another port of its own.
-void Analyzer::Impl::register_link(Conversation& c) {
+void ConversationTable::register_link(Conversation& c) {
   if (c.transport != Transport::udp || c.device_dir < 0) return;
   const Direction& dev = c.dir[c.device_dir];
   if (!dev.src.family || top::port_role(dev.src.port) != top::PortRole::device) return;
-  top::Dialect dialect = A.opts_.dialect;
-  if (dialect == top::Dialect::unknown && A.opts_.model != top::Model::unknown)
-    dialect = top::dialect_of(A.opts_.model);
+  top::Dialect dialect = opts_.dialect;
+  if (dialect == top::Dialect::unknown && opts_.model != top::Model::unknown)
+    dialect = top::dialect_of(opts_.model);
   if (dialect == top::Dialect::unknown) dialect = top::dialect_from_port(dev.src.port);
   if (!top::replies_reach_host(dialect)) return;
   auto l = std::make_unique<HostLink>();
@@ -98,31 +99,32 @@ void Analyzer::Impl::register_link(Conversation& c) {
     if (p.client && !p.tcp && p.dialect == dialect) l->client_port = p.port;
   remember(l->client_ports, dev.dst.port);
   c.link = std::move(l);
-  links[dev.src.addr].push_back(&c);
+  links_[dev.src.addr].push_back(&c);
 }
 
-void Analyzer::Impl::forget_link(Conversation& c) {
+void ConversationTable::forget_link(Conversation& c) {
   if (!c.link) return;
   for (const auto& r : c.link->routes) {
     ConvKey k{Transport::udp, r->src, r->dst};
     if (endpoint_less(r->dst, r->src)) std::swap(k.a, k.b);
-    routes.erase(k);
+    routes_.erase(k);
   }
-  if (auto at = links.find(c.link->device.addr); at != links.end()) {
+  if (auto at = links_.find(c.link->device.addr); at != links_.end()) {
     std::erase(at->second, &c);
-    if (at->second.empty()) links.erase(at);
+    if (at->second.empty()) links_.erase(at);
   }
 }
 
-Conversation* Analyzer::Impl::link_of(const Endpoint& src, const Endpoint& dst, const Route*& r) {
-  if (links.empty() || !src.family || !dst.family) return nullptr;
+Conversation* ConversationTable::link_of(const Endpoint& src, const Endpoint& dst,
+                                         const Route*& r) {
+  if (links_.empty() || !src.family || !dst.family) return nullptr;
   // The device's end is on one of the two hosts; its conversation with the
   // other host decides.
   for (const bool from_device : {true, false}) {
     const Endpoint& dev = from_device ? src : dst;
     const Endpoint& cli = from_device ? dst : src;
-    const auto at = links.find(dev.addr);
-    if (at == links.end()) continue;
+    const auto at = links_.find(dev.addr);
+    if (at == links_.end()) continue;
     for (Conversation* c : at->second) {
       HostLink& l = *c->link;
       if (!same_host(l.device, dev) || !same_host(l.client_host, cli)) continue;
@@ -150,7 +152,7 @@ Conversation* Analyzer::Impl::link_of(const Endpoint& src, const Endpoint& dst, 
       r = route.get();
       ConvKey k{Transport::udp, src, dst};
       if (endpoint_less(dst, src)) std::swap(k.a, k.b);
-      routes.emplace(std::move(k), std::make_pair(c, route.get()));
+      routes_.emplace(std::move(k), std::make_pair(c, route.get()));
       l.routes.push_back(std::move(route));
       return c;
     }
@@ -158,101 +160,140 @@ Conversation* Analyzer::Impl::link_of(const Endpoint& src, const Endpoint& dst, 
   return nullptr;
 }
 
-Conversation& Analyzer::Impl::get_slow(Transport t, const Endpoint& src, const Endpoint& dst,
-                                       const Route*& r) {
+Conversation* ConversationTable::find_slow(Transport t, const Endpoint& src, const Endpoint& dst,
+                                           const Route*& r) {
   ConvKey k{t, src, dst};
   if (endpoint_less(dst, src)) std::swap(k.a, k.b);
-  auto it = convs.find(k);
-  if (it == convs.end() && t == Transport::udp) {
-    if (const auto at = routes.find(k); at != routes.end()) {
-      Conversation& c = *at->second.first;
-      c.last_used = ++clock;
-      r = at->second.second;
-      // the same pair the other way (a client port the device answers)
-      if (!(r->src == src)) {
-        for (const auto& x : c.link->routes)
-          if (x->src == src && x->dst == dst) {
-            r = x.get();
-            return c;
-          }
-        const Route* back = r;
-        auto route = std::make_unique<Route>();
-        route->src = src;
-        route->dst = dst;
-        route->from = back->to;
-        route->to = back->from;
-        route->dir = 1 - back->dir;
-        r = route.get();
-        c.link->routes.push_back(std::move(route));
-      }
-      return c;
-    }
-    if (Conversation* c = link_of(src, dst, r)) {
-      c->last_used = ++clock;
-      return *c;
-    }
+  if (auto it = convs_.find(k); it != convs_.end()) {
+    Conversation& c = *it->second;
+    c.last_used = ++clock_;
+    r = (c.dir[0].src == src && c.dir[0].dst == dst) ? &c.dir[0] : &c.dir[1];
+    return &c;
   }
-  if (it == convs.end()) {
-    if (convs.size() >= A.opts_.max_conversations) evict();
-    auto c = std::make_unique<Conversation>();
-    c->id = next_conv++;
-    c->transport = t;
-    c->dir[0].src = src;
-    c->dir[0].dst = dst;
-    c->dir[0].from = src.text();
-    c->dir[0].to = dst.text();
-    c->dir[0].dir = 0;
-    c->dir[1].src = dst;
-    c->dir[1].dst = src;
-    c->dir[1].from = c->dir[0].to;
-    c->dir[1].to = c->dir[0].from;
-    c->dir[1].dir = 1;
-    c->dir[0].tcp = TcpReassembly(A.opts_.max_tcp_held);
-    c->dir[1].tcp = TcpReassembly(A.opts_.max_tcp_held);
-    if (A.opts_.dialect != top::Dialect::unknown) c->det.force(A.opts_.dialect);
-    if (A.opts_.model != top::Model::unknown) c->det.force(top::dialect_of(A.opts_.model));
-    if (src.family) c->det.observe_port(src.port);
-    if (dst.family) c->det.observe_port(dst.port);
-    if (src.family && dst.family) {
-      const bool s_dev = top::port_role(src.port) == top::PortRole::device;
-      const bool d_dev = top::port_role(dst.port) == top::PortRole::device;
-      if (s_dev != d_dev) c->device_dir = s_dev ? 0 : 1;
+  if (t != Transport::udp) return nullptr;
+  if (const auto at = routes_.find(k); at != routes_.end()) {
+    Conversation& c = *at->second.first;
+    c.last_used = ++clock_;
+    r = at->second.second;
+    // the same pair the other way (a client port the device answers)
+    if (!(r->src == src)) {
+      for (const auto& x : c.link->routes)
+        if (x->src == src && x->dst == dst) {
+          r = x.get();
+          return &c;
+        }
+      const Route* back = r;
+      auto route = std::make_unique<Route>();
+      route->src = src;
+      route->dst = dst;
+      route->from = back->to;
+      route->to = back->from;
+      route->dir = 1 - back->dir;
+      r = route.get();
+      c.link->routes.push_back(std::move(route));
     }
-    c->st.id = c->id;
-    c->st.a = c->dir[0].from;
-    c->st.b = c->dir[0].to;
-    c->st.transport = t;
-    if (src.family && dst.family)
-      for (const Endpoint* e : {&src, &dst}) by_end[*e].push_back(c.get());
-    register_link(*c);
-    it = convs.emplace(std::move(k), std::move(c)).first;
+    return &c;
   }
-  Conversation& c = *it->second;
-  c.last_used = ++clock;
-  r = (c.dir[0].src == src && c.dir[0].dst == dst) ? &c.dir[0] : &c.dir[1];
-  return c;
+  if (Conversation* c = link_of(src, dst, r)) {
+    c->last_used = ++clock_;
+    return c;
+  }
+  return nullptr;
 }
 
-void Analyzer::Impl::evict() {
-  auto victim = convs.begin();
-  for (auto it = convs.begin(); it != convs.end(); ++it)
+Conversation& ConversationTable::add(Transport t, const Endpoint& src, const Endpoint& dst,
+                                     const Route*& r) {
+  ConvKey k{t, src, dst};
+  if (endpoint_less(dst, src)) std::swap(k.a, k.b);
+  auto c = std::make_unique<Conversation>();
+  c->id = next_id_++;
+  c->transport = t;
+  c->dir[0].src = src;
+  c->dir[0].dst = dst;
+  c->dir[0].from = src.text();
+  c->dir[0].to = dst.text();
+  c->dir[0].dir = 0;
+  c->dir[1].src = dst;
+  c->dir[1].dst = src;
+  c->dir[1].from = c->dir[0].to;
+  c->dir[1].to = c->dir[0].from;
+  c->dir[1].dir = 1;
+  c->dir[0].tcp = TcpReassembly(opts_.max_tcp_held);
+  c->dir[1].tcp = TcpReassembly(opts_.max_tcp_held);
+  if (opts_.dialect != top::Dialect::unknown) c->det.force(opts_.dialect);
+  if (opts_.model != top::Model::unknown) c->det.force(top::dialect_of(opts_.model));
+  if (src.family) c->det.observe_port(src.port);
+  if (dst.family) c->det.observe_port(dst.port);
+  if (src.family && dst.family) {
+    const bool s_dev = top::port_role(src.port) == top::PortRole::device;
+    const bool d_dev = top::port_role(dst.port) == top::PortRole::device;
+    if (s_dev != d_dev) c->device_dir = s_dev ? 0 : 1;
+  }
+  c->st.id = c->id;
+  c->st.a = c->dir[0].from;
+  c->st.b = c->dir[0].to;
+  c->st.transport = t;
+  if (src.family && dst.family)
+    for (const Endpoint* e : {&src, &dst}) by_end_[*e].push_back(c.get());
+  register_link(*c);
+  Conversation& made = *convs_.emplace(std::move(k), std::move(c)).first->second;
+  made.last_used = ++clock_;
+  r = &made.dir[0];
+  cache_[cache_slot(t, src, dst)] = CacheSlot{&made, r};
+  return made;
+}
+
+ConversationTable::~ConversationTable() = default;
+
+Conversation& ConversationTable::least_recent() const {
+  auto victim = convs_.begin();
+  for (auto it = convs_.begin(); it != convs_.end(); ++it)
     if (it->second->last_used < victim->second->last_used) victim = it;
-  Conversation& c = *victim->second;
+  return *victim->second;
+}
+
+void ConversationTable::remove(Conversation& c) {
+  cache_.fill(CacheSlot{});
+  for (const Endpoint* e : {&c.dir[0].src, &c.dir[0].dst})
+    if (auto at = by_end_.find(*e); at != by_end_.end()) {
+      std::erase(at->second, &c);
+      if (at->second.empty()) by_end_.erase(at);
+    }
+  forget_link(c);
+  ConvKey k{c.transport, c.dir[0].src, c.dir[0].dst};
+  if (endpoint_less(k.b, k.a)) std::swap(k.a, k.b);
+  convs_.erase(k);
+}
+
+std::vector<Conversation*> ConversationTable::by_id() const {
+  std::vector<Conversation*> order;
+  for (const auto& [k, c] : convs_) order.push_back(c.get());
+  std::sort(order.begin(), order.end(),
+            [](const Conversation* a, const Conversation* b) { return a->id < b->id; });
+  return order;
+}
+
+void ConversationTable::clear() {
+  cache_.fill(CacheSlot{});
+  by_end_.clear();
+  routes_.clear();
+  links_.clear();
+  convs_.clear();
+}
+
+Analyzer::Impl::Impl(Analyzer& a, const AnalyzerOptions& o)
+    : A(a), table(TableOptions{o.dialect, o.model, o.max_tcp_held}) {}
+
+void Analyzer::Impl::evict() {
+  Conversation& c = table.least_recent();
   std::string msg = "more than " + std::to_string(A.opts_.max_conversations) +
                     " live conversations: closed conversation " + std::to_string(c.id) + " (" +
                     c.dir[0].from + " <> " + c.dir[0].to + ")";
   close(c, kNoTime);
-  cache.fill(CacheSlot{});
   note_event(kNoTime, Position{}, c.transport, nullptr, nullptr, nullptr,
              Note{ACode::conversation_limit, default_severity(ACode::conversation_limit), msg, 0},
              ++limit_notes <= 10);
-  for (const Endpoint* e : {&c.dir[0].src, &c.dir[0].dst})
-    if (auto at = by_end.find(*e); at != by_end.end()) {
-      std::erase(at->second, &c);
-      if (at->second.empty()) by_end.erase(at);
-    }
-  forget_link(c);
-  convs.erase(victim);
+  table.remove(c);
 }
 
 void Analyzer::Impl::close(Conversation& c, std::int64_t ts) {
@@ -290,16 +331,8 @@ void Analyzer::Impl::close(Conversation& c, std::int64_t ts) {
 }
 
 void Analyzer::finish() {
-  std::vector<Conversation*> order;
-  for (auto& [k, c] : impl_->convs) order.push_back(c.get());
-  std::sort(order.begin(), order.end(),
-            [](const Conversation* a, const Conversation* b) { return a->id < b->id; });
-  for (Conversation* c : order) impl_->close(*c, kNoTime);
-  impl_->cache.fill(Impl::CacheSlot{});
-  impl_->by_end.clear();
-  impl_->routes.clear();
-  impl_->links.clear();
-  impl_->convs.clear();
+  for (Conversation* c : impl_->table.by_id()) impl_->close(*c, kNoTime);
+  impl_->table.clear();
   std::sort(stats_.conversations.begin(), stats_.conversations.end(),
             [](const ConvStats& a, const ConvStats& b) { return a.id < b.id; });
 }

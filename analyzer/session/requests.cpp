@@ -109,7 +109,7 @@ void Analyzer::Impl::unanswered(Conversation& c, const Pending& p, bool at_end) 
     // Not silent after all when its frames went to another port of this
     // host: a stretch of its own, noted as such.
     Endpoint to;
-    const Conversation* o = answered_elsewhere(c, D, p.ts, to);
+    const Conversation* o = table.answered_elsewhere(c, D, p.ts, to);
     const std::uint64_t oid = o ? o->id : 0;
     Silence& s = c.silence;
     if (s.stretch.count() && (s.stretch.dir() != p.dir || s.elsewhere_conv != oid)) emit_silence(c);

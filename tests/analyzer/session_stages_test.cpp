@@ -1,7 +1,9 @@
-// The session's stages on their own (issue 48): the counting stage and the
-// latency stage (session/counters.hpp), fed what the session feeds them.
+// The session's stages on their own (issue 48): the conversation table
+// (session/conversation_table.hpp), the counting stage and the latency
+// stage (session/counters.hpp), fed what the session feeds them.
 #include <gtest/gtest.h>
 
+#include "session/conversation_table.hpp"
 #include "session/counters.hpp"
 
 namespace topdump {
@@ -51,6 +53,59 @@ TEST(LatencyTable, OneHistogramPerIdentifierWhateverTheOrder) {
   EXPECT_EQ(a.min(), 1);
   EXPECT_EQ(t.of(200 * 7919).max(), 200);
   EXPECT_EQ(t.of(pack_ident("GAC")).count(), 0u) << "a new identifier starts empty";
+}
+
+const Endpoint kCamera = Endpoint::ipv4(0xC0A89064, 9003);  // 192.168.144.100:9003
+const Endpoint kClient = Endpoint::ipv4(0xC0A8900A, 40000);
+TableOptions topotek() { return TableOptions{top::Dialect::topotek, top::Model::sip, 1 << 20}; }
+
+TEST(ConversationTable, OnePerPairOfEndsEitherWay) {
+  ConversationTable t(TableOptions{});
+  const Route* r = nullptr;
+  EXPECT_EQ(t.find(Transport::udp, kClient, kCamera, r), nullptr);
+  Conversation& c = t.add(Transport::udp, kClient, kCamera, r);
+  EXPECT_EQ(c.id, 1u);
+  EXPECT_EQ(r->dir, 0);
+  EXPECT_EQ(c.device_dir, 1) << "the camera's end is on a device port";
+  const Route* back = nullptr;
+  EXPECT_EQ(t.find(Transport::udp, kCamera, kClient, back), &c);
+  EXPECT_EQ(back->dir, 1);
+  EXPECT_EQ(back->from, kCamera.text());
+  EXPECT_EQ(t.find(Transport::tcp, kClient, kCamera, r), nullptr) << "another transport";
+  Conversation& other = t.add(Transport::tcp, kClient, kCamera, r);
+  EXPECT_EQ(other.id, 2u);
+  EXPECT_EQ(t.size(), 2u);
+  // the least recently used goes first
+  EXPECT_EQ(&t.least_recent(), &c);
+  t.remove(c);
+  EXPECT_EQ(t.size(), 1u);
+  EXPECT_EQ(t.find(Transport::udp, kCamera, kClient, r), nullptr) << "not from the cache either";
+  std::vector<std::uint64_t> ids;
+  for (const Conversation* x : t.by_id()) ids.push_back(x->id);
+  EXPECT_EQ(ids, std::vector<std::uint64_t>{2});
+}
+
+TEST(ConversationTable, ATopotekCameraTakesEveryPairBetweenTheTwoHosts) {
+  // a real Topotek camera answers from an ephemeral port, to any port of
+  // the client's host (docs/FIELD.md: ephemeral-reply-port, fan-out)
+  ConversationTable t(topotek());
+  const Route* r = nullptr;
+  Conversation& c = t.add(Transport::udp, kClient, kCamera, r);
+  ASSERT_TRUE(c.link);
+  const Endpoint reply_port = Endpoint::ipv4(0xC0A89064, 51234);
+  const Endpoint listener = Endpoint::ipv4(0xC0A8900A, 9004);
+  EXPECT_EQ(t.find(Transport::udp, reply_port, listener, r), &c);
+  EXPECT_EQ(r->dir, 1) << "the device's direction";
+  EXPECT_EQ(r->from, reply_port.text());
+  EXPECT_EQ(t.find(Transport::udp, reply_port, listener, r), &c) << "found again";
+  const Endpoint stranger = Endpoint::ipv4(0xC0A8900B, 9004);
+  EXPECT_EQ(t.find(Transport::udp, reply_port, stranger, r), nullptr) << "another host";
+  Endpoint to;
+  c.dir[1].sent_frame = true;
+  c.dir[1].last_frame_ts = 5;
+  EXPECT_EQ(t.answered_elsewhere(c, c.dir[0], 0, to), nullptr) << "one conversation";
+  t.clear();
+  EXPECT_EQ(t.size(), 0u);
 }
 
 }  // namespace
