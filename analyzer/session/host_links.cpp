@@ -124,17 +124,14 @@ void Analyzer::Impl::link_notes(Conversation& c) {
   // A device that sent nothing at all took nothing either, as far as the
   // capture shows.
   if (c.silent_writes && dev.sent_frame) {
-    Note n{ACode::silent_writes, top::Severity::info, message([&] {
-             return plural(c.silent_writes, "write", "writes") + " (" + c.silent_idents +
-                    ") got no reply, as the document has it (Topotek 2: w is set/control, "
-                    "with no reply form for these) and a real Topotek camera does "
-                    "(docs/FIELD.md silent-writes): what they changed is the evidence they "
-                    "were taken";
-           }),
-           c.silent_n};
-    n.count = c.silent_writes;
-    const Route& at = c.silent_at ? *c.silent_at : cli;
-    note_event(c.silent_ts, Position{}, c.transport, &c, &at.from, &at.to, std::move(n));
+    once(c, ACode::silent_writes, c.silent_n, c.silent_writes, c.silent_ts,
+         c.silent_at ? *c.silent_at : cli, [&] {
+           return plural(c.silent_writes, "write", "writes") + " (" + c.silent_idents +
+                  ") got no reply, as the document has it (Topotek 2: w is set/control, "
+                  "with no reply form for these) and a real Topotek camera does "
+                  "(docs/FIELD.md silent-writes): what they changed is the evidence they "
+                  "were taken";
+         });
   }
   if (!c.link) return;
   HostLink& l = *c.link;
@@ -144,36 +141,27 @@ void Analyzer::Impl::link_notes(Conversation& c) {
     std::string t = h.text();
     return t.substr(0, t.rfind(':'));
   }();
-  if (l.from_reply_port) {
-    Note n{ACode::reply_port, top::Severity::info, message([&] {
-             return "the device " + l.device.text() + " sent " + std::to_string(l.from_reply_port) +
-                    " of its " + plural(l.device_frames, "frame", "frames") + " from port " +
-                    ports_text(l.reply_ports) +
-                    ", not from the port it serves: they are its own, paired with the "
-                    "requests of " +
-                    host +
-                    " (docs/FIELD.md ephemeral-reply-port: a real Topotek camera answers "
-                    "from an ephemeral port)";
-           }),
-           l.reply_port_n};
-    n.count = l.from_reply_port;
-    const Route& at = l.reply_port_at ? *l.reply_port_at : dev;
-    note_event(l.reply_port_ts, Position{}, c.transport, &c, &at.from, &at.to, std::move(n));
-  }
-  if (l.copies) {
-    Note n{ACode::fan_out, top::Severity::info, message([&] {
-             return "the device sent " + std::to_string(l.fanned) + " of its " +
-                    plural(l.device_frames, "frame", "frames") + " to more than one port of " +
-                    host + " or twice (copies to port " + ports_text(l.copy_ports) +
-                    "): " + plural(l.copies, "copy", "copies") +
-                    ", each shown as a copy of its first and counted once (docs/FIELD.md "
-                    "fan-out, duplicate-to-client-port)";
-           }),
-           l.copy_n};
-    n.count = l.copies;
-    const Route& at = l.copy_at ? *l.copy_at : dev;
-    note_event(l.copy_ts, Position{}, c.transport, &c, &at.from, &at.to, std::move(n));
-  }
+  if (l.from_reply_port)
+    once(c, ACode::reply_port, l.reply_port_n, l.from_reply_port, l.reply_port_ts,
+         l.reply_port_at ? *l.reply_port_at : dev, [&] {
+           return "the device " + l.device.text() + " sent " + std::to_string(l.from_reply_port) +
+                  " of its " + plural(l.device_frames, "frame", "frames") + " from port " +
+                  ports_text(l.reply_ports) +
+                  ", not from the port it serves: they are its own, paired with the "
+                  "requests of " +
+                  host +
+                  " (docs/FIELD.md ephemeral-reply-port: a real Topotek camera answers "
+                  "from an ephemeral port)";
+         });
+  if (l.copies)
+    once(c, ACode::fan_out, l.copy_n, l.copies, l.copy_ts, l.copy_at ? *l.copy_at : dev, [&] {
+      return "the device sent " + std::to_string(l.fanned) + " of its " +
+             plural(l.device_frames, "frame", "frames") + " to more than one port of " + host +
+             " or twice (copies to port " + ports_text(l.copy_ports) +
+             "): " + plural(l.copies, "copy", "copies") +
+             ", each shown as a copy of its first and counted once (docs/FIELD.md "
+             "fan-out, duplicate-to-client-port)";
+    });
   Silence& s = l.elsewhere;
   if (const diag::Case& r = s.stretch.requests(); r.frames) {
     Note n = s.about;

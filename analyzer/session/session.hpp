@@ -151,6 +151,15 @@ struct Analyzer::Impl {
   void settle(Conversation& c);
   // The notes of what the device did, once per conversation, at its end.
   void link_notes(Conversation& c);
+  // One of them: info, about frame n (the first that shows it) and `count`
+  // frames, at ts between the ends of `at`; its text made only with detail.
+  template <class Make>
+  void once(Conversation& c, ACode code, std::uint64_t n, std::uint64_t count, std::int64_t ts,
+            const Route& at, Make&& make) {
+    Note x{code, top::Severity::info, message(make), n};
+    x.count = count;
+    note_event(ts, Position{}, c.transport, &c, &at.from, &at.to, std::move(x));
+  }
   // A write the device takes without a word (top::write_reply nothing)
   // went without one: counted for the silent-writes note.
   void silent_write(Conversation& c, const Pending& p);
