@@ -46,8 +46,6 @@ topkit_generated(NAME diagnoses_md OUTPUT docs/DIAGNOSES.md COMMAND $<TARGET_FIL
 add_dependencies(regenerate catalog_md field_md diagnoses_md)
 
 if(TOPKIT_TOOLS)
-  topkit_generated(NAME wireshark_top_lua OUTPUT tools/wireshark/top.lua
-    COMMAND $<TARGET_FILE:topdump> wireshark LABELS wireshark)
   # The default matrices, one per model (conformance/matrices/regenerate.sh
   # also rewrites the schema's model list).
   foreach(model c10 c10pro c12 c13 c20 sip)

@@ -1,5 +1,7 @@
 # ctest driver: `cmake --install` of the build tree puts the tools and their
-# man pages (docs/man/) under the prefix, and man reads each page.
+# man pages (docs/man/) under the prefix, and man reads each page; the
+# Wireshark dissector goes to share/topkit/wireshark/top.lua, the same bytes
+# as `topdump wireshark` writes.
 set(prefix "${BINARY_DIR}/install-man/prefix")
 file(REMOVE_RECURSE "${prefix}")
 execute_process(COMMAND ${CMAKE_COMMAND} --install "${BINARY_DIR}" --prefix "${prefix}"
@@ -22,3 +24,13 @@ foreach(tool topdump topsim topconf)
     endif()
   endif()
 endforeach()
+set(plugin "${prefix}/${CMAKE_INSTALL_DATADIR}/topkit/wireshark/top.lua")
+if(NOT EXISTS "${plugin}")
+  message(FATAL_ERROR "${plugin} not installed")
+endif()
+execute_process(COMMAND "${prefix}/${CMAKE_INSTALL_BINDIR}/topdump" wireshark
+                OUTPUT_VARIABLE fresh RESULT_VARIABLE rc)
+file(READ "${plugin}" installed)
+if(rc OR NOT fresh STREQUAL installed)
+  message(FATAL_ERROR "${plugin} differs from `topdump wireshark` (${rc})")
+endif()

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# tshark with the generated dissector (tools/wireshark/top.lua) against the
+# tshark with the generated dissector (BUILD_DIR/analyzer/top.lua) against the
 # hand-written framing-only one (bench/wireshark/framing.lua) and against
 # tshark without any TOP dissector, on the benchmark capture of
 # bench/gen_capture.cpp. Prints, for the run with the least CPU time
@@ -39,7 +39,7 @@ for what in none framing generated; do
   case $what in
     none) lua=() ;;
     framing) lua=(-X "lua_script:$root/bench/wireshark/framing.lua") ;;
-    generated) lua=(-X "lua_script:$root/tools/wireshark/top.lua") ;;
+    generated) lua=(-X "lua_script:$build/analyzer/top.lua") ;;
   esac
   read -r sc sw < <(best tshark -n "${lua[@]}" -r "$cap")
   read -r vc vw < <(best tshark -n -V "${lua[@]}" -r "$cap")
