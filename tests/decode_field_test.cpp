@@ -25,6 +25,15 @@ std::vector<FindingCode> codes(const Decoded& d) {
   return v;
 }
 
+// Decoded as a reply of `ident` with no finding.
+::testing::AssertionResult clean_reply(const Decoded& d, std::string_view ident) {
+  if (!d.command || d.command->ident != ident)
+    return ::testing::AssertionFailure() << "not " << ident << ": " << d.summary();
+  if (d.role != Role::response) return ::testing::AssertionFailure() << "not a reply";
+  if (!codes(d).empty()) return ::testing::AssertionFailure() << "findings: " << d.summary();
+  return ::testing::AssertionSuccess();
+}
+
 std::string from_hex(std::string_view hex) {
   std::string out;
   for (std::size_t i = 0; i + 1 < hex.size(); i += 2)
@@ -149,10 +158,7 @@ TEST(DecodeField, OftTrackingBoxIsLittleEndian) {
     return with_checksum(d);
   };
   const Decoded a = dec(oft(952, 536, 51, 30, '2'), Dialect::topotek, Model::sip);
-  ASSERT_NE(a.command, nullptr);
-  EXPECT_EQ(a.command->ident, "OFT");
-  EXPECT_EQ(a.role, Role::response);
-  EXPECT_TRUE(codes(a).empty()) << a.summary();
+  ASSERT_TRUE(clean_reply(a, "OFT"));
   EXPECT_EQ(field(a, "x").integer, 952);
   EXPECT_EQ(field(a, "y").integer, 536);
   EXPECT_EQ(field(a, "width").integer, 51);
@@ -240,10 +246,7 @@ TEST(DecodeField, OdrDetectionOfARealCamera) {
   EXPECT_EQ(p.frame.header, Header::ext8);
   EXPECT_EQ(p.frame.data_length, 13u);
   const Decoded d = decode(p.frame, {.dialect = Dialect::topotek, .model = Model::sip});
-  ASSERT_NE(d.command, nullptr);
-  EXPECT_EQ(d.command->ident, "ODR");
-  EXPECT_EQ(d.role, Role::response);
-  EXPECT_TRUE(codes(d).empty()) << d.summary();
+  ASSERT_TRUE(clean_reply(d, "ODR"));
   EXPECT_EQ(field(d, "count").integer, 1);
   EXPECT_EQ(field(d, "count").record, 0);
   ASSERT_EQ(d.fields.size(), 7u);
