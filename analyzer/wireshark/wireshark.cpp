@@ -75,6 +75,8 @@ std::string role_name(top::Role r) {
 // that holds both).
 std::string value_type(const top::FieldSpec& s) {
   using K = top::FieldKind;
+  // an unscaled count of at most `digits` digits is a Lua integer
+  const auto whole = [&](int digits) { return s.scale == 1.0 && s.width > 0 && s.width <= digits; };
   switch (s.kind) {
     case K::text:
     case K::raw:
@@ -87,15 +89,15 @@ std::string value_type(const top::FieldSpec& s) {
     case K::enum_hex:
       return s.width > 0 && s.width <= 8 ? "uint" : "double";
     case K::hex_u:
-      return s.scale == 1.0 && s.width > 0 && s.width <= 8 ? "uint" : "double";
+      return whole(8) ? "uint" : "double";
     case K::dec_u:
-      return s.scale == 1.0 && s.width > 0 && s.width <= 9 ? "uint" : "double";
+      return whole(9) ? "uint" : "double";
     case K::le_u16:
     case K::be_u16:
     case K::u8:
       return s.scale == 1.0 ? "uint" : "double";
     case K::hex_s:
-      return s.scale == 1.0 && s.width > 0 && s.width <= 8 ? "int" : "double";
+      return whole(8) ? "int" : "double";
     case K::le_i16:
     case K::le_i32:
     case K::be_i16:
