@@ -269,7 +269,9 @@ struct StreamResult {
     std::int64_t t = 0;
     double ms = 0;
   };
-  std::vector<Gap> gaps;  // the longest intervals over 3 periods, longest first
+  // the longest intervals over diag::kGapPeriods periods (diag::stream_gap),
+  // longest first
+  std::vector<Gap> gaps;
   std::uint64_t gap_count = 0;
 };
 
