@@ -170,7 +170,7 @@ void Writer::rates() {
   else
     app(o, "null");
   text("refresh_evidence", r.refresh_evidence);
-  text("scale_verdict", r.scale_verdict);
+  text("scale_verdict", to_string(r.scale_verdict));
   opt("measured_deg_s_per_step", r.scale_runs ? r.scale_measured : -1);
   u("scale_runs", r.scale_runs);
   u("scale_other_way_runs", r.scale_other_way);

@@ -7,10 +7,12 @@
 #include <string>
 
 #include "diagnoses/baud_mismatch.hpp"
+#include "diagnoses/cause.hpp"
 #include "diagnoses/clock_offset.hpp"
 #include "diagnoses/refresh_gap.hpp"
 #include "diagnoses/stream_never_started.hpp"
 #include "diagnoses/stream_stalled.hpp"
+#include "session/events.hpp"
 #include "top/catalog.hpp"
 #include "top/diagnoses.hpp"
 
@@ -256,6 +258,17 @@ TEST(GapRules, MoreThanThreePeriodsAndMoreThanTheRefreshLimit) {
   EXPECT_FALSE(diag::refresh_missed(1'000'000, 1'000'000));
   EXPECT_TRUE(diag::refresh_missed(1'000'001, 1'000'000));
   EXPECT_FALSE(diag::refresh_missed(5'000'000, 0));  // no limit applies
+}
+
+// The causes of an unanswered request that are diagnoses: the session
+// hands such a request to the diagnosis, and the report lists it there.
+TEST(CauseDiagnosis, TheCausesThatAreDiagnoses) {
+  EXPECT_EQ(diag::diagnosis_of_cause(Cause::bad_checksum), top::Diagnosis::dropped_bad_checksum);
+  EXPECT_EQ(diag::diagnosis_of_cause(Cause::checksum_case), top::Diagnosis::dropped_checksum_case);
+  EXPECT_EQ(diag::diagnosis_of_cause(Cause::uart_source), top::Diagnosis::reply_interface);
+  EXPECT_EQ(diag::diagnosis_of_cause(Cause::silent), top::Diagnosis::silent_device);
+  for (Cause c : {Cause::none, Cause::unsupported, Cause::invalid, Cause::other_port})
+    EXPECT_FALSE(diag::diagnosis_of_cause(c)) << static_cast<int>(c);
 }
 
 }  // namespace
