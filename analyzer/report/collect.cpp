@@ -1,6 +1,7 @@
 // topdump report: what the sink keeps of each event (report.hpp); the
 // commands that move the gimbal are kept by motion.cpp.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -22,8 +23,17 @@ double latency_bin_ms(std::size_t b) noexcept {
 
 std::string clock_text(std::int64_t ts) {
   if (ts == kNoTime) return "-";
-  const std::string t = format_time(ts);  // 2024-05-01T12:00:00.123456Z
-  return t.size() >= 23 ? t.substr(11, 12) : t;
+  // the time of day of format_time's calendar, to the millisecond (cut,
+  // not rounded, as format_time's text reads)
+  using namespace std::chrono;
+  const sys_time<microseconds> tp{microseconds(ts)};
+  const hh_mm_ss<microseconds> t{tp - floor<days>(tp)};
+  char b[32];
+  std::snprintf(
+      b, sizeof b, "%02lld:%02lld:%02lld.%03lld", static_cast<long long>(t.hours().count()),
+      static_cast<long long>(t.minutes().count()), static_cast<long long>(t.seconds().count()),
+      static_cast<long long>(t.subseconds().count() / 1000));
+  return b;
 }
 
 void TimeHist::add(std::int64_t ts) {

@@ -1,8 +1,8 @@
 // The report decides by values (issue 48, "Values between rooms"): the
 // unanswered requests grouped by cause and identifier in the order the
 // report has always had, the causes that are diagnoses left to them
-// (diag::diagnosis_of_cause), finding codes left out by their code, and the
-// speed-unit verdict.
+// (diag::diagnosis_of_cause), finding codes left out by their code, the
+// speed-unit verdict, and the time of day from the time.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -145,6 +145,18 @@ TEST(ReportScale, TheVerdictAsTheJsonWritesIt) {
   EXPECT_EQ(to_string(report::ScaleVerdict::document), "0.1");
   EXPECT_EQ(to_string(report::ScaleVerdict::neither), "neither");
   EXPECT_EQ(to_string(report::ScaleVerdict::none), "");
+}
+
+// The time of day from the time itself: it was cut out of format_time's
+// text at a fixed place, which a year of five digits (a pcapng timestamp
+// can reach it) shifts: "T12:00:00.12".
+TEST(ReportClock, TimeOfDayFromTheTime) {
+  EXPECT_EQ(report::clock_text(kNoTime), "-");
+  EXPECT_EQ(report::clock_text(kT0 + 123'456), "12:00:00.123");
+  EXPECT_EQ(report::clock_text(kT0 + 86'399'999'999), "11:59:59.999");
+  EXPECT_EQ(report::clock_text(-1), "23:59:59.999");
+  constexpr std::int64_t kYear10000 = 253402300800LL * 1'000'000;  // 10000-01-01T00:00:00Z
+  EXPECT_EQ(report::clock_text(kYear10000 + 12 * 3'600'000'000LL + 123'456), "12:00:00.123");
 }
 
 }  // namespace
