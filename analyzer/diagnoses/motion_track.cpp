@@ -150,7 +150,7 @@ void MotionTrack::check_refresh(const Window& w, std::int64_t ts) {
         top::speed_refresh_trait(model_ != top::Model::unknown ? model_ : named_, m->dialect);
     refresh_limit_us_ = t ? std::int64_t{t->value} * 1000 : 0;
   }
-  if (refresh_limit_us_ > 0 && ts - w.last_ts > refresh_limit_us_)
+  if (refresh_missed(ts - w.last_ts, refresh_limit_us_))
     refresh_.gap(w.last_n, w.last_ts, m->ident, static_cast<int>(&w - win_.data()), w.dir,
                  ts - w.last_ts, static_cast<std::uint32_t>(refresh_limit_us_ / 1000));
 }

@@ -11,6 +11,14 @@
 
 namespace topdump::diag {
 
+// A rate command held `held_us` without a refresh stopped the motors when
+// that is longer than the speed-refresh limit `limit_us` (0: none applies):
+// the one rule of refresh-gap (MotionTrack, which chooses the model and
+// the end of the wait) and of the gaps the report lists per rate command.
+constexpr bool refresh_missed(std::int64_t held_us, std::int64_t limit_us) noexcept {
+  return limit_us > 0 && held_us > limit_us;
+}
+
 class RefreshWatch {
  public:
   static constexpr std::array<top::Diagnosis, 1> codes = {top::Diagnosis::refresh_gap};

@@ -22,7 +22,8 @@ std::optional<Found> StallWatch::verdict(std::string_view ident, int dir) const 
   f.c.dir = dir;
   for (std::size_t i = 0; i < 3; ++i) f.c.ident[i] = i < ident.size() ? ident[i] : '\0';
   f.figure = std::string(ident) + " push stopped " + std::to_string(stalls_.frames) +
-             (stalls_.frames == 1 ? " time" : " times") + " for more than 3 periods (period " +
+             (stalls_.frames == 1 ? " time" : " times") + " for more than " +
+             std::to_string(kGapPeriods) + " periods (period " +
              seconds_text(static_cast<std::int64_t>(period_us_)) + " s) and resumed; longest " +
              seconds_text(longest_us_) + " s from " + time_text(longest_at_) +
              "; the first stopped after frame " + std::to_string(stalls_.first_frame) +

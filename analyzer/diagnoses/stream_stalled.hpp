@@ -1,5 +1,5 @@
-// stream-stalled: a push stream stops for more than 3 periods (and more
-// than kMinStallUs) and resumes.
+// stream-stalled: a push stream stops for more than 3 periods (stream_gap,
+// and more than kMinStallUs) and resumes.
 // The period is the one asked for or, when the stream runs slower than
 // asked (stream-rate's case) or no rate was asked, the stream's own typical
 // interval, so that one cause gives one item: a steady 10 Hz stream asked
@@ -13,6 +13,14 @@
 #include "diagnoses/case.hpp"
 
 namespace topdump::diag {
+
+// A push stream's interval is a gap when it is longer than kGapPeriods of
+// the stream's periods: the one rule of stream-stalled (StallWatch, which
+// chooses the period) and of the gaps the report lists per stream.
+inline constexpr int kGapPeriods = 3;
+constexpr bool stream_gap(double interval_us, double period_us) noexcept {
+  return interval_us > kGapPeriods * period_us;
+}
 
 class StallWatch {
  public:
@@ -30,9 +38,8 @@ class StallWatch {
   std::int64_t stalled_us() const noexcept { return stalled_us_; }
 
  private:
-  // A stop longer than kPeriods periods (the period the push judged by).
+  // A stop longer than kGapPeriods periods (the period the push judged by).
   void stalled(std::uint64_t n, std::int64_t ts, double period) noexcept;
-  static constexpr int kPeriods = 3;
   // a shorter stop is the link's bunching (top::stream_stall_min_ms)
   static constexpr std::int64_t kMinStallUs = top::stream_stall_min_ms * 1000;
   std::int64_t last_ = kNoTime;
@@ -63,7 +70,7 @@ inline void StallWatch::push(std::uint64_t n, std::int64_t ts, double asked_hz) 
     asked_us_ = asked_hz > 0 ? 1e6 / asked_hz : 0;
   }
   const double period = std::max(asked_us_, typical_us_);
-  if (intervals_ >= 4 && period > 0 && dt > kPeriods * period) {
+  if (intervals_ >= 4 && period > 0 && stream_gap(dt, period)) {
     // a bunch of the link is neither a stall nor the stream's pace
     if (dt > static_cast<double>(kMinStallUs)) stalled(n, ts, period);
   } else if (intervals_ < 16) {

@@ -5,7 +5,8 @@
 // parse the result with nlohmann and compare it with a reference built
 // there. Keys are written where each document is written (json_events.cpp,
 // stats_out.cpp, report/json.cpp), once; what two documents share is
-// written here: a time (put_time) and a latency summary (latency_members).
+// written here: a time (put_time), a latency summary (latency_members) and a
+// push stream (stream_members).
 #pragma once
 
 #include <algorithm>
@@ -391,5 +392,18 @@ class Doc {
 // the microseconds / 1000). stats --json writes these; report --json
 // appends its histogram after them.
 void latency_members(Doc& j, const Latency& l);
+
+// How a document writes a push stream: stats --json without the request
+// that asked for it and with the measured rate to 0.01 Hz; report --json
+// with both, the rate to 0.0001 Hz.
+struct StreamKeys {
+  bool asked_by = false;
+  double measured_per_hz = 100;  // the measured rate is rounded to 1/this Hz
+};
+// The members of one push stream, in the open object of `j`: ident,
+// asked_by (when `k` says), asked_hz (null: no rate asked), measured_hz,
+// periodic, frames. stats --json writes these; report --json appends its
+// rate plot and gaps after them.
+void stream_members(Doc& j, const StreamStat& t, StreamKeys k);
 
 }  // namespace topdump::jsonw

@@ -45,6 +45,30 @@ void jsonw::latency_members(Doc& j, const Latency& l) {
   ms("max_ms", l.max());
 }
 
+void jsonw::stream_members(Doc& j, const StreamStat& t, StreamKeys k) {
+  std::string& o = j.out();
+  j.key("ident");
+  put_str(o, t.ident);
+  if (k.asked_by) {
+    j.key("asked_by");
+    put_str(o, t.asked_by);
+  }
+  j.key("asked_hz");
+  if (t.asked_hz > 0)
+    put_double(o, t.asked_hz);
+  else
+    app(o, "null");
+  j.key("measured_hz");
+  put_double(o, std::round(t.measured_hz() * k.measured_per_hz) / k.measured_per_hz);
+  j.key("periodic");
+  if (t.periodic)
+    app(o, "true");
+  else
+    app(o, "false");
+  j.key("frames");
+  put_u(o, t.frames);
+}
+
 void write_input_json(std::string& out, const InputInfo& i) {
   Doc j(out, -1);
   j.open_object();
@@ -132,20 +156,7 @@ void write_stats_json(std::string& out, const Stats& s, top::Severity worst, int
     j.key_array("streams");
     for (const StreamStat& t : c.streams) {
       j.item_object();
-      text("ident", t.ident);
-      j.key("asked_hz");
-      if (t.asked_hz > 0)
-        put_double(o, t.asked_hz);
-      else
-        app(o, "null");
-      j.key("measured_hz");
-      put_double(o, std::round(t.measured_hz() * 100.0) / 100.0);
-      j.key("periodic");
-      if (t.periodic)
-        app(o, "true");
-      else
-        app(o, "false");
-      count("frames", t.frames);
+      stream_members(j, t, StreamKeys{});
       j.close_object();
     }
     j.close_array();

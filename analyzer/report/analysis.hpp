@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -56,5 +57,14 @@ void streams(const ReportSink& d, const Stats& st, Report& rep);
 
 // facts.cpp: the ranked one-line facts at the top of the report.
 void facts(const ReportSink& d, Report& rep);
+// The causes unanswered requests are listed under, in the order their
+// groups come for one identifier (the other causes are diagnoses,
+// diagnosis_of, listed as such): no cause seen first, then the
+// order the report has always had (its groups were once keyed by the
+// causes' text, and the report's bytes stay as they were).
+inline constexpr std::array<Cause, 4> kUnansweredOrder = {Cause::none, Cause::other_port,
+                                                          Cause::unsupported, Cause::invalid};
+// A cause's place in kUnansweredOrder; none for a cause that is a diagnosis.
+std::optional<std::size_t> unanswered_rank(Cause c) noexcept;
 
 }  // namespace topdump::report

@@ -9,6 +9,20 @@
 
 namespace topdump::report {
 
+std::string_view to_string(ScaleVerdict v) noexcept {
+  switch (v) {
+    case ScaleVerdict::field:
+      return "0.5";
+    case ScaleVerdict::document:
+      return "0.1";
+    case ScaleVerdict::neither:
+      return "neither";
+    case ScaleVerdict::none:
+      break;
+  }
+  return "";
+}
+
 top::Dialect dialect_of(const Report& r, const ConvStats& c) {
   if (c.dialect != top::Dialect::unknown) return c.dialect;
   auto it = r.data->convs.find(c.id);
@@ -83,9 +97,9 @@ Report analyze(const ReportSink& data, const Stats& stats, top::Severity worst, 
   if (!per_step.empty()) {
     rep.scale_runs = per_step.size();
     rep.scale_measured = median(per_step);
-    rep.scale_verdict = std::fabs(rep.scale_measured - 0.5) <= 0.1    ? "0.5"
-                        : std::fabs(rep.scale_measured - 0.1) <= 0.02 ? "0.1"
-                                                                      : "neither";
+    rep.scale_verdict = std::fabs(rep.scale_measured - 0.5) <= 0.1    ? ScaleVerdict::field
+                        : std::fabs(rep.scale_measured - 0.1) <= 0.02 ? ScaleVerdict::document
+                                                                      : ScaleVerdict::neither;
   }
   streams(data, stats, rep);
   facts(data, rep);

@@ -1,6 +1,7 @@
 // topdump report: what the sink keeps of each event (report.hpp); the
 // commands that move the gimbal are kept by motion.cpp.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -22,8 +23,17 @@ double latency_bin_ms(std::size_t b) noexcept {
 
 std::string clock_text(std::int64_t ts) {
   if (ts == kNoTime) return "-";
-  const std::string t = format_time(ts);  // 2024-05-01T12:00:00.123456Z
-  return t.size() >= 23 ? t.substr(11, 12) : t;
+  // the time of day of format_time's calendar, to the millisecond (cut,
+  // not rounded, as format_time's text reads)
+  using namespace std::chrono;
+  const sys_time<microseconds> tp{microseconds(ts)};
+  const hh_mm_ss<microseconds> t{tp - floor<days>(tp)};
+  char b[32];
+  std::snprintf(
+      b, sizeof b, "%02lld:%02lld:%02lld.%03lld", static_cast<long long>(t.hours().count()),
+      static_cast<long long>(t.minutes().count()), static_cast<long long>(t.seconds().count()),
+      static_cast<long long>(t.subseconds().count() / 1000));
+  return b;
 }
 
 void TimeHist::add(std::int64_t ts) {
@@ -54,13 +64,14 @@ int sev_index(top::Severity s) { return std::min(2, static_cast<int>(s)); }
 
 }  // namespace
 
-Example* ReportSink::finding(std::string_view code, top::Severity sev, std::int64_t ts,
-                             const FrameEvent* e, std::uint32_t at, const std::string& message,
-                             const std::string* sender) {
+Example* ReportSink::finding(std::string_view code, std::optional<ACode> acode, top::Severity sev,
+                             std::int64_t ts, const FrameEvent* e, std::uint32_t at,
+                             const std::string& message, const std::string* sender) {
   auto known = code_at_.find(code);
   if (known == code_at_.end()) {
     auto it = codes.emplace(std::string(code), CodeStat{}).first;
     it->second.code = std::string(code);
+    it->second.acode = acode;
     it->second.severity = sev;
     known = code_at_.emplace(std::string_view(it->first), &it->second).first;
   }
@@ -137,9 +148,11 @@ void ReportSink::frame(const FrameEvent& e) {
       }
     }
     for (const auto& x : f.findings)
-      finding(top::to_string(x.code), x.severity, e.ts, &e, x.offset, x.message, sender);
+      finding(top::to_string(x.code), std::nullopt, x.severity, e.ts, &e, x.offset, x.message,
+              sender);
     for (const auto& x : d.findings)
-      finding(top::to_string(x.code), x.severity, e.ts, &e, x.offset, x.message, sender);
+      finding(top::to_string(x.code), std::nullopt, x.severity, e.ts, &e, x.offset, x.message,
+              sender);
     motion(e, c);
     if (d.role == top::Role::request) {
       Pending& p = pending[e.n % pending.size()];
@@ -172,13 +185,13 @@ void ReportSink::frame(const FrameEvent& e) {
     }
   }
   for (const Note& n : e.notes)
-    finding(to_string(n.code), n.severity, e.ts, &e, 0, n.message, sender);
+    finding(to_string(n.code), n.code, n.severity, e.ts, &e, 0, n.message, sender);
 }
 
 void ReportSink::garbage(const GarbageEvent& e) {
   if (!e.item) return;
-  Example* x = finding(top::to_string(e.item->finding.code), e.item->finding.severity, e.ts,
-                       nullptr, 0, e.item->finding.message, e.from);
+  Example* x = finding(top::to_string(e.item->finding.code), std::nullopt, e.item->finding.severity,
+                       e.ts, nullptr, 0, e.item->finding.message, e.from);
   if (x) {
     x->raw = e.item->preview;
     x->record = e.pos.record;
@@ -189,8 +202,8 @@ void ReportSink::garbage(const GarbageEvent& e) {
 }
 
 void ReportSink::note(const NoteEvent& e) {
-  Example* x =
-      finding(to_string(e.note.code), e.note.severity, e.ts, nullptr, 0, e.note.message, e.from);
+  Example* x = finding(to_string(e.note.code), e.note.code, e.note.severity, e.ts, nullptr, 0,
+                       e.note.message, e.from);
   if (x) {
     x->frame = e.note.frame;
     x->record = e.pos.record;

@@ -4,9 +4,17 @@
 #include <map>
 
 #include "analysis.hpp"
+#include "diagnoses/cause.hpp"
 #include "report/report.hpp"
 
 namespace topdump::report {
+
+std::optional<std::size_t> unanswered_rank(Cause c) noexcept {
+  if (diagnosis_of(c)) return std::nullopt;
+  const auto* at = std::find(kUnansweredOrder.begin(), kUnansweredOrder.end(), c);
+  if (at == kUnansweredOrder.end()) return std::nullopt;
+  return static_cast<std::size_t>(at - kUnansweredOrder.begin());
+}
 
 namespace {
 
@@ -14,35 +22,37 @@ void add(Report& rep, int rank, top::Severity s, std::string text, std::string a
   rep.facts.push_back({rank, s, std::move(text), std::move(anchor)});
 }
 
-// Unanswered requests, grouped by identifier and cause.
+// Unanswered requests, grouped by identifier and cause (a cause that is a
+// diagnosis is that diagnosis's item: diagnosis_facts).
 void unanswered_facts(const ReportSink& d, Report& rep) {
   struct Group {
     std::uint64_t n = 0;
     std::int64_t first = kNoTime, last = kNoTime;
-    std::string text;
   };
-  std::map<std::string, Group> groups;
+  // by identifier, then the cause's place in kUnansweredOrder
+  std::map<std::pair<std::string_view, std::size_t>, Group> groups;
   for (const auto& u : d.unanswered) {
-    // a cause that is a diagnosis is its item (diagnosis_facts)
-    if (u.cause == Cause::silent || u.cause == Cause::bad_checksum ||
-        u.cause == Cause::checksum_case || u.cause == Cause::uart_source)
-      continue;
-    const std::string_view cause = describe(u.cause);
-    Group& g = groups[u.ident + "\x01" + std::string(cause)];
+    const std::optional<std::size_t> rank = unanswered_rank(u.cause);
+    if (!rank) continue;
+    Group& g = groups[{u.ident, *rank}];
     ++g.n;
     if (g.first == kNoTime) g.first = u.ts;
     g.last = u.ts;
-    g.text = cause.empty() ? "no response" : std::string(cause);
   }
   for (const auto& [k, g] : groups) {
-    const bool elsewhere = g.text == describe(Cause::other_port);
-    std::string t = std::to_string(g.n) + " " + k.substr(0, 3) +
+    const Cause cause = kUnansweredOrder[k.second];
+    std::string t = std::to_string(g.n) + " " + std::string(k.first) +
                     (g.n == 1 ? " request unanswered at " + clock_text(g.first)
                               : " requests unanswered from " + clock_text(g.first) + " to " +
                                     clock_text(g.last)) +
-                    ": " + g.text;
-    add(rep, g.text == "no response" ? 80 : 60,
-        elsewhere ? top::Severity::info : top::Severity::warning, std::move(t), "unanswered");
+                    ": ";
+    if (cause == Cause::none)
+      t += "no response";
+    else
+      t += describe(cause);  // the cause for people, from its value
+    add(rep, cause == Cause::none ? 80 : 60,
+        cause == Cause::other_port ? top::Severity::info : top::Severity::warning, std::move(t),
+        "unanswered");
   }
 }
 
@@ -131,22 +141,25 @@ void rate_facts(Report& rep) {
   // refresh-gap itself is the session's diagnosis (analyzer/diagnoses/
   // refresh_gap.cpp, in "What went wrong" with the rest); rep.gaps lists
   // each gap for the rates section.
-  if (!rep.scale_verdict.empty())
+  if (rep.scale_verdict != ScaleVerdict::none)
     add(rep, 25, top::Severity::info,
         "rate commands moved the gimbal at " + fmt("%.3f", rep.scale_measured) +
             " deg/s per step over " + std::to_string(rep.scale_runs) + " run" +
             (rep.scale_runs == 1 ? "" : "s") +
-            (rep.scale_verdict == "0.5"   ? ": the field's 0.5 deg/s, not the document's 0.1"
-             : rep.scale_verdict == "0.1" ? ": the document's 0.1 deg/s, not the field's 0.5"
-                                          : ": neither the document's 0.1 nor the field's 0.5"),
+            (rep.scale_verdict == ScaleVerdict::field
+                 ? ": the field's 0.5 deg/s, not the document's 0.1"
+             : rep.scale_verdict == ScaleVerdict::document
+                 ? ": the document's 0.1 deg/s, not the field's 0.5"
+                 : ": neither the document's 0.1 nor the field's 0.5"),
         "rates");
 }
 
 // Frame findings: errors and warnings by code, with who sent them.
 void code_facts(const ReportSink& d, Report& rep) {
   for (const auto& [code, c] : d.codes) {
-    if (c.severity == top::Severity::info || code == "unanswered" ||
-        top::diagnosis_from_string(code))
+    // unanswered requests and diagnoses have facts of their own
+    if (c.severity == top::Severity::info ||
+        (c.acode && (*c.acode == ACode::unanswered || diagnosis_of(*c.acode))))
       continue;
     std::string t = code + ": " + std::to_string(c.count) + (c.count == 1 ? " time" : " times");
     if (c.senders.size() == 1)

@@ -188,16 +188,15 @@ void Page::response() {
       o += " Refresh limit " + std::to_string(r.refresh_limit_ms) +
            " ms (field: " + markup_escape(r.refresh_evidence) + ").";
     o += "</p>";
-    if (!r.scale_verdict.empty()) {
+    if (r.scale_verdict != ScaleVerdict::none) {
       o += "<p><b>Speed unit:</b> the gimbal moved " + fmt("%.3f", r.scale_measured) +
            " deg/s per step (median of " + std::to_string(r.scale_runs) + " run" +
            (r.scale_runs == 1 ? "" : "s") + "). ";
-      o += r.scale_verdict == "0.5"   ? "The capture supports the field's 0.5 deg/s per step, "
-                                        "not the document's 0.1."
-           : r.scale_verdict == "0.1" ? "The capture supports the document's 0.1 deg/s per "
-                                        "step, not the field's 0.5."
-                                      : "The capture supports neither 0.1 (document) nor 0.5 "
-                                        "(field) deg/s per step.";
+      o += r.scale_verdict == ScaleVerdict::field
+               ? "The capture supports the field's 0.5 deg/s per step, not the document's 0.1."
+           : r.scale_verdict == ScaleVerdict::document
+               ? "The capture supports the document's 0.1 deg/s per step, not the field's 0.5."
+               : "The capture supports neither 0.1 (document) nor 0.5 (field) deg/s per step.";
       o += "</p>";
     }
     o += "<table><tr><th>frame</th><th>start</th><th>conv</th><th>command</th><th>axis</th>"

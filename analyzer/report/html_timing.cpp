@@ -5,6 +5,7 @@
 #include <map>
 
 #include "capture/sources.hpp"
+#include "diagnoses/stream_stalled.hpp"
 #include "html_page.hpp"
 #include "report/report.hpp"
 #include "svg.hpp"
@@ -60,7 +61,8 @@ void Page::streams() {
             "<p class=\"muted\">No push stream was switched on.</p>"))
     return;
   o += "<table><tr><th>conv</th><th>stream</th><th>asked by</th><th>asked</th><th>measured</th>"
-       "<th>frames</th><th>gaps over 3 periods</th></tr>";
+       "<th>frames</th><th>gaps over " +
+       std::to_string(diag::kGapPeriods) + " periods</th></tr>";
   for (const auto& x : r.streams)
     o += "<tr>" + tdn(std::to_string(x.conv)) + td(x.stat.ident) + td(x.stat.asked_by) +
          tdn(!x.stat.periodic      ? std::string("event push (no rate)")

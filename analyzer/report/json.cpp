@@ -170,7 +170,7 @@ void Writer::rates() {
   else
     app(o, "null");
   text("refresh_evidence", r.refresh_evidence);
-  text("scale_verdict", r.scale_verdict);
+  text("scale_verdict", to_string(r.scale_verdict));
   opt("measured_deg_s_per_step", r.scale_runs ? r.scale_measured : -1);
   u("scale_runs", r.scale_runs);
   u("scale_other_way_runs", r.scale_other_way);
@@ -268,21 +268,7 @@ void Writer::streams() {
   for (const StreamResult& x : r.streams) {
     j.item_object();
     u("conversation", x.conv);
-    text("ident", x.stat.ident);
-    text("asked_by", x.stat.asked_by);
-    j.key("asked_hz");
-    if (x.stat.asked_hz > 0)
-      put_double(o, x.stat.asked_hz);
-    else
-      app(o, "null");
-    j.key("measured_hz");
-    put_measure(o, x.stat.measured_hz(), false);
-    j.key("periodic");
-    if (x.stat.periodic)
-      app(o, "true");
-    else
-      app(o, "false");
-    u("frames", x.stat.frames);
+    stream_members(j, x.stat, StreamKeys{.asked_by = true, .measured_per_hz = 1e4});
     j.key("bucket_s");
     put_double(o, static_cast<double>(x.bucket_us) / 1e6);
     j.key_array("rate_hz");

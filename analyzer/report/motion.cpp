@@ -6,6 +6,7 @@
 #include <cstdlib>
 
 #include "analysis.hpp"
+#include "diagnoses/refresh_gap.hpp"
 #include "report/report.hpp"
 
 namespace topdump::report {
@@ -273,7 +274,7 @@ void rate_runs(const ConvData& c, const AxisTimes& times, Report& rep, std::int6
       const std::int64_t other = next_on_axis(times, axis, cmds[i]->t);
       if (trait && cmds[i]->steps != 0 && (other == kNoTime || other == next)) {
         const std::int64_t until = next != kNoTime ? next : capture_end;
-        if (until != kNoTime && until - cmds[i]->t > limit_us)
+        if (until != kNoTime && diag::refresh_missed(until - cmds[i]->t, limit_us))
           rep.gaps.push_back({c.id, cmds[i]->frame, std::string(cmds[i]->ident), cmds[i]->t,
                               static_cast<double>(until - cmds[i]->t) / 1000.0});
       }

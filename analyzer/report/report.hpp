@@ -115,6 +115,9 @@ struct Example {
 
 struct CodeStat {
   std::string code;
+  // The analyzer's code (findings/afindings.hpp; a diagnosis among them)
+  // when it is one; none for a frame's finding (top::FindingCode).
+  std::optional<ACode> acode;
   top::Severity severity{};
   std::uint64_t count = 0;
   std::int64_t first = kNoTime, last = kNoTime;
@@ -192,8 +195,9 @@ class ReportSink : public Sink {
  private:
   // Counts a finding; the example it became, or nullptr when the code has
   // its examples already.
-  Example* finding(std::string_view code, top::Severity sev, std::int64_t ts, const FrameEvent* e,
-                   std::uint32_t at, const std::string& message, const std::string* sender);
+  Example* finding(std::string_view code, std::optional<ACode> acode, top::Severity sev,
+                   std::int64_t ts, const FrameEvent* e, std::uint32_t at,
+                   const std::string& message, const std::string* sender);
   void motion(const FrameEvent& e, ConvData& c);
   // Hashed views of the maps' keys (std::map nodes do not move): a finding
   // code's statistics and an identifier's latency bins in one hash lookup,
@@ -269,7 +273,9 @@ struct StreamResult {
     std::int64_t t = 0;
     double ms = 0;
   };
-  std::vector<Gap> gaps;  // the longest intervals over 3 periods, longest first
+  // the longest intervals over diag::kGapPeriods periods (diag::stream_gap),
+  // longest first
+  std::vector<Gap> gaps;
   std::uint64_t gap_count = 0;
 };
 
@@ -283,6 +289,12 @@ struct Fact {
   std::uint64_t frame = 0, count = 0;
 };
 
+// Which speed unit the rate runs support (SkyDroid): the field's 0.5 deg/s
+// per step, the document's 0.1, neither; none when nothing was measured.
+enum class ScaleVerdict : std::uint8_t { none, field, document, neither };
+// As the JSON's scale_verdict has it: "0.5", "0.1", "neither", "" (none).
+std::string_view to_string(ScaleVerdict v) noexcept;
+
 struct Report {
   Options opts;
   const ReportSink* data = nullptr;
@@ -294,9 +306,7 @@ struct Report {
   std::vector<RefreshGap> gaps;
   std::int64_t refresh_limit_ms = 0;  // the speed-refresh trait (0: none for the model)
   std::string refresh_evidence;
-  // Which scale the rate runs support (SkyDroid): "0.5", "0.1", "neither",
-  // or "" when nothing could be measured.
-  std::string scale_verdict;
+  ScaleVerdict scale_verdict = ScaleVerdict::none;
   double scale_measured = 0;  // median deg/s per step
   std::size_t scale_runs = 0;
   std::size_t scale_other_way = 0;  // SkyDroid runs that turned the other way: not counted

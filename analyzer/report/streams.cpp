@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "analysis.hpp"
+#include "diagnoses/stream_stalled.hpp"
 #include "report/report.hpp"
 
 namespace topdump::report {
@@ -43,7 +44,7 @@ void streams(const ReportSink& d, const Stats& st, Report& rep) {
         const double period_us = hz > 0 ? 1e6 / hz : 1e6;
         for (std::size_t i = 1; i < t->size(); ++i) {
           const double dt = static_cast<double>((*t)[i] - (*t)[i - 1]);
-          if (dt > 3 * period_us) {
+          if (diag::stream_gap(dt, period_us)) {
             ++r.gap_count;
             r.gaps.push_back({(*t)[i - 1], dt / 1000.0});
           }

@@ -8,8 +8,10 @@
 
 #include "diagnoses/baud_mismatch.hpp"
 #include "diagnoses/clock_offset.hpp"
+#include "diagnoses/refresh_gap.hpp"
 #include "diagnoses/stream_never_started.hpp"
 #include "diagnoses/stream_stalled.hpp"
+#include "session/events.hpp"
 #include "top/catalog.hpp"
 #include "top/diagnoses.hpp"
 
@@ -246,6 +248,16 @@ TEST(DiagnosesBaud, AMavlinkLineIsNoBaudMismatch) {
   noise.bytes(shuffled);
   noise.garbage(shuffled.size(), std::string_view(shuffled).substr(0, 32), 1, kNoTime);
   EXPECT_TRUE(noise.verdict());
+}
+
+// The gap rules the report shares with stream-stalled and refresh-gap.
+TEST(GapRules, MoreThanThreePeriodsAndMoreThanTheRefreshLimit) {
+  EXPECT_EQ(diag::kGapPeriods, 3);
+  EXPECT_FALSE(diag::stream_gap(300'000, 100'000));
+  EXPECT_TRUE(diag::stream_gap(300'001, 100'000));
+  EXPECT_FALSE(diag::refresh_missed(1'000'000, 1'000'000));
+  EXPECT_TRUE(diag::refresh_missed(1'000'001, 1'000'000));
+  EXPECT_FALSE(diag::refresh_missed(5'000'000, 0));  // no limit applies
 }
 
 }  // namespace

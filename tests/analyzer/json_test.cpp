@@ -390,5 +390,35 @@ TEST(Json, CatalogStringsNeedNoEscaping) {
     EXPECT_TRUE(plain(top::to_string(h)));
 }
 
+// One writer for a push stream's keys: stats --json and report --json
+// differ only where StreamKeys says.
+TEST(JsonWriter, OneStreamWriterForStatsAndTheReport) {
+  constexpr std::int64_t kT0 = 1714564800LL * 1'000'000;  // 2024-05-01T12:00:00Z
+  StreamStat t;
+  t.ident = "GAC";
+  t.asked_by = "GAA";
+  t.asked_hz = 10;
+  t.frames = 4;
+  t.first = kT0;
+  t.last = kT0 + 900'000;  // 3.3333 Hz
+  auto write = [&](jsonw::StreamKeys k) {
+    std::string out;
+    jsonw::Doc j(out, -1);
+    j.open_object();
+    jsonw::stream_members(j, t, k);
+    j.close_object();
+    return out;
+  };
+  EXPECT_EQ(write({}),
+            R"({"ident":"GAC","asked_hz":10.0,"measured_hz":3.33,"periodic":true,"frames":4})");
+  EXPECT_EQ(write({.asked_by = true, .measured_per_hz = 1e4}),
+            R"({"ident":"GAC","asked_by":"GAA","asked_hz":10.0,"measured_hz":3.3333,)"
+            R"("periodic":true,"frames":4})");
+  t.asked_hz = 0;
+  t.periodic = false;
+  EXPECT_EQ(write({}),
+            R"({"ident":"GAC","asked_hz":null,"measured_hz":3.33,"periodic":false,"frames":4})");
+}
+
 }  // namespace
 }  // namespace topdump::test
