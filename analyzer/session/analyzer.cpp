@@ -80,8 +80,7 @@ const DecodedEntry& Analyzer::Impl::lookup(top::Frame& f, top::Dialect dialect, 
   o.model = A.opts_.model;
   o.role = role;
   o.detail = A.opts_.detail;
-  o.cache = &decode_cache;
-  top::decode(f, o, e.decoded);
+  e.diagnosed = top::detail::decode(f, o, &decode_cache, e.decoded);
   e.frame = &f;
   summarise(e);
   return e;
@@ -169,7 +168,7 @@ void Analyzer::Impl::frame(Conversation& c, int d, top::Frame& f, Position pos, 
       response(c, d, ev);
     // The conversation's diagnoses see every frame, as pairing does; what
     // they find is reported at its end, through the filter.
-    if (e.decoded.diagnosed) {  // the rules' prefilter (top::may_matter_to_diagnoses)
+    if (e.diagnosed) {  // the rules' prefilter (top/detail/prefilter.hpp)
       const std::string_view id = fr.ident_view(), data = fr.data();
       if (decided == top::Role::response && e.decoded.dialect != top::Dialect::unknown &&
           fr.checksum_ok)

@@ -59,6 +59,8 @@ struct Note {
 struct DecodedEntry {
   const top::Frame* frame = nullptr;  // the parser's, valid during the event
   top::Decoded decoded;
+  // Whether it may matter to a diagnosis (top/detail/prefilter.hpp).
+  bool diagnosed = false;
   top::Severity worst = top::Severity::info;
   bool bad_checksum = false;
 };

@@ -25,6 +25,7 @@
 #include "session/analyzer.hpp"
 #include "session/pairing.hpp"
 #include "session/tcp_reassembly.hpp"
+#include "top/detail/decode_cache.hpp"
 #include "top/detail/ring.hpp"
 
 namespace topdump {
@@ -294,8 +295,8 @@ struct Analyzer::Impl {
 
   // --- analyzer.cpp: frames and items to events --------------------------
   DecodedEntry current;
-  top::DecodeCache decode_cache;  // used without detail (topdump stats)
-  top::ParseResult scratch;       // the one-frame datagram path parses into this
+  top::detail::DecodeCache decode_cache;  // used without detail (topdump stats)
+  top::ParseResult scratch;               // the one-frame datagram path parses into this
   // How the datagram path parses: without detail (topdump stats) the
   // frames' findings carry no text, which stats never shows.
   top::ParseOptions parse;
