@@ -150,8 +150,8 @@ TEST(Decode, CacheForgetsTheShapeItEvicts) {
 // of both catalogs (about 190 shapes, in 4096 slots) is missed once and then
 // found, bar a few collisions (about 9 expected; fewer than a tenth). A hash
 // that took the low bits of its product put shapes that differ in their
-// identifier's first chars in one slot (64 misses on the second pass here),
-// and topdump stats ran 6% slower.
+// identifier's first chars in one slot (64 misses on the second pass here;
+// docs/perf/decisions.md, "Decode shape cache").
 TEST(Decode, CacheSpreadsShapesOverItsSlots) {
   std::vector<ParseResult> frames;
   for (Dialect dl : {Dialect::skydroid, Dialect::topotek})

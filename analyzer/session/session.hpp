@@ -170,8 +170,8 @@ struct Conversation {
   // the device before the request is unanswered at its end.
   struct Slowest {
     // a slot per identifier by a hash of it, then the next free one: most
-    // replies find theirs at once (a loop from the first slot mispredicted
-    // its exit on every reply)
+    // replies find theirs at once (docs/perf/decisions.md, "The slowest
+    // answer per identifier")
     std::array<std::uint32_t, 8> key{};
     std::array<std::int64_t, 8> us{};
     static std::size_t home(std::uint32_t k) noexcept { return (k * 0x9E3779B1u) >> 29; }
@@ -310,8 +310,7 @@ struct Analyzer::Impl {
   // 373 KB of zeroes: an analyzer that counts a handful of frames (the fuzz
   // targets build one per input) stays small, and under ASan a page is a
   // heap block, not a fresh mmap. A power of two, so finding a slot's page
-  // is a shift (topdump stats, 200k frames: +0.04% instructions over one
-  // flat table; 1296-slot pages, a division, cost +0.6%).
+  // is a shift (docs/perf/decisions.md, "Frames counted per identifier").
   static constexpr std::size_t kIdentPage = std::size_t{1} << 11;
   struct FreeDeleter {
     void operator()(std::uint64_t* p) const noexcept;
@@ -358,8 +357,8 @@ struct Analyzer::Impl {
   std::vector<std::uint32_t> latency_keys;
   std::vector<Latency> latency;  // latency[i] is latency_keys[i]'s
   // The last index found for each of 64 hashed slots: most replies find
-  // their identifier's table there without a search (whose exit, at a
-  // different place for each identifier, mispredicted).
+  // their identifier's table there without a search (docs/perf/decisions.md,
+  // "Latency tables").
   std::array<std::uint32_t, 64> latency_hint{};  // 1 + index into latency, 0: none
   Latency& latency_of(std::uint32_t key);
   // The response at hand answered a request at a known time: its latency
@@ -449,8 +448,8 @@ struct Analyzer::Impl {
 };
 
 // Asked for every response (and a copy's check): always inline, as the
-// matching was inside response() before the copy check asked it too (out of
-// line, as g++'s PGO build left it, it cost about 1% of `topdump stats`).
+// matching was inside response() before the copy check asked it too
+// (docs/perf/decisions.md, "answered always inline").
 [[gnu::always_inline]] inline std::optional<Pairing::Match> Analyzer::Impl::answered(
     const Conversation& c, int d, const top::Frame& f, top::Dialect dialect) const {
   const std::string_view id = f.ident_view();
@@ -461,8 +460,8 @@ struct Analyzer::Impl {
   // A reply of another identifier that a recorded form names as the answer
   // to a read (a real Topotek camera answers the GIC query with GIA): the
   // newest such read pending (asked only of an identifier that answers
-  // another's read: the scan read every pending request for each push, 13k
-  // L1d misses per 100k frames of bench/run.sh's capture).
+  // another's read: docs/perf/decisions.md, "A reply to another
+  // identifier's read").
   if (!mt && !ere && top::answers_other_query(dialect, id))
     for (std::size_t i = c.pairing.size(); !mt && i-- > 0;) {
       const Pending& p = c.pairing[i];
