@@ -11,6 +11,7 @@
 #include "pcapio/packet.hpp"
 #include "pcapio/writer.hpp"
 #include "session/analyzer.hpp"
+#include "top/detail/decode_cache.hpp"
 #include "top/frame.hpp"
 #include "top/top.hpp"
 
@@ -67,22 +68,27 @@ BENCHMARK(BM_decode);
 // The verdict only, into one reused result (topdump stats); with `cache`,
 // through a DecodeCache as topdump stats decodes: the frame's shape is known
 // after the first iteration, so only its data is judged.
-void decode_verdict(benchmark::State& s, top::DecodeCache* cache) {
+void decode_verdict(benchmark::State& s, top::detail::DecodeCache* cache) {
   auto r = top::parse_frame(kFrame, true);
   top::Decoded d;
   top::DecodeOptions o;
   o.detail = false;
-  o.cache = cache;
-  for (auto _ : s) {
-    top::decode(r.frame, o, d);
-    benchmark::DoNotOptimize(d);
-  }
+  if (cache != nullptr)
+    for (auto _ : s) {
+      benchmark::DoNotOptimize(top::detail::decode(r.frame, o, cache, d));
+      benchmark::DoNotOptimize(d);
+    }
+  else
+    for (auto _ : s) {
+      top::decode(r.frame, o, d);
+      benchmark::DoNotOptimize(d);
+    }
   s.SetItemsProcessed(s.iterations());
 }
 void BM_decode_verdict(benchmark::State& s) { decode_verdict(s, nullptr); }
 BENCHMARK(BM_decode_verdict);
 void BM_decode_verdict_cached(benchmark::State& s) {
-  top::DecodeCache cache;
+  top::detail::DecodeCache cache;
   decode_verdict(s, &cache);
 }
 BENCHMARK(BM_decode_verdict_cached);

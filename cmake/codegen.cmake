@@ -1,16 +1,15 @@
 # Code layout for speed (GCC, optimised builds): topdump's per-frame path
 # (capture reader, session, decode, diagnoses) is larger than a core's
 # 32 KB instruction cache, so what costs time is instruction fetch, not
-# instructions. Measured on `topdump stats` of 1M frames (bench/README.md,
-# docs/perf/bench-history.md, 2026-11-27):
+# instructions (measured: docs/perf/decisions.md, "No alignment padding,
+# no PLT"):
 #
 # - no alignment padding of functions, loops, jumps and labels: the code
-#   that runs is denser (I1 misses per 100k frames 2.46M -> 1.21M under
-#   cachegrind, wall time -4%);
+#   that runs is denser;
 # - calls into shared libraries (libc's fread, memcmp, malloc) through the
 #   GOT instead of PLT stubs, which take cache lines of their own
-#   (-fno-plt: I1 misses 1.21M -> 0.82M, wall time -3%). Symbols then bind
-#   when the program loads, not at their first call.
+#   (-fno-plt). Symbols then bind when the program loads, not at their
+#   first call.
 #
 # Every target takes them (the PGO instrumented build too: it configures
 # this same tree). Clang warns on some of the alignment flags, so GCC only.
@@ -25,8 +24,8 @@ endif()
 # objects (GIMPLE and machine code), so only topdump's own link reads the
 # GIMPLE and optimises across the rooms (inlining the protocol's lookups
 # into the session's per-frame path), while tests and tools link the
-# machine code as before. With PGO, `stats` of 1M frames went 184 -> 172 ms
-# and `read --json` 733 -> 627 ms (medians of interleaved runs, 2026-11-27).
+# machine code as before (measured: docs/perf/decisions.md, "Link-time
+# optimisation of topdump").
 # GCC 12 warns at that link of string concatenations it inlines
 # (-Wstringop-overflow, a false positive of std::string's operator+).
 option(TOPKIT_LTO "Link topdump with link-time optimisation (GCC)" OFF)
@@ -54,10 +53,8 @@ endfunction()
 # keeps the configuration's optimisation. Never on a target topdump's speed
 # rests. -Og, not -O0: the linker keeps the first copy of an inline
 # function (std::string's, nlohmann::json's, our headers'), which is the
-# test's, so the library under test runs it too; at -O0 the ASan test
-# Decode.CacheGivesTheVerdictOfEveryShapeUnchanged took 53 s instead of 15.
-# Measured on the ASan build (2026-11-27, 2 cores): 546 -> 393 s, its tests
-# 79 s either way; conformance/cli/topconf_fuzz.cpp alone 28.8 -> 17 s.
+# test's, so the library under test runs it too, much slower at -O0
+# (measured: docs/perf/decisions.md, "Test drivers and front ends at -Og").
 option(TOPKIT_QUICK_FRONTENDS
   "Compile the command-line front ends (topdump_cli, topsim, topconf) at -Og" OFF)
 function(topkit_quick_compile target)

@@ -16,6 +16,8 @@
 
 #include "check.hpp"
 #include "reuse.hpp"
+#include "top/detail/decode_cache.hpp"
+#include "top/detail/prefilter.hpp"
 #include "top/top.hpp"
 
 using namespace top;
@@ -126,8 +128,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
   decode(f, bare, v);
   bool same = v.dialect == d.dialect && v.role == d.role && v.command == d.command &&
               v.form == d.form && v.motion == d.motion && v.switches == d.switches &&
-              v.diagnosed == d.diagnosed && v.fields.empty() &&
-              v.findings.size() == d.findings.size();
+              v.fields.empty() && v.findings.size() == d.findings.size();
   for (std::size_t i = 0; same && i < v.findings.size(); ++i)
     same = v.findings[i].code == d.findings[i].code &&
            v.findings[i].severity == d.findings[i].severity &&
@@ -135,13 +136,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
   FUZZ_CHECK(same, "decoding without detail changes the verdict on \"" + show(raw) + "\"");
 
   // Through the shape cache (kept across inputs, so its slots hold other
-  // shapes' results): the same verdict, quirks included.
-  static DecodeCache cache;
-  bare.cache = &cache;
-  decode(f, bare, c);
+  // shapes' results): the same verdict, quirks included, and the session's
+  // prefilter as the identifier gives it.
+  static detail::DecodeCache cache;
+  const bool diagnosed = detail::decode(f, bare, &cache, c);
   same = c.dialect == v.dialect && c.role == v.role && c.command == v.command && c.form == v.form &&
-         c.motion == v.motion && c.switches == v.switches && c.diagnosed == v.diagnosed &&
-         c.fields.empty() && c.findings.size() == v.findings.size();
+         c.motion == v.motion && c.switches == v.switches &&
+         diagnosed == detail::may_matter_to_diagnoses(f.ident) && c.fields.empty() &&
+         c.findings.size() == v.findings.size();
   for (std::size_t i = 0; same && i < c.findings.size(); ++i)
     same = c.findings[i].code == v.findings[i].code &&
            c.findings[i].severity == v.findings[i].severity &&

@@ -32,9 +32,8 @@ fi
 tmp=$(mktemp -d)
 # The fuzzers' working corpora (every new input is a file created, and in a
 # 5 s run most of the time is early discovery): on tmpfs when there is one.
-# On the build VM's ext4 /tmp creating a file cost 0.5-0.9 ms of kernel
-# time (inode allocation scanning recently deleted inodes): 5-14% of a
-# target's CPU in perf (docs/perf/fuzz-speed.md, "Speed").
+# On an ext4 /tmp creating a file costs kernel time the targets feel
+# (docs/perf/decisions.md, "Working corpora on tmpfs").
 rundirs=$(mktemp -d -p /dev/shm topkit-fuzz.XXXXXX 2>/dev/null || mktemp -d)
 trap 'rm -rf "$tmp" "$rundirs"' EXIT
 printf 'extern "C" int LLVMFuzzerTestOneInput(const unsigned char*, unsigned long) { return 0; }\n' \

@@ -318,10 +318,10 @@ TEST(DecodeField, OdrCountsThatDoNotFit) {
     EXPECT_EQ(d.fields.size(), 1 + 6 * k.decoded);
     // the verdict without detail (topdump stats) is the same
     const ParseResult p = parse_exact(bytes);
-    DecodeCache cache;
+    detail::DecodeCache cache;
     for (int pass = 0; pass < 2; ++pass) {
       const Decoded lean =
-          decode(p.frame, {.dialect = Dialect::topotek, .detail = false, .cache = &cache});
+          toptest::decode_cached(p.frame, {.dialect = Dialect::topotek, .detail = false}, cache);
       EXPECT_EQ(codes(lean), codes(d));
       EXPECT_TRUE(lean.fields.empty());
     }

@@ -356,11 +356,10 @@ TEST(Decode, PositionAnswersAreTheDocumentsOutput) {
   EXPECT_NEAR(field(out, "longitude").value, 74.006, 1e-6);
   // Without detail (the shape cache's path) the same form and no finding.
   top::ParseResult r = top::parse_exact(with_checksum("#tpDUBwLONW 74.006000"));
-  top::DecodeCache cache;
+  detail::DecodeCache cache;
   for (int i = 0; i < 2; ++i) {
-    const Decoded fast = decode(
-        r.frame,
-        {.dialect = Dialect::topotek, .model = Model::sip, .detail = false, .cache = &cache});
+    const Decoded fast = toptest::decode_cached(
+        r.frame, {.dialect = Dialect::topotek, .model = Model::sip, .detail = false}, cache);
     EXPECT_EQ(fast.form, out.form);
     EXPECT_TRUE(fast.findings.empty());
   }
@@ -374,13 +373,12 @@ TEST(Decode, DeviceFormFindingComesAfterTheFieldsFindings) {
   const std::string s = with_checksum("#tpUG6wGAYec7832");  // lowercase hex data
   const ParseResult r = parse_frame(s, true);
   ASSERT_EQ(r.status, ParseStatus::frame);
-  DecodeCache cache;
+  detail::DecodeCache cache;
   for (bool detail : {true, false})
     for (int pass = 0; pass < 2; ++pass) {
       DecodeOptions o{Dialect::skydroid, Model::unknown, Role::response};
       o.detail = detail;
-      o.cache = detail ? nullptr : &cache;
-      const Decoded d = decode(r.frame, o);
+      const Decoded d = detail ? decode(r.frame, o) : toptest::decode_cached(r.frame, o, cache);
       std::vector<FindingCode> codes;
       for (const Finding& x : d.findings) codes.push_back(x.code);
       EXPECT_EQ(codes, (std::vector<FindingCode>{FindingCode::lowercase_hex,

@@ -10,6 +10,8 @@
 #include "test_util.hpp"
 #include "top/decode.hpp"
 #include "top/detail/decimal.hpp"
+#include "top/detail/decode_cache.hpp"
+#include "top/detail/prefilter.hpp"
 #include "top/device.hpp"
 
 using namespace top;
@@ -19,12 +21,12 @@ namespace {
 // The verdict of a decode: dialect, role, command, form and each finding's
 // code, severity and offset.
 std::string verdict_of(const Decoded& d) {
-  std::string s =
-      std::to_string(static_cast<int>(d.dialect)) + "/" + std::to_string(static_cast<int>(d.role)) +
-      " " + (d.command ? std::string(d.command->ident) : "-") + " form " +
-      std::to_string(reinterpret_cast<std::uintptr_t>(d.form)) + " motion " +
-      (d.motion ? std::string(d.motion->ident) : "-") + " switches " +
-      (d.switches ? std::string(d.switches->push) : "-") + (d.diagnosed ? " diagnosed" : "");
+  std::string s = std::to_string(static_cast<int>(d.dialect)) + "/" +
+                  std::to_string(static_cast<int>(d.role)) + " " +
+                  (d.command ? std::string(d.command->ident) : "-") + " form " +
+                  std::to_string(reinterpret_cast<std::uintptr_t>(d.form)) + " motion " +
+                  (d.motion ? std::string(d.motion->ident) : "-") + " switches " +
+                  (d.switches ? std::string(d.switches->push) : "-");
   for (const Finding& x : d.findings)
     s += " " + std::string(to_string(x.code)) + "/" + std::string(to_string(x.severity)) + "@" +
          std::to_string(x.offset);
@@ -114,7 +116,7 @@ TEST(Decode, VerdictWithoutDetailAgreesOnEveryFieldValue) {
 // a PTZ write, whose planned form (one two-char field) once judged the data
 // of the ERE frame after it.
 TEST(Decode, CacheForgetsTheShapeItEvicts) {
-  DecodeCache one(1);  // every shape in the same slot
+  detail::DecodeCache one(1);  // every shape in the same slot
   DecodeOptions o{Dialect::skydroid, Model::sip, Role::any};
   o.detail = false;
   BuildSpec b;
@@ -137,10 +139,9 @@ TEST(Decode, CacheForgetsTheShapeItEvicts) {
   decode(ere.frame, o, plain);
   ASSERT_GT(plain.findings.size(), 3u);  // more than a slot remembers
   ASSERT_NE(plain.form, nullptr);
-  o.cache = &one;
-  decode(ptz.frame, o, cached);
+  detail::decode(ptz.frame, o, &one, cached);
   for (int pass = 0; pass < 2; ++pass) {
-    decode(ere.frame, o, cached);
+    detail::decode(ere.frame, o, &one, cached);
     EXPECT_EQ(verdict_of(cached), verdict_of(plain)) << pass;
   }
 }
@@ -149,8 +150,8 @@ TEST(Decode, CacheForgetsTheShapeItEvicts) {
 // of both catalogs (about 190 shapes, in 4096 slots) is missed once and then
 // found, bar a few collisions (about 9 expected; fewer than a tenth). A hash
 // that took the low bits of its product put shapes that differ in their
-// identifier's first chars in one slot (64 misses on the second pass here),
-// and topdump stats ran 6% slower.
+// identifier's first chars in one slot (64 misses on the second pass here;
+// docs/perf/decisions.md, "Decode shape cache").
 TEST(Decode, CacheSpreadsShapesOverItsSlots) {
   std::vector<ParseResult> frames;
   for (Dialect dl : {Dialect::skydroid, Dialect::topotek})
@@ -167,20 +168,19 @@ TEST(Decode, CacheSpreadsShapesOverItsSlots) {
         frames.push_back(parse_frame(build_frame(b), true));
         ASSERT_EQ(frames.back().status, ParseStatus::frame);
       }
-  DecodeCache cache(4096);
+  detail::DecodeCache cache(4096);
   DecodeOptions o;
   o.detail = false;
-  o.cache = &cache;
   Decoded d;
-  for (const ParseResult& r : frames) decode(r.frame, o, d);
+  for (const ParseResult& r : frames) detail::decode(r.frame, o, &cache, d);
   const std::uint64_t first = cache.misses();
   EXPECT_GT(first, frames.size() / 2);  // distinct shapes, mostly
-  for (const ParseResult& r : frames) decode(r.frame, o, d);
+  for (const ParseResult& r : frames) detail::decode(r.frame, o, &cache, d);
   EXPECT_LT(cache.misses() - first, first / 10) << first << " shapes";
 }
 
 // DecodeCache replays what a frame's shape decided (command, form, role,
-// shape findings) instead of looking it up again. Every command of both
+// shape findings, the session's prefilter) instead of looking it up again. Every command of both
 // catalogs, under every header, control, a spread of data lengths (inside,
 // at and past each form's bounds), both address orders, each role and
 // dialect asked for and a model of each dialect (or none), plus unknown
@@ -192,7 +192,8 @@ TEST(Decode, CacheGivesTheVerdictOfEveryShapeUnchanged) {
   // last: nothing of a shape may outlive its slot (a shape with too many
   // findings to remember once judged its data by the plan of the shape
   // before it).
-  DecodeCache caches[] = {DecodeCache(), DecodeCache(1), DecodeCache(2)};
+  detail::DecodeCache caches[] = {detail::DecodeCache(), detail::DecodeCache(1),
+                                  detail::DecodeCache(2)};
   std::size_t compared = 0, with_findings = 0;
   Decoded plain, cached;
   auto verdict = [](const Decoded& d) {
@@ -232,10 +233,11 @@ TEST(Decode, CacheGivesTheVerdictOfEveryShapeUnchanged) {
                   DecodeOptions o{dl, m, role};
                   o.detail = false;
                   decode(r.frame, o, plain);
-                  for (DecodeCache& cache : caches) {
-                    o.cache = &cache;
+                  const bool diagnosed = detail::may_matter_to_diagnoses(r.frame.ident);
+                  for (detail::DecodeCache& cache : caches) {
                     for (int pass = 0; pass < 2; ++pass) {
-                      decode(r.frame, o, cached);
+                      const bool cached_diagnosed = detail::decode(r.frame, o, &cache, cached);
+                      ASSERT_EQ(cached_diagnosed, diagnosed) << ident << " pass " << pass;
                       ASSERT_EQ(verdict(cached), verdict(plain))
                           << ident << " " << to_string(h) << " " << control << " len " << len << " "
                           << fill << " pass " << pass << " of " << &cache - caches;
@@ -255,8 +257,7 @@ TEST(Decode, CacheGivesTheVerdictOfEveryShapeUnchanged) {
   ASSERT_EQ(r.status, ParseStatus::frame);
   DecodeOptions o{Dialect::skydroid, Model::unknown, Role::any};
   decode(r.frame, o, full);
-  o.cache = &caches[0];
-  decode(r.frame, o, full_cached);
+  detail::decode(r.frame, o, &caches[0], full_cached);
   ASSERT_FALSE(full.findings.empty());
   EXPECT_EQ(full_cached.findings.front().message, full.findings.front().message);
   EXPECT_FALSE(full_cached.findings.front().message.empty());

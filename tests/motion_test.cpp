@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "test_util.hpp"
 #include "top/top.hpp"
 
 using namespace top;
@@ -142,7 +143,7 @@ TEST(Motion, TopotekFieldSignsAndUnits) {
 // cache too (the session reads it for every frame): the row motion_of
 // gives, and none for a command that does not move the gimbal.
 TEST(Motion, DecodeGivesTheCommandsRow) {
-  DecodeCache cache;
+  detail::DecodeCache cache;
   for (const bool detail : {true, false})
     for (const char* ident : {"GAC", "GAY", "PTZ", "VER"}) {
       BuildSpec b;
@@ -156,9 +157,8 @@ TEST(Motion, DecodeGivesTheCommandsRow) {
       ASSERT_EQ(r.status, ParseStatus::frame) << ident;
       DecodeOptions o{Dialect::skydroid, Model::unknown, Role::request};
       o.detail = detail;
-      o.cache = detail ? nullptr : &cache;
       for (int twice = 0; twice < 2; ++twice) {  // the second from the cache
-        const Decoded d = decode(r.frame, o);
+        const Decoded d = detail ? decode(r.frame, o) : toptest::decode_cached(r.frame, o, cache);
         ASSERT_NE(d.command, nullptr) << ident;
         EXPECT_EQ(d.motion, motion_of(Dialect::skydroid, ident)) << ident << " " << detail;
         EXPECT_EQ(d.motion == nullptr, std::string_view(ident) == "VER") << ident;

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "top/detail/decode_cache.hpp"
 #include "top/top.hpp"
 
 namespace toptest {
@@ -84,6 +85,15 @@ inline top::Decoded dec(std::string_view bytes, top::Dialect d = top::Dialect::u
   top::ParseResult r = top::parse_exact(bytes);
   EXPECT_EQ(r.status, top::ParseStatus::frame) << bytes;
   return top::decode(r.frame, {.dialect = d, .model = m});
+}
+
+// decode() as topdump stats decodes: through a shape cache
+// (top/detail/decode_cache.hpp), used without detail only.
+inline top::Decoded decode_cached(const top::Frame& f, const top::DecodeOptions& o,
+                                  top::detail::DecodeCache& cache) {
+  top::Decoded d;
+  top::detail::decode(f, o, &cache, d);
+  return d;
 }
 
 inline const top::FieldValue& field(const top::Decoded& d, std::string_view name) {

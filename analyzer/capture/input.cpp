@@ -47,31 +47,22 @@ int pipe_close(void* c) {
   return r;
 }
 
-// Our own FILE buffer: libpcap reads each record with two freads, and
-// stdio's default 4 KiB buffer costs a read(2) every ~50 records (5% of
-// topdump stats). 64 KiB, from the heap: the kernel's copy of each read(2)
-// into it (_copy_to_iter) was 2.9% of `stats`' cpu-clock samples, against
-// 5.6% with 256 KiB (a separate mapping, its first byte 16 bytes into a
-// page); stats of 1M frames -3.0%, -1.4% and -3.0% in three runs of 15-21
-// interleaved rounds against 256 KiB (PGO+LTO, 2026-11-27). The 256 KiB
-// buffer measured -1.9% earlier that day in another build: one build
-// against another moves by a few percent whatever changed.
+// Our own FILE buffer: libpcap reads each record with two freads, which
+// stdio's default 4 KiB buffer turns into a read(2) every ~50 records. 64
+// KiB, from the heap, measured best (docs/perf/decisions.md, "The read
+// buffer").
 constexpr std::size_t kReadBuffer = std::size_t{1} << 16;
 
 // The buffer's first byte on a cache line (it is allocated 64 bytes
-// larger). Measured with one binary: the kernel's copy took 6.8% of
-// `stats`' samples into a buffer 16 bytes into a page, 4.5% 64 bytes into
-// one; 32, 80 and 1040 bytes in timed alike, 0 in between. Why 16 is slow
-// is not known; a line start is a placement that measured well, and stays
-// the same whatever the allocator did before.
+// larger): a placement that measured well, and stays the same whatever the
+// allocator did before (docs/perf/decisions.md, "The read buffer").
 char* line_start(char* p) noexcept {
   return p + (-reinterpret_cast<std::uintptr_t>(p) & std::uintptr_t{63});
 }
 
 // The input's FILE reads through our buffer, and without stdio's lock:
 // only this thread reads it, and libpcap's two freads per record each took
-// the lock (a locked cmpxchg, a quarter of fread's time; topdump stats of
-// 1M frames -1.6%, median of 11 interleaved rounds).
+// the lock (docs/perf/decisions.md, "The read buffer").
 void own_reads(Input& in) {
   std::setvbuf(in.file, line_start(in.buffer.get()), _IOFBF, kReadBuffer);
   ::__fsetlocking(in.file, FSETLOCKING_BYCALLER);

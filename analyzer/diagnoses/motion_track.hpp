@@ -145,7 +145,7 @@ class MotionTrack {
                 std::int64_t ts);
   // A new mark of the attitude `slot`: its yaw read, the unwrapping on.
   // (cold, as judge: about twice a second, not per frame; compiled for
-  // size and kept out of the per-frame code, -0.5% on `stats`)
+  // size and kept out of the per-frame code: docs/perf/decisions.md)
   [[gnu::cold]] void mark(std::size_t slot);
   // Judges the window `w` if it can be (its command and the attitude read
   // only then); the caller clears it.

@@ -19,8 +19,8 @@
 namespace topdump::diag {
 
 // The session hands device_frame and dated_frame only the frames whose
-// identifier may matter to them (Decoded::diagnosed, the rules' prefilter
-// top::may_matter_to_diagnoses), and the motion track the motion frames.
+// identifier may matter to them (the rules' prefilter,
+// top/detail/prefilter.hpp), and the motion track the motion frames.
 struct Watch {
   IdentityWatch identity;
   TrackingWatch tracking;

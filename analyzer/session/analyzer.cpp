@@ -66,8 +66,7 @@ const DecodedEntry& Analyzer::Impl::lookup(top::Frame& f, top::Dialect dialect, 
   o.model = A.opts_.model;
   o.role = role;
   o.detail = A.opts_.detail;
-  o.cache = &decode_cache;
-  top::decode(f, o, e.decoded);
+  e.diagnosed = top::detail::decode(f, o, &decode_cache, e.decoded);
   e.frame = &f;
   summarise(e);
   return e;
@@ -150,7 +149,7 @@ inline void Analyzer::Impl::watch(Conversation& c, int d, const FrameEvent& ev) 
   const DecodedEntry& e = *ev.entry;
   const top::Frame& fr = *e.frame;
   const top::Role role = e.decoded.role;
-  if (e.decoded.diagnosed) {  // the rules' prefilter (top::may_matter_to_diagnoses)
+  if (e.diagnosed) {  // the rules' prefilter (top/detail/prefilter.hpp)
     const std::string_view id = fr.ident_view(), data = fr.data();
     if (role == top::Role::response && e.decoded.dialect != top::Dialect::unknown && fr.checksum_ok)
       c.watch.device_frame(e.decoded.dialect, id, fr.control, data, ev.n, ev.ts, d);

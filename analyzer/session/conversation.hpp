@@ -154,8 +154,8 @@ struct Conversation {
   // the device before the request is unanswered at its end.
   struct Slowest {
     // a slot per identifier by a hash of it, then the next free one: most
-    // replies find theirs at once (a loop from the first slot mispredicted
-    // its exit on every reply)
+    // replies find theirs at once (docs/perf/decisions.md, "The slowest
+    // answer per identifier")
     std::array<std::uint32_t, 8> key{};
     std::array<std::int64_t, 8> us{};
     static std::size_t home(std::uint32_t k) noexcept { return (k * 0x9E3779B1u) >> 29; }

@@ -48,8 +48,10 @@ class Counters {
 
  private:
   // Pages of 2048 slots (16 KB), zeroed by the allocator (calloc): a
-  // handful of frames pays for a page or two, not 373 KB of zeroes; a power
-  // of two, so a slot's page is a shift (docs/perf/decisions.md).
+  // handful of frames pays for a page or two, not 373 KB of zeroes (the fuzz
+  // targets build an analyzer per input; under ASan a page is a heap block,
+  // not a fresh mmap); a power of two, so a slot's page is a shift
+  // (docs/perf/decisions.md, "Frames counted per identifier").
   static constexpr std::size_t kPage = std::size_t{1} << 11;
   struct FreeDeleter {
     void operator()(std::uint64_t* p) const noexcept;
@@ -64,7 +66,8 @@ class Counters {
 
 // The latency stage: a histogram per identifier of the requests answered.
 // A capture pairs a handful of identifiers, so a linear search of their
-// keys, with the last index found per hashed slot, beats hashing.
+// keys, with the last index found per hashed slot, beats hashing
+// (docs/perf/decisions.md, "Latency tables").
 class LatencyTable {
  public:
   Latency& of(std::uint32_t key);

@@ -46,6 +46,8 @@ struct Note {
 struct DecodedEntry {
   const top::Frame* frame = nullptr;  // the parser's, valid during the event
   top::Decoded decoded;
+  // Whether it may matter to a diagnosis (top/detail/prefilter.hpp).
+  bool diagnosed = false;
   top::Severity worst = top::Severity::info;
   bool bad_checksum = false;
 };
@@ -53,9 +55,8 @@ struct DecodedEntry {
 struct FrameEvent {
   FrameEvent() = default;
   // Where the frame is; the rest (reply, copy, notes) comes as the session
-  // decides. (A constructor, not `FrameEvent{.n = ...}`: g++ -O2 clears
-  // the whole aggregate with `rep stos` first, whose start-up cost per frame
-  // is a few percent of `topdump stats`; docs/perf/bench-history.md.)
+  // decides. (A constructor, not `FrameEvent{.n = ...}`, which g++ -O2
+  // clears whole first: docs/perf/decisions.md, "FrameEvent by constructor".)
   FrameEvent(std::uint64_t n_, std::int64_t ts_, Position pos_, std::uint64_t stream_offset_,
              Transport transport_, const Conversation* conv_, const std::string* from_,
              const std::string* to_, const DecodedEntry* entry_) noexcept

@@ -143,8 +143,7 @@ class Pairing {
 };
 
 // match() and answer() run for every response: inline, as they were in
-// the session before Pairing was a class (topdump stats: +2.6% instructions
-// out of line).
+// the session before Pairing was a class (docs/perf/decisions.md).
 // One pass from the newest: the first request whose data the response
 // echoes, else the newest of its identifier (ERE: the newest to the device
 // it speaks for that the device rejects (top::rejection), else the newest to

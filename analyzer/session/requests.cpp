@@ -60,8 +60,8 @@ void Analyzer::Impl::unanswered(Conversation& c, const Pending& p, bool at_end) 
   // A client stream's frame (FAI) waited only for the ERE that would refuse
   // it: a device that took it without a word did as the document says
   // (SkyDroid 3.3.6.2: FAI gets no reply), also before its enable was seen.
-  // (The command as decoded when it was sent: a catalog search here cost
-  // cache misses on every unanswered request.)
+  // (The command as decoded when it was sent, not a catalog search:
+  // docs/perf/decisions.md, "An unanswered write".)
   if (p.control == 'w' && p.command && top::write_reply(*p.command) == top::WriteReply::nothing) {
     silent_write(c, p);
     return;

@@ -36,6 +36,7 @@
 #include "session/conversation.hpp"
 #include "session/conversation_table.hpp"
 #include "session/counters.hpp"
+#include "top/detail/decode_cache.hpp"
 
 namespace topdump {
 
@@ -62,8 +63,8 @@ struct Analyzer::Impl {
 
   // --- analyzer.cpp: frames and items to events --------------------------
   DecodedEntry current;
-  top::DecodeCache decode_cache;  // used without detail (topdump stats)
-  top::ParseResult scratch;       // the one-frame datagram path parses into this
+  top::detail::DecodeCache decode_cache;  // used without detail (topdump stats)
+  top::ParseResult scratch;               // the one-frame datagram path parses into this
   // How the datagram path parses: without detail (topdump stats) the
   // frames' findings carry no text, which stats never shows.
   top::ParseOptions parse;
@@ -91,8 +92,7 @@ struct Analyzer::Impl {
   // selected (the filter), count, and out to the sink.
   void frame(Conversation& c, int d, top::Frame& f, Position pos, std::int64_t ts,
              std::uint64_t stream_off);
-  // (the stages of analyzer.cpp are inlined into frame(): out of line, the
-  // calls and their arguments cost 90 instructions a frame at -O1)
+  // (inlined into frame(): docs/perf/decisions.md, "The session's stages")
   [[gnu::always_inline]] const DecodedEntry& decode(Conversation& c, int d, top::Frame& f);
   [[gnu::always_inline]] void pair(Conversation& c, int d, FrameEvent& ev);
   [[gnu::always_inline]] void watch(Conversation& c, int d, const FrameEvent& ev);
@@ -202,8 +202,8 @@ struct Analyzer::Impl {
 };
 
 // Asked for every response (and a copy's check): always inline, as the
-// matching was inside response() before the copy check asked it too (out of
-// line, as g++'s PGO build left it, it cost about 1% of `topdump stats`).
+// matching was inside response() before the copy check asked it too
+// (docs/perf/decisions.md, "answered always inline").
 [[gnu::always_inline]] inline std::optional<Pairing::Match> Analyzer::Impl::answered(
     const Conversation& c, int d, const top::Frame& f, top::Dialect dialect) const {
   const std::string_view id = f.ident_view();
@@ -214,8 +214,8 @@ struct Analyzer::Impl {
   // A reply of another identifier that a recorded form names as the answer
   // to a read (a real Topotek camera answers the GIC query with GIA): the
   // newest such read pending (asked only of an identifier that answers
-  // another's read: the scan read every pending request for each push, 13k
-  // L1d misses per 100k frames of bench/run.sh's capture).
+  // another's read: docs/perf/decisions.md, "A reply to another
+  // identifier's read").
   if (!mt && !ere && top::answers_other_query(dialect, id))
     for (std::size_t i = c.pairing.size(); !mt && i-- > 0;) {
       const Pending& p = c.pairing[i];

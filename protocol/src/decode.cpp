@@ -1,19 +1,21 @@
 // Decoding a frame into fields and findings: the command and form its
-// shape decides (remembered by DecodeCache without detail), then each field
-// (decode_fields.cpp), or without detail the form's plan (decode_plan.hpp).
+// shape decides (remembered by a DecodeCache without detail,
+// top/detail/decode_cache.hpp), then each field (decode_fields.cpp), or
+// without detail the form's plan (decode_plan.hpp).
 #include "top/decode.hpp"
 
 #include <algorithm>
 #include <array>
 
 #include "chars.hpp"
-#include "decode_cache.hpp"
 #include "decode_ctx.hpp"
 #include "decode_plan.hpp"
 #include "device_form.hpp"
 #include "numbers.hpp"
+#include "shape_slot.hpp"
+#include "top/detail/decode_cache.hpp"
+#include "top/detail/prefilter.hpp"
 #include "top/device.hpp"
-#include "top/diagnoses.hpp"
 #include "top/dialect.hpp"
 #include "top/motion.hpp"
 
@@ -109,7 +111,6 @@ void decode_shape(Ctx& ctx, const Frame& frame, const DecodeOptions& opts, Diale
   out.switches = frame.control == 'w' && out.role != Role::response
                      ? stream_enabled_by(d, ident, Profile::field)
                      : nullptr;
-  out.diagnosed = may_matter_to_diagnoses(frame.ident);
 
   if (frame.header == Header::fixed && frame.declared_length != 2)
     note_tp_length(ctx, frame, cmd, d, out);
@@ -269,15 +270,19 @@ static void decode_data(Ctx& ctx, const Frame& frame, const DecodeOptions& opts,
   check_fields(ctx, *form, frame);
 }
 
-// The frame's command, form and findings, and its fields with detail.
-static void decode_frame(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
+// The frame's command, form and findings, and its fields with detail;
+// without detail through `cache` when there is one. The one body of both
+// entry points (top::decode calls it without a cache): a call from one to
+// the other costs the session's decode (docs/perf/decisions.md, "Decode
+// shape cache").
+bool detail::decode(const Frame& frame, const DecodeOptions& opts, DecodeCache* cache,
+                    Decoded& out) {
   out.fields.clear();
   out.findings.clear();
   out.command = nullptr;
   out.form = nullptr;
   out.motion = nullptr;
   out.switches = nullptr;
-  out.diagnosed = false;
   Ctx ctx{frame, out, opts.detail};
   out.role = opts.role != Role::any ? opts.role : role_from_addresses(frame);
   Dialect d = opts.dialect;
@@ -289,7 +294,9 @@ static void decode_frame(const Frame& frame, const DecodeOptions& opts, Decoded&
   // writes is the shape's, so the shape cache remembers it too; `noted`:
   // the finding it added, if any.
   std::size_t noted = detail::kNoNote;
+  bool diagnosed = false;  // the shape's, like the command
   auto shape = [&] {
+    diagnosed = detail::may_matter_to_diagnoses(frame.ident);
     decode_shape(ctx, frame, opts, d, out);
     if (opts.role != Role::response) return;
     const std::size_t before = out.findings.size();
@@ -297,12 +304,12 @@ static void decode_frame(const Frame& frame, const DecodeOptions& opts, Decoded&
     if (out.findings.size() > before) noted = out.findings.size() - 1;
   };
   if (detail::ShapeSlot* slot =
-          ctx.detail ? nullptr : detail::shape_slot(opts, frame, d, out.role)) {
+          ctx.detail ? nullptr : detail::shape_slot(cache, opts, frame, d, out.role)) {
     if (slot->known) {
-      detail::replay(*slot, out, noted);
+      detail::replay(*slot, out, noted, diagnosed);
     } else {
       shape();
-      detail::remember(*slot, out, noted);  // unless the shape has too many findings
+      detail::remember(*slot, out, noted, diagnosed);  // unless the shape has too many findings
     }
     if (slot->known) plan = slot->plan;
   } else {
@@ -315,10 +322,11 @@ static void decode_frame(const Frame& frame, const DecodeOptions& opts, Decoded&
   if (noted != detail::kNoNote && noted + 1 < out.findings.size())
     std::rotate(out.findings.begin() + static_cast<std::ptrdiff_t>(noted),
                 out.findings.begin() + static_cast<std::ptrdiff_t>(noted) + 1, out.findings.end());
+  return diagnosed;
 }
 
 void decode(const Frame& frame, const DecodeOptions& opts, Decoded& out) {
-  decode_frame(frame, opts, out);
+  detail::decode(frame, opts, nullptr, out);
 }
 
 Decoded decode(const Frame& frame, const DecodeOptions& opts) {

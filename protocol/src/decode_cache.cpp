@@ -1,9 +1,12 @@
-#include "decode_cache.hpp"
+// DecodeCache (top/detail/decode_cache.hpp): its slots are shape_slot.hpp's.
+#include "top/detail/decode_cache.hpp"
 
 #include <algorithm>
 #include <bit>
 
-namespace top {
+#include "shape_slot.hpp"
+
+namespace top::detail {
 
 DecodeCache::DecodeCache(std::size_t slots) {
   count_ = std::bit_ceil(std::clamp<std::size_t>(slots, 1, std::size_t{1} << 20));
@@ -12,4 +15,4 @@ DecodeCache::DecodeCache(std::size_t slots) {
 
 DecodeCache::~DecodeCache() = default;
 
-}  // namespace top
+}  // namespace top::detail

@@ -12,7 +12,7 @@
 
 #include "catalog_data.hpp"
 #include "device_form.hpp"
-#include "top/diagnoses.hpp"
+#include "top/detail/prefilter.hpp"
 #include "top/dialect.hpp"
 #include "top/enum_names.hpp"
 #include "top/text.hpp"
@@ -78,9 +78,10 @@ const StreamSpec* stream_enabled_by(Dialect d, std::string_view request) noexcep
 
 namespace {
 
-// An identifier's three chars as one integer (ident_key; 0: not three chars).
+// An identifier's three chars as one integer (detail::ident_key; 0: not
+// three chars).
 std::uint32_t key_of(std::string_view id) noexcept {
-  return id.size() == 3 ? ident_key(id.data()) : 0;
+  return id.size() == 3 ? detail::ident_key(id.data()) : 0;
 }
 
 // Every stream request's key, built at start-up: most writes switch no

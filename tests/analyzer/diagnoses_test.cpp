@@ -18,6 +18,8 @@
 #include "test_support.hpp"
 #include "top/catalog.hpp"
 #include "top/decode.hpp"
+#include "top/detail/decode_cache.hpp"
+#include "top/detail/prefilter.hpp"
 #include "top/frame.hpp"
 
 namespace topdump {
@@ -105,11 +107,12 @@ TEST(DiagnosesRules, CarriesDateMatchesTheCatalog) {
       }
 }
 
-// The session's prefilter lets through every frame a detector's rule
-// could take: the decoded frame says so (Decoded::diagnosed), with and
-// without the shape cache (topdump stats), for either sender.
+// The session's prefilter (top/detail/prefilter.hpp) lets through every
+// frame a detector's rule could take: the session's decode says so
+// (top::detail::decode), with detail and without, from the shape cache too
+// (topdump stats), for either sender.
 TEST(DiagnosesRules, WatchPrefilterCoversTheRules) {
-  top::DecodeCache cache;
+  top::detail::DecodeCache cache;
   std::size_t ruled_count = 0;
   for (top::Dialect d : {top::Dialect::skydroid, top::Dialect::topotek})
     for (const top::CommandSpec& c : top::commands(d)) {
@@ -117,7 +120,7 @@ TEST(DiagnosesRules, WatchPrefilterCoversTheRules) {
       const bool ruled = top::is_identity_reply(d, id) || top::carries_date(id) ||
                          top::refuses_tracking(d, id, "04") ||
                          top::reports_tracking(d, id, 'r', "02");
-      EXPECT_EQ(top::may_matter_to_diagnoses(id.c_str()), ruled) << id;
+      EXPECT_EQ(top::detail::may_matter_to_diagnoses(id.c_str()), ruled) << id;
       ruled_count += ruled;
       for (top::Role role : {top::Role::request, top::Role::response}) {
         top::BuildSpec b;
@@ -128,12 +131,13 @@ TEST(DiagnosesRules, WatchPrefilterCoversTheRules) {
         b.data = "00";
         const top::ParseResult r = top::parse_frame(top::build_frame(b), true);
         ASSERT_EQ(r.status, top::ParseStatus::frame) << id;
-        for (top::DecodeCache* cached : {static_cast<top::DecodeCache*>(nullptr), &cache}) {
+        for (const bool detail : {true, false}) {
           top::DecodeOptions o{d, top::Model::unknown, role};
-          o.detail = cached == nullptr;
-          o.cache = cached;
+          o.detail = detail;
+          top::Decoded out;
           for (int pass = 0; pass < 2; ++pass)  // the second from the cache
-            EXPECT_EQ(top::decode(r.frame, o).diagnosed, ruled) << id << " pass " << pass;
+            EXPECT_EQ(top::detail::decode(r.frame, o, &cache, out), ruled)
+                << id << " pass " << pass;
         }
       }
     }

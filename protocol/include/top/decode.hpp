@@ -3,7 +3,6 @@
 #pragma once
 
 #include <cstdint>
-#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -14,11 +13,6 @@
 namespace top {
 
 struct MotionSpec;  // top/motion.hpp
-
-namespace detail {
-struct ShapeSlot;
-struct CacheAccess;
-}  // namespace detail
 
 struct FieldValue {
   const FieldSpec* spec = nullptr;
@@ -56,32 +50,6 @@ void append_value(const FieldValue& f, std::string& out);
 // field. The unit is FieldValue::unit().
 void append_plain_value(const FieldValue& f, std::string& out);
 
-// Remembers what decode() without detail found for a frame's shape: its
-// dialect, role, identifier, header, lengths and control decide the command,
-// the form and the findings that follow from them, so a frame of a shape
-// seen before skips the catalog lookups and goes straight to its data. The
-// results are the same with or without it (tested, and compared by the
-// decode fuzzers). One per thread; 128 slots by default (a few kilobytes),
-// rounded up to a power of two, allocated at the first lookup (a cache that
-// decode() never uses, as with detail, costs nothing).
-class DecodeCache {
- public:
-  explicit DecodeCache(std::size_t slots = 128);
-  ~DecodeCache();
-  DecodeCache(const DecodeCache&) = delete;
-  DecodeCache& operator=(const DecodeCache&) = delete;
-
-  // Shapes looked up that their slot did not hold (first sight or evicted).
-  std::uint64_t misses() const noexcept { return misses_; }
-
- private:
-  friend struct detail::CacheAccess;            // decode_cache.hpp
-  std::unique_ptr<detail::ShapeSlot[]> slots_;  // count_ of them, from the first lookup
-  std::size_t count_ = 0;
-  std::uint64_t misses_ = 0;
-  unsigned shift_ = 32;  // a slot is the top log2(slots) bits of a 32-bit hash
-};
-
 struct DecodeOptions {
   Dialect dialect = Dialect::unknown;  // unknown: detect from the frame
   Model model = Model::unknown;        // unknown: no model checks
@@ -94,8 +62,6 @@ struct DecodeOptions {
   // codes, severities and offsets but empty messages); no field values. For
   // callers that count rather than show (topdump stats).
   bool detail = true;
-  // Used only without detail (messages are not remembered); null: none.
-  DecodeCache* cache = nullptr;
   // Among the forms of one shape whose fields validate, a document's before
   // one only the field gives (false: the catalog's order, the field's echo
   // of a LAT/LON write first). A reply in both (the LRF's 5 digits) is then
@@ -111,16 +77,12 @@ struct Decoded {
   const CommandSpec* command = nullptr;
   const FormSpec* form = nullptr;
   // The command's motion row (top/motion.hpp: what moves the gimbal or
-  // reports its attitude), or null; with the command, from the shape cache.
+  // reports its attitude), or null.
   const MotionSpec* motion = nullptr;
   // For a write not known to come from the device (its role request or
   // any), the stream it switches as the field's firmware does
   // (stream_enabled_by, Profile::field, top/device.hpp), or null.
   const StreamSpec* switches = nullptr;
-  // Whether a frame of its identifier may matter to a diagnosis
-  // (may_matter_to_diagnoses, top/diagnoses.hpp). These two are the shape's,
-  // from the shape cache like the command: the session asks of every frame.
-  bool diagnosed = false;
   std::vector<FieldValue> fields;
   std::vector<Finding> findings;  // catalog-level findings
 

@@ -200,32 +200,6 @@ inline bool refuses_tracking(Dialect d, std::string_view id, std::string_view da
 // catalog has no other).
 inline bool carries_date(std::string_view id) noexcept { return id == "TIM" || id == "UTC"; }
 
-// A frame's identifier as one integer, for may_matter_to_diagnoses.
-constexpr std::uint32_t ident_key(const char* id) noexcept {
-  return static_cast<std::uint32_t>(static_cast<unsigned char>(id[0])) |
-         static_cast<std::uint32_t>(static_cast<unsigned char>(id[1])) << 8 |
-         static_cast<std::uint32_t>(static_cast<unsigned char>(id[2])) << 16;
-}
-
-// Whether a frame of `ident` (3 chars) can matter to one of the rules
-// above: the identity replies, TRC and the dated frames. One switch per
-// frame instead of their string compares, for the session's per-frame
-// prefilter (diagnoses_test checks it covers the rules).
-inline bool may_matter_to_diagnoses(const char* ident) noexcept {
-  switch (ident_key(ident)) {
-    case ident_key("PA2"):
-    case ident_key("VSN"):
-    case ident_key("VER"):
-    case ident_key("MOD"):
-    case ident_key("TRC"):
-    case ident_key("TIM"):
-    case ident_key("UTC"):
-      return true;
-    default:
-      return false;
-  }
-}
-
 // A date and time carried by a frame: the fields named year, month, day,
 // hour, minute and second of its form (Topotek TIM and UTC, SkyDroid TIM),
 // read from the raw data by the form's field widths, so it works without

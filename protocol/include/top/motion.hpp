@@ -36,10 +36,9 @@ enum class Reference : std::uint8_t {
 
 // The turn from one yaw to another `d` degrees on, the short way round:
 // std::remainder(d, 360.0), d less the nearest multiple of 360 (a tie to
-// the even one), in [-180, 180]. Inline: the motion diagnoses take it as
-// a capture streams by, and libm's remainder() was a call whose code
-// missed the instruction cache each time (tests/motion_test.cpp
-// checks it against std::remainder). Adding and taking back 1.5 * 2^52
+// the even one), in [-180, 180]. Inline, for callers that take it of every
+// attitude (tests/motion_test.cpp checks it against std::remainder; why
+// not remainder(): docs/perf/decisions.md). Adding and taking back 1.5 * 2^52
 // rounds d / 360 to an integer, ties to even (IEEE arithmetic: the build
 // never uses -ffast-math), and d less a multiple of 360 within 180 of it
 // is exact.

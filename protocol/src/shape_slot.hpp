@@ -1,4 +1,5 @@
-// Internal: what DecodeCache keeps per frame shape, and the key of a shape.
+// Internal: what a DecodeCache (top/detail/decode_cache.hpp) keeps per
+// frame shape, and the key of a shape.
 #pragma once
 
 #include <array>
@@ -8,6 +9,7 @@
 
 #include "decode_plan.hpp"
 #include "top/decode.hpp"
+#include "top/detail/decode_cache.hpp"
 
 namespace top::detail {
 
@@ -23,7 +25,7 @@ struct ShapeSlot {
   const FormSpec* form = nullptr;
   const MotionSpec* motion = nullptr;
   const StreamSpec* switches = nullptr;
-  bool diagnosed = false;
+  bool diagnosed = false;     // may_matter_to_diagnoses (top/detail/prefilter.hpp)
   std::uint8_t noted = 0xFF;  // the finding note_device_form added (0xFF: none)
   const FormPlan* plan = nullptr;
   struct Seen {
@@ -130,10 +132,11 @@ struct CacheAccess {
 // Used by decode() for every frame, so inline.
 // The cache's slot for this frame's shape, or null (no cache, or a shape it
 // does not key).
-inline ShapeSlot* shape_slot(const DecodeOptions& opts, const Frame& f, Dialect d, Role role) {
-  if (!opts.cache) return nullptr;
+inline ShapeSlot* shape_slot(DecodeCache* cache, const DecodeOptions& opts, const Frame& f,
+                             Dialect d, Role role) {
+  if (!cache) return nullptr;
   const std::uint64_t key = shape_key(f, d, role, opts.model, opts.role == Role::response);
-  return key ? &CacheAccess::slot(*opts.cache, key) : nullptr;
+  return key ? &CacheAccess::slot(*cache, key) : nullptr;
 }
 
 // What decode_frame's `noted` holds when note_device_form added no finding.
@@ -149,12 +152,12 @@ void copy_shape(To& to, const From& from) noexcept {
   to.form = from.form;
   to.motion = from.motion;
   to.switches = from.switches;
-  to.diagnosed = from.diagnosed;
 }
 
-inline void remember(ShapeSlot& s, const Decoded& out, std::size_t noted) {
+inline void remember(ShapeSlot& s, const Decoded& out, std::size_t noted, bool diagnosed) {
   if (out.findings.size() > ShapeSlot::kFindings) return;
   copy_shape(s, out);
+  s.diagnosed = diagnosed;
   s.plan = out.form ? &plan_of(*out.command, *out.form) : nullptr;
   s.count = static_cast<std::uint8_t>(out.findings.size());
   s.noted = noted == kNoNote ? 0xFF : static_cast<std::uint8_t>(noted);
@@ -165,9 +168,10 @@ inline void remember(ShapeSlot& s, const Decoded& out, std::size_t noted) {
   s.known = true;
 }
 
-inline void replay(const ShapeSlot& s, Decoded& out, std::size_t& noted) {
+inline void replay(const ShapeSlot& s, Decoded& out, std::size_t& noted, bool& diagnosed) {
   if (s.noted != 0xFF) noted = s.noted;
   copy_shape(out, s);
+  diagnosed = s.diagnosed;
   for (std::size_t i = 0; i < s.count; ++i) {
     const ShapeSlot::Seen& x = s.findings[i];
     out.findings.push_back(Finding{x.code, x.severity, x.offset, std::string(), x.quirk});
