@@ -98,14 +98,17 @@ json driver_matrix_json(const Profile& p, top::Model model) {
                                         {"addresses", "any"},
                                         {"note", "clean-up"}}})}});
     const Source& src = p.sources.at(static_cast<std::size_t>(n.source));
-    cases.push_back({{"id", case_id(p, n)},
-                     {"section", std::string(src.repo) + " " + std::string(src.path) + " @ " +
-                                     std::string(src.ref)},
-                     {"title", std::string(n.reasoning)},
-                     {"level", level_of(n.grade)},
-                     {"tags", json::array({"driver", std::string(p.name), std::string(n.id),
-                                           std::string(to_string(n.grade))})},
-                     {"steps", steps}});
+    json k = {{"id", case_id(p, n)},
+              {"section",
+               std::string(src.repo) + " " + std::string(src.path) + " @ " + std::string(src.ref)},
+              {"title", std::string(n.reasoning)},
+              {"level", level_of(n.grade)},
+              {"tags", json::array({"driver", std::string(p.name), std::string(n.id),
+                                    std::string(to_string(n.grade))})},
+              {"steps", steps}};
+    // A stream that stalls once is what the driver lives through: no retry.
+    if (n.check == Check::stream) k["retries"] = 0;
+    cases.push_back(std::move(k));
   }
   m["cases"] = cases;
   return m;
