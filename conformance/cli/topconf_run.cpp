@@ -5,6 +5,7 @@
 
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -12,8 +13,10 @@
 #include "conf/report.hpp"
 #include "conf/runner.hpp"
 #include "conf/transport.hpp"
+#include "drivers/compat.hpp"
 #include "fault_arg.hpp"
 #include "top/probe.hpp"
+#include "topkit/model.hpp"
 
 namespace topconf::cli {
 
@@ -27,7 +30,7 @@ class RunCommand : public topkit::cli::Subcommand {
  private:
   TargetArgs t_;
   OutputArgs out_;
-  std::string model_name_, matrix_path_;
+  std::string model_name_, matrix_path_, driver_;
   std::vector<std::string> case_ids_, tags_, levels_;
   std::uint64_t seed_ = 0;
   std::uint32_t retries_ = 0, timeout_ms_ = 0, settle_ms_ = 0;
@@ -42,7 +45,13 @@ RunCommand::RunCommand(CLI::App& app)
     : Subcommand(app, "run", "run a matrix against a target (default: an in-process topsim)") {
   sub_->add_option("--target", t_.target,
                    "udp://HOST:PORT, tcp://HOST:PORT or serial:DEVICE[@BAUD]");
-  sub_->add_option("--model", model_name_, top::model_list("|", "|"))->required();
+  sub_->add_option("--model", model_name_,
+                   top::model_list("|", "|") +
+                       " (with --driver: one the driver flies, default "
+                       "its first)");
+  sub_->add_option("--driver", driver_,
+                   "check what this driver needs (topconf drivers lists them) and give its "
+                   "verdict: compatible, compatible without: FEATURES, or incompatible");
   sub_->add_option("--matrix", matrix_path_,
                    "matrix JSON (default: <model>.json in share/topkit/matrices next to the "
                    "binary; topconf models --paths)");
@@ -82,6 +91,38 @@ RunCommand::RunCommand(CLI::App& app)
   sub_->add_flag("-q,--quiet", quiet_, "print the summary only");
 }
 
+namespace {
+
+// The driver's profile and its matrix for the run's model; the exit status
+// on failure (2).
+std::optional<int> driver_matrix_of(const std::string& name, std::string& model_name,
+                                    const drivers::Profile*& profile, Matrix& out) {
+  profile = drivers::find_profile(name);
+  if (!profile) {
+    spdlog::error("--driver: unknown driver '{}' (topconf drivers lists them)", name);
+    return 2;
+  }
+  if (model_name.empty()) model_name = std::string(top::to_string(profile->models.front()));
+  const auto model = topkit::cli::model_arg(kTool, model_name);
+  if (!model) return 2;
+  if (!profile->serves(*model)) {
+    std::string names;
+    for (top::Model m : profile->models) names += " " + std::string(top::to_string(m));
+    spdlog::error("--driver {} flies{}; not {}", name, names, model_name);
+    return 2;
+  }
+  auto loaded = drivers::driver_matrix(*profile, *model);
+  if (!loaded.matrix) {
+    for (const std::string& e : loaded.errors) spdlog::error("{}", e);
+    return 2;
+  }
+  out = std::move(*loaded.matrix);
+  out.model = *model;
+  return std::nullopt;
+}
+
+}  // namespace
+
 int RunCommand::run() {
   std::vector<Level> lv;
   for (const auto& l : levels_) {
@@ -90,7 +131,23 @@ int RunCommand::run() {
     lv.push_back(*level_from_string(l));
   }
   Matrix matrix;
-  if (auto rc = load_run_matrix(model_name_, matrix_path_, matrix)) return *rc;
+  const drivers::Profile* profile = nullptr;
+  if (!driver_.empty() && !matrix_path_.empty()) {
+    spdlog::error("--driver makes its own matrix: no --matrix with it");
+    return 2;
+  }
+  if (!driver_.empty()) {
+    if (auto rc = driver_matrix_of(driver_, model_name_, profile, matrix)) return *rc;
+  } else if (model_name_.empty()) {
+    spdlog::error("--model is required (or --driver)");
+    return 2;
+  } else if (auto rc = load_run_matrix(model_name_, matrix_path_, matrix)) {
+    return *rc;
+  }
+  // The in-process topsim on the driver's link: a serial line for a serial driver.
+  const topsim::Link sim_link = profile && profile->link.kind == drivers::LinkKind::serial
+                                    ? topsim::Link::uart
+                                    : topsim::Link::network;
   if (!t_.target.empty() && !t_.sim_faults.empty()) {
     spdlog::error("--sim-fault applies to the in-process topsim only (no --target)");
     return 2;
@@ -100,7 +157,7 @@ int RunCommand::run() {
   std::unique_ptr<pcapio::Recorder> pcap;
   try {
     transport = open_target(t_.target.empty(), t_.target, matrix.model, t_.sim_faults, t_.sim_seed,
-                            t_.bind_port);
+                            t_.bind_port, sim_link);
     if (!out_.pcap.empty()) pcap = std::make_unique<pcapio::Recorder>(out_.pcap, transport->tcp());
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
@@ -117,24 +174,29 @@ int RunCommand::run() {
   opts.pcap = pcap.get();
   const auto result = run_matrix(matrix, *transport, opts);
   if (pcap) pcap->flush();
+  std::optional<drivers::Compatibility> compat;
+  if (profile) compat = drivers::assess(*profile, result);
+  const drivers::Compatibility* c = compat ? &*compat : nullptr;
 
   if (quiet_) {
     std::ostringstream all;
-    write_console(all, result, false);
+    write_console(all, result, false, c);
     const std::string s = all.str();
     const auto pos = s.rfind("\n\n");
     std::cout << (pos == std::string::npos ? s : s.substr(pos + 2));
   } else {
-    write_console(std::cout, result, !no_color_ && ::isatty(1));
+    write_console(std::cout, result, !no_color_ && ::isatty(1), c);
   }
   bool ok = true;
   if (!out_.json.empty())
-    ok &= write_output(out_.json, [&](std::ostream& o) { o << to_json(result).dump(2) << "\n"; });
+    ok &=
+        write_output(out_.json, [&](std::ostream& o) { o << to_json(result, c).dump(2) << "\n"; });
   if (!out_.junit.empty())
-    ok &= write_output(out_.junit, [&](std::ostream& o) { write_junit(o, result); });
+    ok &= write_output(out_.junit, [&](std::ostream& o) { write_junit(o, result, c); });
   if (!out_.html.empty())
-    ok &= write_output(out_.html, [&](std::ostream& o) { write_html(o, result); });
-  return ok ? result.exit_code() : 2;
+    ok &= write_output(out_.html, [&](std::ostream& o) { write_html(o, result, c); });
+  if (!ok) return 2;
+  return c ? c->exit_code() : result.exit_code();
 }
 
 std::unique_ptr<topkit::cli::Subcommand> run_command(CLI::App& app) {

@@ -1,9 +1,11 @@
 // A client that does what ArduPilot's Topotek mount driver does
 // (AP_Mount_Topotek, MNT1_TYPE 12), written from the facts in
 // docs/sources/ardupilot.md section 1 (no code of the driver carried over):
-// a 10 Hz tick; each tick LAT/LON/ALT/AZI; a round robin of ten steps, one a
-// tick, so each once a second: VSN (step 0, until answered), GIA enable (2),
-// SDC (4), TRC read (6), PA2 (8, until answered); angle targets GAY/GIP/GIR
+// the tick and the round robin from the driver's profile
+// (conformance/drivers, profile ardupilot-topotek): a 10 Hz tick; each tick
+// LAT/LON/ALT/AZI; a round robin of ten steps, one a tick, so each once a
+// second: VSN (step 0, until answered), GIA enable (2), SDC (4), TRC read
+// (6), PA2 (8, until answered); angle targets GAY/GIP/GIR
 // (#tp, 6 chars, speed 63) or a YPR rate at 10 Hz while not tracking; PTZ 00
 // three times when the rates go to zero; UTC after an SDC reply that is not
 // NNNN (at most 7 times); REC on/off; TRC 02 + LOC to track, TRC 01/00 to
@@ -22,6 +24,7 @@
 #include <vector>
 
 #include "driver_harness.hpp"
+#include "drivers/profile.hpp"
 #include "top/frame.hpp"
 #include "top/text.hpp"
 
@@ -72,27 +75,19 @@ class TopotekClient : public DriverClient {
       if (utc_sent < 7) out.push_back(utc()), ++utc_sent;
     }
     position(out);
-    switch (++step_ % 10) {
-      case 0:
-        if (!version_parsed) out.push_back(fixed('D', 'r', "VSN", 0));
-        break;
-      case 2:
-        out.push_back(fixed('G', 'w', "GIA", 1));
-        break;
-      case 4:
-        out.push_back(fixed('D', 'r', "SDC", 0));
-        break;
-      case 6:
-        out.push_back(fixed('D', 'r', "TRC", 0));
-        break;
-      case 8:
-        if (model_name.empty()) out.push_back(fixed('G', 'r', "PA2", 0));
-        break;
-      default:
-        break;
-    }
+    // The 1 Hz round robin as the driver's profile gives it
+    // (conformance/drivers: its steps, identifiers and the ones sent until
+    // answered), one step a tick.
+    const int step = static_cast<int>(++step_ % 10);
+    for (const drivers::Sent& q : profile().sends)
+      if (q.slot == step && !(q.until_answered && answered(q.ident)))
+        out.push_back(frame(top::Header::fixed, q.dst, q.control, q.ident, q.data));
     if (!tracking) targets(out);
-    return now_us + 100000;
+    return now_us + std::uint64_t{profile().tick_ms} * 1000;
+  }
+  static const drivers::Profile& profile() {
+    static const drivers::Profile* p = drivers::find_profile("ardupilot-topotek");
+    return *p;
   }
 
   void on_frame(const top::Frame& f, std::uint64_t now_us) override {
@@ -131,6 +126,10 @@ class TopotekClient : public DriverClient {
 
  private:
   std::uint64_t step_ = 0;
+  // What the driver stops asking once parsed (Sent::until_answered).
+  bool answered(std::string_view ident) const {
+    return (ident == "VSN" && version_parsed) || (ident == "PA2" && !model_name.empty());
+  }
   int stops_ = 0;
   bool utc_due_ = false;
   std::vector<std::string> pending_;

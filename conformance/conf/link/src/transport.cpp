@@ -316,7 +316,7 @@ std::unique_ptr<Transport> open_transport(const std::string& target, top::Model 
 
 std::unique_ptr<Transport> open_target(bool sim, const std::string& target, top::Model model,
                                        const std::string& sim_faults, std::uint64_t sim_seed,
-                                       int bind_port) {
+                                       int bind_port, topsim::Link sim_link) {
   if (sim) {
     topsim::FaultConfig fc;
     if (!sim_faults.empty()) {
@@ -325,7 +325,7 @@ std::unique_ptr<Transport> open_target(bool sim, const std::string& target, top:
       if (!f) throw TransportError("--sim-fault: " + err);
       fc = *f;
     }
-    return std::make_unique<SimTransport>(model, fc, sim_seed);
+    return std::make_unique<SimTransport>(model, fc, sim_seed, sim_link);
   }
   int local = bind_port;
   if (local < 0 && top::client_port(model) && target.rfind("udp://", 0) == 0)

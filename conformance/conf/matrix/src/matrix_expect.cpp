@@ -167,7 +167,8 @@ bool parse_reply(const Ctx& c, const json& r, const std::string& w, Expectation&
 bool parse_stream(const Ctx& c, const json& s, const std::string& w, Expectation& e) {
   const std::string sw = w + "stream.";
   if (!c.object(s, w + "stream")) return false;
-  only_keys(c, s, w + "stream", {"ident", "rate_hz", "tolerance", "duration_ms"});
+  only_keys(c, s, w + "stream",
+            {"ident", "rate_hz", "tolerance", "duration_ms", "data_pattern", "max_gap_ms"});
   if (!get_string(c, s, sw, "ident", e.ident, true)) return false;
   auto rate = s.find("rate_hz");
   if (rate == s.end() || !rate->is_number() || rate->get<double>() <= 0 ||
@@ -185,6 +186,15 @@ bool parse_stream(const Ctx& c, const json& s, const std::string& w, Expectation
   }
   if (!get_uint(c, s, sw, "duration_ms", e.duration_ms, 60000) || e.duration_ms == 0) {
     c.err(sw + "duration_ms", "must be an integer from 1 to 60000");
+    return false;
+  }
+  // Only pushes whose data match count; no gap between them (from the
+  // step's start to the window's end) may be longer than max_gap_ms.
+  if (get_string(c, s, sw, "data_pattern", e.data_pattern, false))
+    e.data_re = compile(c, sw + "data_pattern", e.data_pattern);
+  if (s.contains("max_gap_ms") &&
+      (!get_uint(c, s, sw, "max_gap_ms", e.max_gap_ms, 60000) || e.max_gap_ms == 0)) {
+    c.err(sw + "max_gap_ms", "must be an integer from 1 to 60000");
     return false;
   }
   return true;

@@ -29,13 +29,41 @@ const char* color_of(Verdict v) {
   return i < std::size(kColor) ? kColor[i] : "\x1b[2m";
 }
 
+std::string compat_line(const drivers::Compatibility& c) {
+  return std::string(c.profile->name) + " on " + std::string(top::to_string(c.model)) + ": " +
+         c.text();
+}
+
+// The driver's verdict and each need: grade, feature, result, what it protects.
+void write_html_compat(std::ostream& os, const drivers::Compatibility& c) {
+  const char* cls = c.level == drivers::Compatibility::Level::compatible ? "pass"
+                    : c.level == drivers::Compatibility::Level::without  ? "non-strict"
+                                                                         : "fail";
+  os << "<h2>Compatibility: " << markup_escape(c.profile->title) << "</h2>\n<p class=\"" << cls
+     << "\"><b>" << markup_escape(compat_line(c)) << "</b> (exit status " << c.exit_code()
+     << ")</p>\n<table><tr><th>need</th><th>grade</th><th>feature</th><th>result</th>"
+        "<th>the driver's reasoning, and this device</th></tr>\n";
+  for (const drivers::NeedResult& n : c.needs)
+    os << "<tr class=\""
+       << (n.served                                ? "pass"
+           : n.need->grade == drivers::Grade::info ? "na"
+                                                   : "fail")
+       << "\"><td><code>" << markup_escape(n.need->id) << "</code></td><td>"
+       << drivers::to_string(n.need->grade) << "</td><td>" << markup_escape(n.need->feature)
+       << "</td><td>" << (n.served ? "served" : "not served") << "</td><td>"
+       << markup_escape(n.outcome) << "</td></tr>\n";
+  os << "</table>\n";
+}
+
 }  // namespace
 
 std::string printable(std::string_view bytes) { return top::escape(bytes); }
 
-void write_console(std::ostream& os, const RunResult& r, bool color) {
+void write_console(std::ostream& os, const RunResult& r, bool color,
+                   const drivers::Compatibility* compat) {
   if (r.unreachable) {
     os << "topconf: target unreachable: " << r.unreachable_reason << "\n";
+    if (compat) os << compat_line(*compat) << "\n";
     return;
   }
   std::size_t w = 10;
@@ -68,11 +96,19 @@ void write_console(std::ostream& os, const RunResult& r, bool color) {
   std::snprintf(secs, sizeof secs, "%.2f", r.seconds);
   os << " in " << secs << " s\n";
   if (!r.probe_note.empty()) os << r.probe_note << "\n";
+  if (compat) {
+    for (const drivers::NeedResult& n : compat->needs)
+      if (!n.served && n.need->grade != drivers::Grade::info)
+        os << "  " << drivers::to_string(n.need->grade) << " " << n.need->id << ": " << n.outcome
+           << "\n";
+    os << compat_line(*compat) << "\n";
+    return;
+  }
   os << (r.exit_code() == 0 ? "PASS" : "FAIL") << ": every must/should case "
      << (r.exit_code() == 0 ? "passed or is not applicable" : "did not pass") << "\n";
 }
 
-nlohmann::json to_json(const RunResult& r) {
+nlohmann::json to_json(const RunResult& r, const drivers::Compatibility* compat) {
   nlohmann::json j;
   j["tool"] = "topconf";
   j["target"] = r.target;
@@ -115,16 +151,21 @@ nlohmann::json to_json(const RunResult& r) {
     if (c.dropped_exchanges) k["transcript_dropped"] = c.dropped_exchanges;
     j["cases"].push_back(k);
   }
+  if (compat) {
+    j["compatibility"] = drivers::to_json(*compat);
+    j["exit_code"] = compat->exit_code();
+  }
   return j;
 }
 
-void write_junit(std::ostream& os, const RunResult& r) {
+void write_junit(std::ostream& os, const RunResult& r, const drivers::Compatibility* compat) {
   std::size_t failures =
       r.count(Verdict::fail) + r.count(Verdict::non_strict) + r.count(Verdict::inconclusive);
   detail::JunitSuite suite;
   suite.name = "topconf." + std::string(top::to_string(r.model));
-  suite.tests = r.cases.size();
-  suite.failures = failures;
+  suite.tests = r.cases.size() + (compat ? 1 : 0);
+  const bool broken = compat && compat->level == drivers::Compatibility::Level::incompatible;
+  suite.failures = failures + (broken ? 1 : 0);
   suite.errors = r.count(Verdict::error) + (r.unreachable ? 1 : 0);
   suite.skipped = r.count(Verdict::not_applicable);
   suite.seconds = r.seconds;
@@ -133,6 +174,13 @@ void write_junit(std::ostream& os, const RunResult& r) {
   if (r.unreachable)
     os << "  <testcase classname=\"topconf\" name=\"liveness\"><error message=\""
        << markup_escape(r.unreachable_reason) << "\"/></testcase>\n";
+  if (compat) {
+    // The driver's verdict: a failure only when the driver breaks.
+    os << "  <testcase classname=\"topconf.driver." << markup_escape(compat->profile->name)
+       << "\" name=\"compatibility\">";
+    if (broken) os << "<failure message=\"" << markup_escape(compat->text()) << "\"/>";
+    os << "<system-out>" << markup_escape(compat_line(*compat)) << "</system-out></testcase>\n";
+  }
   for (const auto& c : r.cases) {
     os << "  <testcase classname=\"" << markup_escape(c.spec->section) << "\" name=\""
        << markup_escape(c.spec->id) << "\" time=\"" << static_cast<double>(c.duration_us) / 1e6
@@ -177,7 +225,7 @@ void write_html_head(std::ostream& os, std::string_view title) {
         "8px;border-radius:4px}\n</style></head><body>\n";
 }
 
-void write_html(std::ostream& os, const RunResult& r) {
+void write_html(std::ostream& os, const RunResult& r, const drivers::Compatibility* compat) {
   write_html_head(os, "topconf " + std::string(top::to_string(r.model)) + " report");
   os << "<h1>topconf report: " << markup_escape(top::to_string(r.model)) << "</h1>\n";
   os << "<p>Target <b>" << markup_escape(r.target) << "</b>, matrix <code>"
@@ -189,6 +237,7 @@ void write_html(std::ostream& os, const RunResult& r) {
     os << "<p class=\"fail\"><b>Target unreachable:</b> " << markup_escape(r.unreachable_reason)
        << "</p>\n";
   if (!r.probe_note.empty()) os << "<p>" << markup_escape(r.probe_note) << "</p>\n";
+  if (compat) write_html_compat(os, *compat);
   os << "<p class=\"sum\">";
   for (Verdict v : {Verdict::pass, Verdict::non_strict, Verdict::fail, Verdict::not_applicable,
                     Verdict::inconclusive, Verdict::error}) {

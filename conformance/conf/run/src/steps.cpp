@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <optional>
+#include <regex>
 
 #include "top/device.hpp"
 
@@ -94,7 +95,8 @@ void CaseRunner::watch(const Step& s, const std::vector<Alternative>& alts, cons
     for (std::size_t i = 0; i < s.expect.size(); ++i) {
       const Expectation& e = s.expect[i];
       if (e.kind == ExpectKind::stream && id == e.ident && r.frame.ok() &&
-          r.t_us <= seen.start + std::uint64_t{e.duration_ms} * 1000)
+          r.t_us <= seen.start + std::uint64_t{e.duration_ms} * 1000 &&
+          (!e.data_re || std::regex_match(std::string(r.frame.data()), *e.data_re)))
         seen.push_times[i].push_back(r.t_us);
     }
     // A frame of a push stream is a push, unless it answers the request: a
@@ -139,6 +141,23 @@ void CaseRunner::watch(const Step& s, const std::vector<Alternative>& alts, cons
   }
 }
 
+namespace {
+
+// The longest time without a counted push: from `start` to the first, between
+// two, and from the last to the end of the `window_ms` window.
+std::uint64_t longest_gap(const std::vector<std::uint64_t>& times, std::uint64_t start,
+                          std::uint32_t window_ms) {
+  const std::uint64_t end = start + std::uint64_t{window_ms} * 1000;
+  std::uint64_t gap = 0, prev = start;
+  for (const std::uint64_t t : times) {
+    gap = std::max(gap, t > prev ? t - prev : 0);
+    prev = t;
+  }
+  return std::max(gap, end > prev ? end - prev : 0);
+}
+
+}  // namespace
+
 StepResult CaseRunner::verdict(const Step& s, const Watch& seen) const {
   StepResult res;
   std::string near_miss = seen.near_miss;
@@ -161,7 +180,14 @@ StepResult CaseRunner::verdict(const Step& s, const Watch& seen) const {
           rate =
               static_cast<double>(n - 1) * 1e6 / static_cast<double>(times.back() - times.front());
         ok = n >= 2 && std::fabs(rate - e.rate_hz) <= e.tolerance * e.rate_hz;
-        if (!ok) {
+        const std::uint64_t gap = longest_gap(times, seen.start, e.duration_ms);
+        if (ok && e.max_gap_ms && gap > std::uint64_t{e.max_gap_ms} * 1000) {
+          ok = false;
+          char buf[160];
+          std::snprintf(buf, sizeof buf, "%s stream: a gap of %.0f ms; at most %u ms expected",
+                        e.ident.c_str(), static_cast<double>(gap) / 1000.0, e.max_gap_ms);
+          near_miss = buf;
+        } else if (!ok) {
           char buf[160];
           std::snprintf(buf, sizeof buf,
                         "%s stream: %zu frame(s) in %u ms, %.2f Hz; expected %.2f Hz +-%.0f%%",

@@ -111,10 +111,12 @@ std::unique_ptr<Transport> open_transport(const std::string& target, top::Model 
 // What topconf run and topconf fuzz test: with `sim`, an in-process topsim
 // with the faults of `sim_faults` (topsim's --fault syntax) and `sim_seed`;
 // otherwise open_transport(target), bound to `bind_port` or, for UDP, to the
-// port the model answers to (-1). Throws TransportError naming the bad
+// port the model answers to (-1). The in-process topsim is on `sim_link`
+// (a serial line: topsim::Link::uart). Throws TransportError naming the bad
 // --sim-fault or target.
 std::unique_ptr<Transport> open_target(bool sim, const std::string& target, top::Model model,
                                        const std::string& sim_faults, std::uint64_t sim_seed,
-                                       int bind_port);
+                                       int bind_port,
+                                       topsim::Link sim_link = topsim::Link::network);
 
 }  // namespace topconf

@@ -69,6 +69,7 @@ struct Expectation {
   double rate_hz = 0;
   double tolerance = top::stream_rate_tolerance;  // fraction of rate_hz
   std::uint32_t duration_ms = 0;
+  std::uint32_t max_gap_ms = 0;  // 0: any gap; the stream's `data_pattern` uses data_re
   // readback: the read sent after the write's reply; the reply data must
   // equal `data` when given, else the data the step wrote.
   SendSpec read;

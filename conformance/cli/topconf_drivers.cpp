@@ -1,0 +1,59 @@
+// topconf drivers: the driver profiles (conformance/drivers/), each with
+// its models, link and sources; --json gives every fact.
+#include <iostream>
+
+#include "commands.hpp"
+#include "drivers/compat.hpp"
+
+namespace topconf::cli {
+
+namespace {
+
+class DriversCommand : public topkit::cli::Subcommand {
+ public:
+  explicit DriversCommand(CLI::App& app);
+  int run() override;
+
+ private:
+  bool json_ = false;
+};
+
+}  // namespace
+
+DriversCommand::DriversCommand(CLI::App& app)
+    : Subcommand(app, "drivers",
+                 "list the driver profiles topconf run --driver checks, with their sources") {
+  sub_->add_flag("--json", json_,
+                 "every fact of each profile (link, cadence, frames sent, parsing, needs) with "
+                 "its source");
+}
+
+int DriversCommand::run() {
+  if (json_) {
+    nlohmann::json all = nlohmann::json::array();
+    for (const drivers::Profile& p : drivers::profiles()) all.push_back(drivers::to_json(p));
+    std::cout << all.dump(2) << "\n";
+    return 0;
+  }
+  for (const drivers::Profile& p : drivers::profiles()) {
+    std::cout << p.name << ": " << p.title << "\n  models:";
+    for (top::Model m : p.models) std::cout << " " << top::to_string(m);
+    std::cout << "; link: " << drivers::to_string(p.link.kind);
+    if (p.link.baud) std::cout << " " << p.link.baud << " baud";
+    if (p.link.device_port) std::cout << " to port " << p.link.device_port;
+    if (p.link.listen_port) std::cout << ", answers on " << p.link.listen_port;
+    std::cout << "\n  needs:";
+    for (const drivers::Need& n : p.needs)
+      std::cout << " " << n.id << " (" << drivers::to_string(n.grade) << ")";
+    std::cout << "\n";
+    for (const drivers::Source& s : p.sources)
+      std::cout << "  source: " << s.repo << " " << s.path << " @ " << s.ref << "\n";
+  }
+  return 0;
+}
+
+std::unique_ptr<topkit::cli::Subcommand> drivers_command(CLI::App& app) {
+  return std::make_unique<DriversCommand>(app);
+}
+
+}  // namespace topconf::cli

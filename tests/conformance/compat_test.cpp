@@ -1,0 +1,164 @@
+// topconf run --driver (issue 49): the default topsim is compatible with
+// the drivers that fly it; and on topsim variants the verdict topconf gives
+// agrees with what the driver-like client (topotek_client.hpp, which reads
+// the same profile) lives through over a real pseudo-terminal. A client
+// served against a device topconf calls incompatible, or the reverse, is a
+// bug in the profile.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+
+#include "binaries.hpp"
+#include "driver_harness.hpp"
+#include "sim/faults.hpp"
+#include "topotek_client.hpp"
+
+namespace {
+
+struct Verdict {
+  int rc = -1;
+  nlohmann::json compat;  // the JSON's compatibility object
+  std::string verdict() const { return compat.value("verdict", ""); }
+  std::set<std::string> lost() const {
+    std::set<std::string> s;
+    for (const auto& f : compat.value("features_lost", nlohmann::json::array()))
+      s.insert(f.get<std::string>());
+    return s;
+  }
+};
+
+// Runs topconf run --driver `driver` --model `model` with `args`; its exit
+// status and the JSON's compatibility object.
+Verdict topconf_driver(const std::string& driver, const std::string& model, const std::string& args,
+                       const std::string& stem) {
+  const std::string json = std::string(TOPKIT_BINARY_DIR) + "/compat_" + stem + ".json";
+  std::remove(json.c_str());
+  Verdict v;
+  v.rc = run_cmd(bin("topconf") + " run --driver " + driver + " --model " + model + " -q --json " +
+                 json + " " + args);
+  std::ifstream in(json);
+  const auto j = nlohmann::json::parse(in, nullptr, false);
+  if (!j.is_discarded()) {
+    v.compat = j.value("compatibility", nlohmann::json());
+    EXPECT_EQ(j.value("exit_code", -1), v.rc) << stem;
+  }
+  std::remove(json.c_str());
+  return v;
+}
+
+TEST(DriverVerdict, TheDefaultTopsimIsCompatible) {
+  for (const auto& [driver, model] : {std::pair{"ardupilot-topotek", "sip"},
+                                      {"ardupilot-skydroid", "c12"},
+                                      {"ardupilot-skydroid", "c13"}}) {
+    SCOPED_TRACE(std::string(driver) + " " + model);
+    const Verdict v = topconf_driver(driver, model, "", std::string(driver) + "_" + model);
+    EXPECT_EQ(v.rc, 0);
+    ASSERT_TRUE(v.compat.is_object());
+    EXPECT_EQ(v.verdict(), "compatible");
+    EXPECT_EQ(v.compat.value("text", ""), "compatible");
+    EXPECT_EQ(v.compat.value("driver", ""), driver);
+    EXPECT_FALSE(v.compat["needs"].empty());
+    for (const auto& n : v.compat["needs"]) EXPECT_FALSE(n.value("protects", "").empty());
+  }
+}
+
+TEST(DriverVerdict, ABreakingFaultIsIncompatibleWithExitOne) {
+  const Verdict v = topconf_driver("ardupilot-skydroid", "c13", "--sim-fault no-stream=GAC",
+                                   "skydroid_no_stream");
+  EXPECT_EQ(v.rc, 1);
+  EXPECT_EQ(v.verdict(), "incompatible");
+  EXPECT_NE(v.compat.value("text", "").find("attitude"), std::string::npos);
+}
+
+TEST(DriverVerdict, AnUnknownDriverOrModelIsBadUsage) {
+  EXPECT_EQ(run_cmd(bin("topconf") + " run --driver no-such-driver"), 2);
+  EXPECT_EQ(run_cmd(bin("topconf") + " run --driver ardupilot-topotek --model c12"), 2);
+  EXPECT_EQ(run_cmd(bin("topconf") + " drivers"), 0);
+}
+
+// What the ArduPilot Topotek client lived through: served (healthy: a
+// 12-char GIA within 1.5 s of the start and never 1 s without one after
+// it), and the features it lost, named as the profile names them.
+struct Experience {
+  bool served = false;
+  std::set<std::string> lost;
+};
+
+Experience topotek_experience(const std::string& faults, topsim::DeviceOptions o) {
+  std::string err;
+  const auto fc = topsim::parse_faults(faults, err);
+  EXPECT_TRUE(fc) << err;
+  TopotekClient c;
+  const std::uint64_t ms = 3000;
+  const DriverRun r = run_driver(c, top::Model::sip, topsim::TransportKind::pty, ms, "", o,
+                                 fc ? *fc : topsim::FaultConfig{});
+  Experience e;
+  e.served = !c.attitude.empty() && c.attitude.front().t_us - r.start_us < 1500000;
+  for (std::size_t i = 1; e.served && i < c.attitude.size(); ++i)
+    e.served = c.attitude[i].t_us - c.attitude[i - 1].t_us <= 1000000;
+  if (e.served) e.served = r.start_us + ms * 1000 - c.attitude.back().t_us <= 1000000;
+  if (!c.version_parsed || (c.version[0] | c.version[1] | c.version[2]) == 0)
+    e.lost.insert("firmware version");
+  if (c.model_name.empty() || c.model_name.find_first_not_of('0') == std::string::npos)
+    e.lost.insert("model name");
+  if (!c.sd_ok) e.lost.insert("photo and video");
+  if (c.track_states.empty() ||
+      std::find(c.track_states.begin(), c.track_states.end(), '4') != c.track_states.end())
+    e.lost.insert("tracking");
+  return e;
+}
+
+void expect_agreement(const Verdict& v, const Experience& e, const std::string& variant) {
+  SCOPED_TRACE(variant + ": topconf says " + v.compat.value("text", "(none)"));
+  const std::string lived = !e.served        ? "incompatible"
+                            : e.lost.empty() ? "compatible"
+                                             : "compatible without";
+  EXPECT_EQ(v.verdict(), lived);
+  EXPECT_EQ(v.rc, lived == "incompatible" ? 1 : 0);
+  if (e.served) {
+    EXPECT_EQ(v.lost(), e.lost);
+  }
+}
+
+class TopotekVariant : public ::testing::TestWithParam<const char*> {};
+
+// topconf's in-process topsim and the client's topsim over a pty, with the
+// same fault.
+TEST_P(TopotekVariant, TheVerdictIsWhatTheClientLivesThrough) {
+  const std::string faults = GetParam();
+  std::string stem = "topotek_" + faults;
+  std::replace_if(
+      stem.begin(), stem.end(), [](char ch) { return !std::isalnum(ch); }, '_');
+  const Verdict v = topconf_driver("ardupilot-topotek", "sip",
+                                   faults.empty() ? "" : "--sim-fault '" + faults + "'", stem);
+  expect_agreement(v, topotek_experience(faults, {}), faults.empty() ? "default" : faults);
+}
+
+INSTANTIATE_TEST_SUITE_P(Faults, TopotekVariant,
+                         ::testing::Values("", "placeholder-identity", "no-stream=GIA",
+                                           "refuse-tracking", "ignore=VSN", "ignore=SDC",
+                                           "ignore=PA2", "ignore=GIA", "stall=GIA@0.5+1.5"));
+
+// The document profile (GIC pushes, no GIA: the attitude the driver cannot
+// read), over a real pseudo-terminal both ways: topconf against a topsim
+// process, the client against the harness's.
+TEST(TopotekVariantDocument, GicOnlyAttitudeIsIncompatibleForBoth) {
+  std::string path;
+  const pid_t pid = start_topsim({"--model", "sip", "--pty", "--profile", "document"}, path);
+  ASSERT_GT(pid, 0);
+  const Verdict v =
+      topconf_driver("ardupilot-topotek", "sip", "--target serial:" + path, "topotek_document");
+  kill(pid, SIGTERM);
+  waitpid(pid, nullptr, 0);
+  EXPECT_EQ(v.verdict(), "incompatible");
+  topsim::DeviceOptions o;
+  o.profile = top::Profile::document;
+  expect_agreement(v, topotek_experience("", o), "document profile");
+}
+
+}  // namespace
