@@ -1,5 +1,5 @@
 // The reference of topdump's JSON, built with nlohmann: the tests parse
-// what the one writer (analyzer/output/json_writer.hpp) writes and compare it
+// what the one writer (analyzer/output/include/output/json_writer.hpp) writes and compare it
 // with these, value by value and, where nlohmann's dump() is the format
 // (garbage events, frame --json, stats --json), byte by byte.
 #pragma once

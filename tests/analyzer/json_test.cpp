@@ -1,4 +1,4 @@
-// The one JSON writer (analyzer/output/json_writer.hpp) against nlohmann: the
+// The one JSON writer (analyzer/output/include/output/json_writer.hpp) against nlohmann: the
 // numbers and strings it writes, and the documents whose format is
 // nlohmann's dump() (stats --json, frame --json), byte by byte.
 #include <gtest/gtest.h>

@@ -65,7 +65,7 @@ def blank(code):
 
 def main() -> int:
     root = pathlib.Path(sys.argv[1])
-    files = sorted((root / ROOM).glob("*.[ch]pp"))
+    files = sorted((root / ROOM).rglob("*.[ch]pp"))
     bad = []
     for p in files:
         for no, line in enumerate(blank(p.read_text(encoding="utf-8")).splitlines(), 1):

@@ -52,7 +52,7 @@ end
 
 -- Learns which direction the device sends in from a frame of direction
 -- dir, when the ports did not say (topdump's learn_device,
--- analyzer/session/requests.cpp): a frame addressed to a client, one whose
+-- analyzer/session/src/requests.cpp): a frame addressed to a client, one whose
 -- layout only a response has (a 12-char attitude push, even from a device
 -- that keeps the request's address order, as a real C12 pushes
 -- #tpUGCrGAC), or one that answers a pending request of the other

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "analysis.hpp"
 #include "diagnoses/refresh_gap.hpp"
+#include "report/analysis.hpp"
 #include "report/report.hpp"
 
 namespace topdump::report {

@@ -2,8 +2,8 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "analysis.hpp"
 #include "diagnoses/stream_stalled.hpp"
+#include "report/analysis.hpp"
 #include "report/report.hpp"
 
 namespace topdump::report {

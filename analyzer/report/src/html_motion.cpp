@@ -4,9 +4,9 @@
 #include <cstdio>
 #include <map>
 
-#include "analysis.hpp"
 #include "capture/sources.hpp"
 #include "html_page.hpp"
+#include "report/analysis.hpp"
 #include "report/report.hpp"
 #include "svg.hpp"
 #include "top/detail/text.hpp"

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <map>
 
-#include "analysis.hpp"
 #include "diagnoses/cause.hpp"
+#include "report/analysis.hpp"
 #include "report/report.hpp"
 
 namespace topdump::report {

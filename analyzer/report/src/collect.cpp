@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <functional>
 
-#include "analysis.hpp"
 #include "capture/sources.hpp"
+#include "report/analysis.hpp"
 #include "report/report.hpp"
 
 namespace topdump::report {

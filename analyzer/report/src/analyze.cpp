@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "analysis.hpp"
+#include "report/analysis.hpp"
 #include "report/report.hpp"
 
 namespace topdump::report {
