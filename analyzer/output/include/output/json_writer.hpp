@@ -142,6 +142,20 @@ void put_str(O& o, std::string_view s) {
   o += '"';
 }
 
+// put() where there is a value (`has`), else null.
+template <class O, class Put>
+[[gnu::always_inline]] inline void put_or_null(O& o, bool has, Put put) {
+  if (has)
+    put();
+  else
+    app(o, "null");
+}
+
+template <class O>
+[[gnu::always_inline]] inline void put_bool(O& o, bool v) {
+  o += std::string_view(v ? "true" : "false");
+}
+
 template <class O>
 void put_u(O& o, std::uint64_t v) {
   if (v < 100) {  // most of a line's numbers: indexes, offsets, lengths, ids
@@ -176,6 +190,12 @@ void put_time(O& o, std::int64_t ts) {
     frac /= 10;
   }
   o.append(b, 7);
+}
+
+// A frame number or a count that is 0 for none: null then.
+template <class O>
+void put_nonzero(O& o, std::uint64_t v) {
+  put_or_null(o, v != 0, [&] { put_u(o, v); });
 }
 
 template <class O>
@@ -358,6 +378,19 @@ class Doc {
   void item_object() {
     item();
     open_object();
+  }
+  // A member and its value: a count, a string, a time (put_time).
+  void u(std::string_view k, std::uint64_t v) {
+    key(k);
+    put_u(o_, v);
+  }
+  void str(std::string_view k, std::string_view v) {
+    key(k);
+    put_str(o_, v);
+  }
+  void time(std::string_view k, std::int64_t v) {
+    key(k);
+    put_time(o_, v);
   }
   // Starts an element of the open array.
   void item() {
