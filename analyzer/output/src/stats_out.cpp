@@ -41,6 +41,20 @@ void jsonw::latency_members(Doc& j, const Latency& l) {
   ms("max_ms", l.max());
 }
 
+void jsonw::conversation_members(Doc& j, const ConvStats& c) {
+  j.u("id", c.id);
+  j.str("transport", to_string(c.transport));
+  j.str("a", c.a);
+  j.str("b", c.b);
+}
+
+void jsonw::counts_member(Doc& j, std::string_view k,
+                          const std::map<std::string, std::uint64_t>& m) {
+  j.key_object(k);
+  for (const auto& [name, v] : m) j.u(name, v);
+  j.close_object();
+}
+
 void jsonw::stream_members(Doc& j, const StreamStat& t, StreamKeys k) {
   std::string& o = j.out();
   j.str("ident", t.ident);
@@ -72,11 +86,6 @@ std::string input_text(const InputInfo& i) {
 void write_stats_json(std::string& out, const Stats& s, top::Severity worst, int indent,
                       std::string_view type, const std::vector<InputInfo>* inputs) {
   Doc j(out, indent);
-  auto table = [&](std::string_view k, const std::map<std::string, std::uint64_t>& m) {
-    j.key_object(k);
-    for (const auto& [name, v] : m) j.u(name, v);
-    j.close_object();
-  };
   j.open_object();
   if (!type.empty()) j.str("type", type);
   if (inputs) {
@@ -97,8 +106,8 @@ void write_stats_json(std::string& out, const Stats& s, top::Severity worst, int
   j.time("first_time", s.first);
   j.time("last_time", s.last);
   j.str("worst", top::to_string(worst));
-  table("per_ident", s.per_ident);
-  table("per_finding", s.per_code);
+  counts_member(j, "per_ident", s.per_ident);
+  counts_member(j, "per_finding", s.per_code);
   j.key_object("pairing");
   j.u("requests", s.requests);
   j.u("responses", s.responses);
@@ -117,10 +126,7 @@ void write_stats_json(std::string& out, const Stats& s, top::Severity worst, int
   j.key_array("conversations");
   for (const ConvStats& c : s.conversations) {
     j.item_object();
-    j.u("id", c.id);
-    j.str("transport", to_string(c.transport));
-    j.str("a", c.a);
-    j.str("b", c.b);
+    conversation_members(j, c);
     j.str("dialect", top::to_string(c.dialect));
     j.u("frames", c.frames);
     j.u("requests", c.requests);

@@ -58,10 +58,7 @@ void Writer::overview() {
   j.key_array("conversations");
   for (const ConvStats& c : s.conversations) {
     j.item_object();
-    j.u("id", c.id);
-    j.str("transport", to_string(c.transport));
-    j.str("a", c.a);
-    j.str("b", c.b);
+    conversation_members(j, c);
     j.str("dialect", top::to_string(dialect_of(r, c)));
     j.str("model", model_text(r, c));
     j.u("frames", c.frames);
@@ -248,9 +245,7 @@ void Writer::findings() {
     j.u("count", c.count);
     j.time("first", c.first);
     j.time("last", c.last);
-    j.key_object("senders");
-    for (const auto& [who, n] : c.senders) j.u(who, n);
-    j.close_object();
+    counts_member(j, "senders", c.senders);
     j.key_array("examples");
     for (const Example& x : c.examples) {
       j.item_object();

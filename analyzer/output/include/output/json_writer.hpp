@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <map>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -425,6 +426,15 @@ class Doc {
 // the microseconds / 1000). stats --json writes these; report --json
 // appends its histogram after them.
 void latency_members(Doc& j, const Latency& l);
+
+// The members that name a conversation, in the open object of `j`: id,
+// transport, a, b. stats --json then writes its dialect and counts; report
+// --json its dialect, model and frames.
+void conversation_members(Doc& j, const ConvStats& c);
+
+// A member `k` that is an object of counts by name (per identifier, per
+// finding code, per sender).
+void counts_member(Doc& j, std::string_view k, const std::map<std::string, std::uint64_t>& m);
 
 // How a document writes a push stream: stats --json without the request
 // that asked for it and with the measured rate to 0.01 Hz; report --json
