@@ -5,8 +5,9 @@
 // parse the result with nlohmann and compare it with a reference built
 // there. Keys are written where each document is written (json_events.cpp,
 // stats_out.cpp, report/json.cpp), once; what two documents share is
-// written here: a time (put_time), a latency summary (latency_members) and a
-// push stream (stream_members).
+// written here: a time (put_time), a latency summary (latency_members), a
+// conversation's names (conversation_members), an object of counts
+// (counts_member) and a push stream (stream_members).
 #pragma once
 
 #include <algorithm>
