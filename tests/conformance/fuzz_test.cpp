@@ -8,6 +8,7 @@
 #include <cctype>
 #include <chrono>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -187,21 +188,6 @@ TEST(Fuzz, AHealthyDeviceHasNoFailureAndTheReportsSaySo) {
   }
 }
 
-TEST(Fuzz, HealthyTopsimOverUdpLoopback5000Cases) {
-  topsim::ServerConfig cfg;
-  cfg.model = top::Model::c12;
-  RunningServer srv(cfg);
-  auto t = topconf::open_transport("udp://127.0.0.1:" + std::to_string(srv.server.port()),
-                                   top::Model::c12);
-  FuzzOptions o;
-  o.end = 5000;
-  o.probe_every = 10;
-  const auto r = topconf::run_fuzz(default_matrix(top::Model::c12), *t, o);
-  EXPECT_EQ(r.exit_code(), 0);
-  EXPECT_EQ(r.cases_run, 5000u);
-  for (const auto& f : r.failures) ADD_FAILURE() << topconf::failure_line(f);
-}
-
 // A device link on which a datagram the kernel took before anything was
 // sent comes first after each of the first sends (the liveness probe's and
 // the first cases'): a late ERE, stamped at the link's
@@ -239,17 +225,32 @@ class LateEreFirst : public topconf::Transport {
   std::uint64_t late_at_ = 0, arrived_ = 0;
 };
 
-TEST(Fuzz, ADatagramFromBeforeTheCaseIsNotItsAnswer) {
+// topconf fuzz against a healthy topsim c12 over UDP loopback: `cases`
+// cases, the probe every 10, through LateEreFirst when `late_ere_first`.
+topconf::FuzzResult fuzz_c12_over_udp(std::uint64_t cases, bool late_ere_first) {
   topsim::ServerConfig cfg;
   cfg.model = top::Model::c12;
   RunningServer srv(cfg);
   auto udp = topconf::open_transport("udp://127.0.0.1:" + std::to_string(srv.server.port()),
                                      top::Model::c12);
-  LateEreFirst t(*udp);
+  std::optional<LateEreFirst> late;
+  if (late_ere_first) late.emplace(*udp);
   FuzzOptions o;
-  o.end = 20;
+  o.end = cases;
   o.probe_every = 10;
-  const auto r = topconf::run_fuzz(default_matrix(top::Model::c12), t, o);
+  return topconf::run_fuzz(default_matrix(top::Model::c12),
+                           late ? static_cast<topconf::Transport&>(*late) : *udp, o);
+}
+
+TEST(Fuzz, HealthyTopsimOverUdpLoopback5000Cases) {
+  const auto r = fuzz_c12_over_udp(5000, false);
+  EXPECT_EQ(r.exit_code(), 0);
+  EXPECT_EQ(r.cases_run, 5000u);
+  for (const auto& f : r.failures) ADD_FAILURE() << topconf::failure_line(f);
+}
+
+TEST(Fuzz, ADatagramFromBeforeTheCaseIsNotItsAnswer) {
+  const auto r = fuzz_c12_over_udp(20, true);
   EXPECT_EQ(r.cases_run, 20u);
   EXPECT_EQ(r.exit_code(), 0);
   for (const auto& f : r.failures) ADD_FAILURE() << topconf::failure_line(f);

@@ -49,6 +49,15 @@ const std::uint16_t kClient = top::client_port(top::Model::sip);  // 9004
 struct Sip {
   explicit Sip(topsim::DeviceOptions o = {})
       : host(own_loopback()), server(config(host, std::move(o))) {}
+  // With one switch of the device options set: Sip(&DeviceOptions::fan_out, false).
+  template <class T, class V>
+  Sip(T topsim::DeviceOptions::*option, V value) : Sip(set(option, value)) {}
+  template <class T, class V>
+  static topsim::DeviceOptions set(T topsim::DeviceOptions::*option, V value) {
+    topsim::DeviceOptions o;
+    o.*option = value;
+    return o;
+  }
   static topsim::ServerConfig config(const std::string& host, topsim::DeviceOptions o) {
     topsim::ServerConfig cfg;
     cfg.model = top::Model::sip;
@@ -146,9 +155,7 @@ TEST(RealUnit, PushesGoWhereTheRepliesGo) {
 
 // Each switch restores the document's behaviour, one at a time.
 TEST(RealUnit, ReplyFromServedAnswersFromPort9003) {
-  topsim::DeviceOptions o;
-  o.ephemeral_reply_port = false;
-  Sip sip(o);
+  Sip sip(&topsim::DeviceOptions::ephemeral_reply_port, false);
   Sock a(sip.host);
   ASSERT_TRUE(a.ok);
   EXPECT_EQ(sip.server.server.reply_from_port(), 0);
@@ -159,9 +166,7 @@ TEST(RealUnit, ReplyFromServedAnswersFromPort9003) {
 }
 
 TEST(RealUnit, FanOutOffAnswersOnly9004) {
-  topsim::DeviceOptions o;
-  o.fan_out = false;
-  Sip sip(o);
+  Sip sip(&topsim::DeviceOptions::fan_out, false);
   Sock a(sip.host), c(sip.host, kClient);
   ASSERT_TRUE(a.ok && c.ok);
   a.send(kTrcRead, sip.port());
@@ -172,9 +177,7 @@ TEST(RealUnit, FanOutOffAnswersOnly9004) {
 }
 
 TEST(RealUnit, DuplicateOffSendsOneCopyTo9004) {
-  topsim::DeviceOptions o;
-  o.duplicate = false;
-  Sip sip(o);
+  Sip sip(&topsim::DeviceOptions::duplicate, false);
   Sock a(sip.host), c(sip.host, kClient);
   ASSERT_TRUE(a.ok && c.ok);
   // A's TRC read, 9004's VER read, then A's GIC query as the fence: 9004
@@ -190,9 +193,7 @@ TEST(RealUnit, DuplicateOffSendsOneCopyTo9004) {
 }
 
 TEST(RealUnit, WriteEchoOnEchoesTheWrite) {
-  topsim::DeviceOptions o;
-  o.write_echo = true;
-  Sip sip(o);
+  Sip sip(&topsim::DeviceOptions::write_echo, true);
   Sock a(sip.host);
   ASSERT_TRUE(a.ok);
   a.send("#TPPD2wTRC02", sip.port());
@@ -202,9 +203,7 @@ TEST(RealUnit, WriteEchoOnEchoesTheWrite) {
 }
 
 TEST(RealUnit, TheDocumentProfileAnswersFrom9003To9004OnceAndNoWrite) {
-  topsim::DeviceOptions o;
-  o.profile = top::Profile::document;
-  Sip sip(o);
+  Sip sip(&topsim::DeviceOptions::profile, top::Profile::document);
   Sock a(sip.host), c(sip.host, kClient);
   ASSERT_TRUE(a.ok && c.ok);
   EXPECT_EQ(sip.server.server.reply_from_port(), 0);

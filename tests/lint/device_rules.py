@@ -16,6 +16,8 @@ import pathlib
 import re
 import sys
 
+import cpp_text
+
 SCAN = ["analyzer", "conformance", "fuzz", "tools", "bench"]
 SUFFIXES = {".cpp", ".hpp", ".h", ".in"}
 # An independent reference parser (differential fuzzing) and data makers
@@ -27,37 +29,6 @@ KINDS = {
     "timing": re.compile(r"\b0\.25\b|milliseconds\(\s*20\s*\)|speed_hold_ms\s*=\s*[1-9]"),
 }
 IDENT = re.compile(r'"([A-Z][A-Z0-9]{2})"')
-
-
-def strip_comments(text):
-    """Comments out, string and char literals kept (line numbers kept)."""
-    out, i, n = [], 0, len(text)
-    while i < n:
-        c = text[i]
-        if text.startswith("//", i):
-            j = text.find("\n", i)
-            i = n if j < 0 else j
-        elif text.startswith("/*", i):
-            j = text.find("*/", i + 2)
-            j = n if j < 0 else j + 2
-            out.append("\n" * text.count("\n", i, j))
-            i = j
-        elif c in "\"'":
-            j = i + 1
-            while j < n and text[j] != c and text[j] != "\n":
-                j += 2 if text[j] == "\\" else 1
-            out.append(text[i : j + 1])
-            i = j + 1
-        elif text.startswith('R"', i) and (i == 0 or not text[i - 1].isalnum()):
-            m = re.match(r'R"([^(]*)\(', text[i:])
-            end = text.find(")" + (m.group(1) if m else "") + '"', i)
-            end = n if end < 0 else end + len(m.group(1) if m else "") + 2
-            out.append(text[i:end])
-            i = end
-        else:
-            out.append(c)
-            i += 1
-    return "".join(out)
 
 
 def identifiers(root):
@@ -73,7 +44,7 @@ def scan(root):
             rel = p.relative_to(root).as_posix()
             if p.suffix not in SUFFIXES or rel in SKIP or not p.is_file():
                 continue
-            code = strip_comments(p.read_text(encoding="utf-8", errors="replace"))
+            code = cpp_text.code(p.read_text(encoding="utf-8", errors="replace"), "keep")
             for no, line in enumerate(code.split("\n"), 1):
                 for kind, rx in KINDS.items():
                     for _ in rx.finditer(line):

@@ -15,6 +15,8 @@ import pathlib
 import re
 import sys
 
+import cpp_text
+
 ROOM = "analyzer/report"
 
 # (pattern, what it reads)
@@ -34,41 +36,12 @@ RULES = [
 ]
 
 
-def blank(code):
-    """The code with comments and the contents of literals removed."""
-    code = re.sub(r'R"([^(\s]*)\((.*?)\)\1"', '""', code, flags=re.S)
-    out, i, n = [], 0, len(code)
-    while i < n:
-        c = code[i]
-        if code.startswith("//", i):
-            j = code.find("\n", i)
-            i = n if j < 0 else j
-        elif code.startswith("/*", i):
-            j = code.find("*/", i + 2)
-            # keep the line count: a finding names its line
-            out.append("\n" * code.count("\n", i, n if j < 0 else j))
-            i = n if j < 0 else j + 2
-        elif c == "'" and i > 0 and code[i - 1].isalnum():  # a digit separator: 1'000
-            out.append(c)
-            i += 1
-        elif c in "\"'":
-            j = i + 1
-            while j < n and code[j] != c:
-                j += 2 if code[j] == "\\" else 1
-            out.append(c + c)
-            i = j + 1
-        else:
-            out.append(c)
-            i += 1
-    return "".join(out)
-
-
 def main() -> int:
     root = pathlib.Path(sys.argv[1])
     files = sorted((root / ROOM).rglob("*.[ch]pp"))
     bad = []
     for p in files:
-        for no, line in enumerate(blank(p.read_text(encoding="utf-8")).splitlines(), 1):
+        for no, line in enumerate(cpp_text.code(p.read_text(encoding="utf-8"), "blank").splitlines(), 1):
             for pat, what in RULES:
                 if re.search(pat, line):
                     rel = p.relative_to(root).as_posix()

@@ -116,21 +116,15 @@ void frame_body(O& o, const top::Frame& f, const top::Decoded& d) {
   app(o, ",\"declared_length\":");
   put_u(o, f.declared_length);
   app(o, ",\"control\":");
-  if (f.control)
-    put_esc(o, std::string_view(&f.control, 1));
-  else
-    app(o, "null");
+  put_or_null(o, f.control != 0, [&] { put_esc(o, std::string_view(&f.control, 1)); });
   app(o, ",\"ident\":");
   put_esc(o, f.ident_view());
   app(o, ",\"data\":");
   put_esc(o, f.data());
   app(o, ",\"checksum\":");
-  if (f.checksum_present)
-    put_esc(o, f.checksum_text());
-  else
-    app(o, "null");
+  put_or_null(o, f.checksum_present, [&] { put_esc(o, f.checksum_text()); });
   app(o, ",\"checksum_ok\":");
-  o += std::string_view(f.checksum_ok ? "true" : "false");
+  put_bool(o, f.checksum_ok);
   app(o, ",\"expected_checksum\":");
   char hx[2];
   top::put_hex2(f.expected_checksum, hx);
@@ -193,7 +187,7 @@ void frame_body(O& o, const top::Frame& f, const top::Decoded& d) {
   o += '[';
   o += quirks;
   app(o, "],\"ok\":");
-  o += w != top::Severity::error ? "true" : "false";
+  put_bool(o, w != top::Severity::error);
 }
 
 // The keys of a run of bytes that belong to no frame.
@@ -206,7 +200,7 @@ void garbage_body(O& o, const top::StreamItem& g) {
   app(o, ",\"findings\":");
   put_findings(o, g.finding);
   app(o, ",\"ok\":");
-  o += g.finding.severity != top::Severity::error ? "true" : "false";
+  put_bool(o, g.finding.severity != top::Severity::error);
 }
 
 // A time in seconds as a JSON number: nlohmann's digits of ts / 1e6 (the
@@ -214,10 +208,7 @@ void garbage_body(O& o, const top::StreamItem& g) {
 // report write put_time's six decimals).
 template <class O>
 void put_seconds(O& o, std::int64_t ts) {
-  if (ts == kNoTime)
-    app(o, "null");
-  else
-    put_double(o, static_cast<double>(ts) / 1e6);
+  put_or_null(o, ts != kNoTime, [&] { put_double(o, static_cast<double>(ts) / 1e6); });
 }
 
 // Where a frame or garbage event is: ,"transport":...,"from":...,"to":...,
@@ -259,20 +250,12 @@ void write_frame_json(std::string& out, const FrameEvent& e) {
   o += ',';
   frame_body(o, *e.entry->frame, e.entry->decoded);
   app(o, ",\"reply_to\":");
-  if (e.reply_to)
-    put_u(o, e.reply_to);
-  else
-    app(o, "null");
+  put_nonzero(o, e.reply_to);
   app(o, ",\"latency_ms\":");
-  if (e.latency_us >= 0)
-    put_decimal(o, e.latency_us, 3);  // the double nearest to it is latency_us / 1000.0
-  else
-    app(o, "null");
+  // the double nearest to it is latency_us / 1000.0
+  put_or_null(o, e.latency_us >= 0, [&] { put_decimal(o, e.latency_us, 3); });
   app(o, ",\"copy_of\":");
-  if (e.copy_of)
-    put_u(o, e.copy_of);
-  else
-    app(o, "null");
+  put_nonzero(o, e.copy_of);
   app(o, ",\"session\":[");
   bool first = true;
   for (const Note& n : e.notes) {
@@ -309,10 +292,7 @@ void write_note_json(std::string& out, const NoteEvent& e) {
     app(o, ",\"transport\":null,\"from\":null,\"to\":null");
   }
   app(o, ",\"conversation\":");
-  if (e.conv)
-    put_u(o, e.conv_id());
-  else
-    app(o, "null");
+  put_or_null(o, e.conv != nullptr, [&] { put_u(o, e.conv_id()); });
   app(o, ",\"record\":");
   put_u(o, e.pos.record);
   app(o, ",\"offset\":");
@@ -324,10 +304,7 @@ void write_note_json(std::string& out, const NoteEvent& e) {
   app(o, ",\"message\":");
   put_text(o, e.note.message);
   app(o, ",\"frame\":");
-  if (e.note.frame)
-    put_u(o, e.note.frame);
-  else
-    app(o, "null");
+  put_nonzero(o, e.note.frame);
   if (const std::optional<top::Diagnosis> d = diagnosis_of(e.note.code)) {
     // a diagnosis's case (docs/DIAGNOSES.md)
     app(o, ",\"count\":");
@@ -335,15 +312,10 @@ void write_note_json(std::string& out, const NoteEvent& e) {
     app(o, ",\"until\":");
     put_time(o, e.note.until);
     app(o, ",\"ident\":");
-    if (e.note.ident[0])
-      put_text(o, std::string_view(e.note.ident, 3));
-    else
-      app(o, "null");
+    put_or_null(o, e.note.ident[0] != 0, [&] { put_text(o, std::string_view(e.note.ident, 3)); });
     app(o, ",\"axis\":");
-    if (e.note.axis >= 0)
-      put_plain(o, top::to_string(static_cast<top::Axis>(e.note.axis)));
-    else
-      app(o, "null");
+    put_or_null(o, e.note.axis >= 0,
+                [&] { put_plain(o, top::to_string(static_cast<top::Axis>(e.note.axis))); });
     app(o, ",\"evidence\":");
     put_text(o, top::evidence(*d));
     app(o, ",\"remedy\":");

@@ -23,17 +23,13 @@ void input_members(Doc& j, const InputInfo& i) {
   j.key("format");
   put_str(o, to_string(i.format));
   j.key("link");
-  if (i.link.empty())
-    app(o, "null");
-  else
-    put_str(o, i.link);
+  put_or_null(o, !i.link.empty(), [&] { put_str(o, i.link); });
 }
 }  // namespace
 
 void jsonw::latency_members(Doc& j, const Latency& l) {
   std::string& o = j.out();
-  j.key("count");
-  put_u(o, l.count());
+  j.u("count", l.count());
   auto ms = [&](std::string_view k, std::int64_t us) {
     j.key(k);
     put_ms(o, us);
@@ -45,35 +41,37 @@ void jsonw::latency_members(Doc& j, const Latency& l) {
   ms("max_ms", l.max());
 }
 
+void jsonw::conversation_members(Doc& j, const ConvStats& c) {
+  j.u("id", c.id);
+  j.str("transport", to_string(c.transport));
+  j.str("a", c.a);
+  j.str("b", c.b);
+}
+
+void jsonw::counts_member(Doc& j, std::string_view k,
+                          const std::map<std::string, std::uint64_t>& m) {
+  j.key_object(k);
+  for (const auto& [name, v] : m) j.u(name, v);
+  j.close_object();
+}
+
 void jsonw::stream_members(Doc& j, const StreamStat& t, StreamKeys k) {
   std::string& o = j.out();
-  j.key("ident");
-  put_str(o, t.ident);
-  if (k.asked_by) {
-    j.key("asked_by");
-    put_str(o, t.asked_by);
-  }
+  j.str("ident", t.ident);
+  if (k.asked_by) j.str("asked_by", t.asked_by);
   j.key("asked_hz");
-  if (t.asked_hz > 0)
-    put_double(o, t.asked_hz);
-  else
-    app(o, "null");
+  put_or_null(o, t.asked_hz > 0, [&] { put_double(o, t.asked_hz); });
   j.key("measured_hz");
   put_double(o, std::round(t.measured_hz() * k.measured_per_hz) / k.measured_per_hz);
   j.key("periodic");
-  if (t.periodic)
-    app(o, "true");
-  else
-    app(o, "false");
-  j.key("frames");
-  put_u(o, t.frames);
+  put_bool(o, t.periodic);
+  j.u("frames", t.frames);
 }
 
 void write_input_json(std::string& out, const InputInfo& i) {
   Doc j(out, -1);
   j.open_object();
-  j.key("type");
-  put_str(out, "input");
+  j.str("type", "input");
   input_members(j, i);
   j.close_object();
   out += '\n';
@@ -88,22 +86,8 @@ std::string input_text(const InputInfo& i) {
 void write_stats_json(std::string& out, const Stats& s, top::Severity worst, int indent,
                       std::string_view type, const std::vector<InputInfo>* inputs) {
   Doc j(out, indent);
-  std::string& o = j.out();
-  auto count = [&](std::string_view k, std::uint64_t v) {
-    j.key(k);
-    put_u(o, v);
-  };
-  auto text = [&](std::string_view k, std::string_view v) {
-    j.key(k);
-    put_str(o, v);
-  };
-  auto table = [&](std::string_view k, const std::map<std::string, std::uint64_t>& m) {
-    j.key_object(k);
-    for (const auto& [name, v] : m) count(name, v);
-    j.close_object();
-  };
   j.open_object();
-  if (!type.empty()) text("type", type);
+  if (!type.empty()) j.str("type", type);
   if (inputs) {
     j.key_array("inputs");
     for (const InputInfo& i : *inputs) {
@@ -113,26 +97,24 @@ void write_stats_json(std::string& out, const Stats& s, top::Severity worst, int
     }
     j.close_array();
   }
-  count("frames", s.frames);
-  count("bad_checksum", s.bad_checksum);
-  count("error_frames", s.error_frames);
-  count("garbage", s.garbage);
-  count("records", s.records);
-  count("records_skipped", s.records_skipped);
-  j.key("first_time");
-  put_time(o, s.first);
-  j.key("last_time");
-  put_time(o, s.last);
-  text("worst", top::to_string(worst));
-  table("per_ident", s.per_ident);
-  table("per_finding", s.per_code);
+  j.u("frames", s.frames);
+  j.u("bad_checksum", s.bad_checksum);
+  j.u("error_frames", s.error_frames);
+  j.u("garbage", s.garbage);
+  j.u("records", s.records);
+  j.u("records_skipped", s.records_skipped);
+  j.time("first_time", s.first);
+  j.time("last_time", s.last);
+  j.str("worst", top::to_string(worst));
+  counts_member(j, "per_ident", s.per_ident);
+  counts_member(j, "per_finding", s.per_code);
   j.key_object("pairing");
-  count("requests", s.requests);
-  count("responses", s.responses);
-  count("paired", s.paired);
-  count("unanswered", s.unanswered);
-  count("unsolicited", s.unsolicited);
-  count("copies", s.copies);
+  j.u("requests", s.requests);
+  j.u("responses", s.responses);
+  j.u("paired", s.paired);
+  j.u("unanswered", s.unanswered);
+  j.u("unsolicited", s.unsolicited);
+  j.u("copies", s.copies);
   j.close_object();
   j.key_object("latency");
   for (const auto& [k, l] : s.latency) {
@@ -144,15 +126,12 @@ void write_stats_json(std::string& out, const Stats& s, top::Severity worst, int
   j.key_array("conversations");
   for (const ConvStats& c : s.conversations) {
     j.item_object();
-    count("id", c.id);
-    text("transport", to_string(c.transport));
-    text("a", c.a);
-    text("b", c.b);
-    text("dialect", top::to_string(c.dialect));
-    count("frames", c.frames);
-    count("requests", c.requests);
-    count("responses", c.responses);
-    count("paired", c.paired);
+    conversation_members(j, c);
+    j.str("dialect", top::to_string(c.dialect));
+    j.u("frames", c.frames);
+    j.u("requests", c.requests);
+    j.u("responses", c.responses);
+    j.u("paired", c.paired);
     j.key_array("streams");
     for (const StreamStat& t : c.streams) {
       j.item_object();
@@ -163,7 +142,7 @@ void write_stats_json(std::string& out, const Stats& s, top::Severity worst, int
     j.close_object();
   }
   j.close_array();
-  count("conversations_dropped", s.conversations_dropped);
+  j.u("conversations_dropped", s.conversations_dropped);
   j.close_object();
 }
 

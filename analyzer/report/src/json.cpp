@@ -12,17 +12,8 @@ using namespace jsonw;
 
 namespace {
 
-// A measure rounded to 1e-4 (null when negative: not measured).
-void put_measure(std::string& o, double v, bool null_if_negative = true) {
-  if (null_if_negative && v < 0)
-    app(o, "null");
-  else
-    put_double(o, std::round(v * 1e4) / 1e4);
-}
-
-}  // namespace
-
-namespace {
+// A measure rounded to 1e-4.
+void put_measure(std::string& o, double v) { put_double(o, std::round(v * 1e4) / 1e4); }
 
 // The document's writer: the value helpers and one function per section.
 struct Writer {
@@ -32,25 +23,14 @@ struct Writer {
   const ReportSink& d;
   const Stats& s;
 
-  void num(std::string_view k, double v) {  // any value
+  void num(std::string_view k, double v, bool measured = true) {  // null when not measured
     j.key(k);
-    put_measure(o, v, false);
+    put_or_null(o, measured, [&] { put_measure(o, v); });
   }
-  void opt(std::string_view k, double v) {  // negative: not measured
+  void opt(std::string_view k, double v) { num(k, v, v >= 0); }  // negative: not measured
+  void esc(std::string_view k, std::string_view bytes) {
     j.key(k);
-    put_measure(o, v);
-  }
-  void u(std::string_view k, std::uint64_t v) {
-    j.key(k);
-    put_u(o, v);
-  }
-  void text(std::string_view k, std::string_view v) {
-    j.key(k);
-    put_str(o, v);
-  }
-  void time(std::string_view k, std::int64_t v) {
-    j.key(k);
-    put_time(o, v);
+    put_esc(o, bytes);
   }
   void overview();
   void angles();
@@ -69,45 +49,36 @@ void Writer::overview() {
     put_str(o, f);
   }
   j.close_array();
-  u("frames", s.frames);
-  time("first_time", s.first);
-  time("last_time", s.last);
-  text("worst", top::to_string(r.worst));
-  text("model", top::to_string(r.model));
+  j.u("frames", s.frames);
+  j.time("first_time", s.first);
+  j.time("last_time", s.last);
+  j.str("worst", top::to_string(r.worst));
+  j.str("model", top::to_string(r.model));
   num("tolerance_deg", r.opts.tolerance_deg);
   j.key_array("conversations");
   for (const ConvStats& c : s.conversations) {
     j.item_object();
-    u("id", c.id);
-    text("transport", to_string(c.transport));
-    text("a", c.a);
-    text("b", c.b);
-    text("dialect", top::to_string(dialect_of(r, c)));
-    text("model", model_text(r, c));
-    u("frames", c.frames);
+    conversation_members(j, c);
+    j.str("dialect", top::to_string(dialect_of(r, c)));
+    j.str("model", model_text(r, c));
+    j.u("frames", c.frames);
     j.close_object();
   }
   j.close_array();
   j.key_array("what_went_wrong");
   for (const Fact& f : r.facts) {
     j.item_object();
-    text("severity", top::to_string(f.severity));
+    j.str("severity", top::to_string(f.severity));
     j.key("code");
-    if (f.code)
-      put_str(o, top::to_string(*f.code));
-    else
-      o += "null";
-    text("text", f.text);
-    text("section", f.anchor);
+    put_or_null(o, f.code.has_value(), [&] { put_str(o, top::to_string(*f.code)); });
+    j.str("text", f.text);
+    j.str("section", f.anchor);
     if (f.code) {
-      text("evidence", top::evidence(*f.code));
-      text("remedy", top::remedy(*f.code));
+      j.str("evidence", top::evidence(*f.code));
+      j.str("remedy", top::remedy(*f.code));
       j.key("frame");
-      if (f.frame)
-        put_u(o, f.frame);
-      else
-        o += "null";
-      u("count", f.count);
+      put_nonzero(o, f.frame);
+      j.u("count", f.count);
     }
     j.close_object();
   }
@@ -119,30 +90,23 @@ void Writer::angles() {
   j.key_array("angle_commands");
   for (const AngleResult& a : r.angles) {
     j.item_object();
-    u("conversation", a.conv);
-    u("frame", a.cmd->frame);
-    time("time", a.cmd->t);
-    text("ident", a.cmd->ident);
-    text("axis", axis_name(a.cmd->axis));
-    u("commands", a.cmd->commands);
+    j.u("conversation", a.conv);
+    j.u("frame", a.cmd->frame);
+    j.time("time", a.cmd->t);
+    j.str("ident", a.cmd->ident);
+    j.str("axis", axis_name(a.cmd->axis));
+    j.u("commands", a.cmd->commands);
     num("target_deg", a.cmd->target);
-    j.key("speed_deg_s");
-    if (a.cmd->speed > 0)
-      put_measure(o, a.cmd->speed);
-    else
-      app(o, "null");
-    text("attitude", a.attitude);
-    u("samples", a.samples);
+    num("speed_deg_s", a.cmd->speed, a.cmd->speed > 0);
+    j.str("attitude", a.attitude);
+    j.u("samples", a.samples);
     num("start_deg", a.start);
     num("effective_target_deg", a.effective);
     opt("expected_s", a.expected_s);
     opt("settling_s", a.settling_s);
-    j.key("overshoot_deg");
-    put_measure(o, a.overshoot_deg, false);
-    j.key("overshoot_pct");
-    put_measure(o, a.overshoot_pct, false);
-    j.key("steady_state_error_deg");
-    put_measure(o, a.final_error, false);
+    num("overshoot_deg", a.overshoot_deg);
+    num("overshoot_pct", a.overshoot_pct);
+    num("steady_state_error_deg", a.final_error);
     j.key_array("flags");
     auto f = [&](bool on, const char* name) {
       if (!on) return;
@@ -165,58 +129,42 @@ void Writer::angles() {
 void Writer::rates() {
   j.key_object("rate_commands");
   j.key("refresh_limit_ms");
-  if (r.refresh_limit_ms)
-    put_i(o, r.refresh_limit_ms);
-  else
-    app(o, "null");
-  text("refresh_evidence", r.refresh_evidence);
-  text("scale_verdict", to_string(r.scale_verdict));
+  put_or_null(o, r.refresh_limit_ms != 0, [&] { put_i(o, r.refresh_limit_ms); });
+  j.str("refresh_evidence", r.refresh_evidence);
+  j.str("scale_verdict", to_string(r.scale_verdict));
   opt("measured_deg_s_per_step", r.scale_runs ? r.scale_measured : -1);
-  u("scale_runs", r.scale_runs);
-  u("scale_other_way_runs", r.scale_other_way);
+  j.u("scale_runs", r.scale_runs);
+  j.u("scale_other_way_runs", r.scale_other_way);
   j.key_array("runs");
   for (const RateRun& x : r.runs) {
     j.item_object();
-    u("conversation", x.conv);
-    u("frame", x.first_frame);
-    text("ident", x.ident);
-    text("axis", axis_name(x.axis));
-    time("start", x.start);
-    time("end", x.end);
-    u("commands", x.commands);
+    j.u("conversation", x.conv);
+    j.u("frame", x.first_frame);
+    j.str("ident", x.ident);
+    j.str("axis", axis_name(x.axis));
+    j.time("start", x.start);
+    j.time("end", x.end);
+    j.u("commands", x.commands);
     j.key("steps");
     put_i(o, x.steps);
-    j.key("commanded_deg_s");
-    put_measure(o, x.commanded, false);
-    j.key("catalog_deg_s_per_step");
-    put_measure(o, x.scale, false);
-    j.key("median_refresh_ms");
-    put_measure(o, x.median_interval_ms, false);
-    j.key("max_refresh_ms");
-    put_measure(o, x.max_interval_ms, false);
-    u("samples", x.samples);
-    j.key("measured_deg_s");
-    if (x.measured_ok)
-      put_measure(o, x.measured, false);
-    else
-      app(o, "null");
-    j.key("measured_deg_s_per_step");
-    if (x.measured_ok)
-      put_measure(o, x.per_step, false);
-    else
-      app(o, "null");
+    num("commanded_deg_s", x.commanded);
+    num("catalog_deg_s_per_step", x.scale);
+    num("median_refresh_ms", x.median_interval_ms);
+    num("max_refresh_ms", x.max_interval_ms);
+    j.u("samples", x.samples);
+    num("measured_deg_s", x.measured, x.measured_ok);
+    num("measured_deg_s_per_step", x.per_step, x.measured_ok);
     j.close_object();
   }
   j.close_array();
   j.key_array("refresh_gaps");
   for (const RefreshGap& g : r.gaps) {
     j.item_object();
-    u("conversation", g.conv);
-    u("frame", g.frame);
-    text("ident", g.ident);
-    time("time", g.t);
-    j.key("gap_ms");
-    put_measure(o, g.gap_ms, false);
+    j.u("conversation", g.conv);
+    j.u("frame", g.frame);
+    j.str("ident", g.ident);
+    j.time("time", g.t);
+    num("gap_ms", g.gap_ms);
     j.close_object();
   }
   j.close_array();
@@ -234,9 +182,8 @@ void Writer::latency() {
       for (std::size_t b = 0; b < kLatencyBins; ++b) {
         if (!it->second[b]) continue;
         j.item_object();
-        j.key("from_ms");
-        put_measure(o, latency_bin_ms(b), false);
-        u("count", it->second[b]);
+        num("from_ms", latency_bin_ms(b));
+        j.u("count", it->second[b]);
         j.close_object();
       }
     j.close_array();
@@ -248,15 +195,13 @@ void Writer::latency() {
             [](const Slow& a, const Slow& b) { return a.latency_us > b.latency_us; });
   for (const Slow& x : slow) {
     j.item_object();
-    text("ident", x.ident);
-    j.key("latency_ms");
-    put_measure(o, static_cast<double>(x.latency_us) / 1000.0, false);
-    u("request", x.request);
-    u("response", x.response);
-    u("conversation", x.conv);
-    time("time", x.ts);
-    j.key("response_raw");
-    put_esc(o, x.response_raw);
+    j.str("ident", x.ident);
+    num("latency_ms", static_cast<double>(x.latency_us) / 1000.0);
+    j.u("request", x.request);
+    j.u("response", x.response);
+    j.u("conversation", x.conv);
+    j.time("time", x.ts);
+    esc("response_raw", x.response_raw);
     j.close_object();
   }
   j.close_array();
@@ -267,23 +212,22 @@ void Writer::streams() {
   j.key_array("streams");
   for (const StreamResult& x : r.streams) {
     j.item_object();
-    u("conversation", x.conv);
+    j.u("conversation", x.conv);
     stream_members(j, x.stat, StreamKeys{.asked_by = true, .measured_per_hz = 1e4});
     j.key("bucket_s");
     put_double(o, static_cast<double>(x.bucket_us) / 1e6);
     j.key_array("rate_hz");
     for (float v : x.rate) {
       j.item();
-      put_measure(o, v, false);
+      put_measure(o, v);
     }
     j.close_array();
-    u("gap_count", x.gap_count);
+    j.u("gap_count", x.gap_count);
     j.key_array("gaps");
     for (const auto& g : x.gaps) {
       j.item_object();
-      time("time", g.t);
-      j.key("ms");
-      put_measure(o, g.ms, false);
+      j.time("time", g.t);
+      num("ms", g.ms);
       j.close_object();
     }
     j.close_array();
@@ -296,31 +240,26 @@ void Writer::findings() {
   j.key_array("findings");
   for (const auto& [code, c] : d.codes) {
     j.item_object();
-    text("code", code);
-    text("severity", top::to_string(c.severity));
-    u("count", c.count);
-    time("first", c.first);
-    time("last", c.last);
-    j.key_object("senders");
-    for (const auto& [who, n] : c.senders) u(who, n);
-    j.close_object();
+    j.str("code", code);
+    j.str("severity", top::to_string(c.severity));
+    j.u("count", c.count);
+    j.time("first", c.first);
+    j.time("last", c.last);
+    counts_member(j, "senders", c.senders);
     j.key_array("examples");
     for (const Example& x : c.examples) {
       j.item_object();
-      text("file", x.file);
-      u("frame", x.frame);
-      time("time", x.ts);
-      u("record", x.record);
-      u("record_offset", x.offset);
-      u("finding_offset", x.at);
-      text("from", x.from);
-      text("to", x.to);
-      j.key("raw");
-      put_esc(o, x.raw);
-      j.key("decoded");
-      put_str(o, top::ascii_text(x.decoded));
-      j.key("message");
-      put_str(o, top::ascii_text(x.message));
+      j.str("file", x.file);
+      j.u("frame", x.frame);
+      j.time("time", x.ts);
+      j.u("record", x.record);
+      j.u("record_offset", x.offset);
+      j.u("finding_offset", x.at);
+      j.str("from", x.from);
+      j.str("to", x.to);
+      esc("raw", x.raw);
+      j.str("decoded", top::ascii_text(x.decoded));
+      j.str("message", top::ascii_text(x.message));
       j.close_object();
     }
     j.close_array();
@@ -333,12 +272,11 @@ void Writer::unanswered() {
   j.key_array("unanswered");
   for (const Unanswered& x : d.unanswered) {
     j.item_object();
-    time("time", x.ts);
-    u("frame", x.frame);
-    u("conversation", x.conv);
-    text("file", x.file);
-    j.key("message");
-    put_str(o, top::ascii_text(x.message));
+    j.time("time", x.ts);
+    j.u("frame", x.frame);
+    j.u("conversation", x.conv);
+    j.str("file", x.file);
+    j.str("message", top::ascii_text(x.message));
     j.close_object();
   }
   j.close_array();

@@ -5,8 +5,9 @@
 // parse the result with nlohmann and compare it with a reference built
 // there. Keys are written where each document is written (json_events.cpp,
 // stats_out.cpp, report/json.cpp), once; what two documents share is
-// written here: a time (put_time), a latency summary (latency_members) and a
-// push stream (stream_members).
+// written here: a time (put_time), a latency summary (latency_members), a
+// conversation's names (conversation_members), an object of counts
+// (counts_member) and a push stream (stream_members).
 #pragma once
 
 #include <algorithm>
@@ -14,6 +15,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <map>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -142,6 +144,20 @@ void put_str(O& o, std::string_view s) {
   o += '"';
 }
 
+// put() where there is a value (`has`), else null.
+template <class O, class Put>
+[[gnu::always_inline]] inline void put_or_null(O& o, bool has, Put put) {
+  if (has)
+    put();
+  else
+    app(o, "null");
+}
+
+template <class O>
+[[gnu::always_inline]] inline void put_bool(O& o, bool v) {
+  o += std::string_view(v ? "true" : "false");
+}
+
 template <class O>
 void put_u(O& o, std::uint64_t v) {
   if (v < 100) {  // most of a line's numbers: indexes, offsets, lengths, ids
@@ -176,6 +192,12 @@ void put_time(O& o, std::int64_t ts) {
     frac /= 10;
   }
   o.append(b, 7);
+}
+
+// A frame number or a count that is 0 for none: null then.
+template <class O>
+void put_nonzero(O& o, std::uint64_t v) {
+  put_or_null(o, v != 0, [&] { put_u(o, v); });
 }
 
 template <class O>
@@ -359,6 +381,19 @@ class Doc {
     item();
     open_object();
   }
+  // A member and its value: a count, a string, a time (put_time).
+  void u(std::string_view k, std::uint64_t v) {
+    key(k);
+    put_u(o_, v);
+  }
+  void str(std::string_view k, std::string_view v) {
+    key(k);
+    put_str(o_, v);
+  }
+  void time(std::string_view k, std::int64_t v) {
+    key(k);
+    put_time(o_, v);
+  }
   // Starts an element of the open array.
   void item() {
     if (!first_.back()) o_ += ',';
@@ -392,6 +427,15 @@ class Doc {
 // the microseconds / 1000). stats --json writes these; report --json
 // appends its histogram after them.
 void latency_members(Doc& j, const Latency& l);
+
+// The members that name a conversation, in the open object of `j`: id,
+// transport, a, b. stats --json then writes its dialect and counts; report
+// --json its dialect, model and frames.
+void conversation_members(Doc& j, const ConvStats& c);
+
+// A member `k` that is an object of counts by name (per identifier, per
+// finding code, per sender).
+void counts_member(Doc& j, std::string_view k, const std::map<std::string, std::uint64_t>& m);
 
 // How a document writes a push stream: stats --json without the request
 // that asked for it and with the measured rate to 0.01 Hz; report --json
