@@ -18,7 +18,8 @@ int main(int argc, char** argv) {
   const auto models = models_command(app);
   const auto validate = validate_command(app);
   const auto drivers = drivers_command(app);
+  const auto table = table_command(app);
   if (int rc = topkit::cli::parse(app, argc, argv); rc >= 0) return rc;
-  return topkit::cli::run_selected(
-      kTool, {run.get(), fuzz.get(), generate.get(), models.get(), validate.get(), drivers.get()});
+  return topkit::cli::run_selected(kTool, {run.get(), fuzz.get(), generate.get(), models.get(),
+                                           validate.get(), drivers.get(), table.get()});
 }

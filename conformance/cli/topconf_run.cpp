@@ -30,7 +30,7 @@ class RunCommand : public topkit::cli::Subcommand {
  private:
   TargetArgs t_;
   OutputArgs out_;
-  std::string model_name_, matrix_path_, driver_;
+  std::string model_name_, matrix_path_, driver_, firmware_;
   std::vector<std::string> case_ids_, tags_, levels_;
   std::uint64_t seed_ = 0;
   std::uint32_t retries_ = 0, timeout_ms_ = 0, settle_ms_ = 0;
@@ -82,6 +82,9 @@ RunCommand::RunCommand(CLI::App& app)
   sub_->add_option("--junit", out_.junit, "write JUnit XML");
   sub_->add_option("--html", out_.html, "write a self-contained HTML report");
   sub_->add_option("--pcap", out_.pcap, "write every frame of the run to a pcap");
+  sub_->add_option("--firmware", firmware_,
+                   "the firmware under test, as NAME@VERSION: the JSON's firmware, topconf "
+                   "table's column (default: the model)");
   sub_->add_option("--sim-fault", t_.sim_faults,
                    "in-process topsim only: inject these faults (as topsim --fault)");
   sub_->add_option("--sim-seed", t_.sim_seed, "in-process topsim only: fault seed");
@@ -189,8 +192,12 @@ int RunCommand::run() {
   }
   bool ok = true;
   if (!out_.json.empty())
-    ok &=
-        write_output(out_.json, [&](std::ostream& o) { o << to_json(result, c).dump(2) << "\n"; });
+    ok &= write_output(out_.json, [&](std::ostream& o) {
+      nlohmann::json j = to_json(result, c);
+      if (!firmware_.empty()) j["firmware"] = firmware_;
+      if (!out_.pcap.empty()) j["capture"] = out_.pcap;  // topconf table links it
+      o << j.dump(2) << "\n";
+    });
   if (!out_.junit.empty())
     ok &= write_output(out_.junit, [&](std::ostream& o) { write_junit(o, result, c); });
   if (!out_.html.empty())

@@ -165,10 +165,20 @@ def check(a, chromium, cap, together=None):
         errors.append("%s: not well-formed: %s" % (name, e))
     if not a.chromium:
         return errors
-    shot = os.path.join(a.out, name + ".png")
+    errors += render_check(chromium, page, a.out, name, size)
+    return errors
+
+
+def render_check(chromium, page, out, name, size, want=()):
+    """Headless Chromium loads `page` offline (the network resolver off): the
+    problems, none when no console message appeared and the screenshot
+    (OUT/NAME.png) is not blank and shows every colour of `want` (RGB
+    bytes). Also used by tests/conformance/table_check.py."""
+    errors = []
+    shot = os.path.join(out, name + ".png")
     if os.path.exists(shot):
         os.remove(shot)
-    profile = os.path.join(a.out, "chromium-profile-" + name)
+    profile = os.path.join(out, "chromium-profile-" + name)
     r = subprocess.run(
         [chromium, "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
          "--user-data-dir=" + profile, "--host-resolver-rules=MAP * ~NOTFOUND",
@@ -194,6 +204,9 @@ def check(a, chromium, cap, together=None):
     if len(colours) < 3 or ink < total // 50:
         errors.append("%s: blank screenshot (%d colours, %d of %d sampled pixels not white)" %
                       (name, len(colours), ink, total))
+    for c in want:
+        if c not in colours:
+            errors.append("%s: the screenshot has no #%s" % (name, c.hex()))
     print("%s: %d bytes, screenshot %dx%d, %d colours" % (name, size, w, h, len(colours)))
     return errors
 

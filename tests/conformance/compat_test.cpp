@@ -13,43 +13,12 @@
 #include <set>
 #include <string>
 
-#include "binaries.hpp"
+#include "compat_util.hpp"
 #include "driver_harness.hpp"
 #include "sim/faults.hpp"
 #include "topotek_client.hpp"
 
 namespace {
-
-struct Verdict {
-  int rc = -1;
-  nlohmann::json compat;  // the JSON's compatibility object
-  std::string verdict() const { return compat.value("verdict", ""); }
-  std::set<std::string> lost() const {
-    std::set<std::string> s;
-    for (const auto& f : compat.value("features_lost", nlohmann::json::array()))
-      s.insert(f.get<std::string>());
-    return s;
-  }
-};
-
-// Runs topconf run --driver `driver` --model `model` with `args`; its exit
-// status and the JSON's compatibility object.
-Verdict topconf_driver(const std::string& driver, const std::string& model, const std::string& args,
-                       const std::string& stem) {
-  const std::string json = std::string(TOPKIT_BINARY_DIR) + "/compat_" + stem + ".json";
-  std::remove(json.c_str());
-  Verdict v;
-  v.rc = run_cmd(bin("topconf") + " run --driver " + driver + " --model " + model + " -q --json " +
-                 json + " " + args);
-  std::ifstream in(json);
-  const auto j = nlohmann::json::parse(in, nullptr, false);
-  if (!j.is_discarded()) {
-    v.compat = j.value("compatibility", nlohmann::json());
-    EXPECT_EQ(j.value("exit_code", -1), v.rc) << stem;
-  }
-  std::remove(json.c_str());
-  return v;
-}
 
 TEST(DriverVerdict, TheDefaultTopsimIsCompatible) {
   for (const auto& [driver, model] : {std::pair{"ardupilot-topotek", "sip"},
@@ -81,14 +50,8 @@ TEST(DriverVerdict, AnUnknownDriverOrModelIsBadUsage) {
   EXPECT_EQ(run_cmd(bin("topconf") + " drivers"), 0);
 }
 
-// What the ArduPilot Topotek client lived through: served (healthy: a
-// 12-char GIA within 1.5 s of the start and never 1 s without one after
-// it), and the features it lost, named as the profile names them.
-struct Experience {
-  bool served = false;
-  std::set<std::string> lost;
-};
-
+// What the ArduPilot Topotek client lived through: healthy on 12-char GIA
+// frames (healthy_throughout), and the features it lost.
 Experience topotek_experience(const std::string& faults, topsim::DeviceOptions o) {
   std::string err;
   const auto fc = topsim::parse_faults(faults, err);
@@ -98,10 +61,7 @@ Experience topotek_experience(const std::string& faults, topsim::DeviceOptions o
   const DriverRun r = run_driver(c, top::Model::sip, topsim::TransportKind::pty, ms, "", o,
                                  fc ? *fc : topsim::FaultConfig{});
   Experience e;
-  e.served = !c.attitude.empty() && c.attitude.front().t_us - r.start_us < 1500000;
-  for (std::size_t i = 1; e.served && i < c.attitude.size(); ++i)
-    e.served = c.attitude[i].t_us - c.attitude[i - 1].t_us <= 1000000;
-  if (e.served) e.served = r.start_us + ms * 1000 - c.attitude.back().t_us <= 1000000;
+  e.served = healthy_throughout(c.attitude, r.start_us, ms);
   if (!c.version_parsed || (c.version[0] | c.version[1] | c.version[2]) == 0)
     e.lost.insert("firmware version");
   if (c.model_name.empty() || c.model_name.find_first_not_of('0') == std::string::npos)
@@ -113,27 +73,13 @@ Experience topotek_experience(const std::string& faults, topsim::DeviceOptions o
   return e;
 }
 
-void expect_agreement(const Verdict& v, const Experience& e, const std::string& variant) {
-  SCOPED_TRACE(variant + ": topconf says " + v.compat.value("text", "(none)"));
-  const std::string lived = !e.served        ? "incompatible"
-                            : e.lost.empty() ? "compatible"
-                                             : "compatible without";
-  EXPECT_EQ(v.verdict(), lived);
-  EXPECT_EQ(v.rc, lived == "incompatible" ? 1 : 0);
-  if (e.served) {
-    EXPECT_EQ(v.lost(), e.lost);
-  }
-}
-
 class TopotekVariant : public ::testing::TestWithParam<const char*> {};
 
 // topconf's in-process topsim and the client's topsim over a pty, with the
 // same fault.
 TEST_P(TopotekVariant, TheVerdictIsWhatTheClientLivesThrough) {
   const std::string faults = GetParam();
-  std::string stem = "topotek_" + faults;
-  std::replace_if(
-      stem.begin(), stem.end(), [](char ch) { return !std::isalnum(ch); }, '_');
+  const std::string stem = variant_stem("topotek_" + faults);
   const Verdict v = topconf_driver("ardupilot-topotek", "sip",
                                    faults.empty() ? "" : "--sim-fault '" + faults + "'", stem);
   expect_agreement(v, topotek_experience(faults, {}), faults.empty() ? "default" : faults);
@@ -148,13 +94,8 @@ INSTANTIATE_TEST_SUITE_P(Faults, TopotekVariant,
 // read), over a real pseudo-terminal both ways: topconf against a topsim
 // process, the client against the harness's.
 TEST(TopotekVariantDocument, GicOnlyAttitudeIsIncompatibleForBoth) {
-  std::string path;
-  const pid_t pid = start_topsim({"--model", "sip", "--pty", "--profile", "document"}, path);
-  ASSERT_GT(pid, 0);
-  const Verdict v =
-      topconf_driver("ardupilot-topotek", "sip", "--target serial:" + path, "topotek_document");
-  kill(pid, SIGTERM);
-  waitpid(pid, nullptr, 0);
+  const Verdict v = topconf_driver_process("ardupilot-topotek", "sip", {"--profile", "document"},
+                                           true, "topotek_document");
   EXPECT_EQ(v.verdict(), "incompatible");
   topsim::DeviceOptions o;
   o.profile = top::Profile::document;

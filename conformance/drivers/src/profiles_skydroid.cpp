@@ -70,6 +70,9 @@ Profile ardupilot_skydroid() {
   p.unchecked = {
       "a lowercase checksum (the driver drops the frame; topconf decodes it)",
       "the sign of GSY (the driver negates it for C11/C13 firmware)",
+      "that GSY and GSP move the gimbal, and which way: a device that takes them and does not "
+      "move (the C11 took GAM, GSM, GAY, GAP silently and ignored them) or moves the other way "
+      "leaves the driver's angle loop short of its target; taken sees no ERE only",
   };
   p.needs = {
       {.id = "attitude",

@@ -1,0 +1,119 @@
+// What the agreement tests of topconf run --driver share (compat_test.cpp,
+// compat_skydroid_test.cpp, compat_table_test.cpp): topconf's verdict on a
+// variant, in process or against a topsim process, and the check that it
+// is what a driver-like client lived through on the same variant.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "binaries.hpp"
+#include "loopback.hpp"
+
+struct Verdict {
+  int rc = -1;
+  nlohmann::json compat;  // the JSON's compatibility object
+  std::string json_path;  // the report, when kept
+  std::string verdict() const { return compat.value("verdict", ""); }
+  std::set<std::string> lost() const {
+    std::set<std::string> s;
+    for (const auto& f : compat.value("features_lost", nlohmann::json::array()))
+      s.insert(f.get<std::string>());
+    return s;
+  }
+};
+
+// Runs topconf run --driver `driver` --model `model` with `args`; its exit
+// status and the JSON's compatibility object. `keep`: the JSON report is
+// left at json_path (compat_<stem>.json in the build tree).
+inline Verdict topconf_driver(const std::string& driver, const std::string& model,
+                              const std::string& args, const std::string& stem, bool keep = false) {
+  const std::string json = std::string(TOPKIT_BINARY_DIR) + "/compat_" + stem + ".json";
+  std::remove(json.c_str());
+  Verdict v;
+  v.rc = run_cmd(bin("topconf") + " run --driver " + driver + " --model " + model + " -q --json " +
+                 json + " " + args);
+  std::ifstream in(json);
+  const auto j = nlohmann::json::parse(in, nullptr, false);
+  if (!j.is_discarded()) {
+    v.compat = j.value("compatibility", nlohmann::json());
+    EXPECT_EQ(j.value("exit_code", -1), v.rc) << stem;
+  }
+  if (keep)
+    v.json_path = json;
+  else
+    std::remove(json.c_str());
+  return v;
+}
+
+// The same against a topsim process started with `topsim_args` (its
+// --model is `model`): on a new pseudo-terminal when `pty`, else on UDP at
+// the model's port of a loopback host of the test's own.
+inline Verdict topconf_driver_process(const std::string& driver, const std::string& model,
+                                      std::vector<std::string> topsim_args, bool pty,
+                                      const std::string& stem, bool keep = false) {
+  const std::string port = model == "sip" ? "9003" : "5000";
+  const std::string host = own_loopback();
+  topsim_args.insert(topsim_args.begin(), {"--model", model});
+  if (pty)
+    topsim_args.push_back("--pty");
+  else
+    topsim_args.insert(topsim_args.end(), {"--udp", host + ":" + port});
+  std::string line;
+  const pid_t pid = start_topsim(topsim_args, line);
+  EXPECT_GT(pid, 0);
+  if (pid <= 0) return {};
+  const std::string target = pty ? "serial:" + line : "udp://" + host + ":" + port;
+  Verdict v = topconf_driver(driver, model, "--target " + target, stem, keep);
+  kill(pid, SIGTERM);
+  waitpid(pid, nullptr, 0);
+  return v;
+}
+
+// What a driver-like client lived through: served (healthy, and what a
+// must need gives it), and the features it lost, named as the profile
+// names them.
+struct Experience {
+  bool served = false;
+  std::set<std::string> lost;
+  std::string why;  // what it lived through, for a failure's text
+};
+
+// Healthy over a run from `start_us` for `ms`, on the times of the
+// attitude frames the client took: the first within 1.5 s of the start,
+// never 1 s without one after it, the last within 1 s of the end.
+template <class Attitudes>
+bool healthy_throughout(const Attitudes& att, std::uint64_t start_us, std::uint64_t ms) {
+  if (att.empty() || att.front().t_us - start_us >= 1500000) return false;
+  for (std::size_t i = 1; i < att.size(); ++i)
+    if (att[i].t_us - att[i - 1].t_us > 1000000) return false;
+  return start_us + ms * 1000 - att.back().t_us <= 1000000;
+}
+
+inline void expect_agreement(const Verdict& v, const Experience& e, const std::string& variant) {
+  SCOPED_TRACE(variant + ": topconf says " + v.compat.value("text", "(none)") +
+               "; the client: " + e.why);
+  const std::string lived = !e.served        ? "incompatible"
+                            : e.lost.empty() ? "compatible"
+                                             : "compatible without";
+  EXPECT_EQ(v.verdict(), lived);
+  EXPECT_EQ(v.rc, lived == "incompatible" ? 1 : 0);
+  if (e.served) {
+    EXPECT_EQ(v.lost(), e.lost);
+  }
+}
+
+// A file name stem of a variant's text.
+inline std::string variant_stem(std::string s) {
+  for (char& ch : s)
+    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+  return s;
+}
