@@ -11,11 +11,12 @@
 
 namespace {
 
-// PixEagle (gimbal_interface.py @ 0724458) listens on 9004 whatever the
+// PixEagle (gimbal_interface.py @ 3bea324) listens on 9004 whatever the
 // source port: it hears every answer, twice, and reads the tracking state.
-// Its angle parser looks for GAC or GIC in a packet; the real camera answers
-// the GIC query with a 12-char GIA (top/device.hpp GIC -> GIA reply form),
-// which it does not read: it gets no angles from its queries.
+// It takes angles only from a GAC answer in the #tpGPC form, which the real
+// camera's form gives (#tpGPCrGAC + 12 hex); the GIC query's answer, a
+// 12-char GIA (top/device.hpp GIC -> GIA reply form), it keeps as a
+// spatial diagnostic only.
 TEST(ClientSockets, PixEagleHearsTheRealUnitOn9004) {
   PixEagleClient c;
   const DriverRun r = run_driver(c, top::Model::sip, topsim::TransportKind::udp, 1500, {}, {}, {},
@@ -23,18 +24,21 @@ TEST(ClientSockets, PixEagleHearsTheRealUnitOn9004) {
   ASSERT_GE(c.trc_sent, 2) << "sent " << r.sent;
   EXPECT_GE(c.trc, c.trc_sent);  // two copies of each answer, the last may be in flight
   EXPECT_GE(c.gia, c.gic_sent);
+  EXPECT_GE(c.spatial, c.gic_sent);
   ASSERT_FALSE(c.states.empty());
   for (int s : c.states) EXPECT_EQ(s, 0);  // not tracking
-  EXPECT_TRUE(c.angles.empty());           // GIA named neither GAC nor GIC
-  // The document's device answers GIC with GIC (Topotek 4.3.5), once, from
-  // 9003 to 9004: its angles are read.
+  EXPECT_GE(c.angles.size(), 2 * static_cast<std::size_t>(c.gac_sent) - 2);
+  // Answers that keep the asker's addresses first (#tpPGC...) fail its
+  // framing check: neither angles nor a state.
   PixEagleClient d;
-  topsim::DeviceOptions doc;
-  doc.profile = top::Profile::document;
-  run_driver(d, top::Model::sip, topsim::TransportKind::udp, 1500, {}, doc, {},
+  topsim::DeviceOptions request_order;
+  request_order.reply_order = top::Order::request_order;
+  run_driver(d, top::Model::sip, topsim::TransportKind::udp, 1500, {}, request_order, {},
              UdpClient::pixeagle);
-  EXPECT_FALSE(d.angles.empty());
-  EXPECT_EQ(d.gia, 0);
+  EXPECT_GT(d.packets, 0);
+  EXPECT_TRUE(d.angles.empty());
+  EXPECT_TRUE(d.states.empty());
+  EXPECT_EQ(d.spatial, 0);
 }
 
 // ArduPilot master's NET_Pn UDP client connect()s its socket to the camera's

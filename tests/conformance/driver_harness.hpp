@@ -89,8 +89,8 @@ enum class UdpClient : std::uint8_t {
   connected,
   // Requests from an unbound socket (never read), answers on a second one
   // bound to UDP 9004 (SO_REUSEADDR, not connected, any source): PixEagle's
-  // GimbalInterface (src/classes/gimbal_interface.py @ 0724458 and
-  // @ 2608012, _init_listening_socket, _send_command). PixEagle binds
+  // GimbalInterface (src/classes/gimbal_interface.py @ 0724458,
+  // @ 2608012 and @ 3bea324, _init_listening_socket, _send_command). PixEagle binds
   // 0.0.0.0:9004; here 9004 of the test's own loopback host, the device's.
   pixeagle,
 };

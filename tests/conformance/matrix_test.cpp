@@ -9,6 +9,7 @@
 
 #include "conf/generate.hpp"
 #include "test_matrix_util.hpp"
+#include "top/motion.hpp"
 
 namespace {
 
@@ -106,6 +107,32 @@ TEST(Matrix, ErrorsNameFileCaseAndKey) {
   e = errors_of(two);
   ASSERT_FALSE(e.empty());
   EXPECT_EQ(e[0], "m.json: case a: id: duplicate case id");
+}
+
+// A stream's "moves": the axis, the way and the least turn of the attitude.
+TEST(Matrix, StreamMovesIsLoadedAndChecked) {
+  const std::string stream =
+      R"({"stream": {"ident": "GAC", "rate_hz": 10, "duration_ms": 800, "moves": MOVES}})";
+  const auto with = [&](std::string_view moves) {
+    return replace(kMinimal, R"({"echo": true})", replace(stream, "MOVES", moves));
+  };
+  auto r = load_matrix(with(R"({"axis": "pitch", "sign": -1, "min_deg": 3})"), "m.json");
+  ASSERT_TRUE(r.matrix) << (r.errors.empty() ? "" : r.errors[0]);
+  const auto& e = r.matrix->cases[0].steps[0].expect[0];
+  EXPECT_EQ(e.move_axis, static_cast<int>(top::Axis::pitch));
+  EXPECT_EQ(e.move_sign, -1);
+  EXPECT_DOUBLE_EQ(e.move_min_deg, 3);
+  auto err = errors_of(with(R"({"axis": "tilt", "sign": 1, "min_deg": 3})"));
+  ASSERT_FALSE(err.empty());
+  EXPECT_EQ(err[0],
+            "m.json: case a: steps[0].expect[0].stream.moves.axis: must be \"yaw\", "
+            "\"pitch\" or \"roll\"");
+  err = errors_of(with(R"({"axis": "yaw", "sign": 2, "min_deg": 3})"));
+  ASSERT_FALSE(err.empty());
+  EXPECT_EQ(err[0], "m.json: case a: steps[0].expect[0].stream.moves.sign: must be 1 or -1");
+  err = errors_of(with(R"({"axis": "yaw", "sign": 1, "min_deg": 0})"));
+  ASSERT_FALSE(err.empty());
+  EXPECT_NE(err[0].find("stream.moves.min_deg: must be a number above 0"), std::string::npos);
 }
 
 TEST(Matrix, ChecksumIsAddedOnlyWhenAbsent) {

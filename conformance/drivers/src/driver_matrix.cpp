@@ -3,6 +3,7 @@
 #include <string>
 
 #include "drivers/compat.hpp"
+#include "top/motion.hpp"
 
 namespace drivers {
 
@@ -52,6 +53,10 @@ json expect_of(const Need& n) {
                  {"duration_ms", n.window_ms}};
       if (!n.pattern.empty()) st["data_pattern"] = std::string(n.pattern);
       if (n.max_gap_ms) st["max_gap_ms"] = n.max_gap_ms;
+      if (n.move_axis >= 0)
+        st["moves"] = {{"axis", std::string(top::to_string(static_cast<top::Axis>(n.move_axis)))},
+                       {"sign", n.move_sign},
+                       {"min_deg", n.move_min_deg}};
       return json::array({json{{"stream", st}}});
     }
     case Check::taken: {
@@ -88,7 +93,14 @@ json driver_matrix_json(const Profile& p, top::Model model) {
     json step = {{"expect", expect_of(n)}};
     if (!n.send_ident.empty() || !n.raw.empty() || !n.raw_hex.empty()) step["send"] = request_of(n);
     if (n.check == Check::reply && n.window_ms) step["timeout_ms"] = n.window_ms;
-    json steps = json::array({step});
+    json steps = json::array();
+    if (!n.on_ident.empty())
+      steps.push_back(
+          {{"send", send_of(n, n.on_ident, n.on_data, 'w')},
+           {"expect",
+            json::array({json{{"silence_ms", 1}, {"note", "switch-on"}},
+                         json{{"echo", true}, {"addresses", "any"}, {"note", "switch-on"}}})}});
+    steps.push_back(step);
     if (!n.cleanup_ident.empty())
       steps.push_back(
           {{"send", send_of(n, n.cleanup_ident, n.cleanup_data, 'w')},

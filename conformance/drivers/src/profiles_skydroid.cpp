@@ -69,10 +69,8 @@ Profile ardupilot_skydroid() {
   };
   p.unchecked = {
       "a lowercase checksum (the driver drops the frame; topconf decodes it)",
-      "the sign of GSY (the driver negates it for C11/C13 firmware)",
-      "that GSY and GSP move the gimbal, and which way: a device that takes them and does not "
-      "move (the C11 took GAM, GSM, GAY, GAP silently and ignored them) or moves the other way "
-      "leaves the driver's angle loop short of its target; taken sees no ERE only",
+      "a GSY or GSP held for less than the 800 ms watched (the driver refreshes both every "
+      "update, about 50 Hz)",
   };
   p.needs = {
       {.id = "attitude",
@@ -97,23 +95,48 @@ Profile ardupilot_skydroid() {
        .feature = "yaw control",
        .grade = Grade::must,
        .reasoning = "GSY is the only command the driver turns yaw with, in rate and angle mode "
-                    "(GAM, GSM, GAY, GAP are never sent)",
-       .lost = "yaw cannot be moved: the device refuses GSY",
+                    "(GAM, GSM, GAY, GAP are never sent), and it negates it (\"a positive GSY "
+                    "value moves yaw LEFT\", C11): a GSY of +20 deg/s must turn the GAC yaw left",
+       .lost = "yaw cannot be moved: the device refuses or ignores GSY, or turns the other "
+               "way (the angle loop never reaches its target)",
        .source = 0,
        .send_ident = "GSY",
        .send_control = 'w',
-       .check = Check::taken,
-       .ident = "GSY"},
+       .send_data = "28",
+       .check = Check::stream,
+       .ident = "GAC",
+       .pattern = kAngles12,
+       .min_hz = 2,
+       .max_hz = 100,
+       .window_ms = 800,
+       .on_ident = "GAA",
+       .on_data = "32",
+       .move_axis = static_cast<int>(top::Axis::yaw),
+       .move_sign = -1,
+       .move_min_deg = 3},
       {.id = "pitch-rate",
        .feature = "pitch control",
        .grade = Grade::must,
-       .reasoning = "GSP is the only command the driver tilts with, in rate and angle mode",
-       .lost = "pitch cannot be moved: the device refuses GSP",
+       .reasoning = "GSP is the only command the driver tilts with, in rate and angle mode, "
+                    "pitch up-positive as the document (\"sign matches the doc\", C11): a GSP of "
+                    "+20 deg/s must tilt the GAC pitch up",
+       .lost = "pitch cannot be moved: the device refuses or ignores GSP, or tilts the other "
+               "way (the angle loop never reaches its target)",
        .source = 0,
        .send_ident = "GSP",
        .send_control = 'w',
-       .check = Check::taken,
-       .ident = "GSP"},
+       .send_data = "28",
+       .check = Check::stream,
+       .ident = "GAC",
+       .pattern = kAngles12,
+       .min_hz = 2,
+       .max_hz = 100,
+       .window_ms = 800,
+       .on_ident = "GAA",
+       .on_data = "32",
+       .move_axis = static_cast<int>(top::Axis::pitch),
+       .move_sign = 1,
+       .move_min_deg = 3},
       {.id = "version",
        .feature = "firmware version",
        .grade = Grade::should,

@@ -4,6 +4,7 @@
 #include <regex>
 
 #include "matrix_json.hpp"
+#include "top/motion.hpp"
 
 namespace topconf::detail {
 
@@ -164,11 +165,35 @@ bool parse_reply(const Ctx& c, const json& r, const std::string& w, Expectation&
   return true;
 }
 
+// A stream's "moves": {"axis": "yaw|pitch|roll", "sign": 1|-1, "min_deg": D}.
+bool parse_moves(const Ctx& c, const json& m, const std::string& w, Expectation& e) {
+  if (!c.object(m, w)) return false;
+  only_keys(c, m, w, {"axis", "sign", "min_deg"});
+  std::string axis;
+  get_string(c, m, w + ".", "axis", axis, true);
+  for (int a = 0; a < static_cast<int>(top::axis_count); ++a)
+    if (axis == top::to_string(static_cast<top::Axis>(a))) e.move_axis = a;
+  if (e.move_axis < 0) c.err(w + ".axis", "must be \"yaw\", \"pitch\" or \"roll\"");
+  const auto sign = m.find("sign");
+  if (sign == m.end() || !sign->is_number_integer() ||
+      (sign->get<int>() != 1 && sign->get<int>() != -1))
+    c.err(w + ".sign", "must be 1 or -1");
+  else
+    e.move_sign = sign->get<int>();
+  const auto deg = m.find("min_deg");
+  if (deg == m.end() || !deg->is_number() || deg->get<double>() <= 0 || deg->get<double>() > 180)
+    c.err(w + ".min_deg", "must be a number above 0, at most 180");
+  else
+    e.move_min_deg = deg->get<double>();
+  return e.move_axis >= 0 && e.move_sign != 0 && e.move_min_deg > 0;
+}
+
 bool parse_stream(const Ctx& c, const json& s, const std::string& w, Expectation& e) {
   const std::string sw = w + "stream.";
   if (!c.object(s, w + "stream")) return false;
-  only_keys(c, s, w + "stream",
-            {"ident", "rate_hz", "tolerance", "duration_ms", "data_pattern", "max_gap_ms"});
+  only_keys(
+      c, s, w + "stream",
+      {"ident", "rate_hz", "tolerance", "duration_ms", "data_pattern", "max_gap_ms", "moves"});
   if (!get_string(c, s, sw, "ident", e.ident, true)) return false;
   auto rate = s.find("rate_hz");
   if (rate == s.end() || !rate->is_number() || rate->get<double>() <= 0 ||
@@ -197,6 +222,7 @@ bool parse_stream(const Ctx& c, const json& s, const std::string& w, Expectation
     c.err(sw + "max_gap_ms", "must be an integer from 1 to 60000");
     return false;
   }
+  if (auto mv = s.find("moves"); mv != s.end()) return parse_moves(c, *mv, sw + "moves", e);
   return true;
 }
 

@@ -6,9 +6,50 @@
 #include <optional>
 #include <regex>
 
+#include "top/decode.hpp"
 #include "top/device.hpp"
+#include "top/motion.hpp"
 
 namespace topconf::detail {
+
+namespace {
+
+// The attitude frame `f` reports on `axis` in deg, right and up positive
+// (top/motion.hpp: the row's sign under its convention), or nothing.
+std::optional<double> attitude_on(top::Dialect d, const top::Frame& f, int axis) {
+  const top::Decoded dec = top::decode(f, {.dialect = d, .role = top::Role::response});
+  if (!dec.motion || !dec.form || dec.motion->kind != top::MotionKind::attitude) return {};
+  top::MotionReading r;
+  const auto ax = static_cast<std::size_t>(axis);
+  if (!top::read_motion(*dec.motion, *dec.form, f.data(), r, axis) || !r.has[ax]) return {};
+  for (const top::MotionAxis& a : dec.motion->fields())
+    if (static_cast<int>(a.axis) == axis)
+      return r.value[ax] * a.sign_in(top::field_convention(*dec.motion));
+  return {};
+}
+
+// Empty when the attitudes of a "moves" stream turned as it asks, else why
+// not.
+std::string short_of_motion(const Expectation& e, const std::vector<double>& angles) {
+  const auto axis = static_cast<top::Axis>(e.move_axis);
+  const char* way = e.move_sign > 0 ? (axis == top::Axis::yaw ? "right" : "up")
+                                    : (axis == top::Axis::yaw ? "left" : "down");
+  char buf[200];
+  if (angles.size() < 2) {
+    std::snprintf(buf, sizeof buf, "%s %s: fewer than two attitudes read", e.ident.c_str(),
+                  std::string(top::to_string(axis)).c_str());
+    return buf;
+  }
+  double turn = angles.back() - angles.front();
+  if (axis == top::Axis::yaw) turn = top::short_way(turn);
+  if (turn * e.move_sign >= e.move_min_deg) return {};
+  std::snprintf(buf, sizeof buf, "%s %s turned %+.1f deg in %u ms; at least %.1f deg %s expected",
+                e.ident.c_str(), std::string(top::to_string(axis)).c_str(), turn, e.duration_ms,
+                e.move_min_deg, way);
+  return buf;
+}
+
+}  // namespace
 
 // What a step saw while it watched the link.
 struct CaseRunner::Watch {
@@ -17,6 +58,7 @@ struct CaseRunner::Watch {
   std::uint32_t stream_ms = 0;
   std::vector<std::optional<Received>> matched;        // per alternative
   std::vector<std::vector<std::uint64_t>> push_times;  // per stream alternative
+  std::vector<std::vector<double>> angles;             // per "moves": each counted push's
   std::uint64_t first_answer = 0;                      // time of the first non-push frame
   bool answered = false;
   bool duplicate = false;  // the matching reply arrived again
@@ -71,6 +113,7 @@ StepResult CaseRunner::run_step(const Case& c, const Step& s) {
   seen.window = std::max<std::uint64_t>(seen.window, seen.stream_ms);
   seen.matched.resize(s.expect.size());
   seen.push_times.resize(s.expect.size());
+  seen.angles.resize(s.expect.size());
   watch(s, alts, rq, seen);
   return verdict(s, seen);
 }
@@ -96,8 +139,12 @@ void CaseRunner::watch(const Step& s, const std::vector<Alternative>& alts, cons
       const Expectation& e = s.expect[i];
       if (e.kind == ExpectKind::stream && id == e.ident && r.frame.ok() &&
           r.t_us <= seen.start + std::uint64_t{e.duration_ms} * 1000 &&
-          (!e.data_re || std::regex_match(std::string(r.frame.data()), *e.data_re)))
+          (!e.data_re || std::regex_match(std::string(r.frame.data()), *e.data_re))) {
         seen.push_times[i].push_back(r.t_us);
+        if (e.move_axis >= 0)
+          if (const auto a = attitude_on(m_.dialect, r.frame, e.move_axis))
+            seen.angles[i].push_back(*a);
+      }
     }
     // A frame of a push stream is a push, unless it answers the request: a
     // read it answers (GIC -> GIA), or a write's echo (the write's control);
@@ -187,6 +234,9 @@ StepResult CaseRunner::verdict(const Step& s, const Watch& seen) const {
           std::snprintf(buf, sizeof buf, "%s stream: a gap of %.0f ms; at most %u ms expected",
                         e.ident.c_str(), static_cast<double>(gap) / 1000.0, e.max_gap_ms);
           near_miss = buf;
+        } else if (ok && e.move_axis >= 0) {
+          near_miss = short_of_motion(e, seen.angles[i]);
+          ok = near_miss.empty();
         } else if (!ok) {
           char buf[160];
           std::snprintf(buf, sizeof buf,

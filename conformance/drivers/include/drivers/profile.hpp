@@ -54,7 +54,7 @@ struct Sent {
 enum class Check : std::uint8_t {
   reply,   // a frame `ident` whose data match `pattern`
   stream,  // pushes of `ident` whose data match `pattern`, at min_hz or more, no gap over
-           // max_gap_ms
+           // max_gap_ms (and, with move_axis, the attitude turning)
   taken,   // no ERE: an echo, a reply of the request's identifier, or silence
 };
 
@@ -85,6 +85,16 @@ struct Need {
   std::uint32_t window_ms = 0;     // stream: how long it is watched; reply: the wait (0: matrix)
   std::string_view cleanup_ident;  // a write sent after the case (REC 00 after REC 01)
   std::string_view cleanup_data;
+  // A write sent before the case (the stream it watches switched on).
+  std::string_view on_ident;
+  std::string_view on_data;
+  // stream: the attitude must turn on this axis (top::Axis; -1: not
+  // watched) by move_min_deg or more, the move_sign way (+1 right or up, -1
+  // left or down), while the case's request holds: a rate command the
+  // driver steers with, taken and moving the way it expects.
+  int move_axis = -1;
+  int move_sign = 0;
+  double move_min_deg = 0;
 };
 
 struct Profile {

@@ -70,6 +70,13 @@ struct Expectation {
   double tolerance = top::stream_rate_tolerance;  // fraction of rate_hz
   std::uint32_t duration_ms = 0;
   std::uint32_t max_gap_ms = 0;  // 0: any gap; the stream's `data_pattern` uses data_re
+  // stream "moves": the attitude the counted pushes report on this axis
+  // (top::Axis; -1: none) turns from the first to the last by at least
+  // move_min_deg the `move_sign` way (+1 right or up, -1 left or down; the
+  // attitude read by top/motion.hpp, its sign convention included).
+  int move_axis = -1;
+  int move_sign = 0;
+  double move_min_deg = 0;
   // readback: the read sent after the write's reply; the reply data must
   // equal `data` when given, else the data the step wrote.
   SendSpec read;
