@@ -47,7 +47,9 @@ TEST_P(PixEagleVariant, TheVerdictIsWhatTheClientLivesThrough) {
       topconf_driver("pixeagle", "sip", faults.empty() ? "" : "--sim-fault '" + faults + "'",
                      variant_stem("pixeagle_" + faults));
   expect_agreement(v, pixeagle_experience(faults), faults.empty() ? "default" : faults);
-  if (faults.empty()) EXPECT_EQ(v.verdict(), "compatible");
+  if (faults.empty()) {
+    EXPECT_EQ(v.verdict(), "compatible");
+  }
 }
 
 // The default; a command it sends unanswered (GAC: its angles; TRC: its
