@@ -43,7 +43,7 @@ Experience skydroid_experience(top::Model model, const std::string& faults,
     e.why = "healthy, its loop ended at yaw " + std::to_string(a.yaw) + ", pitch " +
             std::to_string(a.pitch);
   } else {
-    e.why = "not healthy, " + std::to_string(c.attitude.size()) + " GAC frames";
+    e.why = "not healthy, GAC frames: " + attitude_times(c.attitude, r.start_us, kRunMs);
   }
   if (c.version.find_first_of("123456789") == std::string::npos) e.lost.insert("firmware version");
   if (c.model.find_first_not_of('0') == std::string::npos) e.lost.insert("model name");

@@ -50,6 +50,23 @@ TEST(DriverVerdict, AnUnknownDriverOrModelIsBadUsage) {
   EXPECT_EQ(run_cmd(bin("topconf") + " drivers"), 0);
 }
 
+// The harness stamps a frame when it reads it, so the last attitude can
+// come just after the run's end: healthy, not 2^64 us before the end (a
+// flaky agreement failure until the rule said so).
+TEST(DriverVerdict, AnAttitudeReadJustAfterTheEndIsFresh) {
+  struct A {
+    std::uint64_t t_us;
+  };
+  const std::uint64_t start = 1000000, ms = 3000, end = start + ms * 1000;
+  std::vector<A> att;
+  for (std::uint64_t t = start + 100000; t <= end + 2000; t += 100000) att.push_back({t});
+  att.push_back({end + 2000});
+  EXPECT_TRUE(healthy_throughout(att, start, ms));
+  EXPECT_NE(attitude_times(att, start, ms).find(", last 0 ms before the end"), std::string::npos);
+  att.resize(att.size() - 20);  // the last 2 s without attitude: stale at the end
+  EXPECT_FALSE(healthy_throughout(att, start, ms));
+}
+
 // What the ArduPilot Topotek client lived through: healthy on 12-char GIA
 // frames (healthy_throughout), and the features it lost.
 Experience topotek_experience(const std::string& faults, topsim::DeviceOptions o) {
@@ -62,6 +79,7 @@ Experience topotek_experience(const std::string& faults, topsim::DeviceOptions o
                                  fc ? *fc : topsim::FaultConfig{});
   Experience e;
   e.served = healthy_throughout(c.attitude, r.start_us, ms);
+  e.why = attitude_times(c.attitude, r.start_us, ms);
   if (!c.version_parsed || (c.version[0] | c.version[1] | c.version[2]) == 0)
     e.lost.insert("firmware version");
   if (c.model_name.empty() || c.model_name.find_first_not_of('0') == std::string::npos)

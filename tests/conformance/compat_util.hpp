@@ -8,6 +8,7 @@
 #include <signal.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -95,7 +96,26 @@ bool healthy_throughout(const Attitudes& att, std::uint64_t start_us, std::uint6
   if (att.empty() || att.front().t_us - start_us >= 1500000) return false;
   for (std::size_t i = 1; i < att.size(); ++i)
     if (att[i].t_us - att[i - 1].t_us > 1000000) return false;
-  return start_us + ms * 1000 - att.back().t_us <= 1000000;
+  // The last frame may be read just after the end (the harness stamps a
+  // frame when it reads it): then it is 0 us before the end, not 2^64.
+  const std::uint64_t end = start_us + ms * 1000;
+  return att.back().t_us >= end || end - att.back().t_us <= 1000000;
+}
+
+// The attitude times `healthy_throughout` judged, for a failure's text:
+// how many, the first after the start, the longest gap, the last before
+// the end (ms).
+template <class Attitudes>
+std::string attitude_times(const Attitudes& att, std::uint64_t start_us, std::uint64_t ms) {
+  if (att.empty()) return "no attitude";
+  std::uint64_t gap = 0;
+  for (std::size_t i = 1; i < att.size(); ++i) gap = std::max(gap, att[i].t_us - att[i - 1].t_us);
+  return std::to_string(att.size()) + " attitudes, first " +
+         std::to_string((att.front().t_us - start_us) / 1000) + " ms, longest gap " +
+         std::to_string(gap / 1000) + " ms, last " +
+         std::to_string((start_us + ms * 1000 - std::min(att.back().t_us, start_us + ms * 1000)) /
+                        1000) +
+         " ms before the end";
 }
 
 inline void expect_agreement(const Verdict& v, const Experience& e, const std::string& variant) {

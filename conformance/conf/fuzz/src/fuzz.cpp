@@ -28,6 +28,11 @@ struct Session {
   Probe probe, alt;  // the liveness probe, and a second sync frame
   std::uint64_t probes = 0;
   std::uint64_t t0 = 0;
+  // Restarted and answering, with no case sent since: a replay needs no
+  // second restart. A restart command may act after it returns (`kill
+  // -HUP` does); a second one sent to a device that answers can land in
+  // the middle of the replay, which then "does not reproduce".
+  bool fresh = false;
 
   std::uint64_t probe_timeout_us() const { return std::uint64_t{m.probe_timeout_ms} * 1000; }
 
@@ -48,7 +53,10 @@ struct Session {
     link.clear();
     const std::uint64_t deadline = link.now() + std::uint64_t{o.recover_ms} * 1000;
     do {
-      if (alive(1)) return true;
+      if (alive(1)) {
+        fresh = restarted;
+        return true;
+      }
     } while (link.now() < deadline);
     return false;
   }
@@ -206,6 +214,7 @@ struct Session {
   // Runs a case and the liveness check; sets a stopped failure.
   void run_checked(const FuzzCase& c, FuzzCaseResult& r, bool probe_now, bool& dead) {
     dead = false;
+    fresh = false;
     bool ok = false;
     try {
       ok = run_one(c, r);
@@ -237,7 +246,7 @@ struct Session {
   // fail with `cls` again?
   bool reproduces(const std::vector<FuzzCase>& cases, FailureClass cls) {
     bool restarted = false;
-    if (o.restart || cls == FailureClass::stopped) {
+    if ((o.restart || cls == FailureClass::stopped) && !fresh) {
       if (!revive(restarted)) return false;
     }
     for (std::size_t i = 0; i < cases.size(); ++i) {
