@@ -120,4 +120,43 @@ TEST(TopotekVariantDocument, GicOnlyAttitudeIsIncompatibleForBoth) {
   expect_agreement(v, topotek_experience("", o), "document profile");
 }
 
+// Variants of the device's own options, not faults: topconf against a
+// topsim process over a pty, the client against the harness's topsim with
+// the same options.
+TEST(TopotekVariantOptions, RequestOrderRepliesAndPushesAreServed) {
+  const Verdict v =
+      topconf_driver_process("ardupilot-topotek", "sip",
+                             {"--reply-order", "request-order", "--push-order", "request-order"},
+                             true, "topotek_request_order");
+  topsim::DeviceOptions o;
+  o.reply_order = top::Order::request_order;
+  o.push_order = top::Order::request_order;
+  expect_agreement(v, topotek_experience("", o), "request order");
+  EXPECT_EQ(v.verdict(), "compatible");
+}
+
+// The version as 123, without its dots (ArduPilot PR #27568's firmware):
+// the driver since that PR reads it digit by digit.
+TEST(TopotekVariantOptions, AVersionWithoutDots) {
+  const Verdict v = topconf_driver_process("ardupilot-topotek", "sip", {"--fw-version", "123"},
+                                           true, "topotek_version_123");
+  topsim::DeviceOptions o;
+  o.version = "123";
+  expect_agreement(v, topotek_experience("", o), "version 123");
+  EXPECT_EQ(v.verdict(), "compatible");
+}
+
+// A device that echoes every write, the enable's 2-char GIA echo among
+// them: the driver (as the client models it) still takes its attitude
+// from the 12-char frames. Issue 50's echo-as-attitude bug is the driver
+// that does not.
+TEST(TopotekVariantOptions, EchoedWrites) {
+  const Verdict v = topconf_driver_process("ardupilot-topotek", "sip", {"--write-echo", "on"},
+                                           true, "topotek_write_echo");
+  topsim::DeviceOptions o;
+  o.write_echo = true;
+  expect_agreement(v, topotek_experience("", o), "write echo");
+  EXPECT_EQ(v.verdict(), "compatible");
+}
+
 }  // namespace
