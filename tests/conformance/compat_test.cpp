@@ -4,6 +4,8 @@
 // the same profile) lives through over a real pseudo-terminal. A client
 // served against a device topconf calls incompatible, or the reverse, is a
 // bug in the profile.
+#include "drivers/compat.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -48,6 +50,50 @@ TEST(DriverVerdict, AnUnknownDriverOrModelIsBadUsage) {
   EXPECT_EQ(run_cmd(bin("topconf") + " run --driver no-such-driver"), 2);
   EXPECT_EQ(run_cmd(bin("topconf") + " run --driver ardupilot-topotek --model c12"), 2);
   EXPECT_EQ(run_cmd(bin("topconf") + " drivers"), 0);
+}
+
+// The verdict's text: its level's name, then the features lost or the
+// reasons (one home of the names: drivers::to_string).
+TEST(DriverVerdict, TheTextNamesTheLevelThenWhatItLists) {
+  using Level = drivers::Compatibility::Level;
+  drivers::Compatibility c;
+  c.features = {"zoom", "video"};
+  c.reasons = {"attitude: lost", "yaw: stuck"};
+  const std::pair<Level, const char*> want[] = {
+      {Level::compatible, "compatible"},
+      {Level::without, "compatible without: zoom, video"},
+      {Level::incompatible, "incompatible: attitude: lost; yaw: stuck"},
+      {Level::unreachable, "unreachable: attitude: lost; yaw: stuck"}};
+  for (const auto& [level, text] : want) {
+    c.level = level;
+    EXPECT_EQ(c.text(), text);
+  }
+  EXPECT_EQ(drivers::to_string(drivers::Grade::should), "should");
+  EXPECT_EQ(drivers::to_string(drivers::LinkKind::serial), "serial");
+}
+
+// A driver case's matrix level is its need's grade (info is the matrix's
+// may), and its section the need's source as topconf drivers names it.
+TEST(DriverMatrix, LevelFromTheGradeAndSectionFromTheSource) {
+  EXPECT_EQ(drivers::to_string(drivers::Source{"o/r", "a/b.cpp", "PR #1"}), "o/r a/b.cpp @ PR #1");
+  std::set<std::string> levels;
+  for (const drivers::Profile& p : drivers::profiles()) {
+    SCOPED_TRACE(std::string(p.name));
+    const auto m = drivers::driver_matrix_json(p, p.models.front());
+    for (const drivers::Need& n : p.needs) {
+      const std::string id = drivers::case_id(p, n);
+      const auto k = std::find_if(m["cases"].begin(), m["cases"].end(),
+                                  [&](const auto& c) { return c["id"] == id; });
+      ASSERT_NE(k, m["cases"].end()) << id;
+      const std::string level = (*k)["level"];
+      levels.insert(level);
+      EXPECT_EQ(level, n.grade == drivers::Grade::info ? "may" : drivers::to_string(n.grade)) << id;
+      EXPECT_EQ((*k)["section"],
+                drivers::to_string(p.sources.at(static_cast<std::size_t>(n.source))))
+          << id;
+    }
+  }
+  EXPECT_EQ(levels, (std::set<std::string>{"must", "should", "may"}));
 }
 
 // What the ArduPilot Topotek client lived through: healthy on 12-char GIA
