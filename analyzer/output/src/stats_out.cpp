@@ -109,11 +109,7 @@ void write_stats_json(std::string& out, const Stats& s, top::Severity worst, int
   counts_member(j, "per_ident", s.per_ident);
   counts_member(j, "per_finding", s.per_code);
   j.key_object("pairing");
-  j.u("requests", s.requests);
-  j.u("responses", s.responses);
-  j.u("paired", s.paired);
-  j.u("unanswered", s.unanswered);
-  j.u("unsolicited", s.unsolicited);
+  for (const StatsCount& c : kPairingCounts) j.u(c.name, s.*c.count);
   j.u("copies", s.copies);
   j.close_object();
   j.key_object("latency");
@@ -164,17 +160,13 @@ std::string stats_text(const Stats& s, top::Severity worst) {
   for (const auto& [k, v] : s.per_ident) o += "  " + k + " " + std::to_string(v) + "\n";
   o += "per finding:\n";
   for (const auto& [k, v] : s.per_code) o += "  " + k + " " + std::to_string(v) + "\n";
-  std::snprintf(
-      b, sizeof b,
-      "pairing: requests %llu, responses %llu, paired %llu, unanswered %llu, unsolicited %llu\n",
-      static_cast<unsigned long long>(s.requests), static_cast<unsigned long long>(s.responses),
-      static_cast<unsigned long long>(s.paired), static_cast<unsigned long long>(s.unanswered),
-      static_cast<unsigned long long>(s.unsolicited));
-  o += b;
-  if (s.copies) {
-    o.pop_back();
-    o += ", copies " + std::to_string(s.copies) + " (the device's fan-out: counted once)\n";
-  }
+  o += "pairing:";
+  for (const StatsCount& c : kPairingCounts)
+    o += std::string(&c == kPairingCounts ? " " : ", ") + std::string(c.name) + " " +
+         std::to_string(s.*c.count);
+  if (s.copies)
+    o += ", copies " + std::to_string(s.copies) + " (the device's fan-out: counted once)";
+  o += '\n';
   if (!s.latency.empty()) {
     o += "latency (ms): ident count min median p95 max\n";
     for (const auto& [k, l] : s.latency) {
