@@ -140,12 +140,14 @@ INSTANTIATE_TEST_SUITE_P(Faults, TopotekVariant,
 // read), over a real pseudo-terminal both ways: topconf against a topsim
 // process, the client against the harness's.
 TEST(TopotekVariantDocument, GicOnlyAttitudeIsIncompatibleForBoth) {
-  const Verdict v = topconf_driver_process("ardupilot-topotek", "sip", {"--profile", "document"},
-                                           true, "topotek_document");
-  EXPECT_EQ(v.verdict(), "incompatible");
-  topsim::DeviceOptions o;
-  o.profile = top::Profile::document;
-  expect_agreement(v, topotek_experience("", o), "document profile");
+  const OptionsVariant p{"document",
+                         "sip",
+                         {"--profile", "document"},
+                         [](topsim::DeviceOptions& o) { o.profile = top::Profile::document; },
+                         "incompatible"};
+  const Verdict v = options_verdict("ardupilot-topotek", p, true);
+  expect_pinned(v, p);
+  expect_agreement(v, topotek_experience("", options_of(p)), p.name);
 }
 
 }  // namespace
