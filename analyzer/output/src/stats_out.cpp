@@ -89,13 +89,7 @@ void write_stats_json(std::string& out, const Stats& s, top::Severity worst, int
   j.open_object();
   if (!type.empty()) j.str("type", type);
   if (inputs) {
-    j.key_array("inputs");
-    for (const InputInfo& i : *inputs) {
-      j.item_object();
-      input_members(j, i);
-      j.close_object();
-    }
-    j.close_array();
+    j.key_objects("inputs", *inputs, [&](const InputInfo& i) { input_members(j, i); });
   }
   j.u("frames", s.frames);
   j.u("bad_checksum", s.bad_checksum);
@@ -119,25 +113,16 @@ void write_stats_json(std::string& out, const Stats& s, top::Severity worst, int
     j.close_object();
   }
   j.close_object();
-  j.key_array("conversations");
-  for (const ConvStats& c : s.conversations) {
-    j.item_object();
+  j.key_objects("conversations", s.conversations, [&](const ConvStats& c) {
     conversation_members(j, c);
     j.str("dialect", top::to_string(c.dialect));
     j.u("frames", c.frames);
     j.u("requests", c.requests);
     j.u("responses", c.responses);
     j.u("paired", c.paired);
-    j.key_array("streams");
-    for (const StreamStat& t : c.streams) {
-      j.item_object();
-      stream_members(j, t, StreamKeys{});
-      j.close_object();
-    }
-    j.close_array();
-    j.close_object();
-  }
-  j.close_array();
+    j.key_objects("streams", c.streams,
+                  [&](const StreamStat& t) { stream_members(j, t, StreamKeys{}); });
+  });
   j.u("conversations_dropped", s.conversations_dropped);
   j.close_object();
 }
