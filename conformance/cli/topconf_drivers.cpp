@@ -47,7 +47,7 @@ int DriversCommand::run() {
       std::cout << " " << n.id << " (" << drivers::to_string(n.grade) << ")";
     std::cout << "\n";
     for (const drivers::Source& s : p.sources)
-      std::cout << "  source: " << s.repo << " " << s.path << " @ " << s.ref << "\n";
+      std::cout << "  source: " << drivers::to_string(s) << "\n";
   }
   return 0;
 }

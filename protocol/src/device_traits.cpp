@@ -247,10 +247,9 @@ constexpr FieldSupport kFieldSupport[] = {
                  "its digital zoom as the C11"},
 };
 
-constexpr ModelSet kC13 = model_bit(Model::c13);
 constexpr FieldNote kFieldNotes[] = {
     {.dialect = Dialect::skydroid,
-     .models = kC13,
+     .models = c13,
      .ident = "GAC",
      .note = "GAC pitch often reads 0.0 while the gimbal tilts; yaw is reliable",
      .evidence = "a station used on a real C13 (vamaskylight/custom-GCS, vgcs/skydroid/adapter.py "
@@ -261,7 +260,7 @@ constexpr FieldNote kFieldNotes[] = {
                  "the pitch it moves to; a C13 pitch that stays 0.0 in topdump report's motion "
                  "plot while yaw moves may be this"},
     {.dialect = Dialect::skydroid,
-     .models = kC13,
+     .models = c13,
      .note = "some C13 builds also listen on UDP 9003 and 19853 (zoom and lens/system commands)",
      .evidence = "a station used on a real C13 (vamaskylight/custom-GCS, vgcs/skydroid/adapter.py "
                  "@ 0151122d: \"lens/system also on 9003 on some C13 builds\", "

@@ -86,36 +86,48 @@ def check_offline(page, text):
     return errors
 
 
-def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--topdump", required=True)
+def page_check_args(ap):
+    """Adds a page check's --out DIR and --chromium to `ap` (which holds the
+    check's own arguments), parses them and makes DIR. Returns the arguments
+    and Chromium's path; exits 77 (skip) when --chromium is given and
+    Chromium is absent. report_check and tests/conformance/table_check."""
     ap.add_argument("--out", required=True)
     ap.add_argument("--chromium", action="store_true")
-    ap.add_argument("--together")
-    ap.add_argument("--every-diagnosis")
-    ap.add_argument("captures", nargs="+")
     a = ap.parse_args()
     chromium = shutil.which("chromium") or "/usr/bin/chromium"
     if a.chromium and not os.path.exists(chromium):
         print("chromium not installed: skipped")
-        return 77
+        sys.exit(77)
     os.makedirs(a.out, exist_ok=True)
+    return a, chromium
+
+
+def verdict(errors, summary):
+    """Prints each problem and the summary line; returns the exit status."""
+    for e in errors:
+        print("FAIL " + e)
+    print(summary)
+    return 1 if errors else 0
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--topdump", required=True)
+    ap.add_argument("--together")
+    ap.add_argument("--every-diagnosis")
+    ap.add_argument("captures", nargs="+")
+    a, chromium = page_check_args(ap)
     if a.together:
         errors = check(a, chromium, a.captures, a.together)
         if a.every_diagnosis:
             errors += every_diagnosis(a)
-        for e in errors:
-            print("FAIL " + e)
-        print("%d captures on one page, %d problems" % (len(a.captures), len(errors)))
-        return 1 if errors else 0
+        return verdict(errors, "%d captures on one page, %d problems" %
+                       (len(a.captures), len(errors)))
     # two pages at a time (the machine has two cores; Chromium waits a lot)
     with concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
         results = list(pool.map(lambda cap: check(a, chromium, cap), a.captures))
     errors = [e for r in results for e in r]
-    for e in errors:
-        print("FAIL " + e)
-    print("%d captures, %d problems" % (len(a.captures), len(errors)))
-    return 1 if errors else 0
+    return verdict(errors, "%d captures, %d problems" % (len(a.captures), len(errors)))
 
 
 def every_diagnosis(a):

@@ -63,39 +63,38 @@ INSTANTIATE_TEST_SUITE_P(Faults, PixEagleVariant,
                                            "no-stream=GIA", "stall=GIA@0.5+1.5", "no-swap",
                                            "header-case=1", "bad-checksum=1"));
 
-// A topsim process with `args` for topconf, the harness's with `o` for the
-// client.
-void expect_process_agreement(const std::vector<std::string>& args, topsim::DeviceOptions o,
-                              const std::string& variant) {
-  const Verdict v =
-      topconf_driver_process("pixeagle", "sip", args, false, variant_stem("pixeagle_" + variant));
-  expect_agreement(v, pixeagle_experience("", o), variant);
+class PixEagleVariantOptions : public ::testing::TestWithParam<OptionsVariant> {};
+
+// topconf against a topsim process with the variant's arguments, the
+// client against the harness's topsim with the same options.
+TEST_P(PixEagleVariantOptions, TheVerdictIsWhatTheClientLivesThrough) {
+  const OptionsVariant& p = GetParam();
+  expect_agreement(options_verdict("pixeagle", p, false), pixeagle_experience("", options_of(p)),
+                   p.name);
 }
 
-TEST(PixEagleVariantOptions, RequestOrderRepliesLoseEverything) {
-  topsim::DeviceOptions o;
-  o.reply_order = top::Order::request_order;
-  expect_process_agreement({"--reply-order", "request-order"}, o, "request order");
-}
-
-TEST(PixEagleVariantOptions, WriteEchoChangesNothing) {
-  topsim::DeviceOptions o;
-  o.write_echo = true;
-  expect_process_agreement({"--write-echo", "on"}, o, "write echo");
-}
-
-// Fixed-form (#TP) answers: PixEagle takes GAC only as #tpGPC.
-TEST(PixEagleVariantOptions, FixedHeaderRepliesLoseTheAngles) {
-  topsim::DeviceOptions o;
-  o.reply_header = top::Header::fixed;
-  expect_process_agreement({"--reply-header", "TP"}, o, "reply header TP");
-}
-
-// The document profile: #TP answers from the served port, no fan-out.
-TEST(PixEagleVariantOptions, TheDocumentProfile) {
-  topsim::DeviceOptions o;
-  o.profile = top::Profile::document;
-  expect_process_agreement({"--profile", "document"}, o, "document profile");
-}
+// Replies that keep the asker's addresses; writes echoed; fixed-form (#TP)
+// answers (PixEagle takes GAC only as #tpGPC); the document profile (#TP
+// answers from the served port, no fan-out).
+INSTANTIATE_TEST_SUITE_P(
+    Options, PixEagleVariantOptions,
+    ::testing::Values(
+        OptionsVariant{"RequestOrderRepliesLoseEverything",
+                       "sip",
+                       {"--reply-order", "request-order"},
+                       [](topsim::DeviceOptions& o) { o.reply_order = top::Order::request_order; }},
+        OptionsVariant{"WriteEchoChangesNothing",
+                       "sip",
+                       {"--write-echo", "on"},
+                       [](topsim::DeviceOptions& o) { o.write_echo = true; }},
+        OptionsVariant{"FixedHeaderRepliesLoseTheAngles",
+                       "sip",
+                       {"--reply-header", "TP"},
+                       [](topsim::DeviceOptions& o) { o.reply_header = top::Header::fixed; }},
+        OptionsVariant{"TheDocumentProfile",
+                       "sip",
+                       {"--profile", "document"},
+                       [](topsim::DeviceOptions& o) { o.profile = top::Profile::document; }}),
+    variant_name);
 
 }  // namespace

@@ -88,39 +88,45 @@ INSTANTIATE_TEST_SUITE_P(
                       FaultVariant{"c13", "ignore-motion=GSP"}, FaultVariant{"c13", "invert=pitch"},
                       FaultVariant{"c12", "ignore-motion=GSY"}, FaultVariant{"c12", "invert=yaw"}));
 
+class SkyDroidVariantOptions : public ::testing::TestWithParam<OptionsVariant> {};
+
 // Variants of the device's own options, not faults: topconf against a
 // topsim process over UDP, the client against the harness's topsim with
 // the same options.
-TEST(SkyDroidVariantOptions, RequestOrderRepliesAndPushesAreServed) {
-  const Verdict v =
-      topconf_driver_process("ardupilot-skydroid", "c13",
-                             {"--reply-order", "request-order", "--push-order", "request-order"},
-                             false, "skydroid_request_order");
-  topsim::DeviceOptions o;
-  o.reply_order = top::Order::request_order;
-  o.push_order = top::Order::request_order;
-  expect_agreement(v, skydroid_experience(top::Model::c13, "", o), "request order");
-  EXPECT_EQ(v.verdict(), "compatible");
+TEST_P(SkyDroidVariantOptions, TheVerdictIsWhatTheClientLivesThrough) {
+  const OptionsVariant& p = GetParam();
+  const auto m = top::model_from_string(p.model);
+  ASSERT_TRUE(m);
+  const Verdict v = options_verdict("ardupilot-skydroid", p, false);
+  expect_agreement(v, skydroid_experience(*m, "", options_of(p)), p.name);
+  expect_pinned(v, p);
 }
 
-// A version without the V the driver's parser needs first.
-TEST(SkyDroidVariantOptions, AVersionWithoutItsVIsLost) {
-  const Verdict v = topconf_driver_process("ardupilot-skydroid", "c12", {"--fw-version", "1.0.78"},
-                                           false, "skydroid_no_v");
-  topsim::DeviceOptions o;
-  o.version = "1.0.78";
-  expect_agreement(v, skydroid_experience(top::Model::c12, "", o), "version 1.0.78");
-  EXPECT_EQ(v.lost(), std::set<std::string>{"firmware version"});
-}
-
-// A short version reply, one number after the V: the driver parses it.
-TEST(SkyDroidVariantOptions, AShortVersionIsTaken) {
-  const Verdict v = topconf_driver_process("ardupilot-skydroid", "c13", {"--fw-version", "V2"},
-                                           false, "skydroid_short_v");
-  topsim::DeviceOptions o;
-  o.version = "V2";
-  expect_agreement(v, skydroid_experience(top::Model::c13, "", o), "version V2");
-  EXPECT_EQ(v.verdict(), "compatible");
-}
+// Replies and pushes that keep the asker's addresses are served; a version
+// without the V the driver's parser needs first is lost; a short version,
+// one number after the V, is taken.
+INSTANTIATE_TEST_SUITE_P(
+    Options, SkyDroidVariantOptions,
+    ::testing::Values(OptionsVariant{"RequestOrderRepliesAndPushesAreServed",
+                                     "c13",
+                                     {"--reply-order", "request-order", "--push-order",
+                                      "request-order"},
+                                     [](topsim::DeviceOptions& o) {
+                                       o.reply_order = top::Order::request_order;
+                                       o.push_order = top::Order::request_order;
+                                     },
+                                     "compatible"},
+                      OptionsVariant{"AVersionWithoutItsVIsLost",
+                                     "c12",
+                                     {"--fw-version", "1.0.78"},
+                                     [](topsim::DeviceOptions& o) { o.version = "1.0.78"; },
+                                     "compatible without",
+                                     {"firmware version"}},
+                      OptionsVariant{"AShortVersionIsTaken",
+                                     "c13",
+                                     {"--fw-version", "V2"},
+                                     [](topsim::DeviceOptions& o) { o.version = "V2"; },
+                                     "compatible"}),
+    variant_name);
 
 }  // namespace

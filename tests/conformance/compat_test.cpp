@@ -4,6 +4,8 @@
 // the same profile) lives through over a real pseudo-terminal. A client
 // served against a device topconf calls incompatible, or the reverse, is a
 // bug in the profile.
+#include "drivers/compat.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -67,6 +69,50 @@ TEST(DriverVerdict, AnAttitudeReadJustAfterTheEndIsFresh) {
   EXPECT_FALSE(healthy_throughout(att, start, ms));
 }
 
+// The verdict's text: its level's name, then the features lost or the
+// reasons (one home of the names: drivers::to_string).
+TEST(DriverVerdict, TheTextNamesTheLevelThenWhatItLists) {
+  using Level = drivers::Compatibility::Level;
+  drivers::Compatibility c;
+  c.features = {"zoom", "video"};
+  c.reasons = {"attitude: lost", "yaw: stuck"};
+  const std::pair<Level, const char*> want[] = {
+      {Level::compatible, "compatible"},
+      {Level::without, "compatible without: zoom, video"},
+      {Level::incompatible, "incompatible: attitude: lost; yaw: stuck"},
+      {Level::unreachable, "unreachable: attitude: lost; yaw: stuck"}};
+  for (const auto& [level, text] : want) {
+    c.level = level;
+    EXPECT_EQ(c.text(), text);
+  }
+  EXPECT_EQ(drivers::to_string(drivers::Grade::should), "should");
+  EXPECT_EQ(drivers::to_string(drivers::LinkKind::serial), "serial");
+}
+
+// A driver case's matrix level is its need's grade (info is the matrix's
+// may), and its section the need's source as topconf drivers names it.
+TEST(DriverMatrix, LevelFromTheGradeAndSectionFromTheSource) {
+  EXPECT_EQ(drivers::to_string(drivers::Source{"o/r", "a/b.cpp", "PR #1"}), "o/r a/b.cpp @ PR #1");
+  std::set<std::string> levels;
+  for (const drivers::Profile& p : drivers::profiles()) {
+    SCOPED_TRACE(std::string(p.name));
+    const auto m = drivers::driver_matrix_json(p, p.models.front());
+    for (const drivers::Need& n : p.needs) {
+      const std::string id = drivers::case_id(p, n);
+      const auto k = std::find_if(m["cases"].begin(), m["cases"].end(),
+                                  [&](const auto& c) { return c["id"] == id; });
+      ASSERT_NE(k, m["cases"].end()) << id;
+      const std::string level = (*k)["level"];
+      levels.insert(level);
+      EXPECT_EQ(level, n.grade == drivers::Grade::info ? "may" : drivers::to_string(n.grade)) << id;
+      EXPECT_EQ((*k)["section"],
+                drivers::to_string(p.sources.at(static_cast<std::size_t>(n.source))))
+          << id;
+    }
+  }
+  EXPECT_EQ(levels, (std::set<std::string>{"must", "should", "may"}));
+}
+
 // What the ArduPilot Topotek client lived through: healthy on 12-char GIA
 // frames (healthy_throughout), and the features it lost.
 Experience topotek_experience(const std::string& faults, topsim::DeviceOptions o) {
@@ -108,55 +154,51 @@ INSTANTIATE_TEST_SUITE_P(Faults, TopotekVariant,
                                            "refuse-tracking", "ignore=VSN", "ignore=SDC",
                                            "ignore=PA2", "ignore=GIA", "stall=GIA@0.5+1.5"));
 
-// The document profile (GIC pushes, no GIA: the attitude the driver cannot
-// read), over a real pseudo-terminal both ways: topconf against a topsim
-// process, the client against the harness's.
-TEST(TopotekVariantDocument, GicOnlyAttitudeIsIncompatibleForBoth) {
-  const Verdict v = topconf_driver_process("ardupilot-topotek", "sip", {"--profile", "document"},
-                                           true, "topotek_document");
-  EXPECT_EQ(v.verdict(), "incompatible");
-  topsim::DeviceOptions o;
-  o.profile = top::Profile::document;
-  expect_agreement(v, topotek_experience("", o), "document profile");
+class TopotekVariantOptions : public ::testing::TestWithParam<OptionsVariant> {};
+
+// Variants of the device's own options, not faults, over a real
+// pseudo-terminal both ways: topconf against a topsim process, the client
+// against the harness's topsim with the same options.
+TEST_P(TopotekVariantOptions, TheVerdictIsWhatTheClientLivesThrough) {
+  const OptionsVariant& p = GetParam();
+  const Verdict v = options_verdict("ardupilot-topotek", p, true);
+  expect_pinned(v, p);
+  expect_agreement(v, topotek_experience("", options_of(p)), p.name);
 }
 
-// Variants of the device's own options, not faults: topconf against a
-// topsim process over a pty, the client against the harness's topsim with
-// the same options.
-TEST(TopotekVariantOptions, RequestOrderRepliesAndPushesAreServed) {
-  const Verdict v =
-      topconf_driver_process("ardupilot-topotek", "sip",
-                             {"--reply-order", "request-order", "--push-order", "request-order"},
-                             true, "topotek_request_order");
-  topsim::DeviceOptions o;
-  o.reply_order = top::Order::request_order;
-  o.push_order = top::Order::request_order;
-  expect_agreement(v, topotek_experience("", o), "request order");
-  EXPECT_EQ(v.verdict(), "compatible");
-}
-
-// The version as 123, without its dots (ArduPilot PR #27568's firmware):
-// the driver since that PR reads it digit by digit.
-TEST(TopotekVariantOptions, AVersionWithoutDots) {
-  const Verdict v = topconf_driver_process("ardupilot-topotek", "sip", {"--fw-version", "123"},
-                                           true, "topotek_version_123");
-  topsim::DeviceOptions o;
-  o.version = "123";
-  expect_agreement(v, topotek_experience("", o), "version 123");
-  EXPECT_EQ(v.verdict(), "compatible");
-}
-
-// A device that echoes every write, the enable's 2-char GIA echo among
-// them: the driver (as the client models it) still takes its attitude
-// from the 12-char frames. Issue 50's echo-as-attitude bug is the driver
-// that does not.
-TEST(TopotekVariantOptions, EchoedWrites) {
-  const Verdict v = topconf_driver_process("ardupilot-topotek", "sip", {"--write-echo", "on"},
-                                           true, "topotek_write_echo");
-  topsim::DeviceOptions o;
-  o.write_echo = true;
-  expect_agreement(v, topotek_experience("", o), "write echo");
-  EXPECT_EQ(v.verdict(), "compatible");
-}
+// The document profile: GIC pushes, no GIA, the attitude the driver cannot
+// read. Request-order replies and pushes are served. The version as 123,
+// without its dots (ArduPilot PR #27568's firmware): the driver since that
+// PR reads it digit by digit. A device that echoes every write, the
+// enable's 2-char GIA echo among them: the driver (as the client models
+// it) takes its attitude from the 12-char frames only; issue 50's
+// echo-as-attitude bug is the driver that does not.
+INSTANTIATE_TEST_SUITE_P(
+    Options, TopotekVariantOptions,
+    ::testing::Values(
+        OptionsVariant{"GicOnlyAttitudeIsIncompatibleForBoth",
+                       "sip",
+                       {"--profile", "document"},
+                       [](topsim::DeviceOptions& o) { o.profile = top::Profile::document; },
+                       "incompatible"},
+        OptionsVariant{"RequestOrderRepliesAndPushesAreServed",
+                       "sip",
+                       {"--reply-order", "request-order", "--push-order", "request-order"},
+                       [](topsim::DeviceOptions& o) {
+                         o.reply_order = top::Order::request_order;
+                         o.push_order = top::Order::request_order;
+                       },
+                       "compatible"},
+        OptionsVariant{"AVersionWithoutDots",
+                       "sip",
+                       {"--fw-version", "123"},
+                       [](topsim::DeviceOptions& o) { o.version = "123"; },
+                       "compatible"},
+        OptionsVariant{"EchoedWrites",
+                       "sip",
+                       {"--write-echo", "on"},
+                       [](topsim::DeviceOptions& o) { o.write_echo = true; },
+                       "compatible"}),
+    variant_name);
 
 }  // namespace

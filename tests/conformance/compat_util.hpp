@@ -12,12 +12,14 @@
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <ostream>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "binaries.hpp"
 #include "loopback.hpp"
+#include "sim/device.hpp"
 
 struct Verdict {
   int rc = -1;
@@ -136,4 +138,44 @@ inline std::string variant_stem(std::string s) {
   for (char& ch : s)
     if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
   return s;
+}
+
+// A variant of the device's own options, not a fault: topconf runs against
+// a topsim process given `args` (options_verdict), the client against the
+// harness's topsim with the same settings (`set`, options_of). `verdict`,
+// when given, pins what both say, with the features lost where the driver
+// is served (expect_pinned).
+struct OptionsVariant {
+  const char* name;  // the test's, e.g. RequestOrderRepliesLoseEverything
+  const char* model;
+  std::vector<std::string> args;
+  void (*set)(topsim::DeviceOptions&);
+  const char* verdict = "";
+  std::set<std::string> lost = {};
+};
+
+inline void PrintTo(const OptionsVariant& v, std::ostream* os) { *os << v.name; }
+inline std::string variant_name(const ::testing::TestParamInfo<OptionsVariant>& i) {
+  return i.param.name;
+}
+
+inline topsim::DeviceOptions options_of(const OptionsVariant& v) {
+  topsim::DeviceOptions o;
+  v.set(o);
+  return o;
+}
+
+// topconf run --driver `driver` against a topsim process with the
+// variant's arguments, on a pseudo-terminal when `pty`, else over UDP.
+inline Verdict options_verdict(const std::string& driver, const OptionsVariant& v, bool pty) {
+  return topconf_driver_process(driver, v.model, v.args, pty, variant_stem(driver + "_" + v.name));
+}
+
+inline void expect_pinned(const Verdict& v, const OptionsVariant& p) {
+  if (!*p.verdict) return;
+  EXPECT_EQ(v.verdict(), p.verdict);
+  // the features lost count where the driver is served (as in expect_agreement)
+  if (std::string(p.verdict) != "incompatible") {
+    EXPECT_EQ(v.lost(), p.lost);
+  }
 }

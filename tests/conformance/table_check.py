@@ -17,7 +17,6 @@ colours). Exit 77 (skip) when --chromium is given and Chromium is absent.
 import argparse
 import json
 import os
-import shutil
 import subprocess
 import sys
 
@@ -36,14 +35,7 @@ RUNS = [  # stem, driver, model, extra arguments, expected verdict
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--topconf", required=True)
-    ap.add_argument("--out", required=True)
-    ap.add_argument("--chromium", action="store_true")
-    a = ap.parse_args()
-    chromium = shutil.which("chromium") or "/usr/bin/chromium"
-    if a.chromium and not os.path.exists(chromium):
-        print("chromium not installed: skipped")
-        return 77
-    os.makedirs(a.out, exist_ok=True)
+    a, chromium = report_check.page_check_args(ap)
     errors, reports = [], []
     for stem, driver, model, extra, verdict in RUNS:
         out = stem + ".json"
@@ -114,10 +106,7 @@ def check_json(t, reports):
 
 
 def report(errors):
-    for e in errors:
-        print("FAIL " + e)
-    print("table: %d problems" % len(errors))
-    return 1 if errors else 0
+    return report_check.verdict(errors, "table: %d problems" % len(errors))
 
 
 if __name__ == "__main__":

@@ -35,10 +35,15 @@ std::string char_cell(char c) { return escape(std::string_view(&c, 1)); }
 std::string num(std::uint64_t v) { return std::to_string(v); }
 std::string text(const std::string* s) { return s ? *s : std::string(); }
 
-// The value of a frame's cell, "" for other rows.
-template <class F>
-std::string of_frame(const Row& r, F&& get) {
-  return r.f ? get(*r.f->entry->frame, r.f->entry->decoded, *r.f) : std::string();
+// A cell read from a frame's bytes (`Get` takes the top::Frame) or from its
+// decoding (the top::Decoded); "" for other rows.
+template <auto Get>
+std::string frame_cell(const Row& r) {
+  return r.f ? Get(*r.frame()) : std::string();
+}
+template <auto Get>
+std::string decoded_cell(const Row& r) {
+  return r.f ? Get(*r.decoded()) : std::string();
 }
 
 // The codes (or messages) of a row's findings: a frame's frame, catalog
@@ -114,96 +119,44 @@ const Column kColumns[] = {
     {"offset",
      [](const Row& r) { return num(r.common([](const auto& e) { return e.pos.offset; })); }},
     {"stream_offset", [](const Row& r) { return r.f ? num(r.f->stream_offset) : std::string(); }},
-    {"header",
-     [](const Row& r) {
-       return of_frame(
-           r, [](const top::Frame& f, auto&, auto&) { return std::string(f.header_text()); });
-     }},
-    {"src",
-     [](const Row& r) {
-       return of_frame(r, [](const top::Frame& f, auto&, auto&) { return char_cell(f.src); });
-     }},
-    {"dst",
-     [](const Row& r) {
-       return of_frame(r, [](const top::Frame& f, auto&, auto&) { return char_cell(f.dst); });
-     }},
+    {"header", frame_cell<[](const top::Frame& f) { return std::string(f.header_text()); }>},
+    {"src", frame_cell<[](const top::Frame& f) { return char_cell(f.src); }>},
+    {"dst", frame_cell<[](const top::Frame& f) { return char_cell(f.dst); }>},
     {"length",
      [](const Row& r) {
        if (r.g) return num(r.g->item->length);
-       return of_frame(r, [](const top::Frame& f, auto&, auto&) { return num(f.data_length); });
+       return frame_cell<[](const top::Frame& f) { return num(f.data_length); }>(r);
      }},
-    {"declared_length",
-     [](const Row& r) {
-       return of_frame(r, [](const top::Frame& f, auto&, auto&) { return num(f.declared_length); });
-     }},
-    {"control",
-     [](const Row& r) {
-       return of_frame(r, [](const top::Frame& f, auto&, auto&) {
-         return f.control ? char_cell(f.control) : std::string();
-       });
-     }},
-    {"ident",
-     [](const Row& r) {
-       return of_frame(r, [](const top::Frame& f, auto&, auto&) { return escape(f.ident_view()); });
-     }},
-    {"data",
-     [](const Row& r) {
-       return of_frame(r, [](const top::Frame& f, auto&, auto&) { return escape(f.data()); });
-     }},
-    {"checksum",
-     [](const Row& r) {
-       return of_frame(r, [](const top::Frame& f, auto&, auto&) {
-         return f.checksum_present ? escape(f.checksum_text()) : std::string();
-       });
-     }},
+    {"declared_length", frame_cell<[](const top::Frame& f) { return num(f.declared_length); }>},
+    {"control", frame_cell<[](const top::Frame& f) {
+       return f.control ? char_cell(f.control) : std::string();
+     }>},
+    {"ident", frame_cell<[](const top::Frame& f) { return escape(f.ident_view()); }>},
+    {"data", frame_cell<[](const top::Frame& f) { return escape(f.data()); }>},
+    {"checksum", frame_cell<[](const top::Frame& f) {
+       return f.checksum_present ? escape(f.checksum_text()) : std::string();
+     }>},
     {"checksum_ok",
-     [](const Row& r) {
-       return of_frame(r, [](const top::Frame& f, auto&, auto&) {
-         return std::string(f.checksum_ok ? "true" : "false");
-       });
-     }},
-    {"expected_checksum",
-     [](const Row& r) {
-       return of_frame(r, [](const top::Frame& f, auto&, auto&) {
-         char b[3];
-         top::put_hex2(f.expected_checksum, b);
-         return std::string(b, 2);
-       });
-     }},
-    {"raw",
-     [](const Row& r) {
-       return of_frame(r, [](const top::Frame& f, auto&, auto&) { return escape(f.raw); });
-     }},
+     frame_cell<[](const top::Frame& f) { return std::string(f.checksum_ok ? "true" : "false"); }>},
+    {"expected_checksum", frame_cell<[](const top::Frame& f) {
+       char b[3];
+       top::put_hex2(f.expected_checksum, b);
+       return std::string(b, 2);
+     }>},
+    {"raw", frame_cell<[](const top::Frame& f) { return escape(f.raw); }>},
     {"preview", [](const Row& r) { return r.g ? escape(r.g->item->preview) : std::string(); }},
     {"dialect",
-     [](const Row& r) {
-       return of_frame(r, [](auto&, const top::Decoded& d, auto&) {
-         return std::string(top::to_string(d.dialect));
-       });
-     }},
+     decoded_cell<[](const top::Decoded& d) { return std::string(top::to_string(d.dialect)); }>},
     {"role",
-     [](const Row& r) {
-       return of_frame(r, [](auto&, const top::Decoded& d, auto&) {
-         return std::string(top::to_string(d.role));
-       });
-     }},
-    {"title",
-     [](const Row& r) {
-       return of_frame(r, [](auto&, const top::Decoded& d, auto&) {
-         return d.command ? std::string(d.command->title) : std::string();
-       });
-     },
+     decoded_cell<[](const top::Decoded& d) { return std::string(top::to_string(d.role)); }>},
+    {"title", decoded_cell<[](const top::Decoded& d) {
+       return d.command ? std::string(d.command->title) : std::string();
+     }>,
      "command"},
-    {"section",
-     [](const Row& r) {
-       return of_frame(r, [](auto&, const top::Decoded& d, auto&) {
-         return d.command ? std::string(d.command->section) : std::string();
-       });
-     }},
-    {"summary",
-     [](const Row& r) {
-       return of_frame(r, [](auto&, const top::Decoded& d, auto&) { return d.summary(); });
-     }},
+    {"section", decoded_cell<[](const top::Decoded& d) {
+       return d.command ? std::string(d.command->section) : std::string();
+     }>},
+    {"summary", decoded_cell<[](const top::Decoded& d) { return d.summary(); }>},
     {"findings", code_cell, "code"},
     {"messages",
      [](const Row& r) {

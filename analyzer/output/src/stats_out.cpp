@@ -89,13 +89,7 @@ void write_stats_json(std::string& out, const Stats& s, top::Severity worst, int
   j.open_object();
   if (!type.empty()) j.str("type", type);
   if (inputs) {
-    j.key_array("inputs");
-    for (const InputInfo& i : *inputs) {
-      j.item_object();
-      input_members(j, i);
-      j.close_object();
-    }
-    j.close_array();
+    j.key_objects("inputs", *inputs, [&](const InputInfo& i) { input_members(j, i); });
   }
   j.u("frames", s.frames);
   j.u("bad_checksum", s.bad_checksum);
@@ -109,11 +103,7 @@ void write_stats_json(std::string& out, const Stats& s, top::Severity worst, int
   counts_member(j, "per_ident", s.per_ident);
   counts_member(j, "per_finding", s.per_code);
   j.key_object("pairing");
-  j.u("requests", s.requests);
-  j.u("responses", s.responses);
-  j.u("paired", s.paired);
-  j.u("unanswered", s.unanswered);
-  j.u("unsolicited", s.unsolicited);
+  for (const StatsCount& c : kPairingCounts) j.u(c.name, s.*c.count);
   j.u("copies", s.copies);
   j.close_object();
   j.key_object("latency");
@@ -123,25 +113,16 @@ void write_stats_json(std::string& out, const Stats& s, top::Severity worst, int
     j.close_object();
   }
   j.close_object();
-  j.key_array("conversations");
-  for (const ConvStats& c : s.conversations) {
-    j.item_object();
+  j.key_objects("conversations", s.conversations, [&](const ConvStats& c) {
     conversation_members(j, c);
     j.str("dialect", top::to_string(c.dialect));
     j.u("frames", c.frames);
     j.u("requests", c.requests);
     j.u("responses", c.responses);
     j.u("paired", c.paired);
-    j.key_array("streams");
-    for (const StreamStat& t : c.streams) {
-      j.item_object();
-      stream_members(j, t, StreamKeys{});
-      j.close_object();
-    }
-    j.close_array();
-    j.close_object();
-  }
-  j.close_array();
+    j.key_objects("streams", c.streams,
+                  [&](const StreamStat& t) { stream_members(j, t, StreamKeys{}); });
+  });
   j.u("conversations_dropped", s.conversations_dropped);
   j.close_object();
 }
@@ -164,17 +145,13 @@ std::string stats_text(const Stats& s, top::Severity worst) {
   for (const auto& [k, v] : s.per_ident) o += "  " + k + " " + std::to_string(v) + "\n";
   o += "per finding:\n";
   for (const auto& [k, v] : s.per_code) o += "  " + k + " " + std::to_string(v) + "\n";
-  std::snprintf(
-      b, sizeof b,
-      "pairing: requests %llu, responses %llu, paired %llu, unanswered %llu, unsolicited %llu\n",
-      static_cast<unsigned long long>(s.requests), static_cast<unsigned long long>(s.responses),
-      static_cast<unsigned long long>(s.paired), static_cast<unsigned long long>(s.unanswered),
-      static_cast<unsigned long long>(s.unsolicited));
-  o += b;
-  if (s.copies) {
-    o.pop_back();
-    o += ", copies " + std::to_string(s.copies) + " (the device's fan-out: counted once)\n";
-  }
+  o += "pairing:";
+  for (const StatsCount& c : kPairingCounts)
+    o += std::string(&c == kPairingCounts ? " " : ", ") + std::string(c.name) + " " +
+         std::to_string(s.*c.count);
+  if (s.copies)
+    o += ", copies " + std::to_string(s.copies) + " (the device's fan-out: counted once)";
+  o += '\n';
   if (!s.latency.empty()) {
     o += "latency (ms): ident count min median p95 max\n";
     for (const auto& [k, l] : s.latency) {

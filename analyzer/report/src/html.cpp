@@ -9,6 +9,7 @@
 
 #include "capture/sources.hpp"
 #include "html_page.hpp"
+#include "output/output.hpp"
 #include "report/report.hpp"
 #include "svg.hpp"
 #include "top/detail/text.hpp"
@@ -77,10 +78,11 @@ void Page::overview() {
        std::to_string(s.bad_checksum) + " with a bad checksum, " + std::to_string(s.error_frames) +
        " with an error), " + std::to_string(s.garbage) + " garbage runs, " +
        std::to_string(s.records) + " records</td></tr>";
-  o += "<tr><th>pairing</th><td>" + std::to_string(s.requests) + " requests, " +
-       std::to_string(s.responses) + " responses, " + std::to_string(s.paired) + " paired, " +
-       std::to_string(s.unanswered) + " unanswered, " + std::to_string(s.unsolicited) +
-       " unsolicited</td></tr>";
+  o += "<tr><th>pairing</th><td>";
+  for (const StatsCount& c : kPairingCounts)
+    o += std::string(&c == kPairingCounts ? "" : ", ") + std::to_string(s.*c.count) + " " +
+         std::string(c.name);
+  o += "</td></tr>";
   o += "<tr><th>model</th><td>" +
        (r.model == top::Model::unknown ? std::string("not given (--model): checks of every model")
                                        : std::string(top::to_string(r.model))) +

@@ -55,19 +55,13 @@ void Writer::overview() {
   j.str("worst", top::to_string(r.worst));
   j.str("model", top::to_string(r.model));
   num("tolerance_deg", r.opts.tolerance_deg);
-  j.key_array("conversations");
-  for (const ConvStats& c : s.conversations) {
-    j.item_object();
+  j.key_objects("conversations", s.conversations, [&](const ConvStats& c) {
     conversation_members(j, c);
     j.str("dialect", top::to_string(dialect_of(r, c)));
     j.str("model", model_text(r, c));
     j.u("frames", c.frames);
-    j.close_object();
-  }
-  j.close_array();
-  j.key_array("what_went_wrong");
-  for (const Fact& f : r.facts) {
-    j.item_object();
+  });
+  j.key_objects("what_went_wrong", r.facts, [&](const Fact& f) {
     j.str("severity", top::to_string(f.severity));
     j.key("code");
     put_or_null(o, f.code.has_value(), [&] { put_str(o, top::to_string(*f.code)); });
@@ -80,16 +74,12 @@ void Writer::overview() {
       put_nonzero(o, f.frame);
       j.u("count", f.count);
     }
-    j.close_object();
-  }
-  j.close_array();
+  });
   j.close_object();
 }
 
 void Writer::angles() {
-  j.key_array("angle_commands");
-  for (const AngleResult& a : r.angles) {
-    j.item_object();
+  j.key_objects("angle_commands", r.angles, [&](const AngleResult& a) {
     j.u("conversation", a.conv);
     j.u("frame", a.cmd->frame);
     j.time("time", a.cmd->t);
@@ -121,9 +111,7 @@ void Writer::angles() {
     f(a.superseded, "superseded");
     j.close_array();
     opt("mirrored_settling_s", a.mirrored_settling_s);
-    j.close_object();
-  }
-  j.close_array();
+  });
 }
 
 void Writer::rates() {
@@ -135,9 +123,7 @@ void Writer::rates() {
   opt("measured_deg_s_per_step", r.scale_runs ? r.scale_measured : -1);
   j.u("scale_runs", r.scale_runs);
   j.u("scale_other_way_runs", r.scale_other_way);
-  j.key_array("runs");
-  for (const RateRun& x : r.runs) {
-    j.item_object();
+  j.key_objects("runs", r.runs, [&](const RateRun& x) {
     j.u("conversation", x.conv);
     j.u("frame", x.first_frame);
     j.str("ident", x.ident);
@@ -154,20 +140,14 @@ void Writer::rates() {
     j.u("samples", x.samples);
     num("measured_deg_s", x.measured, x.measured_ok);
     num("measured_deg_s_per_step", x.per_step, x.measured_ok);
-    j.close_object();
-  }
-  j.close_array();
-  j.key_array("refresh_gaps");
-  for (const RefreshGap& g : r.gaps) {
-    j.item_object();
+  });
+  j.key_objects("refresh_gaps", r.gaps, [&](const RefreshGap& g) {
     j.u("conversation", g.conv);
     j.u("frame", g.frame);
     j.str("ident", g.ident);
     j.time("time", g.t);
     num("gap_ms", g.gap_ms);
-    j.close_object();
-  }
-  j.close_array();
+  });
   j.close_object();
 }
 
@@ -189,12 +169,10 @@ void Writer::latency() {
     j.close_array();
     j.close_object();
   }
-  j.key_array("slowest");
   std::vector<Slow> slow = d.slowest;
   std::sort(slow.begin(), slow.end(),
             [](const Slow& a, const Slow& b) { return a.latency_us > b.latency_us; });
-  for (const Slow& x : slow) {
-    j.item_object();
+  j.key_objects("slowest", slow, [&](const Slow& x) {
     j.str("ident", x.ident);
     num("latency_ms", static_cast<double>(x.latency_us) / 1000.0);
     j.u("request", x.request);
@@ -202,16 +180,12 @@ void Writer::latency() {
     j.u("conversation", x.conv);
     j.time("time", x.ts);
     esc("response_raw", x.response_raw);
-    j.close_object();
-  }
-  j.close_array();
+  });
   j.close_object();
 }
 
 void Writer::streams() {
-  j.key_array("streams");
-  for (const StreamResult& x : r.streams) {
-    j.item_object();
+  j.key_objects("streams", r.streams, [&](const StreamResult& x) {
     j.u("conversation", x.conv);
     stream_members(j, x.stat, StreamKeys{.asked_by = true, .measured_per_hz = 1e4});
     j.key("bucket_s");
@@ -223,17 +197,11 @@ void Writer::streams() {
     }
     j.close_array();
     j.u("gap_count", x.gap_count);
-    j.key_array("gaps");
-    for (const auto& g : x.gaps) {
-      j.item_object();
+    j.key_objects("gaps", x.gaps, [&](const auto& g) {
       j.time("time", g.t);
       num("ms", g.ms);
-      j.close_object();
-    }
-    j.close_array();
-    j.close_object();
-  }
-  j.close_array();
+    });
+  });
 }
 
 void Writer::findings() {
@@ -246,9 +214,7 @@ void Writer::findings() {
     j.time("first", c.first);
     j.time("last", c.last);
     counts_member(j, "senders", c.senders);
-    j.key_array("examples");
-    for (const Example& x : c.examples) {
-      j.item_object();
+    j.key_objects("examples", c.examples, [&](const Example& x) {
       j.str("file", x.file);
       j.u("frame", x.frame);
       j.time("time", x.ts);
@@ -260,26 +226,20 @@ void Writer::findings() {
       esc("raw", x.raw);
       j.str("decoded", top::ascii_text(x.decoded));
       j.str("message", top::ascii_text(x.message));
-      j.close_object();
-    }
-    j.close_array();
+    });
     j.close_object();
   }
   j.close_array();
 }
 
 void Writer::unanswered() {
-  j.key_array("unanswered");
-  for (const Unanswered& x : d.unanswered) {
-    j.item_object();
+  j.key_objects("unanswered", d.unanswered, [&](const Unanswered& x) {
     j.time("time", x.ts);
     j.u("frame", x.frame);
     j.u("conversation", x.conv);
     j.str("file", x.file);
     j.str("message", top::ascii_text(x.message));
-    j.close_object();
-  }
-  j.close_array();
+  });
 }
 
 }  // namespace

@@ -58,18 +58,6 @@ std::string lua_num(double v) {
   return b;
 }
 
-std::string role_name(top::Role r) {
-  switch (r) {
-    case top::Role::request:
-      return "request";
-    case top::Role::response:
-      return "response";
-    case top::Role::any:
-      break;
-  }
-  return "any";
-}
-
 // How a field's value is carried in Wireshark: "uint", "int", "double" or
 // "string" (a field name that two forms type differently gets one type
 // that holds both).
@@ -218,7 +206,7 @@ void write_catalog(std::string& o) {
            ",\n  models = {" + models + " },\n  forms = {\n";
       for (const top::FormSpec& f : c.forms) {
         o += "    { control = " + lua_str(std::string(1, f.control)) +
-             ", role = " + lua_str(role_name(f.role)) +
+             ", role = " + lua_str(top::to_string(f.role)) +
              ", min_length = " + std::to_string(f.min_length) +
              ", max_length = " + std::to_string(f.max_length) + ", note = " + lua_str(f.note);
         if (!f.none.empty()) o += ", none = " + lua_str(f.none);

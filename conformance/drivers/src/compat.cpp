@@ -3,45 +3,23 @@
 #include "drivers/compat.hpp"
 
 #include <algorithm>
+#include <iterator>
+
+#include "top/enum_names.hpp"
 
 namespace drivers {
 
-std::string_view to_string(Grade g) noexcept {
-  switch (g) {
-    case Grade::must:
-      return "must";
-    case Grade::should:
-      return "should";
-    default:
-      return "info";
-  }
-}
-
-std::string_view to_string(LinkKind k) noexcept {
-  switch (k) {
-    case LinkKind::serial:
-      return "serial";
-    case LinkKind::tcp:
-      return "tcp";
-    default:
-      return "udp";
-  }
-}
-
-std::string_view to_string(Compatibility::Level l) noexcept {
-  switch (l) {
-    case Compatibility::Level::compatible:
-      return "compatible";
-    case Compatibility::Level::without:
-      return "compatible without";
-    case Compatibility::Level::incompatible:
-      return "incompatible";
-    default:
-      return "unreachable";
-  }
-}
-
 namespace {
+
+constexpr std::string_view kGrade[] = {"must", "should", "info"};
+static_assert(std::size(kGrade) == static_cast<std::size_t>(Grade::info) + 1);
+
+constexpr std::string_view kLinkKind[] = {"serial", "udp", "tcp"};
+static_assert(std::size(kLinkKind) == static_cast<std::size_t>(LinkKind::tcp) + 1);
+
+constexpr std::string_view kLevel[] = {"compatible", "compatible without", "incompatible",
+                                       "unreachable"};
+static_assert(std::size(kLevel) == static_cast<std::size_t>(Compatibility::Level::unreachable) + 1);
 
 std::string joined(const std::vector<std::string>& v, std::string_view sep) {
   std::string out;
@@ -55,17 +33,17 @@ void add_once(std::vector<std::string>& v, std::string s) {
 
 }  // namespace
 
+std::string_view to_string(Grade g) noexcept { return top::enum_name(kGrade, g, "info"); }
+std::string_view to_string(LinkKind k) noexcept { return top::enum_name(kLinkKind, k, "udp"); }
+std::string_view to_string(Compatibility::Level l) noexcept {
+  return top::enum_name(kLevel, l, "unreachable");
+}
+
 std::string Compatibility::text() const {
-  switch (level) {
-    case Level::compatible:
-      return "compatible";
-    case Level::without:
-      return "compatible without: " + joined(features, ", ");
-    case Level::incompatible:
-      return "incompatible: " + joined(reasons, "; ");
-    default:
-      return "unreachable: " + joined(reasons, "; ");
-  }
+  // the verdict's name, then what it lists: the features lost or the reasons
+  const std::string name(to_string(level));
+  if (level == Level::compatible) return name;
+  return name + ": " + (level == Level::without ? joined(features, ", ") : joined(reasons, "; "));
 }
 
 int Compatibility::exit_code() const noexcept {
@@ -138,10 +116,7 @@ nlohmann::json to_json(const Compatibility& c) {
 }
 
 nlohmann::json to_json(const Profile& p) {
-  auto src = [&](int i) {
-    const Source& s = p.sources.at(static_cast<std::size_t>(i));
-    return std::string(s.repo) + " " + std::string(s.path) + " @ " + std::string(s.ref);
-  };
+  auto src = [&](int i) { return to_string(p.sources.at(static_cast<std::size_t>(i))); };
   nlohmann::json j;
   j["name"] = std::string(p.name);
   j["title"] = std::string(p.title);

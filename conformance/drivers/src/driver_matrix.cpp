@@ -11,15 +11,11 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
-std::string_view level_of(Grade g) {
-  switch (g) {
-    case Grade::must:
-      return "must";
-    case Grade::should:
-      return "should";
-    default:
-      return "may";
-  }
+// A grade as the matrix's level: must and should are its own, info is may.
+topconf::Level level_of(Grade g) noexcept {
+  return g == Grade::must     ? topconf::Level::must
+         : g == Grade::should ? topconf::Level::should
+                              : topconf::Level::may;
 }
 
 json send_of(const Need& n, std::string_view ident, std::string_view data, char control) {
@@ -109,12 +105,10 @@ json driver_matrix_json(const Profile& p, top::Model model) {
                                    json{{"reply", {{"ident", std::string(n.cleanup_ident)}}},
                                         {"addresses", "any"},
                                         {"note", "clean-up"}}})}});
-    const Source& src = p.sources.at(static_cast<std::size_t>(n.source));
     json k = {{"id", case_id(p, n)},
-              {"section",
-               std::string(src.repo) + " " + std::string(src.path) + " @ " + std::string(src.ref)},
+              {"section", to_string(p.sources.at(static_cast<std::size_t>(n.source)))},
               {"title", std::string(n.reasoning)},
-              {"level", level_of(n.grade)},
+              {"level", std::string(topconf::to_string(level_of(n.grade)))},
               {"tags", json::array({"driver", std::string(p.name), std::string(n.id),
                                     std::string(to_string(n.grade))})},
               {"steps", steps}};

@@ -5,6 +5,10 @@
 
 namespace drivers {
 
+std::string to_string(const Source& s) {
+  return std::string(s.repo) + " " + std::string(s.path) + " @ " + std::string(s.ref);
+}
+
 bool Profile::serves(top::Model m) const noexcept {
   return std::find(models.begin(), models.end(), m) != models.end();
 }

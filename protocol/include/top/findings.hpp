@@ -95,8 +95,8 @@ std::string_view to_string(Severity s) noexcept;
     "#TPUG2wPTZ056FEB); the two digits are taken as the frame's, not as garbage")
 
 // A table row's enumerator, and 1 for each row: what every X-macro table
-// (this one, TOP_DIAGNOSES) derives its enum and count from, whatever its
-// columns.
+// (this one, TOP_DIAGNOSES, topdump's TOPDUMP_FINDINGS) derives its enum
+// and count from, whatever its columns.
 #define TOP_ROW_ENUMERATOR(e, ...) e,
 #define TOP_ROW_COUNT(...) +1  // NOLINT(bugprone-macro-parentheses)
 

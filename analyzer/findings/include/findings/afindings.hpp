@@ -85,20 +85,14 @@ namespace topdump {
 // top/diagnoses.hpp (the one home of their codes, severities, evidence and
 // remedies), so that a diagnosis is a session finding like the others:
 // selected, muted, counted and in the exit status by the same code.
+// The enum and the count derive from the rows as every X-macro table's do
+// (top/findings.hpp: TOP_ROW_ENUMERATOR, TOP_ROW_COUNT).
 enum class ACode : std::uint16_t {
-#define TOPDUMP_X(e, s, sev, when) e,
-#define TOPDUMP_D(e, s, sev, title, evidence, remedy) e,
-  TOPDUMP_FINDINGS(TOPDUMP_X) TOP_DIAGNOSES(TOPDUMP_D)
-#undef TOPDUMP_D
-#undef TOPDUMP_X
+  TOPDUMP_FINDINGS(TOP_ROW_ENUMERATOR) TOP_DIAGNOSES(TOP_ROW_ENUMERATOR)
 };
 
 // The analyzer findings proper (before the diagnoses).
-inline constexpr std::size_t afinding_count = 0
-#define TOPDUMP_X(e, s, sev, when) +1
-    TOPDUMP_FINDINGS(TOPDUMP_X)
-#undef TOPDUMP_X
-    ;
+inline constexpr std::size_t afinding_count = 0 TOPDUMP_FINDINGS(TOP_ROW_COUNT);
 inline constexpr std::size_t acode_count = afinding_count + top::diagnosis_count;
 
 // A diagnosis as an analyzer code, and back (nullopt for a finding).

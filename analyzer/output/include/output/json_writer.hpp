@@ -381,6 +381,18 @@ class Doc {
     item();
     open_object();
   }
+  // A member `k` that is an array of one object per element of `r`, whose
+  // members `each(x)` writes.
+  template <class Range, class Each>
+  void key_objects(std::string_view k, const Range& r, Each&& each) {
+    key_array(k);
+    for (const auto& x : r) {
+      item_object();
+      each(x);
+      close_object();
+    }
+    close_array();
+  }
   // A member and its value: a count, a string, a time (put_time).
   void u(std::string_view k, std::uint64_t v) {
     key(k);

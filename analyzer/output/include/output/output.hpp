@@ -185,6 +185,19 @@ class CsvSink : public Sink {
   std::vector<bool> units_;          // field.NAME.unit: its unit, not its value
 };
 
+// The pairing totals, in the order every writer gives them: their stats
+// --json keys ("pairing", where "copies" follows them) and the names stats
+// and the report's summary print them with.
+struct StatsCount {
+  std::string_view name;
+  std::uint64_t Stats::*count;
+};
+inline constexpr StatsCount kPairingCounts[] = {{"requests", &Stats::requests},
+                                                {"responses", &Stats::responses},
+                                                {"paired", &Stats::paired},
+                                                {"unanswered", &Stats::unanswered},
+                                                {"unsolicited", &Stats::unsolicited}};
+
 // The statistics as JSON appended to `out`: indented by `indent` spaces per
 // level (stats --json: 2), or on one line with indent < 0 and, when `type`
 // is given, a leading "type" key (the last line of live and serial --json).

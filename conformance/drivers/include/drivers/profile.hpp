@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -22,6 +23,8 @@ std::string_view to_string(Grade g) noexcept;
 struct Source {
   std::string_view repo, path, ref;
 };
+// "repo path @ ref", as every listing of a profile names its sources.
+std::string to_string(const Source& s);
 
 enum class LinkKind : std::uint8_t { serial, udp, tcp };
 std::string_view to_string(LinkKind k) noexcept;
