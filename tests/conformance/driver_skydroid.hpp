@@ -44,6 +44,9 @@ class SkyDroidDriver : public DriverClient {
   double yaw_rate = 0, pitch_rate = 0;
   // No motion command until the first motion intent (topkit_drive_client).
   bool idle = false;
+  // The runaway guard on rates (drive::RunawayGuard): on in topconf
+  // drive's clients; off where a test watches a device turn the wrong way.
+  bool guard = false;
   drive::Bugs bugs;
   // A camera command to send at a time after the start.
   struct Timed {
@@ -244,8 +247,8 @@ class SkyDroidDriver : public DriverClient {
   // no-stop-after-last-rate).
   void rates(std::uint64_t now_us, std::vector<std::string>& out) {
     double y = 0, p = 0;
-    const bool fresh = bugs.has(drive::Bug::rates_on_stale_attitude) ? !attitude.empty()
-                                                                       : healthy(now_us);
+    const bool fresh =
+        bugs.has(drive::Bug::rates_on_stale_attitude) ? !attitude.empty() : healthy(now_us);
     if (fresh) {
       const Attitude& a = attitude.back();
       if (rate_mode) {
@@ -256,8 +259,10 @@ class SkyDroidDriver : public DriverClient {
         while (ey < -180) ey += 360;
         y = loop_rate(ey), p = loop_rate(target_pitch - a.pitch);
       }
-      if (!guard_yaw_.allow(y, a.yaw)) y = 0, error = "yaw turns against its rate: stopped";
-      if (!guard_pitch_.allow(p, a.pitch)) p = 0, error = "pitch turns against its rate: stopped";
+      if (guard && !guard_yaw_.allow(y, a.yaw))
+        y = 0, error = "yaw turns against its rate: stopped";
+      if (guard && !guard_pitch_.allow(p, a.pitch))
+        p = 0, error = "pitch turns against its rate: stopped";
     }
     const int gsy = -lsb(y);  // +GSY turns yaw left
     const int gsp = bugs.has(drive::Bug::pitch_rate_sign) ? -lsb(p) : lsb(p);

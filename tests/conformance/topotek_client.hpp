@@ -47,9 +47,9 @@ class TopotekClient : public DriverClient {
   // No target at all until the first motion intent (topkit_drive_client);
   // the upstream driver sends its targets from the start.
   bool idle = false;
-  // Asks a single range measurement once a second (LRF 02; the driver
-  // measures on request only: set_rangefinder_enable()).
-  bool range_poll = false;
+  // The runaway guard on rates (drive::RunawayGuard): on in topconf
+  // drive's clients; off where a test watches a device turn the wrong way.
+  bool guard = false;
   drive::Bugs bugs;
 
   // What the driver learnt.
@@ -85,6 +85,8 @@ class TopotekClient : public DriverClient {
   void cancel_tracking() { pending_.push_back(fixed('D', 'w', "TRC", track_state == '2' ? 1 : 0)); }
   // set_rangefinder_enable(): 03 continuous measurement, 00 stop, to M.
   void rangefinder(bool on) { pending_.push_back(fixed('M', 'w', "LRF", on ? 3 : 0)); }
+  // The range intent: one measurement (LRF 02, Topotek 5.9 note 2).
+  void measure_range() { pending_.push_back(fixed('M', 'w', "LRF", 2)); }
 
   // Intents (topconf drive): the driver API's calls they stand for.
   void rate(double y, double p, double r, bool /*earth*/) {
@@ -173,7 +175,6 @@ class TopotekClient : public DriverClient {
           !(q.ident == "GIA" && bugs.has(drive::Bug::no_reenable_after_reboot) &&
             !attitude.empty()))
         out.push_back(frame(top::Header::fixed, q.dst, q.control, q.ident, q.data));
-    if (range_poll && step == 5) out.push_back(fixed('M', 'w', "LRF", 2));
     if (!tracking && !idle) targets(now_us, out);
     return now_us + std::uint64_t{profile().tick_ms} * 1000;
   }
@@ -330,14 +331,16 @@ class TopotekClient : public DriverClient {
     }
     // A good driver sends no rate on an attitude older than 1 s (it stops
     // instead); rates-on-stale-attitude only waits for a first attitude.
-    const bool fresh = bugs.has(drive::Bug::rates_on_stale_attitude) ? !attitude.empty()
-                                                                       : healthy(now_us);
+    const bool fresh =
+        bugs.has(drive::Bug::rates_on_stale_attitude) ? !attitude.empty() : healthy(now_us);
     std::optional<double> at_yaw, at_pitch;
     if (!attitude.empty()) at_yaw = attitude.back().yaw, at_pitch = attitude.back().pitch;
     double yr = fresh ? yaw_rate : 0, pr = fresh ? pitch_rate : 0;
     const double rr = fresh ? roll_rate : 0;
-    if (!guard_yaw_.allow(yr, at_yaw)) yr = 0, error = "yaw turns against its rate: stopped";
-    if (!guard_pitch_.allow(pr, at_pitch)) pr = 0, error = "pitch turns against its rate: stopped";
+    if (guard && !guard_yaw_.allow(yr, at_yaw))
+      yr = 0, error = "yaw turns against its rate: stopped";
+    if (guard && !guard_pitch_.allow(pr, at_pitch))
+      pr = 0, error = "pitch turns against its rate: stopped";
     // deg/s x 1.220740379, +-99, pitch negated (PR #29002; not with pitch-rate-sign).
     auto ypr_byte = [](double r) {
       return hex2(std::lround(std::fmax(-99, std::fmin(99, r * 1.220740379))));
@@ -377,8 +380,10 @@ class TopotekClient : public DriverClient {
         scale = 1;
       } else if (c >= '0' && c <= '9') {
         digits = true;
-        if (scale > 0) scale /= 10, v += (c - '0') * scale;
-        else v = v * 10 + (c - '0');
+        if (scale > 0)
+          scale /= 10, v += (c - '0') * scale;
+        else
+          v = v * 10 + (c - '0');
       } else {
         return distance_m;
       }

@@ -3,7 +3,10 @@
 // topkit_drive_client and the in-process tests of drive_client_test.cpp).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <utility>
+#include <vector>
 
 #include "drive_client/intents.hpp"
 
@@ -45,6 +48,14 @@ bool act(Client& c, const Intent& i, std::uint64_t now_us) {
       c.set_clock(u, now_us);
       return true;
     }
+    case D::range:
+      if constexpr (requires { c.measure_range(); }) {
+        c.measure_range();
+        return true;
+      }
+      return false;
+    case D::other:
+      return true;  // not an action for a driver (ignored)
     case D::track_point:
     case D::track_box:
     case D::track_stop:
@@ -63,6 +74,12 @@ bool act(Client& c, const Intent& i, std::uint64_t now_us) {
 class Script {
  public:
   explicit Script(std::vector<Intent> v) : v_(std::move(v)) {}
+  // More intents (a followed file): those not yet due keep their order.
+  void add(const std::vector<Intent>& more) {
+    v_.insert(v_.end(), more.begin(), more.end());
+    std::stable_sort(v_.begin() + static_cast<std::ptrdiff_t>(next_), v_.end(),
+                     [](const Intent& a, const Intent& b) { return a.at_us < b.at_us; });
+  }
   // Acts on every intent due by `t_us` after the start; returns how many
   // were not acted on.
   template <class Client>

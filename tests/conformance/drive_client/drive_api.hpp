@@ -21,15 +21,15 @@ namespace drive {
 // One switch per known real driver bug (issue 50 item 5). Each names the
 // case of `topconf drive` it must fail (docs/DRIVE.md), and its source.
 enum class Bug : std::uint8_t {
-  pitch_rate_sign,          // 2.1
-  uart_address_on_network,  // 6.4
-  strict_version,           // 3.2
-  echo_as_attitude,         // 6.5
-  range_fixed_offsets,      // 8.3
-  month_zero_based,         // 9.1
-  no_stop_after_last_rate,  // 2.4
-  no_reenable_after_reboot, // 1.4
-  rates_on_stale_attitude,  // 2.5
+  pitch_rate_sign,           // 2.1
+  uart_address_on_network,   // 6.4
+  strict_version,            // 3.2
+  echo_as_attitude,          // 6.5
+  range_fixed_offsets,       // 8.3
+  month_zero_based,          // 9.1
+  no_stop_after_last_rate,   // 2.4
+  no_reenable_after_reboot,  // 1.4
+  rates_on_stale_attitude,   // 2.5
 };
 inline constexpr std::size_t kBugs = 9;
 
@@ -111,8 +111,9 @@ struct Beliefs {
 
   nlohmann::json to_json() const {
     nlohmann::json j;
-    if (attitude) j["attitude"] = {{"roll", attitude->roll}, {"pitch", attitude->pitch},
-                                   {"yaw", attitude->yaw}};
+    if (attitude)
+      j["attitude"] = {
+          {"roll", attitude->roll}, {"pitch", attitude->pitch}, {"yaw", attitude->yaw}};
     j["healthy"] = healthy;
     if (version) j["version"] = *version;
     if (model) j["model"] = *model;
@@ -159,8 +160,9 @@ class RunawayGuard {
 // A firmware version reply's numbers (at most three; n == 0: not a version).
 // A good driver takes the decimal numbers between dots, the last one too,
 // until a part that is not one ("1.6.26.R.D" is 1.6.26, "1.2.3" 1.2.3), or
-// three digits without a dot as three numbers ("123" is 1.2.3, the form
-// AP_Mount_Topotek.cpp gimbal_version_analyse() documents since PR #27568).
+// up to three digits without a dot as one number each ("123" is 1.2.3, the
+// form AP_Mount_Topotek.cpp gimbal_version_analyse() documents since PR
+// #27568; "1" is 1).
 // `strict` (strict-version) reads dotted numbers only, as sscanf("%d.%d.%d")
 // does: "123" is 123.
 struct Version {
@@ -184,8 +186,9 @@ inline Version parse_version(std::string_view d, bool strict) {
     return v;
   }
   if (d.find('.') == std::string_view::npos) {
-    if (d.size() == 3 && digits(d))
-      for (v.n = 0; v.n < 3; ++v.n) v.parts[v.n] = d[static_cast<std::size_t>(v.n)] - '0';
+    if (d.size() <= 3 && digits(d))
+      for (v.n = 0; v.n < static_cast<int>(d.size()); ++v.n)
+        v.parts[v.n] = d[static_cast<std::size_t>(v.n)] - '0';
     return v;
   }
   for (std::size_t i = 0; v.n < 3 && i <= d.size();) {

@@ -23,6 +23,7 @@ constexpr Named kActions[] = {
     {"zoom", Intent::Do::zoom},           {"track_point", Intent::Do::track_point},
     {"track_box", Intent::Do::track_box}, {"track_stop", Intent::Do::track_stop},
     {"identity", Intent::Do::identity},   {"clock", Intent::Do::clock},
+    {"range", Intent::Do::range},
 };
 
 // A number at `key` (absent: `fallback`); throws the message on a wrong type.
@@ -45,8 +46,8 @@ Intent one(const nlohmann::json& j) {
   const std::string what = d->get<std::string>();
   const auto a = std::find_if(std::begin(kActions), std::end(kActions),
                               [&](const Named& n) { return what == n.name; });
-  if (a == std::end(kActions)) throw "unknown action \"" + what + "\"";
-  in.what = a->what;
+  // Unknown actions are ignored (docs/DRIVE.md: later versions may add).
+  in.what = a == std::end(kActions) ? Intent::Do::other : a->what;
   if (const auto f = j.find("frame"); f != j.end()) {
     if (!f->is_string() || (*f != "body" && *f != "earth"))
       throw std::string("\"frame\" is not \"body\" or \"earth\"");
@@ -91,11 +92,11 @@ bool parse_utc(const std::string& s, Utc& o) {
 }
 
 std::vector<Intent> parse_intents(const std::string& text, const std::string& name,
-                                  std::string& error) {
+                                  std::string& error, std::size_t first_line) {
   std::vector<Intent> v;
   std::istringstream in(text);
   std::string line;
-  for (std::size_t n = 1; std::getline(in, line); ++n) {
+  for (std::size_t n = first_line; std::getline(in, line); ++n) {
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
     const auto j = nlohmann::json::parse(line, nullptr, false);
     try {
@@ -133,6 +134,36 @@ std::vector<Intent> load_intents(const std::string& path, std::string& error) {
     return {};
   }
   return parse_intents(text, path, error);
+}
+
+bool IntentFile::poll(std::vector<Intent>& out, std::string& error) {
+  std::ifstream f(path_, std::ios::binary);
+  if (!f) return true;  // not there yet
+  f.seekg(static_cast<std::streamoff>(offset_));
+  char buf[65536];
+  f.read(buf, sizeof buf);
+  const auto n = static_cast<std::size_t>(f.gcount());
+  if (f.bad()) {
+    error = path_ + ": read error";
+    return false;
+  }
+  offset_ += n;
+  partial_.append(buf, n);
+  const std::size_t end = partial_.rfind('\n');
+  if (end == std::string::npos) {
+    if (partial_.size() > sizeof buf) {
+      error = path_ + ":" + std::to_string(line_) + ": a line over 64 KiB";
+      return false;
+    }
+    return true;
+  }
+  const std::string lines = partial_.substr(0, end + 1);
+  partial_.erase(0, end + 1);
+  std::vector<Intent> v = parse_intents(lines, path_, error, line_);
+  if (!error.empty()) return false;
+  line_ += static_cast<std::size_t>(std::count(lines.begin(), lines.end(), '\n'));
+  out.insert(out.end(), v.begin(), v.end());
+  return true;
 }
 
 }  // namespace drive

@@ -45,41 +45,59 @@ std::string bug_help() {
   std::string s = "a known driver bug to switch on (repeatable):";
   for (const drive::BugInfo& b : drive::bug_table())
     s += "\n  " + std::string(b.name) + " (fails " + std::string(b.cases) + "; " +
-         (b.topotek && b.skydroid ? "both drivers" : b.topotek ? "ardupilot-topotek" : "skydroid") +
+         (b.topotek && b.skydroid ? "both drivers"
+          : b.topotek             ? "ardupilot-topotek"
+                                  : "skydroid") +
          "): " + std::string(b.what);
   return s;
 }
 
-// Runs `c` on `t` until a signal or the duration: intents at their
-// times, beliefs every belief_ms. Returns the exit status.
+// Runs `c` on `t` until a signal or the duration: intents at their times
+// (followed as the file grows with `follow`), beliefs at each new attitude
+// and every belief_ms. Returns the exit status.
 template <class Client>
-int drive_loop(Client& c, topconf::Transport& t, const Options& o,
-               std::vector<drive::Intent> intents) {
+int drive_loop(Client& c, topconf::Transport& t, const Options& o, drive::Script script,
+               drive::IntentFile* follow) {
   c.client = t.client_address();
   topconf::FrameLink link(t, nullptr, 4096);
-  drive::Script script(std::move(intents));
   const std::uint64_t start = link.now();
   const std::uint64_t end =
       o.duration_s > 0 ? start + static_cast<std::uint64_t>(o.duration_s * 1e6) : UINT64_MAX;
-  std::uint64_t next_tick = start, next_belief = start;
+  std::uint64_t next_tick = start, next_belief = start, next_poll = start;
+  std::size_t attitudes = 0;
   int skipped = 0;
   std::vector<std::string> out;
   for (std::uint64_t now = link.now(); !g_stop && now < end; now = link.now()) {
+    if (follow && now >= next_poll) {
+      next_poll = now + 100000;
+      std::vector<drive::Intent> more;
+      std::string why;
+      if (!follow->poll(more, why)) {
+        topkit::cli::error(kTool, why);
+        return topkit::cli::close_stdout(kTool, 2);
+      }
+      script.add(more);
+    }
     skipped += script.run_due(c, now - start, now);
     if (now >= next_tick) {
       out.clear();
       next_tick = c.tick(now, out);
       for (const std::string& f : out) link.send(f);
     }
-    if (now >= next_belief) {
+    if (now >= next_belief || c.attitude.size() != attitudes) {
       next_belief = now + o.belief_ms * 1000ULL;
+      if (c.attitude.size() > 1000) c.attitude.erase(c.attitude.begin(), c.attitude.end() - 10);
+      attitudes = c.attitude.size();
       const std::string line = c.beliefs(now).to_json().dump() + "\n";
       if (std::fputs(line.c_str(), stdout) == EOF || std::fflush(stdout) != 0)
         return topkit::cli::close_stdout(kTool, 2);
     }
-    const std::uint64_t due = std::min({next_tick, next_belief, end, start + script.next_at()});
+    std::uint64_t due = std::min({next_tick, next_belief, end});
+    if (script.next_at() != UINT64_MAX) due = std::min(due, start + script.next_at());
+    if (follow) due = std::min(due, next_poll);
     topconf::Received r;
-    while (!g_stop && link.next(due, r)) c.on_frame(r.frame, r.t_us);
+    while (!g_stop && c.attitude.size() == attitudes && link.next(due, r))
+      c.on_frame(r.frame, r.t_us);
   }
   if (skipped > 0)
     topkit::cli::warning(kTool, std::to_string(skipped) + " intent(s) not acted on (" + o.driver +
@@ -105,8 +123,9 @@ int main(int argc, char** argv) {
   links->require_option(1);
   app.add_option("--bug", o.bugs, bug_help());
   app.add_option("--intents", o.intents, "the intents file (default: $TOPCONF_INTENT; none: idle)");
-  app.add_option("--model", o.model, "the device's model (default: $TOPCONF_MODEL, else the "
-                                     "driver's first: sip, c12)");
+  app.add_option("--model", o.model,
+                 "the device's model (default: $TOPCONF_MODEL, else the "
+                 "driver's first: sip, c12)");
   app.add_option("--duration", o.duration_s, "stop after this many seconds (0: at SIGTERM)")
       ->check(CLI::Range(0.0, 86400.0));
   app.add_option("--belief-ms", o.belief_ms, "print the beliefs this often")
@@ -115,8 +134,8 @@ int main(int argc, char** argv) {
 
   const bool topotek = o.driver == "ardupilot-topotek";
   if (!topotek && o.driver != "ardupilot-skydroid") {
-    topkit::cli::error(kTool, "--driver " + o.driver +
-                                  ": not one of ardupilot-topotek, ardupilot-skydroid");
+    topkit::cli::error(
+        kTool, "--driver " + o.driver + ": not one of ardupilot-topotek, ardupilot-skydroid");
     return 2;
   }
   drive::Bugs bugs;
@@ -140,8 +159,11 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (o.intents.empty() && std::getenv("TOPCONF_INTENT")) o.intents = std::getenv("TOPCONF_INTENT");
+  // --persistent (TOPCONF_CASE=persistent): the file grows while we run.
+  const char* case_id = std::getenv("TOPCONF_CASE");
+  const bool persistent = case_id && std::string(case_id) == "persistent";
   std::vector<drive::Intent> intents;
-  if (!o.intents.empty()) {
+  if (!o.intents.empty() && !persistent) {
     std::string why;
     intents = drive::load_intents(o.intents, why);
     if (!why.empty()) {
@@ -149,27 +171,29 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  drive::IntentFile follow(o.intents);
+  drive::IntentFile* followed = persistent && !o.intents.empty() ? &follow : nullptr;
 
-  struct sigaction sa{};
+  struct sigaction sa {};
   sa.sa_handler = on_signal;
   sigemptyset(&sa.sa_mask);
   sigaction(SIGTERM, &sa, nullptr);
   sigaction(SIGINT, &sa, nullptr);
   std::signal(SIGPIPE, SIG_IGN);
   try {
-    const std::string target = !o.pty.empty() ? "serial:" + o.pty
+    const std::string target = !o.pty.empty()   ? "serial:" + o.pty
                                : !o.udp.empty() ? "udp://" + o.udp
                                                 : "tcp://" + o.tcp;
     // UDP: an ephemeral port (several clients on one host), not connected.
     std::unique_ptr<topconf::Transport> t = topconf::open_transport(target, *model, 0);
     if (topotek) {
       TopotekClient c;
-      c.bugs = bugs, c.idle = true, c.range_poll = true;
-      return drive_loop(c, *t, o, std::move(intents));
+      c.bugs = bugs, c.idle = true, c.guard = true;
+      return drive_loop(c, *t, o, drive::Script(std::move(intents)), followed);
     }
     SkyDroidDriver c;
-    c.bugs = bugs, c.idle = true;
-    return drive_loop(c, *t, o, std::move(intents));
+    c.bugs = bugs, c.idle = true, c.guard = true;
+    return drive_loop(c, *t, o, drive::Script(std::move(intents)), followed);
   } catch (const topconf::TransportError& e) {
     if (g_stop) return topkit::cli::close_stdout(kTool, 0);
     topkit::cli::error(kTool, e.what());
