@@ -46,8 +46,8 @@ std::size_t pushes_between(Device& d, std::uint64_t from, std::uint64_t to) {
 }
 
 TEST(DriveFaults, ParseAndReject) {
-  const topsim::FaultConfig f = faults(
-      "stop=GAC@0.5,ere=CAP,range-form=short,late=VSN@1500,checksum-case=0.5,reboot=1.25");
+  const topsim::FaultConfig f =
+      faults("stop=GAC@0.5,ere=CAP,range-form=short,late=VSN@1500,checksum-case=0.5,reboot=1.25");
   ASSERT_EQ(f.device.stops.size(), 1u);
   EXPECT_EQ(f.device.stops[0].ident, "GAC");
   EXPECT_EQ(f.device.stops[0].from_us, 500000u);
@@ -59,9 +59,9 @@ TEST(DriveFaults, ParseAndReject) {
   EXPECT_DOUBLE_EQ(f.checksum_case, 0.5);
   EXPECT_EQ(f.reboot_us, 1250000u);
   EXPECT_TRUE(f.any());
-  for (const char* bad : {"stop=XYZ@1", "stop=GAC", "ere=CA", "range-form=long", "late=VSN",
-                          "late=VSNX@1", "late=VSN@-1", "checksum-case=2", "reboot=0",
-                          "reboot=x"}) {
+  for (const char* bad :
+       {"stop=XYZ@1", "stop=GAC", "ere=CA", "range-form=long", "late=VSN", "late=VSNX@1",
+        "late=VSN@-1", "checksum-case=2", "reboot=0", "reboot=x"}) {
     std::string err;
     EXPECT_FALSE(topsim::parse_faults(bad, err).has_value()) << bad;
     EXPECT_NE(err.find(std::string(bad).substr(0, 4)), std::string::npos) << bad << ": " << err;

@@ -39,17 +39,17 @@ WireFrame rate(double t, double yaw, double pitch = 0) {
   return w;
 }
 Belief belief(double t, double pitch, bool healthy = true) {
-  return Belief{t, {{"attitude", {{"yaw", 0}, {"pitch", pitch}, {"roll", 0}}},
-                    {"healthy", healthy}}};
+  return Belief{t,
+                {{"attitude", {{"yaw", 0}, {"pitch", pitch}, {"roll", 0}}}, {"healthy", healthy}}};
 }
 
 TEST(DriveCases, StableIds) {
   std::vector<std::string> ids;
   for (const CaseSpec& c : cases()) ids.emplace_back(c.id);
-  EXPECT_EQ(ids, (std::vector<std::string>{"1.1", "1.2", "1.3", "1.4", "2.1", "2.2", "2.3", "2.4",
-                                           "2.5", "3.1", "3.2", "3.3", "3.4", "4.1", "5.1", "6.1",
-                                           "6.2", "6.3", "6.4", "6.5", "7.1", "7.2", "7.3", "8.1",
-                                           "8.2", "8.3", "9.1"}));
+  EXPECT_EQ(ids, (std::vector<std::string>{"1.1", "1.2", "1.3", "1.4", "2.1", "2.2", "2.3",
+                                           "2.4", "2.5", "3.1", "3.2", "3.3", "3.4", "4.1",
+                                           "5.1", "6.1", "6.2", "6.3", "6.4", "6.5", "7.1",
+                                           "7.2", "7.3", "8.1", "8.2", "8.3", "9.1"}));
   std::string err;
   EXPECT_EQ(select_cases({"2"}, err).size(), 5u);
   EXPECT_TRUE(select_cases({"2.9"}, err).empty());
@@ -126,12 +126,12 @@ TEST(DriveGrade, VersionBelief) {
   for (double t = 0.2; t < 3; t += 0.1) r.wire.push_back(push(t));
   r.intents = {Intent{1.0, {{"do", "rate"}}}, Intent{1.8, {{"do", "stop"}}}};
   r.wire.push_back(rate(1.1, 0, 10));
-  for (const auto& [said, want] : std::vector<std::pair<std::string, Grade>>{
-           {"123", Grade::pass},
-           {"1.2.3", Grade::pass},
-           {"unknown", Grade::non_strict},
-           {"123.0.0", Grade::fail},
-           {"1.6.26", Grade::fail}}) {
+  for (const auto& [said, want] :
+       std::vector<std::pair<std::string, Grade>>{{"123", Grade::pass},
+                                                  {"1.2.3", Grade::pass},
+                                                  {"unknown", Grade::non_strict},
+                                                  {"123.0.0", Grade::fail},
+                                                  {"1.6.26", Grade::fail}}) {
     Record x = r;
     x.beliefs = {Belief{2.0, {{"version", said}}}};
     EXPECT_EQ(grade("3.2", x, top::Model::sip).grade, want) << said;

@@ -134,8 +134,8 @@ CaseResult run_one(const DriveOptions& o, const CaseSpec& c) {
                       stdout_copy << line << "\n";
                     });
     if (setup.faults.reboot_us)
-      r.reboot_at = (static_cast<double>(setup.faults.reboot_us) -
-                     static_cast<double>(server_at_t0)) / 1e6;
+      r.reboot_at =
+          (static_cast<double>(setup.faults.reboot_us) - static_cast<double>(server_at_t0)) / 1e6;
     // The case's time: truth every 50 ms.
     for (;;) {
       const double t = std::chrono::duration<double>(Steady::now() - t0).count();
@@ -144,10 +144,10 @@ CaseResult run_one(const DriveOptions& o, const CaseSpec& c) {
         p.stop();
         res.driver_exit = p.status();
         const std::string why = tail_of((fs::path(o.out_dir) / res.stderr_path).string());
-        res.verdict = Verdict{Grade::error,
-                              "the driver exited at once (" + p.status() + ")" +
-                                  (why.empty() ? "" : ": " + why),
-                              {}};
+        res.verdict = Verdict{
+            Grade::error,
+            "the driver exited at once (" + p.status() + ")" + (why.empty() ? "" : ": " + why),
+            {}};
         return res;
       }
       dev.sample(r.truth, t);
@@ -211,7 +211,8 @@ DriveRun run_drive(const DriveOptions& given) {
       }
     };
     std::vector<std::thread> pool;
-    const unsigned n = std::max(1u, std::min<unsigned>(o.jobs, static_cast<unsigned>(o.cases.size())));
+    const unsigned n =
+        std::max(1u, std::min<unsigned>(o.jobs, static_cast<unsigned>(o.cases.size())));
     for (unsigned i = 0; i < n; ++i) pool.emplace_back(worker);
     for (auto& th : pool) th.join();
   }

@@ -94,8 +94,8 @@ void WireTap::drain(double t, bool in, top::StreamDecoder& decoder) {
         // An attitude report: three angles of 4 hex chars (a 2-char echo of
         // a switch is none). Its form need not be the document's (the C12's
         // GAC under a #TP header: SkyDroid errata).
-        w.attitude = dec.motion && dec.motion->kind == top::MotionKind::attitude &&
-                     w.data.size() >= 12;
+        w.attitude =
+            dec.motion && dec.motion->kind == top::MotionKind::attitude && w.data.size() >= 12;
       }
     }
     frames_.push_back(std::move(w));
