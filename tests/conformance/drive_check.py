@@ -115,6 +115,8 @@ def main():
         errors.append("good.xml: %s" % (xml.attrib if xml is not None else "no testsuite"))
     html = open(path("good.html"), encoding="utf-8").read()
     errors += report_check.check_offline("good.html", html)
+    if 'href="t/agents/good/cases/2.1/wire.pcap"' not in html:
+        errors.append("good.html: no link to case 2.1's capture from where the page is")
 
     j, g = grades(path("bad.json"))
     want = {"2.1": "fail", "2.4": "fail", "7.1": "pass"}

@@ -187,6 +187,7 @@ DriveRun run_drive(const DriveOptions& given) {
   DriveOptions o = given;
   std::error_code aec;
   o.out_dir = fs::absolute(given.out_dir, aec).lexically_normal().string();
+  run.options.out_dir = o.out_dir;
   run.started = iso_now();
   const auto t0 = Steady::now();
   std::error_code ec;
