@@ -219,13 +219,22 @@ TEST(DriveBugs, RangeFixedOffsets) {
       EXPECT_GT(std::fabs(buggy.distance_m - std::stod(data)), 1) << raw << " " << buggy.distance_m;
     }
   }
-  // And from topsim: the document's form, both right.
+  // And from topsim: the document's form, both right; the short form
+  // (range-form=short), right by its length only.
   topsim::DeviceOptions o;
   o.range_m = 812.3;
-  Driven<TopotekClient> c({at(0.2, Intent::Do::range)});
-  run_driver(c, top::Model::sip, kPty, 600, "", o);
-  ASSERT_TRUE(c.beliefs(0).range_m.has_value());
-  EXPECT_NEAR(*c.beliefs(0).range_m, 812.3, 1e-9);
+  for (const bool shorter : {false, true}) {
+    for (const bool bug : {false, true}) {
+      SCOPED_TRACE(std::string(shorter ? "short" : "document") + (bug ? ", bug" : ", clean"));
+      drive::Bugs b;
+      if (bug) b.set(Bug::range_fixed_offsets);
+      Driven<TopotekClient> c({at(0.2, Intent::Do::range)}, b);
+      run_driver(c, top::Model::sip, kPty, 600, "", o, faults(shorter ? "range-form=short" : ""));
+      ASSERT_TRUE(c.beliefs(0).range_m.has_value());
+      EXPECT_EQ(std::fabs(*c.beliefs(0).range_m - 812.3) < 1e-9, !(bug && shorter))
+          << *c.beliefs(0).range_m;
+    }
+  }
 }
 
 // month-zero-based (9.1): the clock intent of December 6 sets month 12, or
@@ -281,22 +290,27 @@ TEST(DriveBugs, NoStopAfterLastRate) {
   }
 }
 
-// no-reenable-after-reboot (1.4): the stream switch goes out every second
-// for a device that may come back with it off; with the bug only until the
-// first attitude.
+// no-reenable-after-reboot (1.4): the device power-cycles at 1 s with its
+// streams off (reboot=1); the stream switch goes out every second, so the
+// attitude comes back; with the bug it went out only until the first
+// attitude, and after the reboot none comes.
 TEST(DriveBugs, NoReenableAfterReboot) {
   for (const bool bug : {false, true}) {
     SCOPED_TRACE(bug ? "with the bug" : "clean");
     drive::Bugs b;
     if (bug) b.set(Bug::no_reenable_after_reboot);
+    const auto after_reboot = [](const auto& c) {
+      return std::count_if(c.attitude.begin(), c.attitude.end(),
+                           [&](const auto& a) { return a.t_us - c.start() > 2300000; });
+    };
     Driven<TopotekClient> t({}, b);
-    run_driver(t, top::Model::sip, kPty, 3400, "");
-    EXPECT_FALSE(t.attitude.empty());
+    run_driver(t, top::Model::sip, kPty, 3400, "", {}, faults("reboot=1"));
     EXPECT_EQ(t.of("GIA").size(), bug ? 1u : 4u);  // at 0.1, 1.1, 2.1, 3.1 s
+    EXPECT_EQ(after_reboot(t) > 0, !bug);
     Driven<SkyDroidDriver> k({}, b);
-    run_driver(k, top::Model::c12, kUdp, 3400, "");
-    EXPECT_FALSE(k.attitude.empty());
+    run_driver(k, top::Model::c12, kUdp, 3400, "", {}, faults("reboot=1"));
     EXPECT_EQ(k.of("GAA").size(), bug ? 1u : 4u);
+    EXPECT_EQ(after_reboot(k) > 0, !bug);
   }
 }
 
