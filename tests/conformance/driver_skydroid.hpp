@@ -109,7 +109,9 @@ class SkyDroidDriver : public DriverClient {
       b.attitude = {attitude.back().roll, attitude.back().pitch, attitude.back().yaw};
     b.healthy = healthy(now_us);
     if (!version.empty()) b.version = version;
-    if (model.find_first_not_of("0 ") != std::string::npos) b.model = model;
+    if (!model.empty()) b.model = model;
+    if (!model.empty() && model.find_first_not_of('0') == std::string::npos)
+      b.error = "the model name is the factory placeholder " + model;
     if (!error.empty()) b.error = error;
     return b;
   }

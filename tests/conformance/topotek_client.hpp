@@ -142,8 +142,10 @@ class TopotekClient : public DriverClient {
       b.attitude = {attitude.back().roll, attitude.back().pitch, attitude.back().yaw};
     b.healthy = healthy(now_us);
     if (version_parsed) b.version = version_text();
-    // The factory placeholder is no model name (PR #27568).
-    if (model_name.find_first_not_of("0 ") != std::string::npos) b.model = model_name;
+    // What it parsed; the factory placeholder (PR #27568) said as such too.
+    if (!model_name.empty()) b.model = model_name;
+    if (!model_name.empty() && model_name.find_first_not_of('0') == std::string::npos)
+      b.error = "the model name is the factory placeholder " + model_name;
     static constexpr const char* kStates[] = {"off", "searching", "tracking", "lost", "refused"};
     if (!track_states.empty() && track_state >= '0' && track_state <= '4')
       b.tracking = kStates[track_state - '0'];
