@@ -83,8 +83,9 @@ bool DriveCommand::write_agents_table() const {
   for (const fs::path& f : files) {
     const auto text = read_file(f.string());
     auto j = text ? nlohmann::json::parse(*text, nullptr, false) : nlohmann::json();
-    const std::string why = !text ? "cannot read" : j.is_discarded() ? "not JSON"
-                                                                     : drive_table_input_error(j);
+    const std::string why = !text              ? "cannot read"
+                            : j.is_discarded() ? "not JSON"
+                                               : drive_table_input_error(j);
     if (!why.empty()) {
       spdlog::warn("{}: {}: left out of the table", f.string(), why);
       continue;
@@ -104,8 +105,9 @@ int DriveCommand::run() {
   const auto model = topkit::cli::model_arg(kTool, model_name_);
   if (!model) return 2;
   o.model = *model;
-  const std::string link =
-      !link_.empty() ? link_ : top::dialect_of(o.model) == top::Dialect::topotek ? "pty" : "udp";
+  const std::string link = !link_.empty()                                      ? link_
+                           : top::dialect_of(o.model) == top::Dialect::topotek ? "pty"
+                                                                               : "udp";
   o.link = link == "pty"   ? topsim::TransportKind::pty
            : link == "tcp" ? topsim::TransportKind::tcp
                            : topsim::TransportKind::udp;

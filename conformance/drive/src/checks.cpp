@@ -134,24 +134,35 @@ BeliefCheck beliefs_follow_truth(const Record& r, double from) {
       continue;
     }
     // The truth the driver could have seen: up to 0.6 s before (its stream
-    // and its own cadence), the closest.
+    // and its own cadence), the closest, between the 50 ms samples too
+    // (a fast axis moves degrees between two).
     double best = 1e9;
-    const Truth* at = nullptr;
-    for (const Truth& x : r.truth) {
-      if (x.t < b.t - 0.6 || x.t > b.t + 0.05) continue;
-      double e = 0;
-      for (int i = 0; i < 3; ++i)
-        e = std::max(e, std::abs(i == 0 ? top::short_way(a[i] - x.angle[i]) : a[i] - x.angle[i]));
-      if (e < best) best = e, at = &x;
+    Truth at{};
+    bool found = false;
+    for (std::size_t k = 0; k + 1 < r.truth.size(); ++k) {
+      const Truth &x0 = r.truth[k], &x1 = r.truth[k + 1];
+      if (x1.t < b.t - 0.6 || x0.t > b.t + 0.1) continue;
+      for (int step = 0; step <= 10; ++step) {
+        const double f = step / 10.0;
+        Truth x = x0;
+        x.t = x0.t + f * (x1.t - x0.t);
+        for (int i = 0; i < 3; ++i)
+          x.angle[i] = x0.angle[i] + f * (i == 0 ? top::short_way(x1.angle[i] - x0.angle[i])
+                                                 : x1.angle[i] - x0.angle[i]);
+        double e = 0;
+        for (int i = 0; i < 3; ++i)
+          e = std::max(e, std::abs(i == 0 ? top::short_way(a[i] - x.angle[i]) : a[i] - x.angle[i]));
+        if (e < best) best = e, at = x, found = true;
+      }
     }
-    if (!at) continue;
+    if (!found) continue;
     ++judged;
     if (best > 2.0) {
       char d[200];
       std::snprintf(d, sizeof d,
                     "at %.2f s the driver believed yaw %.1f pitch %.1f roll %.1f, healthy; the "
                     "device was at yaw %.1f pitch %.1f roll %.1f (%.1f deg off)",
-                    b.t, a[0], a[1], a[2], at->angle[0], at->angle[1], at->angle[2], best);
+                    b.t, a[0], a[1], a[2], at.angle[0], at.angle[1], at.angle[2], best);
       out.grade = Grade::fail;
       out.check.detail = d;
       return out;
@@ -238,7 +249,8 @@ int rank(Grade g) {
 }  // namespace
 
 void Judge::add(Grade g, std::string name, bool ok, std::string detail) {
-  if (rank(g) > rank(v.grade) || (g != Grade::pass && rank(g) == rank(v.grade) && v.reason.empty())) {
+  if (rank(g) > rank(v.grade) ||
+      (g != Grade::pass && rank(g) == rank(v.grade) && v.reason.empty())) {
     v.grade = g;
     v.reason = name + ": " + detail;
   }

@@ -3,6 +3,7 @@
 #include "drive/grade.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 
@@ -57,10 +58,16 @@ void stream_cases(Judge& j, const CaseSpec& c, const CaseSetup& s, const Record&
     int early = 0;
     for (const WireFrame& w : r.wire)
       if (w.from_driver && moving(w) && (pushes.empty() || w.t < pushes.front())) ++early;
-    if (early) j.fail("no rates without attitude", std::to_string(early) + " rate commands sent while the device had reported no attitude");
-    else j.pass("no rates without attitude", "none sent");
-    if (healthy_in(r, 0, r.duration_s)) j.fail("no healthy belief", "the driver believed a healthy attitude with no stream");
-    else if (!r.beliefs.empty()) j.pass("no healthy belief", "none");
+    if (early)
+      j.fail(
+          "no rates without attitude",
+          std::to_string(early) + " rate commands sent while the device had reported no attitude");
+    else
+      j.pass("no rates without attitude", "none sent");
+    if (healthy_in(r, 0, r.duration_s))
+      j.fail("no healthy belief", "the driver believed a healthy attitude with no stream");
+    else if (!r.beliefs.empty())
+      j.pass("no healthy belief", "none");
     return;
   }
   bool asked = false;
@@ -78,34 +85,58 @@ void stream_cases(Judge& j, const CaseSpec& c, const CaseSetup& s, const Record&
       before = before || w.t <= at;
       if (w.t > at && w.t <= at + 3 && !again) again = true, when = w.t;
     }
-    if (!before) j.add(Grade::unimplemented, "stream re-enabled", false, "no stream switched on before the reboot at " + secs(at));
-    else if (again) j.pass("stream re-enabled", "at " + secs(when) + ", " + secs(when - at) + " after the reboot");
-    else j.fail("stream re-enabled", "not within 3 s of the reboot at " + secs(at));
-    return;
-  }
-  const auto gap = longest_gap(r, 0);
-  if (!gap || gap->length() < 1.5) {
-    j.add(Grade::informational, "fault", true, "no silence of the stream longer than 1.5 s: the fault did not show");
+    if (!before)
+      j.add(Grade::unimplemented, "stream re-enabled", false,
+            "no stream switched on before the reboot at " + secs(at));
+    else if (again)
+      j.pass("stream re-enabled",
+             "at " + secs(when) + ", " + secs(when - at) + " after the reboot");
+    else
+      j.fail("stream re-enabled", "not within 3 s of the reboot at " + secs(at));
     return;
   }
   if (id == "1.3") {
-    bool reask = false;
-    for (const WireFrame& w : r.wire) reask = reask || (w.from_driver && w.stream_on && w.t > gap->from);
-    if (reask) j.pass("stream asked again", "after the stop at " + secs(gap->from));
-    else j.fail("stream asked again", "never after the stream stopped at " + secs(gap->from));
-    if (gap->to <= gap->from + 2.0 && gap->to < r.duration_s) return;  // back in time
+    // The device stops the stream fault_at after the driver first switched
+    // it on.
+    double first = -1, reask = -1;
+    for (const WireFrame& w : r.wire)
+      if (w.from_driver && w.stream_on) {
+        if (first < 0)
+          first = w.t;
+        else if (w.t > first + s.fault_at && reask < 0)
+          reask = w.t;
+      }
+    const double stop = first + s.fault_at;
+    if (reask >= 0)
+      j.pass("stream asked again", "at " + secs(reask) + ", after the stop at " + secs(stop));
+    else
+      j.fail("stream asked again", "never after the stream stopped at " + secs(stop));
+    // Back within 2 s: no unhealthy belief needed.
+    if (reask >= 0 && reask <= stop + 2.0) return;
+  }
+  // The stall lasts 2.2 s; a stop lasts until the driver asks again (at
+  // 10 Hz, half a second without a report is it).
+  const double least = id == "1.3" ? 0.5 : 1.5;
+  const auto gap = longest_gap(r, 0);
+  if (!gap || gap->length() < least) {
+    j.add(Grade::informational, "fault", true,
+          "no silence of the stream longer than " + secs(least) + ": the fault did not show");
+    return;
   }
   if (r.beliefs.empty()) {
     if (id == "1.2") j.add(Grade::unimplemented, "unhealthy belief", false, "no beliefs printed");
     return;
   }
-  if (unhealthy_in(r, gap->from, gap->from + 2.0)) j.pass("unhealthy belief", "within 2 s of the last attitude at " + secs(gap->from));
-  else j.fail("unhealthy belief", "none within 2 s of the last attitude at " + secs(gap->from));
+  if (unhealthy_in(r, gap->from, gap->from + 2.0))
+    j.pass("unhealthy belief", "within 2 s of the last attitude at " + secs(gap->from));
+  else
+    j.fail("unhealthy belief", "none within 2 s of the last attitude at " + secs(gap->from));
   if (id == "1.2" && gap->to < r.duration_s - 1.0) {
-    if (healthy_in(r, gap->to, gap->to + 2.0)) j.pass("healthy again", "after the stream resumed at " + secs(gap->to));
-    else j.fail("healthy again", "not within 2 s of the stream resuming at " + secs(gap->to));
+    if (healthy_in(r, gap->to, gap->to + 2.0))
+      j.pass("healthy again", "after the stream resumed at " + secs(gap->to));
+    else
+      j.fail("healthy again", "not within 2 s of the stream resuming at " + secs(gap->to));
   }
-  (void)s;
 }
 
 void motion_cases(Judge& j, const CaseSpec& c, const Record& r) {
@@ -114,18 +145,23 @@ void motion_cases(Judge& j, const CaseSpec& c, const Record& r) {
   if (id == "2.1") {
     const double end = stop.value_or(r.duration_s) + 0.3;
     int cmds = 0;
-    for (const WireFrame& w : r.wire) cmds += w.from_driver && w.t >= *go && w.t <= end && (w.rate || w.angle);
+    for (const WireFrame& w : r.wire)
+      cmds += w.from_driver && w.t >= *go && w.t <= end && (w.rate || w.angle);
     const Truth* a = truth_at(r, *go);
     const Truth* b = truth_at(r, std::min(end, r.duration_s));
     if (cmds == 0 || !a || !b) {
-      j.add(Grade::unimplemented, "pitch turns up", false, "no motion command for the rate intent at " + secs(*go));
+      j.add(Grade::unimplemented, "pitch turns up", false,
+            "no motion command for the rate intent at " + secs(*go));
       return;
     }
     const double d = b->angle[1] - a->angle[1];
     char t[160];
-    std::snprintf(t, sizeof t, "pitch %.1f -> %.1f deg (%+.1f) for a pitch rate of +10 deg/s", a->angle[1], b->angle[1], d);
-    if (d >= 3) j.pass("pitch turns up", t);
-    else j.fail("pitch turns up", t);
+    std::snprintf(t, sizeof t, "pitch %.1f -> %.1f deg (%+.1f) for a pitch rate of +10 deg/s",
+                  a->angle[1], b->angle[1], d);
+    if (d >= 3)
+      j.pass("pitch turns up", t);
+    else
+      j.fail("pitch turns up", t);
     return;
   }
   if (id == "2.2") {
@@ -138,7 +174,8 @@ void motion_cases(Judge& j, const CaseSpec& c, const Record& r) {
     for (const Truth& x : r.truth)
       if (x.t > 0.5 && (x.angle[1] <= x.limit_min[1] + 2 || x.angle[1] >= x.limit_max[1] - 2)) {
         char t[120];
-        std::snprintf(t, sizeof t, "the pitch reached %.1f deg at %.2f s (limits %.0f..%.0f)", x.angle[1], x.t, x.limit_min[1], x.limit_max[1]);
+        std::snprintf(t, sizeof t, "the pitch reached %.1f deg at %.2f s (limits %.0f..%.0f)",
+                      x.angle[1], x.t, x.limit_min[1], x.limit_max[1]);
         j.fail("no runaway", t);
         return;
       }
@@ -151,22 +188,44 @@ void motion_cases(Judge& j, const CaseSpec& c, const Record& r) {
     return;
   }
   if (id == "2.4") {
+    // Per axis: the axes turning before the stop must each get a zero rate
+    // within 0.5 s of it and no rate after (a GSP 0 alongside a turning
+    // GSY stops nothing).
+    std::array<bool, 3> turning{};
+    for (const WireFrame& w : r.wire)
+      if (w.from_driver && w.rate && stop && w.t < *stop)
+        for (std::size_t i = 0; i < 3; ++i)
+          if (w.axis[i]) turning[i] = std::abs(w.value[i]) > 1e-9;
     if (!go || !stop || moving_frames(r, 0, r.duration_s) == 0) {
-      j.add(Grade::unimplemented, "zero rate after stop", false, "no rate command for the rate intent");
+      j.add(Grade::unimplemented, "zero rate after stop", false,
+            "no rate command for the rate intent");
       return;
     }
-    double zero = -1, late = -1;
-    bool angle = false;
-    for (const WireFrame& w : r.wire) {
-      if (!w.from_driver) continue;
-      if (stopping(w) && w.t >= *stop - 0.05 && w.t <= *stop + 0.5 && zero < 0) zero = w.t;
-      if (w.angle && w.t >= *stop - 0.05 && w.t <= *stop + 0.5) angle = true;
-      if (moving(w) && w.t > *stop + 0.5 && late < 0) late = w.t;
+    static constexpr const char* kAxis[] = {"yaw", "pitch", "roll"};
+    for (std::size_t i = 0; i < 3; ++i) {
+      if (!turning[i]) continue;
+      double zero = -1, late = -1;
+      bool angle = false;
+      for (const WireFrame& w : r.wire) {
+        if (!w.from_driver || !w.axis[i]) continue;
+        const bool turns = w.rate && std::abs(w.value[i]) > 1e-9;
+        if (w.rate && !turns && w.t >= *stop - 0.05 && w.t <= *stop + 0.5 && zero < 0) zero = w.t;
+        if (w.angle && w.t >= *stop - 0.05 && w.t <= *stop + 0.5) angle = true;
+        if (turns && w.t > *stop + 0.5 && late < 0) late = w.t;
+      }
+      const std::string name = std::string(kAxis[i]) + " stopped";
+      if (late >= 0)
+        j.fail(name, "a " + std::string(kAxis[i]) + " rate at " + secs(late) +
+                         ", after the stop at " + secs(*stop));
+      else if (zero >= 0)
+        j.pass(name, "a zero rate at " + secs(zero) + " for the stop at " + secs(*stop));
+      else if (angle)
+        j.add(Grade::non_strict, name, true,
+              "an angle target, no zero rate, for the stop at " + secs(*stop));
+      else
+        j.fail(name, "no zero rate within 0.5 s of the stop at " + secs(*stop) +
+                         ": the axis is left to the device's speed hold");
     }
-    if (late >= 0) j.fail("no rate after stop", "a rate command at " + secs(late) + ", after the stop at " + secs(*stop));
-    if (zero >= 0) j.pass("zero rate after stop", "at " + secs(zero) + " for the stop at " + secs(*stop));
-    else if (angle) j.add(Grade::non_strict, "zero rate after stop", true, "an angle target, no zero rate, for the stop at " + secs(*stop));
-    else j.fail("zero rate after stop", "none within 0.5 s of the stop at " + secs(*stop));
     return;
   }
   // 2.5: no rate on an attitude older than 1.2 s
@@ -183,9 +242,16 @@ void motion_cases(Judge& j, const CaseSpec& c, const Record& r) {
       if (stale++ == 0) first = w.t, age = a;
     }
   }
-  if (n == 0) j.add(Grade::unimplemented, "no rates on a stale attitude", false, "no rate command for the rate intent");
-  else if (stale) j.fail("no rates on a stale attitude", std::to_string(stale) + " rate commands on a stale attitude, the first at " + secs(first) + " (attitude " + secs(age) + " old)");
-  else j.pass("no rates on a stale attitude", std::to_string(n) + " rate commands, all on a fresh attitude");
+  if (n == 0)
+    j.add(Grade::unimplemented, "no rates on a stale attitude", false,
+          "no rate command for the rate intent");
+  else if (stale)
+    j.fail("no rates on a stale attitude", std::to_string(stale) +
+                                               " rate commands on a stale attitude, the first at " +
+                                               secs(first) + " (attitude " + secs(age) + " old)");
+  else
+    j.pass("no rates on a stale attitude",
+           std::to_string(n) + " rate commands, all on a fresh attitude");
 }
 
 }  // namespace
@@ -199,9 +265,12 @@ Verdict grade_case(const CaseSpec& c, const CaseSetup& setup, top::Model model,
     return j.v;
   }
   const char section = c.id[0];
-  if (section == '1') stream_cases(j, c, setup, r);
-  else if (section == '2') motion_cases(j, c, r);
-  else grade_other(j, c, model, link, r);
+  if (section == '1')
+    stream_cases(j, c, setup, r);
+  else if (section == '2')
+    motion_cases(j, c, r);
+  else
+    grade_other(j, c, model, link, r);
   if (j.v.reason.empty()) j.v.reason = j.v.checks.empty() ? "nothing to check" : "every check held";
   return j.v;
 }

@@ -29,15 +29,23 @@ void served(Judge& j, const Record& r) {
     j.fail("motion served", "no rate command after the rate intent at " + secs(*go));
 }
 
-// The version or model the driver reports against the device's.
+// The version or model the driver reports against the device's (`device`
+// empty: the device never answered, unknown is right).
 void identity(Judge& j, const Record& r, const char* key, std::string_view device, bool version) {
   if (r.beliefs.empty()) return;
   const auto v = last_belief(r, key);
   const std::string name = std::string(key) + " belief";
   const std::string dev(device);
-  if (!v || *v == "unknown" || v->empty())
+  const bool placeholder = !dev.empty() && dev.find_first_not_of('0') == std::string::npos;
+  const bool unknown = !v || *v == "unknown" || v->empty();
+  if (unknown && (dev.empty() || placeholder))
+    j.pass(name, dev.empty() ? "reported unknown: the device never answered"
+                             : "reported unknown for the placeholder '" + dev + "'");
+  else if (unknown)
     j.add(Grade::non_strict, name, true, "reported unknown (the device answered '" + dev + "')");
-  else if (!version && *v == dev && dev.find_first_not_of('0') == std::string::npos)
+  else if (dev.empty())
+    j.fail(name, "'" + *v + "', but the device never answered");
+  else if (!version && *v == dev && placeholder)
     j.add(Grade::non_strict, name, true, "the placeholder '" + *v + "' reported as the model");
   else if (same_identity(*v, device, version))
     j.pass(name, "'" + *v + "', the device answered '" + dev + "'");
@@ -141,7 +149,7 @@ void grade_other(Judge& j, const CaseSpec& c, top::Model model, topsim::Transpor
     if (id == "6.3") tight_loop(j, r, "CAP");
   } else if (id == "8.1" || id == "8.2") {
     not_blocked(j, r, 0.5);
-    identity(j, r, "version", r.version, true);
+    identity(j, r, "version", id == "8.2" ? std::string() : r.version, true);
     if (id == "8.2") tight_loop(j, r, ids.version);
   } else if (id == "8.3") {
     double last = -1;

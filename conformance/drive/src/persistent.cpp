@@ -123,8 +123,8 @@ void run_persistent(const DriveOptions& o, DriveRun& run) {
         fs::create_directories(fs::path(o.out_dir) / res.folder);
         finish(o, c, setups[i], r, res);
         res.diagnoses = diag;
-        res.diagnoses_note = note.empty() ? "persistent: the diagnoses of the whole run's capture"
-                                          : note;
+        res.diagnoses_note =
+            note.empty() ? "persistent: the diagnoses of the whole run's capture" : note;
       }
       run.cases.push_back(std::move(res));
       if (o.on_case) o.on_case(run.cases.back());

@@ -67,8 +67,8 @@ DriverProcess::DriverProcess(const std::string& command, const std::string& dir,
   sigaddset(&dfl, SIGINT);
   sigaddset(&dfl, SIGPIPE);
   posix_spawnattr_setsigdefault(&attr, &dfl);
-  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGMASK |
-                                      POSIX_SPAWN_SETSIGDEF);
+  posix_spawnattr_setflags(&attr,
+                           POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
   started_ = std::chrono::steady_clock::now();
   const int rc = ::posix_spawn(&pid_, sh.c_str(), &fa, &attr, argv, envp.data());
   posix_spawn_file_actions_destroy(&fa);

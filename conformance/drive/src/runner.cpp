@@ -134,7 +134,8 @@ CaseResult run_one(const DriveOptions& o, const CaseSpec& c) {
                       stdout_copy << line << "\n";
                     });
     if (setup.faults.reboot_us)
-      r.reboot_at = (static_cast<double>(setup.faults.reboot_us) - server_at_t0) / 1e6;
+      r.reboot_at =
+          (static_cast<double>(setup.faults.reboot_us) - static_cast<double>(server_at_t0)) / 1e6;
     // The case's time: truth every 50 ms.
     for (;;) {
       const double t = std::chrono::duration<double>(Steady::now() - t0).count();
@@ -143,10 +144,10 @@ CaseResult run_one(const DriveOptions& o, const CaseSpec& c) {
         p.stop();
         res.driver_exit = p.status();
         const std::string why = tail_of((fs::path(o.out_dir) / res.stderr_path).string());
-        res.verdict = Verdict{Grade::error,
-                              "the driver exited at once (" + p.status() + ")" +
-                                  (why.empty() ? "" : ": " + why),
-                              {}};
+        res.verdict = Verdict{
+            Grade::error,
+            "the driver exited at once (" + p.status() + ")" + (why.empty() ? "" : ": " + why),
+            {}};
         return res;
       }
       dev.sample(r.truth, t);
@@ -179,9 +180,13 @@ std::string iso_now() {
 
 }  // namespace
 
-DriveRun run_drive(const DriveOptions& o) {
+DriveRun run_drive(const DriveOptions& given) {
   DriveRun run;
-  run.options = o;
+  run.options = given;
+  // The driver runs in its case's folder: every path it is given is absolute.
+  DriveOptions o = given;
+  std::error_code aec;
+  o.out_dir = fs::absolute(given.out_dir, aec).lexically_normal().string();
   run.started = iso_now();
   const auto t0 = Steady::now();
   std::error_code ec;
@@ -206,7 +211,8 @@ DriveRun run_drive(const DriveOptions& o) {
       }
     };
     std::vector<std::thread> pool;
-    const unsigned n = std::max(1u, std::min<unsigned>(o.jobs, static_cast<unsigned>(o.cases.size())));
+    const unsigned n =
+        std::max(1u, std::min<unsigned>(o.jobs, static_cast<unsigned>(o.cases.size())));
     for (unsigned i = 0; i < n; ++i) pool.emplace_back(worker);
     for (auto& th : pool) th.join();
   }

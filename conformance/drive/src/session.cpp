@@ -44,8 +44,7 @@ std::string capture_name(topsim::TransportKind k) {
 
 DeviceRun::DeviceRun(const DriveOptions& o, const CaseSetup& s, const std::string& capture)
     : model_(o.model),
-      tap_(o.model, o.link == topsim::TransportKind::udp,
-           s.options.profile == top::Profile::field),
+      tap_(o.model, o.link == topsim::TransportKind::udp, s.options.profile == top::Profile::field),
       kind_(o.link) {
   topsim::ServerConfig cfg;
   cfg.model = o.model;
@@ -81,7 +80,8 @@ void DeviceRun::stop() {
 }
 
 std::vector<std::pair<std::string, std::string>> DeviceRun::link_values() const {
-  const std::string port = kind_ == topsim::TransportKind::pty ? "" : std::to_string(server_->port());
+  const std::string port =
+      kind_ == topsim::TransportKind::pty ? "" : std::to_string(server_->port());
   return {{"pty", server_->pty_path()}, {"host", "127.0.0.1"}, {"port", port}};
 }
 
@@ -182,7 +182,8 @@ std::vector<Diagnosis> diagnose(const std::string& topdump, top::Model model,
           if (x.is_object()) add(x);
   }
   const int st = ::pclose(p);
-  if (lines == 0) note = "topdump gave nothing (status " + std::to_string(st) + ", " + topdump + ")";
+  if (lines == 0)
+    note = "topdump gave nothing (status " + std::to_string(st) + ", " + topdump + ")";
   return out;
 }
 

@@ -60,13 +60,13 @@ void WireTap::take(double t, bool in, std::string_view bytes) {
   if (datagrams_) dec.reset();
 }
 
-void WireTap::drain(double t, bool in, top::StreamDecoder& dec) {
+void WireTap::drain(double t, bool in, top::StreamDecoder& decoder) {
   top::StreamItem item;
   top::DecodeOptions o;
   o.dialect = top::dialect_of(model_);
   o.model = model_;
   o.role = in ? top::Role::request : top::Role::response;
-  while (dec.next(item)) {
+  while (decoder.next(item)) {
     if (item.kind != top::ItemKind::frame) continue;
     const top::Frame& f = item.frame;
     WireFrame w;
@@ -83,15 +83,19 @@ void WireTap::drain(double t, bool in, top::StreamDecoder& dec) {
       const top::Decoded dec = top::decode(f, o);
       if (in) {
         read_command(dec, w.data, field_, w);
-        if (f.control == 'w' && dec.switches && dec.switches->periodic) {
+        // The switch of a stream the device pushes (not SkyDroid FAE, which
+        // switches the client's FAI).
+        if (f.control == 'w' && dec.switches && dec.switches->periodic &&
+            dec.switches->sender == top::Sender::device) {
           const auto v = top::switch_value(w.data);
           w.stream_on = v && !top::switches_off(*dec.switches, *v);
         }
       } else {
-        // An attitude report of the right length (a 2-char echo of a
-        // switch is none).
-        w.attitude = dec.motion && dec.motion->kind == top::MotionKind::attitude &&
-                     dec.form && dec.form->role == top::Role::response;
+        // An attitude report: three angles of 4 hex chars (a 2-char echo of
+        // a switch is none). Its form need not be the document's (the C12's
+        // GAC under a #TP header: SkyDroid errata).
+        w.attitude =
+            dec.motion && dec.motion->kind == top::MotionKind::attitude && w.data.size() >= 12;
       }
     }
     frames_.push_back(std::move(w));

@@ -22,7 +22,7 @@ class WireTap {
   std::vector<WireFrame> frames() const;
 
  private:
-  void drain(double t, bool in, top::StreamDecoder& dec);
+  void drain(double t, bool in, top::StreamDecoder& decoder);
   top::Model model_;
   bool datagrams_, field_;
   mutable std::mutex mu_;

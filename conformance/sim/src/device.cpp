@@ -208,7 +208,8 @@ bool Device::fault_inverts(std::size_t axis, top::MotionKind kind) const noexcep
 }
 
 bool Device::accepts(const Frame& f, Link link) const noexcept {
-  return top::answers_source(model_, opts_.profile, link, f.src);
+  return top::answers_source(model_, opts_.profile, link, f.src) ||
+         (opts_.any_source && top::is_client_address(f.src));
 }
 
 top::BuildSpec Device::reply_spec(top::Header h, const Frame& req, char control,

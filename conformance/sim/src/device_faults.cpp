@@ -110,7 +110,8 @@ Parsed parse_device_fault(std::string_view name, bool has_value, std::string_vie
     if (at == std::string_view::npos || !seconds(value.substr(at + 1), from))
       return bad("stop needs IDENT@T: a push stream, seconds after it started");
     DeviceFaults::Mute m{std::string(value.substr(0, at)), from, DeviceFaults::kForever};
-    if (!is_push(m.ident)) return bad("stop: '" + m.ident + "' is no push stream (GAC GIC GIA OFT)");
+    if (!is_push(m.ident))
+      return bad("stop: '" + m.ident + "' is no push stream (GAC GIC GIA OFT)");
     if (out.stops.size() >= 32) return bad("stop: at most 32");
     out.stops.push_back(std::move(m));
     return Parsed::ok;

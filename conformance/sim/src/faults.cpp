@@ -101,14 +101,14 @@ std::optional<FaultConfig> parse_faults(std::string_view spec, std::string& erro
       error = "fault '" + std::string(item) + "': " + std::string(why);
       return std::nullopt;
     };
-    double* prob = name == "drop"           ? &cfg.drop
-                   : name == "duplicate"    ? &cfg.duplicate
-                   : name == "bad-checksum" ? &cfg.bad_checksum
-                   : name == "header-case"  ? &cfg.header_case
-                   : name == "lying-length" ? &cfg.lying_length
-                   : name == "garbage"      ? &cfg.garbage
+    double* prob = name == "drop"            ? &cfg.drop
+                   : name == "duplicate"     ? &cfg.duplicate
+                   : name == "bad-checksum"  ? &cfg.bad_checksum
+                   : name == "header-case"   ? &cfg.header_case
+                   : name == "lying-length"  ? &cfg.lying_length
+                   : name == "garbage"       ? &cfg.garbage
                    : name == "checksum-case" ? &cfg.checksum_case
-                                            : nullptr;
+                                             : nullptr;
     if (prob) {
       // A bare name means always.
       if (!has_value) {

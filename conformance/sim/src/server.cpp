@@ -1,5 +1,3 @@
-#include "server_impl.hpp"
-
 #include <fcntl.h>
 #include <pty.h>
 #include <termios.h>
@@ -8,6 +6,8 @@
 #include <cerrno>
 #include <cstring>
 #include <stdexcept>
+
+#include "server_impl.hpp"
 
 namespace topsim {
 

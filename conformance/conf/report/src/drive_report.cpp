@@ -61,8 +61,8 @@ void write_drive_console(std::ostream& os, const DriveRun& r, bool color, bool l
     os << "\n";
   }
   os << r.cases.size() << " case(s), " << top::to_string(r.options.model) << " over "
-     << drive::to_string(r.options.link) << (r.options.persistent ? " (persistent)" : "")
-     << ", " << std::fixed << std::setprecision(1) << r.seconds << " s:";
+     << drive::to_string(r.options.link) << (r.options.persistent ? " (persistent)" : "") << ", "
+     << std::fixed << std::setprecision(1) << r.seconds << " s:";
   for (Grade g : kGrades) os << " " << r.count(g) << " " << drive::to_string(g) << ",";
   os << " exit " << r.exit_code() << "\n";
   if (!r.error.empty()) os << "topconf: drive: " << r.error << "\n";
@@ -108,8 +108,7 @@ nlohmann::json drive_json(const DriveRun& r) {
       k["checks"].push_back({{"name", ch.name}, {"ok", ch.ok}, {"detail", ch.detail}});
     k["diagnoses"] = nlohmann::json::array();
     for (const drive::Diagnosis& d : c.diagnoses)
-      k["diagnoses"].push_back(
-          {{"name", d.code}, {"severity", d.severity}, {"text", d.message}});
+      k["diagnoses"].push_back({{"name", d.code}, {"severity", d.severity}, {"text", d.message}});
     if (!c.diagnoses_note.empty()) k["diagnoses_note"] = c.diagnoses_note;
     j["cases"].push_back(std::move(k));
   }
@@ -129,8 +128,8 @@ void write_drive_junit(std::ostream& os, const DriveRun& r) {
   detail::open_junit(os, s);
   for (const DCase& c : r.cases) {
     os << "<testcase classname=\"" << markup_escape(s.name) << "\" name=\""
-       << markup_escape(std::string(c.spec->id) + " " + std::string(c.spec->title))
-       << "\" time=\"" << c.duration_s << "\">";
+       << markup_escape(std::string(c.spec->id) + " " + std::string(c.spec->title)) << "\" time=\""
+       << c.duration_s << "\">";
     const std::string reason = markup_escape(c.verdict.reason);
     switch (c.verdict.grade) {
       case Grade::fail:
@@ -145,8 +144,8 @@ void write_drive_junit(std::ostream& os, const DriveRun& r) {
            << reason << "\"/>";
         break;
       default:
-        os << "<system-out>" << markup_escape(drive::to_string(c.verdict.grade)) << ": "
-           << reason << "</system-out>";
+        os << "<system-out>" << markup_escape(drive::to_string(c.verdict.grade)) << ": " << reason
+           << "</system-out>";
     }
     os << "</testcase>\n";
   }
@@ -165,8 +164,7 @@ void write_drive_html(std::ostream& os, const DriveRun& r) {
      << ".</p>\n<p class=\"sum\">";
   for (Grade g : kGrades) {
     const std::string name(drive::to_string(g));
-    os << "<span class=\"" << html_class(name) << "\">" << name << ": " << r.count(g)
-       << "</span>";
+    os << "<span class=\"" << html_class(name) << "\">" << name << ": " << r.count(g) << "</span>";
   }
   os << "</p>\n<p><b>exit status " << r.exit_code() << "</b></p>\n";
   os << "<table><tr><th>case</th><th>grade</th><th>what a good driver does</th><th>reason, "
@@ -175,9 +173,8 @@ void write_drive_html(std::ostream& os, const DriveRun& r) {
     const std::string g(drive::to_string(c.verdict.grade));
     os << "<tr class=\"" << html_class(g) << "\"><td><code>" << markup_escape(c.spec->id)
        << "</code> " << markup_escape(c.spec->section) << ": " << markup_escape(c.spec->title)
-       << "<br><small>" << markup_escape(c.spec->source) << "</small></td><td>" << g
-       << "</td><td>" << markup_escape(c.spec->good) << "</td><td>"
-       << markup_escape(c.verdict.reason);
+       << "<br><small>" << markup_escape(c.spec->source) << "</small></td><td>" << g << "</td><td>"
+       << markup_escape(c.spec->good) << "</td><td>" << markup_escape(c.verdict.reason);
     if (!c.verdict.checks.empty()) {
       os << "<details><summary>checks (" << c.verdict.checks.size() << ")</summary><pre>";
       for (const drive::Check& ch : c.verdict.checks)
@@ -255,8 +252,11 @@ void write_drive_table_html(std::ostream& os, const nlohmann::json& t) {
   os << "</tr>\n<tr><th>exit</th>";
   for (const auto& c : cols) {
     const int code = c.value("exit_code", -1);
-    os << "<td class=\"" << (code == 0 ? "pass" : code == 1 ? "fail" : "error") << "\"><b>exit "
-       << code << "</b></td>";
+    os << "<td class=\""
+       << (code == 0   ? "pass"
+           : code == 1 ? "fail"
+                       : "error")
+       << "\"><b>exit " << code << "</b></td>";
   }
   os << "</tr>\n";
   std::string section;

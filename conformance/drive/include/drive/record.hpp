@@ -30,7 +30,7 @@ struct WireFrame {
   // convention of docs/DRIVE.md: right and up positive), a PTZ turn or stop,
   // an angle target.
   bool rate = false, angle = false;
-  std::array<bool, 3> axis{};    // the axes the command names
+  std::array<bool, 3> axis{};     // the axes the command names
   std::array<double, 3> value{};  // rate (deg/s) or angle (deg) per axis
   // A stream switch turned on by the driver (GIA 01, GAA nn).
   bool stream_on = false;

@@ -126,6 +126,10 @@ struct DeviceOptions {
   // document gives it no reply form; a real Topotek camera echoes none:
   // silent_writes); unset or false: answer each write as write_reply says.
   std::optional<bool> write_echo;
+  // true: answer a request whatever link its source address names (a
+  // Topotek U request over the network too); topconf drive sets it in
+  // every case but 6.4, which alone judges the driver's source address.
+  bool any_source = false;
   DeviceFaults faults;
 };
 

@@ -15,8 +15,7 @@ namespace topconf {
 
 // A line per case (unless `lines` is false: they were printed as the cases
 // ended), then the summary.
-void write_drive_console(std::ostream& os, const drive::DriveRun& r, bool color,
-                         bool lines = true);
+void write_drive_console(std::ostream& os, const drive::DriveRun& r, bool color, bool lines = true);
 // One line per case as it ends (the console's progress).
 void write_drive_case_line(std::ostream& os, const drive::CaseResult& c, bool color);
 nlohmann::json drive_json(const drive::DriveRun& r);
