@@ -37,18 +37,12 @@ class Driven : public Client {
     std::string frame;
   };
   std::vector<Sent> sent;
-  struct Belief {
-    std::uint64_t t_us;
-    drive::Beliefs b;
-  };
-  std::vector<Belief> beliefs_seen;  // at every tick
   std::uint64_t tick(std::uint64_t now_us, std::vector<std::string>& out) override {
     if (start_ == 0) start_ = now_us;
     script_.run_due(*this, now_us - start_, now_us);
     const std::size_t from = out.size();
     const std::uint64_t next = Client::tick(now_us, out);
     for (std::size_t i = from; i < out.size(); ++i) sent.push_back({now_us - start_, out[i]});
-    beliefs_seen.push_back({now_us - start_, this->beliefs(now_us)});
     return next;
   }
   std::uint64_t start() const { return start_; }

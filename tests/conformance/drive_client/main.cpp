@@ -90,7 +90,15 @@ int drive_loop(Client& c, topconf::Transport& t, const Options& o, drive::Script
                drive::IntentFile* follow) {
   c.client = t.client_address();
   topconf::FrameLink link(t, nullptr, 4096);
-  const std::uint64_t start = link.now() - std::min(link.now(), since_start_us());
+  // Time 0: TOPCONF_T0_US when topconf says it (CLOCK_MONOTONIC, the
+  // steady clock of the link; proposed for the contract), else this
+  // process's start.
+  std::uint64_t start = link.now() - std::min(link.now(), since_start_us());
+  if (const char* t0 = std::getenv("TOPCONF_T0_US")) {
+    char* end = nullptr;
+    const unsigned long long v = std::strtoull(t0, &end, 10);
+    if (end && *end == '\0' && v > 0 && v <= link.now() && link.now() - v < 10000000) start = v;
+  }
   const std::uint64_t end =
       o.duration_s > 0 ? start + static_cast<std::uint64_t>(o.duration_s * 1e6) : UINT64_MAX;
   std::uint64_t next_tick = start, next_belief = start, next_poll = start;
