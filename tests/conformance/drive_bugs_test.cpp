@@ -75,37 +75,39 @@ topsim::FaultConfig faults(const std::string& spec) {
 }
 
 constexpr auto kPty = topsim::TransportKind::pty;
+
+// Each bug's test runs twice, clean and with the bug, as two tests.
+class DriveBugsBoth : public ::testing::TestWithParam<bool> {};
 constexpr auto kUdp = topsim::TransportKind::udp;
 
 // pitch-rate-sign (case 2.1): a positive pitch rate intent raises the pitch;
 // with the bug it lowers it, until the runaway guard gives the axis up.
-TEST(DriveBugs, PitchRateSign) {
+TEST_P(DriveBugsBoth, PitchRateSign) {
   for (const top::Model m : {top::Model::sip, top::Model::c12}) {
     const std::vector<Intent> v = {at(0.4, Intent::Do::rate, 0, 10), at(1.4, Intent::Do::stop)};
-    for (const bool bug : {false, true}) {
-      SCOPED_TRACE(std::string(top::to_string(m)) + (bug ? " with the bug" : " clean"));
-      drive::Bugs b;
-      if (bug) b.set(Bug::pitch_rate_sign);
-      double last = 0;
-      if (m == top::Model::sip) {
-        Driven<TopotekClient> c(v, b);
-        run_driver(c, m, kPty, 1800, "");
-        ASSERT_FALSE(c.attitude.empty());
-        last = c.attitude.back().pitch;
-        EXPECT_EQ(!c.error.empty(), bug) << c.error;
-      } else {
-        Driven<SkyDroidDriver> c(v, b);
-        run_driver(c, m, kUdp, 1800, "");
-        ASSERT_FALSE(c.attitude.empty());
-        last = c.attitude.back().pitch;
-        EXPECT_EQ(!c.error.empty(), bug) << c.error;
-      }
-      if (bug) {
-        EXPECT_LT(last, -2.0);
-        EXPECT_GT(last, -6.0);  // the guard stopped it near 3 deg
-      } else {
-        EXPECT_GT(last, 6.0);
-      }
+    const bool bug = GetParam();
+    SCOPED_TRACE(std::string(top::to_string(m)) + (bug ? " with the bug" : " clean"));
+    drive::Bugs b;
+    if (bug) b.set(Bug::pitch_rate_sign);
+    double last = 0;
+    if (m == top::Model::sip) {
+      Driven<TopotekClient> c(v, b);
+      run_driver(c, m, kPty, 1800, "");
+      ASSERT_FALSE(c.attitude.empty());
+      last = c.attitude.back().pitch;
+      EXPECT_EQ(!c.error.empty(), bug) << c.error;
+    } else {
+      Driven<SkyDroidDriver> c(v, b);
+      run_driver(c, m, kUdp, 1800, "");
+      ASSERT_FALSE(c.attitude.empty());
+      last = c.attitude.back().pitch;
+      EXPECT_EQ(!c.error.empty(), bug) << c.error;
+    }
+    if (bug) {
+      EXPECT_LT(last, -2.0);
+      EXPECT_GT(last, -6.0);  // the guard stopped it near 3 deg
+    } else {
+      EXPECT_GT(last, 6.0);
     }
   }
 }
@@ -253,93 +255,90 @@ TEST(DriveBugs, MonthZeroBased) {
 // no-stop-after-last-rate (2.4): after the stop intent a zero rate goes
 // out within 0.5 s (PTZ 00 on the SIP, GSY/GSP 00 on SkyDroid); none with
 // the bug.
-TEST(DriveBugs, NoStopAfterLastRate) {
+TEST_P(DriveBugsBoth, NoStopAfterLastRate) {
   const std::vector<Intent> v = {at(0.3, Intent::Do::rate, 10, 0), at(1.0, Intent::Do::stop)};
-  for (const bool bug : {false, true}) {
-    SCOPED_TRACE(bug ? "with the bug" : "clean");
-    drive::Bugs b;
-    if (bug) b.set(Bug::no_stop_after_last_rate);
-    Driven<TopotekClient> t(v, b);
-    run_driver(t, top::Model::sip, kPty, 1700, "");
-    EXPECT_FALSE(t.of("YPR").empty());
-    int stops = 0;
-    for (const auto& s : t.of("PTZ"))
-      stops += s.frame.substr(10, 2) == "00" && s.t_us >= 1000000 && s.t_us <= 1500000;
-    EXPECT_EQ(stops > 0, !bug);
-    Driven<SkyDroidDriver> k(v, b);
-    run_driver(k, top::Model::c12, kUdp, 1700, "");
-    int zeros = 0, moving = 0;
-    for (const auto& s : k.of("GSY")) {
-      if (s.frame.substr(10, 2) == "00" && s.t_us >= 1000000 && s.t_us <= 1500000) ++zeros;
-      if (s.frame.substr(10, 2) != "00") ++moving;
-    }
-    EXPECT_GT(moving, 10);
-    EXPECT_EQ(zeros > 0, !bug);
-    EXPECT_LE(zeros, 3);  // a stop is said three times, not at every update
+  const bool bug = GetParam();
+  SCOPED_TRACE(bug ? "with the bug" : "clean");
+  drive::Bugs b;
+  if (bug) b.set(Bug::no_stop_after_last_rate);
+  Driven<TopotekClient> t(v, b);
+  run_driver(t, top::Model::sip, kPty, 1700, "");
+  EXPECT_FALSE(t.of("YPR").empty());
+  int stops = 0;
+  for (const auto& s : t.of("PTZ"))
+    stops += s.frame.substr(10, 2) == "00" && s.t_us >= 1000000 && s.t_us <= 1500000;
+  EXPECT_EQ(stops > 0, !bug);
+  Driven<SkyDroidDriver> k(v, b);
+  run_driver(k, top::Model::c12, kUdp, 1700, "");
+  int zeros = 0, moving = 0;
+  for (const auto& s : k.of("GSY")) {
+    if (s.frame.substr(10, 2) == "00" && s.t_us >= 1000000 && s.t_us <= 1500000) ++zeros;
+    if (s.frame.substr(10, 2) != "00") ++moving;
   }
+  EXPECT_GT(moving, 10);
+  EXPECT_EQ(zeros > 0, !bug);
+  EXPECT_LE(zeros, 3);  // a stop is said three times, not at every update
 }
 
 // no-reenable-after-reboot (1.4): the device power-cycles at 1 s with its
 // streams off (reboot=1); the stream switch goes out every second, so the
 // attitude comes back; with the bug it went out only until the first
 // attitude, and after the reboot none comes.
-TEST(DriveBugs, NoReenableAfterReboot) {
-  for (const bool bug : {false, true}) {
-    SCOPED_TRACE(bug ? "with the bug" : "clean");
-    drive::Bugs b;
-    if (bug) b.set(Bug::no_reenable_after_reboot);
-    const auto after_reboot = [](const auto& c) {
-      return std::count_if(c.attitude.begin(), c.attitude.end(),
-                           [&](const auto& a) { return a.t_us - c.start() > 2300000; });
-    };
-    Driven<TopotekClient> t({}, b);
-    run_driver(t, top::Model::sip, kPty, 3400, "", {}, faults("reboot=1"));
-    EXPECT_EQ(t.of("GIA").size(), bug ? 1u : 4u);  // at 0.1, 1.1, 2.1, 3.1 s
-    EXPECT_EQ(after_reboot(t) > 0, !bug);
-    Driven<SkyDroidDriver> k({}, b);
-    run_driver(k, top::Model::c12, kUdp, 3400, "", {}, faults("reboot=1"));
-    EXPECT_EQ(k.of("GAA").size(), bug ? 1u : 4u);
-    EXPECT_EQ(after_reboot(k) > 0, !bug);
-  }
+TEST_P(DriveBugsBoth, NoReenableAfterReboot) {
+  const bool bug = GetParam();
+  SCOPED_TRACE(bug ? "with the bug" : "clean");
+  drive::Bugs b;
+  if (bug) b.set(Bug::no_reenable_after_reboot);
+  const auto after_reboot = [](const auto& c) {
+    return std::count_if(c.attitude.begin(), c.attitude.end(),
+                         [&](const auto& a) { return a.t_us - c.start() > 2300000; });
+  };
+  Driven<TopotekClient> t({}, b);
+  run_driver(t, top::Model::sip, kPty, 3400, "", {}, faults("reboot=1"));
+  EXPECT_EQ(t.of("GIA").size(), bug ? 1u : 4u);  // at 0.1, 1.1, 2.1, 3.1 s
+  EXPECT_EQ(after_reboot(t) > 0, !bug);
+  Driven<SkyDroidDriver> k({}, b);
+  run_driver(k, top::Model::c12, kUdp, 3400, "", {}, faults("reboot=1"));
+  EXPECT_EQ(k.of("GAA").size(), bug ? 1u : 4u);
+  EXPECT_EQ(after_reboot(k) > 0, !bug);
 }
 
 // rates-on-stale-attitude (2.5): the stream stalls from 1 s for 1.5 s under
 // a held yaw rate; no rate command while the last attitude is over 1.2 s
 // old, but with the bug. And while no attitude ever came (1.1), neither.
-TEST(DriveBugs, RatesOnStaleAttitude) {
+TEST_P(DriveBugsBoth, RatesOnStaleAttitude) {
   const std::vector<Intent> v = {at(0.4, Intent::Do::rate, 10, 0)};
-  for (const bool bug : {false, true}) {
-    SCOPED_TRACE(bug ? "with the bug" : "clean");
-    drive::Bugs b;
-    if (bug) b.set(Bug::rates_on_stale_attitude);
-    Driven<TopotekClient> t(v, b);
-    run_driver(t, top::Model::sip, kPty, 3000, "", {}, faults("stall=GIA@1+1.5"));
-    // The attitude's age at each YPR sent.
-    int stale = 0;
-    for (const auto& s : t.of("YPR")) {
-      std::uint64_t last = 0;
-      for (const auto& a : t.attitude)
-        if (a.t_us - t.start() <= s.t_us) last = a.t_us - t.start();
-      stale += s.t_us - last > 1200000;
-    }
-    EXPECT_EQ(stale > 0, bug) << stale;
-    EXPECT_FALSE(t.of("YPR").empty());  // and before the stall, rates went out
-    Driven<SkyDroidDriver> k(v, b);
-    run_driver(k, top::Model::c12, kUdp, 3000, "", {}, faults("stall=GAC@1+1.5"));
-    int moving_stale = 0;
-    for (const auto& s : k.of("GSY")) {
-      std::uint64_t last = 0;
-      for (const auto& a : k.attitude)
-        if (a.t_us - k.start() <= s.t_us) last = a.t_us - k.start();
-      moving_stale += s.frame.substr(10, 2) != "00" && s.t_us - last > 1200000;
-    }
-    EXPECT_EQ(moving_stale > 0, bug) << moving_stale;
-    // Never a rate with no attitude at all (1.1), bug or not.
-    Driven<TopotekClient> n(v, b);
-    run_driver(n, top::Model::sip, kPty, 1200, "", {}, faults("no-stream=GIA"));
-    EXPECT_TRUE(n.attitude.empty());
-    EXPECT_TRUE(n.of("YPR").empty());
+  const bool bug = GetParam();
+  SCOPED_TRACE(bug ? "with the bug" : "clean");
+  drive::Bugs b;
+  if (bug) b.set(Bug::rates_on_stale_attitude);
+  Driven<TopotekClient> t(v, b);
+  run_driver(t, top::Model::sip, kPty, 3000, "", {}, faults("stall=GIA@1+1.5"));
+  // The attitude's age at each YPR sent.
+  int stale = 0;
+  for (const auto& s : t.of("YPR")) {
+    std::uint64_t last = 0;
+    for (const auto& a : t.attitude)
+      if (a.t_us - t.start() <= s.t_us) last = a.t_us - t.start();
+    stale += s.t_us - last > 1200000;
   }
+  EXPECT_EQ(stale > 0, bug) << stale;
+  EXPECT_FALSE(t.of("YPR").empty());  // and before the stall, rates went out
+  Driven<SkyDroidDriver> k(v, b);
+  run_driver(k, top::Model::c12, kUdp, 3000, "", {}, faults("stall=GAC@1+1.5"));
+  int moving_stale = 0;
+  for (const auto& s : k.of("GSY")) {
+    std::uint64_t last = 0;
+    for (const auto& a : k.attitude)
+      if (a.t_us - k.start() <= s.t_us) last = a.t_us - k.start();
+    moving_stale += s.frame.substr(10, 2) != "00" && s.t_us - last > 1200000;
+  }
+  EXPECT_EQ(moving_stale > 0, bug) << moving_stale;
+  // Never a rate with no attitude at all (1.1), bug or not.
+  Driven<TopotekClient> n(v, b);
+  run_driver(n, top::Model::sip, kPty, 1200, "", {}, faults("no-stream=GIA"));
+  EXPECT_TRUE(n.attitude.empty());
+  EXPECT_TRUE(n.of("YPR").empty());
 }
 
 // The runaway guard (2.2): on a device whose pitch answers the other way,
@@ -361,5 +360,8 @@ TEST(DriveBugs, RunawayGuardOnAnInvertedPitch) {
   EXPECT_NEAR(ok.attitude.back().pitch, -30, 5);
   EXPECT_TRUE(ok.error.empty()) << ok.error;
 }
+
+INSTANTIATE_TEST_SUITE_P(Switch, DriveBugsBoth, ::testing::Bool(),
+                         [](const auto& i) { return i.param ? "bug" : "clean"; });
 
 }  // namespace
