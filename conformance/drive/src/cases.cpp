@@ -115,6 +115,40 @@ bool network(topsim::TransportKind k) {
   return k == topsim::TransportKind::udp || k == topsim::TransportKind::tcp;
 }
 
+// Sections 6 and 7: the transport and the line (setup_case).
+void transport_case(const std::string& cid, bool topotek, topsim::TransportKind link, double k,
+                    CaseSetup& s) {
+  s.intents = {rate(0.5, 0, 10), simple(1.5 * k, "stop")};
+  if (cid == "6.1") {
+    s.options.reply_order = top::Order::request_order;
+    s.options.push_order = top::Order::request_order;
+  } else if (cid == "6.2") {
+    if (link != topsim::TransportKind::udp) s.not_applicable = "a UDP trait (this link is not UDP)";
+    s.options.ephemeral_reply_port = true;
+    s.options.fan_out = true;
+    s.options.duplicate = true;
+  } else if (cid == "6.3") {
+    if (!topotek)
+      s.not_applicable = "SkyDroid answers every write (SkyDroid 2.2): silent writes are Topotek's";
+    s.options.write_echo = false;
+    s.intents.push_back(simple(1.0, "photo"));
+  } else if (cid == "6.4") {
+    if (!topotek)
+      s.not_applicable = "SkyDroid names one client address, U, on UART and UDP (SkyDroid 2.2.2)";
+    else if (!network(link))
+      s.not_applicable = "a serial line: the UART address U is the right one";
+    s.intents = {simple(0.2, "identity")};
+  } else if (cid == "6.5") {
+    s.options.write_echo = true;
+  } else if (cid == "7.1") {
+    s.faults.bad_checksum = 0.3;
+  } else if (cid == "7.2") {
+    s.faults.checksum_case = 1;
+  } else if (cid == "7.3") {
+    s.faults.garbage = 0.3;
+  }
+}
+
 }  // namespace
 
 std::span<const CaseSpec> cases() noexcept { return kCases; }
@@ -219,37 +253,7 @@ CaseSetup setup_case(const CaseSpec& c, top::Model model, topsim::TransportKind 
     dev.ere.emplace_back("CAP");
     s.intents = {simple(0.5, "photo"), rate(1.0, 10, 0), simple(1.8 * k, "stop")};
   } else if (cid[0] == '6' || cid[0] == '7') {
-    s.intents = {rate(0.5, 0, 10), simple(1.5 * k, "stop")};
-    if (cid == "6.1") {
-      s.options.reply_order = top::Order::request_order;
-      s.options.push_order = top::Order::request_order;
-    } else if (cid == "6.2") {
-      if (link != topsim::TransportKind::udp)
-        s.not_applicable = "a UDP trait (this link is not UDP)";
-      s.options.ephemeral_reply_port = true;
-      s.options.fan_out = true;
-      s.options.duplicate = true;
-    } else if (cid == "6.3") {
-      if (!topotek)
-        s.not_applicable =
-            "SkyDroid answers every write (SkyDroid 2.2): silent writes are Topotek's";
-      s.options.write_echo = false;
-      s.intents.push_back(simple(1.0, "photo"));
-    } else if (cid == "6.4") {
-      if (!topotek)
-        s.not_applicable = "SkyDroid names one client address, U, on UART and UDP (SkyDroid 2.2.2)";
-      else if (!network(link))
-        s.not_applicable = "a serial line: the UART address U is the right one";
-      s.intents = {simple(0.2, "identity")};
-    } else if (cid == "6.5") {
-      s.options.write_echo = true;
-    } else if (cid == "7.1") {
-      s.faults.bad_checksum = 0.3;
-    } else if (cid == "7.2") {
-      s.faults.checksum_case = 1;
-    } else if (cid == "7.3") {
-      s.faults.garbage = 0.3;
-    }
+    transport_case(cid, topotek, link, k, s);
   } else if (cid == "8.1" || cid == "8.2") {
     if (cid == "8.1")
       s.faults.late.push_back({std::string(id.version), full ? 4000u : 1500u});

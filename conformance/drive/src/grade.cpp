@@ -139,6 +139,50 @@ void stream_cases(Judge& j, const CaseSpec& c, const CaseSetup& s, const Record&
   }
 }
 
+// 2.4: every axis turning before the stop gets a zero rate within 0.5 s
+// of it, and no rate after.
+void stop_case(Judge& j, const Record& r) {
+  const auto go = intent_at(r, "rate"), stop = intent_at(r, "stop");
+  // Per axis: the axes turning before the stop must each get a zero rate
+  // within 0.5 s of it and no rate after (a GSP 0 alongside a turning
+  // GSY stops nothing).
+  std::array<bool, 3> turning{};
+  for (const WireFrame& w : r.wire)
+    if (w.from_driver && w.rate && stop && w.t < *stop)
+      for (std::size_t i = 0; i < 3; ++i)
+        if (w.axis[i]) turning[i] = std::abs(w.value[i]) > 1e-9;
+  if (!go || !stop || moving_frames(r, 0, r.duration_s) == 0) {
+    j.add(Grade::unimplemented, "zero rate after stop", false,
+          "no rate command for the rate intent");
+    return;
+  }
+  static constexpr const char* kAxis[] = {"yaw", "pitch", "roll"};
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (!turning[i]) continue;
+    double zero = -1, late = -1;
+    bool angle = false;
+    for (const WireFrame& w : r.wire) {
+      if (!w.from_driver || !w.axis[i]) continue;
+      const bool turns = w.rate && std::abs(w.value[i]) > 1e-9;
+      if (w.rate && !turns && w.t >= *stop - 0.05 && w.t <= *stop + 0.5 && zero < 0) zero = w.t;
+      if (w.angle && w.t >= *stop - 0.05 && w.t <= *stop + 0.5) angle = true;
+      if (turns && w.t > *stop + 0.5 && late < 0) late = w.t;
+    }
+    const std::string name = std::string(kAxis[i]) + " stopped";
+    if (late >= 0)
+      j.fail(name, "a " + std::string(kAxis[i]) + " rate at " + secs(late) +
+                       ", after the stop at " + secs(*stop));
+    else if (zero >= 0)
+      j.pass(name, "a zero rate at " + secs(zero) + " for the stop at " + secs(*stop));
+    else if (angle)
+      j.add(Grade::non_strict, name, true,
+            "an angle target, no zero rate, for the stop at " + secs(*stop));
+    else
+      j.fail(name, "no zero rate within 0.5 s of the stop at " + secs(*stop) +
+                       ": the axis is left to the device's speed hold");
+  }
+}
+
 void motion_cases(Judge& j, const CaseSpec& c, const Record& r) {
   const std::string id(c.id);
   const auto go = intent_at(r, "rate"), stop = intent_at(r, "stop");
@@ -188,44 +232,7 @@ void motion_cases(Judge& j, const CaseSpec& c, const Record& r) {
     return;
   }
   if (id == "2.4") {
-    // Per axis: the axes turning before the stop must each get a zero rate
-    // within 0.5 s of it and no rate after (a GSP 0 alongside a turning
-    // GSY stops nothing).
-    std::array<bool, 3> turning{};
-    for (const WireFrame& w : r.wire)
-      if (w.from_driver && w.rate && stop && w.t < *stop)
-        for (std::size_t i = 0; i < 3; ++i)
-          if (w.axis[i]) turning[i] = std::abs(w.value[i]) > 1e-9;
-    if (!go || !stop || moving_frames(r, 0, r.duration_s) == 0) {
-      j.add(Grade::unimplemented, "zero rate after stop", false,
-            "no rate command for the rate intent");
-      return;
-    }
-    static constexpr const char* kAxis[] = {"yaw", "pitch", "roll"};
-    for (std::size_t i = 0; i < 3; ++i) {
-      if (!turning[i]) continue;
-      double zero = -1, late = -1;
-      bool angle = false;
-      for (const WireFrame& w : r.wire) {
-        if (!w.from_driver || !w.axis[i]) continue;
-        const bool turns = w.rate && std::abs(w.value[i]) > 1e-9;
-        if (w.rate && !turns && w.t >= *stop - 0.05 && w.t <= *stop + 0.5 && zero < 0) zero = w.t;
-        if (w.angle && w.t >= *stop - 0.05 && w.t <= *stop + 0.5) angle = true;
-        if (turns && w.t > *stop + 0.5 && late < 0) late = w.t;
-      }
-      const std::string name = std::string(kAxis[i]) + " stopped";
-      if (late >= 0)
-        j.fail(name, "a " + std::string(kAxis[i]) + " rate at " + secs(late) +
-                         ", after the stop at " + secs(*stop));
-      else if (zero >= 0)
-        j.pass(name, "a zero rate at " + secs(zero) + " for the stop at " + secs(*stop));
-      else if (angle)
-        j.add(Grade::non_strict, name, true,
-              "an angle target, no zero rate, for the stop at " + secs(*stop));
-      else
-        j.fail(name, "no zero rate within 0.5 s of the stop at " + secs(*stop) +
-                         ": the axis is left to the device's speed hold");
-    }
+    stop_case(j, r);
     return;
   }
   // 2.5: no rate on an attitude older than 1.2 s

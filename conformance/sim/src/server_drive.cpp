@@ -1,22 +1,35 @@
 // What a harness asks of a running topsim::Server (topconf drive,
 // docs/DRIVE.md): the device's truth, a change of case in place, and the
 // timed power cycle of the reboot= fault (armed by the constructor).
-#include <future>
+#include <condition_variable>
+#include <memory>
+#include <mutex>
 
 #include "server_impl.hpp"
 
 namespace topsim {
 namespace {
 
-// Runs `fn` on `io`'s thread and waits for it, up to 1 s.
+// Runs `fn` on `io`'s thread and waits for it, up to 1 s. A call given up
+// on never runs later: `fn` may hold references to the caller's frame.
 bool run_on(asio::io_context& io, std::function<void()> fn) {
-  auto done = std::make_shared<std::promise<void>>();
-  std::future<void> f = done->get_future();
-  asio::post(io, [fn = std::move(fn), done] {
+  struct State {
+    std::mutex mu;
+    std::condition_variable cv;
+    bool done = false, abandoned = false;
+  };
+  auto st = std::make_shared<State>();
+  asio::post(io, [fn = std::move(fn), st] {
+    std::lock_guard lock(st->mu);
+    if (st->abandoned) return;
     fn();
-    done->set_value();
+    st->done = true;
+    st->cv.notify_all();
   });
-  return f.wait_for(std::chrono::seconds(1)) == std::future_status::ready;
+  std::unique_lock lock(st->mu);
+  if (!st->cv.wait_for(lock, std::chrono::seconds(1), [&] { return st->done; }))
+    st->abandoned = true;
+  return st->done;
 }
 
 }  // namespace
