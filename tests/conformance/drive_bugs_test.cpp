@@ -37,18 +37,12 @@ class Driven : public Client {
     std::string frame;
   };
   std::vector<Sent> sent;
-  struct Belief {
-    std::uint64_t t_us;
-    drive::Beliefs b;
-  };
-  std::vector<Belief> beliefs_seen;  // at every tick
   std::uint64_t tick(std::uint64_t now_us, std::vector<std::string>& out) override {
     if (start_ == 0) start_ = now_us;
     script_.run_due(*this, now_us - start_, now_us);
     const std::size_t from = out.size();
     const std::uint64_t next = Client::tick(now_us, out);
     for (std::size_t i = from; i < out.size(); ++i) sent.push_back({now_us - start_, out[i]});
-    beliefs_seen.push_back({now_us - start_, this->beliefs(now_us)});
     return next;
   }
   std::uint64_t start() const { return start_; }
@@ -81,37 +75,39 @@ topsim::FaultConfig faults(const std::string& spec) {
 }
 
 constexpr auto kPty = topsim::TransportKind::pty;
+
+// Each bug's test runs twice, clean and with the bug, as two tests.
+class DriveBugsBoth : public ::testing::TestWithParam<bool> {};
 constexpr auto kUdp = topsim::TransportKind::udp;
 
 // pitch-rate-sign (case 2.1): a positive pitch rate intent raises the pitch;
 // with the bug it lowers it, until the runaway guard gives the axis up.
-TEST(DriveBugs, PitchRateSign) {
+TEST_P(DriveBugsBoth, PitchRateSign) {
   for (const top::Model m : {top::Model::sip, top::Model::c12}) {
     const std::vector<Intent> v = {at(0.4, Intent::Do::rate, 0, 10), at(1.4, Intent::Do::stop)};
-    for (const bool bug : {false, true}) {
-      SCOPED_TRACE(std::string(top::to_string(m)) + (bug ? " with the bug" : " clean"));
-      drive::Bugs b;
-      if (bug) b.set(Bug::pitch_rate_sign);
-      double last = 0;
-      if (m == top::Model::sip) {
-        Driven<TopotekClient> c(v, b);
-        run_driver(c, m, kPty, 1800, "");
-        ASSERT_FALSE(c.attitude.empty());
-        last = c.attitude.back().pitch;
-        EXPECT_EQ(!c.error.empty(), bug) << c.error;
-      } else {
-        Driven<SkyDroidDriver> c(v, b);
-        run_driver(c, m, kUdp, 1800, "");
-        ASSERT_FALSE(c.attitude.empty());
-        last = c.attitude.back().pitch;
-        EXPECT_EQ(!c.error.empty(), bug) << c.error;
-      }
-      if (bug) {
-        EXPECT_LT(last, -2.0);
-        EXPECT_GT(last, -6.0);  // the guard stopped it near 3 deg
-      } else {
-        EXPECT_GT(last, 6.0);
-      }
+    const bool bug = GetParam();
+    SCOPED_TRACE(std::string(top::to_string(m)) + (bug ? " with the bug" : " clean"));
+    drive::Bugs b;
+    if (bug) b.set(Bug::pitch_rate_sign);
+    double last = 0;
+    if (m == top::Model::sip) {
+      Driven<TopotekClient> c(v, b);
+      run_driver(c, m, kPty, 1800, "");
+      ASSERT_FALSE(c.attitude.empty());
+      last = c.attitude.back().pitch;
+      EXPECT_EQ(!c.error.empty(), bug) << c.error;
+    } else {
+      Driven<SkyDroidDriver> c(v, b);
+      run_driver(c, m, kUdp, 1800, "");
+      ASSERT_FALSE(c.attitude.empty());
+      last = c.attitude.back().pitch;
+      EXPECT_EQ(!c.error.empty(), bug) << c.error;
+    }
+    if (bug) {
+      EXPECT_LT(last, -2.0);
+      EXPECT_GT(last, -6.0);  // the guard stopped it near 3 deg
+    } else {
+      EXPECT_GT(last, 6.0);
     }
   }
 }
@@ -140,37 +136,32 @@ TEST(DriveBugs, UartAddressOnNetwork) {
 }
 
 // strict-version (3.2): "123" is 1.2.3 to a good driver, 123.0.0 to the
-// strict parser; a short "1" is 1, or 1.0.0 (3.3).
+// strict parser; a short "1" is 1, or 1.0.0 (3.3). The parser on the
+// version forms, then the clients on topsim's answer (VSN, VER "V...").
 TEST(DriveBugs, StrictVersion) {
   struct Want {
-    top::Model model;
     std::string reply, clean, strict;
   };
-  for (const Want& w :
-       {Want{top::Model::sip, "123", "1.2.3", "123.0.0"}, Want{top::Model::sip, "1", "1", "1.0.0"},
-        Want{top::Model::sip, "1.6.26.R.D", "1.6.26", "1.6.26"},
-        Want{top::Model::c12, "V123", "1.2.3", "123.0.0"},
-        Want{top::Model::c12, "V1.0.78", "1.0.78", "1.0.78"}}) {
-    for (const bool bug : {false, true}) {
-      SCOPED_TRACE(w.reply + (bug ? " strict" : " clean"));
-      topsim::DeviceOptions o;
-      o.version = w.reply;
-      drive::Bugs b;
-      if (bug) b.set(Bug::strict_version);
-      const std::vector<Intent> v = {at(0.1, Intent::Do::identity)};
-      std::optional<std::string> got;
-      if (w.model == top::Model::sip) {
-        Driven<TopotekClient> c(v, b);
-        run_driver(c, w.model, kPty, 500, "", o);
-        got = c.beliefs(0).version;
-      } else {
-        Driven<SkyDroidDriver> c(v, b);
-        run_driver(c, w.model, kUdp, 500, "", o);
-        got = c.beliefs(0).version;
-      }
-      ASSERT_TRUE(got.has_value());
-      EXPECT_EQ(*got, bug ? w.strict : w.clean);
-    }
+  for (const Want& w : {Want{"123", "1.2.3", "123.0.0"}, Want{"1", "1", "1.0.0"},
+                        Want{"1.6.26.R.D", "1.6.26", "1.6.26"}, Want{"1.0.78", "1.0.78", "1.0.78"},
+                        Want{"1.2.3", "1.2.3", "1.2.3"}, Want{"R.D", "", ""}}) {
+    EXPECT_EQ(drive::parse_version(w.reply, false).text(), w.clean) << w.reply;
+    EXPECT_EQ(drive::parse_version(w.reply, true).text(), w.strict) << w.reply;
+  }
+  for (const bool bug : {false, true}) {
+    SCOPED_TRACE(bug ? "strict" : "clean");
+    drive::Bugs b;
+    if (bug) b.set(Bug::strict_version);
+    const std::vector<Intent> v = {at(0.1, Intent::Do::identity)};
+    topsim::DeviceOptions o;
+    o.version = "123";
+    Driven<TopotekClient> t(v, b);
+    run_driver(t, top::Model::sip, kPty, 1200, "", o);  // VSN at the round robin's step 0, 0.9 s
+    EXPECT_EQ(t.beliefs(0).version.value_or("none"), bug ? "123.0.0" : "1.2.3");
+    o.version = "V123";
+    Driven<SkyDroidDriver> k(v, b);
+    run_driver(k, top::Model::c12, kUdp, 1200, "", o);
+    EXPECT_EQ(k.beliefs(0).version.value_or("none"), bug ? "123.0.0" : "1.2.3");
   }
 }
 
@@ -219,13 +210,22 @@ TEST(DriveBugs, RangeFixedOffsets) {
       EXPECT_GT(std::fabs(buggy.distance_m - std::stod(data)), 1) << raw << " " << buggy.distance_m;
     }
   }
-  // And from topsim: the document's form, both right.
+  // And from topsim: the document's form, both right; the short form
+  // (range-form=short), right by its length only.
   topsim::DeviceOptions o;
   o.range_m = 812.3;
-  Driven<TopotekClient> c({at(0.2, Intent::Do::range)});
-  run_driver(c, top::Model::sip, kPty, 600, "", o);
-  ASSERT_TRUE(c.beliefs(0).range_m.has_value());
-  EXPECT_NEAR(*c.beliefs(0).range_m, 812.3, 1e-9);
+  for (const bool shorter : {false, true}) {
+    for (const bool bug : {false, true}) {
+      SCOPED_TRACE(std::string(shorter ? "short" : "document") + (bug ? ", bug" : ", clean"));
+      drive::Bugs b;
+      if (bug) b.set(Bug::range_fixed_offsets);
+      Driven<TopotekClient> c({at(0.2, Intent::Do::range)}, b);
+      run_driver(c, top::Model::sip, kPty, 600, "", o, faults(shorter ? "range-form=short" : ""));
+      ASSERT_TRUE(c.beliefs(0).range_m.has_value());
+      EXPECT_EQ(std::fabs(*c.beliefs(0).range_m - 812.3) < 1e-9, !(bug && shorter))
+          << *c.beliefs(0).range_m;
+    }
+  }
 }
 
 // month-zero-based (9.1): the clock intent of December 6 sets month 12, or
@@ -255,88 +255,90 @@ TEST(DriveBugs, MonthZeroBased) {
 // no-stop-after-last-rate (2.4): after the stop intent a zero rate goes
 // out within 0.5 s (PTZ 00 on the SIP, GSY/GSP 00 on SkyDroid); none with
 // the bug.
-TEST(DriveBugs, NoStopAfterLastRate) {
+TEST_P(DriveBugsBoth, NoStopAfterLastRate) {
   const std::vector<Intent> v = {at(0.3, Intent::Do::rate, 10, 0), at(1.0, Intent::Do::stop)};
-  for (const bool bug : {false, true}) {
-    SCOPED_TRACE(bug ? "with the bug" : "clean");
-    drive::Bugs b;
-    if (bug) b.set(Bug::no_stop_after_last_rate);
-    Driven<TopotekClient> t(v, b);
-    run_driver(t, top::Model::sip, kPty, 1700, "");
-    EXPECT_FALSE(t.of("YPR").empty());
-    int stops = 0;
-    for (const auto& s : t.of("PTZ"))
-      stops += s.frame.substr(10, 2) == "00" && s.t_us >= 1000000 && s.t_us <= 1500000;
-    EXPECT_EQ(stops > 0, !bug);
-    Driven<SkyDroidDriver> k(v, b);
-    run_driver(k, top::Model::c12, kUdp, 1700, "");
-    int zeros = 0, moving = 0;
-    for (const auto& s : k.of("GSY")) {
-      if (s.frame.substr(10, 2) == "00" && s.t_us >= 1000000 && s.t_us <= 1500000) ++zeros;
-      if (s.frame.substr(10, 2) != "00") ++moving;
-    }
-    EXPECT_GT(moving, 10);
-    EXPECT_EQ(zeros > 0, !bug);
-    EXPECT_LE(zeros, 3);  // a stop is said three times, not at every update
+  const bool bug = GetParam();
+  SCOPED_TRACE(bug ? "with the bug" : "clean");
+  drive::Bugs b;
+  if (bug) b.set(Bug::no_stop_after_last_rate);
+  Driven<TopotekClient> t(v, b);
+  run_driver(t, top::Model::sip, kPty, 1700, "");
+  EXPECT_FALSE(t.of("YPR").empty());
+  int stops = 0;
+  for (const auto& s : t.of("PTZ"))
+    stops += s.frame.substr(10, 2) == "00" && s.t_us >= 1000000 && s.t_us <= 1500000;
+  EXPECT_EQ(stops > 0, !bug);
+  Driven<SkyDroidDriver> k(v, b);
+  run_driver(k, top::Model::c12, kUdp, 1700, "");
+  int zeros = 0, moving = 0;
+  for (const auto& s : k.of("GSY")) {
+    if (s.frame.substr(10, 2) == "00" && s.t_us >= 1000000 && s.t_us <= 1500000) ++zeros;
+    if (s.frame.substr(10, 2) != "00") ++moving;
   }
+  EXPECT_GT(moving, 10);
+  EXPECT_EQ(zeros > 0, !bug);
+  EXPECT_LE(zeros, 3);  // a stop is said three times, not at every update
 }
 
-// no-reenable-after-reboot (1.4): the stream switch goes out every second
-// for a device that may come back with it off; with the bug only until the
-// first attitude.
-TEST(DriveBugs, NoReenableAfterReboot) {
-  for (const bool bug : {false, true}) {
-    SCOPED_TRACE(bug ? "with the bug" : "clean");
-    drive::Bugs b;
-    if (bug) b.set(Bug::no_reenable_after_reboot);
-    Driven<TopotekClient> t({}, b);
-    run_driver(t, top::Model::sip, kPty, 3400, "");
-    EXPECT_FALSE(t.attitude.empty());
-    EXPECT_EQ(t.of("GIA").size(), bug ? 1u : 4u);  // at 0.1, 1.1, 2.1, 3.1 s
-    Driven<SkyDroidDriver> k({}, b);
-    run_driver(k, top::Model::c12, kUdp, 3400, "");
-    EXPECT_FALSE(k.attitude.empty());
-    EXPECT_EQ(k.of("GAA").size(), bug ? 1u : 4u);
-  }
+// no-reenable-after-reboot (1.4): the device power-cycles at 1 s with its
+// streams off (reboot=1); the stream switch goes out every second, so the
+// attitude comes back; with the bug it went out only until the first
+// attitude, and after the reboot none comes.
+TEST_P(DriveBugsBoth, NoReenableAfterReboot) {
+  const bool bug = GetParam();
+  SCOPED_TRACE(bug ? "with the bug" : "clean");
+  drive::Bugs b;
+  if (bug) b.set(Bug::no_reenable_after_reboot);
+  const auto after_reboot = [](const auto& c) {
+    return std::count_if(c.attitude.begin(), c.attitude.end(),
+                         [&](const auto& a) { return a.t_us - c.start() > 2300000; });
+  };
+  Driven<TopotekClient> t({}, b);
+  run_driver(t, top::Model::sip, kPty, 3400, "", {}, faults("reboot=1"));
+  EXPECT_EQ(t.of("GIA").size(), bug ? 1u : 4u);  // at 0.1, 1.1, 2.1, 3.1 s
+  EXPECT_EQ(after_reboot(t) > 0, !bug);
+  Driven<SkyDroidDriver> k({}, b);
+  run_driver(k, top::Model::c12, kUdp, 3400, "", {}, faults("reboot=1"));
+  EXPECT_EQ(k.of("GAA").size(), bug ? 1u : 4u);
+  EXPECT_EQ(after_reboot(k) > 0, !bug);
 }
 
 // rates-on-stale-attitude (2.5): the stream stalls from 1 s for 1.5 s under
 // a held yaw rate; no rate command while the last attitude is over 1.2 s
 // old, but with the bug. And while no attitude ever came (1.1), neither.
-TEST(DriveBugs, RatesOnStaleAttitude) {
+TEST_P(DriveBugsBoth, RatesOnStaleAttitude) {
   const std::vector<Intent> v = {at(0.4, Intent::Do::rate, 10, 0)};
-  for (const bool bug : {false, true}) {
-    SCOPED_TRACE(bug ? "with the bug" : "clean");
-    drive::Bugs b;
-    if (bug) b.set(Bug::rates_on_stale_attitude);
-    Driven<TopotekClient> t(v, b);
-    run_driver(t, top::Model::sip, kPty, 3000, "", {}, faults("stall=GIA@1+1.5"));
-    // The attitude's age at each YPR sent.
-    int stale = 0;
-    for (const auto& s : t.of("YPR")) {
-      std::uint64_t last = 0;
-      for (const auto& a : t.attitude)
-        if (a.t_us - t.start() <= s.t_us) last = a.t_us - t.start();
-      stale += s.t_us - last > 1200000;
-    }
-    EXPECT_EQ(stale > 0, bug) << stale;
-    EXPECT_FALSE(t.of("YPR").empty());  // and before the stall, rates went out
-    Driven<SkyDroidDriver> k(v, b);
-    run_driver(k, top::Model::c12, kUdp, 3000, "", {}, faults("stall=GAC@1+1.5"));
-    int moving_stale = 0;
-    for (const auto& s : k.of("GSY")) {
-      std::uint64_t last = 0;
-      for (const auto& a : k.attitude)
-        if (a.t_us - k.start() <= s.t_us) last = a.t_us - k.start();
-      moving_stale += s.frame.substr(10, 2) != "00" && s.t_us - last > 1200000;
-    }
-    EXPECT_EQ(moving_stale > 0, bug) << moving_stale;
-    // Never a rate with no attitude at all (1.1), bug or not.
-    Driven<TopotekClient> n(v, b);
-    run_driver(n, top::Model::sip, kPty, 1200, "", {}, faults("no-stream=GIA"));
-    EXPECT_TRUE(n.attitude.empty());
-    EXPECT_TRUE(n.of("YPR").empty());
+  const bool bug = GetParam();
+  SCOPED_TRACE(bug ? "with the bug" : "clean");
+  drive::Bugs b;
+  if (bug) b.set(Bug::rates_on_stale_attitude);
+  Driven<TopotekClient> t(v, b);
+  run_driver(t, top::Model::sip, kPty, 3000, "", {}, faults("stall=GIA@1+1.5"));
+  // The attitude's age at each YPR sent.
+  int stale = 0;
+  for (const auto& s : t.of("YPR")) {
+    std::uint64_t last = 0;
+    for (const auto& a : t.attitude)
+      if (a.t_us - t.start() <= s.t_us) last = a.t_us - t.start();
+    stale += s.t_us - last > 1200000;
   }
+  EXPECT_EQ(stale > 0, bug) << stale;
+  EXPECT_FALSE(t.of("YPR").empty());  // and before the stall, rates went out
+  Driven<SkyDroidDriver> k(v, b);
+  run_driver(k, top::Model::c12, kUdp, 3000, "", {}, faults("stall=GAC@1+1.5"));
+  int moving_stale = 0;
+  for (const auto& s : k.of("GSY")) {
+    std::uint64_t last = 0;
+    for (const auto& a : k.attitude)
+      if (a.t_us - k.start() <= s.t_us) last = a.t_us - k.start();
+    moving_stale += s.frame.substr(10, 2) != "00" && s.t_us - last > 1200000;
+  }
+  EXPECT_EQ(moving_stale > 0, bug) << moving_stale;
+  // Never a rate with no attitude at all (1.1), bug or not.
+  Driven<TopotekClient> n(v, b);
+  run_driver(n, top::Model::sip, kPty, 1200, "", {}, faults("no-stream=GIA"));
+  EXPECT_TRUE(n.attitude.empty());
+  EXPECT_TRUE(n.of("YPR").empty());
 }
 
 // The runaway guard (2.2): on a device whose pitch answers the other way,
@@ -358,5 +360,8 @@ TEST(DriveBugs, RunawayGuardOnAnInvertedPitch) {
   EXPECT_NEAR(ok.attitude.back().pitch, -30, 5);
   EXPECT_TRUE(ok.error.empty()) << ok.error;
 }
+
+INSTANTIATE_TEST_SUITE_P(Switch, DriveBugsBoth, ::testing::Bool(),
+                         [](const auto& i) { return i.param ? "bug" : "clean"; });
 
 }  // namespace

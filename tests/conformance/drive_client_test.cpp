@@ -155,6 +155,24 @@ TEST(DriveClient, DrivesTopsimAndPrintsBeliefs) {
   }
 }
 
+// TOPCONF_T0_US (CLOCK_MONOTONIC us of the case's time 0) is the start the
+// intents and --duration count from: 5 s ago, a 5.6 s run ends at once; a
+// value that is no number is ignored.
+TEST(DriveClient, TimeZeroFromTheEnvironment) {
+  const auto us = std::chrono::duration_cast<std::chrono::microseconds>(
+                      std::chrono::steady_clock::now().time_since_epoch())
+                      .count();
+  const std::string client = kClient + " --driver ardupilot-topotek --udp 127.0.0.1:9";
+  auto timed = [&](const std::string& env, const char* duration) {
+    const auto t = std::chrono::steady_clock::now();
+    const Shell r = shell(env + " " + client + " --duration " + duration);
+    EXPECT_EQ(r.status, 0) << r.err;
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  };
+  EXPECT_LT(timed("TOPCONF_T0_US=" + std::to_string(us - 5000000), "5.6"), 3.0);
+  EXPECT_GT(timed("TOPCONF_T0_US=x5", "0.4"), 0.35);
+}
+
 // A failed write on stdout is exit 2 with a message, not a silent run.
 TEST(DriveClient, FailedWriteIsAnError) {
   std::string line;

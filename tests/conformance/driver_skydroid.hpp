@@ -12,7 +12,7 @@
 // 3 MOD (until parsed), 4 SDC, 6 FAE. Camera commands on request.
 // Parses: GAC (>= 12 data chars: yaw, pitch up positive, roll, int16 in
 // 0.01 deg), REC (data char 1), SDC (>= 10 chars, all 0: no card), VER
-// ("V1.0.78"), MOD (the model name).
+// ("V1.0.78"), MOD (the model name, which the driver cuts at 7 chars).
 //
 // For topconf drive (issue 50): the drive contract's intents (rate, angle,
 // stop, centre, camera, identity, clock), its beliefs, and the known bugs
@@ -94,11 +94,8 @@ class SkyDroidDriver : public DriverClient {
   void zoom(int r) {  // one step in (0A) or out (0B); no stop exists
     if (r != 0) camera_now('M', "DZM", r > 0 ? "0A" : "0B");
   }
-  void ask_identity() {
-    version.clear(), model.clear();
-    now_.push_back(frame(top::Header::fixed, 'D', 'r', "VER", "00"));
-    now_.push_back(frame(top::Header::fixed, 'D', 'r', "MOD", "00"));
-  }
+  // Asked again at their steps of the round robin (VER 0, MOD 3).
+  void ask_identity() { version.clear(), model.clear(); }
   void set_clock(const drive::Utc& u, std::uint64_t now_us) {
     clock_.set(drive::to_tm(u), now_us);
     now_.push_back(frame(top::Header::variable, 'D', 'w', "TIM", time_data(now_us)));
@@ -109,7 +106,10 @@ class SkyDroidDriver : public DriverClient {
       b.attitude = {attitude.back().roll, attitude.back().pitch, attitude.back().yaw};
     b.healthy = healthy(now_us);
     if (!version.empty()) b.version = version;
-    if (model.find_first_not_of("0 ") != std::string::npos) b.model = model;
+    if (model.find_first_not_of('0') != std::string::npos)
+      b.model = model;
+    else if (!model.empty())
+      b.error = "the model name is the factory placeholder " + model;
     if (!error.empty()) b.error = error;
     return b;
   }
@@ -168,7 +168,8 @@ class SkyDroidDriver : public DriverClient {
       // gimbal_version_analyse(): "V" then numbers between dots.
       version = drive::parse_version(d.substr(1), bugs.has(drive::Bug::strict_version)).text();
     } else if (id == "MOD" && !d.empty()) {
-      model = std::string(d.substr(0, std::min<std::size_t>(d.size(), 7)));
+      // The whole name (the PR's driver keeps 7 chars: a longer one is cut).
+      model = std::string(d.substr(0, std::min<std::size_t>(d.size(), 31)));
     }
   }
 

@@ -121,11 +121,10 @@ class TopotekClient : public DriverClient {
              static_cast<int>(w * 1920 / 0.96), static_cast<int>(h * 1080 / 0.54), 0x0001);
   }
   void track_stop() { cancel_tracking(); }
-  void ask_identity() {
-    version_parsed = false, model_name.clear();
-    pending_.push_back(fixed('D', 'r', "VSN", 0));
-    pending_.push_back(fixed('G', 'r', "PA2", 0));
-  }
+  // Asked again at their steps of the round robin (VSN 0, PA2 8), as the
+  // driver asks them until answered: not all at once (a slow reply on a
+  // serial line holds back what follows it).
+  void ask_identity() { version_parsed = false, model_name.clear(); }
   // Sets the camera clock now, and keeps the time for the UTC frames after.
   void set_clock(const drive::Utc& u, std::uint64_t now_us) {
     clock_.set(drive::to_tm(u), now_us);
@@ -142,8 +141,11 @@ class TopotekClient : public DriverClient {
       b.attitude = {attitude.back().roll, attitude.back().pitch, attitude.back().yaw};
     b.healthy = healthy(now_us);
     if (version_parsed) b.version = version_text();
-    // The factory placeholder is no model name (PR #27568).
-    if (model_name.find_first_not_of("0 ") != std::string::npos) b.model = model_name;
+    // What it parsed; the factory placeholder (PR #27568) is no name: unknown.
+    if (model_name.find_first_not_of('0') != std::string::npos)
+      b.model = model_name;
+    else if (!model_name.empty())
+      b.error = "the model name is the factory placeholder " + model_name;
     static constexpr const char* kStates[] = {"off", "searching", "tracking", "lost", "refused"};
     if (!track_states.empty() && track_state >= '0' && track_state <= '4')
       b.tracking = kStates[track_state - '0'];

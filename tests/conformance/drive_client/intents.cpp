@@ -120,17 +120,19 @@ std::vector<Intent> load_intents(const std::string& path, std::string& error) {
     error = path + ": cannot open the intents file";
     return {};
   }
-  // Read at most 16 MiB (and one byte to tell a longer file).
-  constexpr std::size_t kMax = 16u << 20;
-  std::string text(kMax + 1, '\0');
-  f.read(text.data(), static_cast<std::streamsize>(text.size()));
-  if (f.bad()) {
-    error = path + ": read error";
+  // At most 16 MiB: its size first, then that many bytes.
+  constexpr std::streamoff kMax = 16 << 20;
+  f.seekg(0, std::ios::end);
+  const std::streamoff size = f.tellg();
+  if (size < 0 || size > kMax) {
+    error = path + (size < 0 ? ": cannot tell its size" : ": over 16 MiB, not an intents file");
     return {};
   }
-  text.resize(static_cast<std::size_t>(f.gcount()));
-  if (text.size() > kMax) {
-    error = path + ": over 16 MiB, not an intents file";
+  f.seekg(0);
+  std::string text(static_cast<std::size_t>(size), '\0');
+  f.read(text.data(), size);
+  if (f.gcount() != size) {
+    error = path + ": read error";
     return {};
   }
   return parse_intents(text, path, error);

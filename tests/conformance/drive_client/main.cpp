@@ -11,11 +11,14 @@
 // Exit status: 0 stopped; 1 the link failed; 2 bad usage, a bad intents
 // file, or a failed write on stdout.
 #include <signal.h>
+#include <time.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
@@ -33,6 +36,33 @@ namespace {
 constexpr const char* kTool = "topkit_drive_client";
 volatile std::sig_atomic_t g_stop = 0;
 void on_signal(int) { g_stop = 1; }
+
+// How long ago this process started (its fork, /proc/self/stat field 22, in
+// clock ticks since boot, against CLOCK_BOOTTIME): the intents' `t` counts
+// from the driver's start, which topconf drive takes when it starts the
+// command, so the time spent loading and opening the link here (hundreds
+// of ms on a loaded machine) is not added to every intent. 0 when unknown.
+std::uint64_t since_start_us() {
+  std::FILE* f = std::fopen("/proc/self/stat", "r");
+  if (!f) return 0;
+  char buf[1024];
+  const std::size_t n = std::fread(buf, 1, sizeof buf - 1, f);
+  std::fclose(f);
+  buf[n] = '\0';
+  const char* p = std::strrchr(buf, ')');  // after the command name
+  unsigned long long start = 0;
+  if (!p || std::sscanf(p + 2,
+                        "%*c %*d %*d %*d %*d %*d %*u %*u %*u %*u %*u %*u %*u %*d %*d %*d %*d "
+                        "%*d %*d %llu",
+                        &start) != 1)
+    return 0;
+  timespec now{};
+  clock_gettime(CLOCK_BOOTTIME, &now);
+  const double ticks = static_cast<double>(sysconf(_SC_CLK_TCK));
+  const double ago = static_cast<double>(now.tv_sec) + static_cast<double>(now.tv_nsec) / 1e9 -
+                     static_cast<double>(start) / ticks;
+  return ago > 0 && ago < 10 ? static_cast<std::uint64_t>(ago * 1e6) : 0;
+}
 
 struct Options {
   std::string driver, pty, udp, tcp, intents, model;
@@ -60,7 +90,15 @@ int drive_loop(Client& c, topconf::Transport& t, const Options& o, drive::Script
                drive::IntentFile* follow) {
   c.client = t.client_address();
   topconf::FrameLink link(t, nullptr, 4096);
-  const std::uint64_t start = link.now();
+  // Time 0: TOPCONF_T0_US when topconf says it (CLOCK_MONOTONIC, the
+  // steady clock of the link; proposed for the contract), else this
+  // process's start.
+  std::uint64_t start = link.now() - std::min(link.now(), since_start_us());
+  if (const char* t0 = std::getenv("TOPCONF_T0_US")) {
+    char* end = nullptr;
+    const unsigned long long v = std::strtoull(t0, &end, 10);
+    if (end && *end == '\0' && v > 0 && v <= link.now() && link.now() - v < 10000000) start = v;
+  }
   const std::uint64_t end =
       o.duration_s > 0 ? start + static_cast<std::uint64_t>(o.duration_s * 1e6) : UINT64_MAX;
   std::uint64_t next_tick = start, next_belief = start, next_poll = start;
