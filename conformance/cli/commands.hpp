@@ -56,5 +56,6 @@ std::unique_ptr<topkit::cli::Subcommand> models_command(CLI::App& app);
 std::unique_ptr<topkit::cli::Subcommand> validate_command(CLI::App& app);
 std::unique_ptr<topkit::cli::Subcommand> drivers_command(CLI::App& app);
 std::unique_ptr<topkit::cli::Subcommand> table_command(CLI::App& app);
+std::unique_ptr<topkit::cli::Subcommand> drive_command(CLI::App& app);
 
 }  // namespace topconf::cli

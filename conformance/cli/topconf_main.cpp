@@ -19,7 +19,9 @@ int main(int argc, char** argv) {
   const auto validate = validate_command(app);
   const auto drivers = drivers_command(app);
   const auto table = table_command(app);
+  const auto drive = drive_command(app);
   if (int rc = topkit::cli::parse(app, argc, argv); rc >= 0) return rc;
-  return topkit::cli::run_selected(kTool, {run.get(), fuzz.get(), generate.get(), models.get(),
-                                           validate.get(), drivers.get(), table.get()});
+  return topkit::cli::run_selected(
+      kTool, {run.get(), fuzz.get(), generate.get(), models.get(), validate.get(), drivers.get(),
+              table.get(), drive.get()});
 }

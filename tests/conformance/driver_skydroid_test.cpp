@@ -31,6 +31,7 @@ TEST_P(SkyDroidDriverRun, ServedAsTheDriverNeeds) {
   const std::string name = std::string(top::to_string(model)) + "_" + l.name();
   const std::string rec = recording_path("driver_skydroid_" + name, l.kind);
   SkyDroidDriver c;
+  c.bugs.set(drive::Bug::month_zero_based);  // as the PR's driver sends TIM (below)
   c.camera = {{1200000, 'D', "REC", "01"},
               {1500000, 'D', "CAP", "01"},
               {1700000, 'M', "DZM", "0A"},

@@ -130,6 +130,22 @@ Device::Device(top::Model model, DeviceOptions opts)
                   top::find_trait(top::TraitKind::keeps_request_header, model, p) != nullptr;
 }
 
+void Device::reconfigure(DeviceOptions opts, std::uint64_t now_us) {
+  advance(now_us);
+  Device next(model_, std::move(opts));
+  for (std::size_t i = 0; i < 3; ++i) {
+    next.axes_[i].angle = std::clamp(axes_[i].angle, next.axes_[i].min, next.axes_[i].max);
+    next.axes_[i].rate = 0;  // a new case starts at rest
+  }
+  next.streams_ = streams_;
+  for (Stream& s : next.streams_) s.on_us = now_us;
+  next.recording_ = recording_;
+  next.file_index_ = file_index_;
+  next.now_us_ = now_us_;
+  next.requests_ = requests_;
+  *this = std::move(next);
+}
+
 std::string Device::setting(std::string_view ident) const {
   auto it = settings_.find(ident);
   return it == settings_.end() ? std::string() : it->second;
@@ -192,7 +208,8 @@ bool Device::fault_inverts(std::size_t axis, top::MotionKind kind) const noexcep
 }
 
 bool Device::accepts(const Frame& f, Link link) const noexcept {
-  return top::answers_source(model_, opts_.profile, link, f.src);
+  return top::answers_source(model_, opts_.profile, link, f.src) ||
+         (opts_.any_source && top::is_client_address(f.src));
 }
 
 top::BuildSpec Device::reply_spec(top::Header h, const Frame& req, char control,
@@ -303,6 +320,19 @@ void Device::poll(std::uint64_t now_us, std::vector<std::string>& out) {
     if (s.period_us == 0) continue;
     // Never emit a backlog: a late poll sends one frame and catches up.
     if (s.next_us > now_us) continue;
+    // A stream the device switches off (stop=) waits for the client's switch.
+    const std::uint64_t since_on = now_us - std::min(now_us, s.on_us);
+    bool stopped = false;
+    for (std::size_t i = 0; i < opts_.faults.stops.size() && i < 32; ++i) {
+      const DeviceFaults::Mute& m = opts_.faults.stops[i];
+      if (m.ident != s.ident || since_on < m.from_us || (stops_fired_ >> i & 1u)) continue;
+      stops_fired_ |= 1u << i;
+      stopped = true;
+    }
+    if (stopped) {
+      s.period_us = 0;
+      continue;
+    }
     // A stalled or never-started stream keeps its timing and sends nothing.
     if (!opts_.faults.muted(s.ident, now_us - std::min(now_us, s.on_us))) {
       const std::string data = attitude_data(s.ident);
@@ -350,6 +380,12 @@ void Device::handle(const Frame& req, Link link, std::uint64_t now_us,
     reply_error(req, out);
     return;
   }
+  // ere=: this firmware refuses the command.
+  for (const std::string& e : opts_.faults.ere)
+    if (e == id) {
+      reply_error(req, out);
+      return;
+    }
   if (dispatch(req, dec, now_us, out)) return;
 
   const top::CommandSpec& cmd = *dec.command;

@@ -103,6 +103,29 @@ Parsed parse_device_fault(std::string_view name, bool has_value, std::string_vie
     (name == "refuse-tracking" ? out.refuse_tracking : out.placeholder_identity) = true;
     return Parsed::ok;
   }
+  if (name == "stop") {
+    // IDENT@T: the device switches the stream off T seconds after it started.
+    const std::size_t at = value.find('@');
+    std::uint64_t from = 0;
+    if (at == std::string_view::npos || !seconds(value.substr(at + 1), from))
+      return bad("stop needs IDENT@T: a push stream, seconds after it started");
+    DeviceFaults::Mute m{std::string(value.substr(0, at)), from, DeviceFaults::kForever};
+    if (!is_push(m.ident))
+      return bad("stop: '" + m.ident + "' is no push stream (GAC GIC GIA OFT)");
+    if (out.stops.size() >= 32) return bad("stop: at most 32");
+    out.stops.push_back(std::move(m));
+    return Parsed::ok;
+  }
+  if (name == "ere") {
+    if (value.size() != 3) return bad("ere needs a three-character identifier");
+    out.ere.emplace_back(value);
+    return Parsed::ok;
+  }
+  if (name == "range-form") {
+    if (value != "short") return bad("range-form needs short");
+    out.range_short = true;
+    return Parsed::ok;
+  }
   if (name == "clock") {
     if (value != "month-early") return bad("clock needs month-early");
     out.clock_month_early = true;

@@ -160,7 +160,9 @@ struct TopotekHandlers {
   static bool range_write(const Call& c) {
     if (!field(c.dec, "action") || !c.dec.command) return false;
     char data[16];
-    std::snprintf(data, sizeof data, "%07.1f", std::clamp(c.dev.opts_.range_m, 0.0, 99999.9));
+    // range-form=short: no zero padding (topconf drive 8.3).
+    std::snprintf(data, sizeof data, c.dev.opts_.faults.range_short ? "%.1f" : "%07.1f",
+                  std::clamp(c.dev.opts_.range_m, 0.0, 99999.9));
     const std::string_view d(data);
     c.out.push_back(c.dev.make(top::choose_header(c.dev.dialect_, c.dec.command->address, d.size()),
                                c.req, 'w', c.req.ident_view(), d));

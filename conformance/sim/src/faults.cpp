@@ -54,17 +54,18 @@ std::string malformed(const std::string& frame, bool lie, bool flip) {
 bool FaultConfig::any() const noexcept {
   return drop > 0 || delay_ms > 0 || duplicate > 0 || bad_checksum > 0 || header_case > 0 ||
          no_swap || lying_length > 0 || tmp_quirk || split || garbage > 0 || !hang_on.empty() ||
-         !ignore.empty() || crash_on || hang_class || slow_on || answer_corrupt || device.any();
+         !ignore.empty() || crash_on || hang_class || slow_on || answer_corrupt || !late.empty() ||
+         checksum_case > 0 || reboot_us > 0 || device.any();
 }
 
 const std::vector<std::string_view>& fault_names() {
   static const std::vector<std::string_view> names = {
       "drop", "delay", "duplicate", "bad-checksum", "header-case", "no-swap", "lying-length",
       "tmp-quirk", "split", "garbage", "hang-on", "crash-on", "hang-s", "slow-on", "slow-ms",
-      "answer-corrupt", "ignore",
+      "answer-corrupt", "ignore", "late", "checksum-case", "reboot",
       // the device faults (device_faults.cpp)
       "stall", "no-stream", "ignore-motion", "invert", "placeholder-identity", "refuse-tracking",
-      "clock"};
+      "clock", "stop", "ere", "range-form"};
   return names;
 }
 
@@ -79,7 +80,10 @@ std::string_view fault_usage() noexcept {
          "ignore-motion=IDENT[+IDENT] (echoed, nothing moves), invert=yaw|pitch|roll[:angle|:rate] "
          "(the axis moves opposite to the command), placeholder-identity (VER/MOD/VSN/PA2 "
          "answer 000000000, 0.0.0), refuse-tracking (TRC state 4), clock=month-early (TIM/UTC "
-         "answered one month early)";
+         "answered one month early), stop=IDENT@T (the stream switched off T s after its "
+         "start, until switched on again), ere=IDENT (ERE to IDENT), range-form=short (LRF "
+         "unpadded); for topconf drive: late=IDENT@MS (frames of IDENT MS later), "
+         "checksum-case=P (lowercase checksum), reboot=S (power cycle after S s)";
 }
 
 std::optional<FaultConfig> parse_faults(std::string_view spec, std::string& error) {
@@ -97,13 +101,14 @@ std::optional<FaultConfig> parse_faults(std::string_view spec, std::string& erro
       error = "fault '" + std::string(item) + "': " + std::string(why);
       return std::nullopt;
     };
-    double* prob = name == "drop"           ? &cfg.drop
-                   : name == "duplicate"    ? &cfg.duplicate
-                   : name == "bad-checksum" ? &cfg.bad_checksum
-                   : name == "header-case"  ? &cfg.header_case
-                   : name == "lying-length" ? &cfg.lying_length
-                   : name == "garbage"      ? &cfg.garbage
-                                            : nullptr;
+    double* prob = name == "drop"            ? &cfg.drop
+                   : name == "duplicate"     ? &cfg.duplicate
+                   : name == "bad-checksum"  ? &cfg.bad_checksum
+                   : name == "header-case"   ? &cfg.header_case
+                   : name == "lying-length"  ? &cfg.lying_length
+                   : name == "garbage"       ? &cfg.garbage
+                   : name == "checksum-case" ? &cfg.checksum_case
+                                             : nullptr;
     if (prob) {
       // A bare name means always.
       if (!has_value) {
@@ -149,6 +154,22 @@ std::optional<FaultConfig> parse_faults(std::string_view spec, std::string& erro
         if (plus == std::string_view::npos) break;
         start = plus + 1;
       }
+    } else if (name == "late") {
+      const std::size_t at = value.find('@');
+      unsigned ms = 0;
+      const std::string_view num = at == std::string_view::npos ? "" : value.substr(at + 1);
+      auto [p, ec] = std::from_chars(num.data(), num.data() + num.size(), ms);
+      if (at != 3 || num.empty() || ec != std::errc{} || p != num.data() + num.size() ||
+          ms > 600000)
+        return bad("late needs IDENT@MS: a three-character identifier, milliseconds 0-600000");
+      cfg.late.push_back(FaultConfig::Late{std::string(value.substr(0, 3)), ms});
+    } else if (name == "reboot") {
+      std::string s(value);
+      char* end = nullptr;
+      const double sec = std::strtod(s.c_str(), &end);
+      if (s.empty() || end != s.c_str() + s.size() || !(sec > 0 && sec <= 3600))
+        return bad("reboot needs seconds, more than 0 and at most 3600");
+      cfg.reboot_us = static_cast<std::uint64_t>(sec * 1e6 + 0.5);
     } else if (name == "answer-corrupt") {
       if (has_value) return bad("takes no value");
       cfg.answer_corrupt = true;
@@ -202,8 +223,18 @@ void FaultInjector::apply(const std::string& frame, bool stream_link, std::vecto
     char& c = f[f.size() - 1];
     c = c == '0' ? '1' : '0';
   }
+  // checksum-case: the checksum's letters in lowercase (a parser that
+  // compares the text, not the value, drops the frame).
+  if (chance(cfg_.checksum_case) && f.size() >= 2)
+    for (std::size_t i = f.size() - 2; i < f.size(); ++i)
+      if (f[i] >= 'A' && f[i] <= 'F') f[i] = static_cast<char>(f[i] - 'A' + 'a');
   if (chance(cfg_.garbage)) f.insert(0, "\x01\xFFzz%");
   std::uint64_t delay = std::uint64_t{cfg_.delay_ms} * 1000;
+  // late=: a frame of the identifier (#TP/#tp: at offset 7) leaves later.
+  if (plain && f.size() >= top::prefix_size)
+    for (const FaultConfig::Late& l : cfg_.late)
+      if (std::string_view(frame).substr(top::prefix_size - 3, 3) == l.ident)
+        delay += std::uint64_t{l.ms} * 1000;
   if (slow_until_ > now_us_) delay += slow_until_ - now_us_;
   const int copies = chance(cfg_.duplicate) ? 2 : 1;
   for (int i = 0; i < copies; ++i) {

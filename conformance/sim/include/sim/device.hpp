@@ -49,10 +49,21 @@ struct DeviceFaults {
   // TIM/UTC writes answered with the camera's clock one month early, as a
   // clock set with a 0-based month (clock=month-early).
   bool clock_month_early = false;
+  // A push stream switched off by the device `from_us` after it was turned
+  // on (stop=IDENT@T): it stays off until the client switches it on again,
+  // and stops once only (topconf drive 1.3).
+  std::vector<Mute> stops;
+  // Requests of these identifiers answered with ERE where the dialect has
+  // one (SkyDroid), silence on Topotek (ere=IDENT; topconf drive 5.1).
+  std::vector<std::string> ere;
+  // The LRF range answered without the document's zero padding, `12.5`
+  // where Topotek 5.9 gives `00012.5` (range-form=short; topconf drive 8.3).
+  bool range_short = false;
 
   bool any() const noexcept {
     return !mutes.empty() || !ignore_motion.empty() || invert[0] || invert[1] || invert[2] ||
-           placeholder_identity || refuse_tracking || clock_month_early;
+           placeholder_identity || refuse_tracking || clock_month_early || !stops.empty() ||
+           !ere.empty() || range_short;
   }
   // Whether pushes of `ident` never come (no-stream=).
   bool never_pushes(std::string_view ident) const noexcept {
@@ -115,6 +126,10 @@ struct DeviceOptions {
   // document gives it no reply form; a real Topotek camera echoes none:
   // silent_writes); unset or false: answer each write as write_reply says.
   std::optional<bool> write_echo;
+  // true: answer a request whatever link its source address names (a
+  // Topotek U request over the network too); topconf drive sets it in
+  // every case but 6.4, which alone judges the driver's source address.
+  bool any_source = false;
   DeviceFaults faults;
 };
 
@@ -185,6 +200,11 @@ class Device {
   const Axis& pitch() const noexcept { return axes_[1]; }
   const Axis& roll() const noexcept { return axes_[2]; }
   void advance(std::uint64_t now_us) noexcept;
+  // Takes new options (faults, identity, forms) and keeps the state: the
+  // axes, the streams (their switch-on time now, so that a fault's times
+  // count from here), recording, settings (topconf drive --persistent: the
+  // device changes case in place).
+  void reconfigure(DeviceOptions opts, std::uint64_t now_us);
   bool recording() const noexcept { return recording_; }
   std::uint32_t file_index() const noexcept { return file_index_; }
   // The stored data of a setting (written value or default), "" if none.
@@ -262,6 +282,7 @@ class Device {
   std::uint64_t requests_ = 0;
   Tracking tracking_;
   bool keeps_header_ = false;
+  std::uint32_t stops_fired_ = 0;  // DeviceFaults::stops that fired, a bit each
 };
 
 // The request handler as a function (the fuzz entry point): one datagram's

@@ -15,7 +15,8 @@
 // of docs/DIAGNOSES.md, conformance/README.md "Faults for the diagnoses"):
 //   stall=IDENT@T+S  no-stream=IDENT  ignore-motion=IDENT[+IDENT...]
 //   invert=AXIS[:angle|:rate]  placeholder-identity  refuse-tracking
-//   clock=month-early
+//   clock=month-early  stop=IDENT@T  ere=IDENT  range-form=short
+// For topconf drive (docs/DRIVE.md): late=IDENT@MS  checksum-case=P  reboot=S
 #pragma once
 
 #include <cstdint>
@@ -70,6 +71,16 @@ struct FaultConfig {
   InputClass slow_on;            // answers (and all after) wait slow_ms
   std::uint32_t slow_ms = 1000;  //
   bool answer_corrupt = false;   // a frame failing its checksum is answered
+  // late=IDENT@MS (repeatable): frames of IDENT (its replies) leave MS later.
+  struct Late {
+    std::string ident;
+    std::uint32_t ms = 0;
+  };
+  std::vector<Late> late;
+  double checksum_case = 0;  // probability the checksum's hex letters go lowercase
+  // reboot=S: the device power-cycles S seconds after the server started
+  // (topsim_server: Server::restart, streams off); 0: never.
+  std::uint64_t reboot_us = 0;
   // What the device itself does wrong (handed to it as DeviceOptions::faults).
   DeviceFaults device;
 

@@ -90,6 +90,18 @@ class Server {
   // start, firmware faults (crash-on, hang-on) cleared; sockets stay open.
   void restart();
   std::string pty_path() const;  // slave path for --pty
+  // Runs `fn` on the server's thread with the device and the device's clock
+  // (microseconds since the server started), and returns once it ran: how a
+  // harness samples the device's truth while it serves (topconf drive).
+  // false when the server did not run it within 1 s (not running).
+  bool visit(const std::function<void(const Device&, std::uint64_t now_us)>& fn);
+  // The device changes case in place (topconf drive --persistent): new
+  // faults and device options, the state and the link kept
+  // (Device::reconfigure). Callable from any thread; returns once done
+  // (false when the server did not run it within 1 s).
+  bool reconfigure(const FaultConfig& faults, const DeviceOptions& options);
+  // Microseconds since the server started (the device's clock).
+  std::uint64_t now_us() const;
   // Serves until stop() (callable from any thread).
   void run();
   void stop();
