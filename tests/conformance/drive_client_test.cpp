@@ -106,15 +106,17 @@ TEST(DriveClient, BadIntentsNameFileAndLine) {
   // Unknown actions are ignored; the rest sorted by time.
   why.clear();
   const auto v = drive::parse_intents(
-      "{\"t\":2,\"do\":\"stop\"}\n{\"t\":1,\"do\":\"case\",\"id\":\"2.1\"}\n"
+      "{\"t\":2,\"do\":\"stop\"}\n{\"t\":1,\"do\":\"case\",\"id\":\"2.1\"}\n{\"t\":1,\"do\":"
+      "\"dance\"}\n"
       "{\"t\":0.5,\"do\":\"rate\",\"pitch_dps\":10}\n",
       "f", why);
   EXPECT_TRUE(why.empty()) << why;
-  ASSERT_EQ(v.size(), 3u);
+  ASSERT_EQ(v.size(), 4u);
   EXPECT_EQ(v[0].what, drive::Intent::Do::rate);
   EXPECT_EQ(v[0].pitch, 10);
-  EXPECT_EQ(v[1].what, drive::Intent::Do::other);
-  EXPECT_EQ(v[2].line, 1u);
+  EXPECT_EQ(v[1].what, drive::Intent::Do::case_start);
+  EXPECT_EQ(v[2].what, drive::Intent::Do::other);
+  EXPECT_EQ(v[3].line, 1u);
 }
 
 // Against topsim over a pty and UDP: the pitch rate intent moves the
