@@ -145,7 +145,13 @@ int DriveCommand::run() {
   if (!files_.junit.empty())
     ok &= write_output(files_.junit, [&](std::ostream& out) { write_drive_junit(out, r); });
   if (!files_.html.empty())
-    ok &= write_output(files_.html, [&](std::ostream& out) { write_drive_html(out, r); });
+    ok &= write_output(files_.html, [&](std::ostream& out) {
+      // The page's links to the cases' files, from where the page is.
+      std::error_code ec;
+      const fs::path page_dir = fs::absolute(files_.html, ec).parent_path();
+      const fs::path rel = fs::relative(fs::absolute(o.out_dir, ec), page_dir, ec);
+      write_drive_html(out, r, ec ? fs::absolute(o.out_dir).string() : rel.string());
+    });
   if (!agent_.empty()) {
     ok &= write_output((fs::path(out_) / "agents" / (agent_ + ".json")).string(),
                        [&](std::ostream& out) { out << j.dump(2) << "\n"; });

@@ -11,7 +11,7 @@ while a GAC came within 1 s) every 0.2 s. Switches put in the bugs the
 harness must catch: --wrong-sign (pitch rates negated: case 2.1),
 --no-stop (no zero rate: case 2.4). --follow reads the intents file as it
 grows (--persistent). It checks its environment (TOPCONF_CASE, _INTENT,
-_MODEL, _LINK, _PORT against the command line) and says what is wrong as
+_MODEL, _LINK, _T0_US, _PORT against the command line) and says what is wrong as
 a belief "error". One line that is not JSON comes first (counted by the
 harness). SIGTERM ends it (exit 0).
 """
@@ -84,7 +84,8 @@ def main():
     stop = []
     signal.signal(signal.SIGTERM, lambda *_: stop.append(1))
     errors = []
-    for key in ("TOPCONF_CASE", "TOPCONF_INTENT", "TOPCONF_MODEL", "TOPCONF_LINK"):
+    for key in ("TOPCONF_CASE", "TOPCONF_INTENT", "TOPCONF_MODEL", "TOPCONF_LINK",
+                "TOPCONF_T0_US"):
         if not os.environ.get(key):
             errors.append(key + " missing")
     if os.environ.get("TOPCONF_PORT") != port:
@@ -95,7 +96,14 @@ def main():
     sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
     dev = (host, int(port))
     print("hello: this line is not JSON", flush=True)
+    # Time 0: topconf's (TOPCONF_T0_US, CLOCK_MONOTONIC as time.monotonic),
+    # else this process's start.
     t0 = started()
+    given = os.environ.get("TOPCONF_T0_US", "")
+    if given.isdigit() and 0 <= time.monotonic() - int(given) / 1e6 < 10:
+        t0 = int(given) / 1e6
+    elif given:
+        errors.append("TOPCONF_T0_US %r is not a recent CLOCK_MONOTONIC time" % given)
     att, att_t = None, -10.0
     rate = None  # (yaw, pitch) deg/s while a rate intent holds
     next_gaa = next_rate = next_belief = 0.0

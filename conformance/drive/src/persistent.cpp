@@ -59,7 +59,7 @@ void run_persistent(const DriveOptions& o, DriveRun& run) {
     double total = 0;
     for (const CaseSetup& s : setups) total += s.not_applicable.empty() ? s.duration_s : 0;
     DriverProcess p(substitute(o.exec, values), dir.string(),
-                    environment(o, "persistent", intents, link, total),
+                    environment(o, "persistent", intents, link, total, t0),
                     (fs::path(o.out_dir) / stderr_path).string(),
                     [&](Steady::time_point at, std::string line) {
                       log.take(t0, at, line);

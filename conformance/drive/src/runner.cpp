@@ -47,13 +47,18 @@ namespace detail {
 
 std::vector<std::pair<std::string, std::string>> environment(
     const DriveOptions& o, const std::string& case_id, const std::string& intents,
-    const std::vector<std::pair<std::string, std::string>>& link, double duration) {
+    const std::vector<std::pair<std::string, std::string>>& link, double duration,
+    Steady::time_point t0) {
   std::vector<std::pair<std::string, std::string>> env = {
       {"TOPCONF_CASE", case_id},
       {"TOPCONF_INTENT", intents},
       {"TOPCONF_MODEL", std::string(top::to_string(o.model))},
       {"TOPCONF_LINK", std::string(to_string(o.link))},
-      {"TOPCONF_DURATION", std::to_string(duration)}};
+      {"TOPCONF_DURATION", std::to_string(duration)},
+      // steady_clock is CLOCK_MONOTONIC (libstdc++ on Linux).
+      {"TOPCONF_T0_US",
+       std::to_string(
+           std::chrono::duration_cast<std::chrono::microseconds>(t0.time_since_epoch()).count())}};
   for (const auto& [k, v] : link) {
     std::string up = k;
     for (char& c : up) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
@@ -126,7 +131,7 @@ CaseResult run_one(const DriveOptions& o, const CaseSpec& c) {
     dev.set_t0(t0);
     const std::uint64_t server_at_t0 = dev.server().now_us();
     DriverProcess p(substitute(o.exec, values), dir.string(),
-                    environment(o, std::string(c.id), intents, link, setup.duration_s),
+                    environment(o, std::string(c.id), intents, link, setup.duration_s, t0),
                     (fs::path(o.out_dir) / res.stderr_path).string(),
                     [&](Steady::time_point at, std::string line) {
                       log.take(t0, at, line);
@@ -187,6 +192,7 @@ DriveRun run_drive(const DriveOptions& given) {
   DriveOptions o = given;
   std::error_code aec;
   o.out_dir = fs::absolute(given.out_dir, aec).lexically_normal().string();
+  run.options.out_dir = o.out_dir;
   run.started = iso_now();
   const auto t0 = Steady::now();
   std::error_code ec;

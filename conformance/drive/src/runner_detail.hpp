@@ -1,6 +1,7 @@
 // What the per-case runner and the persistent mode share (private to drive/).
 #pragma once
 
+#include <chrono>
 #include <string>
 #include <utility>
 #include <vector>
@@ -10,11 +11,13 @@
 
 namespace topconf::drive::detail {
 
-// The driver's environment: TOPCONF_CASE, _INTENT, _MODEL, _LINK, _DURATION
-// and the link's TOPCONF_PTY, _HOST, _PORT.
+// The driver's environment: TOPCONF_CASE, _INTENT, _MODEL, _LINK, _DURATION,
+// the link's TOPCONF_PTY, _HOST, _PORT, and TOPCONF_T0_US: time 0 (`t0`,
+// when the driver is started) on CLOCK_MONOTONIC, in microseconds.
 std::vector<std::pair<std::string, std::string>> environment(
     const DriveOptions& o, const std::string& case_id, const std::string& intents,
-    const std::vector<std::pair<std::string, std::string>>& link, double duration);
+    const std::vector<std::pair<std::string, std::string>>& link, double duration,
+    std::chrono::steady_clock::time_point t0);
 // Whether the driver exited at once (`t` s after its start): within 0.2 s,
 // or with the shell's 126/127 (cannot run) at any time.
 bool at_once(DriverProcess& p, double t);

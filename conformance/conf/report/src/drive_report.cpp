@@ -78,6 +78,7 @@ nlohmann::json drive_json(const DriveRun& r) {
   j["persistent"] = r.options.persistent;
   j["full"] = r.options.full;
   j["started"] = r.started;
+  j["out"] = r.options.out_dir;  // the cases' folder, capture and stderr are relative to it
   j["seconds"] = r.seconds;
   nlohmann::json sum = nlohmann::json::object();
   for (Grade g : kGrades) sum[std::string(drive::to_string(g))] = r.count(g);
@@ -152,7 +153,8 @@ void write_drive_junit(std::ostream& os, const DriveRun& r) {
   detail::close_junit(os);
 }
 
-void write_drive_html(std::ostream& os, const DriveRun& r) {
+void write_drive_html(std::ostream& os, const DriveRun& r, const std::string& base) {
+  const std::string to = base.empty() || base == "." ? "" : base + "/";
   const std::string model(top::to_string(r.options.model));
   write_html_head(os, "topconf drive " + model);
   os << "<h1>topconf drive: " << markup_escape(model) << " over "
@@ -189,8 +191,8 @@ void write_drive_html(std::ostream& os, const DriveRun& r) {
     }
     os << "</td><td>";
     if (!c.capture.empty())
-      os << "<a href=\"" << markup_escape(c.capture) << "\">capture</a> <a href=\""
-         << markup_escape(c.stderr_path) << "\">stderr</a>";
+      os << "<a href=\"" << markup_escape(to + c.capture) << "\">capture</a> <a href=\""
+         << markup_escape(to + c.stderr_path) << "\">stderr</a>";
     os << "</td></tr>\n";
   }
   os << "</table>\n</body></html>\n";

@@ -20,7 +20,9 @@ void write_drive_console(std::ostream& os, const drive::DriveRun& r, bool color,
 void write_drive_case_line(std::ostream& os, const drive::CaseResult& c, bool color);
 nlohmann::json drive_json(const drive::DriveRun& r);
 void write_drive_junit(std::ostream& os, const drive::DriveRun& r);
-void write_drive_html(std::ostream& os, const drive::DriveRun& r);
+// `base`: where the run's --out is seen from the page (its links to the
+// cases' captures and stderr), "" when the page is in it.
+void write_drive_html(std::ostream& os, const drive::DriveRun& r, const std::string& base = "");
 
 // Why `report` cannot be a column of the agents' table (not a topconf
 // drive report); empty when it can.
