@@ -94,6 +94,8 @@ class SkyDroidDriver : public DriverClient {
   void zoom(int r) {  // one step in (0A) or out (0B); no stop exists
     if (r != 0) camera_now('M', "DZM", r > 0 ? "0A" : "0B");
   }
+  // A new device in place (topconf drive --persistent).
+  void forget() { version.clear(), model.clear(), sd_present.reset(), error.clear(); }
   // Asked again at their steps of the round robin (VER 0, MOD 3).
   void ask_identity() { version.clear(), model.clear(); }
   void set_clock(const drive::Utc& u, std::uint64_t now_us) {

@@ -131,6 +131,14 @@ class TopotekClient : public DriverClient {
     pending_.push_back(utc(now_us));
   }
 
+  // A new device in place (topconf drive --persistent): its identity,
+  // tracking state and range are not known yet.
+  void forget() {
+    version_parsed = false, version_parts = 0, model_name.clear();
+    track_states.clear(), track_state = '0', tracking = false;
+    distance_m = -1, error.clear();
+  }
+
   // Healthy: a GIA within the last second (healthy(), 1000 ms).
   bool healthy(std::uint64_t now_us) const {
     return !attitude.empty() && now_us - attitude.back().t_us < 1000000;

@@ -54,6 +54,10 @@ bool act(Client& c, const Intent& i, std::uint64_t now_us) {
         return true;
       }
       return false;
+    case D::case_start:
+      // What the driver learnt of the device is of the last case's device.
+      c.forget();
+      return true;
     case D::other:
       return true;  // not an action for a driver (ignored)
     case D::track_point:

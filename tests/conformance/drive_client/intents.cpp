@@ -23,7 +23,7 @@ constexpr Named kActions[] = {
     {"zoom", Intent::Do::zoom},           {"track_point", Intent::Do::track_point},
     {"track_box", Intent::Do::track_box}, {"track_stop", Intent::Do::track_stop},
     {"identity", Intent::Do::identity},   {"clock", Intent::Do::clock},
-    {"range", Intent::Do::range},
+    {"range", Intent::Do::range},         {"case", Intent::Do::case_start},
 };
 
 // A number at `key` (absent: `fallback`); throws the message on a wrong type.

@@ -26,7 +26,8 @@ struct Intent {
     identity,
     clock,
     range,
-    other  // an action this client does not know ("case" of --persistent, later ones): ignored
+    case_start,  // --persistent: the next case starts (the device changed in place)
+    other        // an action this client does not know (later ones): ignored
   };
   std::uint64_t at_us = 0;  // after the driver started
   Do what = Do::stop;

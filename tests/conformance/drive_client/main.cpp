@@ -91,8 +91,7 @@ int drive_loop(Client& c, topconf::Transport& t, const Options& o, drive::Script
   c.client = t.client_address();
   topconf::FrameLink link(t, nullptr, 4096);
   // Time 0: TOPCONF_T0_US when topconf says it (CLOCK_MONOTONIC, the
-  // steady clock of the link; proposed for the contract), else this
-  // process's start.
+  // steady clock of the link; docs/DRIVE.md), else this process's start.
   std::uint64_t start = link.now() - std::min(link.now(), since_start_us());
   if (const char* t0 = std::getenv("TOPCONF_T0_US")) {
     char* end = nullptr;
