@@ -76,10 +76,10 @@ bool Dissector::duplicate(std::int64_t ts, std::uint16_t id, std::string_view pa
   Seen& s = seen_[id & 0xFF];
   std::uint64_t& used = seen_used_[(id & 0xFF) >> 6];
   const std::uint64_t bit = std::uint64_t{1} << (id & 63);
-  const bool same = (used & bit) && s.ts != kNoTime && ts != kNoTime && ts >= s.ts && ts - s.ts <= kDuplicateUs &&
-                    s.id == id && s.saddr == now.saddr && s.daddr == now.daddr &&
-                    s.ports == now.ports && s.len == now.len && s.head == now.head &&
-                    s.tail == now.tail;
+  const bool same = (used & bit) && s.ts != kNoTime && ts != kNoTime && ts >= s.ts &&
+                    ts - s.ts <= kDuplicateUs && s.id == id && s.saddr == now.saddr &&
+                    s.daddr == now.daddr && s.ports == now.ports && s.len == now.len &&
+                    s.head == now.head && s.tail == now.tail;
   if (same) {
     dup_gap_us_ = ts - s.ts;
     return true;  // the original stays the one remembered

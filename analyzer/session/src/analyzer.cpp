@@ -158,7 +158,7 @@ inline void Analyzer::Impl::watch(Conversation& c, int d, const FrameEvent& ev) 
   // the motion diagnoses: commands that move the gimbal and its attitude
   if (const top::MotionSpec* m = e.decoded.motion; m && fr.checksum_ok && role != top::Role::any)
     c.watch.motion().frame(*m, e.decoded.form, role == top::Role::request, fr.control, fr.data(),
-                         ev.n, ev.ts, d, A.opts_.model);
+                           ev.n, ev.ts, d, A.opts_.model);
 }
 
 // Pairing saw the frame; what follows is reporting, which the filter
