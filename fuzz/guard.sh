@@ -56,9 +56,10 @@ if [ -z "${TOPKIT_GUARD_BUILD:-}" ]; then
   launcher=()
   command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
   cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
-    -DTOPKIT_FUZZ=ON -DTOPKIT_TESTS=OFF -DTOPKIT_TOOLS=OFF -DTOPKIT_BENCH=OFF "${launcher[@]}" \
+    -DTOPKIT_FUZZ=ON -DTOPKIT_TESTS=OFF -DTOPKIT_TOOLS=ON -DTOPKIT_BENCH=OFF "${launcher[@]}" \
     "-DCMAKE_CXX_FLAGS=-fsanitize=fuzzer-no-link,undefined -fno-omit-frame-pointer -gdwarf-4 -fsanitize-coverage-ignorelist=$root/fuzz/coverage-ignorelist.txt" \
     >/dev/null
+  echo "fuzz/guard.sh: building ${targets[*]} in $build"
   cmake --build "$build" -j "$jobs" --target "${targets[@]}" >/dev/null
 fi
 toolchain="$(clang++ --version | head -n 1); $(valgrind --version)"
