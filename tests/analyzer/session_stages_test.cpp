@@ -3,8 +3,12 @@
 // stage (session/counters.hpp), fed what the session feeds them.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <string>
+
 #include "session/conversation_table.hpp"
 #include "session/counters.hpp"
+#include "top/frame.hpp"
 
 namespace topdump {
 namespace {
@@ -53,6 +57,24 @@ TEST(LatencyTable, OneHistogramPerIdentifierWhateverTheOrder) {
   EXPECT_EQ(a.min(), 1);
   EXPECT_EQ(t.of(200 * 7919).max(), 200);
   EXPECT_EQ(t.of(pack_ident("GAC")).count(), 0u) << "a new identifier starts empty";
+}
+
+// Past kExact samples the quantiles come from the 1% buckets, which are
+// filled only then, the exact samples counted in first: the median of
+// 1..5000 us is the bucket of 2500 us, not of the later samples alone.
+TEST(Latency, QuantilesPastTheExactSamplesCountEverySample) {
+  Latency l;
+  for (std::int64_t us = 1; us <= 4096; ++us) l.add(us);
+  EXPECT_EQ(l.quantile(0.5), 2048) << "exact up to 4096 samples";
+  for (std::int64_t us = 4097; us <= 5000; ++us) l.add(us);
+  EXPECT_EQ(l.count(), 5000u);
+  EXPECT_EQ(l.min(), 1);
+  EXPECT_EQ(l.max(), 5000);
+  // the bucket of 2500 us: 1.01^b, b its 1% bucket
+  const auto b = static_cast<double>(Latency::bucket(2500));
+  EXPECT_EQ(l.quantile(0.5), std::llround(std::pow(1.01, b)));
+  EXPECT_NEAR(static_cast<double>(l.quantile(0.5)), 2500, 25);
+  EXPECT_NEAR(static_cast<double>(l.quantile(0.1)), 500, 5);
 }
 
 const Endpoint kCamera = Endpoint::ipv4(0xC0A89064, 9003);  // 192.168.144.100:9003
@@ -106,6 +128,57 @@ TEST(ConversationTable, ATopotekCameraTakesEveryPairBetweenTheTwoHosts) {
   EXPECT_EQ(t.answered_elsewhere(c, c.dir[0], 0, to), nullptr) << "one conversation";
   t.clear();
   EXPECT_EQ(t.size(), 0u);
+}
+
+// answered_elsewhere() looks through the conversations of the request's
+// destination end, the first made first; that index is built at its first
+// call (few captures ask), then kept as conversations come and go.
+TEST(ConversationTable, AnsweredElsewhereSeesConversationsMadeBeforeAndAfterItsFirstCall) {
+  ConversationTable t(TableOptions{});
+  const Route* r = nullptr;
+  Conversation& asked = t.add(Transport::udp, kClient, kCamera, r);
+  const Endpoint other_port = Endpoint::ipv4(0xC0A8900A, 40001);
+  const Endpoint third_port = Endpoint::ipv4(0xC0A8900A, 40002);
+  Conversation& early = t.add(Transport::udp, kCamera, other_port, r);
+  Endpoint to;
+  EXPECT_EQ(t.answered_elsewhere(asked, asked.dir[0], 0, to), nullptr) << "it sent nothing";
+  early.dir[0].sent_frame = true;
+  early.dir[0].last_frame_ts = 10;
+  EXPECT_EQ(t.answered_elsewhere(asked, asked.dir[0], 0, to), &early);
+  EXPECT_EQ(to, other_port);
+  EXPECT_EQ(t.answered_elsewhere(asked, asked.dir[0], 11, to), nullptr) << "before `after`";
+  Conversation& late = t.add(Transport::udp, kCamera, third_port, r);
+  late.dir[0].sent_frame = true;
+  late.dir[0].last_frame_ts = 20;
+  EXPECT_EQ(t.answered_elsewhere(asked, asked.dir[0], 0, to), &early) << "the first made first";
+  t.remove(early);
+  EXPECT_EQ(t.answered_elsewhere(asked, asked.dir[0], 0, to), &late) << "made after the first call";
+  EXPECT_EQ(to, third_port);
+  t.clear();
+  Conversation& again = t.add(Transport::udp, kClient, kCamera, r);
+  Conversation& other = t.add(Transport::udp, kCamera, other_port, r);
+  other.dir[0].sent_frame = true;
+  other.dir[0].last_frame_ts = 30;
+  EXPECT_EQ(t.answered_elsewhere(again, again.dir[0], 0, to), &other) << "after clear()";
+}
+
+// A direction's decoder is made at its first bytes; until then it is one
+// that was fed nothing.
+TEST(LazyDecoder, UntilFedItIsADecoderFedNothing) {
+  LazyDecoder d;
+  top::StreamItem it;
+  d.flush();
+  d.finish();
+  d.reset();
+  EXPECT_EQ(d.fed(), 0u);
+  EXPECT_FALSE(d.next(it));
+  const std::string frame = top::with_checksum("#TPUG2wPTZ05");
+  d.feed(frame);
+  d.finish();
+  EXPECT_EQ(d.fed(), frame.size());
+  ASSERT_TRUE(d.next(it));
+  EXPECT_EQ(it.kind, top::ItemKind::frame);
+  EXPECT_FALSE(d.next(it));
 }
 
 }  // namespace

@@ -157,6 +157,26 @@ TEST(Pcap, MalformedHeadersAreFindingsNotCrashes) {
   EXPECT_EQ(r.count_note(ACode::bad_packet), 3u);
   EXPECT_EQ(r.frames.size(), 1u);
 }
+// The port tables the dissector looks each packet up in (a 64-bit filter on
+// a port's low six bits, then the ports): a port that shares a filter bit
+// with one in the set is not in it, and a set too large for the inline
+// ports is searched whole.
+TEST(Pcap, PortTableHoldsExactlyItsPorts) {
+  const PortTable none(std::set<std::uint16_t>{});
+  const PortTable few(std::set<std::uint16_t>{5000, 9003, 9004});
+  for (std::uint32_t p = 0; p < 65536; ++p) {
+    const auto port = static_cast<std::uint16_t>(p);
+    EXPECT_FALSE(none[port]) << p;
+    EXPECT_EQ(few[port], p == 5000 || p == 9003 || p == 9004) << p;
+  }
+  std::set<std::uint16_t> ports;
+  for (std::uint16_t p = 1; p <= 40; ++p) ports.insert(static_cast<std::uint16_t>(p * 1000));
+  ports.insert(65535);
+  const PortTable many(ports);
+  for (std::uint32_t p = 0; p < 65536; ++p)
+    EXPECT_EQ(many[static_cast<std::uint16_t>(p)], ports.count(static_cast<std::uint16_t>(p)) == 1)
+        << p;
+}
 
 // A bridged or mirrored link records a packet twice: the same IPv4
 // identification, addresses, ports and payload. The copy is skipped with an

@@ -62,7 +62,7 @@ void Dissector::bad(std::int64_t ts, std::uint64_t record, std::size_t off, std:
 }
 
 bool Dissector::duplicate(std::int64_t ts, std::uint16_t id, std::string_view payload) noexcept {
-  Seen now;
+  Seen now{};
   now.ts = ts;
   now.id = id;
   now.len = static_cast<std::uint32_t>(payload.size());
@@ -74,15 +74,18 @@ bool Dissector::duplicate(std::int64_t ts, std::uint16_t id, std::string_view pa
   std::memcpy(&now.head, payload.data(), k);
   std::memcpy(&now.tail, payload.data() + payload.size() - k, k);
   Seen& s = seen_[id & 0xFF];
-  const bool same = s.ts != kNoTime && ts != kNoTime && ts >= s.ts && ts - s.ts <= kDuplicateUs &&
-                    s.id == id && s.saddr == now.saddr && s.daddr == now.daddr &&
-                    s.ports == now.ports && s.len == now.len && s.head == now.head &&
-                    s.tail == now.tail;
+  std::uint64_t& used = seen_used_[(id & 0xFF) >> 6];
+  const std::uint64_t bit = std::uint64_t{1} << (id & 63);
+  const bool same = (used & bit) && s.ts != kNoTime && ts != kNoTime && ts >= s.ts &&
+                    ts - s.ts <= kDuplicateUs && s.id == id && s.saddr == now.saddr &&
+                    s.daddr == now.daddr && s.ports == now.ports && s.len == now.len &&
+                    s.head == now.head && s.tail == now.tail;
   if (same) {
     dup_gap_us_ = ts - s.ts;
     return true;  // the original stays the one remembered
   }
   s = now;
+  used |= bit;
   return false;
 }
 

@@ -157,8 +157,8 @@ inline void Analyzer::Impl::watch(Conversation& c, int d, const FrameEvent& ev) 
   }
   // the motion diagnoses: commands that move the gimbal and its attitude
   if (const top::MotionSpec* m = e.decoded.motion; m && fr.checksum_ok && role != top::Role::any)
-    c.watch.motion.frame(*m, e.decoded.form, role == top::Role::request, fr.control, fr.data(),
-                         ev.n, ev.ts, d, A.opts_.model);
+    c.watch.motion().frame(*m, e.decoded.form, role == top::Role::request, fr.control, fr.data(),
+                           ev.n, ev.ts, d, A.opts_.model);
 }
 
 // Pairing saw the frame; what follows is reporting, which the filter
@@ -278,12 +278,12 @@ void Analyzer::datagram(std::int64_t ts, const Endpoint& src, const Endpoint& ds
     p = q;
   }
   if (p == payload.size()) return;
-  Direction& D = c.dir[d];
-  D.dec.reset();
-  D.dec.feed(payload.substr(p));
-  D.dec.finish();
+  LazyDecoder& dec = impl_->datagram_dec;
+  dec.reset();
+  dec.feed(payload.substr(p));
+  dec.finish();
   top::StreamItem it;
-  while (D.dec.next(it)) {
+  while (dec.next(it)) {
     Position pos{record, index++, offset + p + it.offset};
     impl_->item(c, d, it, pos, ts, p + it.offset);
   }

@@ -42,6 +42,7 @@ std::size_t ConversationTable::EndpointHash::operator()(const Endpoint& e) const
 
 const Conversation* ConversationTable::answered_elsewhere(const Conversation& c, const Route& D,
                                                           std::int64_t after, Endpoint& to) const {
+  if (!indexed_) index_ends();
   const auto it = by_end_.find(D.dst);
   if (it == by_end_.end()) return nullptr;
   for (const Conversation* o : it->second) {
@@ -230,10 +231,8 @@ Conversation& ConversationTable::add(Transport t, const Endpoint& src, const End
     if (s_dev != d_dev) c->device_dir = s_dev ? 0 : 1;
   }
   c->st.id = c->id;
-  c->st.a = c->dir[0].from;
-  c->st.b = c->dir[0].to;
   c->st.transport = t;
-  if (src.family && dst.family)
+  if (indexed_ && src.family && dst.family)
     for (const Endpoint* e : {&src, &dst}) by_end_[*e].push_back(c.get());
   register_link(*c);
   Conversation& made = *convs_.emplace(std::move(k), std::move(c)).first->second;
@@ -273,9 +272,17 @@ std::vector<Conversation*> ConversationTable::by_id() const {
   return order;
 }
 
+void ConversationTable::index_ends() const {
+  for (Conversation* c : by_id())
+    if (c->dir[0].src.family && c->dir[0].dst.family)
+      for (const Endpoint* e : {&c->dir[0].src, &c->dir[0].dst}) by_end_[*e].push_back(c);
+  indexed_ = true;
+}
+
 void ConversationTable::clear() {
   cache_.fill(CacheSlot{});
   by_end_.clear();
+  indexed_ = false;
   routes_.clear();
   links_.clear();
   convs_.clear();
@@ -312,7 +319,7 @@ void Analyzer::Impl::close(Conversation& c, std::int64_t ts) {
   emit_silence(c);
   link_notes(c);
   for (const StreamStat& s : c.st.streams) check_stream(c, s);
-  c.watch.motion.finish(last_ts(c));
+  c.watch.finish(last_ts(c));
   c.watch.verdicts([&](diag::Found f) { diagnose(c, std::move(f)); },
                    c.transport == Transport::serial, c.dir[0].sent_frame || c.dir[1].sent_frame);
   c.st.dialect = c.det.current();
@@ -324,9 +331,12 @@ void Analyzer::Impl::close(Conversation& c, std::int64_t ts) {
       return !A.filter_.selects_ident(s.ident) && !A.filter_.selects_ident(s.asked_by);
     });
   }
-  if (A.stats_.conversations.size() < kMaxStatsConversations)
-    A.stats_.conversations.push_back(c.st);
-  else
+  // The statistics take the conversation's: it is removed after its close.
+  if (A.stats_.conversations.size() < kMaxStatsConversations) {
+    c.st.a = c.dir[0].from;
+    c.st.b = c.dir[0].to;
+    A.stats_.conversations.push_back(std::move(c.st));
+  } else
     ++A.stats_.conversations_dropped;
 }
 

@@ -75,12 +75,23 @@ std::int64_t Latency::bucket_value(std::size_t b) {
   if (b == 0) return 1;
   return static_cast<std::int64_t>(std::llround(std::pow(1.01, static_cast<double>(b))));
 }
-void Latency::add(std::int64_t us) {
-  if (us < 0) us = 0;
+void Latency::count_in_bucket(std::int64_t us) {
   std::size_t b = std::min<std::size_t>(bucket(us), 4000);
   if (buckets_.size() <= b) buckets_.resize(b + 1, 0);
   ++buckets_[b];
-  if (count_ < kExact) exact_.push_back(us);
+}
+void Latency::add(std::int64_t us) {
+  if (us < 0) us = 0;
+  if (count_ < kExact) {
+    if (count_ == 0) exact_.reserve(16);
+    exact_.push_back(us);
+  } else {
+    // past kExact samples the quantiles come from the buckets: the exact
+    // ones are counted in first
+    if (count_ == kExact)
+      for (std::int64_t e : exact_) count_in_bucket(e);
+    count_in_bucket(us);
+  }
   if (count_ == 0 || us < min_) min_ = us;
   if (count_ == 0 || us > max_) max_ = us;
   ++count_;

@@ -65,6 +65,10 @@ struct Analyzer::Impl {
   DecodedEntry current;
   top::detail::DecodeCache decode_cache;  // used without detail (topdump stats)
   top::ParseResult scratch;               // the one-frame datagram path parses into this
+  // What the datagram path hands the stream decoder (the bytes after its
+  // frames), one datagram at a time: reset, fed, finished and drained, so
+  // one decoder serves every UDP conversation.
+  LazyDecoder datagram_dec;
   // How the datagram path parses: without detail (topdump stats) the
   // frames' findings carry no text, which stats never shows.
   top::ParseOptions parse;

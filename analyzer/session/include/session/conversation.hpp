@@ -7,7 +7,9 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "diagnoses/silent_device.hpp"
@@ -50,13 +52,41 @@ struct Route {
   int dir = 0;           // the conversation's direction this pair goes in
 };
 
+// A direction's stream decoder, made at the first bytes fed to it: a TCP or
+// serial direction feeds it, a UDP conversation's datagrams go through the
+// session's one decoder (Analyzer::datagram), so most directions of a
+// capture never need one (each is a heap block and 2 KB: the fuzz targets
+// made two per conversation, docs/perf/fuzz-speed.md, "Issue 48: the
+// per-conversation cost"). Until then it is a decoder that was fed nothing.
+class LazyDecoder {
+ public:
+  void feed(std::string_view b) {
+    if (!d_) d_.emplace();
+    d_->feed(b);
+  }
+  bool next(top::StreamItem& out) { return d_ && d_->next(out); }
+  void flush() {
+    if (d_) d_->flush();
+  }
+  void finish() {
+    if (d_) d_->finish();
+  }
+  void reset() {
+    if (d_) d_->reset();
+  }
+  std::uint64_t fed() const noexcept { return d_ ? d_->fed() : 0; }
+
+ private:
+  std::optional<top::StreamDecoder> d_;
+};
+
 // One direction of a conversation: its own pair of ends (the Route), and
 // what it decodes.
 struct Direction : Route {
   // The pair the frames being decoded now went between: this one, or a
   // HostLink's (set per datagram).
   const Route* now = this;
-  top::StreamDecoder dec;
+  LazyDecoder dec;
   // The chunks whose bytes the decoder holds, oldest first (at most 4096).
   // A Ring, not a std::deque: a deque allocates two blocks as it is made,
   // and a conversation makes two directions, TCP or not.

@@ -115,11 +115,17 @@ class ConversationTable {
   std::unordered_map<std::array<std::uint8_t, 16>, std::vector<Conversation*>, HostHash> links_;
   // The pairs HostLinks took, to find them again (the key of each pair).
   std::unordered_map<ConvKey, std::pair<Conversation*, const Route*>, ConvKeyHash> routes_;
-  // The network conversations of each end (both ends of each).
+  // The network conversations of each end (both ends of each), in the order
+  // they were made: built at the first answered_elsewhere(), which few
+  // captures ask, then kept (four heap blocks a conversation that the fuzz
+  // targets paid per input: docs/perf/fuzz-speed.md, "Issue 48: the
+  // per-conversation cost").
   struct EndpointHash {
     std::size_t operator()(const Endpoint& e) const noexcept;
   };
-  std::unordered_map<Endpoint, std::vector<Conversation*>, EndpointHash> by_end_;
+  void index_ends() const;
+  mutable std::unordered_map<Endpoint, std::vector<Conversation*>, EndpointHash> by_end_;
+  mutable bool indexed_ = false;
 };
 
 }  // namespace topdump

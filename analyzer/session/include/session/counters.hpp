@@ -47,12 +47,13 @@ class Counters {
   void materialize(Stats& s) const;
 
  private:
-  // Pages of 2048 slots (16 KB), zeroed by the allocator (calloc): a
+  // Pages of 256 slots (2 KB), zeroed by the allocator (calloc): a
   // handful of frames pays for a page or two, not 373 KB of zeroes (the fuzz
   // targets build an analyzer per input; under ASan a page is a heap block,
   // not a fresh mmap); a power of two, so a slot's page is a shift
-  // (docs/perf/decisions.md, "Frames counted per identifier").
-  static constexpr std::size_t kPage = std::size_t{1} << 11;
+  // (docs/perf/decisions.md, "Frames counted per identifier"; 2 KB, not 16:
+  // docs/perf/fuzz-speed.md, "Issue 48: the per-conversation cost").
+  static constexpr std::size_t kPage = std::size_t{1} << 8;
   struct FreeDeleter {
     void operator()(std::uint64_t* p) const noexcept;
   };

@@ -33,6 +33,11 @@ class Latency {
  private:
   static std::int64_t bucket_value(std::size_t b);
   static constexpr std::size_t kExact = 4096;  // exact quantiles up to this many samples
+  void count_in_bucket(std::int64_t us);
+  // Filled once there are more than kExact samples: a histogram of 1%
+  // buckets is KBs of zeroes for each identifier paired, which the fuzz
+  // targets paid per input (docs/perf/fuzz-speed.md, "Issue 48: the
+  // per-conversation cost").
   std::vector<std::uint32_t> buckets_;
   std::vector<std::int64_t> exact_;
   std::uint64_t count_ = 0;
