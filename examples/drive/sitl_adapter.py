@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""A topconf drive adapter for an ArduPilot SITL (docs/drive-adapter.md).
+"""A topconf drive adapter for an ArduPilot SITL (docs/DRIVE.md, "Adapters").
 
 topconf drive (docs/DRIVE.md) puts a simulated camera on a pty or a UDP port
 and runs this script per case (or once, with --persistent). The SITL's mount

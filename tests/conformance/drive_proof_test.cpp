@@ -30,7 +30,7 @@ const std::vector<std::string> kCases = {"1.1", "1.2", "1.3", "1.4", "2.1", "2.2
                                          "5.1", "6.1", "6.2", "6.3", "6.4", "6.5", "7.1",
                                          "7.2", "7.3", "8.1", "8.2", "8.3", "9.1"};
 
-// The cases each bug fails (docs/drive-adapter.md, docs/DRIVE.md "Known
+// The cases each bug fails (docs/DRIVE.md "Known
 // driver bugs"); where more than the case that names it, why.
 const std::map<std::string, std::set<std::string>> kFails = {
     {"pitch-rate-sign", {"2.1"}},

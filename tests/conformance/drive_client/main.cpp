@@ -1,5 +1,5 @@
 // topkit_drive_client: a driver-like client for `topconf drive` (issue 50;
-// docs/DRIVE.md, docs/drive-adapter.md). It speaks to a device over a
+// docs/DRIVE.md). It speaks to a device over a
 // pseudo-terminal, UDP or TCP as ArduPilot's Topotek driver (for the SIP)
 // or SkyDroid driver (for the C12 and C13) does (topotek_client.hpp,
 // driver_skydroid.hpp: one client with the in-process tests), performs
