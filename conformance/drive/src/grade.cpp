@@ -6,38 +6,27 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 
 #include "checks.hpp"
 #include "top/decode.hpp"
+#include "top/enum_names.hpp"
 #include "top/frame.hpp"
 
 namespace topconf::drive {
 
 using namespace detail;
 
-std::string_view to_string(Grade g) noexcept {
-  switch (g) {
-    case Grade::pass:
-      return "pass";
-    case Grade::non_strict:
-      return "non-strict";
-    case Grade::informational:
-      return "informational";
-    case Grade::unimplemented:
-      return "unimplemented";
-    case Grade::fail:
-      return "fail";
-    case Grade::error:
-      return "error";
-  }
-  return "error";
-}
+namespace {
+constexpr std::string_view kGrade[] = {"pass", "non-strict", "informational",
+                                       "unimplemented", "fail", "error"};
+static_assert(std::size(kGrade) == static_cast<std::size_t>(Grade::error) + 1);
+}  // namespace
+
+std::string_view to_string(Grade g) noexcept { return top::enum_name(kGrade, g, "error"); }
 
 std::optional<Grade> grade_from_string(std::string_view s) noexcept {
-  for (Grade g : {Grade::pass, Grade::non_strict, Grade::informational, Grade::unimplemented,
-                  Grade::fail, Grade::error})
-    if (to_string(g) == s) return g;
-  return std::nullopt;
+  return top::enum_from_name<Grade>(kGrade, s);
 }
 
 int exit_code_of(const std::vector<Grade>& grades) noexcept {

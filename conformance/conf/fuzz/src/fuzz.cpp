@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <deque>
-#include <iterator>
 #include <thread>
 
 #include "conf/link.hpp"
@@ -11,7 +10,6 @@
 #include "conf/probe.hpp"
 #include "conf/runner.hpp"
 #include "top/device.hpp"
-#include "top/enum_names.hpp"
 
 namespace topconf {
 namespace {
@@ -28,10 +26,8 @@ struct Session {
   Probe probe, alt;  // the liveness probe, and a second sync frame
   std::uint64_t probes = 0;
   std::uint64_t t0 = 0;
-  // Restarted and answering, with no case sent since: a replay needs no
-  // second restart. A restart command may act after it returns (`kill
-  // -HUP` does); a second one sent to a device that answers can land in
-  // the middle of the replay, which then "does not reproduce".
+  // Restarted, answering, no case since: a replay needs no second restart
+  // (one that acts late, as `kill -HUP` can, would land mid-replay).
   bool fresh = false;
 
   std::uint64_t probe_timeout_us() const { return std::uint64_t{m.probe_timeout_ms} * 1000; }
@@ -371,28 +367,6 @@ ProbeChoice set_probes(const Matrix& m, Transport& t, Session& s) {
 }
 
 }  // namespace
-
-namespace {
-constexpr std::string_view kFailureClass[] = {"stopped-answering", "answered-corrupt-frame",
-                                              "bad-reply", "slow-answer", "wrong-answer"};
-constexpr std::string_view kFailureDescription[] = {
-    "the device stopped answering the liveness probe",
-    "the device answered a frame whose checksum is wrong",
-    "a malformed, wrongly addressed or out-of-range reply",
-    "an answer later than --slow-ms after a case",
-    "ERE or silence where the document promises an answer, or an answer where it "
-    "promises ERE (must and should levels)"};
-static_assert(std::size(kFailureClass) == static_cast<std::size_t>(FailureClass::wrong_answer) + 1);
-static_assert(std::size(kFailureDescription) == std::size(kFailureClass));
-constexpr std::string_view kMinimiseHow[] = {"alone", "window", "not-reproduced", "skipped"};
-static_assert(std::size(kMinimiseHow) == static_cast<std::size_t>(MinimiseHow::skipped) + 1);
-}  // namespace
-
-std::string_view to_string(FailureClass c) noexcept { return top::enum_name(kFailureClass, c); }
-std::string_view describe(FailureClass c) noexcept {
-  return top::enum_name(kFailureDescription, c);
-}
-std::string_view to_string(MinimiseHow h) noexcept { return top::enum_name(kMinimiseHow, h); }
 
 int FuzzResult::exit_code() const noexcept {
   if (unusable) return 2;
