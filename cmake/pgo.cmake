@@ -77,15 +77,4 @@ if(TOPKIT_PGO_ACTIVE)
   add_dependencies(topkit_pgo_profile topkit_pgo_instrumented)
 endif()
 
-# topkit_pgo(target): compiles the target's sources with the profile (and
-# again whenever it is retrained). Call it where the target is defined.
-function(topkit_pgo target)
-  if(NOT TOPKIT_PGO_ACTIVE)
-    return()
-  endif()
-  target_compile_options(${target} PRIVATE -fprofile-use=${TOPKIT_PGO_DATA}
-    -fprofile-prefix-path=${CMAKE_BINARY_DIR} -fprofile-partial-training -Wno-missing-profile)
-  add_dependencies(${target} topkit_pgo_profile)
-  get_target_property(sources ${target} SOURCES)
-  set_source_files_properties(${sources} PROPERTIES OBJECT_DEPENDS ${TOPKIT_PGO_STAMP})
-endfunction()
+# The targets built with the profile call topkit_optimise (cmake/codegen.cmake).

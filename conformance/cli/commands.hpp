@@ -1,6 +1,7 @@
 // topconf's subcommands, one file each (topconf_<name>.cpp), in the one
-// pattern of topkit/cli.hpp: options added in the constructor, run() when
-// the command line chose it. And what they share: the matrix files.
+// pattern of topkit/cli.hpp (a Subcommand, best an OwnSubcommand that holds
+// only its own options): options added when it is made, run() when the
+// command line chose it. And what they share: the matrix files.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -47,15 +48,9 @@ struct OutputArgs {
   std::string json, junit, html, pcap;
 };
 
-// The subcommands, each defined in its file (topconf_<name>.cpp); topconf
-// adds them in this order.
-std::unique_ptr<topkit::cli::Subcommand> run_command(CLI::App& app);
-std::unique_ptr<topkit::cli::Subcommand> fuzz_command(CLI::App& app);
-std::unique_ptr<topkit::cli::Subcommand> generate_command(CLI::App& app);
-std::unique_ptr<topkit::cli::Subcommand> models_command(CLI::App& app);
-std::unique_ptr<topkit::cli::Subcommand> validate_command(CLI::App& app);
-std::unique_ptr<topkit::cli::Subcommand> drivers_command(CLI::App& app);
-std::unique_ptr<topkit::cli::Subcommand> table_command(CLI::App& app);
-std::unique_ptr<topkit::cli::Subcommand> drive_command(CLI::App& app);
+// The subcommands, each defined in its file (topconf_<name>.cpp); main()
+// adds them in its order.
+topkit::cli::SubcommandFactory run_command, fuzz_command, generate_command, models_command,
+    validate_command, drivers_command, table_command, drive_command;
 
 }  // namespace topconf::cli

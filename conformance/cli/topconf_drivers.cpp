@@ -9,27 +9,18 @@ namespace topconf::cli {
 
 namespace {
 
-class DriversCommand : public topkit::cli::Subcommand {
- public:
-  explicit DriversCommand(CLI::App& app);
-  int run() override;
-
- private:
-  bool json_ = false;
-};
-
-}  // namespace
-
-DriversCommand::DriversCommand(CLI::App& app)
-    : Subcommand(app, "drivers",
-                 "list the driver profiles topconf run --driver checks, with their sources") {
-  sub_->add_flag("--json", json_,
+struct Drivers {
+  bool json = false;
+  void declare(CLI::App& sub) {
+    sub.add_flag("--json", json,
                  "every fact of each profile (link, cadence, frames sent, parsing, needs) with "
                  "its source");
-}
+  }
+  int run() const;
+};
 
-int DriversCommand::run() {
-  if (json_) {
+int Drivers::run() const {
+  if (json) {
     nlohmann::json all = nlohmann::json::array();
     for (const drivers::Profile& p : drivers::profiles()) all.push_back(drivers::to_json(p));
     std::cout << all.dump(2) << "\n";
@@ -52,8 +43,11 @@ int DriversCommand::run() {
   return 0;
 }
 
+}  // namespace
+
 std::unique_ptr<topkit::cli::Subcommand> drivers_command(CLI::App& app) {
-  return std::make_unique<DriversCommand>(app);
+  return topkit::cli::make_subcommand<Drivers>(
+      app, "drivers", "list the driver profiles topconf run --driver checks, with their sources");
 }
 
 }  // namespace topconf::cli

@@ -9,36 +9,31 @@ namespace topconf::cli {
 
 namespace {
 
-class GenerateCommand : public topkit::cli::Subcommand {
- public:
-  explicit GenerateCommand(CLI::App& app);
-  int run() override;
-
- private:
-  std::string model_name_, out_;
+struct Generate {
+  std::string model_name, out;
+  void declare(CLI::App& sub) {
+    sub.add_option("--model", model_name, top::model_list("|", "|"))->required();
+    sub.add_option("-o,--output", out, "output file (default: stdout)");
+  }
+  int run() const;
 };
 
-}  // namespace
-
-GenerateCommand::GenerateCommand(CLI::App& app)
-    : Subcommand(app, "generate", "write a model's default matrix generated from the catalog") {
-  sub_->add_option("--model", model_name_, top::model_list("|", "|"))->required();
-  sub_->add_option("-o,--output", out_, "output file (default: stdout)");
-}
-
-int GenerateCommand::run() {
-  const auto m = topkit::cli::model_arg(kTool, model_name_);
+int Generate::run() const {
+  const auto m = topkit::cli::model_arg(kTool, model_name);
   if (!m) return 2;
   const std::string text = generate_matrix(*m).dump(2) + "\n";
-  if (out_.empty()) {
+  if (out.empty()) {
     std::cout << text;
     return 0;
   }
-  return write_output(out_, [&](std::ostream& o) { o << text; }) ? 0 : 2;
+  return write_output(out, [&](std::ostream& o) { o << text; }) ? 0 : 2;
 }
 
+}  // namespace
+
 std::unique_ptr<topkit::cli::Subcommand> generate_command(CLI::App& app) {
-  return std::make_unique<GenerateCommand>(app);
+  return topkit::cli::make_subcommand<Generate>(
+      app, "generate", "write a model's default matrix generated from the catalog");
 }
 
 }  // namespace topconf::cli

@@ -12,16 +12,8 @@ int main(int argc, char** argv) {
   CLI::App app{"topconf: conformance runner for the TOP gimbal-camera protocol"};
   topkit::cli::setup_app(app, kTool);
   app.require_subcommand(1);
-  const auto run = run_command(app);
-  const auto fuzz = fuzz_command(app);
-  const auto generate = generate_command(app);
-  const auto models = models_command(app);
-  const auto validate = validate_command(app);
-  const auto drivers = drivers_command(app);
-  const auto table = table_command(app);
-  const auto drive = drive_command(app);
-  if (int rc = topkit::cli::parse(app, argc, argv); rc >= 0) return rc;
-  return topkit::cli::run_selected(
-      kTool, {run.get(), fuzz.get(), generate.get(), models.get(), validate.get(), drivers.get(),
-              table.get(), drive.get()});
+  // in this order in --help
+  return topkit::cli::run_tool(app, argc, argv,
+                               {run_command, fuzz_command, generate_command, models_command,
+                                validate_command, drivers_command, table_command, drive_command});
 }

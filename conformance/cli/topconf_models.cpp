@@ -8,33 +8,28 @@ namespace topconf::cli {
 
 namespace {
 
-class ModelsCommand : public topkit::cli::Subcommand {
- public:
-  explicit ModelsCommand(CLI::App& app);
-  int run() override;
-
- private:
-  bool paths_ = false;
+struct Models {
+  bool paths = false;
+  void declare(CLI::App& sub) {
+    sub.add_flag("--paths", paths, "with the default matrix of each, where topconf looks for it");
+  }
+  int run() const;
 };
 
-}  // namespace
-
-ModelsCommand::ModelsCommand(CLI::App& app)
-    : Subcommand(app, "models", "list the models, one per line (the catalog's)") {
-  sub_->add_flag("--paths", paths_, "with the default matrix of each, where topconf looks for it");
-}
-
-int ModelsCommand::run() {
+int Models::run() const {
   for (const std::string& m : topkit::cli::model_names()) {
     std::cout << m;
-    if (paths_) std::cout << " " << matrix_dir() << "/" << m << ".json";
+    if (paths) std::cout << " " << matrix_dir() << "/" << m << ".json";
     std::cout << "\n";
   }
   return 0;
 }
 
+}  // namespace
+
 std::unique_ptr<topkit::cli::Subcommand> models_command(CLI::App& app) {
-  return std::make_unique<ModelsCommand>(app);
+  return topkit::cli::make_subcommand<Models>(app, "models",
+                                              "list the models, one per line (the catalog's)");
 }
 
 }  // namespace topconf::cli

@@ -11,30 +11,20 @@ namespace topconf::cli {
 
 namespace {
 
-class TableCommand : public topkit::cli::Subcommand {
- public:
-  explicit TableCommand(CLI::App& app);
-  int run() override;
-
- private:
-  std::vector<std::string> files_;
-  std::string html_, json_;
+struct Table {
+  std::vector<std::string> files;
+  std::string html, json;
+  void declare(CLI::App& sub) {
+    sub.add_option("reports", files, "topconf run --driver --json reports")->required();
+    sub.add_option("--html", html, "write the table as an HTML page (default: to stdout)");
+    sub.add_option("--json", json, "write the table as one JSON document");
+  }
+  int run() const;
 };
 
-}  // namespace
-
-TableCommand::TableCommand(CLI::App& app)
-    : Subcommand(app, "table",
-                 "merge topconf run --driver --json reports into one compatibility table: rows "
-                 "the driver's cases by grade, columns firmware x driver (docs/COMPAT.md)") {
-  sub_->add_option("reports", files_, "topconf run --driver --json reports")->required();
-  sub_->add_option("--html", html_, "write the table as an HTML page (default: to stdout)");
-  sub_->add_option("--json", json_, "write the table as one JSON document");
-}
-
-int TableCommand::run() {
+int Table::run() const {
   std::vector<TableInput> inputs;
-  for (const std::string& f : files_) {
+  for (const std::string& f : files) {
     const auto text = read_file(f);
     if (!text) {
       spdlog::error("{}: cannot read", f);
@@ -50,16 +40,21 @@ int TableCommand::run() {
   }
   const nlohmann::json t = table_json(inputs);
   bool ok = true;
-  if (!json_.empty()) ok &= write_output(json_, [&](std::ostream& o) { o << t.dump(2) << "\n"; });
-  if (!html_.empty())
-    ok &= write_output(html_, [&](std::ostream& o) { write_table_html(o, t); });
-  else if (json_.empty())
+  if (!json.empty()) ok &= write_output(json, [&](std::ostream& o) { o << t.dump(2) << "\n"; });
+  if (!html.empty())
+    ok &= write_output(html, [&](std::ostream& o) { write_table_html(o, t); });
+  else if (json.empty())
     write_table_html(std::cout, t);
   return ok ? 0 : 2;
 }
 
+}  // namespace
+
 std::unique_ptr<topkit::cli::Subcommand> table_command(CLI::App& app) {
-  return std::make_unique<TableCommand>(app);
+  return topkit::cli::make_subcommand<Table>(
+      app, "table",
+      "merge topconf run --driver --json reports into one compatibility table: rows the driver's "
+      "cases by grade, columns firmware x driver (docs/COMPAT.md)");
 }
 
 }  // namespace topconf::cli

@@ -10,25 +10,15 @@ namespace topconf::cli {
 
 namespace {
 
-class ValidateCommand : public topkit::cli::Subcommand {
- public:
-  explicit ValidateCommand(CLI::App& app);
-  int run() override;
-
- private:
-  std::vector<std::string> files_;
+struct Validate {
+  std::vector<std::string> files;
+  void declare(CLI::App& sub) { sub.add_option("files", files, "matrix files")->required(); }
+  int run() const;
 };
 
-}  // namespace
-
-ValidateCommand::ValidateCommand(CLI::App& app)
-    : Subcommand(app, "validate", "check matrix files against the schema rules") {
-  sub_->add_option("files", files_, "matrix files")->required();
-}
-
-int ValidateCommand::run() {
+int Validate::run() const {
   int rc = 0;
-  for (const auto& f : files_) {
+  for (const auto& f : files) {
     const auto text = read_file(f);
     if (!text) {
       spdlog::error("{}: cannot read", f);
@@ -45,8 +35,11 @@ int ValidateCommand::run() {
   return rc;
 }
 
+}  // namespace
+
 std::unique_ptr<topkit::cli::Subcommand> validate_command(CLI::App& app) {
-  return std::make_unique<ValidateCommand>(app);
+  return topkit::cli::make_subcommand<Validate>(app, "validate",
+                                                "check matrix files against the schema rules");
 }
 
 }  // namespace topconf::cli

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <deque>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -337,42 +338,42 @@ TEST(ReportModel, TheModelTheDeviceNamesIsTheModel) {
   EXPECT_EQ(report::model_text(top::Model::c20, top::Dialect::skydroid, &c), "c20 (given)");
 }
 
+// A serial log named `name` of twenty VER requests, 250 ms apart from
+// 12:00:00, and no byte back, line `i` as `line(i, seconds, milliseconds)`
+// writes it: whether the session reads a silent device in it.
+bool names_silent_device(const std::string& name,
+                         const std::function<std::string(int, int, int)>& line) {
+  test::TempDir tmp;
+  const std::string path = tmp.file(name);
+  {
+    std::ofstream o(path);
+    for (int i = 0; i < 20; ++i) o << line(i, i / 4, (i % 4) * 250);
+  }
+  const test::Recorder r = test::read(path);
+  return r.has_note(acode_of(top::Diagnosis::silent_device));
+}
+
 // A socat relay log records both directions by construction: requests with
 // no byte back are a silent device, not a line nobody recorded (a raw
 // dump's one tap). Found by an outside capture: nothing was named.
 TEST(DiagnosesSession, SocatLogWithASilentDeviceNamesIt) {
-  test::TempDir tmp;
-  const std::string path = tmp.file("silent.log");
-  {
-    std::ofstream o(path);
-    for (int i = 0; i < 20; ++i) {
-      char head[96];
-      std::snprintf(head, sizeof head,
-                    "> 2024/05/01 12:00:%02d.%03d000000  length=16 from=%d to=%d\n", i / 4,
-                    (i % 4) * 250, i * 16, i * 16 + 15);
-      o << head << "#TPUD2rVER0051\\r\n";
-    }
-  }
-  const test::Recorder r = test::read(path);
-  EXPECT_TRUE(r.has_note(acode_of(top::Diagnosis::silent_device)));
+  EXPECT_TRUE(names_silent_device("silent.log", [](int i, int s, int ms) {
+    char head[96];
+    std::snprintf(head, sizeof head,
+                  "> 2024/05/01 12:00:%02d.%03d000000  length=16 from=%d to=%d\n", s, ms, i * 16,
+                  i * 16 + 15);
+    return std::string(head) + "#TPUD2rVER0051\\r\n";
+  }));
 }
 
 // A line log names each line's direction: TX lines with no RX line are a
 // silent device too (an outside capture named nothing).
 TEST(DiagnosesSession, LineLogWithASilentDeviceNamesIt) {
-  test::TempDir tmp;
-  const std::string path = tmp.file("silent-lines.log");
-  {
-    std::ofstream o(path);
-    for (int i = 0; i < 20; ++i) {
-      char line[96];
-      std::snprintf(line, sizeof line, "2024-05-01T12:00:%02d.%03dZ TX #TPUD2rVER0051\n", i / 4,
-                    (i % 4) * 250);
-      o << line;
-    }
-  }
-  const test::Recorder r = test::read(path);
-  EXPECT_TRUE(r.has_note(acode_of(top::Diagnosis::silent_device)));
+  EXPECT_TRUE(names_silent_device("silent-lines.log", [](int, int s, int ms) {
+    char line[96];
+    std::snprintf(line, sizeof line, "2024-05-01T12:00:%02d.%03dZ TX #TPUD2rVER0051\n", s, ms);
+    return std::string(line);
+  }));
 }
 
 // A Snap copies a motion frame's data by fixed-size loads that stay within

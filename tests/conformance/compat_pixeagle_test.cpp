@@ -78,23 +78,12 @@ TEST_P(PixEagleVariantOptions, TheVerdictIsWhatTheClientLivesThrough) {
 // answers from the served port, no fan-out).
 INSTANTIATE_TEST_SUITE_P(
     Options, PixEagleVariantOptions,
-    ::testing::Values(
-        OptionsVariant{"RequestOrderRepliesLoseEverything",
-                       "sip",
-                       {"--reply-order", "request-order"},
-                       [](topsim::DeviceOptions& o) { o.reply_order = top::Order::request_order; }},
-        OptionsVariant{"WriteEchoChangesNothing",
-                       "sip",
-                       {"--write-echo", "on"},
-                       [](topsim::DeviceOptions& o) { o.write_echo = true; }},
-        OptionsVariant{"FixedHeaderRepliesLoseTheAngles",
-                       "sip",
-                       {"--reply-header", "TP"},
-                       [](topsim::DeviceOptions& o) { o.reply_header = top::Header::fixed; }},
-        OptionsVariant{"TheDocumentProfile",
-                       "sip",
-                       {"--profile", "document"},
-                       [](topsim::DeviceOptions& o) { o.profile = top::Profile::document; }}),
+    ::testing::Values(OptionsVariant{"RequestOrderRepliesLoseEverything", "sip",
+                                     setting::request_order_replies()},
+                      OptionsVariant{"WriteEchoChangesNothing", "sip", setting::write_echo()},
+                      OptionsVariant{"FixedHeaderRepliesLoseTheAngles", "sip",
+                                     setting::fixed_header_replies()},
+                      OptionsVariant{"TheDocumentProfile", "sip", setting::document_profile()}),
     variant_name);
 
 }  // namespace

@@ -107,25 +107,14 @@ TEST_P(SkyDroidVariantOptions, TheVerdictIsWhatTheClientLivesThrough) {
 // one number after the V, is taken.
 INSTANTIATE_TEST_SUITE_P(
     Options, SkyDroidVariantOptions,
-    ::testing::Values(OptionsVariant{"RequestOrderRepliesAndPushesAreServed",
-                                     "c13",
-                                     {"--reply-order", "request-order", "--push-order",
-                                      "request-order"},
-                                     [](topsim::DeviceOptions& o) {
-                                       o.reply_order = top::Order::request_order;
-                                       o.push_order = top::Order::request_order;
-                                     },
-                                     "compatible"},
+    ::testing::Values(OptionsVariant{"RequestOrderRepliesAndPushesAreServed", "c13",
+                                     setting::request_order_replies_and_pushes(), "compatible"},
                       OptionsVariant{"AVersionWithoutItsVIsLost",
                                      "c12",
-                                     {"--fw-version", "1.0.78"},
-                                     [](topsim::DeviceOptions& o) { o.version = "1.0.78"; },
+                                     setting::fw_version("1.0.78"),
                                      "compatible without",
                                      {"firmware version"}},
-                      OptionsVariant{"AShortVersionIsTaken",
-                                     "c13",
-                                     {"--fw-version", "V2"},
-                                     [](topsim::DeviceOptions& o) { o.version = "V2"; },
+                      OptionsVariant{"AShortVersionIsTaken", "c13", setting::fw_version("V2"),
                                      "compatible"}),
     variant_name);
 

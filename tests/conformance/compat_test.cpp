@@ -175,30 +175,13 @@ TEST_P(TopotekVariantOptions, TheVerdictIsWhatTheClientLivesThrough) {
 // echo-as-attitude bug is the driver that does not.
 INSTANTIATE_TEST_SUITE_P(
     Options, TopotekVariantOptions,
-    ::testing::Values(
-        OptionsVariant{"GicOnlyAttitudeIsIncompatibleForBoth",
-                       "sip",
-                       {"--profile", "document"},
-                       [](topsim::DeviceOptions& o) { o.profile = top::Profile::document; },
-                       "incompatible"},
-        OptionsVariant{"RequestOrderRepliesAndPushesAreServed",
-                       "sip",
-                       {"--reply-order", "request-order", "--push-order", "request-order"},
-                       [](topsim::DeviceOptions& o) {
-                         o.reply_order = top::Order::request_order;
-                         o.push_order = top::Order::request_order;
-                       },
-                       "compatible"},
-        OptionsVariant{"AVersionWithoutDots",
-                       "sip",
-                       {"--fw-version", "123"},
-                       [](topsim::DeviceOptions& o) { o.version = "123"; },
-                       "compatible"},
-        OptionsVariant{"EchoedWrites",
-                       "sip",
-                       {"--write-echo", "on"},
-                       [](topsim::DeviceOptions& o) { o.write_echo = true; },
-                       "compatible"}),
+    ::testing::Values(OptionsVariant{"GicOnlyAttitudeIsIncompatibleForBoth", "sip",
+                                     setting::document_profile(), "incompatible"},
+                      OptionsVariant{"RequestOrderRepliesAndPushesAreServed", "sip",
+                                     setting::request_order_replies_and_pushes(), "compatible"},
+                      OptionsVariant{"AVersionWithoutDots", "sip", setting::fw_version("123"),
+                                     "compatible"},
+                      OptionsVariant{"EchoedWrites", "sip", setting::write_echo(), "compatible"}),
     variant_name);
 
 }  // namespace

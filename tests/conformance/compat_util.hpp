@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <set>
@@ -140,16 +141,53 @@ inline std::string variant_stem(std::string s) {
   return s;
 }
 
+// A setting of the device's own options, written once: as topsim's
+// command line takes it (`args`) and as the harness's topsim takes it
+// (`set`). The settings the variants below are made of.
+struct DeviceSetting {
+  std::vector<std::string> args;
+  std::function<void(topsim::DeviceOptions&)> set;
+};
+
+namespace setting {
+// Reply addresses in request order (--reply-order request-order).
+inline DeviceSetting request_order_replies() {
+  return {{"--reply-order", "request-order"},
+          [](topsim::DeviceOptions& o) { o.reply_order = top::Order::request_order; }};
+}
+// Replies and pushes both in request order.
+inline DeviceSetting request_order_replies_and_pushes() {
+  return {{"--reply-order", "request-order", "--push-order", "request-order"},
+          [](topsim::DeviceOptions& o) {
+            o.reply_order = top::Order::request_order;
+            o.push_order = top::Order::request_order;
+          }};
+}
+inline DeviceSetting fw_version(const std::string& v) {
+  return {{"--fw-version", v}, [v](topsim::DeviceOptions& o) { o.version = v; }};
+}
+inline DeviceSetting write_echo() {
+  return {{"--write-echo", "on"}, [](topsim::DeviceOptions& o) { o.write_echo = true; }};
+}
+inline DeviceSetting fixed_header_replies() {
+  return {{"--reply-header", "TP"},
+          [](topsim::DeviceOptions& o) { o.reply_header = top::Header::fixed; }};
+}
+inline DeviceSetting document_profile() {
+  return {{"--profile", "document"},
+          [](topsim::DeviceOptions& o) { o.profile = top::Profile::document; }};
+}
+}  // namespace setting
+
 // A variant of the device's own options, not a fault: topconf runs against
-// a topsim process given `args` (options_verdict), the client against the
-// harness's topsim with the same settings (`set`, options_of). `verdict`,
-// when given, pins what both say, with the features lost where the driver
-// is served (expect_pinned).
+// a topsim process given the setting's arguments (options_verdict), the
+// client against the harness's topsim with the same setting (options_of).
+// `verdict`, when given, pins what both say, with the features lost where
+// the driver is served (expect_pinned).
 struct OptionsVariant {
   const char* name;  // the test's, e.g. RequestOrderRepliesLoseEverything
   const char* model;
-  std::vector<std::string> args;
-  void (*set)(topsim::DeviceOptions&);
+  DeviceSetting setting;
   const char* verdict = "";
   std::set<std::string> lost = {};
 };
@@ -161,14 +199,15 @@ inline std::string variant_name(const ::testing::TestParamInfo<OptionsVariant>& 
 
 inline topsim::DeviceOptions options_of(const OptionsVariant& v) {
   topsim::DeviceOptions o;
-  v.set(o);
+  v.setting.set(o);
   return o;
 }
 
 // topconf run --driver `driver` against a topsim process with the
 // variant's arguments, on a pseudo-terminal when `pty`, else over UDP.
 inline Verdict options_verdict(const std::string& driver, const OptionsVariant& v, bool pty) {
-  return topconf_driver_process(driver, v.model, v.args, pty, variant_stem(driver + "_" + v.name));
+  return topconf_driver_process(driver, v.model, v.setting.args, pty,
+                                variant_stem(driver + "_" + v.name));
 }
 
 inline void expect_pinned(const Verdict& v, const OptionsVariant& p) {

@@ -28,7 +28,9 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "binaries.hpp"
@@ -73,6 +75,19 @@ struct Sip {
 
 constexpr const char* kTrcRead = "#TPPD2rTRC00";
 
+// The sip (with what Sip takes: a switch of its device options) and its two
+// clients on the sip's host, both bound, or the test fails here: A, an
+// asker on a port of its own, and C on the client port 9004. A test takes
+// them as `auto [sip, a, c] = SipAndClients(...)`.
+struct SipAndClients {
+  template <class... Args>
+  explicit SipAndClients(Args&&... args) : sip(std::forward<Args>(args)...) {
+    if (!a.ok || !c.ok) throw std::runtime_error("cannot bind A and 9004 on " + sip.host);
+  }
+  Sip sip;
+  Sock a{sip.host}, c{sip.host, kClient};
+};
+
 TEST(RealUnit, AReplyLeavesFromItsOwnPortTo9004TwiceTheAskerAndThePortThatAskedBefore) {
   Sip sip;
   Sock a(sip.host), c(sip.host, kClient), b(sip.host);
@@ -112,9 +127,7 @@ TEST(RealUnit, AReplyLeavesFromItsOwnPortTo9004TwiceTheAskerAndThePortThatAskedB
 }
 
 TEST(RealUnit, AWriteGetsNoAnswerAndTakesEffect) {
-  Sip sip;
-  Sock a(sip.host), c(sip.host, kClient);
-  ASSERT_TRUE(a.ok && c.ok);
+  auto [sip, a, c] = SipAndClients();
   // TRC 02 (prepare) then a TRC read: the read's answer is the first thing
   // that comes, and reads the new state (01, waiting), as the camera did
   // (silent_writes evidence).
@@ -136,9 +149,7 @@ TEST(RealUnit, AWriteGetsNoAnswerAndTakesEffect) {
 }
 
 TEST(RealUnit, PushesGoWhereTheRepliesGo) {
-  Sip sip;
-  Sock a(sip.host), c(sip.host, kClient);
-  ASSERT_TRUE(a.ok && c.ok);
+  auto [sip, a, c] = SipAndClients();
   // GIA 01 from A: 10 Hz GIA to A once and to 9004 twice, from the reply port.
   a.send("#TPPG2wGIA01", sip.port());
   const auto first = a.until_n("GIA", 3);
@@ -166,9 +177,7 @@ TEST(RealUnit, ReplyFromServedAnswersFromPort9003) {
 }
 
 TEST(RealUnit, FanOutOffAnswersOnly9004) {
-  Sip sip(&topsim::DeviceOptions::fan_out, false);
-  Sock a(sip.host), c(sip.host, kClient);
-  ASSERT_TRUE(a.ok && c.ok);
+  auto [sip, a, c] = SipAndClients(&topsim::DeviceOptions::fan_out, false);
   a.send(kTrcRead, sip.port());
   EXPECT_EQ(c.until_n("TRC", 2).size(), 2u);
   c.send("#TPPG2rVER00", sip.port());
@@ -177,9 +186,7 @@ TEST(RealUnit, FanOutOffAnswersOnly9004) {
 }
 
 TEST(RealUnit, DuplicateOffSendsOneCopyTo9004) {
-  Sip sip(&topsim::DeviceOptions::duplicate, false);
-  Sock a(sip.host), c(sip.host, kClient);
-  ASSERT_TRUE(a.ok && c.ok);
+  auto [sip, a, c] = SipAndClients(&topsim::DeviceOptions::duplicate, false);
   // A's TRC read, 9004's VER read, then A's GIC query as the fence: 9004
   // has each answer once.
   a.send(kTrcRead, sip.port());
@@ -203,9 +210,7 @@ TEST(RealUnit, WriteEchoOnEchoesTheWrite) {
 }
 
 TEST(RealUnit, TheDocumentProfileAnswersFrom9003To9004OnceAndNoWrite) {
-  Sip sip(&topsim::DeviceOptions::profile, top::Profile::document);
-  Sock a(sip.host), c(sip.host, kClient);
-  ASSERT_TRUE(a.ok && c.ok);
+  auto [sip, a, c] = SipAndClients(&topsim::DeviceOptions::profile, top::Profile::document);
   EXPECT_EQ(sip.server.server.reply_from_port(), 0);
   // A zoom write the document gives no reply form, then the version read:
   // 9004 gets the read's answer once, from 9003, and nothing else.

@@ -1,8 +1,9 @@
 // topdump's subcommands, one file each (<name>_cmd.cpp), in the one pattern
-// of topkit/cli.hpp: options added in the constructor, run() when the
-// command line chose it, returning the exit status: 0 no error finding, 1 an
-// error finding, 2 unreadable input, a failed write or bad usage. Messages
-// about a failure are in the one format ("topdump: error: ...").
+// of topkit/cli.hpp (a Subcommand, best an OwnSubcommand that holds only
+// its own options): options added when it is made, run() when the command
+// line chose it, returning the exit status: 0 no error finding, 1 an error
+// finding, 2 unreadable input, a failed write or bad usage. Messages about
+// a failure are in the one format ("topdump: error: ...").
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -29,13 +30,9 @@ void add_dialect_model(CLI::App* sub, std::string& dialect, const std::string& d
 bool dialect_and_model(const std::string& dialect, const std::string& model, top::Dialect& d,
                        top::Model& m);
 
-// The subcommands, each defined in its file; topdump adds them in this order.
-std::unique_ptr<topkit::cli::Subcommand> read_command(CLI::App& app);
-std::unique_ptr<topkit::cli::Subcommand> stats_command(CLI::App& app);
-std::unique_ptr<topkit::cli::Subcommand> frame_command(CLI::App& app);
-std::unique_ptr<topkit::cli::Subcommand> live_command(CLI::App& app);
-std::unique_ptr<topkit::cli::Subcommand> serial_command(CLI::App& app);
-std::unique_ptr<topkit::cli::Subcommand> report_command(CLI::App& app);
-std::unique_ptr<topkit::cli::Subcommand> wireshark_command(CLI::App& app);
+// The subcommands, each defined in its file (<name>_cmd.cpp); main() adds
+// them in its order.
+topkit::cli::SubcommandFactory read_command, stats_command, frame_command, live_command,
+    serial_command, report_command, wireshark_command;
 
 }  // namespace topdump

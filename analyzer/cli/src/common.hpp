@@ -88,26 +88,27 @@ void add_taps(CLI::App& sub, const char* name, std::vector<std::string>& inputs,
 // Adds the common options of `spec` to `sub` and sets its footer.
 void declare_common(CLI::App& sub, Common& o, const CommandSpec& spec);
 
-// A subcommand with the common options (read, stats, live, serial): `Own`
-// holds only what is the command's own, its options (added by
-// declare(CLI::App&) after the common ones) and run(const Common&).
+// A subcommand with the common options (read, stats, live, serial), as a
+// topkit::cli::OwnSubcommand: `Own` holds only what is the command's own,
+// its options (added by declare(CLI::App&) after the common ones) and
+// run(const Common&).
 template <class Own>
-class CommonCommand final : public topkit::cli::Subcommand {
- public:
-  CommonCommand(CLI::App& app, const CommandSpec& spec) : Subcommand(app, spec.name, spec.help) {
-    declare_common(*sub_, c_, spec);
-    own_.declare(*sub_);
+struct WithCommon {
+  explicit WithCommon(const CommandSpec& s) : spec(s) {}
+  void declare(CLI::App& sub) {
+    declare_common(sub, c, spec);
+    own.declare(sub);
   }
-  int run() override { return own_.run(c_); }
-
- private:
-  Common c_;
-  Own own_;
+  int run() { return own.run(c); }
+  const CommandSpec& spec;
+  Common c;
+  Own own;
 };
 
 template <class Own>
 std::unique_ptr<topkit::cli::Subcommand> make_command(CLI::App& app, CommandId id) {
-  return std::make_unique<CommonCommand<Own>>(app, spec_of(id));
+  const CommandSpec& spec = spec_of(id);
+  return topkit::cli::make_subcommand<WithCommon<Own>>(app, spec.name, spec.help, spec);
 }
 
 // A source finding on stderr, naming the file once: "topdump: FILE: !! ...",

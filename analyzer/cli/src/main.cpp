@@ -15,9 +15,7 @@ int main(int argc, char** argv) {
       "and examples; man "
       "topdump has them all.");
   // in this order in --help
-  const std::unique_ptr<topkit::cli::Subcommand> commands[] = {
-      read_command(app),   stats_command(app),  frame_command(app),    live_command(app),
-      serial_command(app), report_command(app), wireshark_command(app)};
-  if (int rc = topkit::cli::parse(app, argc, argv); rc >= 0) return rc;
-  return topkit::cli::run_selected(kTool, commands);
+  return topkit::cli::run_tool(app, argc, argv,
+                               {read_command, stats_command, frame_command, live_command,
+                                serial_command, report_command, wireshark_command});
 }

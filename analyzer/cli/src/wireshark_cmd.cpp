@@ -9,18 +9,15 @@ namespace topdump {
 
 namespace {
 
-class WiresharkCommand : public topkit::cli::Subcommand {
- public:
-  explicit WiresharkCommand(CLI::App& app)
-      : Subcommand(app, "wireshark",
-                   "write top.lua, a Wireshark dissector generated from the catalog, to stdout") {
-    sub_->footer(
+struct Wireshark {
+  static void declare(CLI::App& sub) {
+    sub.footer(
         "Examples:\n"
         "  topdump wireshark > ~/.local/lib/wireshark/plugins/top.lua\n"
         "  tshark -X lua_script:top.lua -r captures/sample.pcap -V -Y top (docs/WIRESHARK.md)");
   }
   // run_selected checks that stdout took it all.
-  int run() override {
+  static int run() {
     std::cout << wireshark_lua();
     return 0;
   }
@@ -29,7 +26,9 @@ class WiresharkCommand : public topkit::cli::Subcommand {
 }  // namespace
 
 std::unique_ptr<topkit::cli::Subcommand> wireshark_command(CLI::App& app) {
-  return std::make_unique<WiresharkCommand>(app);
+  return topkit::cli::make_subcommand<Wireshark>(
+      app, "wireshark",
+      "write top.lua, a Wireshark dissector generated from the catalog, to stdout");
 }
 
 }  // namespace topdump

@@ -63,8 +63,16 @@ std::string lua_num(double v) {
 // that holds both).
 std::string value_type(const top::FieldSpec& s) {
   using K = top::FieldKind;
-  // an unscaled count of at most `digits` digits is a Lua integer
-  const auto whole = [&](int digits) { return s.scale == 1.0 && s.width > 0 && s.width <= digits; };
+  if (top::is_integer_kind(s.kind)) {
+    // An unscaled integer is a Lua integer: a binary one always, one of hex
+    // or decimal digits when it has at most 8 hex or 9 decimal digits.
+    const bool digits = s.kind == K::hex_u || s.kind == K::hex_s || s.kind == K::dec_u;
+    const int most = s.kind == K::dec_u ? 9 : 8;
+    if (s.scale != 1.0 || (digits && (s.width == 0 || s.width > most))) return "double";
+    const bool is_signed =
+        s.kind == K::hex_s || s.kind == K::le_i16 || s.kind == K::le_i32 || s.kind == K::be_i16;
+    return is_signed ? "int" : "uint";
+  }
   switch (s.kind) {
     case K::text:
     case K::raw:
@@ -76,20 +84,8 @@ std::string value_type(const top::FieldSpec& s) {
       return "uint";
     case K::enum_hex:
       return s.width > 0 && s.width <= 8 ? "uint" : "double";
-    case K::hex_u:
-      return whole(8) ? "uint" : "double";
-    case K::dec_u:
-      return whole(9) ? "uint" : "double";
-    case K::le_u16:
-    case K::be_u16:
-    case K::u8:
-      return s.scale == 1.0 ? "uint" : "double";
-    case K::hex_s:
-      return whole(8) ? "int" : "double";
-    case K::le_i16:
-    case K::le_i32:
-    case K::be_i16:
-      return s.scale == 1.0 ? "int" : "double";
+    default:
+      break;
   }
   return "string";
 }

@@ -18,6 +18,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #ifndef TOPKIT_VERSION
@@ -124,6 +125,8 @@ inline int parse(CLI::App& app, int argc, char** argv) {
 
 // One subcommand: its options are added to the parent in the derived
 // class's constructor; run() is called when the command line chose it.
+// A subcommand is best written as an OwnSubcommand (below), which holds
+// only what is its own.
 class Subcommand {
  public:
   Subcommand(CLI::App& parent, const std::string& name, const std::string& help)
@@ -139,19 +142,61 @@ class Subcommand {
   CLI::App* sub_;
 };
 
-// Runs the subcommand the command line chose and checks stdout after it.
-inline int run_selected(const std::string& tool, std::initializer_list<Subcommand*> subs) {
-  for (Subcommand* s : subs)
-    if (s->selected()) return close_stdout(tool, s->run());
-  error(tool, "a subcommand is required (--help for more)");
-  return 2;
+// The subcommand whose `Own` holds only what is the command's own: its
+// options as members, declare(CLI::App&) adding them to the subcommand, and
+// run() returning the exit status. `Own` is made from `args`.
+//
+//   struct Models {
+//     bool paths = false;
+//     void declare(CLI::App& sub) { sub.add_flag("--paths", paths, "..."); }
+//     int run() const;
+//   };
+//   std::unique_ptr<topkit::cli::Subcommand> models_command(CLI::App& app) {
+//     return topkit::cli::make_subcommand<Models>(app, "models", "list the models");
+//   }
+template <class Own>
+class OwnSubcommand final : public Subcommand {
+ public:
+  template <class... Args>
+  OwnSubcommand(CLI::App& parent, const std::string& name, const std::string& help, Args&&... args)
+      : Subcommand(parent, name, help), own_(std::forward<Args>(args)...) {
+    own_.declare(*sub_);
+  }
+  int run() override { return own_.run(); }
+
+ private:
+  Own own_;
+};
+
+template <class Own, class... Args>
+std::unique_ptr<Subcommand> make_subcommand(CLI::App& parent, const std::string& name,
+                                            const std::string& help, Args&&... args) {
+  return std::make_unique<OwnSubcommand<Own>>(parent, name, help, std::forward<Args>(args)...);
 }
+
+// What each subcommand's file defines (as NAME_command): adds the
+// subcommand to `parent`. A tool declares its factories once, in one
+// declaration (its commands.hpp), and its main() hands them to run_tool.
+using SubcommandFactory = std::unique_ptr<Subcommand>(CLI::App& parent);
+
+// Runs the subcommand the command line chose and checks stdout after it.
 inline int run_selected(const std::string& tool,
                         std::span<const std::unique_ptr<Subcommand>> subs) {
   for (const auto& s : subs)
     if (s->selected()) return close_stdout(tool, s->run());
   error(tool, "a subcommand is required (--help for more)");
   return 2;
+}
+
+// A tool's main() once `app` is set up: adds the subcommands of
+// `factories` in their order (the order of --help), parses the command line
+// and runs the subcommand it chose. Returns the exit status.
+inline int run_tool(CLI::App& app, int argc, char** argv,
+                    std::initializer_list<SubcommandFactory*> factories) {
+  std::vector<std::unique_ptr<Subcommand>> subs;
+  for (SubcommandFactory* f : factories) subs.push_back(f(app));
+  if (int rc = parse(app, argc, argv); rc >= 0) return rc;
+  return run_selected(app.get_name(), subs);
 }
 
 }  // namespace topkit::cli
