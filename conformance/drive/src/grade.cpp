@@ -18,8 +18,8 @@ namespace topconf::drive {
 using namespace detail;
 
 namespace {
-constexpr std::string_view kGrade[] = {"pass", "non-strict", "informational",
-                                       "unimplemented", "fail", "error"};
+constexpr std::string_view kGrade[] = {"pass",          "non-strict", "informational",
+                                       "unimplemented", "fail",       "error"};
 static_assert(std::size(kGrade) == static_cast<std::size_t>(Grade::error) + 1);
 }  // namespace
 
