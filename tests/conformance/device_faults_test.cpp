@@ -9,6 +9,7 @@
 
 #include "sim/device.hpp"
 #include "sim/faults.hpp"
+#include "sim_test_util.hpp"
 #include "top/diagnoses.hpp"
 
 namespace {
@@ -17,20 +18,9 @@ using topsim::Device;
 using topsim::Link;
 
 topsim::DeviceOptions with(const std::string& spec) {
-  std::string err;
-  auto f = topsim::parse_faults(spec, err);
-  EXPECT_TRUE(f.has_value()) << spec << ": " << err;
   topsim::DeviceOptions o;
-  if (f) o.faults = f->device;
+  o.faults = faults_of(spec).device;
   return o;
-}
-
-std::vector<top::Frame> ask(Device& d, const std::string& body, std::uint64_t t) {
-  std::vector<top::Frame> v;
-  for (const std::string& s :
-       topsim::handle_datagram(d, top::with_checksum(body), Link::network, t))
-    v.push_back(top::parse_exact(s).frame);
-  return v;
 }
 
 // The times (us) of the pushes of `ident` from 0 to `until`.

@@ -14,26 +14,12 @@
 #include "sim/device.hpp"
 #include "sim/faults.hpp"
 #include "sim/server.hpp"
+#include "sim_test_util.hpp"
 
 namespace {
 
 using topsim::Device;
 using topsim::Link;
-
-topsim::FaultConfig faults(const std::string& spec) {
-  std::string err;
-  auto f = topsim::parse_faults(spec, err);
-  EXPECT_TRUE(f.has_value()) << spec << ": " << err;
-  return f.value_or(topsim::FaultConfig{});
-}
-
-std::vector<top::Frame> ask(Device& d, const std::string& body, std::uint64_t t) {
-  std::vector<top::Frame> v;
-  for (const std::string& s :
-       topsim::handle_datagram(d, top::with_checksum(body), Link::network, t))
-    v.push_back(top::parse_exact(s).frame);
-  return v;
-}
 
 std::size_t pushes_between(Device& d, std::uint64_t from, std::uint64_t to) {
   std::size_t n = 0;
@@ -46,8 +32,8 @@ std::size_t pushes_between(Device& d, std::uint64_t from, std::uint64_t to) {
 }
 
 TEST(DriveFaults, ParseAndReject) {
-  const topsim::FaultConfig f =
-      faults("stop=GAC@0.5,ere=CAP,range-form=short,late=VSN@1500,checksum-case=0.5,reboot=1.25");
+  const topsim::FaultConfig f = faults_of(
+      "stop=GAC@0.5,ere=CAP,range-form=short,late=VSN@1500,checksum-case=0.5,reboot=1.25");
   ASSERT_EQ(f.device.stops.size(), 1u);
   EXPECT_EQ(f.device.stops[0].ident, "GAC");
   EXPECT_EQ(f.device.stops[0].from_us, 500000u);
@@ -72,7 +58,7 @@ TEST(DriveFaults, ParseAndReject) {
 // it keeps going.
 TEST(DriveFaults, StopSwitchesTheStreamOffOnce) {
   topsim::DeviceOptions o;
-  o.faults = faults("stop=GAC@0.5").device;
+  o.faults = faults_of("stop=GAC@0.5").device;
   Device d(top::Model::c12, o);
   ask(d, "#TPUG2wGAA0A", 0);  // 10 Hz
   EXPECT_GE(pushes_between(d, 0, 450000), 4u);
@@ -83,7 +69,7 @@ TEST(DriveFaults, StopSwitchesTheStreamOffOnce) {
 
 TEST(DriveFaults, EreAnswersTheCommandWithEre) {
   topsim::DeviceOptions o;
-  o.faults = faults("ere=CAP").device;
+  o.faults = faults_of("ere=CAP").device;
   Device d(top::Model::c12, o);
   const auto out = ask(d, "#TPUD2wCAP01", 0);
   ASSERT_EQ(out.size(), 1u);
@@ -94,7 +80,7 @@ TEST(DriveFaults, EreAnswersTheCommandWithEre) {
   EXPECT_EQ(ok[0].ident_view(), "CAP");
   // Topotek has no ERE: silence.
   topsim::DeviceOptions t;
-  t.faults = faults("ere=CAP").device;
+  t.faults = faults_of("ere=CAP").device;
   Device sip(top::Model::sip, t);
   EXPECT_TRUE(ask(sip, "#TPPD2wCAP01", 0).empty());
 }
@@ -112,14 +98,14 @@ TEST(DriveFaults, RangeFormShortDropsThePadding) {
 }
 
 TEST(DriveFaults, LateAndChecksumCaseOnTheLine) {
-  topsim::FaultInjector late(faults("late=VSN@1500"), 1);
+  topsim::FaultInjector late(faults_of("late=VSN@1500"), 1);
   std::vector<topsim::Emission> em;
   late.apply(top::with_checksum("#tpDPArVSN1.6.26.R.D"), false, em);
   late.apply(top::with_checksum("#TPGP2wGIA01"), false, em);
   ASSERT_EQ(em.size(), 2u);
   EXPECT_EQ(em[0].delay_us, 1500000u);
   EXPECT_EQ(em[1].delay_us, 0u);
-  topsim::FaultInjector lower(faults("checksum-case=1"), 1);
+  topsim::FaultInjector lower(faults_of("checksum-case=1"), 1);
   em.clear();
   // #TPUG2wGAA32 sums to 0x3A: the letter goes lowercase.
   lower.apply("#TPUG2wGAA323A", false, em);
@@ -136,7 +122,7 @@ TEST(DriveFaults, ReconfigureKeepsAxesAndStreams) {
   const double pitch = d.pitch().angle;
   EXPECT_GT(pitch, 3);
   topsim::DeviceOptions o;
-  o.faults = faults("stop=GAC@0.3").device;
+  o.faults = faults_of("stop=GAC@0.3").device;
   d.reconfigure(o, 500000);
   EXPECT_DOUBLE_EQ(d.pitch().angle, pitch);
   EXPECT_GE(pushes_between(d, 500000, 750000), 2u) << "the stream survives the change";
@@ -159,7 +145,7 @@ TEST(DriveFaults, RebootOnARunningServerSwitchesStreamsOff) {
   topsim::ServerConfig cfg;
   cfg.model = top::Model::c12;
   cfg.kind = topsim::TransportKind::udp;
-  cfg.faults = faults("reboot=0.4");
+  cfg.faults = faults_of("reboot=0.4");
   topsim::Server s(cfg);
   std::thread t([&] { s.run(); });
   const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
@@ -183,7 +169,7 @@ TEST(DriveFaults, RebootOnARunningServerSwitchesStreamsOff) {
   ASSERT_EQ(::sendto(fd, gaa.data(), gaa.size(), 0, reinterpret_cast<sockaddr*>(&to), sizeof to),
             static_cast<ssize_t>(gaa.size()));
   std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  ASSERT_TRUE(s.reconfigure(faults("stop=GAC@5"), topsim::DeviceOptions{}));
+  ASSERT_TRUE(s.reconfigure(faults_of("stop=GAC@5"), topsim::DeviceOptions{}));
   EXPECT_EQ(streams_on(s), 1);
   ::close(fd);
   s.stop();
