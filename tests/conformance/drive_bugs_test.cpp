@@ -53,6 +53,19 @@ class Driven : public Client {
       if (s.frame.size() > 10 && s.frame.compare(7, 3, ident) == 0) v.push_back(s);
     return v;
   }
+  // How many `ident` frames that `moves` went out when the last attitude
+  // taken was over 1.2 s old.
+  template <class Moves>
+  int sent_on_stale(std::string_view ident, Moves moves) const {
+    int n = 0;
+    for (const Sent& s : of(ident)) {
+      std::uint64_t last = 0;
+      for (const auto& a : this->attitude)
+        if (a.t_us - start_ <= s.t_us) last = a.t_us - start_;
+      n += moves(s) && s.t_us - last > 1200000;
+    }
+    return n;
+  }
 
  private:
   drive::Script script_;
@@ -314,25 +327,13 @@ TEST_P(DriveBugsBoth, RatesOnStaleAttitude) {
   if (bug) b.set(Bug::rates_on_stale_attitude);
   Driven<TopotekClient> t(v, b);
   run_driver(t, top::Model::sip, kPty, 3000, "", {}, faults("stall=GIA@1+1.5"));
-  // The attitude's age at each YPR sent.
-  int stale = 0;
-  for (const auto& s : t.of("YPR")) {
-    std::uint64_t last = 0;
-    for (const auto& a : t.attitude)
-      if (a.t_us - t.start() <= s.t_us) last = a.t_us - t.start();
-    stale += s.t_us - last > 1200000;
-  }
+  const int stale = t.sent_on_stale("YPR", [](const auto&) { return true; });
   EXPECT_EQ(stale > 0, bug) << stale;
   EXPECT_FALSE(t.of("YPR").empty());  // and before the stall, rates went out
   Driven<SkyDroidDriver> k(v, b);
   run_driver(k, top::Model::c12, kUdp, 3000, "", {}, faults("stall=GAC@1+1.5"));
-  int moving_stale = 0;
-  for (const auto& s : k.of("GSY")) {
-    std::uint64_t last = 0;
-    for (const auto& a : k.attitude)
-      if (a.t_us - k.start() <= s.t_us) last = a.t_us - k.start();
-    moving_stale += s.frame.substr(10, 2) != "00" && s.t_us - last > 1200000;
-  }
+  const int moving_stale =
+      k.sent_on_stale("GSY", [](const auto& s) { return s.frame.substr(10, 2) != "00"; });
   EXPECT_EQ(moving_stale > 0, bug) << moving_stale;
   // Never a rate with no attitude at all (1.1), bug or not.
   Driven<TopotekClient> n(v, b);

@@ -1,11 +1,13 @@
 #include "conf/drive_report.hpp"
 
 #include <iomanip>
+#include <iterator>
 #include <map>
 
 #include "conf/report.hpp"
 #include "junit.hpp"
 #include "top/detail/text.hpp"
+#include "top/enum_names.hpp"
 
 namespace topconf {
 
@@ -19,19 +21,13 @@ namespace {
 constexpr Grade kGrades[] = {Grade::pass,          Grade::non_strict, Grade::informational,
                              Grade::unimplemented, Grade::fail,       Grade::error};
 
-const char* color_of(Grade g) {
-  switch (g) {
-    case Grade::pass:
-      return "\x1b[32m";
-    case Grade::non_strict:
-      return "\x1b[33m";
-    case Grade::fail:
-    case Grade::error:
-      return "\x1b[31m";
-    default:
-      return "\x1b[2m";
-  }
-}
+// The console colour of each grade, in Grade's order: green, yellow, dim,
+// dim, red, red.
+constexpr std::string_view kColor[] = {"\x1b[32m", "\x1b[33m", "\x1b[2m",
+                                       "\x1b[2m",  "\x1b[31m", "\x1b[31m"};
+static_assert(std::size(kColor) == static_cast<std::size_t>(Grade::error) + 1);
+
+std::string_view color_of(Grade g) { return top::enum_name(kColor, g, "\x1b[2m"); }
 
 // The HTML class of a grade (write_html_head's classes).
 std::string html_class(std::string_view grade) {
