@@ -19,61 +19,54 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class DriveCommand : public topkit::cli::Subcommand {
- public:
-  explicit DriveCommand(CLI::App& app);
-  int run() override;
-
- private:
-  // Rewrites OUT/table.html and OUT/table.json from OUT/agents/*.json.
-  bool write_agents_table() const;
+struct Drive {
   std::string model_name_, link_, exec_, out_ = "drive-out", agent_, topdump_;
   std::vector<std::string> cases_;
   bool full_ = false, persistent_ = false, no_color_ = false, quiet_ = false;
   unsigned jobs_ = 8;
   std::uint64_t seed_ = 1;
   OutputArgs files_;
+
+  void declare(CLI::App& sub) {
+    sub.add_option("--model", model_name_, top::model_list("|", "|"))->required();
+    sub.add_option("--link", link_, "pty|udp|tcp (default: pty for sip, udp otherwise)")
+        ->check(CLI::IsMember({"pty", "udp", "tcp"}));
+    sub.add_option("--exec", exec_,
+                   "the driver: run by /bin/sh -c with {pty}, {host}, {port}, {case}, {intent} "
+                   "substituted; TOPCONF_CASE, TOPCONF_INTENT, TOPCONF_MODEL, TOPCONF_LINK in "
+                   "its environment")
+        ->required();
+    sub.add_option("--case", cases_, "case IDs (2.1) or sections (2); default all");
+    sub.add_flag("--full", full_, "the full durations (default: the short ones)");
+    sub.add_option("--jobs", jobs_, "cases run at once (default 8)")->check(CLI::Range(1, 64));
+    sub.add_flag("--persistent", persistent_,
+                 "one driver process for every case: the device changes case in place");
+    sub.add_option("--agent", agent_,
+                   "name this run in OUT/table.html (its files go to OUT/agents/NAME/)")
+        ->check([](const std::string& s) {
+          for (char c : s)
+            if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.')
+              return std::string("letters, digits, '-', '_' and '.' only");
+          return s.empty() || s[0] == '.' ? std::string("must not be empty or start with '.'")
+                                          : std::string();
+        });
+    sub.add_option("--out", out_, "the cases' folders (default drive-out)");
+    sub.add_option("--json", files_.json, "write the JSON report");
+    sub.add_option("--junit", files_.junit, "write JUnit XML");
+    sub.add_option("--html", files_.html, "write the HTML report");
+    sub.add_option("--seed", seed_, "seed of the device's faults (default 1)");
+    sub.add_option("--topdump", topdump_, "topdump for the diagnoses (default: next to topconf)");
+    sub.add_flag("--no-color", no_color_, "no ANSI colours");
+    sub.add_flag("-q,--quiet", quiet_, "print the summary only");
+  }
+  int run() const;
+  // Rewrites OUT/table.html and OUT/table.json from OUT/agents/*.json.
+  bool write_agents_table() const;
 };
 
 }  // namespace
 
-DriveCommand::DriveCommand(CLI::App& app)
-    : Subcommand(app, "drive",
-                 "put a gimbal driver (--exec) in front of every known field problem of a "
-                 "simulated device and grade its reaction (docs/DRIVE.md)") {
-  sub_->add_option("--model", model_name_, top::model_list("|", "|"))->required();
-  sub_->add_option("--link", link_, "pty|udp|tcp (default: pty for sip, udp otherwise)")
-      ->check(CLI::IsMember({"pty", "udp", "tcp"}));
-  sub_->add_option("--exec", exec_,
-                   "the driver: run by /bin/sh -c with {pty}, {host}, {port}, {case}, {intent} "
-                   "substituted; TOPCONF_CASE, TOPCONF_INTENT, TOPCONF_MODEL, TOPCONF_LINK in "
-                   "its environment")
-      ->required();
-  sub_->add_option("--case", cases_, "case IDs (2.1) or sections (2); default all");
-  sub_->add_flag("--full", full_, "the full durations (default: the short ones)");
-  sub_->add_option("--jobs", jobs_, "cases run at once (default 8)")->check(CLI::Range(1, 64));
-  sub_->add_flag("--persistent", persistent_,
-                 "one driver process for every case: the device changes case in place");
-  sub_->add_option("--agent", agent_,
-                   "name this run in OUT/table.html (its files go to OUT/agents/NAME/)")
-      ->check([](const std::string& s) {
-        for (char c : s)
-          if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.')
-            return std::string("letters, digits, '-', '_' and '.' only");
-        return s.empty() || s[0] == '.' ? std::string("must not be empty or start with '.'")
-                                        : std::string();
-      });
-  sub_->add_option("--out", out_, "the cases' folders (default drive-out)");
-  sub_->add_option("--json", files_.json, "write the JSON report");
-  sub_->add_option("--junit", files_.junit, "write JUnit XML");
-  sub_->add_option("--html", files_.html, "write the HTML report");
-  sub_->add_option("--seed", seed_, "seed of the device's faults (default 1)");
-  sub_->add_option("--topdump", topdump_, "topdump for the diagnoses (default: next to topconf)");
-  sub_->add_flag("--no-color", no_color_, "no ANSI colours");
-  sub_->add_flag("-q,--quiet", quiet_, "print the summary only");
-}
-
-bool DriveCommand::write_agents_table() const {
+bool Drive::write_agents_table() const {
   std::vector<TableInput> inputs;
   std::vector<fs::path> files;
   std::error_code ec;
@@ -100,7 +93,7 @@ bool DriveCommand::write_agents_table() const {
   return ok;
 }
 
-int DriveCommand::run() {
+int Drive::run() const {
   drive::DriveOptions o;
   const auto model = topkit::cli::model_arg(kTool, model_name_);
   if (!model) return 2;
@@ -162,7 +155,10 @@ int DriveCommand::run() {
 }
 
 std::unique_ptr<topkit::cli::Subcommand> drive_command(CLI::App& app) {
-  return std::make_unique<DriveCommand>(app);
+  return topkit::cli::make_subcommand<Drive>(
+      app, "drive",
+      "put a gimbal driver (--exec) in front of every known field problem of a simulated device "
+      "and grade its reaction (docs/DRIVE.md)");
 }
 
 }  // namespace topconf::cli
