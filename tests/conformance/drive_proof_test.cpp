@@ -2,12 +2,13 @@
 // drive against the built topkit_drive_client, clean or with one --bug, each
 // run its JSON report checked: the clean client fails no case and acts on
 // every intent its driver has a call for (no case `unimplemented`), each
-// bug fails exactly the cases kFails gives it, no case is an `error`. One
+// bug fails exactly the cases its bug_table row gives it, no case is an `error`. One
 // test per run (ctest spreads them); every case of a run at once (--jobs),
 // the short durations: a run takes its longest case, about 4.5 s, and a
 // fraction of a second of CPU.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -19,6 +20,7 @@
 #include <vector>
 
 #include "binaries.hpp"
+#include "drive_client/drive_api.hpp"
 
 namespace {
 
@@ -30,23 +32,23 @@ const std::vector<std::string> kCases = {"1.1", "1.2", "1.3", "1.4", "2.1", "2.2
                                          "5.1", "6.1", "6.2", "6.3", "6.4", "6.5", "7.1",
                                          "7.2", "7.3", "8.1", "8.2", "8.3", "9.1"};
 
-// The cases each bug fails (docs/DRIVE.md "Known
-// driver bugs"); where more than the case that names it, why.
-const std::map<std::string, std::set<std::string>> kFails = {
-    {"pitch-rate-sign", {"2.1"}},
-    {"uart-address-on-network", {"6.4"}},
-    {"strict-version", {"3.2"}},
-    // 1.1 too: its device (no-stream=GIA) still echoes the switch GIA 01,
-    // which the bug reads as an attitude; the driver then sends rates.
-    {"echo-as-attitude", {"1.1", "6.5"}},
-    {"range-fixed-offsets", {"8.3"}},
-    {"month-zero-based", {"9.1"}},
-    {"no-stop-after-last-rate", {"2.4"}},
-    // 1.3 too: a stream stopped for good is asked again only by a driver
-    // that re-enables it.
-    {"no-reenable-after-reboot", {"1.3", "1.4"}},
-    {"rates-on-stale-attitude", {"2.5"}},
-};
+// The cases each bug fails: the client's own table (drive_api.hpp
+// bug_table, which --help prints and docs/DRIVE.md "Known driver bugs"
+// gives with the reasons where a bug fails more than the case that names
+// it).
+std::set<std::string> fails_of(const std::string& bug) {
+  std::set<std::string> out;
+  for (const drive::BugInfo& b : drive::bug_table())
+    if (b.name == bug) {
+      std::string c(b.cases);
+      for (std::size_t i = 0; i < c.size();) {
+        const std::size_t sp = std::min(c.find(' ', i), c.size());
+        out.insert(c.substr(i, sp - i));
+        i = sp + 1;
+      }
+    }
+  return out;
+}
 
 struct ProofRun {
   std::string model, link, bug;
@@ -62,23 +64,18 @@ std::string name_of(const ProofRun& r) {
 
 std::vector<ProofRun> runs() {
   std::vector<ProofRun> v;
-  const auto topotek = [](const std::string& bug) {
-    return bug != "uart-address-on-network";  // on a pty U is right: nothing to fail
-  };
-  const auto skydroid = [](const std::string& bug) {
-    return bug != "uart-address-on-network" && bug != "echo-as-attitude" &&
-           bug != "range-fixed-offsets";  // not bugs its driver can have
-  };
   v.push_back({"sip", "pty", "", {}});
-  for (const auto& [bug, fails] : kFails)
-    if (topotek(bug)) v.push_back({"sip", "pty", bug, {}});
+  // On a pty U is the right address: the address bug has nothing to fail.
+  for (const drive::BugInfo& b : drive::bug_table())
+    if (b.topotek && b.bug != drive::Bug::uart_address_on_network)
+      v.push_back({"sip", "pty", std::string(b.name), {}});
   v.push_back({"sip", "udp", "", {}});
   // On a network link a Topotek camera answers no request of source U: the
   // bug loses every answer; 6.4 is the case that judges the address.
   v.push_back({"sip", "udp", "uart-address-on-network", {"6.4"}});
   for (const char* m : {"c12", "c13"}) v.push_back({m, "udp", "", {}});
-  for (const auto& [bug, fails] : kFails)
-    if (skydroid(bug)) v.push_back({"c12", "udp", bug, {}});
+  for (const drive::BugInfo& b : drive::bug_table())
+    if (b.skydroid) v.push_back({"c12", "udp", std::string(b.name), {}});
   return v;
 }
 
@@ -110,7 +107,7 @@ TEST_P(DriveProof, EachBugFailsExactlyItsCases) {
   const auto j = nlohmann::json::parse(in, nullptr, false);
   ASSERT_FALSE(j.is_discarded()) << "no JSON report; topconf exit " << rc;
   std::set<std::string> failed, want;
-  if (!r.bug.empty()) want = kFails.at(r.bug);
+  if (!r.bug.empty()) want = fails_of(r.bug);
   std::string grades;
   for (const auto& c : j.value("cases", nlohmann::json::array())) {
     const std::string id = c.value("id", ""), grade = c.value("grade", "");

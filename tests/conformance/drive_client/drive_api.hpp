@@ -53,7 +53,7 @@ inline const std::array<BugInfo, kBugs>& bug_table() {
        "a version parser that knows only dotted numbers (\"%u.%u.%u\"): a version without dots "
        "(\"123\", the other form AP_Mount_Topotek documents since ArduPilot PR #27568) reads as "
        "major 123"},
-      {Bug::echo_as_attitude, "echo-as-attitude", "6.5", true, false,
+      {Bug::echo_as_attitude, "echo-as-attitude", "6.5 1.1", true, false,
        "GIA parsed with no length check, at fixed offsets of a buffer that keeps the bytes of "
        "earlier frames: AP_Mount_Topotek.cpp @ 05ad8d27 gimbal_angle_analyse() reads "
        "hex_chars_to_uint32(&_msg_buff[10], 4, yaw_raw), [14] pitch, [18] roll, whatever the "
