@@ -381,17 +381,11 @@ bool replies_reach_host(Dialect d) noexcept {
 }
 
 bool rejects(FindingCode c) noexcept {
-  switch (c) {
-    case FindingCode::unknown_ident:
-    case FindingCode::unsupported_on_model:
-    case FindingCode::unsupported_control:
-    case FindingCode::data_length:
-    case FindingCode::bad_field:
-    case FindingCode::value_out_of_range:
-      return true;
-    default:
-      return false;
-  }
+  using enum FindingCode;
+  static constexpr FindingCode kRejected[] = {unknown_ident, unsupported_on_model,
+                                              unsupported_control, data_length,
+                                              bad_field, value_out_of_range};
+  return std::find(std::begin(kRejected), std::end(kRejected), c) != std::end(kRejected);
 }
 
 Rejection rejection(const Decoded& dec, Model model, bool field_evidence) noexcept {

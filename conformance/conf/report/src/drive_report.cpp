@@ -123,28 +123,30 @@ void write_drive_junit(std::ostream& os, const DriveRun& r) {
   s.seconds = r.seconds;
   s.timestamp = r.started;
   detail::open_junit(os, s);
+  using Result = detail::JunitCase::Result;
   for (const DCase& c : r.cases) {
-    os << "<testcase classname=\"" << markup_escape(s.name) << "\" name=\""
-       << markup_escape(std::string(c.spec->id) + " " + std::string(c.spec->title)) << "\" time=\""
-       << c.duration_s << "\">";
-    const std::string reason = markup_escape(c.verdict.reason);
+    detail::JunitCase k{.classname = s.name,
+                        .name = std::string(c.spec->id) + " " + std::string(c.spec->title),
+                        .seconds = c.duration_s};
+    const std::string graded = std::string(drive::to_string(c.verdict.grade)) + ": " + c.verdict.reason;
     switch (c.verdict.grade) {
       case Grade::fail:
-        os << "<failure message=\"" << reason << "\"/>";
+        k.result = Result::failure;
+        k.message = c.verdict.reason;
         break;
       case Grade::error:
-        os << "<error message=\"" << reason << "\"/>";
+        k.result = Result::error;
+        k.message = c.verdict.reason;
         break;
       case Grade::informational:
       case Grade::unimplemented:
-        os << "<skipped message=\"" << markup_escape(drive::to_string(c.verdict.grade)) << ": "
-           << reason << "\"/>";
+        k.result = Result::skipped;
+        k.message = graded;
         break;
       default:
-        os << "<system-out>" << markup_escape(drive::to_string(c.verdict.grade)) << ": " << reason
-           << "</system-out>";
+        k.out = graded;
     }
-    os << "</testcase>\n";
+    detail::write_case(os, k);
   }
   detail::close_junit(os);
 }
@@ -238,25 +240,21 @@ nlohmann::json drive_table_json(const std::vector<TableInput>& inputs) {
 
 void write_drive_table_html(std::ostream& os, const nlohmann::json& t) {
   const nlohmann::json& cols = t["columns"];
-  write_html_head(os, "topconf drive: agents");
-  os << "<h1>topconf drive: " << cols.size()
-     << " agent(s)</h1>\n<p>One column per driver run, one row per case (stable IDs, "
-        "docs/DRIVE.md); a cell is the case's grade, its reason the tooltip, linking the "
-        "case's folder.</p>\n<table><tr><th>case</th>";
-  for (const auto& c : cols)
-    os << "<th>" << markup_escape(c.value("agent", "")) << "<br><small>"
-       << markup_escape(c.value("model", "")) << " over " << markup_escape(c.value("link", ""))
-       << "</small></th>";
-  os << "</tr>\n<tr><th>exit</th>";
+  std::vector<TableColumnTop> tops;
   for (const auto& c : cols) {
     const int code = c.value("exit_code", -1);
-    os << "<td class=\""
-       << (code == 0   ? "pass"
-           : code == 1 ? "fail"
-                       : "error")
-       << "\"><b>exit " << code << "</b></td>";
+    tops.push_back({.head_html = markup_escape(c.value("agent", "")) + "<br><small>" +
+                                 markup_escape(c.value("model", "")) + " over " +
+                                 markup_escape(c.value("link", "")) + "</small>",
+                    .summary_class = code == 0 ? "pass" : code == 1 ? "fail" : "error",
+                    .summary_html = "<b>exit " + std::to_string(code) + "</b>"});
   }
-  os << "</tr>\n";
+  write_table_page_top(os, "topconf drive: agents",
+                       "topconf drive: " + std::to_string(cols.size()) + " agent(s)",
+                       "One column per driver run, one row per case (stable IDs, docs/DRIVE.md); "
+                       "a cell is the case's grade, its reason the tooltip, linking the case's "
+                       "folder.",
+                       "case", "exit", tops);
   std::string section;
   for (const auto& row : t["rows"]) {
     if (row.value("section", "") != section) {

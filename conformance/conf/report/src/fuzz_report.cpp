@@ -122,23 +122,25 @@ void write_junit(std::ostream& os, const FuzzResult& r) {
   suite.seconds = r.seconds;
   suite.timestamp = r.started_at;
   detail::open_junit(os, suite);
+  using Result = detail::JunitCase::Result;
   for (FailureClass c : kFailureClasses) {
-    os << "  <testcase classname=\"topconf.fuzz\" name=\"" << to_string(c) << "\" time=\"0\">";
+    detail::JunitCase k{.classname = "topconf.fuzz", .name = std::string(to_string(c)), .seconds = 0};
     if (r.unusable) {
-      os << "<error message=\"" << markup_escape(r.unusable_reason) << "\"/>";
+      k.result = Result::error;
+      k.message = r.unusable_reason;
     } else {
-      std::string text;
       std::size_t n = 0;
       for (const auto& f : r.failures)
         if (f.cls == c) {
           ++n;
-          text += failure_line(f) + "\n";
+          k.body += failure_line(f) + "\n";
         }
-      if (n)
-        os << "<failure message=\"" << n << " case(s): " << markup_escape(describe(c)) << "\">"
-           << markup_escape(text) << "</failure>";
+      if (n) {
+        k.result = Result::failure;
+        k.message = std::to_string(n) + " case(s): " + std::string(describe(c));
+      }
     }
-    os << "</testcase>\n";
+    detail::write_case(os, k);
   }
   detail::close_junit(os);
 }

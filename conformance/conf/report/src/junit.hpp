@@ -1,5 +1,5 @@
-// The JUnit XML envelope every topconf report writes (private to
-// conf/report/): the <testsuites> and <testsuite> element around the cases.
+// The JUnit XML every topconf report writes (private to conf/report/): the
+// <testsuites> and <testsuite> envelope, and each <testcase> in it.
 #pragma once
 
 #include <cstddef>
@@ -21,5 +21,18 @@ struct JunitSuite {
 void open_junit(std::ostream& os, const JunitSuite& s);
 // Closes what open_junit opened.
 void close_junit(std::ostream& os);
+
+// One <testcase>. Texts are raw: write_case escapes them.
+struct JunitCase {
+  enum class Result { pass, failure, error, skipped };
+  std::string classname, name;
+  std::optional<double> seconds;  // the time attribute only when given
+  Result result = Result::pass;
+  std::string message;            // the result element's message
+  std::string type;               // its type attribute, when not empty
+  std::string body;               // its text, when not empty
+  std::optional<std::string> out;  // <system-out>, when given
+};
+void write_case(std::ostream& os, const JunitCase& c);
 
 }  // namespace topconf::detail

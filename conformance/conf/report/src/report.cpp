@@ -171,44 +171,58 @@ void write_junit(std::ostream& os, const RunResult& r, const drivers::Compatibil
   suite.seconds = r.seconds;
   suite.timestamp = r.started_at;
   detail::open_junit(os, suite);
+  using Result = detail::JunitCase::Result;
   if (r.unreachable)
-    os << "  <testcase classname=\"topconf\" name=\"liveness\"><error message=\""
-       << markup_escape(r.unreachable_reason) << "\"/></testcase>\n";
+    detail::write_case(os, {.classname = "topconf",
+                            .name = "liveness",
+                            .result = Result::error,
+                            .message = r.unreachable_reason});
   if (compat) {
     // The driver's verdict: a failure only when the driver breaks.
-    os << "  <testcase classname=\"topconf.driver." << markup_escape(compat->profile->name)
-       << "\" name=\"compatibility\">";
-    if (broken) os << "<failure message=\"" << markup_escape(compat->text()) << "\"/>";
-    os << "<system-out>" << markup_escape(compat_line(*compat)) << "</system-out></testcase>\n";
+    detail::write_case(os, {.classname = "topconf.driver." + std::string(compat->profile->name),
+                            .name = "compatibility",
+                            .result = broken ? Result::failure : Result::pass,
+                            .message = broken ? compat->text() : "",
+                            .out = compat_line(*compat)});
   }
   for (const auto& c : r.cases) {
-    os << "  <testcase classname=\"" << markup_escape(c.spec->section) << "\" name=\""
-       << markup_escape(c.spec->id) << "\" time=\"" << static_cast<double>(c.duration_us) / 1e6
-       << "\">";
-    const std::string msg = markup_escape(std::string(to_string(c.verdict)) + ": " + c.reason);
+    detail::JunitCase k{.classname = std::string(c.spec->section),
+                        .name = std::string(c.spec->id),
+                        .seconds = static_cast<double>(c.duration_us) / 1e6,
+                        .message = std::string(to_string(c.verdict)) + ": " + c.reason};
     switch (c.verdict) {
       case Verdict::pass:
         break;
       case Verdict::not_applicable:
-        os << "<skipped message=\"" << msg << "\"/>";
+        k.result = Result::skipped;
         break;
       case Verdict::error:
-        os << "<error message=\"" << msg << "\"/>";
+        k.result = Result::error;
         break;
       default:
         // may-level cases are reported but do not fail the suite.
-        if (c.spec->level == Level::may)
-          os << "<skipped message=\"" << msg << "\"/>";
-        else
-          os << "<failure message=\"" << msg << "\" type=\"" << to_string(c.verdict) << "\"/>";
+        k.result = c.spec->level == Level::may ? Result::skipped : Result::failure;
+        if (k.result == Result::failure) k.type = std::string(to_string(c.verdict));
     }
-    os << "<system-out>";
+    k.out.emplace();
     for (const auto& e : c.transcript)
-      os << markup_escape(ms(e.t_us) + " " + std::string(1, e.dir) + " " + printable(e.bytes))
-         << "\n";
-    os << "</system-out></testcase>\n";
+      *k.out += ms(e.t_us) + " " + std::string(1, e.dir) + " " + printable(e.bytes) + "\n";
+    detail::write_case(os, k);
   }
   detail::close_junit(os);
+}
+
+void write_table_page_top(std::ostream& os, std::string_view title, std::string_view heading,
+                          std::string_view intro_html, std::string_view corner,
+                          std::string_view summary, const std::vector<TableColumnTop>& columns) {
+  write_html_head(os, title);
+  os << "<h1>" << markup_escape(heading) << "</h1>\n<p>" << intro_html
+     << "</p>\n<table><tr><th>" << markup_escape(corner) << "</th>";
+  for (const TableColumnTop& c : columns) os << "<th>" << c.head_html << "</th>";
+  os << "</tr>\n<tr><th>" << markup_escape(summary) << "</th>";
+  for (const TableColumnTop& c : columns)
+    os << "<td class=\"" << c.summary_class << "\">" << c.summary_html << "</td>";
+  os << "</tr>\n";
 }
 
 void write_html_head(std::ostream& os, std::string_view title) {

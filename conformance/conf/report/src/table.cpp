@@ -107,20 +107,19 @@ nlohmann::json table_json(const std::vector<TableInput>& inputs) {
 
 void write_table_html(std::ostream& os, const nlohmann::json& t) {
   const nlohmann::json& cols = t["columns"];
-  write_html_head(os, "topconf compatibility table");
-  os << "<h1>Driver compatibility</h1>\n<p>" << cols.size()
-     << " run(s) of <code>topconf run --driver</code>: firmware x driver. A cell is the graded "
-        "verdict of the driver's need on that firmware; it links the run's capture when the "
-        "report names one.</p>\n<table><tr><th>need</th>";
+  std::vector<TableColumnTop> tops;
   for (const auto& c : cols)
-    os << "<th>" << markup_escape(c.value("firmware", "")) << "<br><small>"
-       << markup_escape(c.value("target", "")) << "</small><br>x <code>"
-       << markup_escape(c.value("driver", "")) << "</code></th>";
-  os << "</tr>\n<tr><th>verdict</th>";
-  for (const auto& c : cols)
-    os << "<td class=\"" << verdict_class(c.value("verdict", "")) << "\"><b>"
-       << markup_escape(c.value("text", "")) << "</b></td>";
-  os << "</tr>\n";
+    tops.push_back({.head_html = markup_escape(c.value("firmware", "")) + "<br><small>" +
+                                 markup_escape(c.value("target", "")) + "</small><br>x <code>" +
+                                 markup_escape(c.value("driver", "")) + "</code>",
+                    .summary_class = std::string(verdict_class(c.value("verdict", ""))),
+                    .summary_html = "<b>" + markup_escape(c.value("text", "")) + "</b>"});
+  write_table_page_top(os, "topconf compatibility table", "Driver compatibility",
+                       std::to_string(cols.size()) +
+                           " run(s) of <code>topconf run --driver</code>: firmware x driver. A "
+                           "cell is the graded verdict of the driver's need on that firmware; it "
+                           "links the run's capture when the report names one.",
+                       "need", "verdict", tops);
   for (const auto& g : t["groups"]) {
     os << "<tr><th colspan=\"" << cols.size() + 1 << "\">" << markup_escape(g.value("grade", ""))
        << "</th></tr>\n";

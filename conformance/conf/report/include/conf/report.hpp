@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "conf/runner.hpp"
 #include "drivers/compat.hpp"
@@ -25,6 +26,17 @@ void write_html(std::ostream& os, const RunResult& r,
 // classes pass, non-strict, fail, error, inconclusive, na and sum), up to
 // and including <body>.
 void write_html_head(std::ostream& os, std::string_view title);
+// A table page's top, for the tables of many runs (topconf table, drive
+// --agent): the head, an <h1>, the intro paragraph, then the table's header
+// row (`corner`, then a cell a column) and its summary row (`summary`, then
+// each column's summary cell, of its class). HTML fields are written as given.
+struct TableColumnTop {
+  std::string head_html;
+  std::string summary_class, summary_html;
+};
+void write_table_page_top(std::ostream& os, std::string_view title, std::string_view heading,
+                          std::string_view intro_html, std::string_view corner,
+                          std::string_view summary, const std::vector<TableColumnTop>& columns);
 // Printable form of frame bytes, as topdump shows them (top::escape): \r,
 // \n and \\, other non-printables as \xHH.
 std::string printable(std::string_view bytes);
