@@ -14,11 +14,11 @@
 #include "session/events.hpp"
 #include "top/catalog.hpp"
 #include "top/diagnoses.hpp"
+#include "test_time.hpp"
 
 namespace topdump {
 namespace {
 
-constexpr std::int64_t kT0 = 1714564800LL * 1'000'000;  // 2024-05-01T12:00:00Z
 
 const top::FormSpec& date_form(top::Dialect d, std::string_view id, std::size_t len) {
   const top::CommandSpec* c = top::find_command(d, id);

@@ -14,11 +14,11 @@
 #include "diagnoses/stream_rate.hpp"
 #include "test_support.hpp"
 #include "top/diagnoses.hpp"
+#include "test_time.hpp"
 
 namespace topdump {
 namespace {
 
-constexpr std::int64_t kT0 = 1714564800LL * 1'000'000;  // 2024-05-01T12:00:00Z
 
 TEST(DiagnosesHub, EveryRowOfTheTableHasOneDetector) {
   for (std::size_t i = 0; i < top::diagnosis_count; ++i) {

@@ -23,11 +23,11 @@
 #include "top/device.hpp"
 #include "top/diagnoses.hpp"
 #include "top/motion.hpp"
+#include "test_time.hpp"
 
 namespace topdump {
 namespace {
 
-constexpr std::int64_t kT0 = 1714564800LL * 1'000'000;  // 2024-05-01T12:00:00Z
 
 // The motion track fed frame by frame, as the session feeds it. Each frame's
 // data is a view into the whole frame, as the session's are (the track

@@ -21,6 +21,7 @@
 #include "top/detail/decode_cache.hpp"
 #include "top/detail/prefilter.hpp"
 #include "top/frame.hpp"
+#include "test_time.hpp"
 
 namespace topdump {
 namespace {
@@ -30,7 +31,6 @@ using test::run;
 using test::slurp;
 using test::topdump_bin;
 
-constexpr std::int64_t kT0 = 1714564800LL * 1'000'000;  // 2024-05-01T12:00:00Z
 
 // ---- the table ------------------------------------------------------------
 

@@ -14,7 +14,7 @@ namespace topdump::test {
 namespace {
 
 std::string td() { return "'" + topdump_bin() + "' "; }
-std::string cap(const std::string& name) { return " '" + captures_dir() + "/" + name + "'"; }
+std::string cap_arg(const std::string& name) { return " '" + captures_dir() + "/" + name + "'"; }
 
 // The JSON Lines of `topdump read --json ARGS`, one object per line.
 std::vector<nlohmann::json> lines(const std::string& args, int& rc) {
@@ -33,30 +33,30 @@ TEST(Filter, IdentSelectsFindingsAndExitStatusToo) {
   // sample.pcap's GAA exchange is clean; the unanswered GAY/VER/PTZ
   // requests are not about GAA and must not show or fail the run.
   int rc = -1;
-  auto v = lines("--ident GAA" + cap("sample.pcap"), rc);
+  auto v = lines("--ident GAA" + cap_arg("sample.pcap"), rc);
   ASSERT_EQ(v.size(), 2u);
   for (const auto& j : v) {
     EXPECT_EQ(j["type"], "frame");
     EXPECT_EQ(j["ident"], "GAA");
   }
   EXPECT_EQ(rc, 0);
-  lines("" + cap("sample.pcap"), rc);
+  lines("" + cap_arg("sample.pcap"), rc);
   EXPECT_EQ(rc, 1);  // unfiltered, the capture has an error
   // The same in lower case.
-  auto w = lines("--ident gaa" + cap("sample.pcap"), rc);
+  auto w = lines("--ident gaa" + cap_arg("sample.pcap"), rc);
   EXPECT_EQ(w.size(), 2u);
   EXPECT_EQ(rc, 0);
 }
 
 TEST(Filter, AddressThatMatchesNothingReportsNothing) {
   std::string out;
-  EXPECT_EQ(run(td() + "read --addr 10.9.9.9" + cap("sample.pcap") + " 2>/dev/null", out), 0);
+  EXPECT_EQ(run(td() + "read --addr 10.9.9.9" + cap_arg("sample.pcap") + " 2>/dev/null", out), 0);
   EXPECT_EQ(out, "");
 }
 
 TEST(Filter, UnansweredRequestsFollowTheIdent) {
   int rc = -1;
-  auto v = lines("--ident VER" + cap("sample.pcap"), rc);
+  auto v = lines("--ident VER" + cap_arg("sample.pcap"), rc);
   int unanswered = 0;
   for (const auto& j : v) {
     if (j["type"] == "frame") {
@@ -74,7 +74,7 @@ TEST(Filter, UnansweredRequestsFollowTheIdent) {
 
 TEST(Filter, StatsCountOnlyWhatIsSelected) {
   std::string out;
-  ASSERT_EQ(run(td() + "stats --json --ident GAA" + cap("sample.pcap") + " 2>/dev/null", out), 0);
+  ASSERT_EQ(run(td() + "stats --json --ident GAA" + cap_arg("sample.pcap") + " 2>/dev/null", out), 0);
   auto j = nlohmann::json::parse(out);
   EXPECT_EQ(j["frames"], 2);
   EXPECT_EQ(j["per_ident"].size(), 1u);
@@ -93,33 +93,33 @@ TEST(Filter, StatsCountOnlyWhatIsSelected) {
 
 TEST(Filter, FindingSelectsFramesCarryingIt) {
   int rc = -1;
-  auto v = lines("--finding tp-length" + cap("sample.pcap"), rc);
+  auto v = lines("--finding tp-length" + cap_arg("sample.pcap"), rc);
   ASSERT_FALSE(v.empty());
   for (const auto& j : v) {
     ASSERT_EQ(j["type"], "frame");
     EXPECT_NE(j.dump().find("tp-length"), std::string::npos) << j.dump();
   }
   // An analyzer code selects the events that carry it.
-  auto u = lines("--finding unanswered" + cap("sample.pcap"), rc);
+  auto u = lines("--finding unanswered" + cap_arg("sample.pcap"), rc);
   ASSERT_FALSE(u.empty());
   for (const auto& j : u) EXPECT_NE(j.dump().find("unanswered"), std::string::npos) << j.dump();
   EXPECT_EQ(rc, 0);
   // The bad checksum is an error: selected, it decides the exit status.
-  auto b = lines("--finding bad-checksum" + cap("sample.pcap"), rc);
+  auto b = lines("--finding bad-checksum" + cap_arg("sample.pcap"), rc);
   ASSERT_FALSE(b.empty());
   EXPECT_EQ(rc, 1);
 }
 
 TEST(Filter, MuteDropsAFindingEverywhere) {
   std::string all, muted;
-  run(td() + "read --json" + cap("sample.pcap") + " 2>/dev/null", all);
+  run(td() + "read --json" + cap_arg("sample.pcap") + " 2>/dev/null", all);
   ASSERT_NE(all.find("tp-length"), std::string::npos);
-  run(td() + "read --json --mute tp-length" + cap("sample.pcap") + " 2>/dev/null", muted);
+  run(td() + "read --json --mute tp-length" + cap_arg("sample.pcap") + " 2>/dev/null", muted);
   EXPECT_EQ(muted.find("tp-length"), std::string::npos);
   // Every frame is still there.
   EXPECT_EQ(std::count(all.begin(), all.end(), '\n'), std::count(muted.begin(), muted.end(), '\n'));
   std::string out;
-  run(td() + "stats --json --mute tp-length,unanswered" + cap("sample.pcap") + " 2>/dev/null", out);
+  run(td() + "stats --json --mute tp-length,unanswered" + cap_arg("sample.pcap") + " 2>/dev/null", out);
   auto j = nlohmann::json::parse(out);
   EXPECT_FALSE(j["per_finding"].contains("tp-length"));
   EXPECT_FALSE(j["per_finding"].contains("unanswered"));
@@ -128,23 +128,23 @@ TEST(Filter, MuteDropsAFindingEverywhere) {
 
 TEST(Filter, UnknownCodeIsAUsageError) {
   std::string out;
-  EXPECT_EQ(run(td() + "read --finding bogus-code" + cap("sample.pcap") + " 2>&1", out), 2);
+  EXPECT_EQ(run(td() + "read --finding bogus-code" + cap_arg("sample.pcap") + " 2>&1", out), 2);
   EXPECT_NE(out.find("bogus-code"), std::string::npos);
-  EXPECT_EQ(run(td() + "read --mute bogus-code" + cap("sample.pcap") + " 2>&1", out), 2);
-  EXPECT_EQ(run(td() + "read --from +soon" + cap("sample.pcap") + " 2>&1", out), 2);
+  EXPECT_EQ(run(td() + "read --mute bogus-code" + cap_arg("sample.pcap") + " 2>&1", out), 2);
+  EXPECT_EQ(run(td() + "read --from +soon" + cap_arg("sample.pcap") + " 2>&1", out), 2);
 }
 
 TEST(Filter, RelativeTimesCountFromTheFirstTimestamp) {
   // sample.pcap starts at 12:00:00.000; +1s is the absolute 12:00:01Z.
   std::string rel, abs;
-  run(td() + "read --csv n --from +1s" + cap("sample.pcap") + " 2>/dev/null", rel);
-  run(td() + "read --csv n --from 2024-05-01T12:00:01Z" + cap("sample.pcap") + " 2>/dev/null", abs);
+  run(td() + "read --csv n --from +1s" + cap_arg("sample.pcap") + " 2>/dev/null", rel);
+  run(td() + "read --csv n --from 2024-05-01T12:00:01Z" + cap_arg("sample.pcap") + " 2>/dev/null", abs);
   EXPECT_EQ(rel, abs);
   EXPECT_NE(rel, "n\n");
   std::string ms;
-  run(td() + "read --csv n --from +300ms --to +305ms" + cap("sample.pcap") + " 2>/dev/null", ms);
+  run(td() + "read --csv n --from +300ms --to +305ms" + cap_arg("sample.pcap") + " 2>/dev/null", ms);
   std::string abs2;
-  run(td() + "read --csv n --from 1714564800.3 --to 1714564800.305" + cap("sample.pcap") +
+  run(td() + "read --csv n --from 1714564800.3 --to 1714564800.305" + cap_arg("sample.pcap") +
           " 2>/dev/null",
       abs2);
   EXPECT_EQ(ms, abs2);
@@ -152,7 +152,7 @@ TEST(Filter, RelativeTimesCountFromTheFirstTimestamp) {
 
 TEST(Filter, CountStopsAfterNSelectedFrames) {
   int rc = -1;
-  auto v = lines("-c 3" + cap("sample.pcap"), rc);
+  auto v = lines("-c 3" + cap_arg("sample.pcap"), rc);
   ASSERT_EQ(v.size(), 3u);
   for (std::size_t i = 0; i < v.size(); ++i) {
     EXPECT_EQ(v[i]["type"], "frame");
@@ -160,7 +160,7 @@ TEST(Filter, CountStopsAfterNSelectedFrames) {
   }
   // The input was cut short: nothing pending is called unanswered.
   EXPECT_EQ(rc, 0);
-  auto g = lines("-c 2 --ident GAY" + cap("sample.pcap"), rc);
+  auto g = lines("-c 2 --ident GAY" + cap_arg("sample.pcap"), rc);
   ASSERT_EQ(g.size(), 2u);
   for (const auto& j : g) EXPECT_EQ(j["ident"], "GAY");
 }
@@ -178,8 +178,8 @@ TEST(Filter, CountStopsReadingTheCapture) {
 
 TEST(Filter, Ipv6HostWithoutBrackets) {
   std::string bare, bracketed;
-  run(td() + "read --csv n --addr fd00::10" + cap("ipv6.pcap") + " 2>/dev/null", bare);
-  run(td() + "read --csv n --addr [fd00::10]" + cap("ipv6.pcap") + " 2>/dev/null", bracketed);
+  run(td() + "read --csv n --addr fd00::10" + cap_arg("ipv6.pcap") + " 2>/dev/null", bare);
+  run(td() + "read --csv n --addr [fd00::10]" + cap_arg("ipv6.pcap") + " 2>/dev/null", bracketed);
   EXPECT_NE(bare, "n\n");
   EXPECT_EQ(bare, bracketed);
 }

@@ -32,7 +32,7 @@ using namespace pcapio;
 
 std::string q(const std::string& s) { return "'" + s + "'"; }
 std::string bin() { return q(topdump_bin()); }
-std::string cap(const std::string& n) { return q(captures_dir() + "/" + n); }
+std::string cap_quoted(const std::string& n) { return q(captures_dir() + "/" + n); }
 
 // `bytes` with the 32-bit word at `at` set to `v` (host order, as the
 // capture files of these tests are written).
@@ -60,16 +60,16 @@ TEST(Input, StdinPipesAndFifosReadLikeFiles) {
   std::string file, piped;
   for (const char* c : {"sample.pcap", "multi-if.pcapng", "serial-lines.log", "serial-socat-xv.log",
                         "serial-saleae.csv"}) {
-    const int rc = run(bin() + " read " + cap(c) + " 2>/dev/null", file);
+    const int rc = run(bin() + " read " + cap_quoted(c) + " 2>/dev/null", file);
     file = unnamed(file, captures_dir() + "/" + c);
     EXPECT_FALSE(file.empty()) << c;
-    EXPECT_EQ(run("cat " + cap(c) + " | " + bin() + " read - 2>/dev/null", piped), rc) << c;
+    EXPECT_EQ(run("cat " + cap_quoted(c) + " | " + bin() + " read - 2>/dev/null", piped), rc) << c;
     EXPECT_EQ(unnamed(piped, "stdin"), file) << c << " through read -";
-    EXPECT_EQ(run("cat " + cap(c) + " | " + bin() + " read /dev/stdin 2>/dev/null", piped), rc)
+    EXPECT_EQ(run("cat " + cap_quoted(c) + " | " + bin() + " read /dev/stdin 2>/dev/null", piped), rc)
         << c;
     EXPECT_EQ(unnamed(piped, "/dev/stdin"), file) << c << " through /dev/stdin";
     EXPECT_EQ(
-        run("bash -c \"exec 7< <(cat " + cap(c) + "); " + bin() + " read /dev/fd/7 2>/dev/null\"",
+        run("bash -c \"exec 7< <(cat " + cap_quoted(c) + "); " + bin() + " read /dev/fd/7 2>/dev/null\"",
             piped),
         rc)
         << c;
@@ -78,11 +78,11 @@ TEST(Input, StdinPipesAndFifosReadLikeFiles) {
   TempDir tmp;
   const std::string fifo = tmp.file("fifo");
   ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
-  EXPECT_EQ(run("(cat " + cap("sll.pcap") + " > " + q(fifo) + " &) ; " + bin() + " read " +
+  EXPECT_EQ(run("(cat " + cap_quoted("sll.pcap") + " > " + q(fifo) + " &) ; " + bin() + " read " +
                     q(fifo) + " 2>/dev/null",
                 piped),
             0);
-  run(bin() + " read " + cap("sll.pcap"), file);
+  run(bin() + " read " + cap_quoted("sll.pcap"), file);
   EXPECT_EQ(piped, file) << "through a FIFO";
   // a pipe that holds less than a pcap file header
   std::string err;
@@ -113,36 +113,36 @@ TEST(Input, DamagedMagicIsADamagedCaptureNotASerialDump) {
 
 TEST(Input, FormatThatTheFileIsNotIsAnError) {
   std::string out;
-  EXPECT_EQ(run(bin() + " read --format pcapng " + cap("sample.pcap") + " 2>&1", out), 2);
+  EXPECT_EQ(run(bin() + " read --format pcapng " + cap_quoted("sample.pcap") + " 2>&1", out), 2);
   EXPECT_NE(out.find("sample.pcap: offset 0: --format pcapng but this is a pcap file"),
             std::string::npos)
       << out;
-  EXPECT_EQ(run(bin() + " read --format pcap " + cap("multi-if.pcapng") + " 2>&1", out), 2);
+  EXPECT_EQ(run(bin() + " read --format pcap " + cap_quoted("multi-if.pcapng") + " 2>&1", out), 2);
   EXPECT_NE(out.find("--format pcap but this is a pcapng file"), std::string::npos) << out;
-  EXPECT_EQ(run(bin() + " read --format pcapng " + cap("multi-if.pcapng") + " 2>/dev/null", out),
+  EXPECT_EQ(run(bin() + " read --format pcapng " + cap_quoted("multi-if.pcapng") + " 2>/dev/null", out),
             0);
-  EXPECT_EQ(run(bin() + " read --format pcapng " + cap("serial-lines.log") + " 2>&1", out), 2);
+  EXPECT_EQ(run(bin() + " read --format pcapng " + cap_quoted("serial-lines.log") + " 2>&1", out), 2);
   EXPECT_NE(out.find("not a pcapng file"), std::string::npos) << out;
 }
 
 TEST(Input, TheChosenFormatIsStated) {
   std::string out;
-  run(bin() + " read -v " + cap("sample.pcap") + " 2>&1 >/dev/null", out);
+  run(bin() + " read -v " + cap_quoted("sample.pcap") + " 2>&1 >/dev/null", out);
   EXPECT_NE(out.find("sample.pcap: pcap, link type EN10MB"), std::string::npos) << out;
-  run(bin() + " read -v " + cap("serial-lines.log") + " 2>&1 >/dev/null", out);
+  run(bin() + " read -v " + cap_quoted("serial-lines.log") + " 2>&1 >/dev/null", out);
   EXPECT_NE(out.find("serial-lines.log: lines"), std::string::npos) << out;
-  run(bin() + " stats " + cap("multi-if.pcapng") + " " + cap("serial-saleae.csv"), out);
+  run(bin() + " stats " + cap_quoted("multi-if.pcapng") + " " + cap_quoted("serial-saleae.csv"), out);
   EXPECT_NE(out.find("input: " + captures_dir() + "/multi-if.pcapng: pcapng, link type EN10MB"),
             std::string::npos)
       << out;
   EXPECT_NE(out.find("input: " + captures_dir() + "/serial-saleae.csv: saleae"), std::string::npos)
       << out;
-  run(bin() + " stats --json " + cap("serial-raw.bin"), out);
+  run(bin() + " stats --json " + cap_quoted("serial-raw.bin"), out);
   auto j = nlohmann::json::parse(out);
   ASSERT_EQ(j["inputs"].size(), 1u) << out;
   EXPECT_EQ(j["inputs"][0]["format"], "raw");
   EXPECT_TRUE(j["inputs"][0]["link"].is_null());
-  run(bin() + " read --json " + cap("sll2.pcap"), out);
+  run(bin() + " read --json " + cap_quoted("sll2.pcap"), out);
   auto first = nlohmann::json::parse(out.substr(0, out.find('\n')));
   EXPECT_EQ(first["type"], "input");
   EXPECT_EQ(first["format"], "pcap");
@@ -194,7 +194,7 @@ TEST(Input, TwoTimedLogsMergeIntoOneConversation) {
   EXPECT_NE(out.find("line 2: expected"), std::string::npos) << out;
   // a raw dump has no times to merge by
   EXPECT_EQ(
-      run(bin() + " read " + q(tmp.file("gimbal.log")) + " " + cap("serial-raw.bin") + " 2>&1",
+      run(bin() + " read " + q(tmp.file("gimbal.log")) + " " + cap_quoted("serial-raw.bin") + " 2>&1",
           out),
       2);
   EXPECT_NE(out.find("serial-raw.bin: a raw input cannot be merged"), std::string::npos) << out;
@@ -373,11 +373,11 @@ TEST(Input, RawDumpEndpointsAreTheFileAndThePeer) {
 TEST(Input, FileFindingsArePrintedOnceNamingTheFileOnce) {
   std::string out;
   // stdout and stderr to one place (a terminal, or 2>&1): once
-  run(bin() + " read " + cap("truncated.pcap") + " 2>&1", out);
+  run(bin() + " read " + cap_quoted("truncated.pcap") + " 2>&1", out);
   EXPECT_EQ(count(out, "truncated-file"), 1u) << out;
   // stderr alone: the copy names the file once
   for (const char* cmd : {" read ", " stats "}) {
-    run(bin() + cmd + cap("truncated.pcap") + " 2>&1 >/dev/null", out);
+    run(bin() + cmd + cap_quoted("truncated.pcap") + " 2>&1 >/dev/null", out);
     ASSERT_EQ(count(out, "truncated-file"), 1u) << out;
     const std::size_t at = out.find("truncated-file");
     const std::size_t begin =
@@ -395,7 +395,7 @@ TEST(Input, UnreadableInputMessages) {
   EXPECT_EQ(run(bin() + " read " + q(tmp.path) + " 2>&1", out), 2);
   EXPECT_NE(out.find(tmp.path + ": is a directory"), std::string::npos) << out;
   EXPECT_EQ(out.find("read error"), std::string::npos) << out;
-  EXPECT_EQ(run(bin() + " read --timeout-ms 0 " + cap("sll.pcap") + " 2>&1", out), 2);
+  EXPECT_EQ(run(bin() + " read --timeout-ms 0 " + cap_quoted("sll.pcap") + " 2>&1", out), 2);
   EXPECT_NE(out.find("--timeout-ms 0: give a number of milliseconds above 0"), std::string::npos)
       << out;
   EXPECT_LT(out.size(), 300u) << out;

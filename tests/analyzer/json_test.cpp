@@ -15,6 +15,7 @@
 #include "output/json_writer.hpp"
 #include "test_support.hpp"
 #include "top/frame.hpp"
+#include "test_time.hpp"
 
 namespace topdump::test {
 namespace {
@@ -393,7 +394,6 @@ TEST(Json, CatalogStringsNeedNoEscaping) {
 // One writer for a push stream's keys: stats --json and report --json
 // differ only where StreamKeys says.
 TEST(JsonWriter, OneStreamWriterForStatsAndTheReport) {
-  constexpr std::int64_t kT0 = 1714564800LL * 1'000'000;  // 2024-05-01T12:00:00Z
   StreamStat t;
   t.ident = "GAC";
   t.asked_by = "GAA";

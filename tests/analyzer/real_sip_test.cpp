@@ -17,12 +17,12 @@ namespace {
 // duplicate-to-client-port, silent-writes; captures/sip-bench): it answers
 // the bench's requests to 9003 from an ephemeral port, to the asking port
 // and twice to 9004, and takes writes without a word.
-struct SipBench {
+struct SipLinks {
   Recorder rec;
   std::unique_ptr<Analyzer> a;
   Endpoint cam = ep4(108, 9003), reply = ep4(108, 57707);
   std::uint64_t record = 0;
-  explicit SipBench(AnalyzerOptions o = {}) { a = std::make_unique<Analyzer>(o, rec); }
+  explicit SipLinks(AnalyzerOptions o = {}) { a = std::make_unique<Analyzer>(o, rec); }
   void send(std::int64_t us, std::uint16_t port, const std::string& f) {
     a->datagram(T + us, ep4(167, port), cam, top::with_checksum(f), ++record, 28);
   }
@@ -64,7 +64,7 @@ struct SipBench {
 };
 
 TEST(RealSip, RepliesFromAnEphemeralPortToSeveralPortsAreOneReplyEach) {
-  SipBench b;
+  SipLinks b;
   b.send(0, 8080, "#TPPD2rTRC00");
   b.fanned(1'900, "#TPDP2rTRC00");
   b.send(120'000, 8080, "#TPPG2rGIC00");
@@ -109,7 +109,7 @@ TEST(RealSip, RepliesFromAnEphemeralPortToSeveralPortsAreOneReplyEach) {
 // TRC's second copy, the OFT's copy); the same bytes 30 ms later are a frame
 // of their own (ODZ during zoom, 20260917T050955Z-zoom).
 TEST(RealSip, InterleavedCopiesAreCopiesAndALaterSameFrameIsNot) {
-  SipBench b;
+  SipLinks b;
   const std::string trc = "#TPDP2rTRC02", oft = "#TPDP2rTRA11";
   b.send(0, 8080, "#TPPD2rTRC00");
   b.send(10, 8080, "#TPPD2rTRA00");
@@ -132,7 +132,7 @@ TEST(RealSip, InterleavedCopiesAreCopiesAndALaterSameFrameIsNot) {
 // read at 07:19:02.634 got nothing, the next one's reply went to 8080 and
 // twice to 9004).
 TEST(RealSip, AReadAskedAgainWithinTheWindowGetsItsOwnAnswer) {
-  SipBench b;
+  SipLinks b;
   b.send(0, 8080, "#TPPD2rTRC00");
   b.recv(100, 8080, "#TPDP2rTRC00");
   b.send(200, 8080, "#TPPD2rTRC00");
@@ -151,7 +151,7 @@ TEST(RealSip, AReadAskedAgainWithinTheWindowGetsItsOwnAnswer) {
 // unanswered, and one info note counts them. A camera that sent nothing at
 // all is no evidence that it took them.
 TEST(RealSip, WritesTakenWithoutAWordAreNotedOnceNeverUnanswered) {
-  SipBench b(unanswered_after_100ms());
+  SipLinks b(unanswered_after_100ms());
   b.send(0, 8080, "#TPPG2wPTZ00");
   b.send(30'000, 8080, "#TPPM2wZMC00");
   b.send(60'000, 8080, "#TPPD2rTRC00");
@@ -170,7 +170,7 @@ TEST(RealSip, WritesTakenWithoutAWordAreNotedOnceNeverUnanswered) {
   // the TRC read after the TRC 02 write is answered by its own reply
   EXPECT_EQ(b.frame(9).reply_to, 8u);
 
-  SipBench dead(unanswered_after_100ms());
+  SipLinks dead(unanswered_after_100ms());
   dead.send(0, 8080, "#TPPG2wPTZ00");
   dead.send(500'000, 8080, "#TPPG2wPTZ00");
   dead.a->finish();
@@ -181,7 +181,7 @@ TEST(RealSip, WritesTakenWithoutAWordAreNotedOnceNeverUnanswered) {
 // camera moved (20260917T045437Z-pan 04:54:39.435460): the deviation is the
 // client's, named whether or not the device answered.
 TEST(RealSip, AUartSourceOverTheNetworkIsTheClientsWhateverTheDeviceDid) {
-  SipBench b;
+  SipLinks b;
   b.send(0, 8080, "#TPUG2wGSY05");
   b.send(150'000, 8080, "#TPPG2wPTZ00");
   b.send(200'000, 8080, "#TPPG2rGAC00");
@@ -227,7 +227,7 @@ TEST(RealSip, OnlyTheDevicesPairsAreTaken) {
 // not unanswered (a bench that stopped listening 100 ms after a GAC read
 // its camera answers in 105-112 ms); one the capture saw long enough is.
 TEST(RealSip, ARequestTheEndCutOffIsNotUnanswered) {
-  SipBench b;
+  SipLinks b;
   b.send(0, 8080, "#TPPG2rGAC00");
   b.fanned(108'000, "#tpGPCrGACFF1306D7029E");
   b.send(400'000, 8080, "#TPPG2rGAC00");
@@ -235,7 +235,7 @@ TEST(RealSip, ARequestTheEndCutOffIsNotUnanswered) {
   b.a->finish();
   EXPECT_FALSE(b.rec.has_note(ACode::unanswered));
 
-  SipBench c;
+  SipLinks c;
   c.send(0, 8080, "#TPPG2rGAC00");
   c.fanned(108'000, "#tpGPCrGACFF1306D7029E");
   c.send(400'000, 8080, "#TPPG2rGAC00");

@@ -13,11 +13,11 @@
 #include "diagnoses/cause.hpp"
 #include "report/analysis.hpp"
 #include "report/report.hpp"
+#include "test_time.hpp"
 
 namespace topdump {
 namespace {
 
-constexpr std::int64_t kT0 = 1714564800LL * 1'000'000;  // 2024-05-01T12:00:00Z
 constexpr auto kLastCause = Cause::silent;
 
 std::vector<Cause> every_cause() {

@@ -78,30 +78,30 @@ TEST(Latency, QuantilesPastTheExactSamplesCountEverySample) {
 }
 
 const Endpoint kCamera = Endpoint::ipv4(0xC0A89064, 9003);  // 192.168.144.100:9003
-const Endpoint kClient = Endpoint::ipv4(0xC0A8900A, 40000);
+const Endpoint kClientEnd = Endpoint::ipv4(0xC0A8900A, 40000);
 TableOptions topotek() { return TableOptions{top::Dialect::topotek, top::Model::sip, 1 << 20}; }
 
 TEST(ConversationTable, OnePerPairOfEndsEitherWay) {
   ConversationTable t(TableOptions{});
   const Route* r = nullptr;
-  EXPECT_EQ(t.find(Transport::udp, kClient, kCamera, r), nullptr);
-  Conversation& c = t.add(Transport::udp, kClient, kCamera, r);
+  EXPECT_EQ(t.find(Transport::udp, kClientEnd, kCamera, r), nullptr);
+  Conversation& c = t.add(Transport::udp, kClientEnd, kCamera, r);
   EXPECT_EQ(c.id, 1u);
   EXPECT_EQ(r->dir, 0);
   EXPECT_EQ(c.device_dir, 1) << "the camera's end is on a device port";
   const Route* back = nullptr;
-  EXPECT_EQ(t.find(Transport::udp, kCamera, kClient, back), &c);
+  EXPECT_EQ(t.find(Transport::udp, kCamera, kClientEnd, back), &c);
   EXPECT_EQ(back->dir, 1);
   EXPECT_EQ(back->from, kCamera.text());
-  EXPECT_EQ(t.find(Transport::tcp, kClient, kCamera, r), nullptr) << "another transport";
-  Conversation& other = t.add(Transport::tcp, kClient, kCamera, r);
+  EXPECT_EQ(t.find(Transport::tcp, kClientEnd, kCamera, r), nullptr) << "another transport";
+  Conversation& other = t.add(Transport::tcp, kClientEnd, kCamera, r);
   EXPECT_EQ(other.id, 2u);
   EXPECT_EQ(t.size(), 2u);
   // the least recently used goes first
   EXPECT_EQ(&t.least_recent(), &c);
   t.remove(c);
   EXPECT_EQ(t.size(), 1u);
-  EXPECT_EQ(t.find(Transport::udp, kCamera, kClient, r), nullptr) << "not from the cache either";
+  EXPECT_EQ(t.find(Transport::udp, kCamera, kClientEnd, r), nullptr) << "not from the cache either";
   std::vector<std::uint64_t> ids;
   for (const Conversation* x : t.by_id()) ids.push_back(x->id);
   EXPECT_EQ(ids, std::vector<std::uint64_t>{2});
@@ -112,7 +112,7 @@ TEST(ConversationTable, ATopotekCameraTakesEveryPairBetweenTheTwoHosts) {
   // the client's host (docs/FIELD.md: ephemeral-reply-port, fan-out)
   ConversationTable t(topotek());
   const Route* r = nullptr;
-  Conversation& c = t.add(Transport::udp, kClient, kCamera, r);
+  Conversation& c = t.add(Transport::udp, kClientEnd, kCamera, r);
   ASSERT_TRUE(c.link);
   const Endpoint reply_port = Endpoint::ipv4(0xC0A89064, 51234);
   const Endpoint listener = Endpoint::ipv4(0xC0A8900A, 9004);
@@ -136,7 +136,7 @@ TEST(ConversationTable, ATopotekCameraTakesEveryPairBetweenTheTwoHosts) {
 TEST(ConversationTable, AnsweredElsewhereSeesConversationsMadeBeforeAndAfterItsFirstCall) {
   ConversationTable t(TableOptions{});
   const Route* r = nullptr;
-  Conversation& asked = t.add(Transport::udp, kClient, kCamera, r);
+  Conversation& asked = t.add(Transport::udp, kClientEnd, kCamera, r);
   const Endpoint other_port = Endpoint::ipv4(0xC0A8900A, 40001);
   const Endpoint third_port = Endpoint::ipv4(0xC0A8900A, 40002);
   Conversation& early = t.add(Transport::udp, kCamera, other_port, r);
@@ -155,7 +155,7 @@ TEST(ConversationTable, AnsweredElsewhereSeesConversationsMadeBeforeAndAfterItsF
   EXPECT_EQ(t.answered_elsewhere(asked, asked.dir[0], 0, to), &late) << "made after the first call";
   EXPECT_EQ(to, third_port);
   t.clear();
-  Conversation& again = t.add(Transport::udp, kClient, kCamera, r);
+  Conversation& again = t.add(Transport::udp, kClientEnd, kCamera, r);
   Conversation& other = t.add(Transport::udp, kCamera, other_port, r);
   other.dir[0].sent_frame = true;
   other.dir[0].last_frame_ts = 30;

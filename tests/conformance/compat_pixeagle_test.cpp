@@ -19,17 +19,17 @@
 
 namespace {
 
-constexpr std::uint64_t kRunMs = 3000;
+constexpr std::uint64_t kPixEagleRunMs = 3000;
 
 Experience pixeagle_experience(const std::string& faults, topsim::DeviceOptions o = {}) {
   std::string err;
   const auto fc = topsim::parse_faults(faults, err);
   EXPECT_TRUE(fc) << err;
   PixEagleClient c;
-  const DriverRun r = run_driver(c, top::Model::sip, topsim::TransportKind::udp, kRunMs, "", o,
+  const DriverRun r = run_driver(c, top::Model::sip, topsim::TransportKind::udp, kPixEagleRunMs, "", o,
                                  fc ? *fc : topsim::FaultConfig{}, UdpClient::pixeagle);
   Experience e;
-  e.served = healthy_throughout(c.angles, r.start_us, kRunMs);
+  e.served = healthy_throughout(c.angles, r.start_us, kPixEagleRunMs);
   if (c.states.empty()) e.lost.insert("tracking state");
   e.why = std::to_string(c.angles.size()) + " GAC angles of " + std::to_string(c.gac_sent) +
           " queries, " + std::to_string(c.states.size()) + " TRC states, " +

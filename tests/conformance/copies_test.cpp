@@ -11,6 +11,7 @@
 
 #include "conf/link.hpp"
 #include "conf/runner.hpp"
+#include "run_test_util.hpp"
 #include "test_matrix_util.hpp"
 #include "top/device.hpp"
 
@@ -138,12 +139,6 @@ topconf::RunResult run_sip(std::string_view faults = {},
   EXPECT_TRUE(fc) << err;
   topconf::SimTransport t(top::Model::sip, *fc, 1, topsim::Link::network, profile);
   return topconf::run_matrix(m, t, topconf::RunOptions{});
-}
-
-const topconf::CaseResult& find_case(const topconf::RunResult& r, std::string_view id) {
-  for (const auto& c : r.cases)
-    if (c.spec->id == id) return c;
-  throw std::runtime_error("no case " + std::string(id));
 }
 
 std::size_t copy_notes(const topconf::CaseResult& c) {

@@ -11,6 +11,7 @@
 
 #include "conf/liveness.hpp"
 #include "conf/report.hpp"
+#include "run_test_util.hpp"
 #include "test_matrix_util.hpp"
 
 namespace {
@@ -18,12 +19,6 @@ namespace {
 using topconf::ExpectKind;
 using topconf::RunResult;
 using topconf::Verdict;
-
-const topconf::CaseResult& find_case(const RunResult& r, std::string_view id) {
-  for (const auto& c : r.cases)
-    if (c.spec->id == id) return c;
-  throw std::runtime_error("no case " + std::string(id));
-}
 
 // Results point into their matrix: keep every matrix alive for the run.
 const topconf::Matrix& matrix_of(top::Model m) {

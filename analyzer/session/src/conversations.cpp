@@ -73,9 +73,6 @@ bool same_host(const Endpoint& a, const Endpoint& b) noexcept {
 bool has(const std::vector<std::uint16_t>& v, std::uint16_t p) noexcept {
   return std::find(v.begin(), v.end(), p) != v.end();
 }
-void remember(std::vector<std::uint16_t>& v, std::uint16_t p) {
-  if (v.size() < 16 && !has(v, p)) v.push_back(p);
-}
 }  // namespace
 
 // A UDP conversation with one end on a device's served port, of a dialect
@@ -98,7 +95,7 @@ void ConversationTable::register_link(Conversation& c) {
   l->dialect = dialect;
   for (const top::PortSpec& p : top::known_ports())
     if (p.client && !p.tcp && p.dialect == dialect) l->client_port = p.port;
-  remember(l->client_ports, dev.dst.port);
+  HostLink::note_port(l->client_ports, dev.dst.port);
   c.link = std::move(l);
   links_[dev.src.addr].push_back(&c);
 }
@@ -132,7 +129,7 @@ Conversation* ConversationTable::link_of(const Endpoint& src, const Endpoint& ds
       if (!from_device) {
         // a client port of the host writing to the device's served port
         if (dev.port != l.device.port) continue;
-        remember(l.client_ports, cli.port);
+        HostLink::note_port(l.client_ports, cli.port);
       } else if (dev.port != l.device.port) {
         // the device writing from another port: an ephemeral one (a port of
         // the port table is another device's or a client's); on one host
@@ -142,7 +139,7 @@ Conversation* ConversationTable::link_of(const Endpoint& src, const Endpoint& ds
         const bool one_host = same_host(dev, cli);
         if (one_host && !has(l.client_ports, cli.port) && cli.port != l.client_port) continue;
         if (one_host && has(l.client_ports, dev.port)) continue;
-        remember(l.reply_ports, dev.port);
+        HostLink::note_port(l.reply_ports, dev.port);
       }
       auto route = std::make_unique<Route>();
       route->src = src;

@@ -12,9 +12,6 @@
 namespace topdump {
 
 namespace {
-void remember(std::vector<std::uint16_t>& v, std::uint16_t p) {
-  if (v.size() < 16 && std::find(v.begin(), v.end(), p) == v.end()) v.push_back(p);
-}
 std::string ports_text(const std::vector<std::uint16_t>& v) {
   std::string s;
   for (std::uint16_t p : v) s += (s.empty() ? "" : ", ") + std::to_string(p);
@@ -43,7 +40,7 @@ bool Analyzer::Impl::copy_of_last(Conversation& c, int d, const top::Frame& f, s
       if (!x.copied) ++l.fanned;
       x.copied = true;
       l.last_n = x.n;
-      remember(l.copy_ports, r.dst.port);
+      HostLink::note_port(l.copy_ports, r.dst.port);
       if (l.copies == 1) {
         l.copy_n = n;
         l.copy_ts = ts;

@@ -6,12 +6,6 @@
 
 namespace drivers {
 
-namespace {
-
-constexpr std::string_view kAngles12 = "[0-9A-Fa-f]{12}[\\s\\S]*";
-
-}  // namespace
-
 Profile ardupilot_skydroid() {
   Profile p;
   p.name = "ardupilot-skydroid";

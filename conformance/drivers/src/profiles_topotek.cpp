@@ -14,9 +14,6 @@ namespace {
 constexpr std::string_view kTopotekVersion =
     "^(?=[\\s\\S]*[1-9])(?:[0-9A-Fa-f]*\\.[0-9A-Fa-f]*\\.[0-9A-Fa-f]*\\.[\\s\\S]*"
     "|[0-9A-Fa-f.]*\\.[0-9A-Fa-f.]*|[0-9A-Fa-f]{3}[^.]*)$";
-// Twelve hex characters first (the whole data must match): yaw, pitch, roll as signed 16-bit 0.01
-// deg.
-constexpr std::string_view kAngles12 = "[0-9A-Fa-f]{12}[\\s\\S]*";
 // A model name that is not the factory placeholder 000000000 (PR #27568).
 constexpr std::string_view kName = "^(?!0+$)[\\s\\S]+";
 

@@ -174,13 +174,13 @@ struct TopotekHandlers {
 
 namespace {
 
-struct Entry {
+struct TopotekEntry {
   std::string_view ident;
   char control;
   TopotekHandlers::Fn fn;
 };
 
-constexpr Entry kTopotek[] = {
+constexpr TopotekEntry kTopotekHandlers[] = {
     {"GIA", 'w', TopotekHandlers::stream_write},  {"GAA", 'w', TopotekHandlers::stream_write},
     {"GIC", 'r', TopotekHandlers::attitude_read}, {"TRC", 'w', TopotekHandlers::tracking_write},
     {"TRC", 'r', TopotekHandlers::tracking_read}, {"LOC", 'w', TopotekHandlers::tracking_target},
@@ -236,7 +236,7 @@ bool Device::dispatch_topotek(const top::Frame& req, const top::Decoded& dec, st
                               std::vector<std::string>& out) {
   const TopotekHandlers::Call call{*this, req, dec, now_us, out};
   const std::string_view id = req.ident_view();
-  for (const Entry& e : kTopotek)
+  for (const TopotekEntry& e : kTopotekHandlers)
     if (e.control == req.control && e.ident == id) return e.fn(call);
   if (req.control == 'w' && top::motion_of(dialect_, id)) return TopotekHandlers::motion(call);
   return false;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -116,6 +117,11 @@ struct HostLink {
   std::vector<std::uint16_t> client_ports;  // that sent to the device (at most 16)
   std::vector<std::uint16_t> reply_ports;   // the device sent from, besides its own (at most 16)
   std::vector<std::uint16_t> copy_ports;    // copies went to (at most 16)
+  // Adds port `p` to one of the three lists above: each port once, 16 at most.
+  static void note_port(std::vector<std::uint16_t>& ports, std::uint16_t p) {
+    if (ports.size() < 16 && std::find(ports.begin(), ports.end(), p) == ports.end())
+      ports.push_back(p);
+  }
   std::uint64_t device_frames = 0;          // frames of the device, copies aside
   std::uint64_t from_reply_port = 0;        // of them, sent from a reply port
   std::uint64_t copies = 0;                 // copies of the device's frames

@@ -9,7 +9,7 @@
 namespace topconf {
 namespace {
 
-using json = nlohmann::ordered_json;
+using ojson = nlohmann::ordered_json;
 using top::Dialect;
 using top::FieldKind;
 
@@ -93,8 +93,8 @@ bool same_layout(const top::FormSpec& a, const top::FormSpec& b) {
   return a.min_length == b.min_length && a.max_length == b.max_length;
 }
 
-json send(const top::CommandSpec& c, char control, const std::string& data) {
-  json j{{"command", std::string(c.ident)}, {"control", std::string(1, control)}};
+ojson send(const top::CommandSpec& c, char control, const std::string& data) {
+  ojson j{{"command", std::string(c.ident)}, {"control", std::string(1, control)}};
   bool printable = true;
   for (unsigned char ch : data) printable = printable && ch >= 0x20 && ch < 0x7F;
   if (printable) {
@@ -113,20 +113,20 @@ json send(const top::CommandSpec& c, char control, const std::string& data) {
 
 // A write the document gives no answer (top::write_reply: nothing): its
 // silence, or tolerated, an echo the document does not give.
-json unanswered_alts(const top::CommandSpec& c) {
+ojson unanswered_alts(const top::CommandSpec& c) {
   const std::string why =
       "the document gives " + std::string(c.ident) + " w no reply form (top::write_reply: nothing)";
-  return json::array({json{{"silence_ms", 60}},
-                      json{{"echo", true}, {"tolerated", true}, {"note", "an echo: " + why}},
-                      json{{"echo", true},
+  return ojson::array({ojson{{"silence_ms", 60}},
+                      ojson{{"echo", true}, {"tolerated", true}, {"note", "an echo: " + why}},
+                      ojson{{"echo", true},
                            {"addresses", "any"},
                            {"tolerated", true},
                            {"note", "an echo keeping the client's address first: " + why}}});
 }
 
-json echo_alts() {
-  return json::array({json{{"echo", true}},
-                      json{{"echo", true},
+ojson echo_alts() {
+  return ojson::array({ojson{{"echo", true}},
+                      ojson{{"echo", true},
                            {"addresses", "any"},
                            {"tolerated", true},
                            {"note", "reply keeps the client's address first (some simulators)"}}});
@@ -134,20 +134,20 @@ json echo_alts() {
 
 // An answer in the reply layout `reply`; addresses kept in the request's
 // order are tolerated.
-json reply_alts(const json& reply) {
-  return json::array(
-      {json{{"reply", reply}}, json{{"reply", reply},
+ojson reply_alts(const ojson& reply) {
+  return ojson::array(
+      {ojson{{"reply", reply}}, ojson{{"reply", reply},
                                     {"addresses", "any"},
                                     {"tolerated", true},
                                     {"note", "reply keeps the client's address first"}}});
 }
 
-json reply_checks(const top::FormSpec& resp) {
-  json fields = json::object();
+ojson reply_checks(const top::FormSpec& resp) {
+  ojson fields = ojson::object();
   for (const auto& f : resp.fields) {
-    json chk = json::object();
+    ojson chk = ojson::object();
     if ((f.kind == FieldKind::enum_hex || f.kind == FieldKind::enum_char) && !f.enums.empty()) {
-      json names = json::array();
+      ojson names = ojson::array();
       for (const auto& e : f.enums) names.push_back(std::string(e.name));
       chk["enum"] = names;
     } else if (f.min <= f.max && f.kind != FieldKind::text && f.kind != FieldKind::raw) {
@@ -159,8 +159,8 @@ json reply_checks(const top::FormSpec& resp) {
   return fields;
 }
 
-json models_of(const top::CommandSpec& c) {
-  json models = json::array();
+ojson models_of(const top::CommandSpec& c) {
+  ojson models = ojson::array();
   for (top::Model m : top::all_models())
     if (c.models & top::model_bit(m)) models.push_back(std::string(top::to_string(m)));
   return models;
@@ -173,27 +173,27 @@ struct Generator {
   bool sky = d == Dialect::skydroid;
   std::string dn = std::string(top::to_string(d));
   std::string ere_section = sky ? "SkyDroid 2.3.2" : "Topotek 2";
-  json negative_silence = json{{"silence_ms", 60}};
-  json cases = json::array();
+  ojson negative_silence = ojson{{"silence_ms", 60}};
+  ojson cases = ojson::array();
   std::vector<std::string> classes_done;
 
-  json error_alts() const {
-    if (!sky) return json::array({negative_silence});
-    return json::array({json{{"error", true}},
-                        json{{"error", true},
+  ojson error_alts() const {
+    if (!sky) return ojson::array({negative_silence});
+    return ojson::array({ojson{{"error", true}},
+                        ojson{{"error", true},
                              {"addresses", "any"},
                              {"tolerated", true},
                              {"note", "ERE without swapped addresses"}},
-                        json{{"silence_ms", 60},
+                        ojson{{"silence_ms", 60},
                              {"tolerated", true},
                              {"note", "the device ignores the invalid command instead of ERE"}}});
   }
 
-  json head() const {
+  ojson head() const {
     const std::string doc =
         sky ? "SkyDroid TOP protocol V1.1.5 (seeds/000_3e8dc32e1138ca8b.txt)"
             : "Topotek SIP Udp&uart-Protocol V1.1.3 (seeds/001_3ee7043eb5910c28.txt)";
-    json m;
+    ojson m;
     m["$schema"] = "../matrix.schema.json";
     m["format"] = "topconf-matrix-1";
     m["title"] = "Default conformance matrix for " + std::string(top::to_string(model)) +
@@ -212,18 +212,18 @@ struct Generator {
     const top::CommandSpec& c;
     std::string id, base, level, cls;
     bool appendix = false, destructive = false;
-    json models;
+    ojson models;
     const top::FormSpec *w = nullptr, *rq = nullptr, *rs = nullptr;
     std::string wdata, rdata;
-    json tags(std::initializer_list<const char*> extra) const {
-      json t = json::array({std::string("class-") + cls, id});
+    ojson tags(std::initializer_list<const char*> extra) const {
+      ojson t = ojson::array({std::string("class-") + cls, id});
       for (auto e : extra) t.push_back(e);
       if (appendix) t.push_back("appendix");
       if (destructive) t.push_back("destructive");
       return t;
     }
-    json head(const std::string& suffix, const std::string& title, const std::string& lvl,
-              json tag_list) const {
+    ojson head(const std::string& suffix, const std::string& title, const std::string& lvl,
+              ojson tag_list) const {
       return {{"id", base + suffix},
               {"section", std::string(c.section)},
               {"title", std::string(c.title) + title},
@@ -275,51 +275,51 @@ struct Generator {
     for (const auto& f : c.forms)
       if (f.control == 'w' && f.role == top::Role::response && !f.from_field()) wr = &f;
     if (k.w && top::write_reply(c) == top::WriteReply::nothing) {
-      json cs = k.head("/write",
+      ojson cs = k.head("/write",
                        readable(k) ? ": a write takes effect without an answer (read back)"
                                    : ": a write is taken without an answer",
                        k.level, k.tags({"positive", "write"}));
-      json step = {{"send", send(c, 'w', k.wdata)}};
+      ojson step = {{"send", send(c, 'w', k.wdata)}};
       step["expect"] = readable(k)
-                           ? json::array({json{{"readback", {{"send", send(c, 'r', k.rdata)}}}}})
+                           ? ojson::array({ojson{{"readback", {{"send", send(c, 'r', k.rdata)}}}}})
                            : unanswered_alts(c);
-      cs["steps"] = json::array({step});
+      cs["steps"] = ojson::array({step});
       cases.push_back(std::move(cs));
     } else if (k.w) {
-      json expect = echo_alts();
+      ojson expect = echo_alts();
       std::string answer = "echoed with the addresses swapped";
       if (wr) {
-        json reply = {{"control", "w"}};
-        json f = reply_checks(*wr);
+        ojson reply = {{"control", "w"}};
+        ojson f = reply_checks(*wr);
         if (!f.empty()) reply["fields"] = f;
         expect = reply_alts(reply);
         answer = "answered in its reply layout";
       }
       field_write_replies(k, expect);
-      json cs = k.head("/write", ": a write is " + answer, k.level, k.tags({"positive", "write"}));
-      cs["steps"] = json::array({{{"send", send(c, 'w', k.wdata)}, {"expect", expect}}});
+      ojson cs = k.head("/write", ": a write is " + answer, k.level, k.tags({"positive", "write"}));
+      cs["steps"] = ojson::array({{{"send", send(c, 'w', k.wdata)}, {"expect", expect}}});
       cases.push_back(std::move(cs));
     }
     if (k.rq) {
-      json reply = {{"control", "r"}};
+      ojson reply = {{"control", "r"}};
       if (k.rs && k.rs->role == top::Role::response) {
-        json f = reply_checks(*k.rs);
+        ojson f = reply_checks(*k.rs);
         if (!f.empty()) reply["fields"] = f;
       }
       if (k.appendix) reply.erase("control");
-      json cs =
+      ojson cs =
           k.head("/read", ": a read is answered with data", k.level, k.tags({"positive", "read"}));
-      cs["steps"] = json::array({{{"send", send(c, 'r', k.rdata)}, {"expect", reply_alts(reply)}}});
+      cs["steps"] = ojson::array({{{"send", send(c, 'r', k.rdata)}, {"expect", reply_alts(reply)}}});
       cases.push_back(std::move(cs));
     }
     if (readable(k)) {
       std::string alt = alternate_data(*k.w);
       if (!clean_request(d, model, c, 'w', alt)) alt = k.wdata;
-      json cs = k.head("/state", ": a written value reads back",
+      ojson cs = k.head("/state", ": a written value reads back",
                        k.level == "must" ? "should" : k.level, k.tags({"state"}));
-      cs["steps"] = json::array(
+      cs["steps"] = ojson::array(
           {{{"send", send(c, 'w', alt)},
-            {"expect", json::array({json{{"readback", {{"send", send(c, 'r', k.rdata)}}}}})}}});
+            {"expect", ojson::array({ojson{{"readback", {{"send", send(c, 'r', k.rdata)}}}}})}}});
       cases.push_back(std::move(cs));
     }
   }
@@ -329,15 +329,15 @@ struct Generator {
   // the request's layout (a real unit echoes the LAT/LON writes), else a
   // reply in the field's layout (LRF's 5 digits). topconf reports a match
   // as the field's form, with its evidence.
-  void field_write_replies(const Command& k, json& expect) const {
+  void field_write_replies(const Command& k, ojson& expect) const {
     for (const auto& f : k.c.forms) {
       if (f.control != 'w' || f.role != top::Role::response || !f.from_field()) continue;
-      json alt = json{{"echo", true}};
+      ojson alt = ojson{{"echo", true}};
       if (!same_layout(*k.w, f)) {
-        json reply = {{"control", "w"}};
-        json checks = reply_checks(f);
+        ojson reply = {{"control", "w"}};
+        ojson checks = reply_checks(f);
         if (!checks.empty()) reply["fields"] = checks;
-        alt = json{{"reply", reply}};
+        alt = ojson{{"reply", reply}};
       }
       alt["note"] = "the field's answer: " + std::string(f.evidence);
       expect.push_back(std::move(alt));
@@ -351,10 +351,10 @@ struct Generator {
     const char ctl = k.w ? 'w' : 'r';
     if (any && any->min_length > 0 && any->max_length < 15) {
       const std::string bad = (k.w ? k.wdata : k.rdata).substr(0, any->min_length - 1);
-      json cs = k.head("/wrong-length", ": a frame with a wrong data length is rejected", "should",
+      ojson cs = k.head("/wrong-length", ": a frame with a wrong data length is rejected", "should",
                        k.tags({"negative", "wrong-length"}));
       cs["section"] = ere_section;
-      cs["steps"] = json::array({{{"send", send(c, ctl, bad)}, {"expect", error_alts()}}});
+      cs["steps"] = ojson::array({{{"send", send(c, ctl, bad)}, {"expect", error_alts()}}});
       cases.push_back(std::move(cs));
     }
     if (!any || std::find(classes_done.begin(), classes_done.end(), k.cls) != classes_done.end())
@@ -378,9 +378,9 @@ struct Generator {
                      {"section", sky ? "SkyDroid 2.3" : "Topotek 2"},
                      {"title", "a " + k.id + " frame with a wrong checksum gets no answer"},
                      {"level", "should"},
-                     {"tags", json::array({"negative", "bad-checksum", "class-" + k.cls})},
-                     {"steps", json::array({{{"send", {{"raw", f}}},
-                                             {"expect", json::array({negative_silence})}}})}});
+                     {"tags", ojson::array({"negative", "bad-checksum", "class-" + k.cls})},
+                     {"steps", ojson::array({{{"send", {{"raw", f}}},
+                                             {"expect", ojson::array({negative_silence})}}})}});
   }
 
   void frame_cases() {
@@ -390,9 +390,9 @@ struct Generator {
          {"section", ere_section},
          {"title", "an unknown identifier is rejected (ERE on SkyDroid, silence on Topotek)"},
          {"level", "should"},
-         {"tags", json::array({"negative", "unknown-ident"})},
+         {"tags", ojson::array({"negative", "unknown-ident"})},
          {"steps",
-          json::array(
+          ojson::array(
               {{{"send", {{"command", "ZZZ"}, {"control", "r"}, {"data", "00"}, {"dst", "D"}}},
                 {"expect", error_alts()}}})}});
     if (!sky) return;
@@ -402,9 +402,9 @@ struct Generator {
          {"section", "SkyDroid 2.3.2"},
          {"title", "the invalid-command reply is exactly #TPMU2wERE!!30"},
          {"level", "should"},
-         {"tags", json::array({"negative", "exact-frame"})},
-         {"steps", json::array({{{"send", {{"raw", "#TPUM2rZZZ00"}}},
-                                 {"expect", json::array({json{{"frame", "#TPMU2wERE!!30"}}})}}})}});
+         {"tags", ojson::array({"negative", "exact-frame"})},
+         {"steps", ojson::array({{{"send", {{"raw", "#TPUM2rZZZ00"}}},
+                                 {"expect", ojson::array({ojson{{"frame", "#TPMU2wERE!!30"}}})}}})}});
   }
 
   // Streaming: every device stream of the catalog (top/device.hpp): SkyDroid
@@ -419,31 +419,31 @@ struct Generator {
       const double hz = 10;
       const std::string push(st.push);
       auto stream_of = [&](std::string_view ident) {
-        return json{{"stream",
+        return ojson{{"stream",
                      {{"ident", std::string(ident)},
                       {"rate_hz", hz},
                       {"tolerance", top::stream_rate_tolerance},
                       {"duration_ms", 450}}}};
       };
-      json pushes = json::array({stream_of(st.push)});
+      ojson pushes = ojson::array({stream_of(st.push)});
       // The field's stream of the same switch (Topotek GIA 01 pushing GIA
       // frames), reported as the field's form.
       const top::StreamSpec* fs = top::stream_enabled_by(d, st.request, top::Profile::field);
       if (fs && fs->push != st.push) {
-        json alt = stream_of(fs->push);
+        ojson alt = stream_of(fs->push);
         alt["note"] = "the field's stream: " + std::string(fs->evidence);
         pushes.push_back(std::move(alt));
       }
       // The switch's answer: its echo, or none where the document gives
       // it none (top::write_reply); then the pushes are the answer.
       const bool echoed = top::write_reply(*gaa) != top::WriteReply::nothing;
-      json steps = echoed
-                       ? json::array({
+      ojson steps = echoed
+                       ? ojson::array({
                              {{"send", send(*gaa, 'w', on)}, {"expect", echo_alts()}},
                              {{"expect", pushes}},
                              {{"send", send(*gaa, 'w', "00")}, {"expect", echo_alts()}},
                          })
-                       : json::array({
+                       : ojson::array({
                              {{"send", send(*gaa, 'w', on)}, {"expect", pushes}},
                              {{"send", send(*gaa, 'w', "00")}, {"expect", unanswered_alts(*gaa)}},
                          });
@@ -454,7 +454,7 @@ struct Generator {
            {"title", push + " is pushed at the rate " + std::string(gaa->ident) + " asked for"},
            {"level", "must"},
            {"models", models_of(*gaa)},
-           {"tags", json::array({"stream", "class-G", std::string(gaa->ident)})},
+           {"tags", ojson::array({"stream", "class-G", std::string(gaa->ident)})},
            {"steps", std::move(steps)}});
     }
   }
@@ -462,9 +462,9 @@ struct Generator {
 
 }  // namespace
 
-json generate_matrix(top::Model model) {
+ojson generate_matrix(top::Model model) {
   Generator g{model};
-  json m = g.head();
+  ojson m = g.head();
   for (const top::CommandSpec& c : top::commands(g.d)) {
     // The default matrices test the documents; the field's commands (TRC,
     // LOC: top/catalog.hpp, from_field) are not theirs.

@@ -18,16 +18,16 @@ using top::markup_escape;
 
 namespace {
 
-constexpr Grade kGrades[] = {Grade::pass,          Grade::non_strict, Grade::informational,
+constexpr Grade kDriveGrades[] = {Grade::pass,          Grade::non_strict, Grade::informational,
                              Grade::unimplemented, Grade::fail,       Grade::error};
 
 // The console colour of each grade, in Grade's order: green, yellow, dim,
 // dim, red, red.
-constexpr std::string_view kColor[] = {"\x1b[32m", "\x1b[33m", "\x1b[2m",
+constexpr std::string_view kDriveColor[] = {"\x1b[32m", "\x1b[33m", "\x1b[2m",
                                        "\x1b[2m",  "\x1b[31m", "\x1b[31m"};
-static_assert(std::size(kColor) == static_cast<std::size_t>(Grade::error) + 1);
+static_assert(std::size(kDriveColor) == static_cast<std::size_t>(Grade::error) + 1);
 
-std::string_view color_of(Grade g) { return top::enum_name(kColor, g, "\x1b[2m"); }
+std::string_view color_of(Grade g) { return top::enum_name(kDriveColor, g, "\x1b[2m"); }
 
 // The HTML class of a grade (write_html_head's classes).
 std::string html_class(std::string_view grade) {
@@ -59,7 +59,7 @@ void write_drive_console(std::ostream& os, const DriveRun& r, bool color, bool l
   os << r.cases.size() << " case(s), " << top::to_string(r.options.model) << " over "
      << drive::to_string(r.options.link) << (r.options.persistent ? " (persistent)" : "") << ", "
      << std::fixed << std::setprecision(1) << r.seconds << " s:";
-  for (Grade g : kGrades) os << " " << r.count(g) << " " << drive::to_string(g) << ",";
+  for (Grade g : kDriveGrades) os << " " << r.count(g) << " " << drive::to_string(g) << ",";
   os << " exit " << r.exit_code() << "\n";
   if (!r.error.empty()) os << "topconf: drive: " << r.error << "\n";
 }
@@ -77,7 +77,7 @@ nlohmann::json drive_json(const DriveRun& r) {
   j["out"] = r.options.out_dir;  // the cases' folder, capture and stderr are relative to it
   j["seconds"] = r.seconds;
   nlohmann::json sum = nlohmann::json::object();
-  for (Grade g : kGrades) sum[std::string(drive::to_string(g))] = r.count(g);
+  for (Grade g : kDriveGrades) sum[std::string(drive::to_string(g))] = r.count(g);
   j["summary"] = sum;
   j["exit_code"] = r.exit_code();
   if (!r.error.empty()) j["error"] = r.error;
@@ -162,7 +162,7 @@ void write_drive_html(std::ostream& os, const DriveRun& r, const std::string& ba
      << ", started " << markup_escape(r.started) << ", " << r.seconds << " s"
      << (r.options.persistent ? ", persistent" : "") << (r.options.full ? ", full durations" : "")
      << ".</p>\n<p class=\"sum\">";
-  for (Grade g : kGrades) {
+  for (Grade g : kDriveGrades) {
     const std::string name(drive::to_string(g));
     os << "<span class=\"" << html_class(name) << "\">" << name << ": " << r.count(g) << "</span>";
   }

@@ -61,6 +61,10 @@ enum class Check : std::uint8_t {
   taken,   // no ERE: an echo, a reply of the request's identifier, or silence
 };
 
+// The data of an attitude both drivers parse: twelve hex characters first,
+// yaw, pitch and roll as signed 16-bit 0.01 deg (the whole data must match).
+inline constexpr std::string_view kAngles12 = "[0-9A-Fa-f]{12}[\\s\\S]*";
+
 // One thing the driver needs, and what it loses without it.
 struct Need {
   std::string_view id;       // stable: the case is driver/<profile>/<id>
