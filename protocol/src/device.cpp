@@ -382,9 +382,9 @@ bool replies_reach_host(Dialect d) noexcept {
 
 bool rejects(FindingCode c) noexcept {
   using enum FindingCode;
-  static constexpr FindingCode kRejected[] = {unknown_ident, unsupported_on_model,
+  static constexpr FindingCode kRejected[] = {unknown_ident,       unsupported_on_model,
                                               unsupported_control, data_length,
-                                              bad_field, value_out_of_range};
+                                              bad_field,           value_out_of_range};
   return std::find(std::begin(kRejected), std::end(kRejected), c) != std::end(kRejected);
 }
 

@@ -12,13 +12,12 @@
 #include "diagnoses/stream_never_started.hpp"
 #include "diagnoses/stream_stalled.hpp"
 #include "session/events.hpp"
+#include "test_time.hpp"
 #include "top/catalog.hpp"
 #include "top/diagnoses.hpp"
-#include "test_time.hpp"
 
 namespace topdump {
 namespace {
-
 
 const top::FormSpec& date_form(top::Dialect d, std::string_view id, std::size_t len) {
   const top::CommandSpec* c = top::find_command(d, id);

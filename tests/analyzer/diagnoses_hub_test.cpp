@@ -13,12 +13,11 @@
 #include "diagnoses/silent_device.hpp"
 #include "diagnoses/stream_rate.hpp"
 #include "test_support.hpp"
-#include "top/diagnoses.hpp"
 #include "test_time.hpp"
+#include "top/diagnoses.hpp"
 
 namespace topdump {
 namespace {
-
 
 TEST(DiagnosesHub, EveryRowOfTheTableHasOneDetector) {
   for (std::size_t i = 0; i < top::diagnosis_count; ++i) {

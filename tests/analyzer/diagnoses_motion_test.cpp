@@ -19,15 +19,14 @@
 #include "findings/afindings.hpp"
 #include "report/analysis.hpp"
 #include "test_support.hpp"
+#include "test_time.hpp"
 #include "top/catalog.hpp"
 #include "top/device.hpp"
 #include "top/diagnoses.hpp"
 #include "top/motion.hpp"
-#include "test_time.hpp"
 
 namespace topdump {
 namespace {
-
 
 // The motion track fed frame by frame, as the session feeds it. Each frame's
 // data is a view into the whole frame, as the session's are (the track

@@ -16,12 +16,12 @@
 #include "diagnoses/watch.hpp"
 #include "findings/afindings.hpp"
 #include "test_support.hpp"
+#include "test_time.hpp"
 #include "top/catalog.hpp"
 #include "top/decode.hpp"
 #include "top/detail/decode_cache.hpp"
 #include "top/detail/prefilter.hpp"
 #include "top/frame.hpp"
-#include "test_time.hpp"
 
 namespace topdump {
 namespace {
@@ -30,7 +30,6 @@ using test::captures_dir;
 using test::run;
 using test::slurp;
 using test::topdump_bin;
-
 
 // ---- the table ------------------------------------------------------------
 

@@ -74,7 +74,8 @@ TEST(Filter, UnansweredRequestsFollowTheIdent) {
 
 TEST(Filter, StatsCountOnlyWhatIsSelected) {
   std::string out;
-  ASSERT_EQ(run(td() + "stats --json --ident GAA" + cap_arg("sample.pcap") + " 2>/dev/null", out), 0);
+  ASSERT_EQ(run(td() + "stats --json --ident GAA" + cap_arg("sample.pcap") + " 2>/dev/null", out),
+            0);
   auto j = nlohmann::json::parse(out);
   EXPECT_EQ(j["frames"], 2);
   EXPECT_EQ(j["per_ident"].size(), 1u);
@@ -119,7 +120,8 @@ TEST(Filter, MuteDropsAFindingEverywhere) {
   // Every frame is still there.
   EXPECT_EQ(std::count(all.begin(), all.end(), '\n'), std::count(muted.begin(), muted.end(), '\n'));
   std::string out;
-  run(td() + "stats --json --mute tp-length,unanswered" + cap_arg("sample.pcap") + " 2>/dev/null", out);
+  run(td() + "stats --json --mute tp-length,unanswered" + cap_arg("sample.pcap") + " 2>/dev/null",
+      out);
   auto j = nlohmann::json::parse(out);
   EXPECT_FALSE(j["per_finding"].contains("tp-length"));
   EXPECT_FALSE(j["per_finding"].contains("unanswered"));
@@ -138,11 +140,13 @@ TEST(Filter, RelativeTimesCountFromTheFirstTimestamp) {
   // sample.pcap starts at 12:00:00.000; +1s is the absolute 12:00:01Z.
   std::string rel, abs;
   run(td() + "read --csv n --from +1s" + cap_arg("sample.pcap") + " 2>/dev/null", rel);
-  run(td() + "read --csv n --from 2024-05-01T12:00:01Z" + cap_arg("sample.pcap") + " 2>/dev/null", abs);
+  run(td() + "read --csv n --from 2024-05-01T12:00:01Z" + cap_arg("sample.pcap") + " 2>/dev/null",
+      abs);
   EXPECT_EQ(rel, abs);
   EXPECT_NE(rel, "n\n");
   std::string ms;
-  run(td() + "read --csv n --from +300ms --to +305ms" + cap_arg("sample.pcap") + " 2>/dev/null", ms);
+  run(td() + "read --csv n --from +300ms --to +305ms" + cap_arg("sample.pcap") + " 2>/dev/null",
+      ms);
   std::string abs2;
   run(td() + "read --csv n --from 1714564800.3 --to 1714564800.305" + cap_arg("sample.pcap") +
           " 2>/dev/null",

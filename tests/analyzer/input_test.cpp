@@ -65,13 +65,14 @@ TEST(Input, StdinPipesAndFifosReadLikeFiles) {
     EXPECT_FALSE(file.empty()) << c;
     EXPECT_EQ(run("cat " + cap_quoted(c) + " | " + bin() + " read - 2>/dev/null", piped), rc) << c;
     EXPECT_EQ(unnamed(piped, "stdin"), file) << c << " through read -";
-    EXPECT_EQ(run("cat " + cap_quoted(c) + " | " + bin() + " read /dev/stdin 2>/dev/null", piped), rc)
+    EXPECT_EQ(run("cat " + cap_quoted(c) + " | " + bin() + " read /dev/stdin 2>/dev/null", piped),
+              rc)
         << c;
     EXPECT_EQ(unnamed(piped, "/dev/stdin"), file) << c << " through /dev/stdin";
-    EXPECT_EQ(
-        run("bash -c \"exec 7< <(cat " + cap_quoted(c) + "); " + bin() + " read /dev/fd/7 2>/dev/null\"",
-            piped),
-        rc)
+    EXPECT_EQ(run("bash -c \"exec 7< <(cat " + cap_quoted(c) + "); " + bin() +
+                      " read /dev/fd/7 2>/dev/null\"",
+                  piped),
+              rc)
         << c;
     EXPECT_EQ(unnamed(piped, "/dev/fd/7"), file) << c << " through a process substitution";
   }
@@ -119,9 +120,11 @@ TEST(Input, FormatThatTheFileIsNotIsAnError) {
       << out;
   EXPECT_EQ(run(bin() + " read --format pcap " + cap_quoted("multi-if.pcapng") + " 2>&1", out), 2);
   EXPECT_NE(out.find("--format pcap but this is a pcapng file"), std::string::npos) << out;
-  EXPECT_EQ(run(bin() + " read --format pcapng " + cap_quoted("multi-if.pcapng") + " 2>/dev/null", out),
-            0);
-  EXPECT_EQ(run(bin() + " read --format pcapng " + cap_quoted("serial-lines.log") + " 2>&1", out), 2);
+  EXPECT_EQ(
+      run(bin() + " read --format pcapng " + cap_quoted("multi-if.pcapng") + " 2>/dev/null", out),
+      0);
+  EXPECT_EQ(run(bin() + " read --format pcapng " + cap_quoted("serial-lines.log") + " 2>&1", out),
+            2);
   EXPECT_NE(out.find("not a pcapng file"), std::string::npos) << out;
 }
 
@@ -131,7 +134,8 @@ TEST(Input, TheChosenFormatIsStated) {
   EXPECT_NE(out.find("sample.pcap: pcap, link type EN10MB"), std::string::npos) << out;
   run(bin() + " read -v " + cap_quoted("serial-lines.log") + " 2>&1 >/dev/null", out);
   EXPECT_NE(out.find("serial-lines.log: lines"), std::string::npos) << out;
-  run(bin() + " stats " + cap_quoted("multi-if.pcapng") + " " + cap_quoted("serial-saleae.csv"), out);
+  run(bin() + " stats " + cap_quoted("multi-if.pcapng") + " " + cap_quoted("serial-saleae.csv"),
+      out);
   EXPECT_NE(out.find("input: " + captures_dir() + "/multi-if.pcapng: pcapng, link type EN10MB"),
             std::string::npos)
       << out;
@@ -193,10 +197,10 @@ TEST(Input, TwoTimedLogsMergeIntoOneConversation) {
   EXPECT_EQ(count(out, "autopilot.log"), 0u) << out;
   EXPECT_NE(out.find("line 2: expected"), std::string::npos) << out;
   // a raw dump has no times to merge by
-  EXPECT_EQ(
-      run(bin() + " read " + q(tmp.file("gimbal.log")) + " " + cap_quoted("serial-raw.bin") + " 2>&1",
-          out),
-      2);
+  EXPECT_EQ(run(bin() + " read " + q(tmp.file("gimbal.log")) + " " + cap_quoted("serial-raw.bin") +
+                    " 2>&1",
+                out),
+            2);
   EXPECT_NE(out.find("serial-raw.bin: a raw input cannot be merged"), std::string::npos) << out;
 }
 

@@ -14,8 +14,8 @@
 #include "output/escape.hpp"
 #include "output/json_writer.hpp"
 #include "test_support.hpp"
-#include "top/frame.hpp"
 #include "test_time.hpp"
+#include "top/frame.hpp"
 
 namespace topdump::test {
 namespace {

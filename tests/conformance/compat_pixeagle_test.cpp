@@ -26,8 +26,8 @@ Experience pixeagle_experience(const std::string& faults, topsim::DeviceOptions 
   const auto fc = topsim::parse_faults(faults, err);
   EXPECT_TRUE(fc) << err;
   PixEagleClient c;
-  const DriverRun r = run_driver(c, top::Model::sip, topsim::TransportKind::udp, kPixEagleRunMs, "", o,
-                                 fc ? *fc : topsim::FaultConfig{}, UdpClient::pixeagle);
+  const DriverRun r = run_driver(c, top::Model::sip, topsim::TransportKind::udp, kPixEagleRunMs, "",
+                                 o, fc ? *fc : topsim::FaultConfig{}, UdpClient::pixeagle);
   Experience e;
   e.served = healthy_throughout(c.angles, r.start_us, kPixEagleRunMs);
   if (c.states.empty()) e.lost.insert("tracking state");

@@ -13,7 +13,7 @@ using topsim::Device;
 using topsim::Link;
 
 std::vector<std::string> ask_text(Device& d, std::string_view body, std::uint64_t t = 0,
-                              Link link = Link::network) {
+                                  Link link = Link::network) {
   return topsim::handle_datagram(d, top::with_checksum(body), link, t);
 }
 

@@ -4,8 +4,8 @@
 // work on it; the conversation table (conversation_table.hpp) holds it.
 #pragma once
 
-#include <array>
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -122,10 +122,10 @@ struct HostLink {
     if (ports.size() < 16 && std::find(ports.begin(), ports.end(), p) == ports.end())
       ports.push_back(p);
   }
-  std::uint64_t device_frames = 0;          // frames of the device, copies aside
-  std::uint64_t from_reply_port = 0;        // of them, sent from a reply port
-  std::uint64_t copies = 0;                 // copies of the device's frames
-  std::uint64_t fanned = 0;                 // frames of the device that had a copy
+  std::uint64_t device_frames = 0;    // frames of the device, copies aside
+  std::uint64_t from_reply_port = 0;  // of them, sent from a reply port
+  std::uint64_t copies = 0;           // copies of the device's frames
+  std::uint64_t fanned = 0;           // frames of the device that had a copy
   // The first frame from a reply port, and the first copy: where the notes sit.
   std::uint64_t reply_port_n = 0, copy_n = 0;
   std::int64_t reply_port_ts = kNoTime, copy_ts = kNoTime;

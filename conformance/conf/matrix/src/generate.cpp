@@ -117,19 +117,20 @@ ojson unanswered_alts(const top::CommandSpec& c) {
   const std::string why =
       "the document gives " + std::string(c.ident) + " w no reply form (top::write_reply: nothing)";
   return ojson::array({ojson{{"silence_ms", 60}},
-                      ojson{{"echo", true}, {"tolerated", true}, {"note", "an echo: " + why}},
-                      ojson{{"echo", true},
-                           {"addresses", "any"},
-                           {"tolerated", true},
-                           {"note", "an echo keeping the client's address first: " + why}}});
+                       ojson{{"echo", true}, {"tolerated", true}, {"note", "an echo: " + why}},
+                       ojson{{"echo", true},
+                             {"addresses", "any"},
+                             {"tolerated", true},
+                             {"note", "an echo keeping the client's address first: " + why}}});
 }
 
 ojson echo_alts() {
-  return ojson::array({ojson{{"echo", true}},
-                      ojson{{"echo", true},
-                           {"addresses", "any"},
-                           {"tolerated", true},
-                           {"note", "reply keeps the client's address first (some simulators)"}}});
+  return ojson::array(
+      {ojson{{"echo", true}},
+       ojson{{"echo", true},
+             {"addresses", "any"},
+             {"tolerated", true},
+             {"note", "reply keeps the client's address first (some simulators)"}}});
 }
 
 // An answer in the reply layout `reply`; addresses kept in the request's
@@ -137,9 +138,9 @@ ojson echo_alts() {
 ojson reply_alts(const ojson& reply) {
   return ojson::array(
       {ojson{{"reply", reply}}, ojson{{"reply", reply},
-                                    {"addresses", "any"},
-                                    {"tolerated", true},
-                                    {"note", "reply keeps the client's address first"}}});
+                                      {"addresses", "any"},
+                                      {"tolerated", true},
+                                      {"note", "reply keeps the client's address first"}}});
 }
 
 ojson reply_checks(const top::FormSpec& resp) {
@@ -180,13 +181,13 @@ struct Generator {
   ojson error_alts() const {
     if (!sky) return ojson::array({negative_silence});
     return ojson::array({ojson{{"error", true}},
-                        ojson{{"error", true},
-                             {"addresses", "any"},
-                             {"tolerated", true},
-                             {"note", "ERE without swapped addresses"}},
-                        ojson{{"silence_ms", 60},
-                             {"tolerated", true},
-                             {"note", "the device ignores the invalid command instead of ERE"}}});
+                         ojson{{"error", true},
+                               {"addresses", "any"},
+                               {"tolerated", true},
+                               {"note", "ERE without swapped addresses"}},
+                         ojson{{"silence_ms", 60},
+                               {"tolerated", true},
+                               {"note", "the device ignores the invalid command instead of ERE"}}});
   }
 
   ojson head() const {
@@ -223,7 +224,7 @@ struct Generator {
       return t;
     }
     ojson head(const std::string& suffix, const std::string& title, const std::string& lvl,
-              ojson tag_list) const {
+               ojson tag_list) const {
       return {{"id", base + suffix},
               {"section", std::string(c.section)},
               {"title", std::string(c.title) + title},
@@ -276,9 +277,9 @@ struct Generator {
       if (f.control == 'w' && f.role == top::Role::response && !f.from_field()) wr = &f;
     if (k.w && top::write_reply(c) == top::WriteReply::nothing) {
       ojson cs = k.head("/write",
-                       readable(k) ? ": a write takes effect without an answer (read back)"
-                                   : ": a write is taken without an answer",
-                       k.level, k.tags({"positive", "write"}));
+                        readable(k) ? ": a write takes effect without an answer (read back)"
+                                    : ": a write is taken without an answer",
+                        k.level, k.tags({"positive", "write"}));
       ojson step = {{"send", send(c, 'w', k.wdata)}};
       step["expect"] = readable(k)
                            ? ojson::array({ojson{{"readback", {{"send", send(c, 'r', k.rdata)}}}}})
@@ -309,14 +310,15 @@ struct Generator {
       if (k.appendix) reply.erase("control");
       ojson cs =
           k.head("/read", ": a read is answered with data", k.level, k.tags({"positive", "read"}));
-      cs["steps"] = ojson::array({{{"send", send(c, 'r', k.rdata)}, {"expect", reply_alts(reply)}}});
+      cs["steps"] =
+          ojson::array({{{"send", send(c, 'r', k.rdata)}, {"expect", reply_alts(reply)}}});
       cases.push_back(std::move(cs));
     }
     if (readable(k)) {
       std::string alt = alternate_data(*k.w);
       if (!clean_request(d, model, c, 'w', alt)) alt = k.wdata;
       ojson cs = k.head("/state", ": a written value reads back",
-                       k.level == "must" ? "should" : k.level, k.tags({"state"}));
+                        k.level == "must" ? "should" : k.level, k.tags({"state"}));
       cs["steps"] = ojson::array(
           {{{"send", send(c, 'w', alt)},
             {"expect", ojson::array({ojson{{"readback", {{"send", send(c, 'r', k.rdata)}}}}})}}});
@@ -352,7 +354,7 @@ struct Generator {
     if (any && any->min_length > 0 && any->max_length < 15) {
       const std::string bad = (k.w ? k.wdata : k.rdata).substr(0, any->min_length - 1);
       ojson cs = k.head("/wrong-length", ": a frame with a wrong data length is rejected", "should",
-                       k.tags({"negative", "wrong-length"}));
+                        k.tags({"negative", "wrong-length"}));
       cs["section"] = ere_section;
       cs["steps"] = ojson::array({{{"send", send(c, ctl, bad)}, {"expect", error_alts()}}});
       cases.push_back(std::move(cs));
@@ -380,7 +382,7 @@ struct Generator {
                      {"level", "should"},
                      {"tags", ojson::array({"negative", "bad-checksum", "class-" + k.cls})},
                      {"steps", ojson::array({{{"send", {{"raw", f}}},
-                                             {"expect", ojson::array({negative_silence})}}})}});
+                                              {"expect", ojson::array({negative_silence})}}})}});
   }
 
   void frame_cases() {
@@ -403,8 +405,9 @@ struct Generator {
          {"title", "the invalid-command reply is exactly #TPMU2wERE!!30"},
          {"level", "should"},
          {"tags", ojson::array({"negative", "exact-frame"})},
-         {"steps", ojson::array({{{"send", {{"raw", "#TPUM2rZZZ00"}}},
-                                 {"expect", ojson::array({ojson{{"frame", "#TPMU2wERE!!30"}}})}}})}});
+         {"steps",
+          ojson::array({{{"send", {{"raw", "#TPUM2rZZZ00"}}},
+                         {"expect", ojson::array({ojson{{"frame", "#TPMU2wERE!!30"}}})}}})}});
   }
 
   // Streaming: every device stream of the catalog (top/device.hpp): SkyDroid
@@ -420,10 +423,10 @@ struct Generator {
       const std::string push(st.push);
       auto stream_of = [&](std::string_view ident) {
         return ojson{{"stream",
-                     {{"ident", std::string(ident)},
-                      {"rate_hz", hz},
-                      {"tolerance", top::stream_rate_tolerance},
-                      {"duration_ms", 450}}}};
+                      {{"ident", std::string(ident)},
+                       {"rate_hz", hz},
+                       {"tolerance", top::stream_rate_tolerance},
+                       {"duration_ms", 450}}}};
       };
       ojson pushes = ojson::array({stream_of(st.push)});
       // The field's stream of the same switch (Topotek GIA 01 pushing GIA
@@ -438,15 +441,15 @@ struct Generator {
       // it none (top::write_reply); then the pushes are the answer.
       const bool echoed = top::write_reply(*gaa) != top::WriteReply::nothing;
       ojson steps = echoed
-                       ? ojson::array({
-                             {{"send", send(*gaa, 'w', on)}, {"expect", echo_alts()}},
-                             {{"expect", pushes}},
-                             {{"send", send(*gaa, 'w', "00")}, {"expect", echo_alts()}},
-                         })
-                       : ojson::array({
-                             {{"send", send(*gaa, 'w', on)}, {"expect", pushes}},
-                             {{"send", send(*gaa, 'w', "00")}, {"expect", unanswered_alts(*gaa)}},
-                         });
+                        ? ojson::array({
+                              {{"send", send(*gaa, 'w', on)}, {"expect", echo_alts()}},
+                              {{"expect", pushes}},
+                              {{"send", send(*gaa, 'w', "00")}, {"expect", echo_alts()}},
+                          })
+                        : ojson::array({
+                              {{"send", send(*gaa, 'w', on)}, {"expect", pushes}},
+                              {{"send", send(*gaa, 'w', "00")}, {"expect", unanswered_alts(*gaa)}},
+                          });
       cases.push_back(
           {{"id",
             dn + "/" + section_number(gaa->section) + "/" + std::string(gaa->ident) + "/stream"},

@@ -19,12 +19,12 @@ using top::markup_escape;
 namespace {
 
 constexpr Grade kDriveGrades[] = {Grade::pass,          Grade::non_strict, Grade::informational,
-                             Grade::unimplemented, Grade::fail,       Grade::error};
+                                  Grade::unimplemented, Grade::fail,       Grade::error};
 
 // The console colour of each grade, in Grade's order: green, yellow, dim,
 // dim, red, red.
 constexpr std::string_view kDriveColor[] = {"\x1b[32m", "\x1b[33m", "\x1b[2m",
-                                       "\x1b[2m",  "\x1b[31m", "\x1b[31m"};
+                                            "\x1b[2m",  "\x1b[31m", "\x1b[31m"};
 static_assert(std::size(kDriveColor) == static_cast<std::size_t>(Grade::error) + 1);
 
 std::string_view color_of(Grade g) { return top::enum_name(kDriveColor, g, "\x1b[2m"); }
@@ -128,7 +128,8 @@ void write_drive_junit(std::ostream& os, const DriveRun& r) {
     detail::JunitCase k{.classname = s.name,
                         .name = std::string(c.spec->id) + " " + std::string(c.spec->title),
                         .seconds = c.duration_s};
-    const std::string graded = std::string(drive::to_string(c.verdict.grade)) + ": " + c.verdict.reason;
+    const std::string graded =
+        std::string(drive::to_string(c.verdict.grade)) + ": " + c.verdict.reason;
     switch (c.verdict.grade) {
       case Grade::fail:
         k.result = Result::failure;
@@ -246,7 +247,9 @@ void write_drive_table_html(std::ostream& os, const nlohmann::json& t) {
     tops.push_back({.head_html = markup_escape(c.value("agent", "")) + "<br><small>" +
                                  markup_escape(c.value("model", "")) + " over " +
                                  markup_escape(c.value("link", "")) + "</small>",
-                    .summary_class = code == 0 ? "pass" : code == 1 ? "fail" : "error",
+                    .summary_class = code == 0   ? "pass"
+                                     : code == 1 ? "fail"
+                                                 : "error",
                     .summary_html = "<b>exit " + std::to_string(code) + "</b>"});
   }
   write_table_page_top(os, "topconf drive: agents",

@@ -124,7 +124,8 @@ void write_junit(std::ostream& os, const FuzzResult& r) {
   detail::open_junit(os, suite);
   using Result = detail::JunitCase::Result;
   for (FailureClass c : kFailureClasses) {
-    detail::JunitCase k{.classname = "topconf.fuzz", .name = std::string(to_string(c)), .seconds = 0};
+    detail::JunitCase k{
+        .classname = "topconf.fuzz", .name = std::string(to_string(c)), .seconds = 0};
     if (r.unusable) {
       k.result = Result::error;
       k.message = r.unusable_reason;

@@ -28,9 +28,9 @@ struct JunitCase {
   std::string classname, name;
   std::optional<double> seconds;  // the time attribute only when given
   Result result = Result::pass;
-  std::string message;            // the result element's message
-  std::string type;               // its type attribute, when not empty
-  std::string body;               // its text, when not empty
+  std::string message;             // the result element's message
+  std::string type;                // its type attribute, when not empty
+  std::string body;                // its text, when not empty
   std::optional<std::string> out;  // <system-out>, when given
 };
 void write_case(std::ostream& os, const JunitCase& c);

@@ -216,8 +216,8 @@ void write_table_page_top(std::ostream& os, std::string_view title, std::string_
                           std::string_view intro_html, std::string_view corner,
                           std::string_view summary, const std::vector<TableColumnTop>& columns) {
   write_html_head(os, title);
-  os << "<h1>" << markup_escape(heading) << "</h1>\n<p>" << intro_html
-     << "</p>\n<table><tr><th>" << markup_escape(corner) << "</th>";
+  os << "<h1>" << markup_escape(heading) << "</h1>\n<p>" << intro_html << "</p>\n<table><tr><th>"
+     << markup_escape(corner) << "</th>";
   for (const TableColumnTop& c : columns) os << "<th>" << c.head_html << "</th>";
   os << "</tr>\n<tr><th>" << markup_escape(summary) << "</th>";
   for (const TableColumnTop& c : columns)
