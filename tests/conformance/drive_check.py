@@ -87,7 +87,8 @@ def main():
     # table holds both.
     done = {"good": finish(runs.pop("good"))}
     bad = drive(a.topconf, a.out, three + ["--exec", fake + " --wrong-sign --no-stop", "--agent",
-                                           "bad", "--out", "t", "--json", "bad.json"], wait=False)
+                                           "bad", "--out", "t", "--json", "bad.json", "--junit",
+                                           "bad.xml"], wait=False)
     done.update({k: finish(p) for k, p in runs.items()})
     done["bad"] = finish(bad)
     for name, want in (("good", 0), ("bad", 1), ("silent", 1), ("missing", 2), ("persistent", 0)):
@@ -123,6 +124,17 @@ def main():
     got = {k: g.get(k, {}).get("grade") for k in want}
     if got != want:
         errors.append("bad: %s, not %s: %s" % (got, want, {k: g[k]["reason"] for k in g}))
+    # JUnit: a failed case is a <failure> with its reason, a passed one none
+    xml = ET.parse(path("bad.xml")).getroot().find("testsuite")
+    cases = {c.get("name", "").split(" ")[0]: c for c in
+             (xml.findall("testcase") if xml is not None else [])}
+    if xml is None or xml.get("tests") != "3" or xml.get("failures") != "2":
+        errors.append("bad.xml: %s" % (xml.attrib if xml is not None else "no testsuite"))
+    for cid, grade in want.items():
+        failure = cases[cid].find("failure") if cid in cases else None
+        if (failure is not None) != (grade == "fail") or \
+                (failure is not None and not failure.get("message")):
+            errors.append("bad.xml %s: failure element %s for a %s" % (cid, failure, grade))
     if "-" not in g.get("2.1", {}).get("reason", "") or "pitch" not in g.get("2.1", {}).get(
             "reason", ""):
         errors.append("bad 2.1 does not say the pitch went down: %s" % g.get("2.1"))
