@@ -7,7 +7,9 @@
 # then runs each binary from OUT for a few seconds on its unzipped seed
 # corpus with the flags its .options gives (the dictionary taken from OUT),
 # two at a time. New inputs go to a temporary directory. Fails on a build.sh
-# failure, a missing file in OUT, or any crash, leak, timeout (-timeout=10)
+# failure, a missing file in OUT, an object instrumented otherwise than
+# fuzz/CMakeLists.txt asks (the output room without compare tracing, the
+# capture readers with it), or any crash, leak, timeout (-timeout=10)
 # or out-of-memory (-rss_limit_mb=2560, ClusterFuzzLite's). Prints one line
 # per target. Skips, with a message, when clang++ or libFuzzer is missing.
 #
@@ -89,6 +91,28 @@ for o in fuzz/fuzz_*.options; do
 done
 [ -s "$out/top.dict" ] || { echo "fuzz/run-ci.sh: build.sh left no top.dict in OUT" >&2; missing=1; }
 [ $missing = 0 ] || exit 1
+
+# The instrumentation fuzz/CMakeLists.txt chooses: the output room's
+# objects keep their edge counters without compare tracing; the capture
+# readers (parsers) keep both.
+instrumented() {  # instrumented ROOM_DIR WANT_CMP: every object of the room as asked
+  local bad=0 o syms
+  for o in build/oss/analyzer/CMakeFiles/$1.dir/*/src/*.o; do
+    [ -f "$o" ] || { echo "fuzz/run-ci.sh: no objects of $1 in build/oss" >&2; return 1; }
+    syms=$(nm "$o")
+    if ! grep -q __sanitizer_cov_8bit_counters_init <<<"$syms"; then
+      echo "fuzz/run-ci.sh: $o has no edge counters" >&2
+      bad=1
+    fi
+    if grep -qE '__sanitizer_cov_trace_(const_)?cmp' <<<"$syms"; then
+      [ "$2" = yes ] || { echo "fuzz/run-ci.sh: $o traces compares (fuzz/CMakeLists.txt turns that off for $1)" >&2; bad=1; }
+    else
+      [ "$2" = no ] || { echo "fuzz/run-ci.sh: $o traces no compares" >&2; bad=1; }
+    fi
+  done
+  return $bad
+}
+instrumented topdump_output no && instrumented topdump_capture yes || exit 1
 
 if [ $# -gt 0 ]; then
   targets=("$@")
