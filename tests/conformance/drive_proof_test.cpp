@@ -83,9 +83,16 @@ void PrintTo(const ProofRun& r, std::ostream* os) { *os << name_of(r); }
 
 class DriveProof : public ::testing::TestWithParam<ProofRun> {};
 
-TEST_P(DriveProof, EachBugFailsExactlyItsCases) {
-  const ProofRun& r = GetParam();
-  const fs::path out = fs::path(TOPKIT_BINARY_DIR) / "drive-proof" / name_of(r);
+// One `topconf drive` run and what its JSON report says.
+struct Outcome {
+  std::string cmd;
+  int rc = -1;
+  nlohmann::json report;  // discarded when there is none
+  std::set<std::string> failed;
+  std::string grades;  // "id grade: reason" lines
+};
+
+Outcome drive_once(const ProofRun& r, const fs::path& out) {
   fs::remove_all(out);
   fs::create_directories(out);
   const std::string client =
@@ -95,34 +102,55 @@ TEST_P(DriveProof, EachBugFailsExactlyItsCases) {
                      (r.link == "pty" ? " --pty {pty}" : " --udp {host}:{port}");
   if (!r.bug.empty()) exec += " --bug " + r.bug;
   const std::string report = (out / "report.json").string();
-  std::string cmd = "'" + bin("topconf") + "' drive --model " + r.model + " --link " + r.link +
-                    " --jobs 32 -q --no-color --out '" + (out / "run").string() + "' --json '" +
-                    report + "' --exec \"" + exec + "\"";
-  const std::vector<std::string>& cases = r.only;
-  for (const std::string& c : cases) cmd += " --case " + c;
-  const int rc = run_cmd(cmd);
-  SCOPED_TRACE(cmd);
-
+  Outcome o;
+  o.cmd = "'" + bin("topconf") + "' drive --model " + r.model + " --link " + r.link +
+          " --jobs 32 -q --no-color --out '" + (out / "run").string() + "' --json '" + report +
+          "' --exec \"" + exec + "\"";
+  for (const std::string& c : r.only) o.cmd += " --case " + c;
+  o.rc = run_cmd(o.cmd);
   std::ifstream in(report);
-  const auto j = nlohmann::json::parse(in, nullptr, false);
-  ASSERT_FALSE(j.is_discarded()) << "no JSON report; topconf exit " << rc;
-  std::set<std::string> failed, want;
-  if (!r.bug.empty()) want = fails_of(r.bug);
-  std::string grades;
-  for (const auto& c : j.value("cases", nlohmann::json::array())) {
+  o.report = nlohmann::json::parse(in, nullptr, false);
+  if (o.report.is_discarded()) return o;
+  for (const auto& c : o.report.value("cases", nlohmann::json::array())) {
     const std::string id = c.value("id", ""), grade = c.value("grade", "");
-    grades += id + " " + grade + ": " + c.value("reason", "") + "\n";
+    o.grades += id + " " + grade + ": " + c.value("reason", "") + "\n";
+    if (grade == "fail") o.failed.insert(id);
+  }
+  return o;
+}
+
+TEST_P(DriveProof, EachBugFailsExactlyItsCases) {
+  const ProofRun& r = GetParam();
+  const fs::path out = fs::path(TOPKIT_BINARY_DIR) / "drive-proof" / name_of(r);
+  std::set<std::string> want;
+  if (!r.bug.empty()) want = fails_of(r.bug);
+  Outcome o = drive_once(r, out);
+  // Once more when the first run's failures are not the bug's: every case
+  // is judged on sub-second timing, and this VM's host has stalled every
+  // pty of the machine for 1.3 s at once (CI, f2e675d: the simulators kept
+  // their 100 ms stream, no client's bytes arrived, three concurrent runs
+  // alike). A bug fails its cases on every run, so it fails the second
+  // run too; the first run's grades are printed either way.
+  if (o.report.is_discarded() || o.failed != want) {
+    std::fprintf(stderr, "drive_proof: %s: first run failed {", name_of(r).c_str());
+    for (const std::string& id : o.failed) std::fprintf(stderr, " %s", id.c_str());
+    std::fprintf(stderr, " } (exit %d), running it once more:\n%s", o.rc, o.grades.c_str());
+    o = drive_once(r, out);
+  }
+  SCOPED_TRACE(o.cmd);
+  ASSERT_FALSE(o.report.is_discarded()) << "no JSON report; topconf exit " << o.rc;
+  for (const auto& c : o.report.value("cases", nlohmann::json::array())) {
+    const std::string id = c.value("id", ""), grade = c.value("grade", "");
     EXPECT_NE(grade, "error") << id << ": " << c.value("reason", "");
     if (r.bug.empty()) {
       EXPECT_NE(grade, "unimplemented") << id << ": " << c.value("reason", "");
     }
-    if (grade == "fail") failed.insert(id);
   }
-  EXPECT_EQ(failed, want) << grades;
-  EXPECT_EQ(rc, want.empty() ? 0 : 1) << grades;
-  EXPECT_EQ(j.value("exit_code", -1), rc);
-  const std::size_t ran = cases.empty() ? kCases.size() : cases.size();
-  EXPECT_EQ(j.value("cases", nlohmann::json::array()).size(), ran);
+  EXPECT_EQ(o.failed, want) << o.grades;
+  EXPECT_EQ(o.rc, want.empty() ? 0 : 1) << o.grades;
+  EXPECT_EQ(o.report.value("exit_code", -1), o.rc);
+  const std::size_t ran = r.only.empty() ? kCases.size() : r.only.size();
+  EXPECT_EQ(o.report.value("cases", nlohmann::json::array()).size(), ran);
 }
 
 INSTANTIATE_TEST_SUITE_P(Runs, DriveProof, ::testing::ValuesIn(runs()),
